@@ -1,0 +1,60 @@
+#pragma once
+// A pounding case in the paper's dimensionless terms (Dimitrakopoulos, Makris & Kappos
+// 2009, eq. 8): the scene, the pulse, and the Pi terms. A Case is plain data; the one
+// mapping to physical parameters is make_system() in system.hpp, so every solver receives
+// the same physical scene for the same Case.
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace pb {
+
+// Bodies left to right (+x to the right); body 0 is the one whose response is reported.
+//   wall: wall, 0        pair: 1, 0        row3: 1, 0, 2
+enum class Scene { wall, pair, row3 };
+
+// Ground acceleration on 0 <= t <= T_p: s a_p sin(w_p t) or s a_p cos(w_p t); zero after.
+enum class PulseShape { sine, cosine };
+
+// The sign s of the pulse: +1 (normal) loads body 0 towards its left neighbour first.
+enum class Directivity { normal, reverse };
+
+std::string_view name(Scene s);
+std::string_view name(PulseShape p);
+std::string_view name(Directivity d);
+std::optional<Scene> parse_scene(std::string_view s);
+std::optional<PulseShape> parse_pulse(std::string_view s);
+std::optional<Directivity> parse_directivity(std::string_view s);
+
+// Number of bodies (wall excluded) and of contacts of a scene.
+int body_count(Scene s);
+int contact_count(Scene s);
+// Whether Pi5/Pi6 (body 1) and Pi7/Pi8 (body 2) describe a body of the scene.
+bool uses_body1(Scene s);
+bool uses_body2(Scene s);
+
+struct Case {
+  std::string family;  // name of the sweep it belongs to; a label only
+  Scene scene = Scene::pair;
+  PulseShape pulse = PulseShape::sine;
+  Directivity directivity = Directivity::normal;
+  double pi2 = 1.0;  // w0 / w_p
+  double pi3 = 0.5;  // delta w_p^2 / a_p
+  double eps = 0.5;  // Pi4, coefficient of restitution
+  double pi5 = 1.0;  // w0 / w1
+  double pi6 = 1.0;  // m0 / m1
+  double pi7 = 1.0;  // w0 / w2
+  double pi8 = 1.0;  // m0 / m2
+  double xi = 0.05;  // damping ratio of every body
+  double n_free = 3.0;  // free-vibration periods T_max simulated after the pulse
+  // Physical scale of the pulse. Pi1 does not depend on it (self-similarity); it exists
+  // so that tests and the Fig. 3 family can check exactly that.
+  double a_p = 1.0;
+  double w_p = 1.0;
+};
+
+// Checks every value the case uses. Returns "field: reason" for the first bad one.
+std::optional<std::string> validate(const Case& c);
+
+}  // namespace pb

@@ -1,0 +1,73 @@
+#pragma once
+// The physical system a solver integrates, made from a Case by the Pi mapping of the
+// paper (eq. 8), and the mapping back. This is the only place that mapping lives.
+//
+//   w0 = Pi2 w_p   delta = Pi3 a_p / w_p^2   eps = Pi4
+//   w1 = w0 / Pi5  m1 = m0 / Pi6             w2 = w0 / Pi7   m2 = m0 / Pi8    (m0 = 1)
+//
+// Coordinates are displacements relative to the ground. Bodies are stored left to right;
+// contact j joins bodies left(j) and right(j) (left(j) == kWall for the wall, which moves
+// with the ground), and its gap is g_j = delta + u[right(j)] - u[left(j)].
+// Equation of motion: M u'' + C u' + K u = -M 1 a_g(t) + W lambda, lambda >= 0 on g = 0.
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "cases/case.hpp"
+
+namespace pb {
+
+struct Body {
+  double m;  // mass
+  double w;  // natural circular frequency
+  double k;  // m w^2
+  double c;  // 2 xi m w
+};
+
+struct Pulse {
+  PulseShape shape = PulseShape::sine;
+  double amplitude = 1.0;  // s a_p, signed by the directivity
+  double w = 1.0;          // w_p
+
+  double duration() const { return 2.0 * std::numbers::pi / w; }
+  // Ground acceleration a_g(t): zero outside [0, T_p].
+  double accel(double t) const {
+    if (t < 0.0 || t > duration()) return 0.0;
+    return shape == PulseShape::sine ? amplitude * std::sin(w * t) : amplitude * std::cos(w * t);
+  }
+};
+
+inline constexpr int kWall = -1;
+
+struct System {
+  std::vector<Body> bodies;  // left to right
+  bool wall = false;         // a wall (fixed to the ground) left of bodies[0]
+  int ref = 0;               // index of body 0, whose |u| gives Pi1
+  double delta = 0.0;        // gap of every contact at rest
+  double eps = 0.0;          // coefficient of restitution
+  double xi = 0.05;          // damping ratio of every body
+  double a_p = 1.0;          // pulse amplitude (unsigned)
+  Pulse pulse;
+  double t_end = 0.0;  // T_p + n_free T_max
+  double t_min = 0.0;  // min(T_p, shortest natural period): fixed steps are t_min / N
+
+  int n_bodies() const { return static_cast<int>(bodies.size()); }
+  int n_contacts() const { return n_bodies() - 1 + (wall ? 1 : 0); }
+  int left(int j) const { return wall ? j - 1 : j; }
+  int right(int j) const { return wall ? j : j + 1; }
+  // The pulse's length scale a_p / w_p^2 (Pi3 and Pi1 are lengths over it).
+  double length_scale() const { return a_p / (pulse.w * pulse.w); }
+  double pi1(double u_max) const { return u_max / length_scale(); }
+  // Fixed step of a time-stepper with N steps per shortest period.
+  double step(int n) const { return t_min / n; }
+};
+
+// The Case must be valid (validate() returns nothing).
+System make_system(const Case& c);
+
+// The inverse mapping: the Pi terms of a physical system (family, n_free are not
+// recoverable beyond what t_end implies; n_free is recomputed from t_end).
+Case case_of(const System& s);
+
+}  // namespace pb

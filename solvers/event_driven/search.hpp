@@ -1,0 +1,31 @@
+#pragma once
+// Certified searches on a closed-form Wave: the first zero crossing and the largest |f|.
+//
+// Both cut the interval into windows and bound f on each window by its cubic Hermite
+// interpolant through (f, f') at the window's ends, whose error is at most
+// max|f''''| w^4 / 384; max|f''''| is bounded from the wave's amplitudes (bound()).
+// A window is skipped only when that bound proves it holds no crossing (or no value
+// above the best so far); otherwise it is halved. Sampling alone could step over a
+// grazing approach; this cannot, down to windows of `floor` seconds, where a touch is
+// within round-off of the gap.
+
+#include "solvers/event_driven/wave.hpp"
+
+namespace pb::event_driven {
+
+// The first t in (a, b] where f falls to <= 0 after being > 0, to within an ulp of the
+// root; NaN if there is none. If f(a) <= 0 (a contact that has just opened, up to
+// round-off), the search starts where f first becomes positive, looking no further than
+// `settle` past a; if it never does, a + floor is returned (the contact never opened).
+double first_root(const Wave& f, double a, double b, double floor, double settle);
+
+struct Peak {
+  double value = 0.0;  // largest |f| found
+  double t = 0.0;      // where
+};
+
+// Raises peak to max |f| on [a, b] if that is larger; interior maxima are located at the
+// zero of f' to within an ulp.
+void max_abs(const Wave& f, double a, double b, double floor, Peak& peak);
+
+}  // namespace pb::event_driven

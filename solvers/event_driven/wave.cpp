@@ -1,0 +1,169 @@
+#include "solvers/event_driven/wave.hpp"
+
+#include <cassert>
+
+namespace pb::event_driven {
+
+void Wave::prepare() {
+  for (int m = 0; m < n_modes; ++m) {
+    Mode& md = mode[static_cast<std::size_t>(m)];
+    // (a - i b) * lambda^d with lambda = -sigma + i omega.
+    double re = md.a, im = -md.b;
+    md.re[0] = re;
+    md.im[0] = im;
+    for (std::size_t d = 1; d <= kMaxDerivative; ++d) {
+      const double nre = re * -md.sigma - im * md.omega;
+      const double nim = re * md.omega + im * -md.sigma;
+      re = nre;
+      im = nim;
+      md.re[d] = re;
+      md.im[d] = im;
+    }
+    md.amp = std::hypot(md.a, md.b);
+    md.rate = std::hypot(md.sigma, md.omega);
+  }
+}
+
+void Wave::eval(double t, double* out, int nd) const {
+  const double tau = t - t0;
+  for (int d = 0; d < nd; ++d) out[d] = 0.0;
+  out[0] = f0;
+  if (w != 0.0 && (ps != 0.0 || pc != 0.0)) {
+    // Increment of the pulse term from t0 by the sum-to-product forms.
+    const double half = 0.5 * w * tau;
+    const double mid = 0.5 * w * (t + t0);
+    const double sh = std::sin(half), ch = std::cos(half);
+    const double sm = std::sin(mid), cm = std::cos(mid);
+    out[0] += 2.0 * sh * (ps * cm - pc * sm);
+    if (nd > 1) {
+      const double s = sm * ch + cm * sh;  // sin(w t)
+      const double c = cm * ch - sm * sh;  // cos(w t)
+      // d-th derivative: w^d (ps sin(wt + d pi/2) + pc cos(wt + d pi/2)).
+      double wd = 1.0;
+      for (int d = 1; d < nd; ++d) {
+        wd *= w;
+        double v = 0.0;
+        switch (d % 4) {
+          case 0: v = ps * s + pc * c; break;
+          case 1: v = ps * c - pc * s; break;
+          case 2: v = -ps * s - pc * c; break;
+          case 3: v = -ps * c + pc * s; break;
+        }
+        out[d] += wd * v;
+      }
+    }
+  }
+  for (int m = 0; m < n_modes; ++m) {
+    const Mode& md = mode[static_cast<std::size_t>(m)];
+    const double em1 = std::expm1(-md.sigma * tau);
+    const double e = em1 + 1.0;
+    const double sh = std::sin(0.5 * md.omega * tau), ch = std::cos(0.5 * md.omega * tau);
+    const double cs = 1.0 - 2.0 * sh * sh, sn = 2.0 * sh * ch;
+    // e cs - 1 = expm1 cs - 2 sh^2, without cancellation near tau = 0.
+    out[0] += md.a * (em1 * cs - 2.0 * sh * sh) + md.b * e * sn;
+    for (int d = 1; d < nd; ++d) {
+      const auto k = static_cast<std::size_t>(d);
+      out[d] += e * (md.re[k] * cs - md.im[k] * sn);
+    }
+  }
+}
+
+double Wave::bound(double t, int d) const {
+  double b = 0.0;
+  if (w != 0.0) b += std::pow(w, d) * std::hypot(ps, pc);
+  const double tau = t - t0;
+  for (int m = 0; m < n_modes; ++m) {
+    const Mode& md = mode[static_cast<std::size_t>(m)];
+    b += md.amp * std::pow(md.rate, d) * std::exp(-md.sigma * std::max(tau, 0.0));
+  }
+  return b;
+}
+
+void add_scaled(Wave& acc, const Wave& x, double s) {
+  assert(acc.t0 == x.t0);
+  acc.f0 += s * x.f0;
+  if (x.w != 0.0) {
+    assert(acc.w == 0.0 || acc.w == x.w);
+    acc.w = x.w;
+    acc.ps += s * x.ps;
+    acc.pc += s * x.pc;
+  }
+  for (int m = 0; m < x.n_modes; ++m) {
+    const Mode& xm = x.mode[static_cast<std::size_t>(m)];
+    int k = 0;
+    while (k < acc.n_modes && !(acc.mode[static_cast<std::size_t>(k)].sigma == xm.sigma &&
+                                acc.mode[static_cast<std::size_t>(k)].omega == xm.omega))
+      ++k;
+    assert(k < kMaxModes);
+    Mode& am = acc.mode[static_cast<std::size_t>(k)];
+    if (k == acc.n_modes) {
+      am = Mode{xm.sigma, xm.omega, 0.0, 0.0, {}, {}, 0.0, 0.0};
+      ++acc.n_modes;
+    }
+    am.a += s * xm.a;
+    am.b += s * xm.b;
+  }
+}
+
+Wave derivative(const Wave& x) {
+  Wave d;
+  d.t0 = x.t0;
+  double v[2];
+  x.eval(x.t0, v, 2);
+  d.f0 = v[1];
+  d.w = x.w;
+  d.ps = -x.w * x.pc;
+  d.pc = x.w * x.ps;
+  d.n_modes = x.n_modes;
+  for (int m = 0; m < x.n_modes; ++m) {
+    const Mode& xm = x.mode[static_cast<std::size_t>(m)];
+    Mode& dm = d.mode[static_cast<std::size_t>(m)];
+    dm.sigma = xm.sigma;
+    dm.omega = xm.omega;
+    dm.a = xm.re[1];
+    dm.b = -xm.im[1];
+  }
+  d.prepare();
+  return d;
+}
+
+Wave oscillator(double t0, double x0, double v0, double m, double c, double k, double f_const, double fs,
+                double fc, double w) {
+  Wave x;
+  x.t0 = t0;
+  x.f0 = x0;
+  const double wn2 = k / m;
+  const double two_zeta_wn = c / m;
+  // Particular solution: f_const / k + P sin(w t) + Q cos(w t).
+  double p = 0.0, q = 0.0;
+  if (fs != 0.0 || fc != 0.0) {
+    const double a = wn2 - w * w, b = two_zeta_wn * w;
+    const double det = a * a + b * b;
+    p = (a * fs / m + b * fc / m) / det;
+    q = (a * fc / m - b * fs / m) / det;
+    x.w = w;
+    x.ps = p;
+    x.pc = q;
+  }
+  const double xp = f_const / k + p * std::sin(w * t0) + q * std::cos(w * t0);
+  const double vp = w * (p * std::cos(w * t0) - q * std::sin(w * t0));
+  const double sigma = 0.5 * two_zeta_wn;
+  const double omega = std::sqrt(wn2 - sigma * sigma);
+  Mode& md = x.mode[0];
+  md.sigma = sigma;
+  md.omega = omega;
+  md.a = x0 - xp;
+  md.b = (v0 - vp + sigma * md.a) / omega;
+  x.n_modes = 1;
+  x.prepare();
+  return x;
+}
+
+Wave constant(double t0, double f0) {
+  Wave x;
+  x.t0 = t0;
+  x.f0 = f0;
+  return x;
+}
+
+}  // namespace pb::event_driven

@@ -1,0 +1,80 @@
+#pragma once
+// The one interface every solver implements:
+//
+//   Result solve(const System&, const Settings&)
+//
+// A solver reads no files, prints nothing and knows nothing of sweeps; it gets the
+// physical system (cases/system.hpp) and plain settings, and returns plain data.
+// Solvers are listed by name in the registry (find_solver), which is all a sweep sees.
+
+#include <limits>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cases/system.hpp"
+
+namespace pb {
+
+enum class Status {
+  ok,        // ran to t_end
+  diverged,  // state grew without bound
+  nan,       // a NaN or inf appeared
+  step_cap,  // more steps or events than Settings::step_cap
+  timeout,   // more wall time than Settings::time_limit
+  failed,    // the solver could not go on (message says why)
+};
+std::string_view name(Status s);
+
+struct Settings {
+  std::string variant;   // solver-specific variant; empty = the solver's default
+  int steps = 0;         // time-steppers: steps per shortest period N (h = t_min / N); 0 = default
+  double theta = 0.5;    // Moreau-Jean theta
+  double gamma = 0.5;    // Moreau-Jean activation look-ahead
+  double tol_scale = 1;  // event-driven: multiplies every internal tolerance
+  long step_cap = 0;     // 0 = the solver's own cap
+  double time_limit = 0;  // seconds of wall time per run; 0 = none
+  int history_samples = 0;  // > 0: record the state at this many equally spaced times
+                            // (event-driven) or at every step (time-steppers)
+};
+
+// State samples, one row per time: t, u[0..n), v[0..n), g[0..c), lambda[0..c), bodies
+// left to right. lambda is a force (impulses of a step are divided by the step).
+struct History {
+  int n_bodies = 0;
+  int n_contacts = 0;
+  std::vector<double> data;  // row-major, row_size() values per row
+
+  int row_size() const { return 1 + 2 * n_bodies + 2 * n_contacts; }
+  std::size_t rows() const { return row_size() ? data.size() / static_cast<std::size_t>(row_size()) : 0; }
+};
+
+struct Result {
+  Status status = Status::ok;
+  std::string message;  // why a run did not finish, or notes
+  double pi1 = std::numeric_limits<double>::quiet_NaN();  // max |u0| w_p^2 / a_p
+  double t_max = std::numeric_limits<double>::quiet_NaN();  // time of that maximum
+  long impacts = 0;         // contact closures with an approach velocity (per contact)
+  long contact_phases = 0;  // entries into persistent contact (per contact)
+  long steps = 0;           // time steps, or events for an event-driven solver
+  double min_gap = std::numeric_limits<double>::infinity();  // most negative gap (penetration)
+  History history;
+};
+
+using SolveFn = Result (*)(const System&, const Settings&);
+
+struct SolverInfo {
+  std::string_view name;     // as given to --solver
+  std::string_view summary;  // one line for --help
+  SolveFn solve;
+  // The settings that matter to this solver, as "key=value;key=value" for result rows.
+  std::string (*describe)(const Settings&);
+  // Checks settings before a run; returns "field: reason" or an empty string.
+  std::string (*check)(const Settings&);
+};
+
+std::span<const SolverInfo> solvers();
+const SolverInfo* find_solver(std::string_view name);
+
+}  // namespace pb
