@@ -65,7 +65,10 @@ double duhamel_pi1(const System& s) {
   for (int i = 0; i <= n; ++i) {
     const double t = s.t_end * i / n;
     const double u = std::abs(duhamel(s, t));
-    if (u > best) best = u, t_best = t;
+    if (u > best) {
+      best = u;
+      t_best = t;
+    }
   }
   double lo = std::max(0.0, t_best - s.t_end / n), hi = std::min(s.t_end, t_best + s.t_end / n);
   const double g = 0.5 * (std::sqrt(5.0) - 1.0);
@@ -208,7 +211,9 @@ TEST(PoissonImpact, ConservesMomentumAndNeverGainsEnergy) {
     EXPECT_LE(kinetic(s, v), e0 * (1.0 + 1e-13) + 1e-15);
     for (double g : out.gap_rate) EXPECT_GE(g, -1e-13);
     // One contact with eps = 1: Newton's and Poisson's laws coincide, energy is kept.
-    if (!both && e == 1.0) EXPECT_NEAR(kinetic(s, v), e0, 1e-13 * e0);
+    if (!both && e == 1.0) {
+      EXPECT_NEAR(kinetic(s, v), e0, 1e-13 * e0);
+    }
   }
 }
 

@@ -142,8 +142,8 @@ void build_frame(const System& s, const State& st, Frame& fr) {
 
 // True when the first coefficient that is not negligible is positive.
 bool lex_nonnegative(const double* c, int n, double scale, double rate, double tol) {
-  for (int k = 0; k < n; ++k) {
-    const double z = tol * scale * std::pow(rate, k);
+  double z = tol * scale;
+  for (int k = 0; k < n; ++k, z *= rate) {
     if (c[k] > z) return true;
     if (c[k] < -z) return false;
   }

@@ -129,7 +129,9 @@ double first_root(const Wave& f, double a, double b, double floor, double settle
       step *= 2.0;
     }
   }
+  const double mean = f.mean();
   while (p.t < b) {
+    if (mean - f.swing(p.t) > 0.0) return kNaN;
     const double h = std::max(window(f, p.t, p.f, b - p.t), std::min(floor, b - p.t));
     const double tb = h >= b - p.t ? b : p.t + h;
     const Point q = at(f, tb);
@@ -195,7 +197,9 @@ void peak_search(const Wave& f, const Point& a, const Point& b, double floor, Pe
 void max_abs(const Wave& f, double a, double b, double floor, Peak& peak) {
   Point p = at(f, a);
   consider(p, peak);
+  const double mean = std::abs(f.mean());
   while (p.t < b) {
+    if (mean + f.swing(p.t) <= peak.value) return;
     const double ref = std::max(peak.value, std::abs(p.f));
     const double h = std::max(window(f, p.t, ref, b - p.t), std::min(floor, b - p.t));
     const Point q = at(f, h >= b - p.t ? b : p.t + h);

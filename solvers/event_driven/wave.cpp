@@ -19,25 +19,29 @@ void Wave::prepare() {
       md.re[d] = re;
       md.im[d] = im;
     }
-    md.amp = std::hypot(md.a, md.b);
-    md.rate = std::hypot(md.sigma, md.omega);
+    const double rate = std::hypot(md.sigma, md.omega);
+    md.envelope[0] = std::hypot(md.a, md.b);
+    for (std::size_t d = 1; d <= kMaxDerivative; ++d) md.envelope[d] = md.envelope[d - 1] * rate;
   }
+  s0 = std::sin(w * t0);
+  c0 = std::cos(w * t0);
+  pulse_envelope[0] = std::hypot(ps, pc);
+  for (std::size_t d = 1; d <= kMaxDerivative; ++d) pulse_envelope[d] = pulse_envelope[d - 1] * w;
 }
 
 void Wave::eval(double t, double* out, int nd) const {
   const double tau = t - t0;
   for (int d = 0; d < nd; ++d) out[d] = 0.0;
   out[0] = f0;
-  if (w != 0.0 && (ps != 0.0 || pc != 0.0)) {
-    // Increment of the pulse term from t0 by the sum-to-product forms.
-    const double half = 0.5 * w * tau;
-    const double mid = 0.5 * w * (t + t0);
-    const double sh = std::sin(half), ch = std::cos(half);
-    const double sm = std::sin(mid), cm = std::cos(mid);
-    out[0] += 2.0 * sh * (ps * cm - pc * sm);
+  if (ps != 0.0 || pc != 0.0) {
+    // sin(w t) - sin(w t0) and cos(w t) - cos(w t0) from the half angle of w (t - t0),
+    // free of cancellation near t0.
+    const double sh = std::sin(0.5 * w * tau), ch = std::cos(0.5 * w * tau);
+    const double dc = -2.0 * sh * sh, ds = 2.0 * sh * ch;  // cos(w tau) - 1, sin(w tau)
+    out[0] += ps * (s0 * dc + c0 * ds) + pc * (c0 * dc - s0 * ds);
     if (nd > 1) {
-      const double s = sm * ch + cm * sh;  // sin(w t)
-      const double c = cm * ch - sm * sh;  // cos(w t)
+      const double s = s0 + (s0 * dc + c0 * ds);  // sin(w t)
+      const double c = c0 + (c0 * dc - s0 * ds);  // cos(w t)
       // d-th derivative: w^d (ps sin(wt + d pi/2) + pc cos(wt + d pi/2)).
       double wd = 1.0;
       for (int d = 1; d < nd; ++d) {
@@ -69,14 +73,20 @@ void Wave::eval(double t, double* out, int nd) const {
 }
 
 double Wave::bound(double t, int d) const {
-  double b = 0.0;
-  if (w != 0.0) b += std::pow(w, d) * std::hypot(ps, pc);
-  const double tau = t - t0;
+  const auto k = static_cast<std::size_t>(d);
+  double b = pulse_envelope[k];
+  const double tau = std::max(t - t0, 0.0);
   for (int m = 0; m < n_modes; ++m) {
     const Mode& md = mode[static_cast<std::size_t>(m)];
-    b += md.amp * std::pow(md.rate, d) * std::exp(-md.sigma * std::max(tau, 0.0));
+    b += md.envelope[k] * std::exp(-md.sigma * tau);
   }
   return b;
+}
+
+double Wave::mean() const {
+  double m = f0 - ps * s0 - pc * c0;
+  for (int k = 0; k < n_modes; ++k) m -= mode[static_cast<std::size_t>(k)].a;
+  return m;
 }
 
 void add_scaled(Wave& acc, const Wave& x, double s) {
@@ -97,7 +107,7 @@ void add_scaled(Wave& acc, const Wave& x, double s) {
     assert(k < kMaxModes);
     Mode& am = acc.mode[static_cast<std::size_t>(k)];
     if (k == acc.n_modes) {
-      am = Mode{xm.sigma, xm.omega, 0.0, 0.0, {}, {}, 0.0, 0.0};
+      am = Mode{xm.sigma, xm.omega, 0.0, 0.0, {}, {}, {}};
       ++acc.n_modes;
     }
     am.a += s * xm.a;

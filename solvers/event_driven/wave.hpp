@@ -32,7 +32,7 @@ struct Mode {
   // Re/Im of (a - i b) (-sigma + i omega)^d, d = 1..kMaxDerivative, and |(a - i b)|,
   // |-sigma + i omega|: derivative coefficients and their bounds.
   std::array<double, kMaxDerivative + 1> re{}, im{};
-  double amp = 0.0, rate = 0.0;
+  std::array<double, kMaxDerivative + 1> envelope{};  // |a - i b| |lambda|^d
 };
 
 struct Wave {
@@ -42,6 +42,9 @@ struct Wave {
   double ps = 0.0, pc = 0.0;
   std::array<Mode, kMaxModes> mode{};
   int n_modes = 0;
+  // Set by prepare(): sin, cos of w t0 and w^d sqrt(ps^2 + pc^2).
+  double s0 = 0.0, c0 = 0.0;
+  std::array<double, kMaxDerivative + 1> pulse_envelope{};
 
   // out[d] = f^(d)(t) for d = 0..nd-1 (nd <= kMaxDerivative + 1).
   void eval(double t, double* out, int nd) const;
@@ -53,6 +56,10 @@ struct Wave {
   // An upper bound of |f^(d)(s)| over all s >= t, for 1 <= d <= kMaxDerivative
   // (the damped terms only decay, the pulse term keeps its amplitude).
   double bound(double t, int d) const;
+  // f(s) = mean() + oscillation with |oscillation| <= swing(t) for every s >= t: a bound
+  // that lets a whole remaining segment be skipped once the motion has decayed.
+  double mean() const;
+  double swing(double t) const { return bound(t, 0); }
   // Must be called after the coefficients are set and before eval/bound.
   void prepare();
 };

@@ -1,0 +1,573 @@
+// Reading case-set files (format: cases/README.md).
+//
+// A file is read in three passes: TOML syntax (toml++), then every table's keys into
+// Settings (type and shape checks, each value remembering its line), then each family's
+// Settings are resolved against [defaults] and expanded into Cases, which pb::validate
+// checks. Errors carry the line of the value that caused them, so the value rules stay
+// in one place (validate) and this file only maps a field back to where it was written.
+//
+// Rejected: letting toml++'s node_view do lookups (it hides which keys were never read,
+// so unknown keys would pass silently); expanding families lazily (a sweep wants the
+// whole list, and the expansion limits below keep it small enough to hold).
+
+#include "cases/case_set.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <optional>
+#include <sstream>
+#include <utility>
+
+namespace pb {
+namespace {
+
+// Every key a family or [defaults] may hold. From scene to pi2, the order is the order of
+// expansion: scene outermost, pi2 innermost, so the points of one spectrum are contiguous.
+enum class Key {
+  scene, pulse, directivity, eps, pi3, pi5, pi6, pi7, pi8, xi, n_free, a_p, w_p, pi2,
+  symmetric, name
+};
+constexpr int kKeyCount = static_cast<int>(Key::name) + 1;
+constexpr std::array<std::string_view, kKeyCount> kKeyNames = {
+    "scene", "pulse", "directivity", "eps", "pi3", "pi5", "pi6", "pi7", "pi8",
+    "xi", "n_free", "a_p", "w_p", "pi2", "symmetric", "name"};
+
+// Limits that keep a typo (points = 2000000) from exhausting memory.
+constexpr std::int64_t kMaxGridPoints = 100'000;
+constexpr std::size_t kMaxCases = 1'000'000;
+
+constexpr int index(Key k) { return static_cast<int>(k); }
+constexpr std::string_view key_name(Key k) { return kKeyNames[static_cast<std::size_t>(k)]; }
+
+std::optional<Key> parse_key(std::string_view s) {
+  for (int i = 0; i < kKeyCount; ++i)
+    if (kKeyNames[static_cast<std::size_t>(i)] == s) return static_cast<Key>(i);
+  return std::nullopt;
+}
+
+bool is_choice(Key k) { return k == Key::scene || k == Key::pulse || k == Key::directivity; }
+bool is_number(Key k) { return index(k) >= index(Key::eps) && index(k) <= index(Key::pi2); }
+bool is_body1(Key k) { return k == Key::pi5 || k == Key::pi6; }
+bool is_body2(Key k) { return k == Key::pi7 || k == Key::pi8; }
+
+// One key as written: its values (numbers, or enum values for scene/pulse/directivity),
+// and the line of the key and of each value so that a later error can point at it.
+struct Setting {
+  bool given = false;
+  std::string field;  // "family[2].pi5" or "defaults.pi5"
+  std::uint32_t line = 0;
+  enum class Shape { scalar, list, grid } shape = Shape::scalar;
+  std::vector<double> values;
+  std::vector<int> choices;
+  std::vector<std::uint32_t> value_lines;  // parallel to values or choices
+  bool flag = false;
+  std::string text;
+
+  std::size_t size() const { return choices.empty() ? values.size() : choices.size(); }
+};
+using Settings = std::array<Setting, kKeyCount>;
+
+std::string one_line(std::string_view s) {
+  std::string out(s);
+  std::replace(out.begin(), out.end(), '\n', ' ');
+  return out;
+}
+
+std::string format_number(double x) {
+  std::ostringstream os;
+  os << x;
+  return os.str();
+}
+
+std::string_view type_phrase(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a float";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "a list";
+    case toml::node_type::date: return "a date";
+    case toml::node_type::time: return "a time";
+    case toml::node_type::date_time: return "a date-time";
+    case toml::node_type::none: break;
+  }
+  return "nothing";
+}
+
+std::optional<double> as_number(const toml::node& n) {
+  if (const auto* i = n.as_integer()) return static_cast<double>(i->get());
+  if (const auto* f = n.as_floating_point()) return f->get();
+  return std::nullopt;
+}
+
+std::uint32_t line_of(const toml::node& n) { return n.source().begin.line; }
+std::uint32_t line_of(const toml::key& k) { return k.source().begin.line; }
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0u : 1u)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// "unknown key" with a hint: the nearest allowed key when it is close enough to be a typo.
+std::string unknown_key_reason(std::string_view key, const std::vector<std::string_view>& allowed) {
+  if (key == "pi4") return "unknown key (Pi4 is written eps)";
+  if (key == "pi1") return "unknown key (Pi1 is the response a solver computes, not an input)";
+  std::string_view best;
+  std::size_t best_d = 3;  // more than two edits is no longer a typo
+  for (std::string_view a : allowed) {
+    const std::size_t d = edit_distance(key, a);
+    if (d < best_d) best_d = d, best = a;
+  }
+  if (!best.empty()) return "unknown key (did you mean " + std::string(best) + "?)";
+  std::string list;
+  for (std::string_view a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+  return "unknown key (expected one of " + list + ")";
+}
+
+std::string scene_list(const std::vector<int>& scenes) {
+  std::string out;
+  for (int s : scenes) {
+    if (!out.empty()) out += ", ";
+    out += name(static_cast<Scene>(s));
+  }
+  return out;
+}
+
+class Reader {
+ public:
+  explicit Reader(std::string_view file) : file_(file) {}
+
+  [[noreturn]] void fail(std::uint32_t line, std::string_view field, std::string_view reason) const {
+    std::string msg = file_;
+    if (line > 0) msg += ":" + std::to_string(line);
+    msg += ": ";
+    if (!field.empty()) msg += std::string(field) + ": ";
+    msg += one_line(reason);
+    throw CaseSetError(msg);
+  }
+
+  CaseSet read(const toml::table& root) const {
+    CaseSet set;
+    const toml::node* families = nullptr;
+    std::uint32_t families_line = 0;
+    const toml::table* defaults_table = nullptr;
+    bool has_name = false;
+    for (const auto& [key, node] : root) {
+      const std::string_view k = key.str();
+      if (k == "name" || k == "description") {
+        const auto* s = node.as_string();
+        if (s == nullptr) fail(line_of(key), k, "must be a string, got " + std::string(type_phrase(node)));
+        (k == "name" ? set.name : set.description) = s->get();
+        if (k == "name") {
+          has_name = true;
+          if (set.name.empty()) fail(line_of(key), k, "must not be empty");
+        }
+      } else if (k == "defaults") {
+        defaults_table = node.as_table();
+        if (defaults_table == nullptr)
+          fail(line_of(key), k, "must be a table ([defaults]), got " + std::string(type_phrase(node)));
+      } else if (k == "family") {
+        families = &node;
+        families_line = line_of(key);
+      } else {
+        fail(line_of(key), k, unknown_key_reason(k, {"name", "description", "defaults", "family"}));
+      }
+    }
+    if (!has_name) fail(0, "name", "required (the name of the case set)");
+
+    Settings defaults;
+    if (defaults_table != nullptr) defaults = read_settings(*defaults_table, "defaults", true);
+
+    if (families == nullptr) fail(0, "family", "no [[family]] tables: a case set needs at least one");
+    const toml::array* list = families->as_array();
+    if (list == nullptr)
+      fail(families_line, "family", "must be an array of tables (write [[family]]), got " +
+                                         std::string(type_phrase(*families)));
+    if (list->empty()) fail(families_line, "family", "no families: the list is empty");
+
+    std::vector<std::pair<std::string, std::uint32_t>> seen;  // family names and their lines
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const toml::node& node = *list->get(i);
+      const std::string prefix = "family[" + std::to_string(i) + "]";
+      const toml::table* t = node.as_table();
+      if (t == nullptr) fail(line_of(node), prefix, "must be a table, got " + std::string(type_phrase(node)));
+      const Settings own = read_settings(*t, prefix, false);
+      const Setting& nm = own[index(Key::name)];
+      if (!nm.given) fail(line_of(*t), prefix + ".name", "required (every family is named)");
+      for (const auto& [other, other_line] : seen)
+        if (other == nm.text)
+          fail(nm.line, nm.field, "duplicate family name \"" + nm.text + "\" (first used at line " +
+                                      std::to_string(other_line) + ")");
+      seen.emplace_back(nm.text, nm.line);
+      expand(resolve(own, defaults, prefix, line_of(*t)), nm.text, set.cases);
+    }
+    return set;
+  }
+
+ private:
+  std::string file_;
+
+  Settings read_settings(const toml::table& t, const std::string& prefix, bool is_defaults) const {
+    Settings out;
+    for (const auto& [key, node] : t) {
+      const std::string field = prefix + "." + std::string(key.str());
+      const std::optional<Key> k = parse_key(key.str());
+      if (!k || (is_defaults && *k == Key::name)) {
+        if (k) fail(line_of(key), field, "not allowed in [defaults] (each family names itself)");
+        std::vector<std::string_view> allowed(kKeyNames.begin(), kKeyNames.end());
+        if (is_defaults) allowed.pop_back();
+        fail(line_of(key), field, unknown_key_reason(key.str(), allowed));
+      }
+      Setting& s = out[index(*k)];
+      s.given = true;
+      s.field = field;
+      s.line = line_of(key);
+      if (is_choice(*k)) read_choices(*k, node, s);
+      else if (is_number(*k)) read_numbers(node, s);
+      else if (*k == Key::symmetric) {
+        const auto* b = node.as_boolean();
+        if (b == nullptr) fail(s.line, field, "must be true or false, got " + std::string(type_phrase(node)));
+        s.flag = b->get();
+      } else {
+        read_family_name(node, s);
+      }
+    }
+    return out;
+  }
+
+  void read_family_name(const toml::node& node, Setting& s) const {
+    const auto* str = node.as_string();
+    if (str == nullptr) fail(s.line, s.field, "must be a string, got " + std::string(type_phrase(node)));
+    s.text = str->get();
+    if (s.text.empty()) fail(s.line, s.field, "must not be empty");
+    // Family names become labels in result files and file names of reports.
+    for (char c : s.text) {
+      const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                      c == '-' || c == '_' || c == '.';
+      if (!ok) fail(s.line, s.field, "may hold only letters, digits, '-', '_' and '.'");
+    }
+  }
+
+  void read_choices(Key k, const toml::node& node, Setting& s) const {
+    auto one = [&](const toml::node& n, const std::string& field) {
+      const auto* str = n.as_string();
+      if (str == nullptr) fail(line_of(n), field, "must be a string, got " + std::string(type_phrase(n)));
+      const std::string_view v = str->get();
+      std::optional<int> parsed;
+      std::string_view expected;
+      if (k == Key::scene) {
+        if (auto x = parse_scene(v)) parsed = static_cast<int>(*x);
+        expected = "wall, pair or row3";
+      } else if (k == Key::pulse) {
+        if (auto x = parse_pulse(v)) parsed = static_cast<int>(*x);
+        expected = "sine or cosine";
+      } else {
+        if (auto x = parse_directivity(v)) parsed = static_cast<int>(*x);
+        expected = "normal or reverse";
+      }
+      if (!parsed)
+        fail(line_of(n), field, "unknown " + std::string(key_name(k)) + " \"" + std::string(v) +
+                                    "\" (expected " + std::string(expected) + ")");
+      s.choices.push_back(*parsed);
+      s.value_lines.push_back(line_of(n));
+    };
+    if (const auto* arr = node.as_array()) {
+      s.shape = Setting::Shape::list;
+      if (arr->empty()) fail(s.line, s.field, "empty list: give at least one value");
+      for (std::size_t i = 0; i < arr->size(); ++i)
+        one(*arr->get(i), s.field + "[" + std::to_string(i) + "]");
+    } else if (node.is_string()) {
+      one(node, s.field);
+    } else {
+      fail(s.line, s.field, "must be a string or a list of strings, got " + std::string(type_phrase(node)));
+    }
+  }
+
+  void read_numbers(const toml::node& node, Setting& s) const {
+    if (auto x = as_number(node)) {
+      s.values.push_back(*x);
+      s.value_lines.push_back(line_of(node));
+    } else if (const auto* arr = node.as_array()) {
+      s.shape = Setting::Shape::list;
+      if (arr->empty()) fail(s.line, s.field, "empty list: give at least one value");
+      for (std::size_t i = 0; i < arr->size(); ++i) {
+        const toml::node& n = *arr->get(i);
+        const auto v = as_number(n);
+        if (!v)
+          fail(line_of(n), s.field + "[" + std::to_string(i) + "]",
+               "must be a number, got " + std::string(type_phrase(n)));
+        s.values.push_back(*v);
+        s.value_lines.push_back(line_of(n));
+      }
+    } else if (const auto* grid = node.as_table()) {
+      s.shape = Setting::Shape::grid;
+      read_grid(*grid, s);
+    } else {
+      fail(s.line, s.field,
+           "must be a number, a list of numbers or a grid { from, to, points, spacing }, got " +
+               std::string(type_phrase(node)));
+    }
+  }
+
+  // { from = a, to = b, points = n, spacing = "log" | "linear" }. Both ends are exact;
+  // a log grid has a constant ratio between neighbours.
+  void read_grid(const toml::table& grid, Setting& s) const {
+    std::optional<double> from, to;
+    std::optional<std::int64_t> points;
+    std::optional<bool> log;
+    for (const auto& [key, node] : grid) {
+      const std::string field = s.field + "." + std::string(key.str());
+      const std::string_view k = key.str();
+      if (k == "from" || k == "to") {
+        const auto v = as_number(node);
+        if (!v) fail(line_of(key), field, "must be a number, got " + std::string(type_phrase(node)));
+        if (!std::isfinite(*v)) fail(line_of(key), field, "must be finite");
+        (k == "from" ? from : to) = *v;
+      } else if (k == "points") {
+        const auto* i = node.as_integer();
+        if (i == nullptr) fail(line_of(key), field, "must be an integer, got " + std::string(type_phrase(node)));
+        if (i->get() < 1) fail(line_of(key), field, "must be >= 1 (an empty grid)");
+        if (i->get() > kMaxGridPoints)
+          fail(line_of(key), field, "must be <= " + std::to_string(kMaxGridPoints));
+        points = i->get();
+      } else if (k == "spacing") {
+        const auto* str = node.as_string();
+        if (str == nullptr) fail(line_of(key), field, "must be a string, got " + std::string(type_phrase(node)));
+        if (str->get() != "log" && str->get() != "linear")
+          fail(line_of(key), field, "must be \"log\" or \"linear\", got \"" + str->get() + "\"");
+        log = str->get() == "log";
+      } else {
+        fail(line_of(key), field, unknown_key_reason(k, {"from", "to", "points", "spacing"}));
+      }
+    }
+    const std::uint32_t line = line_of(grid);
+    if (!from) fail(line, s.field + ".from", "required in a grid");
+    if (!to) fail(line, s.field + ".to", "required in a grid");
+    if (!points) fail(line, s.field + ".points", "required in a grid");
+    if (!log) fail(line, s.field + ".spacing", "required in a grid (\"log\" or \"linear\")");
+    if (*log && (*from <= 0.0 || *to <= 0.0))
+      fail(line, s.field, "a log grid needs from > 0 and to > 0");
+    if (*points == 1 && *from != *to) fail(line, s.field, "a grid of 1 point needs from == to");
+
+    const auto n = static_cast<std::size_t>(*points);
+    s.values.resize(n);
+    s.value_lines.assign(n, line);
+    const double a = *log ? std::log(*from) : *from;
+    const double b = *log ? std::log(*to) : *to;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = n == 1 ? a : a + (b - a) * static_cast<double>(i) / static_cast<double>(n - 1);
+      s.values[i] = *log ? std::exp(x) : x;
+    }
+    s.values.front() = *from;
+    s.values.back() = *to;
+  }
+
+  // The family's own keys, else [defaults], else the built-in defaults; and the rules on
+  // which keys a family's scenes need.
+  Settings resolve(const Settings& own, const Settings& defaults, const std::string& prefix,
+                   std::uint32_t line) const {
+    auto builtin = [&](Key k, double v) {
+      Setting s;
+      s.given = true;
+      s.field = prefix + "." + std::string(key_name(k));
+      s.line = line;
+      s.values = {v};
+      s.value_lines = {line};
+      return s;
+    };
+    Settings eff;
+    eff[index(Key::xi)] = builtin(Key::xi, 0.05);
+    eff[index(Key::n_free)] = builtin(Key::n_free, 3.0);
+    eff[index(Key::a_p)] = builtin(Key::a_p, 1.0);
+    eff[index(Key::w_p)] = builtin(Key::w_p, 1.0);
+    for (int i = 0; i < kKeyCount; ++i) {
+      const auto u = static_cast<std::size_t>(i);
+      if (own[u].given) eff[u] = own[u];
+      else if (defaults[u].given) eff[u] = defaults[u];
+    }
+
+    for (Key k : {Key::scene, Key::pulse, Key::directivity, Key::pi2, Key::pi3, Key::eps}) {
+      if (eff[index(k)].given) continue;
+      const std::string field = prefix + "." + std::string(key_name(k));
+      if (k == Key::eps) fail(line, field, "required (the coefficient of restitution is always stated)");
+      fail(line, field, "required");
+    }
+
+    const std::vector<int>& scenes = eff[index(Key::scene)].choices;
+    const bool body1 = std::any_of(scenes.begin(), scenes.end(),
+                                   [](int s) { return uses_body1(static_cast<Scene>(s)); });
+    const bool body2 = std::any_of(scenes.begin(), scenes.end(),
+                                   [](int s) { return uses_body2(static_cast<Scene>(s)); });
+    const std::string used_by = "not used by scene" + std::string(scenes.size() > 1 ? "s " : " ") +
+                                scene_list(scenes);
+
+    // A family's own key for a body its scenes lack is a mistake; a default for it is
+    // merely not needed here, since [defaults] serves families of every scene.
+    for (Key k : {Key::pi5, Key::pi6, Key::pi7, Key::pi8, Key::symmetric}) {
+      const bool used = k == Key::pi5 || k == Key::pi6 ? body1 : body2;
+      if (used) continue;
+      const Setting& o = own[index(k)];
+      if (o.given)
+        fail(o.line, o.field,
+             used_by + (is_body1(k) ? " (pi5/pi6 describe body 1, of pair and row3)"
+                                    : " (pi7/pi8/symmetric describe body 2, of row3 only)"));
+      eff[index(k)] = Setting{};
+    }
+
+    const Setting& sym = eff[index(Key::symmetric)];
+    if (sym.given && sym.flag) {
+      for (Key k : {Key::pi7, Key::pi8}) {
+        const Setting& o = own[index(k)];
+        if (o.given)
+          fail(o.line, o.field,
+               "not allowed with symmetric = true (line " + std::to_string(sym.line) +
+                   "), which sets pi7 = pi5 and pi8 = pi6");
+        eff[index(k)] = Setting{};  // a default pi7/pi8 gives way to the family's symmetry
+      }
+    }
+
+    for (Key k : {Key::pi5, Key::pi6, Key::pi7, Key::pi8}) {
+      const bool needed = is_body1(k) ? body1 : body2 && !(sym.given && sym.flag);
+      if (!needed || eff[index(k)].given) continue;
+      std::vector<int> users;
+      for (int s : scenes)
+        if (is_body1(k) ? uses_body1(static_cast<Scene>(s)) : uses_body2(static_cast<Scene>(s)))
+          users.push_back(s);
+      fail(line, prefix + "." + std::string(key_name(k)),
+           "required by scene " + scene_list(users) + (is_body2(k) ? " (or set symmetric = true)" : ""));
+    }
+    return eff;
+  }
+
+  // The cartesian product, in Key order (scene outermost, pi2 innermost). Keys a scene
+  // does not use are left out of its product, so mixing scenes in one family does not
+  // repeat cases.
+  void expand(const Settings& eff, const std::string& family, std::vector<Case>& out) const {
+    const bool symmetric = eff[index(Key::symmetric)].given && eff[index(Key::symmetric)].flag;
+    for (int scene_value : eff[index(Key::scene)].choices) {
+      const auto scene = static_cast<Scene>(scene_value);
+      std::vector<Key> axes;
+      for (int i = index(Key::pulse); i <= index(Key::pi2); ++i) {
+        const auto k = static_cast<Key>(i);
+        if (is_body1(k) && !uses_body1(scene)) continue;
+        if (is_body2(k) && (!uses_body2(scene) || symmetric)) continue;
+        axes.push_back(k);
+      }
+      std::size_t count = 1;
+      for (Key k : axes) {
+        count *= eff[index(k)].size();
+        if (count + out.size() > kMaxCases)
+          fail(eff[index(Key::scene)].line, "family \"" + family + "\"",
+               "expands to more than " + std::to_string(kMaxCases) + " cases in this file");
+      }
+
+      std::vector<std::size_t> at(axes.size(), 0);
+      Case c;
+      c.family = family;
+      c.scene = scene;
+      for (std::size_t n = 0; n < count; ++n) {
+        for (std::size_t a = 0; a < axes.size(); ++a) set(c, axes[a], eff[index(axes[a])], at[a]);
+        if (symmetric && uses_body2(scene)) {
+          c.pi7 = c.pi5;
+          c.pi8 = c.pi6;
+        }
+        if (auto bad = validate(c)) report_invalid(*bad, eff, axes, at, symmetric);
+        out.push_back(c);
+        for (std::size_t a = axes.size(); a-- > 0;) {  // odometer: the last axis turns fastest
+          if (++at[a] < eff[index(axes[a])].size()) break;
+          at[a] = 0;
+        }
+      }
+    }
+  }
+
+  static void set(Case& c, Key k, const Setting& s, std::size_t i) {
+    switch (k) {
+      case Key::pulse: c.pulse = static_cast<PulseShape>(s.choices[i]); return;
+      case Key::directivity: c.directivity = static_cast<Directivity>(s.choices[i]); return;
+      case Key::eps: c.eps = s.values[i]; return;
+      case Key::pi3: c.pi3 = s.values[i]; return;
+      case Key::pi5: c.pi5 = s.values[i]; return;
+      case Key::pi6: c.pi6 = s.values[i]; return;
+      case Key::pi7: c.pi7 = s.values[i]; return;
+      case Key::pi8: c.pi8 = s.values[i]; return;
+      case Key::xi: c.xi = s.values[i]; return;
+      case Key::n_free: c.n_free = s.values[i]; return;
+      case Key::a_p: c.a_p = s.values[i]; return;
+      case Key::w_p: c.w_p = s.values[i]; return;
+      case Key::pi2: c.pi2 = s.values[i]; return;
+      case Key::scene:
+      case Key::symmetric:
+      case Key::name: return;
+    }
+  }
+
+  // validate() names the bad field; point at the value of that field that this case used.
+  [[noreturn]] void report_invalid(const std::string& bad, const Settings& eff, const std::vector<Key>& axes,
+                                   const std::vector<std::size_t>& at, bool symmetric) const {
+    const std::size_t colon = bad.find(':');
+    const std::string reason = colon == std::string::npos ? bad : bad.substr(colon + 1);
+    std::optional<Key> k = parse_key(bad.substr(0, colon));
+    if (k && symmetric && is_body2(*k)) k = *k == Key::pi7 ? Key::pi5 : Key::pi6;
+    const auto pos = k ? std::find(axes.begin(), axes.end(), *k) : axes.end();
+    if (pos == axes.end()) fail(0, "", bad);  // validate checked a field this file does not set
+    const Setting& s = eff[index(*k)];
+    const auto i = static_cast<std::size_t>(at[static_cast<std::size_t>(pos - axes.begin())]);
+    std::string field = s.field;
+    if (s.shape == Setting::Shape::list) field += "[" + std::to_string(i) + "]";
+    const std::size_t start = reason.find_first_not_of(' ');
+    std::string text = start == std::string::npos ? reason : reason.substr(start);
+    text += " (got " + format_number(s.values[i]) + ")";
+    fail(s.value_lines[i], field, text);
+  }
+};
+
+}  // namespace
+
+CaseSet parse_case_set(std::string_view toml_text, std::string_view source_name) {
+  const Reader reader(source_name);
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, source_name);
+  } catch (const toml::parse_error& e) {
+    reader.fail(e.source().begin.line, "syntax", e.description());
+  }
+  return reader.read(root);
+}
+
+CaseSet load_case_set(const std::filesystem::path& file) {
+  const std::string source = file.string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw CaseSetError(source + ": cannot read: is a directory");
+  std::FILE* f = std::fopen(source.c_str(), "rb");
+  if (f == nullptr) throw CaseSetError(source + ": cannot read: " + std::strerror(errno));
+  std::string text;
+  char buffer[1 << 14];
+  std::size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) text.append(buffer, n);
+  const bool failed = std::ferror(f) != 0;
+  std::fclose(f);
+  if (failed) throw CaseSetError(source + ": cannot read: read error");
+  return parse_case_set(text, source);
+}
+
+}  // namespace pb

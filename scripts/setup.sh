@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Installs every Debian package poundbench uses, then configures and builds it.
+#   scripts/setup.sh [--build-dir DIR] [--build-type TYPE] [--sanitize] [--werror]
+# Safe to run again: packages already installed are not fetched again.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build_dir=build
+build_type=Release
+extra=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --build-dir) build_dir=$2; shift 2 ;;
+    --build-type) build_type=$2; shift 2 ;;
+    --sanitize) extra+=(-DPOUNDBENCH_SANITIZE=ON); shift ;;
+    --werror) extra+=(-DPOUNDBENCH_WERROR=ON); shift ;;
+    *) echo "setup.sh: unknown option '$1'" >&2; exit 2 ;;
+  esac
+done
+
+packages=(
+  g++ cmake make pkg-config
+  libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
+  libgtest-dev libbenchmark-dev
+  python3 python3-matplotlib python3-numpy
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo=sudo
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" > /dev/null
+fi
+
+cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" "${extra[@]}" > /dev/null
+cmake --build "$build_dir" -j "$(nproc)"

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Sets up, builds (optimised, with debug info, warnings as errors) and runs every test.
+#   scripts/test.sh             the test suite
+#   scripts/test.sh --sanitize  the same suite under AddressSanitizer + UBSan
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+if [ "${1:-}" = "--sanitize" ]; then
+  scripts/setup.sh --build-dir build-sanitize --build-type Debug --sanitize --werror
+  cd build-sanitize
+  # Benchmarks are timed, not checked, and run slowly under the sanitizers.
+  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j "$(nproc)" -E bench_smoke
+else
+  scripts/setup.sh --build-dir build-test --build-type RelWithDebInfo --werror
+  cd build-test
+  ctest --output-on-failure -j "$(nproc)"
+fi

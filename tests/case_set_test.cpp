@@ -1,0 +1,405 @@
+// Case-set files: expansion, defaults, every kind of bad input, and the shipped sets.
+
+#include "cases/case_set.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace pb {
+namespace {
+
+constexpr const char* kFile = "sets/x.toml";
+
+// A valid one-case file; tests change one line of it at a time.
+const std::string kPair =
+    "name = \"t\"\n"
+    "[[family]]\n"
+    "name = \"a\"\n"
+    "scene = \"pair\"\n"
+    "pulse = \"sine\"\n"
+    "directivity = \"normal\"\n"
+    "eps = 0.5\n"
+    "pi2 = 1\n"
+    "pi3 = 0.5\n"
+    "pi5 = 2\n"
+    "pi6 = 1\n";
+
+std::string with(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  if (at == std::string::npos) throw std::logic_error("test text lacks " + from);
+  return text.replace(at, from.size(), to);
+}
+
+std::string without(const std::string& text, const std::string& line) { return with(text, line + "\n", ""); }
+
+// 1-based line of the first line holding needle: the line an error about it must name.
+int line_of(const std::string& text, const std::string& needle) {
+  const auto at = text.find(needle);
+  if (at == std::string::npos) throw std::logic_error("test text lacks " + needle);
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_case_set(text, kFile);
+  } catch (const CaseSetError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// The message is one line "<file>:<line>: <field>: <reason...>" (line 0: not known).
+::testing::AssertionResult fails_with(const std::string& text, int line, const std::string& field,
+                                      const std::string& reason) {
+  const std::string msg = error_of(text);
+  const std::string head =
+      std::string(kFile) + (line > 0 ? ":" + std::to_string(line) : "") + ": " + field + ": ";
+  if (msg.rfind(head, 0) != 0) return ::testing::AssertionFailure() << "expected \"" << head << "...\", got \"" << msg << "\"";
+  if (msg.find(reason, head.size()) == std::string::npos)
+    return ::testing::AssertionFailure() << "expected reason \"" << reason << "\", got \"" << msg << "\"";
+  if (msg.find('\n') != std::string::npos) return ::testing::AssertionFailure() << "not one line: " << msg;
+  return ::testing::AssertionSuccess();
+}
+
+// --- expansion ------------------------------------------------------------------------
+
+TEST(CaseSetExpansion, ExpandsTheCartesianProductWithPi2Innermost) {
+  const std::string text = with(with(with(kPair, "pulse = \"sine\"", "pulse = [\"sine\", \"cosine\"]"),
+                                     "pi5 = 2", "pi5 = [0.5, 2]"),
+                                "pi2 = 1", "pi2 = [1, 2, 3]");
+  const CaseSet set = parse_case_set(text, kFile);
+  ASSERT_EQ(set.cases.size(), 12u);
+  // pulse outer, then pi5, then pi2 innermost.
+  for (std::size_t i = 0; i < set.cases.size(); ++i) {
+    const Case& c = set.cases[i];
+    EXPECT_EQ(c.pulse, i < 6 ? PulseShape::sine : PulseShape::cosine) << i;
+    EXPECT_EQ(c.pi5, (i / 3) % 2 == 0 ? 0.5 : 2.0) << i;
+    EXPECT_EQ(c.pi2, static_cast<double>(i % 3 + 1)) << i;
+    EXPECT_EQ(c.family, "a");
+  }
+}
+
+TEST(CaseSetExpansion, OrdersSceneOutermostThenDirectivityEpsAndGap) {
+  const std::string text =
+      "name = \"t\"\n[[family]]\nname = \"a\"\nscene = [\"wall\", \"pair\"]\npulse = \"sine\"\n"
+      "directivity = [\"normal\", \"reverse\"]\neps = [0, 1]\npi3 = [0, 0.5]\npi2 = [1, 2]\n"
+      "pi5 = 2\npi6 = 1\n";
+  const CaseSet set = parse_case_set(text, kFile);
+  ASSERT_EQ(set.cases.size(), 32u);
+  for (std::size_t i = 0; i < 32; ++i) {
+    const Case& c = set.cases[i];
+    EXPECT_EQ(c.scene, i < 16 ? Scene::wall : Scene::pair) << i;
+    EXPECT_EQ(c.directivity, (i / 8) % 2 == 0 ? Directivity::normal : Directivity::reverse) << i;
+    EXPECT_EQ(c.eps, (i / 4) % 2 == 0 ? 0.0 : 1.0) << i;
+    EXPECT_EQ(c.pi3, (i / 2) % 2 == 0 ? 0.0 : 0.5) << i;
+    EXPECT_EQ(c.pi2, i % 2 == 0 ? 1.0 : 2.0) << i;
+  }
+}
+
+TEST(CaseSetExpansion, KeysAModelDoesNotUseDoNotMultiplyItsCases) {
+  // wall has no body 1: its cases must not repeat over the pi5 list.
+  const std::string text = with(with(kPair, "scene = \"pair\"", "scene = [\"wall\", \"pair\"]"),
+                                "pi5 = 2", "pi5 = [0.5, 2, 4]");
+  const CaseSet set = parse_case_set(text, kFile);
+  ASSERT_EQ(set.cases.size(), 4u);
+  EXPECT_EQ(set.cases[0].scene, Scene::wall);
+  EXPECT_EQ(set.cases[1].scene, Scene::pair);
+  EXPECT_EQ(set.cases[3].pi5, 4.0);
+}
+
+TEST(CaseSetExpansion, LogGridHasExactEndsAndConstantRatio) {
+  const std::string text =
+      with(kPair, "pi2 = 1", "pi2 = { from = 0.1, to = 10, points = 200, spacing = \"log\" }");
+  const CaseSet set = parse_case_set(text, kFile);
+  ASSERT_EQ(set.cases.size(), 200u);
+  EXPECT_EQ(set.cases.front().pi2, 0.1);  // exactly as written
+  EXPECT_EQ(set.cases.back().pi2, 10.0);
+  const double ratio = std::pow(100.0, 1.0 / 199.0);
+  // exp/log of values of order 1 err by a few ulps: 1e-12 leaves a wide margin yet would
+  // catch a wrong step (the next-closest grid, 201 points, differs by 1e-4 in the ratio).
+  for (std::size_t i = 1; i < 200; ++i)
+    EXPECT_NEAR(set.cases[i].pi2 / set.cases[i - 1].pi2, ratio, 1e-12) << i;
+}
+
+TEST(CaseSetExpansion, LinearGridHasExactEndsAndConstantStep) {
+  const std::string text =
+      with(kPair, "eps = 0.5", "eps = { from = 0, to = 1, points = 11, spacing = \"linear\" }");
+  const CaseSet set = parse_case_set(text, kFile);
+  ASSERT_EQ(set.cases.size(), 11u);
+  EXPECT_EQ(set.cases.front().eps, 0.0);
+  EXPECT_EQ(set.cases.back().eps, 1.0);
+  for (std::size_t i = 1; i < 11; ++i)  // rounding of k/10 only: a few ulps of 1
+    EXPECT_NEAR(set.cases[i].eps - set.cases[i - 1].eps, 0.1, 1e-15) << i;
+}
+
+TEST(CaseSetExpansion, OnePointGridIsItsEnd) {
+  const std::string text =
+      with(kPair, "pi2 = 1", "pi2 = { from = 3, to = 3, points = 1, spacing = \"log\" }");
+  const CaseSet set = parse_case_set(text, kFile);
+  ASSERT_EQ(set.cases.size(), 1u);
+  EXPECT_EQ(set.cases[0].pi2, 3.0);
+}
+
+TEST(CaseSetExpansion, SymmetricRowCopiesBody1IntoBody2) {
+  const std::string text =
+      with(with(with(kPair, "scene = \"pair\"", "scene = \"row3\"\nsymmetric = true"), "pi5 = 2",
+                "pi5 = [0.5, 2]"),
+           "pi6 = 1", "pi6 = 3");
+  const CaseSet set = parse_case_set(text, kFile);
+  ASSERT_EQ(set.cases.size(), 2u);
+  for (const Case& c : set.cases) {
+    EXPECT_EQ(c.scene, Scene::row3);
+    EXPECT_EQ(c.pi7, c.pi5);
+    EXPECT_EQ(c.pi8, 3.0);
+  }
+  EXPECT_EQ(set.cases[1].pi7, 2.0);
+}
+
+TEST(CaseSetExpansion, AsymmetricRowTakesItsOwnBody2) {
+  const std::string text =
+      with(kPair, "scene = \"pair\"", "scene = \"row3\"\npi7 = [4, 5]\npi8 = 0.25\nsymmetric = false");
+  const CaseSet set = parse_case_set(text, kFile);
+  ASSERT_EQ(set.cases.size(), 2u);
+  EXPECT_EQ(set.cases[0].pi7, 4.0);
+  EXPECT_EQ(set.cases[1].pi7, 5.0);
+  EXPECT_EQ(set.cases[1].pi8, 0.25);
+  EXPECT_EQ(set.cases[1].pi5, 2.0);
+}
+
+// --- defaults ---------------------------------------------------------------------------
+
+TEST(CaseSetDefaults, UnstatedDampingDurationAndScaleTakeTheSpecDefaults) {
+  const CaseSet set = parse_case_set(kPair, kFile);
+  ASSERT_EQ(set.cases.size(), 1u);
+  const Case& c = set.cases[0];
+  EXPECT_EQ(set.name, "t");
+  EXPECT_EQ(set.description, "");
+  EXPECT_EQ(c.xi, 0.05);
+  EXPECT_EQ(c.n_free, 3.0);
+  EXPECT_EQ(c.a_p, 1.0);
+  EXPECT_EQ(c.w_p, 1.0);
+  EXPECT_EQ(c.eps, 0.5);
+  EXPECT_EQ(c.pi3, 0.5);
+  EXPECT_EQ(c.pi6, 1.0);
+}
+
+TEST(CaseSetDefaults, FamilyKeysOverrideDefaultsWhichOverrideBuiltIns) {
+  const std::string text =
+      "name = \"t\"\ndescription = \"d\"\n[defaults]\nxi = 0.02\neps = 1\npi5 = 7\npi6 = 2\n"
+      "pulse = \"cosine\"\ndirectivity = \"reverse\"\npi2 = 1\npi3 = 0\n"
+      "[[family]]\nname = \"a\"\nscene = \"pair\"\neps = 0\n"
+      "[[family]]\nname = \"b\"\nscene = \"wall\"\nn_free = 5\n";  // wall ignores the default pi5/pi6
+  const CaseSet set = parse_case_set(text, kFile);
+  EXPECT_EQ(set.description, "d");
+  ASSERT_EQ(set.cases.size(), 2u);
+  const Case& a = set.cases[0];
+  EXPECT_EQ(a.family, "a");
+  EXPECT_EQ(a.xi, 0.02);
+  EXPECT_EQ(a.eps, 0.0);
+  EXPECT_EQ(a.pi5, 7.0);
+  EXPECT_EQ(a.pulse, PulseShape::cosine);
+  EXPECT_EQ(a.directivity, Directivity::reverse);
+  const Case& b = set.cases[1];
+  EXPECT_EQ(b.family, "b");
+  EXPECT_EQ(b.scene, Scene::wall);
+  EXPECT_EQ(b.eps, 1.0);
+  EXPECT_EQ(b.n_free, 5.0);
+  EXPECT_EQ(b.pi3, 0.0);
+}
+
+TEST(CaseSetDefaults, FamilySymmetryOverridesADefaultBody2) {
+  const std::string text =
+      "name = \"t\"\n[defaults]\npi7 = 9\npi8 = 9\n"
+      "[[family]]\nname = \"a\"\nscene = \"row3\"\nsymmetric = true\npulse = \"sine\"\n"
+      "directivity = \"normal\"\neps = 0.5\npi2 = 1\npi3 = 0.5\npi5 = 2\npi6 = 3\n";
+  const CaseSet set = parse_case_set(text, kFile);
+  ASSERT_EQ(set.cases.size(), 1u);
+  EXPECT_EQ(set.cases[0].pi7, 2.0);
+  EXPECT_EQ(set.cases[0].pi8, 3.0);
+}
+
+// --- bad input ---------------------------------------------------------------------------
+
+TEST(CaseSetErrors, MalformedTomlNamesTheLine) {
+  EXPECT_TRUE(fails_with(with(kPair, "pi5 = 2", "pi5 = = 2"), line_of(kPair, "pi5 ="), "syntax", ""));
+  EXPECT_TRUE(fails_with(kPair + "pi6 = 2\n", 12, "syntax", "redefin"));
+}
+
+TEST(CaseSetErrors, UnknownKeysAnywhereAreRejectedWithASuggestion) {
+  EXPECT_TRUE(fails_with(with(kPair, "pi6 = 1", "pi6 = 1\npi55 = 1"), 12, "family[0].pi55",
+                         "unknown key (did you mean pi5?)"));
+  EXPECT_TRUE(fails_with(with(kPair, "eps = 0.5", "pi4 = 0.5"), line_of(kPair, "eps"), "family[0].pi4",
+                         "Pi4 is written eps"));
+  EXPECT_TRUE(fails_with("titel = \"x\"\n" + kPair, 1, "titel", "unknown key"));
+  EXPECT_TRUE(fails_with(with(kPair, "[[family]]", "[defaults]\nksi = 0.1\n[[family]]"), 3, "defaults.ksi",
+                         "did you mean xi?"));
+  EXPECT_TRUE(fails_with(with(kPair, "[[family]]", "[defaults]\nname = \"x\"\n[[family]]"), 3, "defaults.name",
+                         "not allowed in [defaults]"));
+  EXPECT_TRUE(fails_with(
+      with(kPair, "pi2 = 1", "pi2 = { from = 1, to = 2, points = 3, spacing = \"log\", step = 1 }"),
+      line_of(kPair, "pi2"), "family[0].pi2.step", "unknown key"));
+}
+
+TEST(CaseSetErrors, MissingRequiredFieldsAreNamed) {
+  const int family = line_of(kPair, "[[family]]");
+  EXPECT_TRUE(fails_with(without(kPair, "eps = 0.5"), family, "family[0].eps", "required"));
+  EXPECT_TRUE(fails_with(without(kPair, "scene = \"pair\""), family, "family[0].scene", "required"));
+  EXPECT_TRUE(fails_with(without(kPair, "pulse = \"sine\""), family, "family[0].pulse", "required"));
+  EXPECT_TRUE(fails_with(without(kPair, "directivity = \"normal\""), family, "family[0].directivity", "required"));
+  EXPECT_TRUE(fails_with(without(kPair, "pi2 = 1"), family, "family[0].pi2", "required"));
+  EXPECT_TRUE(fails_with(without(kPair, "pi3 = 0.5"), family, "family[0].pi3", "required"));
+  EXPECT_TRUE(fails_with(without(kPair, "pi5 = 2"), family, "family[0].pi5", "required by scene pair"));
+  EXPECT_TRUE(fails_with(without(kPair, "pi6 = 1"), family, "family[0].pi6", "required by scene pair"));
+  EXPECT_TRUE(fails_with(with(kPair, "scene = \"pair\"", "scene = \"row3\""), family, "family[0].pi7",
+                         "required by scene row3"));
+  EXPECT_TRUE(fails_with(without(kPair, "name = \"a\""), family, "family[0].name", "required"));
+  EXPECT_TRUE(fails_with(without(kPair, "name = \"t\""), 0, "name", "required"));
+}
+
+TEST(CaseSetErrors, WrongTypesAreNamed) {
+  EXPECT_TRUE(fails_with(with(kPair, "pi5 = 2", "pi5 = \"2\""), 10, "family[0].pi5",
+                         "must be a number, a list of numbers or a grid"));
+  EXPECT_TRUE(fails_with(with(kPair, "pi5 = 2", "pi5 = [1, \"2\"]"), 10, "family[0].pi5[1]",
+                         "must be a number, got a string"));
+  EXPECT_TRUE(fails_with(with(kPair, "scene = \"pair\"", "scene = 3"), 4, "family[0].scene",
+                         "must be a string or a list of strings"));
+  EXPECT_TRUE(fails_with(with(kPair, "scene = \"pair\"", "scene = \"row3\"\nsymmetric = \"yes\""), 5,
+                         "family[0].symmetric", "must be true or false"));
+  EXPECT_TRUE(fails_with(with(kPair, "name = \"a\"", "name = 1"), 3, "family[0].name", "must be a string"));
+  EXPECT_TRUE(fails_with(with(kPair, "name = \"a\"", "name = \"a b\""), 3, "family[0].name", "may hold only"));
+  EXPECT_TRUE(fails_with(with(kPair, "[[family]]", "[family]"), 2, "family", "must be an array of tables"));
+  EXPECT_TRUE(fails_with(with(kPair, "pi2 = 1", "pi2 = { from = 1, to = 2, points = 2.5, spacing = \"log\" }"),
+                         8, "family[0].pi2.points", "must be an integer"));
+  EXPECT_TRUE(fails_with(with(kPair, "pi2 = 1", "pi2 = { from = 1, to = 2, points = 2, spacing = \"cubic\" }"),
+                         8, "family[0].pi2.spacing", "must be \"log\" or \"linear\""));
+}
+
+TEST(CaseSetErrors, OutOfRangeValuesNameTheFieldTheLineAndTheValue) {
+  EXPECT_TRUE(fails_with(with(kPair, "pi2 = 1", "pi2 = inf"), 8, "family[0].pi2", "must be finite and > 0"));
+  EXPECT_TRUE(fails_with(with(kPair, "pi2 = 1", "pi2 = nan"), 8, "family[0].pi2", "must be finite"));
+  EXPECT_TRUE(fails_with(with(kPair, "pi2 = 1", "pi2 = 0"), 8, "family[0].pi2", "> 0 (got 0)"));
+  EXPECT_TRUE(fails_with(with(kPair, "pi3 = 0.5", "pi3 = -0.1"), 9, "family[0].pi3", ">= 0 (got -0.1)"));
+  EXPECT_TRUE(fails_with(with(kPair, "eps = 0.5", "eps = 1.5"), 7, "family[0].eps", "[0, 1] (got 1.5)"));
+  EXPECT_TRUE(fails_with(with(kPair, "pi5 = 2", "pi5 = -1"), 10, "family[0].pi5", "frequency ratio"));
+  EXPECT_TRUE(fails_with(with(kPair, "pi6 = 1", "pi6 = 0"), 11, "family[0].pi6", "mass ratio"));
+  EXPECT_TRUE(fails_with(kPair + "xi = 1\n", 12, "family[0].xi", "[0, 1) (got 1)"));
+  EXPECT_TRUE(fails_with(kPair + "xi = -0.01\n", 12, "family[0].xi", "damping ratio"));
+  EXPECT_TRUE(fails_with(kPair + "n_free = 0\n", 12, "family[0].n_free", "> 0"));
+  EXPECT_TRUE(fails_with(kPair + "a_p = -9.81\n", 12, "family[0].a_p", "> 0"));
+  EXPECT_TRUE(fails_with(kPair + "w_p = 0\n", 12, "family[0].w_p", "> 0"));
+  // A bad element of a multi-line list: the element's own line and index.
+  EXPECT_TRUE(fails_with(with(kPair, "pi5 = 2", "pi5 = [\n  1,\n  -2,\n]"), 12, "family[0].pi5[1]",
+                         "got -2"));
+  // A bad value in [defaults] points at [defaults].
+  EXPECT_TRUE(fails_with(with(without(kPair, "eps = 0.5"), "[[family]]", "[defaults]\neps = 2\n[[family]]"),
+                         3, "defaults.eps", "[0, 1]"));
+}
+
+TEST(CaseSetErrors, EmptyListsAndGridsAreRejected) {
+  EXPECT_TRUE(fails_with(with(kPair, "pi5 = 2", "pi5 = []"), 10, "family[0].pi5", "empty list"));
+  EXPECT_TRUE(fails_with(with(kPair, "pulse = \"sine\"", "pulse = []"), 5, "family[0].pulse", "empty list"));
+  EXPECT_TRUE(fails_with(with(kPair, "pi2 = 1", "pi2 = { from = 1, to = 2, points = 0, spacing = \"log\" }"),
+                         8, "family[0].pi2.points", "must be >= 1"));
+  EXPECT_TRUE(fails_with(with(kPair, "pi2 = 1", "pi2 = { from = 0, to = 2, points = 5, spacing = \"log\" }"),
+                         8, "family[0].pi2", "log grid needs from > 0"));
+  EXPECT_TRUE(fails_with(with(kPair, "pi2 = 1", "pi2 = { from = 1, to = 2, points = 1, spacing = \"log\" }"),
+                         8, "family[0].pi2", "1 point needs from == to"));
+  EXPECT_TRUE(fails_with(with(kPair, "pi2 = 1", "pi2 = { to = 2, points = 3, spacing = \"log\" }"), 8,
+                         "family[0].pi2.from", "required"));
+}
+
+TEST(CaseSetErrors, UnknownSceneuPulseAndDirectivityNamesAreRejected) {
+  EXPECT_TRUE(fails_with(with(kPair, "scene = \"pair\"", "scene = \"row4\""), 4, "family[0].scene",
+                         "unknown scene \"row4\""));
+  EXPECT_TRUE(fails_with(with(kPair, "pulse = \"sine\"", "pulse = [\"sine\", \"square\"]"), 5,
+                         "family[0].pulse[1]", "unknown pulse \"square\""));
+  EXPECT_TRUE(fails_with(with(kPair, "directivity = \"normal\"", "directivity = \"forward\""), 6,
+                         "family[0].directivity", "unknown directivity"));
+}
+
+TEST(CaseSetErrors, KeysTheScenesDoNotUseAreRejected) {
+  EXPECT_TRUE(fails_with(kPair + "pi7 = 2\n", 12, "family[0].pi7", "not used by scene pair"));
+  EXPECT_TRUE(fails_with(kPair + "symmetric = true\n", 12, "family[0].symmetric", "not used by scene pair"));
+  EXPECT_TRUE(fails_with(with(without(kPair, "pi6 = 1"), "scene = \"pair\"", "scene = \"wall\""), 10,
+                         "family[0].pi5", "not used by scene wall"));
+  EXPECT_TRUE(fails_with(with(kPair, "scene = \"pair\"", "scene = \"row3\"\nsymmetric = true\npi8 = 2"), 6,
+                         "family[0].pi8", "not allowed with symmetric = true (line 5)"));
+}
+
+TEST(CaseSetErrors, DuplicateFamilyNamesAndMissingFamiliesAreRejected) {
+  const std::string twice = kPair + kPair.substr(kPair.find("[[family]]"));
+  EXPECT_TRUE(fails_with(twice, 13, "family[1].name", "duplicate family name \"a\" (first used at line 3)"));
+  EXPECT_TRUE(fails_with("name = \"t\"\n", 0, "family", "no [[family]] tables"));
+  EXPECT_TRUE(fails_with("name = \"t\"\nfamily = []\n", 2, "family", "the list is empty"));
+  EXPECT_TRUE(fails_with("name = \"t\"\nfamily = [1]\n", 2, "family[0]", "must be a table"));
+}
+
+TEST(CaseSetErrors, AMissingFileSaysItCannotBeRead) {
+  const std::string path = std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/no-such-set.toml";
+  try {
+    load_case_set(path);
+    FAIL() << "loaded a missing file";
+  } catch (const CaseSetError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": cannot read: No such file or directory");
+  }
+}
+
+// --- the shipped sets ---------------------------------------------------------------------
+
+std::map<std::string, std::size_t> count_by_family(const CaseSet& set) {
+  std::map<std::string, std::size_t> n;
+  for (const Case& c : set.cases) ++n[c.family];
+  return n;
+}
+
+TEST(ShippedCaseSets, PaperSetLoadsWithTheExpectedPointCounts) {
+  const CaseSet set = load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/paper.toml");
+  EXPECT_EQ(set.name, "paper");
+  const std::map<std::string, std::size_t> expected = {
+      {"fig3", 3 * 200},          {"fig4-flexible", 2 * 4 * 200}, {"fig4-stiff", 2 * 4 * 200},
+      {"fig5-flexible", 2 * 4 * 200}, {"fig5-stiff", 2 * 4 * 200}, {"fig7", 2 * 8 * 200},
+      {"fig8", 2 * 2 * 7 * 200},  {"fig9", 2 * 2 * 7 * 200},      {"fig10", 2 * 2 * 41 * 5},
+      {"eps-cover", 2 * 2 * 2 * 200}};
+  EXPECT_EQ(count_by_family(set), expected);
+  EXPECT_EQ(set.cases.size(), 23820u);
+  for (const Case& c : set.cases) {
+    EXPECT_EQ(validate(c), std::nullopt) << c.family;
+    EXPECT_EQ(c.xi, 0.05);
+    if (c.family != "eps-cover") {
+      EXPECT_EQ(c.eps, 0.5) << c.family;
+    }
+    if (c.family == "fig7") {
+      EXPECT_TRUE(c.pi7 == c.pi5 && c.pi8 == c.pi6);
+    }
+  }
+}
+
+TEST(ShippedCaseSets, SmokeSetIsSmallAndCoversEveryClass) {
+  const CaseSet set = load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/smoke.toml");
+  EXPECT_EQ(set.cases.size(), 40u);
+  std::map<std::string, int> seen;
+  bool symmetric_row = false, asymmetric_row = false;
+  for (const Case& c : set.cases) {
+    EXPECT_EQ(validate(c), std::nullopt) << c.family;
+    ++seen[std::string(name(c.scene))];
+    ++seen[std::string(name(c.pulse))];
+    ++seen[std::string(name(c.directivity))];
+    ++seen["eps=" + std::to_string(c.eps)];
+    if (c.pi3 == 0.0) ++seen["touching"];
+    if (c.scene == Scene::row3) (c.pi7 == c.pi5 && c.pi8 == c.pi6 ? symmetric_row : asymmetric_row) = true;
+  }
+  for (const char* k : {"wall", "pair", "row3", "sine", "cosine", "normal", "reverse", "eps=0.000000",
+                        "eps=0.500000", "eps=1.000000", "touching"})
+    EXPECT_GT(seen[k], 0) << k;
+  EXPECT_TRUE(symmetric_row);
+  EXPECT_TRUE(asymmetric_row);
+}
+
+}  // namespace
+}  // namespace pb
