@@ -64,30 +64,38 @@ Wave ground(const System& s, double t) {
   return a;
 }
 
+// Calls f(first, last, fixed) for each run of bodies joined by the contacts flagged in
+// `joined` (a run touching the wall through a joined contact is fixed).
+template <class F>
+void for_each_cluster(const System& s, const std::vector<char>& joined, F&& f) {
+  const int wall_shift = s.wall ? 1 : 0;  // contact between bodies i and i+1 is i + wall_shift
+  for (int first = 0; first < s.n_bodies();) {
+    int last = first;
+    while (last + 1 < s.n_bodies() && joined[ix(last + wall_shift)]) ++last;
+    f(first, last, s.wall && first == 0 && joined[0]);
+    first = last + 1;
+  }
+}
+
+// Offset of body i from the first body of its cluster when their gaps are closed.
+double offset(const System& s, int first, int i) { return -(i - first) * s.delta; }
+
 // Bodies joined by persistent contacts move as one oscillator; its coordinate x is the
 // displacement of its leftmost body, the others sit at fixed offsets (closed gaps).
 void build_frame(const System& s, const State& st, Frame& fr) {
-  const int n = s.n_bodies();
-  fr.body.resize(ix(n));
+  fr.body.resize(ix(s.n_bodies()));
   fr.contact.resize(ix(s.n_contacts()));
   const Wave ag = ground(s, st.t);
-  const int wall_shift = s.wall ? 1 : 0;  // contact between bodies i and i+1 is i + wall_shift
-  std::vector<double> offset(ix(n));
-  for (int first = 0; first < n;) {
-    int last = first;
-    while (last + 1 < n && st.active[ix(last + wall_shift)]) ++last;
-    const bool fixed = s.wall && first == 0 && st.active[0];
-    offset[ix(first)] = 0.0;
-    for (int i = first + 1; i <= last; ++i) offset[ix(i)] = offset[ix(i - 1)] - s.delta;
-
+  const int wall_shift = s.wall ? 1 : 0;
+  for_each_cluster(s, st.active, [&](int first, int last, bool fixed) {
     double m = 0.0, c = 0.0, k = 0.0, f_const = 0.0, mx = 0.0, mv = 0.0;
     for (int i = first; i <= last; ++i) {
       const Body& b = s.bodies[ix(i)];
       m += b.m;
       c += b.c;
       k += b.k;
-      f_const -= b.k * offset[ix(i)];
-      mx += b.m * (st.u[ix(i)] - offset[ix(i)]);
+      f_const -= b.k * offset(s, first, i);
+      mx += b.m * (st.u[ix(i)] - offset(s, first, i));
       mv += b.m * st.v[ix(i)];
     }
     Wave x;
@@ -101,7 +109,7 @@ void build_frame(const System& s, const State& st, Frame& fr) {
     }
     for (int i = first; i <= last; ++i) {
       fr.body[ix(i)] = x;
-      fr.body[ix(i)].f0 += offset[ix(i)];
+      fr.body[ix(i)].f0 += offset(s, first, i);
     }
     // Force of a persistent contact: what the bodies right of it need to follow the cluster,
     // lambda = sum over them of m x'' + c x' + k u + m a_g.
@@ -113,7 +121,7 @@ void build_frame(const System& s, const State& st, Frame& fr) {
         mr += b.m;
         cr += b.c;
         kr += b.k;
-        ko += b.k * offset[ix(i)];
+        ko += b.k * offset(s, first, i);
         const int j = i - 1 + wall_shift;  // contact left of body i
         if (j < 0 || (i == first && !fixed)) continue;
         Wave& f = fr.contact[ix(j)];
@@ -127,8 +135,7 @@ void build_frame(const System& s, const State& st, Frame& fr) {
         f.prepare();
       }
     }
-    first = last + 1;
-  }
+  });
   for (int j = 0; j < s.n_contacts(); ++j) {
     if (st.active[ix(j)]) continue;
     Wave& g = fr.contact[ix(j)];
@@ -159,13 +166,15 @@ class Solver {
     st_.v.assign(n, 0.0);
     st_.g.assign(nc, s.delta);
     st_.active.assign(nc, 0);
-    double m = 0.0;
     rate_ = s.pulse.w;
-    for (const Body& b : s.bodies) {
-      m += b.m;
-      rate_ = std::max(rate_, b.w);
+    for (const Body& b : s.bodies) rate_ = std::max(rate_, b.w);
+    // A force is compared with the gap accelerations it makes: lambda (1/m_left + 1/m_right).
+    force_scale_.resize(nc);
+    for (int j = 0; j < s.n_contacts(); ++j) {
+      double inv_mass = 1.0 / s.bodies[ix(s.right(j))].m;
+      if (s.left(j) != kWall) inv_mass += 1.0 / s.bodies[ix(s.left(j))].m;
+      force_scale_[ix(j)] = s.a_p / inv_mass;
     }
-    force_scale_ = m * s.a_p;
     if (settings.history_samples > 0) {
       samples_ = settings.history_samples;
       res_.history.n_bodies = s.n_bodies();
@@ -185,7 +194,8 @@ class Solver {
       double b = seg_end;
       int which = -1;
       for (int j = 0; j < s_.n_contacts(); ++j) {
-        const double r = first_root(fr_.contact[ix(j)], st_.t, b, tol_.floor, tol_.settle);
+        const double noise = st_.active[ix(j)] ? tol_.lex * force_scale_[ix(j)] : tol_.gap;
+        const double r = first_root(fr_.contact[ix(j)], st_.t, b, tol_.floor, tol_.settle, noise);
         if (!std::isnan(r) && r <= b) {
           b = r;
           which = j;
@@ -297,16 +307,26 @@ class Solver {
   bool resolve(const std::vector<int>& closed) {
     const std::vector<char> before = st_.active;
     const int n = static_cast<int>(closed.size());
+    close_gaps(closed);
     if (n > 16) return fail("more than 16 closed contacts at once");
-    for (int mask = (1 << n) - 1; mask >= 0; --mask) {
-      std::fill(st_.active.begin(), st_.active.end(), 0);
-      for (int a = 0; a < n; ++a)
-        if (mask & (1 << a)) st_.active[ix(closed[ix(a)])] = 1;
-      build_frame(s_, st_, fr_);
-      if (fits(closed)) {
-        for (std::size_t j = 0; j < before.size(); ++j)
-          if (st_.active[j] && !before[j]) ++res_.contact_phases;
-        return true;
+    // Coefficients within round-off of zero defer to the next derivative. If round-off in
+    // the higher derivatives leaves no set that fits, the plain signs decide, and failing
+    // that the values alone (the LCP at t, which always has a solution).
+    struct Pass {
+      double tol;
+      int depth;
+    };
+    for (const Pass pass : {Pass{tol_.lex, kMaxDerivative - 1}, Pass{0.0, kMaxDerivative - 1}, Pass{tol_.lex, 1}}) {
+      for (int mask = (1 << n) - 1; mask >= 0; --mask) {
+        std::fill(st_.active.begin(), st_.active.end(), 0);
+        for (int a = 0; a < n; ++a)
+          if (mask & (1 << a)) st_.active[ix(closed[ix(a)])] = 1;
+        build_frame(s_, st_, fr_);
+        if (fits(closed, pass.tol, pass.depth)) {
+          for (std::size_t j = 0; j < before.size(); ++j)
+            if (st_.active[j] && !before[j]) ++res_.contact_phases;
+          return true;
+        }
       }
     }
     std::ostringstream msg;
@@ -314,13 +334,32 @@ class Solver {
     return fail(msg.str());
   }
 
-  bool fits(const std::vector<int>& closed) const {
+  // Closed gaps were closed to within tol_gap; move the bodies (keeping their centre of
+  // mass) so that the positions agree exactly. Otherwise the springs would see a gap the
+  // contact logic does not, and late in a run, when the motion itself is that small, the
+  // contact LCP would be decided by it.
+  void close_gaps(const std::vector<int>& closed) {
+    std::vector<char> joined(ix(s_.n_contacts()), 0);
+    for (int j : closed) joined[ix(j)] = 1;
+    for_each_cluster(s_, joined, [&](int first, int last, bool fixed) {
+      if (first == last && !fixed) return;
+      double m = 0.0, mx = 0.0;
+      for (int i = first; i <= last; ++i) {
+        m += s_.bodies[ix(i)].m;
+        mx += s_.bodies[ix(i)].m * (st_.u[ix(i)] - offset(s_, first, i));
+      }
+      const double x = fixed ? -s_.delta : mx / m;
+      for (int i = first; i <= last; ++i) st_.u[ix(i)] = x + offset(s_, first, i);
+    });
+  }
+
+  bool fits(const std::vector<int>& closed, double tol, int depth) const {
     double c[kMaxDerivative + 1];
     for (int j : closed) {
       fr_.contact[ix(j)].eval(st_.t, c, kMaxDerivative + 1);
       const bool ok = st_.active[ix(j)]
-                          ? lex_nonnegative(c, 4, force_scale_, rate_, tol_.lex)
-                          : lex_nonnegative(c + 2, kMaxDerivative - 1, s_.a_p, rate_, tol_.lex);
+                          ? lex_nonnegative(c, std::min(depth, 4), force_scale_[ix(j)], rate_, tol)
+                          : lex_nonnegative(c + 1, depth + 1, s_.a_p / rate_, rate_, tol);
       if (!ok) return false;
     }
     return true;
@@ -339,7 +378,8 @@ class Solver {
   Frame fr_;
   Peak peak_;
   Result res_;
-  double rate_ = 1.0, force_scale_ = 1.0;
+  double rate_ = 1.0;
+  std::vector<double> force_scale_;  // per contact
   int samples_ = 0, next_sample_ = 0;
 };
 

@@ -114,21 +114,33 @@ double window(const Wave& g, double t, double f, double rest) {
   return std::min(rest, std::sqrt(std::sqrt(96.0 * std::abs(f) / b4)));
 }
 
+double crossing(const Wave& f, Point p, double b, double floor);
+
 }  // namespace
 
-double first_root(const Wave& f, double a, double b, double floor, double settle) {
+double first_root(const Wave& f, double a, double b, double floor, double settle, double noise) {
   Point p = at(f, a);
   if (p.f <= 0.0) {
-    double step = floor;
-    while (true) {
-      const double t = a + step;
-      if (t > b) return f.value(b) <= 0.0 ? std::min(a + floor, b) : kNaN;
+    if (p.f < -noise) return a;
+    for (double step = floor;; step *= 2.0) {
+      const double t = std::min(a + step, b);
       p = at(f, t);
       if (p.f > 0.0) break;
-      if (step > settle) return a + floor;
-      step *= 2.0;
+      if (step > settle || t == b) {
+        Wave shifted = f;
+        shifted.f0 += noise;
+        shifted.prepare();
+        return first_root(shifted, a, b, floor, settle, noise);
+      }
     }
   }
+  return crossing(f, p, b, floor);
+}
+
+namespace {
+
+// The first crossing after p, where f(p) > 0.
+double crossing(const Wave& f, Point p, double b, double floor) {
   const double mean = f.mean();
   while (p.t < b) {
     if (mean - f.swing(p.t) > 0.0) return kNaN;
@@ -141,6 +153,8 @@ double first_root(const Wave& f, double a, double b, double floor, double settle
   }
   return kNaN;
 }
+
+}  // namespace
 
 namespace {
 

@@ -14,10 +14,12 @@
 namespace pb::event_driven {
 
 // The first t in (a, b] where f falls to <= 0 after being > 0, to within an ulp of the
-// root; NaN if there is none. If f(a) <= 0 (a contact that has just opened, up to
-// round-off), the search starts where f first becomes positive, looking no further than
-// `settle` past a; if it never does, a + floor is returned (the contact never opened).
-double first_root(const Wave& f, double a, double b, double floor, double settle);
+// root; NaN if there is none. If f(a) <= 0 (a contact that has just opened or closed, up
+// to round-off), the search starts where f first becomes positive, looking no further
+// than `settle` past a. If it does not become positive by then, f is taken as neutral
+// (a resting contact with zero force, a gap that stays closed) and the event is where it
+// first falls below -noise instead.
+double first_root(const Wave& f, double a, double b, double floor, double settle, double noise);
 
 struct Peak {
   double value = 0.0;  // largest |f| found
