@@ -22,6 +22,7 @@ packages=(
   g++ cmake make pkg-config
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
+  libode-dev libbullet-dev
   python3 python3-matplotlib python3-numpy
 )
 missing=()

@@ -1,0 +1,14 @@
+#pragma once
+// The command line's two kinds of failure, which main() turns into exit codes:
+// BadInput (exit 2) is the user's to fix and its what() is the one line printed; any other
+// exception is a runtime failure (exit 1).
+
+#include <stdexcept>
+
+namespace pb::app {
+
+struct BadInput : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace pb::app

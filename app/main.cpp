@@ -1,0 +1,67 @@
+// poundbench: the command line. Exit codes: 0 done, 1 runtime failure, 2 bad input (one
+// line on stderr naming the flag or file, the field and the reason), 130 interrupted.
+
+#include <algorithm>
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "app/errors.hpp"
+#include "app/run_command.hpp"
+#include "app/spectrum_command.hpp"
+#include "cases/case_set.hpp"
+#include "solvers/solver.hpp"
+
+namespace {
+
+constexpr int kRuntimeFailure = 1;
+constexpr int kBadInput = 2;
+
+int fail(const std::string& message, int code) {
+  std::string line = message;
+  std::replace(line.begin(), line.end(), '\n', ' ');  // one line, whatever the source
+  std::cerr << "poundbench: " << line << '\n';
+  return code;
+}
+
+int list_solvers() {
+  std::size_t width = 0;
+  for (const pb::SolverInfo& s : pb::solvers()) width = std::max(width, s.name.size());
+  for (const pb::SolverInfo& s : pb::solvers())
+    std::cout << s.name << std::string(width + 2 - s.name.size(), ' ') << s.summary << '\n';
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"poundbench: time-stepping solvers with impacts on the pounding case set"};
+  app.require_subcommand(1);
+  pb::app::RunFlags run_flags;
+  pb::app::SpectrumFlags spectrum_flags;
+  CLI::App* run = pb::app::add_run_command(app, run_flags);
+  CLI::App* spectrum = pb::app::add_spectrum_command(app, spectrum_flags);
+  CLI::App* solvers = app.add_subcommand("solvers", "List the solvers and what each one is");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    return fail(e.what(), kBadInput);
+  }
+
+  try {
+    if (*run) return pb::app::run_command(*run, run_flags);
+    if (*spectrum) return pb::app::spectrum_command(*spectrum, spectrum_flags);
+    if (*solvers) return list_solvers();
+  } catch (const pb::app::BadInput& e) {
+    return fail(e.what(), kBadInput);
+  } catch (const pb::CaseSetError& e) {
+    return fail(e.what(), kBadInput);
+  } catch (const std::exception& e) {
+    return fail(e.what(), kRuntimeFailure);
+  }
+  return kBadInput;
+}

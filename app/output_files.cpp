@@ -1,0 +1,73 @@
+#include "app/output_files.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+#include "app/errors.hpp"
+
+namespace pb::app {
+
+namespace fs = std::filesystem;
+
+void check_output_target(const fs::path& file, std::string_view flag) {
+  const std::string prefix = std::string(flag) + ": " + file.string() + ": ";
+  std::error_code ec;
+  if (file.empty()) throw BadInput(std::string(flag) + ": empty file name");
+  if (fs::is_directory(file, ec)) throw BadInput(prefix + "is a directory");
+  fs::path dir = file.parent_path();
+  if (dir.empty()) dir = ".";
+  if (!fs::is_directory(dir, ec)) throw BadInput(prefix + "directory " + dir.string() + " does not exist");
+  if (::access(dir.c_str(), W_OK) != 0) throw BadInput(prefix + "directory " + dir.string() + " is not writable");
+  if (fs::exists(file, ec) && ::access(file.c_str(), W_OK) != 0) throw BadInput(prefix + "is not writable");
+}
+
+void write_atomically(const fs::path& file, const std::function<void(std::ostream&)>& write) {
+  const fs::path tmp = file.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    if (!out) throw std::runtime_error(tmp.string() + ": cannot create: " + std::strerror(errno));
+    write(out);
+    out.flush();
+    if (!out) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw std::runtime_error(tmp.string() + ": write failed");
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, file, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw std::runtime_error(file.string() + ": cannot rename " + tmp.string() + " into place: " + ec.message());
+  }
+}
+
+FlushedFile::FlushedFile(const fs::path& file) : path_(file), file_(std::fopen(file.c_str(), "w")) {
+  if (!file_) throw std::runtime_error(file.string() + ": cannot create: " + std::strerror(errno));
+}
+
+FlushedFile::~FlushedFile() {
+  if (file_) std::fclose(file_);
+}
+
+void FlushedFile::write_line(std::string_view line) {
+  if (!file_) throw std::runtime_error(path_.string() + ": write after close");
+  const bool ok = std::fwrite(line.data(), 1, line.size(), file_) == line.size() && std::fputc('\n', file_) != EOF &&
+                  std::fflush(file_) == 0;
+  if (!ok) throw std::runtime_error(path_.string() + ": write failed: " + std::strerror(errno));
+}
+
+void FlushedFile::close() {
+  if (file_ && std::fclose(file_) != 0) {
+    file_ = nullptr;
+    throw std::runtime_error(path_.string() + ": close failed: " + std::strerror(errno));
+  }
+  file_ = nullptr;
+}
+
+}  // namespace pb::app

@@ -1,0 +1,167 @@
+#include "app/run_command.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/errors.hpp"
+#include "app/output_files.hpp"
+#include "sweep/sweep.hpp"
+
+namespace pb::app {
+
+namespace {
+
+// The paper's labels of the bodies, left to right (body 0 is the reported one).
+std::vector<std::string> body_labels(Scene scene) {
+  switch (scene) {
+    case Scene::wall: return {"0"};
+    case Scene::pair: return {"1", "0"};
+    case Scene::row3: return {"1", "0", "2"};
+  }
+  return {};
+}
+
+void write_history(std::ostream& out, const History& h, Scene scene) {
+  const std::vector<std::string> bodies = body_labels(scene);
+  const int contacts = contact_count(scene);
+  // A run that failed before its first sample leaves an empty history: header only.
+  const bool empty = h.n_bodies == 0 && h.data.empty();
+  if (!empty && (h.n_bodies != static_cast<int>(bodies.size()) || h.n_contacts != contacts))
+    throw std::runtime_error("history: the solver returned " + std::to_string(h.n_bodies) + " bodies and " +
+                             std::to_string(h.n_contacts) + " contacts for scene " + std::string(name(scene)));
+  out << 't';
+  for (const char* quantity : {"u", "v"})
+    for (const std::string& body : bodies) out << ',' << quantity << body;
+  for (const char* quantity : {"g", "lambda"})
+    for (int j = 1; j <= contacts; ++j) out << ',' << quantity << j;
+  out << '\n';
+  const auto width = static_cast<std::size_t>(h.row_size());
+  for (std::size_t r = 0; r < h.rows(); ++r) {
+    for (std::size_t k = 0; k < width; ++k) out << (k ? "," : "") << format_number(h.data[r * width + k]);
+    out << '\n';
+  }
+}
+
+nlohmann::ordered_json case_json(const Case& c) {
+  nlohmann::ordered_json j;
+  j["family"] = c.family;
+  j["scene"] = name(c.scene);
+  j["pulse"] = name(c.pulse);
+  j["directivity"] = name(c.directivity);
+  j["pi2"] = c.pi2;
+  j["pi3"] = c.pi3;
+  j["eps"] = c.eps;
+  if (uses_body1(c.scene)) {
+    j["pi5"] = c.pi5;
+    j["pi6"] = c.pi6;
+  }
+  if (uses_body2(c.scene)) {
+    j["pi7"] = c.pi7;
+    j["pi8"] = c.pi8;
+  }
+  j["xi"] = c.xi;
+  j["n_free"] = c.n_free;
+  j["a_p"] = c.a_p;
+  j["w_p"] = c.w_p;
+  return j;
+}
+
+// NaN and infinity have no JSON spelling; null says "no value".
+nlohmann::ordered_json number_or_null(double x) {
+  return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr);
+}
+
+nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {
+  const Result& r = row.result;
+  nlohmann::ordered_json j;
+  j["status"] = name(r.status);
+  j["message"] = r.message;
+  j["pi1"] = number_or_null(r.pi1);
+  j["pi1_no_contact"] = number_or_null(row.pi1_no_contact);
+  j["t_max"] = number_or_null(r.t_max);
+  j["impacts"] = r.impacts;
+  j["contact_phases"] = r.contact_phases;
+  j["steps"] = r.steps;
+  j["min_gap"] = number_or_null(min_gap_ratio(row));
+  j["seconds"] = row.seconds;
+  j["solver"] = row.solver;
+  j["variant"] = row.variant;
+  j["settings"] = row.settings;
+  if (!chosen.case_file.empty()) {
+    j["case_file"] = chosen.case_file;
+    j["point"] = chosen.point;
+  }
+  j.update(case_json(row.input));
+  return j;
+}
+
+// Six significant digits: enough to read; --json has every digit.
+std::string brief(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
+
+void print_summary(std::ostream& out, const Row& row) {
+  const Case& c = row.input;
+  const Result& r = row.result;
+  out << name(c.scene) << ' ' << name(c.pulse) << ' ' << name(c.directivity) << "  pi2=" << brief(c.pi2)
+      << " pi3=" << brief(c.pi3) << " eps=" << brief(c.eps);
+  if (uses_body1(c.scene)) out << " pi5=" << brief(c.pi5) << " pi6=" << brief(c.pi6);
+  if (uses_body2(c.scene)) out << " pi7=" << brief(c.pi7) << " pi8=" << brief(c.pi8);
+  out << '\n';
+  out << "solver   " << row.solver << (row.settings.empty() ? "" : "  (" + row.settings + ")") << '\n';
+  out << "status   " << name(r.status) << (r.message.empty() ? "" : ": " + r.message) << '\n';
+  out << "Pi1      " << brief(r.pi1) << "  (no contact " << brief(row.pi1_no_contact)
+      << "), at t = " << brief(r.t_max) << '\n';
+  out << "impacts  " << r.impacts << ", contact phases " << r.contact_phases << ", steps/events " << r.steps << '\n';
+  const double gap = min_gap_ratio(row);
+  out << "min gap  " << (std::isinf(gap) ? std::string("none (no contact)") : brief(gap) + " a_p/w_p^2") << '\n';
+  out << "time     " << brief(row.seconds) << " s\n";
+}
+
+}  // namespace
+
+CLI::App* add_run_command(CLI::App& app, RunFlags& flags) {
+  CLI::App* command = app.add_subcommand("run", "Solve one case and print Pi1 and the event counts");
+  add_case_flags(*command, flags.case_flags);
+  add_solver_flags(*command, flags.solver_flags);
+  command->add_flag("--json", flags.json, "Print one JSON object instead of the summary");
+  command->add_option("--history", flags.history,
+                      "Write the time history as CSV (t,u1,u0,...,v...,g...,lambda...) to this file");
+  command->add_option("--samples", flags.samples, "Samples of the time history (with --history)")
+      ->capture_default_str();
+  return command;
+}
+
+int run_command(const CLI::App& command, RunFlags flags) {
+  const ChosenCase chosen = chosen_case(command, flags.case_flags);
+  const bool history = command.count("--history") > 0;
+  if (command.count("--samples") && !history) throw BadInput("--samples: only used with --history");
+  if (history) {
+    if (flags.samples < 2) throw BadInput("--samples: must be >= 2");
+    flags.solver_flags.settings.history_samples = flags.samples;
+  }
+  const SolverInfo& solver = checked_solver(flags.solver_flags);
+  if (history) check_output_target(flags.history, "--history");
+
+  const Row row = run_point(chosen.input, chosen.point, solver, flags.solver_flags.settings);
+  if (history)
+    write_atomically(flags.history, [&](std::ostream& out) { write_history(out, row.result.history, row.input.scene); });
+
+  if (flags.json)
+    std::cout << row_json(row, chosen).dump() << '\n';
+  else
+    print_summary(std::cout, row);
+  std::cout.flush();
+  if (!std::cout) throw std::runtime_error("stdout: write failed");
+  return row.result.status == Status::ok ? 0 : 1;
+}
+
+}  // namespace pb::app

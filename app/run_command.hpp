@@ -1,0 +1,26 @@
+#pragma once
+// `poundbench run`: one case, one solver -> Pi1 and the event counts, as a short summary
+// or one JSON object, and optionally the time history as CSV.
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "app/case_flags.hpp"
+#include "app/solver_flags.hpp"
+
+namespace pb::app {
+
+struct RunFlags {
+  CaseFlags case_flags;
+  SolverFlags solver_flags;
+  bool json = false;
+  std::string history;
+  int samples = 2000;
+};
+
+CLI::App* add_run_command(CLI::App& app, RunFlags& flags);
+// Exit code: 0 when the solver reached t_end, 1 when it did not (the result is printed).
+int run_command(const CLI::App& command, RunFlags flags);
+
+}  // namespace pb::app

@@ -1,0 +1,32 @@
+#pragma once
+// `poundbench spectrum CASESET`: every case of a case-set file through one solver, one CSV
+// row per case in point order (columns: sweep/row.hpp).
+//
+// Rows are appended, flushed, to a partial file as they complete (completion order), so an
+// interrupt or a crash loses only the points that were running. The final output appears
+// only when every point is done: --out is written as FILE.tmp and renamed, stdout gets the
+// rows at the end, and the partial file is removed.
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "app/solver_flags.hpp"
+
+namespace pb::app {
+
+struct SpectrumFlags {
+  std::string case_set;
+  std::string out;  // empty: stdout
+  unsigned threads = 0;
+  SolverFlags solver_flags;
+};
+
+// Where the finished rows of an unfinished sweep are.
+std::string partial_file_name(const std::string& out);
+
+CLI::App* add_spectrum_command(CLI::App& app, SpectrumFlags& flags);
+// Exit code: 0 done, 130 interrupted (partial file kept).
+int spectrum_command(const CLI::App& command, const SpectrumFlags& flags);
+
+}  // namespace pb::app

@@ -1,0 +1,84 @@
+#include "app/sweep_watch.hpp"
+
+#include <signal.h>
+
+#include <cstdio>
+#include <string>
+
+namespace pb::app {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr auto kTick = std::chrono::milliseconds(100);  // at most ten redraws a second
+constexpr auto kQuietStart = std::chrono::seconds(1);   // short sweeps show no bar
+
+// SIGINT and SIGTERM, but not one that this process was started with ignored: a shell
+// does that to a background job so that a Ctrl-C meant for the foreground leaves it alone.
+sigset_t stop_signals() {
+  sigset_t set;
+  sigemptyset(&set);
+  for (int sig : {SIGINT, SIGTERM}) {
+    struct sigaction action {};
+    if (sigaction(sig, nullptr, &action) == 0 && action.sa_handler != SIG_IGN) sigaddset(&set, sig);
+  }
+  return set;
+}
+
+std::string duration_text(double seconds) {
+  const long s = static_cast<long>(seconds + 0.5);
+  char text[32];
+  if (s >= 3600)
+    std::snprintf(text, sizeof text, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
+  else
+    std::snprintf(text, sizeof text, "%ld:%02ld", s / 60, s % 60);
+  return text;
+}
+
+}  // namespace
+
+SweepWatch::SweepWatch(std::size_t total, bool draw, std::function<void()> abandon)
+    : total_(total), draw_(draw), abandon_(std::move(abandon)), signals_(stop_signals()) {
+  pthread_sigmask(SIG_BLOCK, &signals_, nullptr);
+  thread_ = std::thread([this] { watch(); });
+}
+
+SweepWatch::~SweepWatch() { finish(); }
+
+void SweepWatch::finish() {
+  finished_ = true;
+  if (thread_.joinable()) thread_.join();
+  if (drawn_) std::fputs("\r\033[K", stderr);
+  drawn_ = false;
+}
+
+void SweepWatch::watch() {
+  const timespec tick{0, std::chrono::nanoseconds(kTick).count()};
+  while (!finished_) {
+    if (sigtimedwait(&signals_, nullptr, &tick) > 0) {
+      if (cancel_) abandon_();
+      cancel_ = true;
+    }
+    if (draw_ && !finished_ && Clock::now() - start_ > kQuietStart) draw(cancel_);
+  }
+}
+
+void SweepWatch::draw(bool stopping) {
+  const std::size_t done = done_;
+  const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+  const double rate = static_cast<double>(done) / elapsed;
+  const double fraction = total_ ? static_cast<double>(done) / static_cast<double>(total_) : 1.0;
+  constexpr int kWidth = 24;
+  const int filled = static_cast<int>(fraction * kWidth);
+  const std::string bar = std::string(static_cast<std::size_t>(filled), '#') +
+                          std::string(static_cast<std::size_t>(kWidth - filled), '-');
+  const std::string eta =
+      stopping ? "stopping (Ctrl-C again to abandon running points)"
+               : done ? "ETA " + duration_text(static_cast<double>(total_ - done) / rate) : "ETA --:--";
+  std::fprintf(stderr, "\r\033[K[%s] %zu/%zu  %.*f points/s  %s  elapsed %s", bar.c_str(), done, total_,
+               rate < 10 ? 2 : 0, rate, eta.c_str(), duration_text(elapsed).c_str());
+  std::fflush(stderr);
+  drawn_ = true;
+}
+
+}  // namespace pb::app

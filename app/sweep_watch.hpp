@@ -1,0 +1,51 @@
+#pragma once
+// Watches a running sweep from a thread of its own: draws a progress bar on stderr (when
+// stderr is a terminal and the sweep lasts more than a second) and turns SIGINT/SIGTERM
+// into the sweep's cancel flag.
+//
+// Signals are blocked in the constructing thread, so every thread started after it (the
+// sweep's workers) inherits the block and only the watcher, waiting in sigtimedwait,
+// receives them. A signal the process was started with ignored stays ignored. This avoids doing anything in a signal handler. A first signal cancels
+// (no new points start; running ones finish); a second one calls `abandon`, which must
+// not return (it ends the process without waiting for the running points).
+
+#include <signal.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstddef>
+#include <functional>
+#include <thread>
+
+namespace pb::app {
+
+class SweepWatch {
+ public:
+  SweepWatch(std::size_t total, bool draw, std::function<void()> abandon);
+  ~SweepWatch();
+  SweepWatch(const SweepWatch&) = delete;
+  SweepWatch& operator=(const SweepWatch&) = delete;
+
+  const std::atomic<bool>& cancel() const { return cancel_; }
+  void set_done(std::size_t done) { done_ = done; }
+  // Stops the watcher and erases the progress bar. Signals stay blocked afterwards.
+  void finish();
+  bool interrupted() const { return cancel_; }
+
+ private:
+  void watch();
+  void draw(bool stopping);
+
+  std::size_t total_;
+  bool draw_;
+  std::function<void()> abandon_;
+  sigset_t signals_;  // the ones the watcher takes
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::atomic<std::size_t> done_{0};
+  std::atomic<bool> cancel_{false};
+  std::atomic<bool> finished_{false};
+  bool drawn_ = false;  // a bar is on the screen
+  std::thread thread_;
+};
+
+}  // namespace pb::app

@@ -1,0 +1,108 @@
+#include "sweep/row.hpp"
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+namespace pb {
+
+double min_gap_ratio(const Row& row) { return row.result.min_gap / row.length_scale; }
+
+std::string format_number(double x) {
+  if (std::isnan(x)) return {};
+  // Without a format argument to_chars gives the shortest text that round-trips.
+  std::array<char, 64> buffer{};
+  const auto [end, error] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), x);
+  if (error != std::errc{}) return {};
+  return {buffer.data(), end};
+}
+
+std::string csv_field(std::string_view text) {
+  if (text.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(text);
+  std::string quoted = "\"";
+  for (char ch : text) {
+    if (ch == '"') quoted += '"';
+    quoted += ch;
+  }
+  quoted += '"';
+  return quoted;
+}
+
+namespace {
+
+constexpr std::array kColumns = {
+    "family", "point",  "scene",    "pulse",  "directivity",    "pi2",     "pi3",
+    "eps",    "pi5",    "pi6",      "pi7",    "pi8",            "xi",      "n_free",
+    "a_p",    "w_p",    "solver",   "variant", "settings",      "status",  "pi1",
+    "pi1_no_contact",   "impacts",  "contact_phases", "steps",  "min_gap", "seconds",
+    "message"};
+
+// Written as an empty field: a body the scene does not have, a gap that never closed.
+constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
+
+class LineBuilder {
+ public:
+  void text(std::string_view s) { add(csv_field(s)); }
+  void number(double x) { add(format_number(x)); }
+  void count(long long n) { add(std::to_string(n)); }
+  std::string take() { return std::move(line_); }
+
+ private:
+  void add(const std::string& field) {
+    if (!first_) line_ += ',';
+    first_ = false;
+    line_ += field;
+  }
+  std::string line_;
+  bool first_ = true;
+};
+
+}  // namespace
+
+std::string csv_header() {
+  LineBuilder line;
+  for (const char* column : kColumns) line.text(column);
+  return line.take();
+}
+
+std::string csv_line(const Row& row) {
+  const Case& c = row.input;
+  const Result& r = row.result;
+  LineBuilder line;
+  line.text(c.family);
+  line.count(static_cast<long long>(row.point));
+  line.text(name(c.scene));
+  line.text(name(c.pulse));
+  line.text(name(c.directivity));
+  line.number(c.pi2);
+  line.number(c.pi3);
+  line.number(c.eps);
+  for (double pi : {c.pi5, c.pi6}) line.number(uses_body1(c.scene) ? pi : kMissing);
+  for (double pi : {c.pi7, c.pi8}) line.number(uses_body2(c.scene) ? pi : kMissing);
+  line.number(c.xi);
+  line.number(c.n_free);
+  line.number(c.a_p);
+  line.number(c.w_p);
+  line.text(row.solver);
+  line.text(row.variant);
+  line.text(row.settings);
+  line.text(name(r.status));
+  line.number(r.pi1);
+  line.number(row.pi1_no_contact);
+  line.count(r.impacts);
+  line.count(r.contact_phases);
+  line.count(r.steps);
+  const double gap = min_gap_ratio(row);
+  line.number(gap == std::numeric_limits<double>::infinity() ? kMissing : gap);
+  line.number(row.seconds);
+  line.text(r.message);
+  return line.take();
+}
+
+void write_csv(std::ostream& out, std::span<const Row> rows) {
+  out << csv_header() << '\n';
+  for (const Row& row : rows) out << csv_line(row) << '\n';
+}
+
+}  // namespace pb

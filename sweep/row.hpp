@@ -1,0 +1,51 @@
+#pragma once
+// One result row of a sweep: the case that was solved, which solver and settings solved
+// it, what came out, and how long the solve took. Rows are written as CSV, one line per
+// row, with numbers printed so that they read back to the same double.
+//
+// Columns (csv_header()):
+//   family, point, scene, pulse, directivity, pi2, pi3, eps, pi5, pi6, pi7, pi8, xi,
+//   n_free, a_p, w_p, solver, variant, settings, status, pi1, pi1_no_contact, impacts,
+//   contact_phases, steps, min_gap, seconds, message
+// pi5/pi6 are empty for the wall scene and pi7/pi8 for every scene but row3; min_gap is
+// divided by the pulse's length scale a_p / w_p^2 and empty when no contact ever closed
+// (infinite); a NaN is written as an empty field.
+
+#include <cstddef>
+#include <limits>
+#include <ostream>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "cases/case.hpp"
+#include "solvers/solver.hpp"
+
+namespace pb {
+
+struct Row {
+  Case input;              // the case that was solved
+  std::size_t point = 0;   // its index in the sweep's list of cases
+  std::string solver;      // SolverInfo::name
+  std::string variant;     // Settings::variant as given (empty: the solver's default)
+  std::string settings;    // SolverInfo::describe(settings)
+  Result result;
+  double pi1_no_contact = std::numeric_limits<double>::quiet_NaN();
+  double length_scale = std::numeric_limits<double>::quiet_NaN();  // System::length_scale()
+  double seconds = 0.0;    // wall time of the solve alone
+};
+
+// Result::min_gap over the length scale: dimensionless like Pi3 (infinite if no contact).
+double min_gap_ratio(const Row& row);
+
+// Shortest decimal text that reads back (strtod) to exactly x; NaN gives "".
+std::string format_number(double x);
+// A CSV field, quoted as RFC 4180 asks only when it holds a comma, a quote, CR or LF.
+std::string csv_field(std::string_view text);
+
+// Without a line end; write_csv ends every line with '\n'.
+std::string csv_header();
+std::string csv_line(const Row& row);
+void write_csv(std::ostream& out, std::span<const Row> rows);
+
+}  // namespace pb

@@ -1,0 +1,131 @@
+#include "sweep/sweep.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "cases/system.hpp"
+#include "solvers/event_driven/event_driven.hpp"
+
+namespace pb {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string describe_exception(std::exception_ptr error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const std::exception& e) {
+    return e.what();
+  } catch (...) {
+    return "unknown exception";
+  }
+}
+
+}  // namespace
+
+Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const Settings& settings) {
+  Row row;
+  row.input = c;
+  row.point = point;
+  row.solver = std::string(solver.name);
+  row.variant = settings.variant;
+  row.result.status = Status::failed;
+  try {
+    row.settings = solver.describe(settings);
+  } catch (...) {
+    row.result.message = "describe: " + describe_exception(std::current_exception());
+    return row;
+  }
+  if (auto bad = validate(c)) {
+    row.result.message = *bad;
+    return row;
+  }
+
+  System system;
+  try {
+    system = make_system(c);
+  } catch (...) {
+    row.result.message = "make_system: " + describe_exception(std::current_exception());
+    return row;
+  }
+  row.length_scale = system.length_scale();
+
+  const Clock::time_point start = Clock::now();
+  try {
+    row.result = solver.solve(system, settings);
+    row.seconds = seconds_since(start);
+  } catch (...) {
+    row.seconds = seconds_since(start);
+    row.result = Result{};
+    row.result.status = Status::failed;
+    row.result.message = describe_exception(std::current_exception());
+  }
+
+  try {
+    row.pi1_no_contact = event_driven::no_contact_pi1(system);
+  } catch (...) {
+    // The solver's own result stands; only the comparison value is missing.
+    if (!row.result.message.empty()) row.result.message += "; ";
+    row.result.message += "no-contact pi1: " + describe_exception(std::current_exception());
+  }
+  return row;
+}
+
+std::vector<Row> run_sweep(std::span<const Case> cases, const SolverInfo& solver, const Settings& settings,
+                           const SweepOptions& options) {
+  const std::size_t total = cases.size();
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> stop{false};  // a callback threw
+
+  std::mutex mutex;  // guards everything below and serialises the callbacks
+  std::vector<Row> rows;
+  rows.reserve(total);
+  std::exception_ptr error;
+
+  const auto stopped = [&] {
+    return stop.load(std::memory_order_relaxed) || (options.cancel && options.cancel->load());
+  };
+  const auto work = [&] {
+    while (!stopped()) {
+      const std::size_t i = next.fetch_add(1);
+      if (i >= total) return;
+      Row row = run_point(cases[i], i, solver, settings);
+
+      const std::lock_guard lock(mutex);
+      if (error) return;
+      try {
+        if (options.on_row) options.on_row(row);
+        rows.push_back(std::move(row));
+        if (options.on_progress) options.on_progress(rows.size(), total);
+      } catch (...) {
+        error = std::current_exception();
+        stop = true;
+        return;
+      }
+    }
+  };
+
+  unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
+  threads = static_cast<unsigned>(std::clamp<std::size_t>(threads, 1, std::max<std::size_t>(total, 1)));
+  if (threads == 1) {
+    work();
+  } else {
+    std::vector<std::jthread> pool;
+    pool.reserve(threads);
+    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(work);
+  }  // the jthreads join here
+
+  if (error) std::rethrow_exception(error);
+  std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.point < b.point; });
+  return rows;
+}
+
+}  // namespace pb

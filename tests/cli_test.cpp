@@ -1,0 +1,311 @@
+// The `poundbench` command line, run as a separate process: outputs, exit codes, the
+// one-line error of every bad input, and the partial-file behaviour of `spectrum`.
+
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "solvers/solver.hpp"
+#include "sweep/sweep.hpp"
+
+extern char** environ;
+
+namespace pb {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::size_t line_count(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+// Every test works in a fresh directory of its own, which it removes afterwards.
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("poundbench-cli-" + std::to_string(::getpid()) + "-" + test->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path file(const std::string& name) const { return dir_ / name; }
+
+  void write(const std::string& name, const std::string& text) const { std::ofstream(file(name)) << text; }
+
+  // Runs poundbench with `args` (a shell word list) in the test directory.
+  Outcome run(const std::string& args) const {
+    const std::string command = "cd '" + dir_.string() + "' && '" POUNDBENCH_EXE "' " + args +
+                                " > stdout.txt 2> stderr.txt";
+    const int status = std::system(command.c_str());
+    Outcome o;
+    o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    o.out = read_text(file("stdout.txt"));
+    o.err = read_text(file("stderr.txt"));
+    fs::remove(file("stdout.txt"));
+    fs::remove(file("stderr.txt"));
+    return o;
+  }
+
+  std::set<std::string> files() const {
+    std::set<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir_)) names.insert(entry.path().filename().string());
+    return names;
+  }
+
+  fs::path dir_;
+};
+
+constexpr const char* kPairCase =
+    "--scene pair --pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 0.5 --pi5 0.5 --pi6 1";
+
+constexpr const char* kTinySet = R"(name = "tiny"
+[[family]]
+name = "pair"
+scene = "pair"
+pulse = ["sine", "cosine"]
+directivity = "normal"
+eps = 0.5
+pi3 = 0.5
+pi5 = 0.75
+pi6 = 1
+pi2 = { from = 0.5, to = 2, points = 3, spacing = "log" }
+)";
+
+TEST_F(Cli, RunJsonPrintsTheSolversPi1) {
+  const Outcome o = run(std::string("run ") + kPairCase + " --json");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_EQ(o.err, "");
+  const nlohmann::json j = nlohmann::json::parse(o.out);
+
+  Case c;
+  c.scene = Scene::pair;
+  c.pulse = PulseShape::sine;
+  c.directivity = Directivity::normal;
+  c.pi2 = 1;
+  c.pi3 = 0.5;
+  c.eps = 0.5;
+  c.pi5 = 0.5;
+  c.pi6 = 1;
+  const Row row = run_point(c, 0, *find_solver("event-driven"), Settings{});
+  // JSON carries doubles with round-trip precision and the solver is deterministic.
+  EXPECT_EQ(j.at("pi1").get<double>(), row.result.pi1);
+  EXPECT_EQ(j.at("pi1_no_contact").get<double>(), row.pi1_no_contact);
+  EXPECT_EQ(j.at("impacts").get<long>(), row.result.impacts);
+  EXPECT_EQ(j.at("status"), "ok");
+  EXPECT_EQ(j.at("solver"), "event-driven");
+  EXPECT_EQ(j.at("scene"), "pair");
+  EXPECT_EQ(j.at("pi5").get<double>(), 0.5);
+  EXPECT_FALSE(j.contains("pi7"));
+  for (const char* key : {"contact_phases", "steps", "message", "min_gap", "t_max", "variant", "settings", "seconds"})
+    EXPECT_TRUE(j.contains(key)) << key;
+}
+
+TEST_F(Cli, RunWritesTheHistoryWithThePapersBodyLabels) {
+  const Outcome o = run(
+      "run --scene row3 --pulse cosine --directivity normal --pi2 2 --pi3 0.5 --eps 0.5 --pi5 0.5 --pi6 2 "
+      "--pi7 2 --pi8 0.5 --history h.csv --samples 50");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  const std::string text = read_text(file("h.csv"));
+  EXPECT_EQ(text.substr(0, text.find('\n')), "t,u1,u0,u2,v1,v0,v2,g1,g2,lambda1,lambda2");
+  EXPECT_EQ(line_count(text), 51u);
+  EXPECT_EQ(files(), (std::set<std::string>{"h.csv"}));
+}
+
+TEST_F(Cli, RunFromACaseFileNeedsAPointWhenItHasSeveral) {
+  write("tiny.toml", kTinySet);
+  const Outcome chosen = run("run --case-file tiny.toml --point 4 --json");
+  ASSERT_EQ(chosen.exit_code, 0) << chosen.err;
+  const nlohmann::json j = nlohmann::json::parse(chosen.out);
+  EXPECT_EQ(j.at("point"), 4);
+  EXPECT_EQ(j.at("pulse"), "cosine");  // points 3..5 are the cosine spectrum
+
+  const Outcome missing = run("run --case-file tiny.toml");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("--point"), std::string::npos) << missing.err;
+}
+
+struct BadInput {
+  std::string args;
+  std::string names;  // the flag or file the error line must name
+};
+
+// Each bad input exits 2 with one line on stderr naming the culprit, and creates no file:
+// every command below asks for an output file that must not appear.
+TEST_F(Cli, EveryBadInputExitsTwoWithOneLineAndNoOutputFile) {
+  write("tiny.toml", kTinySet);
+  write("syntax.toml", "name = \"broken\"\n[[family]]\nscene = \"pair\"\npi2 = [1, \n");
+  write("semantic.toml", "name = \"bad\"\n[[family]]\nname = \"f\"\nscene = \"pair\"\npulse = \"sine\"\n"
+                         "directivity = \"normal\"\neps = 0.5\npi2 = 1\npi3 = 0.5\npi5 = -1\npi6 = 1\n");
+  const std::string wall = "--pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 0.5 --history h.csv";
+  const std::string pair = "run --scene pair --pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 0.5 ";
+  const std::vector<BadInput> cases = {
+      {"run --scene tower " + wall, "--scene"},
+      {pair + "--pi6 1 --history h.csv", "--pi5"},
+      {pair + "--pi5 1 --pi6 1 --pi7 1 --history h.csv", "--pi7"},
+      {"run --scene wall --pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 1.5 --history h.csv", "--eps"},
+      {"run --scene wall --pulse sine --directivity normal --pi2 nan --pi3 0.5 --eps 1 --history h.csv", "--pi2"},
+      {"run --scene wall --pulse sine --directivity normal --pi2 1 --pi3 -0.5 --eps 1 --history h.csv", "--pi3"},
+      {"run --scene wall --pulse sine --directivity normal --pi2 abc --pi3 0.5 --eps 1 --history h.csv", "--pi2"},
+      {"run --scene wall " + wall + " --solver no-such-solver", "--solver"},
+      {"run --scene wall " + wall + " --tol-scale 0", "--tol-scale"},
+      {"run --scene wall " + wall + " --bogus-flag", "--bogus-flag"},
+      {"run --case-file syntax.toml --history h.csv", "syntax.toml"},
+      {"run --case-file tiny.toml --point 6 --history h.csv", "--point"},
+      {"spectrum syntax.toml --out out.csv", "syntax.toml"},
+      {"spectrum semantic.toml --out out.csv", "semantic.toml"},
+      {"spectrum missing.toml --out out.csv", "missing.toml"},
+      {"spectrum tiny.toml --out out.csv --solver no-such-solver", "--solver"},
+      {"spectrum tiny.toml --out no-such-dir/out.csv", "--out"},
+      {"spectrum tiny.toml --out out.csv --threads 0", "--threads"},
+  };
+  const std::set<std::string> inputs = files();
+  for (const BadInput& bad : cases) {
+    const Outcome o = run(bad.args);
+    EXPECT_EQ(o.exit_code, 2) << bad.args;
+    EXPECT_EQ(line_count(o.err), 1u) << bad.args << "\n" << o.err;
+    EXPECT_NE(o.err.find(bad.names), std::string::npos) << bad.args << "\n" << o.err;
+    EXPECT_EQ(o.out, "") << bad.args;
+    EXPECT_EQ(files(), inputs) << bad.args;
+  }
+}
+
+TEST_F(Cli, SpectrumWritesOneRowPerPointInOrderAndNoLeftovers) {
+  write("tiny.toml", kTinySet);
+  const Outcome o = run("spectrum tiny.toml --out out.csv --threads 2");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_EQ(files(), (std::set<std::string>{"tiny.toml", "out.csv"}));
+  std::ifstream in(file("out.csv"));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, csv_header());
+  int point = 0;
+  while (std::getline(in, line)) {
+    EXPECT_EQ(line.rfind("pair," + std::to_string(point) + ",pair,", 0), 0u) << line;
+    ++point;
+  }
+  EXPECT_EQ(point, 6);
+}
+
+TEST_F(Cli, SpectrumToStdoutLeavesNoPartialFile) {
+  write("tiny.toml", kTinySet);
+  const Outcome o = run("spectrum tiny.toml");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_EQ(line_count(o.out), 7u);
+  EXPECT_EQ(files(), (std::set<std::string>{"tiny.toml"}));
+}
+
+// A sweep of 200000 points (far more than finish in the test's few seconds): interrupt it
+// once rows are arriving, then check what it leaves.
+TEST_F(Cli, InterruptedSpectrumKeepsThePartialFileAndWritesNoFinalFile) {
+  write("big.toml", R"(name = "big"
+[[family]]
+name = "many"
+scene = "pair"
+pulse = ["sine", "cosine"]
+directivity = "normal"
+eps = 0.5
+pi3 = 0.5
+pi5 = 0.5
+pi6 = 1
+pi2 = { from = 0.1, to = 10, points = 100000, spacing = "log" }
+)");
+  const std::string exe = POUNDBENCH_EXE;
+  const std::string big = file("big.toml").string(), out = file("out.csv").string();
+  const std::string log = file("stderr.txt").string();
+  std::vector<std::string> args = {exe, "spectrum", big, "--out", out, "--threads", "2"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  // The child gets default SIGINT handling whatever the test runner inherited.
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t signals, none;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigemptyset(&none);
+  posix_spawnattr_setsigdefault(&attr, &signals);
+  posix_spawnattr_setsigmask(&attr, &none);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSIGMASK);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, exe.c_str(), &actions, &attr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attr);
+
+  // Wait (at most 20 s) for the header and a few rows in the partial file, then interrupt.
+  const fs::path partial = file("out.csv.partial");
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (std::chrono::steady_clock::now() < deadline &&
+         (!fs::exists(partial) || line_count(read_text(partial)) < 4))
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ::kill(pid, SIGINT);
+
+  int status = 0;
+  pid_t waited = 0;
+  const auto exit_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while ((waited = ::waitpid(pid, &status, WNOHANG)) == 0 && std::chrono::steady_clock::now() < exit_deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  if (waited == 0) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+    FAIL() << "poundbench did not stop within 20 s of SIGINT";
+  }
+
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(out + ".tmp"));
+  const std::string rows = read_text(partial);
+  EXPECT_GE(line_count(rows), 4u);
+  EXPECT_LT(line_count(rows), 200001u);
+  EXPECT_EQ(rows.back(), '\n');  // no row cut in half
+  const std::string err = read_text(log);
+  EXPECT_EQ(line_count(err), 1u) << err;
+  EXPECT_NE(err.find("out.csv.partial"), std::string::npos) << err;
+}
+
+TEST_F(Cli, HelpExitsZeroOnEverySubcommand) {
+  for (const char* command : {"--help", "run --help", "spectrum --help", "solvers --help"}) {
+    const Outcome o = run(command);
+    EXPECT_EQ(o.exit_code, 0) << command;
+    EXPECT_NE(o.out.find("Usage"), std::string::npos) << command;
+  }
+  const Outcome solvers = run("solvers");
+  EXPECT_EQ(solvers.exit_code, 0);
+  EXPECT_NE(solvers.out.find("event-driven"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace pb

@@ -1,0 +1,232 @@
+// The sweep runner (sweep/sweep.hpp) and its CSV rows (sweep/row.hpp).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cases/case_set.hpp"
+#include "solvers/solver.hpp"
+#include "sweep/row.hpp"
+#include "sweep/sweep.hpp"
+
+namespace pb {
+namespace {
+
+std::vector<Case> smoke_cases() {
+  return load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/smoke.toml").cases;
+}
+
+const SolverInfo& reference_solver() {
+  const SolverInfo* solver = find_solver("event-driven");
+  if (!solver) throw std::logic_error("no event-driven solver in the registry");
+  return *solver;
+}
+
+// Splits one CSV line as RFC 4180 reads it (quoted fields, doubled quotes).
+std::vector<std::string> split_csv(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char ch = line[i];
+    if (quoted && ch == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+      fields.back() += '"';
+      ++i;
+    } else if (ch == '"') {
+      quoted = !quoted;
+    } else if (ch == ',' && !quoted) {
+      fields.emplace_back();
+    } else {
+      fields.back() += ch;
+    }
+  }
+  return fields;
+}
+
+std::string line_without_time(Row row) {
+  row.seconds = 0.0;
+  return csv_line(row);
+}
+
+TEST(Sweep, ReturnsOneRowPerCaseInPointOrder) {
+  const std::vector<Case> cases = smoke_cases();
+  SweepOptions options;
+  options.threads = 2;
+  std::vector<std::size_t> completion_order;
+  options.on_row = [&](const Row& row) { completion_order.push_back(row.point); };
+  const std::vector<Row> rows = run_sweep(cases, reference_solver(), Settings{}, options);
+
+  ASSERT_EQ(rows.size(), cases.size());
+  ASSERT_EQ(completion_order.size(), cases.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i].point, i);
+    EXPECT_EQ(rows[i].input.family, cases[i].family);
+    EXPECT_EQ(rows[i].input.pi2, cases[i].pi2);
+    EXPECT_EQ(rows[i].result.status, Status::ok) << rows[i].result.message;
+    EXPECT_TRUE(std::isfinite(rows[i].result.pi1));
+    EXPECT_TRUE(std::isfinite(rows[i].pi1_no_contact));
+  }
+}
+
+// The solvers are deterministic and reentrant, so the thread count must not change a
+// single digit of any result; only the measured time differs.
+TEST(Sweep, OneAndTwoThreadsGiveIdenticalRows) {
+  const std::vector<Case> cases = smoke_cases();
+  SweepOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const std::vector<Row> a = run_sweep(cases, reference_solver(), Settings{}, one);
+  const std::vector<Row> b = run_sweep(cases, reference_solver(), Settings{}, two);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(line_without_time(a[i]), line_without_time(b[i]));
+}
+
+TEST(Sweep, CancelStopsStartingNewPoints) {
+  std::vector<Case> cases;
+  for (int copy = 0; copy < 20; ++copy)
+    for (const Case& c : smoke_cases()) cases.push_back(c);
+  std::atomic<bool> cancel{false};
+  std::size_t reported = 0;
+  std::size_t last_progress = 0;
+  SweepOptions options;
+  options.threads = 2;
+  options.cancel = &cancel;
+  options.on_row = [&](const Row&) {
+    ++reported;
+    cancel = true;
+  };
+  options.on_progress = [&](std::size_t done, std::size_t total) {
+    last_progress = done;
+    EXPECT_EQ(total, cases.size());
+  };
+  const std::vector<Row> rows = run_sweep(cases, reference_solver(), Settings{}, options);
+  // The first row cancels; each other thread can finish at most the point it was running.
+  EXPECT_GE(rows.size(), 1u);
+  EXPECT_LE(rows.size(), options.threads);
+  EXPECT_EQ(reported, rows.size());
+  EXPECT_EQ(last_progress, rows.size());
+}
+
+TEST(Sweep, AnExceptionFromOnRowStopsTheSweepAndIsRethrown) {
+  const std::vector<Case> cases = smoke_cases();
+  SweepOptions options;
+  options.threads = 2;
+  std::size_t calls = 0;
+  options.on_row = [&](const Row&) {
+    ++calls;
+    throw std::runtime_error("disk full");
+  };
+  EXPECT_THROW(run_sweep(cases, reference_solver(), Settings{}, options), std::runtime_error);
+  EXPECT_EQ(calls, 1u);  // later rows are not reported once a callback failed
+}
+
+Result throwing_solve(const System&, const Settings&) { throw std::runtime_error("matrix is singular"); }
+std::string no_settings(const Settings&) { return "x=1"; }
+std::string accept(const Settings&) { return {}; }
+
+TEST(RunPoint, TurnsASolverExceptionIntoAFailedRow) {
+  const SolverInfo thrower{"thrower", "throws", &throwing_solve, &no_settings, &accept};
+  const Row row = run_point(smoke_cases().front(), 7, thrower, Settings{});
+  EXPECT_EQ(row.point, 7u);
+  EXPECT_EQ(row.solver, "thrower");
+  EXPECT_EQ(row.settings, "x=1");
+  EXPECT_EQ(row.result.status, Status::failed);
+  EXPECT_EQ(row.result.message, "matrix is singular");
+  EXPECT_TRUE(std::isnan(row.result.pi1));
+  // The no-contact response does not depend on the solver under test.
+  EXPECT_TRUE(std::isfinite(row.pi1_no_contact));
+}
+
+TEST(RunPoint, TurnsAnInvalidCaseIntoAFailedRow) {
+  Case c = smoke_cases().front();
+  c.eps = 1.5;
+  const Row row = run_point(c, 0, reference_solver(), Settings{});
+  EXPECT_EQ(row.result.status, Status::failed);
+  EXPECT_EQ(row.result.message.rfind("eps:", 0), 0u) << row.result.message;
+}
+
+TEST(Csv, QuotesOnlyFieldsThatNeedIt) {
+  EXPECT_EQ(csv_field("pair-stiff"), "pair-stiff");
+  EXPECT_EQ(csv_field("tol_scale=1;steps=4"), "tol_scale=1;steps=4");
+  EXPECT_EQ(csv_field("a,b"), "\"a,b\"");
+  EXPECT_EQ(csv_field("say \"hi\""), "\"say \"\"hi\"\"\"");
+  EXPECT_EQ(csv_field("two\nlines"), "\"two\nlines\"");
+  EXPECT_EQ(csv_field(""), "");
+}
+
+// Exact equality: the text must carry every bit of the double.
+TEST(Csv, NumbersReadBackToTheSameDouble) {
+  for (double x : {0.1, 1.0 / 3.0, 2.0 / 3.0 * 1e-300, 5e-324, 1e22, 123456789.123456789, -0.75, 0.0,
+                   std::numbers::pi, std::nextafter(1.0, 2.0)}) {
+    const std::string text = format_number(x);
+    EXPECT_EQ(std::strtod(text.c_str(), nullptr), x) << text;
+  }
+  EXPECT_EQ(format_number(0.1), "0.1");  // shortest, not %.17g's 0.10000000000000001
+  EXPECT_EQ(format_number(std::numeric_limits<double>::quiet_NaN()), "");
+}
+
+TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
+  const std::vector<std::string> header = split_csv(csv_header());
+  ASSERT_EQ(header.size(), 28u);
+  EXPECT_EQ(header.front(), "family");
+  EXPECT_EQ(header.back(), "message");
+
+  Row row;
+  row.input.family = "odd, \"name\"";
+  row.input.scene = Scene::pair;
+  row.input.pi2 = 1.0 / 3.0;
+  row.point = 12;
+  row.solver = "event-driven";
+  row.settings = "tol_scale=1";
+  row.result.pi1 = 2.0 / 7.0;
+  row.result.impacts = 5;
+  row.result.message = "stopped, \"early\"\nsee log";
+  row.length_scale = 1.0;
+  const std::vector<std::string> fields = split_csv(csv_line(row));
+  ASSERT_EQ(fields.size(), header.size());
+  const auto field = [&](const std::string& column) {
+    for (std::size_t i = 0; i < header.size(); ++i)
+      if (header[i] == column) return fields[i];
+    throw std::logic_error("no column " + column);
+  };
+  EXPECT_EQ(field("family"), row.input.family);
+  EXPECT_EQ(field("message"), row.result.message);
+  EXPECT_EQ(field("point"), "12");
+  EXPECT_EQ(field("scene"), "pair");
+  EXPECT_EQ(std::strtod(field("pi2").c_str(), nullptr), row.input.pi2);
+  EXPECT_EQ(std::strtod(field("pi1").c_str(), nullptr), row.result.pi1);
+  EXPECT_EQ(field("impacts"), "5");
+  EXPECT_EQ(field("pi5"), "1");   // pair has body 1
+  EXPECT_EQ(field("pi7"), "");    // but no body 2
+  EXPECT_EQ(field("min_gap"), "");  // no contact closed: infinite gap
+  EXPECT_EQ(field("pi1_no_contact"), "");  // NaN
+}
+
+TEST(Csv, MinGapIsDividedByTheLengthScale) {
+  Row row;
+  row.result.min_gap = -0.002;
+  row.length_scale = 0.5;
+  EXPECT_DOUBLE_EQ(min_gap_ratio(row), -0.004);
+  const std::vector<std::string> fields = split_csv(csv_line(row));
+  EXPECT_EQ(fields[25], "-0.004");
+}
+
+TEST(Csv, WriteCsvWritesHeaderAndOneLinePerRow) {
+  std::vector<Row> rows(3);
+  std::ostringstream out;
+  write_csv(out, rows);
+  const std::string text = out.str();
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 4);
+  EXPECT_EQ(text.substr(0, text.find('\n')), csv_header());
+}
+
+}  // namespace
+}  // namespace pb
