@@ -11,6 +11,7 @@
 #include "app/errors.hpp"
 #include "app/run_command.hpp"
 #include "app/spectrum_command.hpp"
+#include "app/workprecision_command.hpp"
 #include "cases/case_set.hpp"
 #include "solvers/solver.hpp"
 
@@ -43,6 +44,8 @@ int main(int argc, char** argv) {
   pb::app::SpectrumFlags spectrum_flags;
   CLI::App* run = pb::app::add_run_command(app, run_flags);
   CLI::App* spectrum = pb::app::add_spectrum_command(app, spectrum_flags);
+  pb::app::WorkPrecisionFlags workprecision_flags;
+  CLI::App* workprecision = pb::app::add_workprecision_command(app, workprecision_flags);
   CLI::App* solvers = app.add_subcommand("solvers", "List the solvers and what each one is");
 
   try {
@@ -55,6 +58,7 @@ int main(int argc, char** argv) {
   try {
     if (*run) return pb::app::run_command(*run, run_flags);
     if (*spectrum) return pb::app::spectrum_command(*spectrum, spectrum_flags);
+    if (*workprecision) return pb::app::workprecision_command(*workprecision, workprecision_flags);
     if (*solvers) return list_solvers();
   } catch (const pb::app::BadInput& e) {
     return fail(e.what(), kBadInput);

@@ -36,7 +36,7 @@ constexpr std::array kColumns = {
     "eps",    "pi5",    "pi6",      "pi7",    "pi8",            "xi",      "n_free",
     "a_p",    "w_p",    "solver",   "variant", "settings",      "status",  "pi1",
     "pi1_no_contact",   "impacts",  "contact_phases", "steps",  "min_gap", "seconds",
-    "message"};
+    "cpu_seconds", "message"};
 
 // Written as an empty field: a body the scene does not have, a gap that never closed.
 constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
@@ -96,6 +96,7 @@ std::string csv_line(const Row& row) {
   const double gap = min_gap_ratio(row);
   line.number(gap == std::numeric_limits<double>::infinity() ? kMissing : gap);
   line.number(row.seconds);
+  line.number(row.cpu_seconds);
   line.text(r.message);
   return line.take();
 }

@@ -32,7 +32,8 @@ struct Row {
   Result result;
   double pi1_no_contact = std::numeric_limits<double>::quiet_NaN();
   double length_scale = std::numeric_limits<double>::quiet_NaN();  // System::length_scale()
-  double seconds = 0.0;    // wall time of the solve alone
+  double seconds = 0.0;      // wall time of the solve alone
+  double cpu_seconds = 0.0;  // CPU time of the solve alone, on its thread (robust to load)
 };
 
 // Result::min_gap over the length scale: dimensionless like Pi3 (infinite if no contact).

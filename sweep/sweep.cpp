@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -17,6 +18,13 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// CPU time of the calling thread: what a run costs, whatever else the machine is doing.
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 std::string describe_exception(std::exception_ptr error) {
@@ -59,11 +67,14 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
   row.length_scale = system.length_scale();
 
   const Clock::time_point start = Clock::now();
+  const double cpu_start = thread_cpu_seconds();
   try {
     row.result = solver.solve(system, settings);
     row.seconds = seconds_since(start);
+    row.cpu_seconds = thread_cpu_seconds() - cpu_start;
   } catch (...) {
     row.seconds = seconds_since(start);
+    row.cpu_seconds = thread_cpu_seconds() - cpu_start;
     row.result = Result{};
     row.result.status = Status::failed;
     row.result.message = describe_exception(std::current_exception());

@@ -1,0 +1,183 @@
+#include "sweep/settings_list.hpp"
+
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace pb {
+
+namespace {
+
+class Reader {
+ public:
+  explicit Reader(std::string_view source) : source_(source) {}
+
+  [[noreturn]] void fail(const toml::node* at, const std::string& field, const std::string& why) const {
+    std::ostringstream out;
+    out << source_;
+    if (at && at->source().begin.line) out << ':' << at->source().begin.line;
+    out << ": " << field << ": " << why;
+    throw SettingsListError(out.str());
+  }
+
+  // One value or a list of them, as doubles.
+  std::vector<double> numbers(const toml::node& n, const std::string& field) const {
+    std::vector<double> out;
+    auto one = [&](const toml::node& v) {
+      if (const auto* i = v.as_integer()) return static_cast<double>(i->get());
+      if (const auto* f = v.as_floating_point()) return f->get();
+      fail(&v, field, "must be a number");
+    };
+    if (const auto* a = n.as_array()) {
+      for (const toml::node& v : *a) out.push_back(one(v));
+      if (out.empty()) fail(&n, field, "empty list");
+    } else {
+      out.push_back(one(n));
+    }
+    for (double x : out)
+      if (!std::isfinite(x)) fail(&n, field, "must be finite");
+    return out;
+  }
+
+  std::vector<std::string> strings(const toml::node& n, const std::string& field) const {
+    std::vector<std::string> out;
+    auto one = [&](const toml::node& v) {
+      if (const auto* s = v.as_string()) return s->get();
+      fail(&v, field, "must be a string");
+    };
+    if (const auto* a = n.as_array()) {
+      for (const toml::node& v : *a) out.push_back(one(v));
+      if (out.empty()) fail(&n, field, "empty list");
+    } else {
+      out.push_back(one(n));
+    }
+    return out;
+  }
+
+  // An integer, a list of them, or { from, to }: powers of two apart.
+  std::vector<double> steps(const toml::node& n, const std::string& field) const {
+    if (const auto* t = n.as_table()) {
+      long long from = 0, to = 0;
+      for (auto&& [k, v] : *t) {
+        const auto* i = v.as_integer();
+        if (k.str() != "from" && k.str() != "to") fail(&v, field + "." + std::string(k.str()), "unknown key");
+        if (!i || i->get() < 1) fail(&v, field + "." + std::string(k.str()), "must be an integer >= 1");
+        (k.str() == "from" ? from : to) = i->get();
+      }
+      if (from == 0 || to == 0) fail(&n, field, "a doubling range needs from and to");
+      if (to < from) fail(&n, field, "to must be >= from");
+      std::vector<double> out;
+      for (long long s = from; s <= to; s *= 2) out.push_back(static_cast<double>(s));
+      return out;
+    }
+    std::vector<double> out = numbers(n, field);
+    for (double x : out)
+      if (x < 1 || x != std::floor(x) || x > 1e9) fail(&n, field, "must be a whole number >= 1");
+    return out;
+  }
+
+ private:
+  std::string source_;
+};
+
+}  // namespace
+
+SettingsList parse_settings_list(std::string_view text, std::string_view source) {
+  const Reader r(source);
+  toml::table doc;
+  try {
+    doc = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream out;
+    out << source << ':' << e.source().begin.line << ": syntax: " << e.description();
+    throw SettingsListError(out.str());
+  }
+  SettingsList list;
+  const toml::array* runs = nullptr;
+  for (auto&& [key, node] : doc) {
+    const std::string k(key.str());
+    if (k == "name" || k == "description") {
+      const auto* s = node.as_string();
+      if (!s) r.fail(&node, k, "must be a string");
+      (k == "name" ? list.name : list.description) = s->get();
+    } else if (k == "reference_tol_scale") {
+      const double v = r.numbers(node, k).at(0);
+      if (!(v > 0.0) || node.is_array()) r.fail(&node, k, "must be one number > 0");
+      list.reference_tol_scale = v;
+    } else if (k == "run") {
+      runs = node.as_array();
+      if (!runs) r.fail(&node, k, "must be [[run]] tables");
+    } else {
+      r.fail(&node, k, "unknown key");
+    }
+  }
+  if (!runs || runs->empty()) r.fail(nullptr, "run", "no [[run]] tables");
+
+  for (std::size_t i = 0; i < runs->size(); ++i) {
+    const toml::node& rn = *runs->get(i);
+    const std::string field = "run[" + std::to_string(i) + "]";
+    const auto* t = rn.as_table();
+    if (!t) r.fail(&rn, field, "must be a table");
+    std::string solver;
+    std::vector<std::string> variants = {""};
+    std::vector<double> steps = {0}, theta = {Settings{}.theta}, gamma = {Settings{}.gamma}, tol = {1.0};
+    long long step_cap = 0;
+    const toml::node* solver_node = &rn;
+    for (auto&& [key, v] : *t) {
+      const std::string k(key.str()), f = field + "." + k;
+      if (k == "solver") {
+        const auto* s = v.as_string();
+        if (!s) r.fail(&v, f, "must be a string");
+        solver = s->get();
+        solver_node = &v;
+      } else if (k == "variant") {
+        variants = r.strings(v, f);
+      } else if (k == "steps") {
+        steps = r.steps(v, f);
+      } else if (k == "theta") {
+        theta = r.numbers(v, f);
+      } else if (k == "gamma") {
+        gamma = r.numbers(v, f);
+      } else if (k == "tol_scale") {
+        tol = r.numbers(v, f);
+      } else if (k == "step_cap") {
+        const auto* n = v.as_integer();
+        if (!n || n->get() < 1) r.fail(&v, f, "must be an integer >= 1");
+        step_cap = n->get();
+      } else {
+        r.fail(&v, f, "unknown key");
+      }
+    }
+    const SolverInfo* info = find_solver(solver);
+    if (solver.empty()) r.fail(&rn, field + ".solver", "missing");
+    if (!info) r.fail(solver_node, field + ".solver", "unknown solver '" + solver + "'");
+    for (const std::string& variant : variants)
+      for (double th : theta)
+        for (double ga : gamma)
+          for (double ts : tol)
+            for (double n : steps) {
+              RunSpec spec{solver, {}};
+              spec.settings.variant = variant;
+              spec.settings.theta = th;
+              spec.settings.gamma = ga;
+              spec.settings.tol_scale = ts;
+              spec.settings.steps = static_cast<int>(n);
+              spec.settings.step_cap = step_cap;
+              if (const std::string bad = info->check(spec.settings); !bad.empty()) r.fail(&rn, field, bad);
+              list.runs.push_back(std::move(spec));
+            }
+  }
+  return list;
+}
+
+SettingsList load_settings_list(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw SettingsListError(file.string() + ": cannot read: no such file or not readable");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_settings_list(text.str(), file.string());
+}
+
+}  // namespace pb
