@@ -94,6 +94,186 @@ def plot_family(family, rows, out_dir):
     return f"figures/spectrum-{family}.png"
 
 
+
+# ---------------------------------------------------------------- work-precision study
+
+TARGETS = [1e-1, 1e-2, 1e-3, 1e-4]
+MIDDLE_N = 64  # the step count whose spectra and errors along Pi2 are drawn
+
+
+def split_settings(settings):
+    """('steps'/'N' removed settings, N or None) from a `key=value;...` description."""
+    parts, n = [], None
+    for item in filter(None, settings.split(";")):
+        key, _, value = item.partition("=")
+        if key in ("steps", "N"):
+            n = int(float(value))
+        else:
+            parts.append(item)
+    return ";".join(parts), n
+
+
+def config_label(row):
+    """A solver configuration without its step count: one line of a work-precision diagram."""
+    rest, _ = split_settings(row["settings"])
+    rest = ";".join(p for p in rest.split(";") if not p.startswith("variant=") and not p.startswith("gamma="))
+    variant = row.get("variant") or ""
+    label = row["solver"] + (f" {variant}" if variant else "")
+    return label + (f" ({rest})" if rest else "")
+
+
+def wp_diagrams(summary, out_dir):
+    figures = []
+    for family in dict.fromkeys(r["family"] for r in summary):
+        rows = [r for r in summary if r["family"] == family]
+        lines = defaultdict(list)
+        for r in rows:
+            lines[config_label(r)].append(r)
+        fig, axes = plt.subplots(1, 2, figsize=(13, 5.2), sharey=True)
+        for ax, key, title in ((axes[0], "err_median", "median"), (axes[1], "err_p95", "95th percentile")):
+            for i, (label, lrows) in enumerate(sorted(lines.items())):
+                lrows = [r for r in lrows if num(r, key) == num(r, key)]  # drop all-failed settings
+                lrows.sort(key=lambda r: num(r, "cpu_median_s"))
+                if not lrows:
+                    continue
+                x = [1e6 * num(r, "cpu_median_s") for r in lrows]
+                y = [max(num(r, key), 1e-16) for r in lrows]
+                style = "-o" if len(lrows) > 1 else "s"
+                ax.plot(x, y, style, color=f"C{i % 10}", ms=3.5, lw=1.2, label=label)
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel("CPU time per run, median (us)")
+            ax.set_title(f"{family}: {title} of the relative Pi1 error", fontsize=10)
+            ax.grid(True, which="both", alpha=0.25)
+        axes[0].set_ylabel(r"$|\Pi_1 - \Pi_{1,\mathrm{ref}}| / \Pi_{1,\mathrm{ref}}$")
+        axes[1].legend(fontsize=6.5, loc="upper right", ncol=1)
+        fig.tight_layout()
+        figures.append((family, save(fig, out_dir, f"wp-{family}")))
+    return figures
+
+
+def save(fig, out_dir, stem):
+    path = os.path.join(out_dir, "figures", stem)
+    for ext in ("png", "svg"):
+        fig.savefig(f"{path}.{ext}", dpi=100)
+    plt.close(fig)
+    return f"figures/{stem}.png"
+
+
+def wp_spectra(points, out_dir):
+    """At N = MIDDLE_N: each solver's spectrum over the reference, and its error along Pi2."""
+    reference = {}
+    for r in points:
+        if r["solver"] == "event-driven" and r["settings"].startswith("tol_scale=0.01"):
+            reference.setdefault(r["point"], r)
+    figures = []
+    for family in dict.fromkeys(r["family"] for r in points):
+        frows = [r for r in points if r["family"] == family and split_settings(r["settings"])[1] == MIDDLE_N]
+        if not frows:
+            continue
+        panels = sorted({(r["pulse"], r["pi5"]) for r in frows}, reverse=True)
+        fig, axes = plt.subplots(2, len(panels), figsize=(4.6 * len(panels), 7.6), squeeze=False, sharex=True)
+        for pi, (pulse, pi5) in enumerate(panels):
+            prows = [r for r in frows if r["pulse"] == pulse and r["pi5"] == pi5]
+            refs = sorted((reference[r["point"]] for r in prows if r["point"] in reference), key=lambda r: num(r, "pi2"))
+            refs = list({r["point"]: r for r in refs}.values())
+            top, bottom = axes[0][pi], axes[1][pi]
+            top.plot([num(r, "pi2") for r in refs], [num(r, "pi1_no_contact") for r in refs], color="0.6", lw=1)
+            top.plot([num(r, "pi2") for r in refs], [num(r, "pi1") for r in refs], color="k", lw=2.2,
+                     label="reference")
+            by_config = defaultdict(list)
+            for r in prows:
+                by_config[config_label(r)].append(r)
+            for i, (label, crow) in enumerate(sorted(by_config.items())):
+                crow.sort(key=lambda r: num(r, "pi2"))
+                ok = [r for r in crow if r["status"] == "ok"]
+                x = [num(r, "pi2") for r in ok]
+                top.plot(x, [num(r, "pi1") for r in ok], color=f"C{i % 10}", lw=1, label=label)
+                err = [max(abs(num(r, "pi1") - num(reference[r["point"]], "pi1")) / num(reference[r["point"]], "pi1"),
+                           1e-16) for r in ok]
+                bottom.plot(x, err, color=f"C{i % 10}", lw=1)
+            title = f"{pulse} pulse" + (f", Pi5 = {pi5}" if pi5 else "")
+            top.set_title(title, fontsize=10)
+            bottom.set_xscale("log")
+            bottom.set_yscale("log")
+            bottom.set_xlabel(r"$\Pi_2 = \omega_0/\omega_p$")
+            for ax in (top, bottom):
+                ax.grid(True, which="both", alpha=0.25)
+        axes[0][0].set_ylabel(r"$\Pi_1$")
+        axes[1][0].set_ylabel("relative Pi1 error")
+        axes[0][-1].legend(fontsize=6, loc="upper right")
+        fig.suptitle(f"{family}: spectra at N = {MIDDLE_N} steps per shortest period (grey: no contact), "
+                     "and their error along Pi2", fontsize=10)
+        fig.tight_layout(rect=(0, 0, 1, 0.96))
+        figures.append((family, save(fig, out_dir, f"wp-spectra-{family}")))
+    return figures
+
+
+def recommendation(summary):
+    """For each target error: the cheapest setting that meets it on every family."""
+    settings = defaultdict(dict)
+    for r in summary:
+        settings[(r["solver"], r["variant"], r["settings"])][r["family"]] = r
+    families = set(r["family"] for r in summary)
+    lines = ["| target | by median error | CPU per run (us) | by 95th percentile | CPU per run (us) |",
+             "|---:|---|---:|---|---:|"]
+    for target in TARGETS:
+        cells = []
+        for key in ("err_median", "err_p95"):
+            best = None
+            for (solver, variant, desc), per_family in settings.items():
+                if set(per_family) != families:
+                    continue
+                if any(int(r["failed"]) > 0 or not num(r, key) <= target for r in per_family.values()):
+                    continue
+                cost = max(num(r, "cpu_mean_s") for r in per_family.values())
+                if best is None or cost < best[0]:
+                    best = (cost, f"`{solver}` {variant} {desc}".replace("  ", " "))
+            cells.append(("none", "") if best is None else (best[1], f"{1e6 * best[0]:.1f}"))
+        lines.append(f"| {target:g} | {cells[0][0]} | {cells[0][1]} | {cells[1][0]} | {cells[1][1]} |")
+    return lines
+
+
+def cost_table(summary):
+    """CPU time per run at N = MIDDLE_N (and the reference), as a ratio to Moreau-Jean theta = 1/2."""
+    lines = ["| family | solver setting | CPU per run, mean (us) | ratio to moreau-jean theta=0.5 |",
+             "|---|---|---:|---:|"]
+    for family in dict.fromkeys(r["family"] for r in summary):
+        rows = [r for r in summary if r["family"] == family]
+        base = [r for r in rows if r["solver"] == "moreau-jean" and split_settings(r["settings"])[1] == MIDDLE_N
+                and "theta=0.5" in r["settings"]]
+        if not base:
+            continue
+        b = num(base[0], "cpu_mean_s")
+        for r in rows:
+            n = split_settings(r["settings"])[1]
+            if n not in (None, MIDDLE_N) or (r["solver"] == "event-driven" and "tol_scale=1" != r["settings"]):
+                continue
+            lines.append(f"| {family} | {config_label(r)}{'' if n is None else f' N={n}'} | "
+                         f"{1e6 * num(r, 'cpu_mean_s'):.1f} | {num(r, 'cpu_mean_s') / b:.2f} |")
+    return lines
+
+
+def bench_section(path):
+    import json
+
+    with open(path) as f:
+        data = json.load(f)
+    lines = ["## Benchmarks", "", "Google Benchmark medians (`build/bench/poundbench_bench`, "
+             f"{data.get('context', {}).get('num_cpus', '?')} CPUs, "
+             f"{data.get('context', {}).get('mhz_per_cpu', '?')} MHz):", "",
+             "| benchmark | time | counters |", "|---|---:|---|"]
+    rows = [b for b in data.get("benchmarks", []) if b.get("aggregate_name", "median") == "median"]
+    for b in rows:
+        counters = ", ".join(f"{k}={v:.4g}" for k, v in b.items()
+                             if isinstance(v, (int, float)) and k not in (
+                                 "real_time", "cpu_time", "iterations", "repetitions", "repetition_index",
+                                 "threads", "family_index", "per_family_instance_index"))
+        name = b["name"].replace("_median", "")
+        lines.append(f"| {name} | {b['real_time']:.4g} {b.get('time_unit', 'ns')} | {counters} |")
+    return lines + [""]
+
+
 def command_output(cmd):
     try:
         return subprocess.run(cmd, capture_output=True, text=True, check=True).stdout.strip()
@@ -123,7 +303,10 @@ def footer():
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("results", nargs="+", help="result CSV files from `poundbench spectrum`")
+    parser.add_argument("results", nargs="+", help="result CSV files from `poundbench spectrum` (paper case set)")
+    parser.add_argument("--workprecision", help="summary CSV from `poundbench workprecision`")
+    parser.add_argument("--points", help="per-run CSV from `poundbench workprecision --points`")
+    parser.add_argument("--bench", help="Google Benchmark JSON (--benchmark_out) of poundbench_bench")
     parser.add_argument("--out", default="reports", help="folder for README.md and figures/")
     args = parser.parse_args()
 
@@ -134,34 +317,61 @@ def main():
         families[r["family"]].append(r)
 
     text = ["# poundbench report", ""]
-    text.append("Generated by `scripts/main.sh` from the shipped paper case set "
-                "(`cases/sets/paper.toml`); regenerate it with that one command.")
+    text.append("Generated by `scripts/main.sh` (one command: build, sweeps, benchmarks, this page). "
+                "Errors are relative to the event-driven reference solved with 100x tighter tolerances; "
+                "times are CPU time of the solve alone, per run, on this project's 2-core machine.")
     text.append("")
-    text.append("## Runs")
+    if args.workprecision:
+        summary = load([args.workprecision])
+        text += ["## Which solver for which accuracy", "",
+                 "The cheapest setting (largest mean CPU time per run over the families) whose relative Pi1 "
+                 "error meets the target on every family of `cases/sets/workprecision.toml` with no failed run:", ""]
+        text += recommendation(summary)
+        text += ["", "## Work-precision diagrams", "",
+                 "Relative Pi1 error against CPU time per run; each line is one solver configuration over "
+                 "its step counts N (steps per shortest period: 8, 16, ...). Settings that failed on every "
+                 "point are left out; failed runs are counted in `workprecision.csv`.", ""]
+        for family, figure in wp_diagrams(summary, args.out):
+            text += [f"### {family}", "", f"![work-precision {family}]({figure})", ""]
+        text += ["## Cost per run", "", f"At N = {MIDDLE_N}, as a ratio to the in-house Moreau-Jean stepper "
+                 "(theta = 1/2) on the same points:", ""]
+        text += cost_table(summary)
+        text.append("")
+    if args.points:
+        points = load([args.points])
+        text += ["## Spectra and where they go wrong", "",
+                 f"Each solver at N = {MIDDLE_N} over the reference (black), and its error along Pi2.", ""]
+        for family, figure in wp_spectra(points, args.out):
+            text += [f"### {family}", "", f"![spectra {family}]({figure})", ""]
+    if args.bench:
+        text += bench_section(args.bench)
+
+    text.append("## The paper case set")
     text.append("")
-    text.append("| family | solver | points | failed | impacts (median) | run time per point, median (us) | total CPU (s) |")
+    text.append("| family | solver | points | failed | impacts (median) | CPU per point, median (us) | total CPU (s) |")
     text.append("|---|---|---:|---:|---:|---:|---:|")
     for family, frows in families.items():
         by_solver = defaultdict(list)
         for r in frows:
-            by_solver[r["solver"]].append(r)
-        for solver, srows in by_solver.items():
-            secs = sorted(num(r, "seconds") for r in srows)
+            by_solver[(r["solver"], r["variant"])].append(r)
+        for (solver, variant), srows in by_solver.items():
+            secs = sorted(num(r, "cpu_seconds") for r in srows)
             imps = sorted(num(r, "impacts") for r in srows)
             failed = sum(r["status"] != "ok" for r in srows)
-            text.append(f"| {family} | {solver} | {len(srows)} | {failed} | {imps[len(imps) // 2]:.0f} | "
+            text.append(f"| {family} | {solver} {variant} | {len(srows)} | {failed} | {imps[len(imps) // 2]:.0f} | "
                         f"{1e6 * secs[len(secs) // 2]:.1f} | {sum(secs):.2f} |")
     text.append("")
-    text.append("## Pi-spectra")
+    text.append("### Reference Pi-spectra")
     text.append("")
-    text.append("Pi1 of body 0 against Pi2 for every family of the paper's case set. Light lines: the same "
-                "case with every contact removed.")
+    text.append("Pi1 of body 0 against Pi2 for every family of the paper's case set, from the event-driven "
+                "reference. Grey lines: the same case with every contact removed.")
     text.append("")
     for family, frows in families.items():
+        frows = [r for r in frows if r["solver"] == "event-driven"]
         if len({r["pi2"] for r in frows}) < 20:
-            continue  # not a spectrum over Pi2 (fig10 sweeps Pi6; issue 7 plots it)
+            continue  # not a spectrum over Pi2 (fig10 sweeps Pi6)
         figure = plot_family(family, frows, args.out)
-        text.append(f"### {family}")
+        text.append(f"#### {family}")
         text.append("")
         text.append(f"![{family}]({figure})")
         text.append("")
