@@ -122,7 +122,7 @@ void print_summary(std::ostream& out, const Row& row) {
       << "), at t = " << brief(r.t_max) << '\n';
   out << "impacts  " << r.impacts << ", contact phases " << r.contact_phases << ", steps/events " << r.steps << '\n';
   const double gap = min_gap_ratio(row);
-  out << "min gap  " << (std::isinf(gap) ? std::string("none (no contact)") : brief(gap) + " a_p/w_p^2") << '\n';
+  out << "min gap  " << (std::isinf(gap) ? std::string("never below zero") : brief(gap) + " a_p/w_p^2") << '\n';
   out << "time     " << brief(row.seconds) << " s\n";
 }
 

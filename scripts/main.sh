@@ -1,12 +1,30 @@
 #!/usr/bin/env bash
-# The main job: set up, build, run the paper case set through every solver, write the report.
+# The main job: set up, build, run the case sets through every solver, benchmark, report.
+#   scripts/main.sh          the default study (about 10 minutes on 2 cores)
+#   scripts/main.sh --full   the engines up to N = 4096 as well (much longer)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+settings=cases/settings/default.toml
+[ "${1:-}" = "--full" ] && settings=cases/settings/full.toml
+
 scripts/setup.sh --build-dir build --build-type Release
 mkdir -p results
-for solver in event-driven; do
-  echo "main: paper case set through $solver"
-  build/poundbench spectrum cases/sets/paper.toml --solver "$solver" --out "results/paper-$solver.csv"
-done
-/usr/bin/python3 reports/make_report.py results/paper-*.csv --out reports
+pb=build/poundbench
+
+echo "main: the paper case set through the reference"
+$pb spectrum cases/sets/paper.toml --solver event-driven --out results/paper-event-driven.csv
+echo "main: the paper case set through the in-house stepper at its default N"
+$pb spectrum cases/sets/paper.toml --solver moreau-jean --out results/paper-moreau-jean.csv
+
+echo "main: work-precision study ($settings)"
+$pb workprecision cases/sets/workprecision.toml --settings "$settings" \
+  --out results/workprecision.csv --points results/workprecision-points.csv
+
+echo "main: benchmarks"
+build/bench/poundbench_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+  --benchmark_min_time=0.05 --benchmark_out=results/bench.json --benchmark_out_format=json > /dev/null
+
+/usr/bin/python3 reports/make_report.py results/paper-*.csv --workprecision results/workprecision.csv \
+  --points results/workprecision-points.csv --bench results/bench.json --out reports
+cp results/workprecision.csv reports/workprecision.csv

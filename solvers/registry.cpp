@@ -1,7 +1,14 @@
 #include <array>
 
 #include "solvers/event_driven/event_driven.hpp"
+#include "solvers/moreau_jean/moreau_jean.hpp"
 #include "solvers/solver.hpp"
+#ifdef POUNDBENCH_HAVE_ODE
+#include "solvers/ode/ode_solver.hpp"
+#endif
+#ifdef POUNDBENCH_HAVE_BULLET
+#include "solvers/bullet/bullet_solver.hpp"
+#endif
 
 namespace pb {
 
@@ -22,6 +29,16 @@ namespace {
 const std::array kSolvers = {
     SolverInfo{"event-driven", "exact between events, Poisson impacts (the reference)", &event_driven::solve,
                &event_driven::describe, &event_driven::check},
+    SolverInfo{"moreau-jean", "theta-method time-stepper, Newton impacts on predicted contacts (fixed step)",
+               &moreau_jean::solve, &moreau_jean::describe, &moreau_jean::check},
+#ifdef POUNDBENCH_HAVE_ODE
+    SolverInfo{"ode", "Open Dynamics Engine: its LCP contact solver with restitution (see --variant)", &ode::solve,
+               &ode::describe, &ode::check},
+#endif
+#ifdef POUNDBENCH_HAVE_BULLET
+    SolverInfo{"bullet", "Bullet Physics (single precision): its constraint solvers with restitution (see --variant)",
+               &bullet::solve, &bullet::describe, &bullet::check},
+#endif
 };
 
 }  // namespace

@@ -1,0 +1,120 @@
+// Cost of the Bullet solver per run and per step, for every variant, on the three scenes
+// at one Fig. 4 point (Pi2 = 1, Pi3 = 0.5, Pi5 = 0.5, Pi6 = 1, eps = 0.5, cosine, normal;
+// row3 symmetric), N = 64 and 256; and of moreau-jean on the same runs, for the ratio.
+//
+//   BM_Bullet/<variant>/<scene>/N     one pb::bullet::solve per iteration (world set-up
+//                                     included: it is part of every run)
+//   BM_BulletMoreauJean/<scene>/N     one pb::moreau_jean::solve per iteration
+//
+// Counters: time_per_step (CPU seconds per step), steps, impacts, and on BM_Bullet
+// vs_moreau_jean: the CPU time of these Bullet runs over the CPU time of as many
+// moreau-jean runs of the same case, timed right after them in the same process (so the
+// ratio is read from one run even on a loaded machine). Use --benchmark_repetitions=9 and
+// read the medians.
+
+#ifdef POUNDBENCH_HAVE_BULLET
+
+#include <benchmark/benchmark.h>
+
+#include <time.h>
+
+#include <string>
+
+#include "cases/system.hpp"
+#include "solvers/bullet/bullet_solver.hpp"
+#include "solvers/moreau_jean/moreau_jean.hpp"
+
+namespace {
+
+pb::System fig4_system(pb::Scene scene) {
+  pb::Case c;
+  c.scene = scene;
+  c.pulse = pb::PulseShape::cosine;
+  c.pi2 = 1.0;
+  c.pi3 = 0.5;
+  c.pi5 = 0.5;
+  c.pi6 = 1.0;
+  c.pi7 = 0.5;
+  c.pi8 = 1.0;
+  c.eps = 0.5;
+  return pb::make_system(c);
+}
+
+// CPU seconds per step (the console prints it with an SI prefix: "250n" is 250 ns).
+benchmark::Counter per_step(long steps) {
+  return benchmark::Counter(static_cast<double>(steps),
+                            benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+// CPU seconds of this thread: the ratio below compares two CPU times, which a loaded
+// machine disturbs less than wall times.
+double thread_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+void bullet_solve(benchmark::State& state, const pb::bullet::Config& config, pb::Scene scene) {
+  const pb::System s = fig4_system(scene);
+  pb::Settings settings;
+  settings.variant = std::string(config.name);
+  settings.steps = static_cast<int>(state.range(0));
+  long steps = 0, impacts = 0;
+  const double started = thread_seconds();
+  for (auto _ : state) {
+    const pb::Result r = pb::bullet::solve(s, settings);
+    steps = r.steps;
+    impacts = r.impacts;
+    benchmark::DoNotOptimize(r.pi1);
+  }
+  const double bullet_seconds = thread_seconds() - started;
+
+  pb::Settings mj;
+  mj.steps = settings.steps;
+  const double mj_started = thread_seconds();
+  for (benchmark::IterationCount i = 0; i < state.iterations(); ++i) benchmark::DoNotOptimize(pb::moreau_jean::solve(s, mj).pi1);
+  const double mj_seconds = thread_seconds() - mj_started;
+
+  state.counters["time_per_step"] = per_step(steps);
+  state.counters["steps"] = static_cast<double>(steps);
+  state.counters["impacts"] = static_cast<double>(impacts);
+  state.counters["vs_moreau_jean"] = mj_seconds > 0.0 ? bullet_seconds / mj_seconds : 0.0;
+}
+
+void moreau_jean_solve(benchmark::State& state, pb::Scene scene) {
+  const pb::System s = fig4_system(scene);
+  pb::Settings settings;
+  settings.steps = static_cast<int>(state.range(0));
+  long steps = 0;
+  for (auto _ : state) {
+    const pb::Result r = pb::moreau_jean::solve(s, settings);
+    steps = r.steps;
+    benchmark::DoNotOptimize(r.pi1);
+  }
+  state.counters["time_per_step"] = per_step(steps);
+  state.counters["steps"] = static_cast<double>(steps);
+}
+
+const bool registered = [] {
+  for (pb::Scene scene : {pb::Scene::wall, pb::Scene::pair, pb::Scene::row3}) {
+    const std::string scene_name(pb::name(scene));
+    for (const pb::bullet::Config& config : pb::bullet::variants())
+      benchmark::RegisterBenchmark(("BM_Bullet/" + std::string(config.name) + "/" + scene_name).c_str(),
+                                   [config, scene](benchmark::State& st) { bullet_solve(st, config, scene); })
+          ->ArgName("N")
+          ->Arg(64)
+          ->Arg(256)
+          ->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(("BM_BulletMoreauJean/" + scene_name).c_str(),
+                                 [scene](benchmark::State& st) { moreau_jean_solve(st, scene); })
+        ->ArgName("N")
+        ->Arg(64)
+        ->Arg(256)
+        ->Unit(benchmark::kMicrosecond);
+  }
+  return true;
+}();
+
+}  // namespace
+
+#endif  // POUNDBENCH_HAVE_BULLET

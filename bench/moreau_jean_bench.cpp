@@ -1,0 +1,89 @@
+// Cost per step of the Moreau-Jean stepper (targets: <= 20 ns/step for pair, <= 40 ns/step
+// for row3, one core). Counters: time_per_step (CPU seconds per step) and steps per run.
+// Run with --benchmark_repetitions=9 (or more) and read the medians.
+//
+// StepLoop times the step loop alone (stepper.hpp advance(): the scheme is built before
+// the timed loop and the start state restored between runs, outside the timing);
+// Solve times the public entry point, set-up included, at the default N = 64 and at 1024.
+
+#include <benchmark/benchmark.h>
+
+#include "cases/system.hpp"
+#include "solvers/moreau_jean/moreau_jean.hpp"
+#include "solvers/moreau_jean/stepper.hpp"
+
+namespace {
+
+// A Fig. 4 point (Pi3 = 0.5, Pi6 = 1, eps = 0.5, cosine, normal) with impacts in every
+// scene; row3 is the symmetric configuration of Fig. 7.
+pb::System fig4_system(pb::Scene scene) {
+  pb::Case c;
+  c.scene = scene;
+  c.pulse = pb::PulseShape::cosine;
+  c.pi2 = 1.0;
+  c.pi3 = 0.5;
+  c.pi5 = 0.5;
+  c.pi6 = 1.0;
+  c.pi7 = 0.5;
+  c.pi8 = 1.0;
+  c.eps = 0.5;
+  return pb::make_system(c);
+}
+
+// CPU seconds per step (the console prints it with an SI prefix: "7.5n" is 7.5 ns).
+benchmark::Counter per_step(long steps) {
+  return benchmark::Counter(static_cast<double>(steps),
+                            benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+template <int NB, int NC>
+void step_loop(benchmark::State& state, pb::Scene scene) {
+  namespace mj = pb::moreau_jean;
+  const pb::System s = fig4_system(scene);
+  const int n_per_period = static_cast<int>(state.range(0));
+  const double h = s.step(n_per_period);
+  const long steps = mj::step_count(s.t_end, h);
+  const auto scheme = mj::make_scheme<NB, NC>(s, h, 0.5, 0.5);
+  using VecB = typename mj::Scheme<NB, NC>::VecB;
+  const auto start = mj::make_state(scheme, VecB::Zero().eval(), VecB::Zero().eval());
+  mj::Tally tally;
+  for (auto _ : state) {
+    state.PauseTiming();
+    auto st = start;
+    tally = {};
+    state.ResumeTiming();
+    const bool ok = mj::advance<NB, NC, false>(scheme, st, tally, steps, nullptr);
+    benchmark::DoNotOptimize(ok);
+    benchmark::DoNotOptimize(tally.u_max);
+  }
+  state.counters["time_per_step"] = per_step(steps);
+  state.counters["steps"] = static_cast<double>(steps);
+  state.counters["impacts"] = static_cast<double>(tally.impacts);
+}
+
+void BM_MoreauJeanStepLoopPair(benchmark::State& state) { step_loop<2, 1>(state, pb::Scene::pair); }
+void BM_MoreauJeanStepLoopRow3(benchmark::State& state) { step_loop<3, 2>(state, pb::Scene::row3); }
+// N = 1024 makes a run long enough (~13k steps) that PauseTiming's own cost is negligible.
+BENCHMARK(BM_MoreauJeanStepLoopPair)->ArgName("N")->Arg(1024)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MoreauJeanStepLoopRow3)->ArgName("N")->Arg(1024)->Unit(benchmark::kMicrosecond);
+
+void solve(benchmark::State& state, pb::Scene scene) {
+  const pb::System s = fig4_system(scene);
+  pb::Settings settings;
+  settings.steps = static_cast<int>(state.range(0));
+  long steps = 0;
+  for (auto _ : state) {
+    const pb::Result r = pb::moreau_jean::solve(s, settings);
+    steps = r.steps;
+    benchmark::DoNotOptimize(r.pi1);
+  }
+  state.counters["time_per_step"] = per_step(steps);
+  state.counters["steps"] = static_cast<double>(steps);
+}
+
+void BM_MoreauJeanSolvePair(benchmark::State& state) { solve(state, pb::Scene::pair); }
+void BM_MoreauJeanSolveRow3(benchmark::State& state) { solve(state, pb::Scene::row3); }
+BENCHMARK(BM_MoreauJeanSolvePair)->ArgName("N")->Arg(64)->Arg(1024)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MoreauJeanSolveRow3)->ArgName("N")->Arg(64)->Arg(1024)->Unit(benchmark::kMicrosecond);
+
+}  // namespace

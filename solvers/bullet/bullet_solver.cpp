@@ -1,0 +1,187 @@
+#include "solvers/bullet/bullet_solver.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <sstream>
+
+#include "solvers/bullet/engine.hpp"
+
+namespace pb::bullet {
+
+namespace {
+
+// Steps between two looks at the wall clock.
+constexpr long kClockEvery = 4096;
+
+int steps_per_period(const Settings& s) { return s.steps == 0 ? kDefaultSteps : s.steps; }
+
+// Fixed h, and the first step count whose end reaches t_end (to within 1e-9 of a step, so
+// that t_end = n h up to round-off does not add a step): the same count as moreau-jean.
+long step_count(double t_end, double h) { return static_cast<long>(std::ceil(t_end / h - 1e-9)); }
+
+std::size_t ix(int i) { return static_cast<std::size_t>(i); }
+
+struct Tally {
+  double u_max = 0.0;  // largest |u_ref| over the steps
+  long k_max = 0;      // its step
+  double g_min = 0.0;  // most negative gap (0 if none)
+  long impacts = 0;    // contacts that got a manifold point while approaching
+  long phases = 0;     // runs of >= 2 consecutive steps with a positive impulse
+  std::vector<char> pushed, in_phase;  // per contact, last step
+};
+
+void tally_state(const System& s, const World& w, long k, Tally& t) {
+  const double u = std::abs(w.u(s.ref));
+  if (u > t.u_max) {
+    t.u_max = u;
+    t.k_max = k;
+  }
+  for (int j = 0; j < s.n_contacts(); ++j) t.g_min = std::min(t.g_min, w.gap(j));
+}
+
+// One history row: t, u, v, g, lambda = impulse / h (History in solvers/solver.hpp).
+void record(const System& s, const World& w, double t, double h, bool with_impulse, std::vector<double>& out) {
+  out.push_back(t);
+  for (int i = 0; i < s.n_bodies(); ++i) out.push_back(w.u(i));
+  for (int i = 0; i < s.n_bodies(); ++i) out.push_back(w.v(i));
+  for (int j = 0; j < s.n_contacts(); ++j) out.push_back(w.gap(j));
+  for (int j = 0; j < s.n_contacts(); ++j) out.push_back(with_impulse ? w.impulse(j) / h : 0.0);
+}
+
+// Status of the state after a step: ok, or why the run stops.
+Status check_state(const System& s, const World& w, double bound) {
+  for (int i = 0; i < s.n_bodies(); ++i) {
+    const double u = w.u(i), v = w.v(i);
+    if (!std::isfinite(u) || !std::isfinite(v)) return Status::nan;
+    if (std::abs(u) > bound) return Status::diverged;
+  }
+  return Status::ok;
+}
+
+Result run(const System& sys, const Settings& set, const Config& config, const InitialState* start) {
+  Result res;
+  const int nb = sys.n_bodies(), nc = sys.n_contacts();
+  const double h = sys.step(steps_per_period(set));
+  const long n = step_count(sys.t_end, h);
+  const long cap = set.step_cap > 0 ? set.step_cap : kDefaultStepCap;
+  if (n > cap) {
+    res.status = Status::step_cap;
+    res.message = "the run needs " + std::to_string(n) + " steps, more than the cap " + std::to_string(cap);
+    return res;
+  }
+  std::vector<double> u0(ix(nb), 0.0), v0(ix(nb), 0.0);
+  if (start) {
+    if (start->u.size() != ix(nb) || start->v.size() != ix(nb)) {
+      res.status = Status::failed;
+      res.message = "initial state: needs one u and one v per body";
+      return res;
+    }
+    u0 = start->u;
+    v0 = start->v;
+  }
+
+  World world(sys, config, h, u0, v0);
+  Tally tally;
+  tally.pushed.assign(ix(nc), 0);
+  tally.in_phase.assign(ix(nc), 0);
+  tally_state(sys, world, 0, tally);
+  std::vector<double> rate(ix(nc), 0.0);
+
+  const bool recording = set.history_samples > 0;
+  if (recording) {
+    res.history.n_bodies = nb;
+    res.history.n_contacts = nc;
+    res.history.data.reserve(static_cast<std::size_t>(n + 1) * static_cast<std::size_t>(res.history.row_size()));
+    record(sys, world, 0.0, h, false, res.history.data);
+  }
+
+  const double bound = 1e6 * sys.length_scale();
+  const auto started = std::chrono::steady_clock::now();
+  long k = 0;
+  while (k < n) {
+    for (int j = 0; j < nc; ++j) rate[ix(j)] = world.gap_rate(j);  // approach speed at t_k
+    world.step(static_cast<double>(k) * h);
+    ++k;
+    for (int j = 0; j < nc; ++j) {
+      if (world.added(j) && rate[ix(j)] < 0.0) ++tally.impacts;
+      const char pushing = world.impulse(j) > 0.0 ? 1 : 0;
+      const char starts = pushing && tally.pushed[ix(j)] && !tally.in_phase[ix(j)];
+      tally.phases += starts;
+      tally.in_phase[ix(j)] = (tally.in_phase[ix(j)] || starts) && pushing;
+      tally.pushed[ix(j)] = pushing;
+    }
+    const Status st = check_state(sys, world, bound);
+    if (st != Status::ok) {
+      res.status = st;
+      std::ostringstream msg;
+      msg << (st == Status::nan ? "non-finite state" : "|u| above 1e6 a_p/w_p^2") << " at step " << k
+          << " (t = " << static_cast<double>(k) * h << ")";
+      res.message = msg.str();
+      break;
+    }
+    tally_state(sys, world, k, tally);
+    if (recording) record(sys, world, static_cast<double>(k) * h, h, true, res.history.data);
+    if (set.time_limit > 0.0 && k % kClockEvery == 0 && k < n &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() > set.time_limit) {
+      res.status = Status::timeout;
+      res.message = "time limit reached at t = " + std::to_string(static_cast<double>(k) * h);
+      break;
+    }
+  }
+
+  res.steps = k;
+  res.impacts = tally.impacts;
+  res.contact_phases = tally.phases;
+  res.min_gap = tally.g_min < 0.0 ? tally.g_min : std::numeric_limits<double>::infinity();
+  if (const int fb = world.fallbacks(); fb > 0) {
+    if (!res.message.empty()) res.message += "; ";
+    res.message += "the MLCP solver failed in " + std::to_string(fb) + " steps (Bullet fell back to sequential impulse)";
+  }
+  if (res.status != Status::ok) return res;
+  res.pi1 = sys.pi1(tally.u_max);
+  res.t_max = static_cast<double>(tally.k_max) * h;
+  return res;
+}
+
+}  // namespace
+
+Result solve_with(const System& system, const Settings& settings, const Config& config, const InitialState* start) {
+  try {
+    return run(system, settings, config, start);
+  } catch (const std::exception& e) {
+    Result res;
+    res.status = Status::failed;
+    res.message = e.what();
+    return res;
+  }
+}
+
+Result solve(const System& system, const Settings& settings) {
+  const std::optional<Config> config = find_variant(settings.variant);
+  if (!config) {
+    Result res;
+    res.status = Status::failed;
+    res.message = "unknown variant '" + settings.variant + "'";
+    return res;
+  }
+  return solve_with(system, settings, *config);
+}
+
+std::string describe(const Settings& settings) {
+  const std::optional<Config> config = find_variant(settings.variant);
+  if (!config) return "variant=" + settings.variant + ";unknown";
+  return describe(*config, steps_per_period(settings));
+}
+
+std::string check(const Settings& settings) {
+  if (!find_variant(settings.variant))
+    return "variant: unknown bullet variant '" + settings.variant + "' (one of " + variant_names() + ")";
+  if (settings.steps < 0) return "steps: must be >= 1 (0: the default " + std::to_string(kDefaultSteps) + ")";
+  if (settings.step_cap < 0) return "step_cap: must be >= 0 (0: the solver's own cap)";
+  if (!(settings.time_limit >= 0.0)) return "time_limit: must be >= 0 (0: none)";
+  return {};
+}
+
+}  // namespace pb::bullet

@@ -1,0 +1,48 @@
+#pragma once
+// Bullet Physics (libbullet 3.24, single precision, as Debian ships it) as a pounding
+// solver: contacts and restitution are left to Bullet's own constraint solvers; this code
+// only builds the bodies, applies the building forces and fills one manifold point per
+// closed contact in each step.
+//
+//   bodies    one btRigidBody per building, moving along x only (linear factor (1,0,0),
+//             angular factor 0), no gravity, no damping, never deactivated; position u
+//             (ground-relative), all bodies start at the origin. The wall is a static body.
+//   forces    -k u - c v - m a_g(t_k) from the state at the start of each step
+//             (applyCentralForce); Bullet's step is semi-implicit Euler:
+//             v_k+1 = v_k + h F_k / m + (contact impulse) / m, u_k+1 = u_k + h v_k+1.
+//   contacts  no collision detection: while g_j <= 0 at the start of a step, contact j has
+//             one btManifoldPoint (normal +x, distance g_j, no friction acting) in its
+//             btPersistentManifold, and the manifolds go to the variant's solveGroup
+//             (btSequentialImpulseConstraintSolver or btMLCPSolver), which applies Bullet's
+//             restitution: target separation speed = restitution x approach speed at the
+//             start of the step (setupContactConstraint), with the variant's threshold,
+//             ERP, split impulse and warm start.
+//
+// Variants and every setting: variants.hpp; the engine objects and the step: engine.hpp;
+// modelling, restitution law, single precision and what Bullet's defaults change, with
+// numbers: solvers/bullet/README.md.
+
+#include <string>
+#include <vector>
+
+#include "solvers/bullet/variants.hpp"
+#include "solvers/solver.hpp"
+
+namespace pb::bullet {
+
+inline constexpr int kDefaultSteps = 64;              // N when Settings::steps is 0
+inline constexpr long kDefaultStepCap = 100'000'000;  // when Settings::step_cap is 0
+
+Result solve(const System& system, const Settings& settings);
+std::string describe(const Settings& settings);
+std::string check(const Settings& settings);
+
+// For tests: a start other than rest (one u and one v per body, left to right) and a
+// configuration given directly (Settings::variant is then ignored).
+struct InitialState {
+  std::vector<double> u, v;
+};
+Result solve_with(const System& system, const Settings& settings, const Config& config,
+                  const InitialState* start = nullptr);
+
+}  // namespace pb::bullet

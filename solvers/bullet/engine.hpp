@@ -1,0 +1,89 @@
+#pragma once
+// The Bullet objects of one run and the step that drives them.
+//
+// A step is btDiscreteDynamicsWorld::internalSingleStepSimulation with the collision
+// detection replaced by the scene's known gaps:
+//   1. contacts   for each contact j with g_j <= 0 at the start of the step, its
+//                 btPersistentManifold holds one btManifoldPoint: normal +x on the left
+//                 body (B) towards the right one (A), distance g_j, restitution and
+//                 friction as the variant sets them (friction never acts: see below). A point that persists from the last
+//                 step is refreshed with replaceContactPoint (which keeps its applied
+//                 impulse for warm starting, as Bullet's narrowphase does); a contact
+//                 whose gap has opened is cleared.
+//   2. forces     -k u - c v - m a_g(t_k) from the state at the start of the step
+//                 (applyCentralForce).
+//   3. solve      solveGroup(bodies, manifolds with a point) of the variant's solver: it
+//                 sets up Bullet's contact constraints (restitution, ERP, split impulse,
+//                 warm start), solves them and writes back v + h F/m + impulse/m.
+//   4. positions  predictIntegratedTransform + proceedToTransform (x += h v_new), then
+//                 clearForces: Bullet's integrateTransforms.
+//
+// Bodies sit at x = u (ground-relative displacement), all at the origin at rest, and the
+// gap delta lives only in the distance of the manifold point: Bullet's float positions
+// then carry u itself, with ~6e-8 |u| resolution, instead of u plus a spacing (see
+// solvers/bullet/README.md, single precision).
+//
+// Nothing here is shared between runs: each World owns its shape, bodies, manifolds and
+// solver, so worlds may step in parallel threads (README: thread safety).
+
+#include <btBulletDynamicsCommon.h>
+
+#include <BulletDynamics/MLCPSolvers/btMLCPSolverInterface.h>
+
+#include <memory>
+#include <vector>
+
+#include "cases/system.hpp"
+#include "solvers/bullet/variants.hpp"
+
+namespace pb::bullet {
+
+// The btContactSolverInfo of a variant at step h: Bullet's defaults, then the faithful
+// overrides. The only place where a setting of a variant is chosen.
+btContactSolverInfo solver_info(const Config& config, double h);
+
+class World {
+ public:
+  // u0, v0: one value per body, left to right.
+  World(const System& system, const Config& config, double h, const std::vector<double>& u0,
+        const std::vector<double>& v0);
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  // One step from t = t_k to t_k + h.
+  void step(double t);
+
+  double u(int i) const { return bodies_[ix(i)]->getWorldTransform().getOrigin().x(); }
+  double v(int i) const { return bodies_[ix(i)]->getLinearVelocity().x(); }
+  double gap(int j) const;
+  double gap_rate(int j) const;
+  // Whether contact j had a manifold point in the last step, and whether it was new then.
+  bool in_contact(int j) const { return manifolds_[ix(j)]->getNumContacts() > 0; }
+  bool added(int j) const { return added_[ix(j)] != 0; }
+  // The normal impulse Bullet applied at contact j in the last step (0 without a point).
+  double impulse(int j) const;
+  // Steps in which the MLCP solver failed and Bullet fell back to sequential impulse.
+  int fallbacks() const;
+
+ private:
+  static std::size_t ix(int i) { return static_cast<std::size_t>(i); }
+
+  const System& system_;
+  btContactSolverInfo info_;
+  std::vector<double> k_, c_, m_;  // per body
+  std::unique_ptr<btCollisionShape> shape_;
+  std::unique_ptr<btRigidBody> wall_;
+  std::vector<std::unique_ptr<btRigidBody>> bodies_;
+  std::vector<btCollisionObject*> body_list_;  // what solveGroup takes
+  std::vector<std::unique_ptr<btPersistentManifold>> manifolds_;
+  std::vector<btPersistentManifold*> touching_;  // manifolds with a point this step
+  std::vector<btScalar> restitution_;             // combined restitution per contact
+  btScalar friction_ = 0;                         // combined friction of every point
+  std::vector<char> added_;
+  std::unique_ptr<btMLCPSolverInterface> mlcp_;  // declared before solver_, which uses it
+  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
+  bool is_mlcp_ = false;
+};
+
+}  // namespace pb::bullet

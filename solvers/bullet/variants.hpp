@@ -1,0 +1,48 @@
+#pragma once
+// The six ways this project runs Bullet: a constraint solver (sequential impulse, or the
+// MLCP solver with Dantzig's or Lemke's algorithm) times a configuration (faithful:
+// nothing but restitution shapes an impact; default: Bullet's own btContactSolverInfo
+// with only the restitution set, as a new user gets). Every value and the reason for it
+// are in solvers/bullet/README.md; the values themselves are set in one place,
+// solver_info() in engine.cpp, and describe() prints what that function returns.
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace pb::bullet {
+
+// Which btConstraintSolver gets the contacts of a step.
+//   si:           btSequentialImpulseConstraintSolver (projected Gauss-Seidel on impulses)
+//   mlcp_dantzig: btMLCPSolver with btDantzigSolver (direct, ODE's dLCP)
+//   mlcp_lemke:   btMLCPSolver with btLemkeSolver (pivoting, box bounds by doubling)
+enum class Engine { si, mlcp_dantzig, mlcp_lemke };
+
+struct Config {
+  std::string_view name;
+  Engine engine = Engine::si;
+  bool faithful = true;  // false: Bullet's btContactSolverInfo defaults, restitution per body
+};
+
+// Sequential-impulse sweeps per step in the faithful configuration. A double contact of
+// row3 contracts by 1 / ((1 + m0/m1)(1 + m0/m2)) per sweep, 0.83 for outer bodies ten
+// times heavier than body 0 (Pi6 = Pi8 = 0.1): 100 sweeps reach single precision there
+// (0.83^100 ~ 1e-8); Bullet's default 10 leave 15% of the impulse unsolved (README).
+inline constexpr int kFaithfulIterations = 100;
+
+inline constexpr std::string_view kDefaultVariant = "si-faithful";
+
+// si-faithful, si-default, mlcp-dantzig-faithful, mlcp-dantzig-default,
+// mlcp-lemke-faithful, mlcp-lemke-default.
+std::span<const Config> variants();
+// The variant of that name; the empty name is kDefaultVariant.
+std::optional<Config> find_variant(std::string_view name);
+// "a, b, c" for messages.
+std::string variant_names();
+
+// "variant=...;N=...;solver=...;iterations=...;..." with every setting that shapes an
+// impact, read back from the solver info a run uses.
+std::string describe(const Config& config, int steps_per_period);
+
+}  // namespace pb::bullet

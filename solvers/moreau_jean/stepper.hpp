@@ -1,0 +1,323 @@
+#pragma once
+// The Moreau-Jean step loop for one scene shape: NB bodies and NC contacts known at
+// compile time, so every vector and matrix of a step is a fixed-size Eigen type and the
+// loop never allocates. The scheme and every choice made here are derived and argued in
+// solvers/moreau_jean/README.md; in short:
+//
+//   M_hat = M + h theta C + h^2 theta^2 K           (diagonal: bodies couple only by contact)
+//   v_free  = v_k + M_hat^-1 h (-C v_k - K q_k - h theta K v_k - M 1 abar_k)
+//   active  = { j : g_j,k + gamma h g'_j,k <= 0 }
+//   0 <= W^T v_k+1 + eps W^T v_k  _|_  P >= 0  on the active contacts
+//   v_k+1   = v_free + M_hat^-1 W P,   q_k+1 = q_k + h ((1 - theta) v_k + theta v_k+1)
+//
+// abar_k is the exact mean of a_g over [t_k, t_k+1] (zero past T_p), computed from a
+// rotation recurrence for cos/sin(w_p t_k) resynchronised every kResync steps.
+//
+// Layout follows "constant apart from changing": Scheme holds what a run never changes
+// (built once, before the loop), State what a step changes, Tally what the result needs.
+//
+// Rejected alternatives: dynamic-size Eigen types (heap temporaries, and size bookkeeping
+// that outweighs arithmetic on 1 to 3 numbers); a general LCP solver (the scenes need
+// 1x1 and 2x2 only, solved exactly by lcp::solve1 / lcp::solve2); std::sin/std::cos every
+// step (the main cost of a loaded step).
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <vector>
+
+#include "cases/system.hpp"
+#include "solvers/lcp/small.hpp"
+
+namespace pb::moreau_jean {
+
+// cos/sin(w_p t_k) are recomputed exactly every kResync steps; in between they come from
+// a rotation by w_p h. The drift of a rotation is at most ~3 ulp per step, so the load is
+// within kResync * 3 * 2^-53 ~ 2e-14 of a_p (measured 4e-15: test PulseMeanRecurrence*).
+inline constexpr long kResync = 64;
+
+// The step mean of the ground acceleration, abar_k = (1/h) integral over [t_k, t_k+1] of a_g.
+// A step inside the pulse: abar = p cos(w t_k) + r sin(w t_k). The step that contains
+// T_p integrates only up to T_p, where cos = 1 and sin = 0 exactly.
+struct PulseLoad {
+  double wh = 0.0;                                  // w_p h
+  double cos_wh = 1.0, sin_wh = 0.0;                // the rotation of one step
+  double p = 0.0, r = 0.0;                          // full step
+  double tail_c = 0.0, tail_s = 0.0, tail_1 = 0.0;  // step that contains T_p: tail_c cos + tail_s sin + tail_1
+  long full_steps = 0;                              // steps 0 .. full_steps-1 lie inside [0, T_p]
+  bool straddle = false;                            // step full_steps contains T_p inside it
+
+  double tail(long k) const {
+    const double phase = static_cast<double>(k) * wh;
+    return tail_c * std::cos(phase) + tail_s * std::sin(phase) + tail_1;
+  }
+};
+
+inline PulseLoad make_pulse_load(const Pulse& pulse, double h) {
+  PulseLoad l;
+  l.wh = pulse.w * h;
+  l.cos_wh = std::cos(l.wh);
+  l.sin_wh = std::sin(l.wh);
+  // (1 - cos x) / x and sin x / x, without the cancellation of 1 - cos x.
+  const double half = std::sin(0.5 * l.wh);
+  const double alpha = 2.0 * half * half / l.wh, beta = l.sin_wh / l.wh;
+  const double a = pulse.amplitude, a_wh = a / l.wh;
+  if (pulse.shape == PulseShape::sine) {  // mean of sin = (cos(w t_k) - cos(w t_k+1)) / (w h)
+    l.p = a * alpha;
+    l.r = a * beta;
+    l.tail_c = a_wh;
+    l.tail_1 = -a_wh;
+  } else {  // mean of cos = (sin(w t_k+1) - sin(w t_k)) / (w h)
+    l.p = a * beta;
+    l.r = -a * alpha;
+    l.tail_s = -a_wh;
+  }
+  // A pulse that ends within 1e-9 steps of a step boundary ends on it: the dropped sliver
+  // changes the impulse by < 1e-9 h a_p, and T_p = N h (t_min = T_p) lands there exactly.
+  const double ratio = pulse.duration() / h;
+  const double nearest = std::round(ratio);
+  if (std::abs(ratio - nearest) <= 1e-9 * std::max(1.0, ratio)) {
+    l.full_steps = static_cast<long>(nearest);
+    l.straddle = false;
+  } else {
+    l.full_steps = static_cast<long>(std::floor(ratio));
+    l.straddle = true;
+  }
+  return l;
+}
+
+// Steps of a run: fixed h, and the first step count whose end reaches t_end (to within
+// 1e-9 of a step, so that t_end = n h up to round-off does not add a step).
+inline long step_count(double t_end, double h) { return static_cast<long>(std::ceil(t_end / h - 1e-9)); }
+
+template <int NB, int NC>
+struct Scheme {
+  using VecB = Eigen::Matrix<double, NB, 1>;
+  using VecC = Eigen::Matrix<double, NC, 1>;
+  using MatCB = Eigen::Matrix<double, NC, NB>;
+  using MatBC = Eigen::Matrix<double, NB, NC>;
+  using MatCC = Eigen::Matrix<double, NC, NC>;
+
+  double h = 0.0;
+  double h_old = 0.0, h_new = 0.0;  // h (1 - theta), h theta
+  double gamma_h = 0.0;             // gamma h
+  double eps = 0.0;
+  int ref = 0;
+  double bound = 0.0;  // |u| above this is divergence
+  // v_free = fv .* v + fq .* q + fa abar, and q_free = q + h (1 - theta) v + h theta v_free
+  // expanded the same way, so that q_k+1 does not wait for v_k+1 (a shorter dependency
+  // chain from one step to the next): q_free = qv .* v + qq .* q + qa abar.
+  VecB fv, fq, fa;
+  VecB qv, qq, qa;
+  MatCB wt;        // W^T: gap rates are W^T v
+  VecC delta;      // gaps at rest
+  MatBC minv_w;    // M_hat^-1 W
+  MatBC h_minv_w;  // h theta M_hat^-1 W: the impulse's share of q_k+1
+  MatCC delassus;  // W^T M_hat^-1 W, the LCP matrix
+  PulseLoad load;
+};
+
+template <int NB, int NC>
+Scheme<NB, NC> make_scheme(const System& s, double h, double theta, double gamma) {
+  Scheme<NB, NC> sc;
+  sc.h = h;
+  sc.h_old = h * (1.0 - theta);
+  sc.h_new = h * theta;
+  sc.gamma_h = gamma * h;
+  sc.eps = s.eps;
+  sc.ref = s.ref;
+  sc.bound = 1e6 * s.length_scale();
+  typename Scheme<NB, NC>::VecB minv;
+  for (int i = 0; i < NB; ++i) {
+    const Body& b = s.bodies[static_cast<std::size_t>(i)];
+    const double m_hat = b.m + h * theta * b.c + h * h * theta * theta * b.k;
+    minv(i) = 1.0 / m_hat;
+    sc.fv(i) = 1.0 - h * (b.c + h * theta * b.k) / m_hat;
+    sc.fq(i) = -h * b.k / m_hat;
+    sc.fa(i) = -h * b.m / m_hat;
+    sc.qv(i) = sc.h_old + sc.h_new * sc.fv(i);
+    sc.qq(i) = 1.0 + sc.h_new * sc.fq(i);
+    sc.qa(i) = sc.h_new * sc.fa(i);
+  }
+  sc.wt.setZero();
+  for (int j = 0; j < NC; ++j) {
+    sc.wt(j, s.right(j)) = 1.0;
+    if (s.left(j) != kWall) sc.wt(j, s.left(j)) = -1.0;
+    sc.delta(j) = s.delta;
+  }
+  sc.minv_w = minv.asDiagonal() * sc.wt.transpose();
+  sc.h_minv_w = sc.h_new * sc.minv_w;
+  sc.delassus = sc.wt * sc.minv_w;
+  sc.load = make_pulse_load(s.pulse, h);
+  return sc;
+}
+
+template <int NB, int NC>
+struct State {
+  typename Scheme<NB, NC>::VecB q, v;     // q is u, the displacement
+  typename Scheme<NB, NC>::VecC g, rate;  // gaps and gap rates W^T v
+  long k = 0;                             // steps taken: the state is at t_k = k h
+  unsigned active = 0;                    // contacts in the index set of the last step (bit j)
+  unsigned pushed = 0;                    // contacts with a positive impulse in the last step
+  unsigned in_phase = 0;                  // contacts in a persistent-contact phase
+};
+
+template <int NB, int NC>
+State<NB, NC> make_state(const Scheme<NB, NC>& sc, const typename Scheme<NB, NC>::VecB& q,
+                         const typename Scheme<NB, NC>::VecB& v) {
+  State<NB, NC> st;
+  st.q = q;
+  st.v = v;
+  st.g = sc.delta + sc.wt * q;
+  st.rate = sc.wt * v;
+  return st;
+}
+
+struct Tally {
+  double u_max = 0.0;  // largest |u_ref| over the steps
+  long k_max = 0;      // its step
+  double g_min = 0.0;  // most negative gap (0 if none)
+  long impacts = 0;    // contacts that entered the index set approaching
+  long phases = 0;     // runs of >= 2 consecutive steps with a positive impulse
+};
+
+// The step loop's helpers are forced inline: a call per step costs as much as the step.
+#define PB_MJ_INLINE [[gnu::always_inline]] inline
+
+template <int NB, int NC>
+PB_MJ_INLINE void tally_state(const Scheme<NB, NC>& sc, const State<NB, NC>& st, Tally& t) {
+  const double u = std::abs(st.q(sc.ref));
+  if (u > t.u_max) {
+    t.u_max = u;
+    t.k_max = st.k;
+  }
+  if constexpr (NC > 0) t.g_min = std::min(t.g_min, st.g.minCoeff());
+}
+
+// One history row: t, u, v, g, lambda = P / h (History in solvers/solver.hpp).
+template <int NB, int NC>
+void record(const Scheme<NB, NC>& sc, const State<NB, NC>& st, const typename Scheme<NB, NC>::VecC& impulse,
+            std::vector<double>& out) {
+  out.push_back(static_cast<double>(st.k) * sc.h);
+  for (int i = 0; i < NB; ++i) out.push_back(st.q(i));
+  for (int i = 0; i < NB; ++i) out.push_back(st.v(i));
+  for (int j = 0; j < NC; ++j) out.push_back(st.g(j));
+  for (int j = 0; j < NC; ++j) out.push_back(impulse(j) / sc.h);
+}
+
+// Impulses of the active contacts (bit j of mask), exact for 1 and 2 contacts.
+template <int NC>
+PB_MJ_INLINE Eigen::Matrix<double, NC, 1> contact_impulse(const Eigen::Matrix<double, NC, NC>& a,
+                                                          const Eigen::Matrix<double, NC, 1>& q, unsigned mask) {
+  Eigen::Matrix<double, NC, 1> p = Eigen::Matrix<double, NC, 1>::Zero();
+  if constexpr (NC == 1) {
+    p(0) = lcp::solve1(a(0, 0), q(0));
+  } else if constexpr (NC == 2) {
+    if (mask == 3u)
+      p = lcp::solve2(a, q);
+    else if (mask == 1u)
+      p(0) = lcp::solve1(a(0, 0), q(0));
+    else
+      p(1) = lcp::solve1(a(1, 1), q(1));
+  }
+  return p;
+}
+
+// One step from st.k to st.k + 1 under the step-mean ground acceleration abar.
+// Returns false when the state is no longer finite or |u| passed the divergence bound.
+template <int NB, int NC, bool kRecord>
+PB_MJ_INLINE bool step(const Scheme<NB, NC>& sc, State<NB, NC>& st, Tally& t, double abar,
+                       std::vector<double>* history) {
+  using VecC = typename Scheme<NB, NC>::VecC;
+  typename Scheme<NB, NC>::VecB v_new = sc.fv.cwiseProduct(st.v) + sc.fq.cwiseProduct(st.q) + sc.fa * abar;
+  typename Scheme<NB, NC>::VecB q_new = sc.qv.cwiseProduct(st.v) + sc.qq.cwiseProduct(st.q) + sc.qa * abar;
+  VecC impulse = VecC::Zero();
+  unsigned mask = 0;
+  if constexpr (NC > 0) {
+    const VecC predicted = st.g + sc.gamma_h * st.rate;
+    for (int j = 0; j < NC; ++j) mask |= (predicted(j) <= 0.0 ? 1u : 0u) << j;
+    if (mask != 0u) {
+      const VecC q = sc.wt * v_new + sc.eps * st.rate;
+      impulse = contact_impulse<NC>(sc.delassus, q, mask);
+      v_new += sc.minv_w * impulse;
+      q_new += sc.h_minv_w * impulse;
+      unsigned approaching = 0, pushing = 0;
+      for (int j = 0; j < NC; ++j) {
+        approaching |= (st.rate(j) < 0.0 ? 1u : 0u) << j;
+        pushing |= (impulse(j) > 0.0 ? 1u : 0u) << j;
+      }
+      t.impacts += std::popcount(mask & ~st.active & approaching);
+      const unsigned starts = pushing & st.pushed & ~st.in_phase;
+      t.phases += std::popcount(starts);
+      st.in_phase = (st.in_phase | starts) & pushing;
+      st.pushed = pushing;
+    } else {
+      st.pushed = 0;
+      st.in_phase = 0;
+    }
+    st.active = mask;
+  }
+  st.q = q_new;
+  st.v = v_new;
+  ++st.k;
+  if constexpr (NC > 0) {
+    st.g = sc.delta + sc.wt * st.q;
+    st.rate = sc.wt * st.v;
+  }
+  if (!(st.q.array().abs() <= sc.bound).all()) return false;
+  tally_state(sc, st, t);
+  if constexpr (kRecord) record(sc, st, impulse, *history);
+  return true;
+}
+
+// The step means of the full pulse steps, in order from step k: cos/sin(w_p t_k) come from
+// the rotation, and are recomputed exactly at k and at every multiple of kResync.
+struct PulseMeans {
+  const PulseLoad& l;
+  long k;
+  double c = 1.0, s = 0.0;
+
+  PulseMeans(const PulseLoad& load, long first) : l(load), k(first) { resync(); }
+  void resync() {
+    const double phase = static_cast<double>(k) * l.wh;
+    c = std::cos(phase);
+    s = std::sin(phase);
+  }
+  PB_MJ_INLINE double next() {
+    if (k % kResync == 0) resync();
+    const double abar = l.p * c + l.r * s;
+    const double c_next = c * l.cos_wh - s * l.sin_wh;
+    s = s * l.cos_wh + c * l.sin_wh;
+    c = c_next;
+    ++k;
+    return abar;
+  }
+};
+
+// Steps until st.k == k_end. Returns false if the run blew up (st is left at the bad step).
+// history (kRecord) must have room reserved: nothing here allocates.
+template <int NB, int NC, bool kRecord>
+bool advance(const Scheme<NB, NC>& sc, State<NB, NC>& state, Tally& tally, long k_end, std::vector<double>* history) {
+  // Work on local copies: the compiler must assume that a store through one reference may
+  // change a double behind another, and would reload the state from memory every step.
+  State<NB, NC> st = state;
+  Tally t = tally;
+  const PulseLoad& l = sc.load;
+  bool ok = true;
+  if (st.k < l.full_steps) {
+    PulseMeans means(l, st.k);
+    const long pulse_end = std::min(k_end, l.full_steps);
+    while (ok && st.k < pulse_end) ok = step<NB, NC, kRecord>(sc, st, t, means.next(), history);
+  }
+  if (ok && l.straddle && st.k == l.full_steps && st.k < k_end)
+    ok = step<NB, NC, kRecord>(sc, st, t, l.tail(st.k), history);
+  while (ok && st.k < k_end) ok = step<NB, NC, kRecord>(sc, st, t, 0.0, history);
+  state = st;
+  tally = t;
+  return ok;
+}
+
+#undef PB_MJ_INLINE
+
+}  // namespace pb::moreau_jean

@@ -1,0 +1,44 @@
+#pragma once
+// The Open Dynamics Engine (ODE 0.16, Debian's libode) as a pounding solver: contacts and
+// restitution are left to ODE's own constraint solver; this code only builds the scene,
+// applies the building forces and makes the contact joints of each step.
+//
+//   bodies    one dBody per building on the x axis, position = u (ground-relative), no
+//             gravity, no auto-disable; y, z and rotation stay exactly zero because every
+//             force and every contact Jacobian has only an x component (checked at the
+//             end of each run).
+//   forces    -k u - c v - m a_g(t) at the start of each step (dBodyAddForce); ODE then
+//             steps v += h/m (F + contact force), u += h v_new (semi-implicit Euler).
+//   contacts  no collision detection: for each contact of the scene whose gap passes the
+//             variant's test (variants.hpp) a dContactJoint with normal +x on the right
+//             body (the wall is the static environment), depth max(0, -g), mu 0, and
+//             dContactBounce with bounce = eps: ODE's Newton-type law, target separation
+//             speed eps times the approach speed at the start of the step.
+//
+// The modelling, the settings of each variant and what ODE's defaults change are in
+// solvers/ode/README.md; the engine set-up and its thread safety in world.hpp.
+
+#include <string>
+#include <vector>
+
+#include "solvers/ode/variants.hpp"
+#include "solvers/solver.hpp"
+
+namespace pb::ode {
+
+inline constexpr int kDefaultSteps = 64;              // N when Settings::steps is 0
+inline constexpr long kDefaultStepCap = 100'000'000;  // when Settings::step_cap is 0
+
+Result solve(const System& system, const Settings& settings);
+std::string describe(const Settings& settings);
+std::string check(const Settings& settings);
+
+// For tests: a start other than rest (one u and one v per body, left to right) and a
+// configuration other than the named variants (Settings::variant is then ignored).
+struct InitialState {
+  std::vector<double> u, v;
+};
+Result solve_with(const System& system, const Settings& settings, const Config& config,
+                  const InitialState* start = nullptr);
+
+}  // namespace pb::ode

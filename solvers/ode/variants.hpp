@@ -1,0 +1,44 @@
+#pragma once
+// The four ways this project runs the Open Dynamics Engine: a stepper (ODE's Dantzig LCP
+// in dWorldStep, or its projected Gauss-Seidel in dWorldQuickStep) times a configuration
+// (faithful: nothing but restitution shapes an impact; default: what a new ODE user gets).
+// Every value and the reason for it are in solvers/ode/README.md.
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace pb::ode {
+
+enum class Stepper { dantzig, quickstep };
+
+// When a contact joint is made for a step, from the gap g and gap rate g' at its start.
+//   predicted: g + h g' <= 0, the gap would close within the step at the current rate
+//   overlap:   g <= 0, the bodies touch or overlap (what ODE's collision functions report)
+enum class Detection { predicted, overlap };
+
+struct Config {
+  std::string_view name;
+  Stepper stepper = Stepper::dantzig;
+  int iterations = 20;   // quickstep: PGS sweeps per step (dWorldSetQuickStepNumIterations)
+  double sor = 1.3;      // quickstep: over-relaxation (dWorldSetQuickStepW)
+  double erp = 0.0;      // dWorldSetERP: fraction of the depth pushed out per step
+  double cfm = 0.0;      // dWorldSetCFM: constraint softness, velocity per unit force
+  double bounce_vel = 0.0;     // dSurfaceParameters::bounce_vel: no bounce at or below it
+  double surface_layer = 0.0;  // dWorldSetContactSurfaceLayer: depth left uncorrected
+  double max_vel = 0.0;        // dWorldSetContactMaxCorrectingVel: cap of the push-out
+  Detection detection = Detection::predicted;
+};
+
+inline constexpr std::string_view kDefaultVariant = "dantzig-faithful";
+
+// The named variants: dantzig-faithful, dantzig-default, quickstep-faithful, quickstep-default.
+std::span<const Config> variants();
+// The variant of that name; the empty name is kDefaultVariant.
+std::optional<Config> find_variant(std::string_view name);
+
+// "variant=...;N=...;stepper=...;..." with every setting of the configuration.
+std::string describe(const Config& config, int steps_per_period);
+
+}  // namespace pb::ode
