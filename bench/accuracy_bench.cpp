@@ -8,6 +8,7 @@
 #include <cmath>
 #include <vector>
 
+#include "bench/fig4_family.hpp"
 #include "cases/system.hpp"
 #include "solvers/event_driven/event_driven.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
@@ -31,27 +32,12 @@ double median_error(const Fig4& f, int steps) {
   return err[err.size() / 2];
 }
 
-// The Fig. 4 family (normal directivity, both pulses, the paper's eight Pi5, Pi3 = 0.5,
-// eps = 0.5) on 50 log-spaced Pi2 in [0.1, 10]; reference and N are computed once.
+// The Fig. 4 family (bench/fig4_family.hpp); its reference and N are computed once.
 const Fig4& fig4() {
   static const Fig4 f = [] {
     Fig4 out;
-    for (pb::PulseShape p : {pb::PulseShape::sine, pb::PulseShape::cosine}) {
-      for (double pi5 : {0.1, 0.25, 0.5, 0.75, 1.33, 2.0, 4.0, 10.0}) {
-        for (int k = 0; k < 50; ++k) {
-          pb::Case c;
-          c.scene = pb::Scene::pair;
-          c.pulse = p;
-          c.pi3 = 0.5;
-          c.pi5 = pi5;
-          c.pi6 = 1.0;
-          c.eps = 0.5;
-          c.pi2 = 0.1 * std::pow(100.0, k / 49.0);
-          out.systems.push_back(pb::make_system(c));
-          out.reference.push_back(pb::event_driven::solve(out.systems.back(), {}).pi1);
-        }
-      }
-    }
+    out.systems = pb::bench::fig4_family();
+    for (const pb::System& sys : out.systems) out.reference.push_back(pb::event_driven::solve(sys, {}).pi1);
     for (out.steps = 16; out.steps <= 65536; out.steps *= 2) {
       out.median = median_error(out, out.steps);
       if (out.median <= 1e-3) break;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "bench/fig4_family.hpp"
 #include "cases/system.hpp"
 #include "solvers/event_driven/event_driven.hpp"
 
@@ -40,26 +41,10 @@ BENCHMARK(BM_EventDrivenPairFig4)
 
 namespace {
 
-// The whole Fig. 4 pair family (normal directivity, both pulses, the eight Pi5 of the
-// paper, 50 log-spaced Pi2 in [0.1, 10]): each point is timed on its own, and the median
-// and 90th percentile per point are reported (the target is a median <= 50 us).
+// The whole Fig. 4 pair family (bench/fig4_family.hpp): each point is timed on its own, and
+// the median and 90th percentile per point are reported (the target is a median <= 50 us).
 void BM_EventDrivenFig4FamilyPerPoint(benchmark::State& state) {
-  std::vector<pb::System> systems;
-  for (pb::PulseShape p : {pb::PulseShape::sine, pb::PulseShape::cosine}) {
-    for (double pi5 : {0.1, 0.25, 0.5, 0.75, 1.33, 2.0, 4.0, 10.0}) {
-      for (int k = 0; k < 50; ++k) {
-        pb::Case c;
-        c.scene = pb::Scene::pair;
-        c.pulse = p;
-        c.pi3 = 0.5;
-        c.pi5 = pi5;
-        c.pi6 = 1.0;
-        c.eps = 0.5;
-        c.pi2 = 0.1 * std::pow(100.0, k / 49.0);
-        systems.push_back(pb::make_system(c));
-      }
-    }
-  }
+  const std::vector<pb::System> systems = pb::bench::fig4_family();
   std::vector<double> seconds(systems.size(), 0.0);
   for (auto _ : state) {
     for (std::size_t i = 0; i < systems.size(); ++i) {

@@ -16,6 +16,7 @@
 
 #include <BulletDynamics/MLCPSolvers/btLemkeSolver.h>
 
+#include "tests/history_row.hpp"
 #include "cases/case_set.hpp"
 #include "cases/system.hpp"
 #include "solvers/bullet/bullet_solver.hpp"
@@ -58,22 +59,8 @@ Result run(const System& s, const bullet::Config& config, int n, bool history = 
   return bullet::solve_with(s, st, config);
 }
 
-// Column helpers for History rows: t, u[nb], v[nb], g[nc], lambda[nc].
-struct Row {
-  const History& h;
-  std::size_t r;
-  double at(int col) const { return h.data[r * static_cast<std::size_t>(h.row_size()) + static_cast<std::size_t>(col)]; }
-  double t() const { return at(0); }
-  double u(int i) const { return at(1 + i); }
-  double v(int i) const { return at(1 + h.n_bodies + i); }
-  double g(int j) const { return at(1 + 2 * h.n_bodies + j); }
-  double lambda(int j) const { return at(1 + 2 * h.n_bodies + h.n_contacts + j); }
-};
-
-double gap_rate(const System& s, const Row& row, int j) {
-  const int left = s.left(j);
-  return row.v(s.right(j)) - (left == kWall ? 0.0 : row.v(left));
-}
+using Row = test::HistoryRow;
+using test::gap_rate;
 
 // A free body (no spring, no damper, no pulse) of mass m in front of the wall at gap
 // delta: its only force is the contact. Steps of h = 1 / n.

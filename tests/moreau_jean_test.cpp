@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/history_row.hpp"
 #include "cases/case_set.hpp"
 #include "cases/system.hpp"
 #include "solvers/event_driven/event_driven.hpp"
@@ -90,25 +91,8 @@ Result run(const System& s, int n, bool history = false) {
   return mj::solve(s, st);
 }
 
-// Column helpers for History rows: t, u[nb], v[nb], g[nc], lambda[nc].
-struct Row {
-  const History& h;
-  std::size_t r;
-  double at(int col) const {
-    return h.data[r * static_cast<std::size_t>(h.row_size()) + static_cast<std::size_t>(col)];
-  }
-  double t() const { return at(0); }
-  double u(int i) const { return at(1 + i); }
-  double v(int i) const { return at(1 + h.n_bodies + i); }
-  double g(int j) const { return at(1 + 2 * h.n_bodies + j); }
-  double lambda(int j) const { return at(1 + 2 * h.n_bodies + h.n_contacts + j); }
-};
-
-// Gap rate g'_j = v[right] - v[left] of a history row.
-double gap_rate(const System& s, const Row& row, int j) {
-  const int left = s.left(j);
-  return row.v(s.right(j)) - (left == kWall ? 0.0 : row.v(left));
-}
+using Row = test::HistoryRow;
+using test::gap_rate;
 
 double energy(const System& s, const Row& row) {
   double e = 0.0;

@@ -16,6 +16,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "tests/history_row.hpp"
 #include "cases/case_set.hpp"
 #include "cases/system.hpp"
 #include "solvers/event_driven/event_driven.hpp"
@@ -52,22 +53,8 @@ Result run(const System& s, std::string_view name, int n, bool history = false) 
   return ode::solve(s, st);
 }
 
-// Column helpers for History rows: t, u[nb], v[nb], g[nc], lambda[nc].
-struct Row {
-  const History& h;
-  std::size_t r;
-  double at(int col) const { return h.data[r * static_cast<std::size_t>(h.row_size()) + static_cast<std::size_t>(col)]; }
-  double t() const { return at(0); }
-  double u(int i) const { return at(1 + i); }
-  double v(int i) const { return at(1 + h.n_bodies + i); }
-  double g(int j) const { return at(1 + 2 * h.n_bodies + j); }
-  double lambda(int j) const { return at(1 + 2 * h.n_bodies + h.n_contacts + j); }
-};
-
-double gap_rate(const System& s, const Row& row, int j) {
-  const int left = s.left(j);
-  return row.v(s.right(j)) - (left == kWall ? 0.0 : row.v(left));
-}
+using Row = test::HistoryRow;
+using test::gap_rate;
 
 // Least-squares slope of log(err) against log(h), h halving along errs.
 double observed_order(const std::vector<double>& errs) {
