@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # The main job: set up, build, run the case sets through every solver, benchmark, report.
-#   scripts/main.sh          the default study (about 10 minutes on 2 cores)
-#   scripts/main.sh --full   the engines up to N = 4096 as well (much longer)
+#   scripts/main.sh          the default study (a few minutes on 2 cores, build included)
+#   scripts/main.sh --full   the same study on 4x denser spectra (longer)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-settings=cases/settings/default.toml
-[ "${1:-}" = "--full" ] && settings=cases/settings/full.toml
+study=cases/sets/workprecision.toml
+[ "${1:-}" = "--full" ] && study=cases/sets/workprecision-full.toml
 
 scripts/setup.sh --build-dir build --build-type Release
 mkdir -p results
@@ -17,8 +17,8 @@ $pb spectrum cases/sets/paper.toml --solver event-driven --out results/paper-eve
 echo "main: the paper case set through the in-house stepper at its default N"
 $pb spectrum cases/sets/paper.toml --solver moreau-jean --out results/paper-moreau-jean.csv
 
-echo "main: work-precision study ($settings)"
-$pb workprecision cases/sets/workprecision.toml --settings "$settings" \
+echo "main: work-precision study ($study)"
+$pb workprecision "$study" --settings cases/settings/default.toml \
   --out results/workprecision.csv --points results/workprecision-points.csv
 
 echo "main: benchmarks"

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# The report script on a tiny sweep: every figure it should draw exists afterwards.
+#   report_smoke.sh POUNDBENCH BENCH SOURCE_DIR
+set -euo pipefail
+pb=$1 bench=$2 src=$3
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+"$pb" spectrum "$src/cases/sets/smoke.toml" --out "$out/smoke.csv"
+"$pb" workprecision "$src/cases/sets/smoke.toml" --settings "$src/cases/settings/smoke.toml" \
+  --out "$out/wp.csv" --points "$out/points.csv"
+"$bench" --benchmark_filter='BM_Solve|BM_SweepFig4' --benchmark_min_time=0.001 \
+  --benchmark_out="$out/bench.json" --benchmark_out_format=json > /dev/null
+/usr/bin/python3 "$src/reports/make_report.py" "$out/smoke.csv" --workprecision "$out/wp.csv" \
+  --points "$out/points.csv" --bench "$out/bench.json" --out "$out/report"
+families=$(tail -n +2 "$out/smoke.csv" | cut -d, -f1 | sort -u)
+missing=0
+for f in $families; do
+  for fig in "spectrum-$f" "wp-$f" "wp-spectra-$f"; do
+    for ext in png svg; do
+      [ -s "$out/report/figures/$fig.$ext" ] || { echo "missing figure $fig.$ext"; missing=1; }
+    done
+    grep -q "figures/$fig.png" "$out/report/README.md" || { echo "README.md does not show $fig"; missing=1; }
+  done
+done
+grep -q "faster on 2 threads" "$out/report/README.md" || { echo "no thread speedup line"; missing=1; }
+exit $missing
