@@ -190,7 +190,8 @@ def wp_spectra(points, out_dir):
             refs = sorted((reference[r["point"]] for r in prows if r["point"] in reference), key=lambda r: num(r, "pi2"))
             refs = list({r["point"]: r for r in refs}.values())
             top, bottom = axes[0][pi], axes[1][pi]
-            top.plot([num(r, "pi2") for r in refs], [num(r, "pi1_no_contact") for r in refs], color="0.6", lw=1)
+            top.plot([num(r, "pi2") for r in refs], [num(r, "pi1_no_contact") for r in refs], color="0.7", lw=1,
+                     ls="--")
             top.plot([num(r, "pi2") for r in refs], [num(r, "pi1") for r in refs], color="k", lw=2.2,
                      label="reference")
             by_config = defaultdict(list)
@@ -200,10 +201,11 @@ def wp_spectra(points, out_dir):
                 crow.sort(key=lambda r: num(r, "pi2"))
                 ok = [r for r in crow if r["status"] == "ok"]
                 x = [num(r, "pi2") for r in ok]
-                top.plot(x, [num(r, "pi1") for r in ok], color=f"C{i % 10}", lw=1, label=label)
+                color = plt.get_cmap("tab20").colors[i % 20]
+                top.plot(x, [num(r, "pi1") for r in ok], color=color, lw=1, label=label)
                 err = [max(abs(num(r, "pi1") - num(reference[r["point"]], "pi1")) / num(reference[r["point"]], "pi1"),
                            ERROR_FLOOR) for r in ok]
-                bottom.plot(x, err, color=f"C{i % 10}", lw=1)
+                bottom.plot(x, err, color=color, lw=1)
             title = f"{pulse} pulse" + (f", Pi5 = {pi5}" if pi5 else "")
             top.set_title(title, fontsize=10)
             bottom.set_xscale("log")
@@ -214,7 +216,7 @@ def wp_spectra(points, out_dir):
         axes[0][0].set_ylabel(r"$\Pi_1$")
         axes[1][0].set_ylabel("relative Pi1 error")
         axes[0][-1].legend(fontsize=6, loc="upper right")
-        fig.suptitle(f"{family}: spectra at N = {MIDDLE_N} steps per shortest period (grey: no contact), "
+        fig.suptitle(f"{family}: spectra at N = {MIDDLE_N} steps per shortest period (dashed grey: no contact), "
                      "and their error along Pi2", fontsize=10)
         fig.tight_layout(rect=(0, 0, 1, 0.96))
         figures.append((family, save(fig, out_dir, f"wp-spectra-{family}")))
