@@ -8,7 +8,7 @@
 #include <cmath>
 #include <vector>
 
-#include "bench/fig4_family.hpp"
+#include "bench/support.hpp"
 #include "cases/system.hpp"
 #include "solvers/event_driven/event_driven.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
@@ -32,7 +32,7 @@ double median_error(const Fig4& f, int steps) {
   return err[err.size() / 2];
 }
 
-// The Fig. 4 family (bench/fig4_family.hpp); its reference and N are computed once.
+// The Fig. 4 family (bench/support.hpp); its reference and N are computed once.
 const Fig4& fig4() {
   static const Fig4 f = [] {
     Fig4 out;

@@ -20,31 +20,12 @@
 
 #include <string>
 
+#include "bench/support.hpp"
 #include "cases/system.hpp"
 #include "solvers/bullet/bullet_solver.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
 
 namespace {
-
-pb::System fig4_system(pb::Scene scene) {
-  pb::Case c;
-  c.scene = scene;
-  c.pulse = pb::PulseShape::cosine;
-  c.pi2 = 1.0;
-  c.pi3 = 0.5;
-  c.pi5 = 0.5;
-  c.pi6 = 1.0;
-  c.pi7 = 0.5;
-  c.pi8 = 1.0;
-  c.eps = 0.5;
-  return pb::make_system(c);
-}
-
-// CPU seconds per step (the console prints it with an SI prefix: "250n" is 250 ns).
-benchmark::Counter per_step(long steps) {
-  return benchmark::Counter(static_cast<double>(steps),
-                            benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-}
 
 // CPU seconds of this thread: the ratio below compares two CPU times, which a loaded
 // machine disturbs less than wall times.
@@ -55,7 +36,7 @@ double thread_seconds() {
 }
 
 void bullet_solve(benchmark::State& state, const pb::bullet::Config& config, pb::Scene scene) {
-  const pb::System s = fig4_system(scene);
+  const pb::System s = pb::bench::fig4_point(scene);
   pb::Settings settings;
   settings.variant = std::string(config.name);
   settings.steps = static_cast<int>(state.range(0));
@@ -75,14 +56,14 @@ void bullet_solve(benchmark::State& state, const pb::bullet::Config& config, pb:
   for (benchmark::IterationCount i = 0; i < state.iterations(); ++i) benchmark::DoNotOptimize(pb::moreau_jean::solve(s, mj).pi1);
   const double mj_seconds = thread_seconds() - mj_started;
 
-  state.counters["time_per_step"] = per_step(steps);
+  state.counters["time_per_step"] = pb::bench::per_step(steps);
   state.counters["steps"] = static_cast<double>(steps);
   state.counters["impacts"] = static_cast<double>(impacts);
   state.counters["vs_moreau_jean"] = mj_seconds > 0.0 ? bullet_seconds / mj_seconds : 0.0;
 }
 
 void moreau_jean_solve(benchmark::State& state, pb::Scene scene) {
-  const pb::System s = fig4_system(scene);
+  const pb::System s = pb::bench::fig4_point(scene);
   pb::Settings settings;
   settings.steps = static_cast<int>(state.range(0));
   long steps = 0;
@@ -91,7 +72,7 @@ void moreau_jean_solve(benchmark::State& state, pb::Scene scene) {
     steps = r.steps;
     benchmark::DoNotOptimize(r.pi1);
   }
-  state.counters["time_per_step"] = per_step(steps);
+  state.counters["time_per_step"] = pb::bench::per_step(steps);
   state.counters["steps"] = static_cast<double>(steps);
 }
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "bench/fig4_family.hpp"
+#include "bench/support.hpp"
 #include "cases/system.hpp"
 #include "solvers/event_driven/event_driven.hpp"
 
@@ -41,7 +41,7 @@ BENCHMARK(BM_EventDrivenPairFig4)
 
 namespace {
 
-// The whole Fig. 4 pair family (bench/fig4_family.hpp): each point is timed on its own, and
+// The whole Fig. 4 pair family (bench/support.hpp): each point is timed on its own, and
 // the median and 90th percentile per point are reported (the target is a median <= 50 us).
 void BM_EventDrivenFig4FamilyPerPoint(benchmark::State& state) {
   const std::vector<pb::System> systems = pb::bench::fig4_family();

@@ -8,38 +8,17 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench/support.hpp"
 #include "cases/system.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
 #include "solvers/moreau_jean/stepper.hpp"
 
 namespace {
 
-// A Fig. 4 point (Pi3 = 0.5, Pi6 = 1, eps = 0.5, cosine, normal) with impacts in every
-// scene; row3 is the symmetric configuration of Fig. 7.
-pb::System fig4_system(pb::Scene scene) {
-  pb::Case c;
-  c.scene = scene;
-  c.pulse = pb::PulseShape::cosine;
-  c.pi2 = 1.0;
-  c.pi3 = 0.5;
-  c.pi5 = 0.5;
-  c.pi6 = 1.0;
-  c.pi7 = 0.5;
-  c.pi8 = 1.0;
-  c.eps = 0.5;
-  return pb::make_system(c);
-}
-
-// CPU seconds per step (the console prints it with an SI prefix: "7.5n" is 7.5 ns).
-benchmark::Counter per_step(long steps) {
-  return benchmark::Counter(static_cast<double>(steps),
-                            benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-}
-
 template <int NB, int NC>
 void step_loop(benchmark::State& state, pb::Scene scene) {
   namespace mj = pb::moreau_jean;
-  const pb::System s = fig4_system(scene);
+  const pb::System s = pb::bench::fig4_point(scene);
   const int n_per_period = static_cast<int>(state.range(0));
   const double h = s.step(n_per_period);
   const long steps = mj::step_count(s.t_end, h);
@@ -56,7 +35,7 @@ void step_loop(benchmark::State& state, pb::Scene scene) {
     benchmark::DoNotOptimize(ok);
     benchmark::DoNotOptimize(tally.u_max);
   }
-  state.counters["time_per_step"] = per_step(steps);
+  state.counters["time_per_step"] = pb::bench::per_step(steps);
   state.counters["steps"] = static_cast<double>(steps);
   state.counters["impacts"] = static_cast<double>(tally.impacts);
 }
@@ -68,7 +47,7 @@ BENCHMARK(BM_MoreauJeanStepLoopPair)->ArgName("N")->Arg(1024)->Unit(benchmark::k
 BENCHMARK(BM_MoreauJeanStepLoopRow3)->ArgName("N")->Arg(1024)->Unit(benchmark::kMicrosecond);
 
 void solve(benchmark::State& state, pb::Scene scene) {
-  const pb::System s = fig4_system(scene);
+  const pb::System s = pb::bench::fig4_point(scene);
   pb::Settings settings;
   settings.steps = static_cast<int>(state.range(0));
   long steps = 0;
@@ -77,7 +56,7 @@ void solve(benchmark::State& state, pb::Scene scene) {
     steps = r.steps;
     benchmark::DoNotOptimize(r.pi1);
   }
-  state.counters["time_per_step"] = per_step(steps);
+  state.counters["time_per_step"] = pb::bench::per_step(steps);
   state.counters["steps"] = static_cast<double>(steps);
 }
 

@@ -14,31 +14,12 @@
 #include <ctime>
 #include <string>
 
+#include "bench/support.hpp"
 #include "cases/system.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
 #include "solvers/ode/ode_solver.hpp"
 
 namespace {
-
-pb::System bench_system(pb::Scene scene) {
-  pb::Case c;
-  c.scene = scene;
-  c.pulse = pb::PulseShape::cosine;
-  c.pi2 = 1.0;
-  c.pi3 = 0.5;
-  c.pi5 = 0.5;
-  c.pi6 = 1.0;
-  c.pi7 = 0.5;
-  c.pi8 = 1.0;
-  c.eps = 0.5;
-  return pb::make_system(c);
-}
-
-// CPU seconds per step (the console prints it with an SI prefix: "1.2u" is 1.2 us).
-benchmark::Counter per_step(long steps) {
-  return benchmark::Counter(static_cast<double>(steps),
-                            benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-}
 
 // Thread CPU seconds, what the benchmark library divides rate counters by.
 double cpu_now() {
@@ -65,7 +46,7 @@ double baseline_seconds(const pb::System& s, int n) {
 }
 
 void BM_Ode(benchmark::State& state, const char* variant, pb::Scene scene) {
-  const pb::System s = bench_system(scene);
+  const pb::System s = pb::bench::fig4_point(scene);
   pb::Settings settings;
   settings.variant = variant;
   settings.steps = static_cast<int>(state.range(0));
@@ -75,7 +56,7 @@ void BM_Ode(benchmark::State& state, const char* variant, pb::Scene scene) {
     benchmark::DoNotOptimize(r.pi1);
   }
   if (r.status != pb::Status::ok) state.SkipWithError(r.message.c_str());
-  state.counters["time_per_step"] = per_step(r.steps);
+  state.counters["time_per_step"] = pb::bench::per_step(r.steps);
   state.counters["steps"] = static_cast<double>(r.steps);
   state.counters["impacts"] = static_cast<double>(r.impacts);
   // CPU time per run over the baseline's: an inverted rate of (baseline seconds) per run.
@@ -85,7 +66,7 @@ void BM_Ode(benchmark::State& state, const char* variant, pb::Scene scene) {
 }
 
 void BM_OdeBaselineMoreauJean(benchmark::State& state, pb::Scene scene) {
-  const pb::System s = bench_system(scene);
+  const pb::System s = pb::bench::fig4_point(scene);
   pb::Settings settings;
   settings.steps = static_cast<int>(state.range(0));
   long steps = 0;
@@ -94,7 +75,7 @@ void BM_OdeBaselineMoreauJean(benchmark::State& state, pb::Scene scene) {
     steps = r.steps;
     benchmark::DoNotOptimize(r.pi1);
   }
-  state.counters["time_per_step"] = per_step(steps);
+  state.counters["time_per_step"] = pb::bench::per_step(steps);
   state.counters["steps"] = static_cast<double>(steps);
 }
 

@@ -16,7 +16,7 @@
 
 #include <BulletDynamics/MLCPSolvers/btLemkeSolver.h>
 
-#include "tests/history_row.hpp"
+#include "tests/support.hpp"
 #include "cases/case_set.hpp"
 #include "cases/system.hpp"
 #include "solvers/bullet/bullet_solver.hpp"
@@ -38,19 +38,7 @@ std::vector<bullet::Config> variants_of(bool faithful) {
   return out;
 }
 
-Case make_case(Scene scene, PulseShape p, double pi2, double pi5, double eps) {
-  Case c;
-  c.scene = scene;
-  c.pulse = p;
-  c.pi2 = pi2;
-  c.pi3 = 0.5;
-  c.pi5 = pi5;
-  c.pi6 = 1.0;
-  c.pi7 = pi5;  // row3: the symmetric configuration of the paper
-  c.pi8 = 1.0;
-  c.eps = eps;
-  return c;
-}
+using test::make_case;
 
 Result run(const System& s, const bullet::Config& config, int n, bool history = false) {
   Settings st;

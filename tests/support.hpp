@@ -1,5 +1,6 @@
 #pragma once
-// Reading the time-steppers' History in tests: one row at a time, by column meaning.
+// What the solver tests share: the paper's standard pair/row3 case, and reading a
+// time-stepper's History one row at a time, by column meaning.
 
 #include <cstddef>
 
@@ -7,6 +8,21 @@
 #include "solvers/solver.hpp"
 
 namespace pb::test {
+
+// A Fig. 4 style case: Pi3 = 0.5, Pi6 = 1; row3 is the symmetric configuration of the paper.
+inline Case make_case(Scene scene, PulseShape p, double pi2, double pi5, double eps) {
+  Case c;
+  c.scene = scene;
+  c.pulse = p;
+  c.pi2 = pi2;
+  c.pi3 = 0.5;
+  c.pi5 = pi5;
+  c.pi6 = 1.0;
+  c.pi7 = pi5;
+  c.pi8 = 1.0;
+  c.eps = eps;
+  return c;
+}
 
 // Row r of a History: t, u[nb], v[nb], g[nc], lambda[nc] (solvers/solver.hpp).
 struct HistoryRow {
