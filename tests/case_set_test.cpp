@@ -58,8 +58,9 @@ std::string error_of(const std::string& text) {
 ::testing::AssertionResult fails_with(const std::string& text, int line, const std::string& field,
                                       const std::string& reason) {
   const std::string msg = error_of(text);
-  const std::string head =
-      std::string(kFile) + (line > 0 ? ":" + std::to_string(line) : "") + ": " + field + ": ";
+  std::string head(kFile);
+  if (line > 0) head.append(":").append(std::to_string(line));
+  head.append(": ").append(field).append(": ");
   if (msg.rfind(head, 0) != 0) return ::testing::AssertionFailure() << "expected \"" << head << "...\", got \"" << msg << "\"";
   if (msg.find(reason, head.size()) == std::string::npos)
     return ::testing::AssertionFailure() << "expected reason \"" << reason << "\", got \"" << msg << "\"";
