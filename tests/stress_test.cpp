@@ -29,7 +29,7 @@ struct SolverRun {
 };
 
 TEST(Stress, ReferenceAndMoreauJeanFinishEveryStressCase) {
-  for (const SolverRun run : {SolverRun{"event-driven", 0}, SolverRun{"moreau-jean", 16}, SolverRun{"moreau-jean", 64}}) {
+  for (const SolverRun run : {SolverRun{"event-driven", 0}, SolverRun{"moreau-jean", 16}}) {
     Settings st;
     st.steps = run.steps;
     for (const Case& c : stress_set().cases) {
