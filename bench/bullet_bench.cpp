@@ -63,17 +63,7 @@ void bullet_solve(benchmark::State& state, const pb::bullet::Config& config, pb:
 }
 
 void moreau_jean_solve(benchmark::State& state, pb::Scene scene) {
-  const pb::System s = pb::bench::fig4_point(scene);
-  pb::Settings settings;
-  settings.steps = static_cast<int>(state.range(0));
-  long steps = 0;
-  for (auto _ : state) {
-    const pb::Result r = pb::moreau_jean::solve(s, settings);
-    steps = r.steps;
-    benchmark::DoNotOptimize(r.pi1);
-  }
-  state.counters["time_per_step"] = pb::bench::per_step(steps);
-  state.counters["steps"] = static_cast<double>(steps);
+  pb::bench::time_solve(state, &pb::moreau_jean::solve, scene);
 }
 
 const bool registered = [] {

@@ -47,17 +47,7 @@ BENCHMARK(BM_MoreauJeanStepLoopPair)->ArgName("N")->Arg(1024)->Unit(benchmark::k
 BENCHMARK(BM_MoreauJeanStepLoopRow3)->ArgName("N")->Arg(1024)->Unit(benchmark::kMicrosecond);
 
 void solve(benchmark::State& state, pb::Scene scene) {
-  const pb::System s = pb::bench::fig4_point(scene);
-  pb::Settings settings;
-  settings.steps = static_cast<int>(state.range(0));
-  long steps = 0;
-  for (auto _ : state) {
-    const pb::Result r = pb::moreau_jean::solve(s, settings);
-    steps = r.steps;
-    benchmark::DoNotOptimize(r.pi1);
-  }
-  state.counters["time_per_step"] = pb::bench::per_step(steps);
-  state.counters["steps"] = static_cast<double>(steps);
+  pb::bench::time_solve(state, &pb::moreau_jean::solve, scene);
 }
 
 void BM_MoreauJeanSolvePair(benchmark::State& state) { solve(state, pb::Scene::pair); }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cases/system.hpp"
+#include "solvers/solver.hpp"
 
 namespace pb::bench {
 
@@ -30,6 +31,22 @@ inline System fig4_point(Scene scene) {
 inline benchmark::Counter per_step(long steps) {
   return benchmark::Counter(static_cast<double>(steps),
                             benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+// Times `solve` on fig4_point(scene) with N = state.range(0) steps per shortest period;
+// counters: time_per_step and steps per run.
+inline void time_solve(benchmark::State& state, SolveFn solve, Scene scene) {
+  const System s = fig4_point(scene);
+  Settings settings;
+  settings.steps = static_cast<int>(state.range(0));
+  long steps = 0;
+  for (auto _ : state) {
+    const Result r = solve(s, settings);
+    steps = r.steps;
+    benchmark::DoNotOptimize(r.pi1);
+  }
+  state.counters["time_per_step"] = per_step(steps);
+  state.counters["steps"] = static_cast<double>(steps);
 }
 
 // The Fig. 4 pair family: normal directivity, both pulses, the paper's eight Pi5, Pi6 = 1,
