@@ -18,18 +18,25 @@ namespace pb::app {
 namespace {
 
 // The paper's labels of the bodies, left to right (body 0 is the reported one).
-std::vector<std::string> body_labels(Scene scene) {
-  switch (scene) {
+// A chain's bodies are numbered from its left end.
+std::vector<std::string> body_labels(const Case& c) {
+  switch (c.scene) {
     case Scene::wall: return {"0"};
     case Scene::pair: return {"1", "0"};
     case Scene::row3: return {"1", "0", "2"};
+    case Scene::chain: {
+      std::vector<std::string> labels;
+      for (int i = 0; i < c.bodies; ++i) labels.push_back(std::to_string(i));
+      return labels;
+    }
   }
   return {};
 }
 
-void write_history(std::ostream& out, const History& h, Scene scene) {
-  const std::vector<std::string> bodies = body_labels(scene);
-  const int contacts = contact_count(scene);
+void write_history(std::ostream& out, const History& h, const Case& c) {
+  const Scene scene = c.scene;
+  const std::vector<std::string> bodies = body_labels(c);
+  const int contacts = contact_count(c);
   // A run that failed before its first sample leaves an empty history: header only.
   const bool empty = h.n_bodies == 0 && h.data.empty();
   if (!empty && (h.n_bodies != static_cast<int>(bodies.size()) || h.n_contacts != contacts))
@@ -153,7 +160,7 @@ int run_command(const CLI::App& command, RunFlags flags) {
 
   const Row row = run_point(chosen.input, chosen.point, solver, flags.solver_flags.settings);
   if (history)
-    write_atomically(flags.history, [&](std::ostream& out) { write_history(out, row.result.history, row.input.scene); });
+    write_atomically(flags.history, [&](std::ostream& out) { write_history(out, row.result.history, row.input); });
 
   if (flags.json)
     std::cout << row_json(row, chosen).dump() << '\n';

@@ -12,7 +12,9 @@ namespace pb {
 
 // Bodies left to right (+x to the right); body 0 is the one whose response is reported.
 //   wall: wall, 0        pair: 1, 0        row3: 1, 0, 2
-enum class Scene { wall, pair, row3 };
+//   chain: 0, 1, 2, ..., N-1 (Case::bodies = N); even-numbered bodies are like body 0,
+//          odd-numbered ones take Pi5 and Pi6 (Pi5 = Pi6 = 1: a uniform chain)
+enum class Scene { wall, pair, row3, chain };
 
 // Ground acceleration on 0 <= t <= T_p: s a_p sin(w_p t) or s a_p cos(w_p t); zero after.
 enum class PulseShape { sine, cosine };
@@ -27,12 +29,13 @@ std::optional<Scene> parse_scene(std::string_view s);
 std::optional<PulseShape> parse_pulse(std::string_view s);
 std::optional<Directivity> parse_directivity(std::string_view s);
 
-// Number of bodies (wall excluded) and of contacts of a scene.
-int body_count(Scene s);
-int contact_count(Scene s);
-// Whether Pi5/Pi6 (body 1) and Pi7/Pi8 (body 2) describe a body of the scene.
+// Whether Pi5/Pi6 (body 1, or the odd bodies of a chain) and Pi7/Pi8 (body 2) describe a
+// body of the scene.
 bool uses_body1(Scene s);
 bool uses_body2(Scene s);
+
+// The largest chain the case files accept.
+inline constexpr int kMaxChainBodies = 1000;
 
 struct Case {
   std::string family;  // name of the sweep it belongs to; a label only
@@ -46,6 +49,11 @@ struct Case {
   double pi6 = 1.0;  // m0 / m1
   double pi7 = 1.0;  // w0 / w2
   double pi8 = 1.0;  // m0 / m2
+  // chain only: the number of bodies N (>= 2), and the velocity of body 0 (the left end)
+  // at t = 0 towards +x, times w_p / a_p: a Newton's-cradle start. Every other scene,
+  // and every other body, starts at rest.
+  int bodies = 0;
+  double kick = 0.0;
   double xi = 0.05;  // damping ratio of every body
   double n_free = 3.0;  // free-vibration periods T_max simulated after the pulse
   // Physical scale of the pulse. Pi1 does not depend on it (self-similarity); it exists
@@ -53,6 +61,10 @@ struct Case {
   double a_p = 1.0;
   double w_p = 1.0;
 };
+
+// Number of bodies (wall excluded) and of contacts of the case's scene.
+int body_count(const Case& c);
+int contact_count(const Case& c);
 
 // Checks every value the case uses. Returns "field: reason" for the first bad one.
 std::optional<std::string> validate(const Case& c);

@@ -29,6 +29,10 @@ System make_system(const Case& c) {
       s.bodies = {make_body(m0 / c.pi6, w0 / c.pi5, c.xi), b0, make_body(m0 / c.pi8, w0 / c.pi7, c.xi)};
       s.ref = 1;
       break;
+    case Scene::chain:
+      for (int i = 0; i < c.bodies; ++i) s.bodies.push_back(i % 2 == 0 ? b0 : make_body(m0 / c.pi6, w0 / c.pi5, c.xi));
+      s.ref = 0;
+      break;
   }
   s.delta = c.pi3 * c.a_p / (c.w_p * c.w_p);
   s.eps = c.eps;
@@ -45,13 +49,41 @@ System make_system(const Case& c) {
   const double t_p = s.pulse.duration();
   s.t_end = t_p + c.n_free * two_pi / w_min;
   s.t_min = std::min(t_p, two_pi / w_max);
+  s.u_start.assign(s.bodies.size(), 0.0);
+  s.v_start.assign(s.bodies.size(), 0.0);
+  if (c.scene == Scene::chain) s.v_start[0] = c.kick * c.a_p / c.w_p;
   return s;
+}
+
+double Pulse::mean(double t0, double t1) const {
+  const double a = std::clamp(t0, 0.0, duration()), b = std::clamp(t1, 0.0, duration());
+  if (b <= a) return 0.0;
+  // Integral of sin(w t) over [a, b] is (cos wa - cos wb) / w = 2 sin(w (a + b) / 2) sin(w (b - a) / 2) / w;
+  // of cos(w t), 2 cos(w (a + b) / 2) sin(w (b - a) / 2) / w: no cancellation for short steps.
+  const double mid = 0.5 * w * (a + b), half = std::sin(0.5 * w * (b - a));
+  const double integral = 2.0 * half * (shape == PulseShape::sine ? std::sin(mid) : std::cos(mid)) / w;
+  return amplitude * integral / (t1 - t0);
+}
+
+double System::energy(const double* u, const double* v) const {
+  double e = 0.0;
+  for (std::size_t i = 0; i < bodies.size(); ++i) e += bodies[i].m * v[i] * v[i] + bodies[i].k * u[i] * u[i];
+  return 0.5 * e;
+}
+
+double System::energy_scale() const {
+  const double speed = a_p / pulse.w;
+  double m = 0.0;
+  for (const Body& b : bodies) m += b.m;
+  const bool at_rest = u_start.size() != bodies.size() || v_start.size() != bodies.size();
+  return (at_rest ? 0.0 : energy(u_start.data(), v_start.data())) + 0.5 * m * speed * speed;
 }
 
 Case case_of(const System& s) {
   Case c;
   const Body& b0 = s.bodies[static_cast<std::size_t>(s.ref)];
-  c.scene = s.wall ? Scene::wall : s.n_bodies() == 2 ? Scene::pair : Scene::row3;
+  // Only a chain has its reference body at the left end without a wall.
+  c.scene = s.wall ? Scene::wall : s.ref == 0 ? Scene::chain : s.n_bodies() == 2 ? Scene::pair : Scene::row3;
   c.pulse = s.pulse.shape;
   c.directivity = s.pulse.amplitude >= 0.0 ? Directivity::normal : Directivity::reverse;
   c.a_p = s.a_p;
@@ -60,12 +92,20 @@ Case case_of(const System& s) {
   c.pi3 = s.delta / s.length_scale();
   c.eps = s.eps;
   c.xi = s.xi;
-  if (!s.wall) {
+  if (c.scene == Scene::pair || c.scene == Scene::row3) {
     const Body& b1 = s.bodies[0];
     c.pi5 = b0.w / b1.w;
     c.pi6 = b0.m / b1.m;
   }
-  if (s.n_bodies() == 3) {
+  if (c.scene == Scene::chain) {
+    c.bodies = s.n_bodies();
+    c.kick = s.v_start.empty() ? 0.0 : s.v_start[0] * s.pulse.w / s.a_p;
+    if (s.n_bodies() > 1) {
+      c.pi5 = b0.w / s.bodies[1].w;
+      c.pi6 = b0.m / s.bodies[1].m;
+    }
+  }
+  if (c.scene == Scene::row3) {
     const Body& b2 = s.bodies[2];
     c.pi7 = b0.w / b2.w;
     c.pi8 = b0.m / b2.m;

@@ -5,7 +5,8 @@
 //   w0 = Pi2 w_p   delta = Pi3 a_p / w_p^2   eps = Pi4
 //   w1 = w0 / Pi5  m1 = m0 / Pi6             w2 = w0 / Pi7   m2 = m0 / Pi8    (m0 = 1)
 //
-// Coordinates are displacements relative to the ground. Bodies are stored left to right;
+// Coordinates are displacements relative to the ground; every body starts at rest except
+// body 0 of a chain, which moves at kick a_p / w_p (u_start, v_start hold the start). Bodies are stored left to right;
 // contact j joins bodies left(j) and right(j) (left(j) == kWall for the wall, which moves
 // with the ground), and its gap is g_j = delta + u[right(j)] - u[left(j)].
 // Equation of motion: M u'' + C u' + K u = -M 1 a_g(t) + W lambda, lambda >= 0 on g = 0.
@@ -36,6 +37,9 @@ struct Pulse {
     if (t < 0.0 || t > duration()) return 0.0;
     return shape == PulseShape::sine ? amplitude * std::sin(w * t) : amplitude * std::cos(w * t);
   }
+  // The exact mean of a_g over [t0, t1] (t0 < t1): the ground's impulse per unit mass over
+  // a step, divided by the step.
+  double mean(double t0, double t1) const;
 };
 
 inline constexpr int kWall = -1;
@@ -51,6 +55,7 @@ struct System {
   Pulse pulse;
   double t_end = 0.0;  // T_p + n_free T_max
   double t_min = 0.0;  // min(T_p, shortest natural period): fixed steps are t_min / N
+  std::vector<double> u_start, v_start;  // state at t = 0, one value per body
 
   int n_bodies() const { return static_cast<int>(bodies.size()); }
   int n_contacts() const { return n_bodies() - 1 + (wall ? 1 : 0); }
@@ -61,6 +66,12 @@ struct System {
   double pi1(double u_max) const { return u_max / length_scale(); }
   // Fixed step of a time-stepper with N steps per shortest period.
   double step(int n) const { return t_min / n; }
+  // Mechanical energy in the ground's frame: kinetic plus spring energy. The wall moves
+  // with the ground, so contacts do no work in this frame except at impacts.
+  double energy(const double* u, const double* v) const;
+  // What energy excesses are measured against: the start's energy plus the kinetic
+  // energy of every body moving at a_p / w_p (the velocity scale of the pulse).
+  double energy_scale() const;
 };
 
 // The Case must be valid (validate() returns nothing).

@@ -1,4 +1,5 @@
 #include <array>
+#include <cmath>
 
 #include "solvers/event_driven/event_driven.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
@@ -22,6 +23,13 @@ std::string_view name(Status s) {
     case Status::failed: return "failed";
   }
   return "?";
+}
+
+std::string check_step(const Settings& settings, int default_steps) {
+  if (settings.steps < 0) return "steps: must be >= 1 (0: the default " + std::to_string(default_steps) + ")";
+  if (!(settings.wh >= 0.0) || !std::isfinite(settings.wh)) return "wh: must be finite and > 0 (0: use steps)";
+  if (settings.wh > 0.0 && settings.steps > 0) return "wh: give steps or wh, not both";
+  return {};
 }
 
 namespace {

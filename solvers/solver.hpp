@@ -30,6 +30,7 @@ std::string_view name(Status s);
 struct Settings {
   std::string variant;   // solver-specific variant; empty = the solver's default
   int steps = 0;         // time-steppers: steps per shortest period N (h = t_min / N); 0 = default
+  double wh = 0;         // time-steppers: the step as w_max h (w_max = 2 pi / t_min); > 0 replaces steps
   double theta = 0.5;    // Moreau-Jean theta
   double gamma = 0.5;    // Moreau-Jean activation look-ahead
   double tol_scale = 1;  // event-driven: multiplies every internal tolerance
@@ -58,9 +59,34 @@ struct Result {
   long impacts = 0;         // contact closures with an approach velocity (per contact)
   long contact_phases = 0;  // entries into persistent contact (per contact)
   long steps = 0;           // time steps, or events for an event-driven solver
+  double step = std::numeric_limits<double>::quiet_NaN();  // a time-stepper's fixed h
   double min_gap = std::numeric_limits<double>::infinity();  // most negative gap (penetration)
+  // Energy balance: the largest value over the run of E + D - E0 - W, over
+  // System::energy_scale(), where E is the mechanical energy, D what the dampers
+  // dissipated and W the work of the ground load since t = 0. Exact dynamics keep it <= 0
+  // (impacts only lose energy); above round-off, the solver made energy. NaN: not measured.
+  double energy_excess = std::numeric_limits<double>::quiet_NaN();
+  // Measured restitution -g'+ / g'- over the isolated impacts: one contact alone, its first
+  // step (or event) with an impulse, approaching faster than kRestitutionFloor a_p / w_p.
+  long isolated_impacts = 0;
+  double restitution_low = std::numeric_limits<double>::quiet_NaN();
+  double restitution_high = std::numeric_limits<double>::quiet_NaN();
   History history;
 };
+
+// Slower approaches are not counted as isolated impacts: there a step's smooth forces
+// change the relative velocity as much as the impact does.
+inline constexpr double kRestitutionFloor = 1e-3;
+
+// The fixed step of a time-stepper: w_max h = settings.wh if given, else t_min / N with
+// N = settings.steps or the solver's default.
+inline double time_step(const System& s, const Settings& settings, int default_steps) {
+  if (settings.wh > 0.0) return settings.wh * s.t_min / (2.0 * std::numbers::pi);
+  return s.step(settings.steps > 0 ? settings.steps : default_steps);
+}
+
+// Checks Settings::steps and Settings::wh for a time-stepper; "" when they are fine.
+std::string check_step(const Settings& settings, int default_steps);
 
 using SolveFn = Result (*)(const System&, const Settings&);
 

@@ -1,5 +1,6 @@
 #include "sweep/row.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -8,6 +9,11 @@
 namespace pb {
 
 double min_gap_ratio(const Row& row) { return row.result.min_gap / row.length_scale; }
+
+double penetration(const Row& row) {
+  const double depth = std::max(0.0, -row.result.min_gap);
+  return depth / (row.input.pi3 > 0.0 ? row.input.pi3 * row.length_scale : row.length_scale);
+}
 
 std::string format_number(double x) {
   if (std::isnan(x)) return {};
@@ -36,7 +42,8 @@ constexpr std::array kColumns = {
     "eps",    "pi5",    "pi6",      "pi7",    "pi8",            "xi",      "n_free",
     "a_p",    "w_p",    "solver",   "variant", "settings",      "status",  "pi1",
     "pi1_no_contact",   "impacts",  "contact_phases", "steps",  "min_gap", "seconds",
-    "cpu_seconds", "message"};
+    "cpu_seconds", "message", "bodies", "kick", "wh", "energy_excess", "penetration",
+    "isolated_impacts", "restitution_low", "restitution_high"};
 
 // Written as an empty field: a body the scene does not have, a gap that never closed.
 constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
@@ -98,6 +105,18 @@ std::string csv_line(const Row& row) {
   line.number(row.seconds);
   line.number(row.cpu_seconds);
   line.text(r.message);
+  const bool chain = c.scene == Scene::chain;
+  if (chain)
+    line.count(c.bodies);
+  else
+    line.text("");
+  line.number(chain ? c.kick : kMissing);
+  line.number(row.wh);
+  line.number(r.energy_excess);
+  line.number(penetration(row));
+  line.count(r.isolated_impacts);
+  line.number(r.restitution_low);
+  line.number(r.restitution_high);
   return line.take();
 }
 

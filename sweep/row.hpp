@@ -6,10 +6,13 @@
 // Columns (csv_header()):
 //   family, point, scene, pulse, directivity, pi2, pi3, eps, pi5, pi6, pi7, pi8, xi,
 //   n_free, a_p, w_p, solver, variant, settings, status, pi1, pi1_no_contact, impacts,
-//   contact_phases, steps, min_gap, seconds, message
-// pi5/pi6 are empty for the wall scene and pi7/pi8 for every scene but row3; min_gap is
-// divided by the pulse's length scale a_p / w_p^2 and empty when no contact ever closed
-// (infinite); a NaN is written as an empty field.
+//   contact_phases, steps, min_gap, seconds, cpu_seconds, message, bodies, kick, wh,
+//   energy_excess, penetration, isolated_impacts, restitution_low, restitution_high
+// pi5/pi6 are empty for the wall scene and pi7/pi8 for every scene but row3; bodies and
+// kick are empty except for chain; min_gap is divided by the pulse's length scale
+// a_p / w_p^2 and empty when no contact ever closed (infinite); a NaN is written as an
+// empty field. The columns after message came later; they are appended so that scripts
+// reading columns by position keep working.
 
 #include <cstddef>
 #include <limits>
@@ -32,12 +35,16 @@ struct Row {
   Result result;
   double pi1_no_contact = std::numeric_limits<double>::quiet_NaN();
   double length_scale = std::numeric_limits<double>::quiet_NaN();  // System::length_scale()
+  double wh = std::numeric_limits<double>::quiet_NaN();  // w_max h of a time-stepper's step
   double seconds = 0.0;      // wall time of the solve alone
   double cpu_seconds = 0.0;  // CPU time of the solve alone, on its thread (robust to load)
 };
 
 // Result::min_gap over the length scale: dimensionless like Pi3 (infinite if no contact).
 double min_gap_ratio(const Row& row);
+
+// The deepest penetration over delta, or over a_p / w_p^2 when delta = 0 (0 if none).
+double penetration(const Row& row);
 
 // Shortest decimal text that reads back (strtod) to exactly x; NaN gives "".
 std::string format_number(double x);

@@ -80,6 +80,8 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
     row.result.message = describe_exception(std::current_exception());
   }
 
+  row.wh = 2.0 * std::numbers::pi * row.result.step / system.t_min;
+
   try {
     row.pi1_no_contact = event_driven::no_contact_pi1(system);
   } catch (...) {
