@@ -36,6 +36,7 @@ struct Settings {
   double tol_scale = 1;  // event-driven: multiplies every internal tolerance
   long step_cap = 0;     // 0 = the solver's own cap
   double time_limit = 0;  // seconds of wall time per run; 0 = none
+  bool monitor = true;   // time-steppers: measure the energy balance and restitution (StepMonitor)
   int history_samples = 0;  // > 0: record the state at this many equally spaced times
                             // (event-driven) or at every step (time-steppers)
 };
