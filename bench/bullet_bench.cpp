@@ -9,8 +9,16 @@
 // Counters: time_per_step (CPU seconds per step), steps, impacts, and on BM_Bullet
 // vs_moreau_jean: the CPU time of these Bullet runs over the CPU time of as many
 // moreau-jean runs of the same case, timed right after them in the same process (so the
-// ratio is read from one run even on a loaded machine). Use --benchmark_repetitions=9 and
-// read the medians.
+// ratio is read from one run even on a loaded machine).
+//
+//   BM_BulletChain/bodies:<n>         the default variant on a chain of n = 2 .. 100
+//                                     bodies, alternating (odd bodies Pi5 = 0.5, Pi6 = 1)
+//                                     with a gap (Pi3 = 0.5) under the cosine pulse
+//                                     (Pi2 = 1, eps = 0.5), N = 64: cost per step against n
+//                                     (counters time_per_step, time_per_body_step, steps,
+//                                     impacts)
+//
+// Use --benchmark_repetitions=9 and read the medians.
 
 #ifdef POUNDBENCH_HAVE_BULLET
 
@@ -61,6 +69,35 @@ void bullet_solve(benchmark::State& state, const pb::bullet::Config& config, pb:
   state.counters["impacts"] = static_cast<double>(impacts);
   state.counters["vs_moreau_jean"] = mj_seconds > 0.0 ? bullet_seconds / mj_seconds : 0.0;
 }
+
+pb::System chain_point(int bodies) {
+  pb::Case c;
+  c.scene = pb::Scene::chain;
+  c.bodies = bodies;
+  c.pulse = pb::PulseShape::cosine;
+  c.pi2 = 1.0;
+  c.pi3 = 0.5;
+  c.pi5 = 0.5;
+  c.pi6 = 1.0;
+  c.eps = 0.5;
+  return pb::make_system(c);
+}
+
+void BM_BulletChain(benchmark::State& state) {
+  const int bodies = static_cast<int>(state.range(0));
+  const pb::System s = chain_point(bodies);
+  pb::Result r;
+  for (auto _ : state) {
+    r = pb::bullet::solve(s, pb::Settings{});
+    benchmark::DoNotOptimize(r.pi1);
+  }
+  if (r.status != pb::Status::ok) state.SkipWithError(r.message.c_str());
+  state.counters["time_per_step"] = pb::bench::per_step(r.steps);
+  state.counters["time_per_body_step"] = pb::bench::per_step(r.steps * bodies);
+  state.counters["steps"] = static_cast<double>(r.steps);
+  state.counters["impacts"] = static_cast<double>(r.impacts);
+}
+BENCHMARK(BM_BulletChain)->ArgName("bodies")->Arg(2)->Arg(5)->Arg(10)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMillisecond);
 
 void moreau_jean_solve(benchmark::State& state, pb::Scene scene) {
   pb::bench::time_solve(state, &pb::moreau_jean::solve, scene);

@@ -7,6 +7,11 @@
 // right after the timed loop so that both see the same machine load (the library prints
 // it with an "s" because it is an inverted rate; read it as a plain ratio).
 // BM_OdeBaselineMoreauJean times the baseline on its own as well.
+//
+// BM_OdeChain/bodies:<n>: the default variant on a chain of n = 2 .. 100 bodies,
+// alternating (odd bodies Pi5 = 0.5, Pi6 = 1) with a gap (Pi3 = 0.5) under the cosine
+// pulse (Pi2 = 1, eps = 0.5), N = 64: the cost per step against n (counters
+// time_per_step, time_per_body_step, steps, impacts).
 // Run with --benchmark_repetitions=9 (or more) and read the medians.
 
 #include <benchmark/benchmark.h>
@@ -65,6 +70,34 @@ void BM_Ode(benchmark::State& state, const char* variant, pb::Scene scene) {
                          benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
+pb::System chain_point(int bodies) {
+  pb::Case c;
+  c.scene = pb::Scene::chain;
+  c.bodies = bodies;
+  c.pulse = pb::PulseShape::cosine;
+  c.pi2 = 1.0;
+  c.pi3 = 0.5;
+  c.pi5 = 0.5;
+  c.pi6 = 1.0;
+  c.eps = 0.5;
+  return pb::make_system(c);
+}
+
+void BM_OdeChain(benchmark::State& state) {
+  const int bodies = static_cast<int>(state.range(0));
+  const pb::System s = chain_point(bodies);
+  pb::Result r;
+  for (auto _ : state) {
+    r = pb::ode::solve(s, pb::Settings{});
+    benchmark::DoNotOptimize(r.pi1);
+  }
+  if (r.status != pb::Status::ok) state.SkipWithError(r.message.c_str());
+  state.counters["time_per_step"] = pb::bench::per_step(r.steps);
+  state.counters["time_per_body_step"] = pb::bench::per_step(r.steps * bodies);
+  state.counters["steps"] = static_cast<double>(r.steps);
+  state.counters["impacts"] = static_cast<double>(r.impacts);
+}
+
 void BM_OdeBaselineMoreauJean(benchmark::State& state, pb::Scene scene) {
   pb::bench::time_solve(state, &pb::moreau_jean::solve, scene);
 }
@@ -87,5 +120,7 @@ PB_ODE_BENCH(BM_Ode, quickstep_default_row3, "quickstep-default", pb::Scene::row
 PB_ODE_BENCH(BM_OdeBaselineMoreauJean, wall, pb::Scene::wall);
 PB_ODE_BENCH(BM_OdeBaselineMoreauJean, pair, pb::Scene::pair);
 PB_ODE_BENCH(BM_OdeBaselineMoreauJean, row3, pb::Scene::row3);
+
+BENCHMARK(BM_OdeChain)->ArgName("bodies")->Arg(2)->Arg(5)->Arg(10)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMillisecond);
 
 }  // namespace

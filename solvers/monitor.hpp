@@ -10,7 +10,11 @@
 // per unit time.
 //
 // Holds its buffers from construction on: observing a step allocates nothing.
+//
+// Also here, for the same step loops: kDivergedEnergy, the divergence test on the energy,
+// and Deadline, Settings::time_limit checked at a rate that follows the cost of a step.
 
+#include <chrono>
 #include <vector>
 
 #include "cases/system.hpp"
@@ -18,8 +22,16 @@
 
 namespace pb {
 
+// A time-stepper's run has diverged once its mechanical energy passes this many times
+// System::energy_scale(). Exact dynamics stay within a few tens of it (the pulse's work,
+// and resonance, on top of the start), so nothing short of a runaway gets there, while a
+// displacement bound alone lets a stiff body's energy grow by ten or more orders of
+// magnitude before it trips (a body 100 times stiffer moves 1e4 times less).
+inline constexpr double kDivergedEnergy = 1e6;
+
 class StepMonitor {
  public:
+  // Starts from System::u_start, v_start (empty: rest).
   explicit StepMonitor(const System& s);
 
   // One step of length h under the step-mean ground acceleration abar: the state at its
@@ -42,6 +54,23 @@ class StepMonitor {
   double floor_ = 0.0;  // kRestitutionFloor a_p / w_p
   long isolated_ = 0;
   double e_low_, e_high_;
+};
+
+// Settings::time_limit in a step loop. The clock is read about once per millisecond of
+// steps, whatever a step costs: a fixed stride would overshoot by seconds where a step
+// takes tens of milliseconds (a 100-body chain through an MLCP), or read the clock more
+// often than it steps where a step takes 100 ns.
+class Deadline {
+ public:
+  explicit Deadline(double seconds);  // 0: no limit
+
+  // After step k (k >= 1): true once the limit has passed.
+  bool passed(long k);
+
+ private:
+  double limit_;
+  std::chrono::steady_clock::time_point start_;
+  long next_ = 1;  // the step after which the clock is read next
 };
 
 }  // namespace pb

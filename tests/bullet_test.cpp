@@ -6,8 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <sstream>
+#include <numbers>
 #include <string>
 #include <thread>
 #include <vector>
@@ -21,6 +26,7 @@
 #include "cases/system.hpp"
 #include "solvers/bullet/bullet_solver.hpp"
 #include "solvers/event_driven/event_driven.hpp"
+#include "sweep/sweep.hpp"
 
 namespace pb {
 namespace {
@@ -39,6 +45,14 @@ std::vector<bullet::Config> variants_of(bool faithful) {
 }
 
 using test::make_case;
+
+// A measured number for RecordProperty, in scientific notation (std::to_string would
+// print 1e-13 as 0.000000).
+std::string sci(double x) {
+  std::ostringstream out;
+  out << std::scientific << std::setprecision(2) << x;
+  return out.str();
+}
 
 Result run(const System& s, const bullet::Config& config, int n, bool history = false) {
   Settings st;
@@ -65,12 +79,13 @@ System free_body_at_wall(double m, double delta, double eps, double steps_total,
   return s;
 }
 
-Result run_from(const System& s, const bullet::Config& config, int n, std::vector<double> u, std::vector<double> v) {
+Result run_from(System s, const bullet::Config& config, int n, std::vector<double> u, std::vector<double> v) {
   Settings st;
   st.steps = n;
   st.history_samples = 1;
-  const bullet::InitialState start{std::move(u), std::move(v)};
-  return bullet::solve_with(s, st, config, &start);
+  s.u_start = std::move(u);
+  s.v_start = std::move(v);
+  return bullet::solve_with(s, st, config);
 }
 
 // Least-squares slope of log(err) against log(h), h quartering along errs.
@@ -119,6 +134,13 @@ TEST(Bullet, DescribeNamesEverySettingThatShapesAnImpact) {
             "variant=mlcp-lemke-default;steps=256;solver=mlcp-lemke;iterations=10;erp2=0.2;split_impulse=1;"
             "split_threshold=-0.04;restitution_threshold=0.2;warmstart=0.85;restitution=product;contact=overlap;"
             "precision=single");
+  // A step given as w_max h replaces steps; check() refuses both at once.
+  st.steps = 0;
+  st.wh = 2.5;
+  EXPECT_EQ(bullet::check(st), "");
+  EXPECT_EQ(bullet::describe(st).rfind("variant=mlcp-lemke-default;wh=2.5;solver=", 0), 0u) << bullet::describe(st);
+  st.steps = 64;
+  EXPECT_EQ(bullet::check(st).rfind("wh:", 0), 0u);
 }
 
 // ---------------------------------------------------------------- faithful: the impact
@@ -544,6 +566,194 @@ TEST(Bullet, TwoThreadsGiveTheSerialResultsBitForBit) {
   a.join();
   b.join();
   for (std::size_t i = 0; i < jobs.size(); ++i) EXPECT_EQ(parallel[i], serial[i]) << jobs[i].second.name;
+}
+
+// ---------------------------------------------------------------- large steps
+
+// Springs and dashpots enter as forces of the step's start (symplectic Euler): stable only
+// for w h below ~1.9 (xi = 0.05). A pair whose body 1 is 100 times stiffer than the pulse
+// (Pi5 = 0.01) at w_max h = 10 and 100 grows by ~100 and ~1e4 per step.
+TEST(Bullet, LargeStepsDivergeWithAStatusAMessageAndFiniteCounts) {
+  const System s = make_system(make_case(Scene::pair, PulseShape::sine, 1.0, 0.01, 0.5));
+  for (const bullet::Config& config : bullet::variants()) {
+    for (double wh : {10.0, 100.0}) {
+      Settings st;
+      st.wh = wh;
+      const Result r = bullet::solve_with(s, st, config);
+      EXPECT_TRUE(r.status == Status::diverged || r.status == Status::nan) << config.name << " wh=" << wh;
+      EXPECT_NE(r.message.find("w_max h"), std::string::npos) << r.message;
+      EXPECT_DOUBLE_EQ(r.step, wh * s.t_min / (2.0 * std::numbers::pi));
+      EXPECT_GE(r.steps, 1);
+      EXPECT_LT(static_cast<double>(r.steps), s.t_end / r.step);
+      EXPECT_TRUE(std::isfinite(r.energy_excess)) << config.name << " wh=" << wh;
+      EXPECT_GT(r.energy_excess, 1e3) << "a runaway makes energy";
+      EXPECT_TRUE(std::isnan(r.pi1));
+    }
+    Settings st;
+    st.wh = 0.5;
+    const Result ok = bullet::solve_with(s, st, config);
+    EXPECT_EQ(ok.status, Status::ok) << config.name << ": " << ok.message;
+    EXPECT_DOUBLE_EQ(ok.step, 0.5 * s.t_min / (2.0 * std::numbers::pi));
+  }
+}
+
+// A diverging run is one row of a sweep like the others. At wh = 10 the step is 1.6 T_p
+// wherever the pulse is the shortest period: bodies with Pi2 = 0.1, 0.15 step at
+// w h = 1, 1.5 and stay stable, while the stiff pair's body 1 runs away.
+TEST(Bullet, SweepRecordsADivergingRowAndFinishesTheOthers) {
+  std::vector<Case> cases;
+  for (double pi2 : {0.1, 0.15}) cases.push_back(make_case(Scene::pair, PulseShape::cosine, pi2, 1.0, 0.5));
+  cases.push_back(make_case(Scene::pair, PulseShape::sine, 1.0, 0.01, 0.5));
+  for (double pi2 : {0.1, 0.15}) cases.push_back(make_case(Scene::wall, PulseShape::cosine, pi2, 1.0, 0.5));
+  const SolverInfo* solver = find_solver("bullet");
+  ASSERT_NE(solver, nullptr);
+  Settings st;
+  st.wh = 10.0;
+  SweepOptions options;
+  options.threads = 2;
+  const std::vector<pb::Row> rows = run_sweep(cases, *solver, st, options);
+  ASSERT_EQ(rows.size(), cases.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i].point, i);
+    EXPECT_NE(rows[i].settings.find("wh=10"), std::string::npos) << rows[i].settings;
+    if (i == 2) {
+      EXPECT_TRUE(rows[i].result.status == Status::diverged || rows[i].result.status == Status::nan);
+      EXPECT_FALSE(rows[i].result.message.empty());
+    } else {
+      EXPECT_EQ(rows[i].result.status, Status::ok) << i << ": " << rows[i].result.message;
+      EXPECT_TRUE(std::isfinite(rows[i].result.pi1));
+    }
+  }
+}
+
+// The clock is read about once a millisecond of steps whatever a step costs, so the limit
+// holds on a 100-body chain as on a pair.
+TEST(Bullet, TimeLimitStopsAHundredBodyChainSoon) {
+  Case c = make_case(Scene::chain, PulseShape::cosine, 1.0, 0.5, 0.5);
+  c.bodies = 100;
+  c.n_free = 1e4;  // ~1e6 steps: minutes without the limit
+  Settings st;
+  st.time_limit = 0.05;
+  const auto start = std::chrono::steady_clock::now();
+  const Result r = bullet::solve(make_system(c), st);
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.status, Status::timeout) << r.message;
+  EXPECT_GT(r.steps, 0);
+  // Measured 0.05 s; the margin is for a loaded machine and the sanitizer build.
+  EXPECT_LT(elapsed, 0.5);
+}
+
+// ---------------------------------------------------------------- the chain
+
+// Newton's cradle start of a uniform chain of n bodies: touching (Pi3 = 0), eps = 1, body 0
+// kicked at 100 a_p / w_p, no damping and a sine pulse (zero at t = 0), so that the first
+// step carries no force but the contacts'; t_end is one step of N = 64.
+System cradle(int n) {
+  Case c = make_case(Scene::chain, PulseShape::sine, 1.0, 1.0, 1.0);
+  c.bodies = n;
+  c.pi3 = 0.0;
+  c.kick = 100.0;
+  c.xi = 0.0;
+  System s = make_system(c);
+  s.t_end = s.step(64);
+  return s;
+}
+
+// Newton's law on every contact at once with eps = 1 (the LCP of the first step): body 0
+// leaves at (2 - n) / n v0, the others, locked together, at 2 / n v0. Returns the largest
+// deviation from it over v0, and checks momentum.
+double cradle_error(int n, std::string_view name) {
+  const System s = cradle(n);
+  Settings st;
+  st.history_samples = 1;
+  const Result r = bullet::solve_with(s, st, variant(name));
+  EXPECT_EQ(r.status, Status::ok) << r.message;
+  EXPECT_EQ(r.history.rows(), 2u);
+  if (r.history.rows() < 2) return 1.0;
+  const Row after{r.history, 1};
+  const double v0 = s.v_start[0];
+  double error = 0.0, momentum = 0.0;
+  for (int i = 0; i < n; ++i) {
+    error = std::max(error, std::abs(after.v(i) / v0 - (i == 0 ? (2.0 - n) / n : 2.0 / n)));
+    momentum += after.v(i) / v0;
+  }
+  // Equal and opposite impulses whatever the solver's convergence; float sums of n terms.
+  EXPECT_NEAR(momentum, 1.0, 1e-5) << name << " n=" << n;
+  return error;
+}
+
+// The MLCP solvers solve the 99 manifolds of a 100-body cradle as one LCP: Newton's law
+// on every contact to single precision.
+TEST(BulletFaithful, MlcpSolvesNewtonsLawOnEveryContactOfACradleAtOnce) {
+  // Measured 5e-8 (n = 3) and 2.0e-6 (n = 100): float round-off of the pivoting.
+  EXPECT_LT(cradle_error(3, "mlcp-dantzig-faithful"), 1e-6);
+  EXPECT_LT(cradle_error(100, "mlcp-dantzig-faithful"), 1e-5);
+  EXPECT_LT(cradle_error(3, "mlcp-lemke-faithful"), 1e-6);
+}
+
+// Sequential impulse is Gauss-Seidel on the contact impulses: it reaches the cradle's
+// Newton outcome where its sweeps suffice. 3 bodies: to float round-off with 100 sweeps
+// and within 1.3e-6 with Bullet's 10 (the error shrinks 4 times per sweep); 10 bodies:
+// 1.8e-5 off with 100 sweeps, and 15% with 10, where body 0 leaves at -0.648 v0 instead
+// of -0.8 and the far end at 0.103 v0 instead of 0.2.
+TEST(BulletFaithful, SequentialImpulseReachesTheCradleOutcomeOnlyWithinItsSweeps) {
+  EXPECT_LT(cradle_error(3, "si-faithful"), 1e-6);
+  const double short_default = cradle_error(3, "si-default");
+  EXPECT_GT(short_default, 1e-7);
+  EXPECT_LT(short_default, 1e-5);
+  const double faithful = cradle_error(10, "si-faithful"), fallback = cradle_error(10, "si-default");
+  RecordProperty("si_faithful_n10", sci(faithful));
+  RecordProperty("si_default_n10", sci(fallback));
+  EXPECT_GT(faithful, 1e-6);
+  EXPECT_LT(faithful, 1e-3);
+  EXPECT_GT(fallback, 0.1);
+  EXPECT_LT(fallback, 0.3);
+}
+
+// ---------------------------------------------------------------- stress metrics
+
+// The StepMonitor on the faithful variants at N = 64 over wall, pair, row3 and a 6-body
+// chain: isolated impacts leave at eps times their approach speed to single precision,
+// and the energy excess is the scheme's first-order error (loads sampled at the step
+// start against the exact work of the step-mean pulse).
+TEST(BulletFaithful, MonitorMeasuresRestitutionEpsToSinglePrecisionAndAFirstOrderEnergyExcess) {
+  std::vector<System> systems;
+  for (Scene scene : {Scene::wall, Scene::pair, Scene::row3, Scene::chain})
+    for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
+      Case c = make_case(scene, p, 0.5, 0.5, 0.5);
+      c.bodies = scene == Scene::chain ? 6 : 0;
+      systems.push_back(make_system(c));
+    }
+  for (std::string_view name : {"si-faithful", "mlcp-dantzig-faithful"}) {
+    const bullet::Config config = variant(name);
+    long isolated = 0;
+    double worst_e = 0.0, worst_excess = 0.0, least_drop = std::numeric_limits<double>::infinity();
+    for (const System& s : systems) {
+      const Result r = run(s, config, 64);
+      ASSERT_EQ(r.status, Status::ok) << r.message;
+      isolated += r.isolated_impacts;
+      if (r.isolated_impacts > 0)
+        worst_e = std::max({worst_e, std::abs(r.restitution_low - 0.5), std::abs(r.restitution_high - 0.5)});
+      EXPECT_GE(r.energy_excess, 0.0);
+      worst_excess = std::max(worst_excess, r.energy_excess);
+      if (name == "si-faithful" && r.energy_excess > 1e-3)
+        least_drop = std::min(least_drop, r.energy_excess / run(s, config, 1024).energy_excess);
+    }
+    RecordProperty(std::string(name) + "_isolated", std::to_string(isolated));
+    RecordProperty(std::string(name) + "_restitution_error", sci(worst_e));
+    RecordProperty(std::string(name) + "_excess_N64", sci(worst_excess));
+    // Measured 110 isolated impacts, |e - eps| <= 1.2e-6: float velocities of order a_p / w_p
+    // (relative round-off 6e-8) against approach speeds down to a few percent of that.
+    EXPECT_GT(isolated, 40);
+    EXPECT_LT(worst_e, 1e-5) << name;
+    EXPECT_GT(worst_e, 0.0) << "single precision shows";
+    // Measured 0.59 of the energy scale, as ODE's (the same scheme).
+    EXPECT_LT(worst_excess, 0.7) << name;
+    if (name == "si-faithful") {
+      // 16 times smaller steps: measured at least 15 times less excess on every case.
+      EXPECT_GT(least_drop, 10.0);
+    }
+  }
 }
 
 }  // namespace

@@ -1,21 +1,28 @@
 #include "solvers/bullet/bullet_solver.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "solvers/bullet/engine.hpp"
+#include "solvers/monitor.hpp"
 
 namespace pb::bullet {
 
 namespace {
 
-// Steps between two looks at the wall clock.
-constexpr long kClockEvery = 4096;
-
-int steps_per_period(const Settings& s) { return s.steps == 0 ? kDefaultSteps : s.steps; }
+// "steps=N" or "wh=X": what fixed the step (solvers/solver.hpp, time_step).
+std::string step_setting(const Settings& s) {
+  std::ostringstream out;
+  if (s.wh > 0.0)
+    out << "wh=" << s.wh;
+  else
+    out << "steps=" << (s.steps == 0 ? kDefaultSteps : s.steps);
+  return out.str();
+}
 
 // Fixed h, and the first step count whose end reaches t_end (to within 1e-9 of a step, so
 // that t_end = n h up to round-off does not add a step): the same count as moreau-jean.
@@ -50,20 +57,36 @@ void record(const System& s, const World& w, double t, double h, bool with_impul
   for (int j = 0; j < s.n_contacts(); ++j) out.push_back(with_impulse ? w.impulse(j) / h : 0.0);
 }
 
-// Status of the state after a step: ok, or why the run stops.
-Status check_state(const System& s, const World& w, double bound) {
-  for (int i = 0; i < s.n_bodies(); ++i) {
-    const double u = w.u(i), v = w.v(i);
-    if (!std::isfinite(u) || !std::isfinite(v)) return Status::nan;
-    if (std::abs(u) > bound) return Status::diverged;
+// Reads the state after a step into u, v (double: what the monitor takes); false if it is
+// not finite.
+bool read_state(const World& w, std::vector<double>& u, std::vector<double>& v) {
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    u[i] = w.u(static_cast<int>(i));
+    v[i] = w.v(static_cast<int>(i));
+    if (!std::isfinite(u[i]) || !std::isfinite(v[i])) return false;
   }
-  return Status::ok;
+  return true;
 }
 
-Result run(const System& sys, const Settings& set, const Config& config, const InitialState* start) {
+// Why a finite state counts as diverged, or nullptr.
+const char* runaway(const System& s, const std::vector<double>& u, const std::vector<double>& v, double bound,
+                    double energy_bound) {
+  for (double x : u)
+    if (std::abs(x) > bound) return "|u| above 1e6 a_p/w_p^2";
+  if (!(s.energy(u.data(), v.data()) <= energy_bound)) return "energy above 1e6 times its scale";
+  return nullptr;
+}
+
+Result run(const System& sys, const Settings& set, const Config& config) {
   Result res;
   const int nb = sys.n_bodies(), nc = sys.n_contacts();
-  const double h = sys.step(steps_per_period(set));
+  if (std::string bad = check_step(set, kDefaultSteps); !bad.empty()) {
+    res.status = Status::failed;
+    res.message = bad;
+    return res;
+  }
+  const double h = time_step(sys, set, kDefaultSteps);
+  res.step = h;
   const long n = step_count(sys.t_end, h);
   const long cap = set.step_cap > 0 ? set.step_cap : kDefaultStepCap;
   if (n > cap) {
@@ -71,23 +94,25 @@ Result run(const System& sys, const Settings& set, const Config& config, const I
     res.message = "the run needs " + std::to_string(n) + " steps, more than the cap " + std::to_string(cap);
     return res;
   }
-  std::vector<double> u0(ix(nb), 0.0), v0(ix(nb), 0.0);
-  if (start) {
-    if (start->u.size() != ix(nb) || start->v.size() != ix(nb)) {
+  std::vector<double> u(ix(nb), 0.0), v(ix(nb), 0.0);  // the state at the end of each step
+  if (!sys.u_start.empty() || !sys.v_start.empty()) {
+    if (sys.u_start.size() != ix(nb) || sys.v_start.size() != ix(nb)) {
       res.status = Status::failed;
-      res.message = "initial state: needs one u and one v per body";
+      res.message = "start state: needs one u and one v per body";
       return res;
     }
-    u0 = start->u;
-    v0 = start->v;
+    u = sys.u_start;
+    v = sys.v_start;
   }
 
-  World world(sys, config, h, u0, v0);
+  World world(sys, config, h, u, v);
   Tally tally;
   tally.pushed.assign(ix(nc), 0);
   tally.in_phase.assign(ix(nc), 0);
   tally_state(sys, world, 0, tally);
   std::vector<double> rate(ix(nc), 0.0);
+  std::optional<StepMonitor> monitor;
+  if (set.monitor) monitor.emplace(sys);
 
   const bool recording = set.history_samples > 0;
   if (recording) {
@@ -97,8 +122,8 @@ Result run(const System& sys, const Settings& set, const Config& config, const I
     record(sys, world, 0.0, h, false, res.history.data);
   }
 
-  const double bound = 1e6 * sys.length_scale();
-  const auto started = std::chrono::steady_clock::now();
+  const double bound = 1e6 * sys.length_scale(), energy_bound = kDivergedEnergy * sys.energy_scale();
+  Deadline deadline(set.time_limit);
   long k = 0;
   while (k < n) {
     for (int j = 0; j < nc; ++j) rate[ix(j)] = world.gap_rate(j);  // approach speed at t_k
@@ -112,19 +137,25 @@ Result run(const System& sys, const Settings& set, const Config& config, const I
       tally.in_phase[ix(j)] = (tally.in_phase[ix(j)] || starts) && pushing;
       tally.pushed[ix(j)] = pushing;
     }
-    const Status st = check_state(sys, world, bound);
-    if (st != Status::ok) {
-      res.status = st;
+    const bool finite = read_state(world, u, v);
+    // A diverging state is still seen by the monitor: its energy excess shows the growth.
+    if (monitor && finite) {
+      const double t0 = static_cast<double>(k - 1) * h, t1 = static_cast<double>(k) * h;
+      monitor->step(h, sys.pulse.mean(t0, t1), u.data(), v.data(), tally.pushed.data());
+    }
+    const char* why = finite ? runaway(sys, u, v, bound, energy_bound) : "non-finite state";
+    if (why) {
+      res.status = finite ? Status::diverged : Status::nan;
       std::ostringstream msg;
-      msg << (st == Status::nan ? "non-finite state" : "|u| above 1e6 a_p/w_p^2") << " at step " << k
-          << " (t = " << static_cast<double>(k) * h << ")";
+      msg << why << " at step " << k
+          << " (t = " << static_cast<double>(k) * h << ", w_max h = " << 2.0 * std::numbers::pi * h / sys.t_min
+          << ")";
       res.message = msg.str();
       break;
     }
     tally_state(sys, world, k, tally);
     if (recording) record(sys, world, static_cast<double>(k) * h, h, true, res.history.data);
-    if (set.time_limit > 0.0 && k % kClockEvery == 0 && k < n &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() > set.time_limit) {
+    if (k < n && deadline.passed(k)) {
       res.status = Status::timeout;
       res.message = "time limit reached at t = " + std::to_string(static_cast<double>(k) * h);
       break;
@@ -135,6 +166,7 @@ Result run(const System& sys, const Settings& set, const Config& config, const I
   res.impacts = tally.impacts;
   res.contact_phases = tally.phases;
   res.min_gap = tally.g_min < 0.0 ? tally.g_min : std::numeric_limits<double>::infinity();
+  if (monitor) monitor->finish(res);
   if (const int fb = world.fallbacks(); fb > 0) {
     if (!res.message.empty()) res.message += "; ";
     res.message += "the MLCP solver failed in " + std::to_string(fb) + " steps (Bullet fell back to sequential impulse)";
@@ -147,9 +179,9 @@ Result run(const System& sys, const Settings& set, const Config& config, const I
 
 }  // namespace
 
-Result solve_with(const System& system, const Settings& settings, const Config& config, const InitialState* start) {
+Result solve_with(const System& system, const Settings& settings, const Config& config) {
   try {
-    return run(system, settings, config, start);
+    return run(system, settings, config);
   } catch (const std::exception& e) {
     Result res;
     res.status = Status::failed;
@@ -172,13 +204,13 @@ Result solve(const System& system, const Settings& settings) {
 std::string describe(const Settings& settings) {
   const std::optional<Config> config = find_variant(settings.variant);
   if (!config) return "variant=" + settings.variant + ";unknown";
-  return describe(*config, steps_per_period(settings));
+  return describe(*config, step_setting(settings));
 }
 
 std::string check(const Settings& settings) {
   if (!find_variant(settings.variant))
     return "variant: unknown bullet variant '" + settings.variant + "' (one of " + variant_names() + ")";
-  if (settings.steps < 0) return "steps: must be >= 1 (0: the default " + std::to_string(kDefaultSteps) + ")";
+  if (std::string bad = check_step(settings, kDefaultSteps); !bad.empty()) return bad;
   if (settings.step_cap < 0) return "step_cap: must be >= 0 (0: the solver's own cap)";
   if (!(settings.time_limit >= 0.0)) return "time_limit: must be >= 0 (0: none)";
   return {};

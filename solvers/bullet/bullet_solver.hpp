@@ -6,10 +6,13 @@
 //
 //   bodies    one btRigidBody per building, moving along x only (linear factor (1,0,0),
 //             angular factor 0), no gravity, no damping, never deactivated; position u
-//             (ground-relative), all bodies start at the origin. The wall is a static body.
+//             (ground-relative), starting from System::u_start, v_start (empty: at rest).
+//             The wall is a static body.
 //   forces    -k u - c v - m a_g(t_k) from the state at the start of each step
 //             (applyCentralForce); Bullet's step is semi-implicit Euler:
-//             v_k+1 = v_k + h F_k / m + (contact impulse) / m, u_k+1 = u_k + h v_k+1.
+//             v_k+1 = v_k + h F_k / m + (contact impulse) / m, u_k+1 = u_k + h v_k+1:
+//             explicit springs, stable only for w h below ~1.9 (README, large steps).
+//   step      h = time_step(system, settings, kDefaultSteps): t_min / N, or Settings::wh.
 //   contacts  no collision detection: while g_j <= 0 at the start of a step, contact j has
 //             one btManifoldPoint (normal +x, distance g_j, no friction acting) in its
 //             btPersistentManifold, and the manifolds go to the variant's solveGroup
@@ -17,13 +20,14 @@
 //             restitution: target separation speed = restitution x approach speed at the
 //             start of the step (setupContactConstraint), with the variant's threshold,
 //             ERP, split impulse and warm start.
+//   monitor   with Settings::monitor, a StepMonitor (solvers/monitor.hpp) sees every step,
+//             a contact counting as pushed when Bullet applied a positive impulse to it.
 //
 // Variants and every setting: variants.hpp; the engine objects and the step: engine.hpp;
 // modelling, restitution law, single precision and what Bullet's defaults change, with
 // numbers: solvers/bullet/README.md.
 
 #include <string>
-#include <vector>
 
 #include "solvers/bullet/variants.hpp"
 #include "solvers/solver.hpp"
@@ -37,12 +41,7 @@ Result solve(const System& system, const Settings& settings);
 std::string describe(const Settings& settings);
 std::string check(const Settings& settings);
 
-// For tests: a start other than rest (one u and one v per body, left to right) and a
-// configuration given directly (Settings::variant is then ignored).
-struct InitialState {
-  std::vector<double> u, v;
-};
-Result solve_with(const System& system, const Settings& settings, const Config& config,
-                  const InitialState* start = nullptr);
+// For tests: a configuration given directly (Settings::variant is then ignored).
+Result solve_with(const System& system, const Settings& settings, const Config& config);
 
 }  // namespace pb::bullet

@@ -47,11 +47,11 @@ std::string variant_names() {
   return out;
 }
 
-std::string describe(const Config& config, int steps_per_period) {
+std::string describe(const Config& config, std::string_view step) {
   // The step does not change any of these settings; 1 stands for it.
   const btContactSolverInfo info = solver_info(config, 1.0);
   std::ostringstream out;
-  out << "variant=" << config.name << ";steps=" << steps_per_period << ";solver=" << solver_name(config.engine)
+  out << "variant=" << config.name << ";" << step << ";solver=" << solver_name(config.engine)
       << ";iterations=" << info.m_numIterations << ";erp2=" << info.m_erp2
       << ";split_impulse=" << info.m_splitImpulse;
   if (info.m_splitImpulse) out << ";split_threshold=" << info.m_splitImpulsePenetrationThreshold;

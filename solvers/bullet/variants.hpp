@@ -41,8 +41,9 @@ std::optional<Config> find_variant(std::string_view name);
 // "a, b, c" for messages.
 std::string variant_names();
 
-// "variant=...;N=...;solver=...;iterations=...;..." with every setting that shapes an
-// impact, read back from the solver info a run uses.
-std::string describe(const Config& config, int steps_per_period);
+// "variant=...;<step>;solver=...;iterations=...;..." with every setting that shapes an
+// impact, read back from the solver info a run uses; step is what fixed the step,
+// "steps=64" or "wh=10".
+std::string describe(const Config& config, std::string_view step);
 
 }  // namespace pb::bullet

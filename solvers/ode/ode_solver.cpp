@@ -1,22 +1,29 @@
 #include "solvers/ode/ode_solver.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <numbers>
+#include <optional>
 #include <sstream>
 
+#include "solvers/monitor.hpp"
 #include "solvers/ode/world.hpp"
 
 namespace pb::ode {
 
 namespace {
 
-// Steps between two looks at the wall clock for Settings::time_limit (~1-3 ms of ODE steps).
-constexpr long kClockEvery = 4096;
-
-int steps_per_period(const Settings& s) { return s.steps == 0 ? kDefaultSteps : s.steps; }
+// "steps=N" or "wh=X": what fixed the step (solvers/solver.hpp, time_step).
+std::string step_setting(const Settings& s) {
+  std::ostringstream out;
+  if (s.wh > 0.0)
+    out << "wh=" << s.wh;
+  else
+    out << "steps=" << (s.steps == 0 ? kDefaultSteps : s.steps);
+  return out.str();
+}
 
 // The first step count whose end reaches t_end, to within 1e-9 of a step (as moreau_jean).
 long step_count(double t_end, double h) { return static_cast<long>(std::ceil(t_end / h - 1e-9)); }
@@ -37,9 +44,9 @@ struct State {
   std::vector<double> u, v;        // per body, read back from ODE after each step
   std::vector<double> g, rate;     // per contact: gap and gap rate
   std::vector<double> lambda;      // per contact: force of the last step (0 if no joint)
-  std::vector<unsigned char> joint;     // a contact joint was made for the last step
-  std::vector<unsigned char> pushed;    // ... and carried a positive force
-  std::vector<unsigned char> in_phase;  // ... in a run of >= 2 such steps
+  std::vector<char> joint;     // a contact joint was made for the last step
+  std::vector<char> pushed;    // ... and carried a positive force (what StepMonitor takes)
+  std::vector<char> in_phase;  // ... in a run of >= 2 such steps
   long k = 0;                      // steps taken: the state is at t_k = k h
 };
 
@@ -56,7 +63,8 @@ struct Engine {
   const System& sys;
   const Config& config;
   double h;
-  double bound;  // |u| above this is divergence
+  double bound;         // |u| above this is divergence
+  double energy_bound;  // and so is a mechanical energy above this
   World world;
   std::vector<dBodyID> bodies;
   std::vector<dJointFeedback> feedback;  // one per contact; ODE writes it during the step
@@ -77,8 +85,15 @@ void set_up_world(Engine& s) {
   }
 }
 
+// Bodies are created right to left. ODE keeps its bodies newest first and orders the
+// rows of a step by walking them, so the contact rows reach its Dantzig solver left to
+// right. The order matters only at exact ties, which ODE's Dantzig cannot pivot through:
+// a row at w = 0 (bodies touching and moving alike) taken before the row that pushes it
+// makes a zero step, and ODE gives up on the step (README, degenerate LCPs). Left to
+// right suits the one kick of the case set, body 0 at the left end of a chain.
 void add_bodies(Engine& s, const State& st) {
-  for (std::size_t i = 0; i < s.sys.bodies.size(); ++i) {
+  s.bodies.assign(s.sys.bodies.size(), nullptr);
+  for (std::size_t i = s.sys.bodies.size(); i-- > 0;) {
     const double m = s.sys.bodies[i].m;
     const dBodyID b = dBodyCreate(s.world.id());
     dMass mass;
@@ -88,7 +103,7 @@ void add_bodies(Engine& s, const State& st) {
     dBodySetPosition(b, st.u[i], 0.0, 0.0);
     dBodySetLinearVel(b, st.v[i], 0.0, 0.0);
     dBodySetAutoDisableFlag(b, 0);
-    s.bodies.push_back(b);
+    s.bodies[i] = b;
   }
 }
 
@@ -184,10 +199,12 @@ void observe(const Engine& s, State& st, Tally& t) {
   update_gaps(s.sys, st);
 }
 
-bool finite_and_bounded(const Engine& s, const State& st) {
-  for (std::size_t i = 0; i < st.u.size(); ++i)
-    if (!(std::abs(st.u[i]) <= s.bound) || !std::isfinite(st.v[i])) return false;
-  return true;
+// Why the state counts as diverged, or nullptr.
+const char* runaway(const Engine& s, const State& st) {
+  for (double u : st.u)
+    if (!(std::abs(u) <= s.bound)) return "|u| above 1e6 a_p/w_p^2";
+  if (!(s.sys.energy(st.u.data(), st.v.data()) <= s.energy_bound)) return "energy above 1e6 times its scale";
+  return nullptr;
 }
 
 // Every body must still be on the x axis, unrotated: the model's premise.
@@ -211,43 +228,60 @@ Result fail(Status status, std::string message) {
   return r;
 }
 
-Result run(const System& sys, const Settings& set, const Config& config, const InitialState* start) {
+bool finite_state(const State& st) {
+  for (std::size_t i = 0; i < st.u.size(); ++i)
+    if (!std::isfinite(st.u[i]) || !std::isfinite(st.v[i])) return false;
+  return true;
+}
+
+// The start state of System, or rest when it gives none. False if it has the wrong size.
+bool set_start(const System& sys, State& st) {
+  const auto nb = static_cast<std::size_t>(sys.n_bodies());
+  st.u.assign(nb, 0.0);
+  st.v.assign(nb, 0.0);
+  if (sys.u_start.empty() && sys.v_start.empty()) return true;
+  if (sys.u_start.size() != nb || sys.v_start.size() != nb) return false;
+  st.u = sys.u_start;
+  st.v = sys.v_start;
+  return true;
+}
+
+Result run(const System& sys, const Settings& set, const Config& config) {
   if (std::string bad = check_config(config); !bad.empty()) return fail(Status::failed, "config: " + bad);
+  if (std::string bad = check_step(set, kDefaultSteps); !bad.empty()) return fail(Status::failed, bad);
   const int nb = sys.n_bodies(), nc = sys.n_contacts();
   for (const Body& b : sys.bodies)
     if (!(b.m > 0.0 && std::isfinite(b.m))) return fail(Status::failed, "every body needs a finite positive mass");
   State st;
-  st.u.assign(static_cast<std::size_t>(nb), 0.0);
-  st.v.assign(static_cast<std::size_t>(nb), 0.0);
-  if (start) {
-    if (start->u.size() != st.u.size() || start->v.size() != st.v.size())
-      return fail(Status::failed, "initial state: needs one u and one v per body");
-    st.u = start->u;
-    st.v = start->v;
-  }
+  if (!set_start(sys, st)) return fail(Status::failed, "start state: needs one u and one v per body");
   for (auto* vec : {&st.g, &st.rate, &st.lambda}) vec->assign(static_cast<std::size_t>(nc), 0.0);
   for (auto* vec : {&st.joint, &st.pushed, &st.in_phase}) vec->assign(static_cast<std::size_t>(nc), 0);
   update_gaps(sys, st);
 
-  const double h = sys.step(steps_per_period(set));
+  const double h = time_step(sys, set, kDefaultSteps);
   const long n = step_count(sys.t_end, h);
   const long cap = set.step_cap > 0 ? set.step_cap : kDefaultStepCap;
-  if (n > cap)
-    return fail(Status::step_cap,
-                "the run needs " + std::to_string(n) + " steps, more than the cap " + std::to_string(cap));
+  if (n > cap) {
+    Result r = fail(Status::step_cap,
+                    "the run needs " + std::to_string(n) + " steps, more than the cap " + std::to_string(cap));
+    r.step = h;
+    return r;
+  }
   if (!prepare_thread()) return fail(Status::failed, "ODE could not be initialised on this thread");
 
-  Engine s{sys, config, h, 1e6 * sys.length_scale(), {}, {}, {}};
+  Engine s{sys, config, h, 1e6 * sys.length_scale(), kDivergedEnergy * sys.energy_scale(), {}, {}, {}};
   if (!s.world.ok()) return fail(Status::failed, "ODE could not create a world");
   set_up_world(s);
-  s.bodies.reserve(static_cast<std::size_t>(nb));
   add_bodies(s, st);
   s.feedback.assign(static_cast<std::size_t>(nc), dJointFeedback{});
   (void)take_messages();  // only this run's messages go into its result
 
   Result res;
+  res.step = h;
   Tally t;
   tally(s, st, t);
+  std::optional<StepMonitor> monitor;
+  if (set.monitor) monitor.emplace(sys);
   const bool recording = set.history_samples > 0;
   if (recording) {
     res.history.n_bodies = nb;
@@ -256,7 +290,9 @@ Result run(const System& sys, const Settings& set, const Config& config, const I
     record(s, st, res.history.data);
   }
 
-  const auto started = std::chrono::steady_clock::now();
+  const long lcp_failures_before = lcp_failures();
+  const char* diverged_by = "";
+  Deadline deadline(set.time_limit);
   const bool quick = config.stepper == Stepper::quickstep;
   while (st.k < n) {
     if (!apply_loads(s, st)) {
@@ -271,16 +307,29 @@ Result run(const System& sys, const Settings& set, const Config& config, const I
       break;
     }
     observe(s, st, t);
-    if (!finite_and_bounded(s, st)) {
-      bool finite = true;
-      for (std::size_t i = 0; i < st.u.size(); ++i) finite = finite && std::isfinite(st.u[i]) && std::isfinite(st.v[i]);
-      res.status = finite ? Status::diverged : Status::nan;
+    if (lcp_failures() != lcp_failures_before) {
+      res.status = Status::failed;
+      res.message = "ODE's Dantzig LCP gave up (degenerate pivot) at step " + std::to_string(st.k) +
+                    ": the contact forces of that step are wrong";
+      break;
+    }
+    if (!finite_state(st)) {
+      res.status = Status::nan;
+      break;
+    }
+    // A diverging state is still seen by the monitor: its energy excess shows the growth.
+    if (monitor) {
+      const double t0 = static_cast<double>(st.k - 1) * h, t1 = static_cast<double>(st.k) * h;
+      monitor->step(h, sys.pulse.mean(t0, t1), st.u.data(), st.v.data(), st.pushed.data());
+    }
+    if (const char* why = runaway(s, st)) {
+      res.status = Status::diverged;
+      diverged_by = why;
       break;
     }
     tally(s, st, t);
     if (recording) record(s, st, res.history.data);
-    if (set.time_limit > 0.0 && st.k % kClockEvery == 0 && st.k < n &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() > set.time_limit) {
+    if (st.k < n && deadline.passed(st.k)) {
       res.status = Status::timeout;
       res.message = "time limit reached at t = " + std::to_string(static_cast<double>(st.k) * h);
       break;
@@ -291,10 +340,12 @@ Result run(const System& sys, const Settings& set, const Config& config, const I
   res.impacts = t.impacts;
   res.contact_phases = t.phases;
   res.min_gap = t.g_min < 0.0 ? t.g_min : std::numeric_limits<double>::infinity();
+  if (monitor) monitor->finish(res);
   if (res.status == Status::nan || res.status == Status::diverged) {
     std::ostringstream msg;
-    msg << (res.status == Status::nan ? "non-finite state or force" : "|u| above 1e6 a_p/w_p^2") << " at step "
-        << st.k << " (t = " << static_cast<double>(st.k) * h << ")";
+    msg << (res.status == Status::nan ? "non-finite state or force" : diverged_by) << " at step "
+        << st.k << " (t = " << static_cast<double>(st.k) * h << ", w_max h = " << 2.0 * std::numbers::pi * h / sys.t_min
+        << ")";
     res.message = msg.str();
   }
   if (res.status == Status::ok && !still_on_axis(s)) {
@@ -309,9 +360,9 @@ Result run(const System& sys, const Settings& set, const Config& config, const I
   return res;
 }
 
-Result guarded(const System& sys, const Settings& set, const Config& config, const InitialState* start) {
+Result guarded(const System& sys, const Settings& set, const Config& config) {
   try {
-    return run(sys, set, config, start);
+    return run(sys, set, config);
   } catch (const std::exception& e) {
     return fail(Status::failed, e.what());
   }
@@ -322,17 +373,17 @@ Result guarded(const System& sys, const Settings& set, const Config& config, con
 Result solve(const System& system, const Settings& settings) {
   const std::optional<Config> config = find_variant(settings.variant);
   if (!config) return fail(Status::failed, "unknown variant " + settings.variant);
-  return guarded(system, settings, *config, nullptr);
+  return guarded(system, settings, *config);
 }
 
-Result solve_with(const System& system, const Settings& settings, const Config& config, const InitialState* start) {
-  return guarded(system, settings, config, start);
+Result solve_with(const System& system, const Settings& settings, const Config& config) {
+  return guarded(system, settings, config);
 }
 
 std::string describe(const Settings& settings) {
   const std::optional<Config> config = find_variant(settings.variant);
   if (!config) return "variant=" + settings.variant;
-  return describe(*config, steps_per_period(settings));
+  return describe(*config, step_setting(settings));
 }
 
 std::string check(const Settings& settings) {
@@ -341,7 +392,7 @@ std::string check(const Settings& settings) {
     for (const Config& c : variants()) known += (known.empty() ? "" : ", ") + std::string(c.name);
     return "variant: unknown '" + settings.variant + "' (known: " + known + ")";
   }
-  if (settings.steps < 0) return "steps: must be >= 1 (0: the default " + std::to_string(kDefaultSteps) + ")";
+  if (std::string bad = check_step(settings, kDefaultSteps); !bad.empty()) return bad;
   if (settings.step_cap < 0) return "step_cap: must be >= 0 (0: the solver's own cap)";
   if (!(settings.time_limit >= 0.0)) return "time_limit: must be >= 0 (0: none)";
   return {};

@@ -3,23 +3,26 @@
 // restitution are left to ODE's own constraint solver; this code only builds the scene,
 // applies the building forces and makes the contact joints of each step.
 //
-//   bodies    one dBody per building on the x axis, position = u (ground-relative), no
-//             gravity, no auto-disable; y, z and rotation stay exactly zero because every
+//   bodies    one dBody per building on the x axis, position = u (ground-relative), starting
+//             from System::u_start, v_start (empty: at rest), no gravity, no auto-disable; y, z and rotation stay exactly zero because every
 //             force and every contact Jacobian has only an x component (checked at the
 //             end of each run).
 //   forces    -k u - c v - m a_g(t) at the start of each step (dBodyAddForce); ODE then
-//             steps v += h/m (F + contact force), u += h v_new (semi-implicit Euler).
+//             steps v += h/m (F + contact force), u += h v_new (semi-implicit Euler):
+//             explicit springs, stable only for w h below ~1.9 (README, large steps).
+//   step      h = time_step(system, settings, kDefaultSteps): t_min / N, or Settings::wh.
 //   contacts  no collision detection: for each contact of the scene whose gap passes the
 //             variant's test (variants.hpp) a dContactJoint with normal +x on the right
 //             body (the wall is the static environment), depth max(0, -g), mu 0, and
 //             dContactBounce with bounce = eps: ODE's Newton-type law, target separation
 //             speed eps times the approach speed at the start of the step.
+//   monitor   with Settings::monitor, a StepMonitor (solvers/monitor.hpp) sees every step,
+//             a contact counting as pushed when its joint feedback force is positive.
 //
 // The modelling, the settings of each variant and what ODE's defaults change are in
 // solvers/ode/README.md; the engine set-up and its thread safety in world.hpp.
 
 #include <string>
-#include <vector>
 
 #include "solvers/ode/variants.hpp"
 #include "solvers/solver.hpp"
@@ -33,12 +36,8 @@ Result solve(const System& system, const Settings& settings);
 std::string describe(const Settings& settings);
 std::string check(const Settings& settings);
 
-// For tests: a start other than rest (one u and one v per body, left to right) and a
-// configuration other than the named variants (Settings::variant is then ignored).
-struct InitialState {
-  std::vector<double> u, v;
-};
-Result solve_with(const System& system, const Settings& settings, const Config& config,
-                  const InitialState* start = nullptr);
+// For tests: a configuration other than the named variants (Settings::variant is then
+// ignored).
+Result solve_with(const System& system, const Settings& settings, const Config& config);
 
 }  // namespace pb::ode

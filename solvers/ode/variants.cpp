@@ -36,9 +36,9 @@ std::optional<Config> find_variant(std::string_view name) {
   return std::nullopt;
 }
 
-std::string describe(const Config& config, int steps_per_period) {
+std::string describe(const Config& config, std::string_view step) {
   std::ostringstream out;
-  out << "variant=" << config.name << ";steps=" << steps_per_period
+  out << "variant=" << config.name << ";" << step
       << ";stepper=" << (config.stepper == Stepper::dantzig ? "dantzig" : "quickstep");
   if (config.stepper == Stepper::quickstep) out << ";iterations=" << config.iterations << ";sor=" << config.sor;
   out << ";erp=" << config.erp << ";cfm=" << config.cfm << ";bounce_vel=" << config.bounce_vel

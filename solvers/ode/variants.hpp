@@ -38,7 +38,8 @@ std::span<const Config> variants();
 // The variant of that name; the empty name is kDefaultVariant.
 std::optional<Config> find_variant(std::string_view name);
 
-// "variant=...;N=...;stepper=...;..." with every setting of the configuration.
-std::string describe(const Config& config, int steps_per_period);
+// "variant=...;<step>;stepper=...;..." with every setting of the configuration; step is
+// what fixed the step, "steps=64" or "wh=10".
+std::string describe(const Config& config, std::string_view step);
 
 }  // namespace pb::ode

@@ -9,9 +9,11 @@ namespace pb::ode {
 namespace {
 
 thread_local std::string t_messages;
+thread_local long t_lcp_failures = 0;
 
 // ODE calls this for dMessage on the thread that stepped; the default handler prints.
 void keep_message(int number, const char* format, va_list args) {
+  if (number == d_ERR_LCP) ++t_lcp_failures;
   char text[512];
   std::vsnprintf(text, sizeof text, format, args);
   if (!t_messages.empty()) t_messages += "; ";
@@ -42,6 +44,8 @@ int quick_step(dWorldID world, double h, int rows) {
   dRandSetSeed(0);
   return dWorldQuickStep(world, h);
 }
+
+long lcp_failures() { return t_lcp_failures; }
 
 std::string take_messages() {
   std::string out;

@@ -33,6 +33,11 @@ bool prepare_thread();
 // LCP that failed to converge); the text is kept, never printed.
 std::string take_messages();
 
+// How many times ODE's Dantzig LCP gave up (d_ERR_LCP, "LCP internal error, s <= 0") on
+// this thread so far. It then zeroes the forces of every row it had not reached, so the
+// step that reported it is wrong (solvers/ode/README.md, degenerate LCPs).
+long lcp_failures();
+
 // dWorldQuickStep, with ODE's random row order made reproducible when it is used
 // (rows >= 2): the seed is reset to the same value first, under a lock.
 int quick_step(dWorldID world, double h, int rows);
