@@ -65,3 +65,40 @@ void BM_EventDrivenFig4FamilyPerPoint(benchmark::State& state) {
 BENCHMARK(BM_EventDrivenFig4FamilyPerPoint)->Unit(benchmark::kMillisecond);
 
 }  // namespace
+
+namespace {
+
+// Cost of one reference run of the N-body chain against N: alternating bodies (odd ones
+// with Pi5 = 2, Pi6 = 0.5), a gap (Pi3 = 0.5), eps = 0.5, sine pulse, Pi2 = 1. Without a
+// kick even and odd bodies move alike and impacts come in simultaneous rows; a kick of
+// a_p / w_p on body 0 breaks that symmetry. Counters: events and impacts per run, and the
+// time per event.
+void BM_EventDrivenChain(benchmark::State& state) {
+  pb::Case c;
+  c.scene = pb::Scene::chain;
+  c.bodies = static_cast<int>(state.range(0));
+  c.kick = static_cast<double>(state.range(1));
+  c.pulse = pb::PulseShape::sine;
+  c.pi2 = 1.0;
+  c.pi3 = 0.5;
+  c.pi5 = 2.0;
+  c.pi6 = 0.5;
+  c.eps = 0.5;
+  const pb::System s = pb::make_system(c);
+  long events = 0, impacts = 0;
+  for (auto _ : state) {
+    const pb::Result r = pb::event_driven::solve(s, {});
+    events = r.steps;
+    impacts = r.impacts;
+    benchmark::DoNotOptimize(r.pi1);
+  }
+  state.counters["events"] = static_cast<double>(events);
+  state.counters["impacts"] = static_cast<double>(impacts);
+  state.counters["time_per_event"] = pb::bench::per_step(events);
+}
+BENCHMARK(BM_EventDrivenChain)
+    ->ArgNames({"N", "kick"})
+    ->ArgsProduct({{2, 5, 10, 20, 50, 100}, {0, 1}})
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace

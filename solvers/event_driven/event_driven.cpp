@@ -1,14 +1,21 @@
 #include "solvers/event_driven/event_driven.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <span>
 #include <sstream>
+#include <stdexcept>
+#include <string_view>
 
+#include <Eigen/Core>
+
+#include "solvers/event_driven/frame.hpp"
 #include "solvers/event_driven/impact.hpp"
 #include "solvers/event_driven/search.hpp"
-#include "solvers/event_driven/wave.hpp"
+#include "solvers/lcp/lemke.hpp"
 
 namespace pb::event_driven {
 
@@ -35,117 +42,14 @@ Tolerances tolerances(const System& s, double scale) {
   return t;
 }
 
-struct State {
-  double t = 0.0;
-  std::vector<double> u, v, g;
-  std::vector<char> active;  // persistent contact
-};
-
-// The motion from state.t to the next event: waves of every body displacement and, per
-// contact, of its gap (open) or its force (persistent contact).
-struct Frame {
-  std::vector<Wave> body;
-  std::vector<Wave> contact;
-};
-
-std::size_t ix(int i) { return static_cast<std::size_t>(i); }
-
-bool pulse_on(const System& s, double t) { return t < s.pulse.duration(); }
-
-// Ground acceleration over the segment starting at t, as a wave.
-Wave ground(const System& s, double t) {
-  Wave a = constant(t, 0.0);
-  if (pulse_on(s, t)) {
-    a.f0 = s.pulse.accel(t);
-    a.w = s.pulse.w;
-    (s.pulse.shape == PulseShape::sine ? a.ps : a.pc) = s.pulse.amplitude;
-  }
-  a.prepare();
-  return a;
-}
-
-// Calls f(first, last, fixed) for each run of bodies joined by the contacts flagged in
-// `joined` (a run touching the wall through a joined contact is fixed).
-template <class F>
-void for_each_cluster(const System& s, const std::vector<char>& joined, F&& f) {
-  const int wall_shift = s.wall ? 1 : 0;  // contact between bodies i and i+1 is i + wall_shift
-  for (int first = 0; first < s.n_bodies();) {
-    int last = first;
-    while (last + 1 < s.n_bodies() && joined[ix(last + wall_shift)]) ++last;
-    f(first, last, s.wall && first == 0 && joined[0]);
-    first = last + 1;
-  }
-}
-
-// Offset of body i from the first body of its cluster when their gaps are closed.
-double offset(const System& s, int first, int i) { return -(i - first) * s.delta; }
-
-// Bodies joined by persistent contacts move as one oscillator; its coordinate x is the
-// displacement of its leftmost body, the others sit at fixed offsets (closed gaps).
-void build_frame(const System& s, const State& st, Frame& fr) {
-  fr.body.resize(ix(s.n_bodies()));
-  fr.contact.resize(ix(s.n_contacts()));
-  const Wave ag = ground(s, st.t);
-  const int wall_shift = s.wall ? 1 : 0;
-  for_each_cluster(s, st.active, [&](int first, int last, bool fixed) {
-    double m = 0.0, c = 0.0, k = 0.0, f_const = 0.0, mx = 0.0, mv = 0.0;
-    for (int i = first; i <= last; ++i) {
-      const Body& b = s.bodies[ix(i)];
-      m += b.m;
-      c += b.c;
-      k += b.k;
-      f_const -= b.k * offset(s, first, i);
-      mx += b.m * (st.u[ix(i)] - offset(s, first, i));
-      mv += b.m * st.v[ix(i)];
-    }
-    Wave x;
-    if (fixed) {
-      x = constant(st.t, -s.delta);
-    } else {
-      const bool on = pulse_on(s, st.t);
-      const double load = on ? -m * s.pulse.amplitude : 0.0;
-      const bool sine = s.pulse.shape == PulseShape::sine;
-      x = oscillator(st.t, mx / m, mv / m, m, c, k, f_const, sine ? load : 0.0, sine ? 0.0 : load, s.pulse.w);
-    }
-    for (int i = first; i <= last; ++i) {
-      fr.body[ix(i)] = x;
-      fr.body[ix(i)].f0 += offset(s, first, i);
-    }
-    // Force of a persistent contact: what the bodies right of it need to follow the cluster,
-    // lambda = sum over them of m x'' + c x' + k u + m a_g.
-    if (last > first || fixed) {
-      const Wave dx = derivative(x), ddx = derivative(dx);
-      double mr = 0.0, cr = 0.0, kr = 0.0, ko = 0.0;
-      for (int i = last; i >= first; --i) {
-        const Body& b = s.bodies[ix(i)];
-        mr += b.m;
-        cr += b.c;
-        kr += b.k;
-        ko += b.k * offset(s, first, i);
-        const int j = i - 1 + wall_shift;  // contact left of body i
-        if (j < 0 || (i == first && !fixed)) continue;
-        Wave& f = fr.contact[ix(j)];
-        f = constant(st.t, ko);
-        add_scaled(f, x, kr);
-        if (!fixed) {
-          add_scaled(f, dx, cr);
-          add_scaled(f, ddx, mr);
-        }
-        add_scaled(f, ag, mr);
-        f.prepare();
-      }
-    }
-  });
-  for (int j = 0; j < s.n_contacts(); ++j) {
-    if (st.active[ix(j)]) continue;
-    Wave& g = fr.contact[ix(j)];
-    g = constant(st.t, 0.0);
-    add_scaled(g, fr.body[ix(s.right(j))], 1.0);
-    if (s.left(j) != kWall) add_scaled(g, fr.body[ix(s.left(j))], -1.0);
-    g.f0 = st.g[ix(j)];
-    g.prepare();
-  }
-}
+// Runs of closed contacts up to this length are decided by enumerating their 2^n active
+// sets; longer ones take Lemke's proposal (DERIVATION.md §4).
+constexpr int kEnumerateLimit = 8;
+// The wall clock is read once per this many events (Settings::time_limit).
+constexpr long kClockEvery = 256;
+// Settings::variant that solves long runs of both LCPs by Lemke's method first: slower,
+// and there to check the default's fast paths against it.
+constexpr std::string_view kLemkeVariant = "lemke";
 
 // True when the first coefficient that is not negligible is positive.
 bool lex_nonnegative(const double* c, int n, double scale, double rate, double tol) {
@@ -157,15 +61,38 @@ bool lex_nonnegative(const double* c, int n, double scale, double rate, double t
   return true;
 }
 
+// One way of deciding the contact LCP: Taylor coefficients within `tol` (relative) of zero
+// defer to the next one, up to `depth` derivatives beyond a gap's rate.
+struct Pass {
+  double tol;
+  int depth;
+};
+
+std::vector<double> start_or_rest(const std::vector<double>& start, const System& s) {
+  return start.size() == s.bodies.size() ? start : std::vector<double>(s.bodies.size(), 0.0);
+}
+
 class Solver {
  public:
   Solver(const System& s, const Settings& settings)
-      : s_(s), tol_(tolerances(s, settings.tol_scale)), cap_(settings.step_cap > 0 ? settings.step_cap : 1000000) {
+      : s_(s),
+        tol_(tolerances(s, settings.tol_scale)),
+        cap_(settings.step_cap > 0 ? settings.step_cap : 1000000),
+        time_limit_(settings.time_limit),
+        floor_(kRestitutionFloor * s.a_p / s.pulse.w),
+        lemke_first_(settings.variant == kLemkeVariant) {
+    work_.lemke_only = lemke_first_;
     const auto n = ix(s.n_bodies()), nc = ix(s.n_contacts());
-    st_.u.assign(n, 0.0);
-    st_.v.assign(n, 0.0);
-    st_.g.assign(nc, s.delta);
+    st_.u = start_or_rest(s.u_start, s);
+    st_.v = start_or_rest(s.v_start, s);
+    st_.g.resize(nc);
+    for (int j = 0; j < s.n_contacts(); ++j) {
+      const int l = s.left(j);
+      st_.g[ix(j)] = s.delta + st_.u[ix(s.right(j))] - (l == kWall ? 0.0 : st_.u[ix(l)]);
+    }
     st_.active.assign(nc, 0);
+    fr_.body.resize(n);
+    fr_.contact.resize(nc);
     rate_ = s.pulse.w;
     for (const Body& b : s.bodies) rate_ = std::max(rate_, b.w);
     // A force is compared with the gap accelerations it makes: lambda (1/m_left + 1/m_right).
@@ -175,6 +102,14 @@ class Solver {
       if (s.left(j) != kWall) inv_mass += 1.0 / s.bodies[ix(s.left(j))].m;
       force_scale_[ix(j)] = s.a_p / inv_mass;
     }
+    closed_.reserve(nc);
+    set_.reserve(nc);
+    impulse_.resize(nc);
+    joined_.resize(nc);
+    before_.resize(nc);
+    proposal_.resize(nc);
+    eval_u_.resize(n);
+    eval_v_.resize(n);
     if (settings.history_samples > 0) {
       samples_ = settings.history_samples;
       res_.history.n_bodies = s.n_bodies();
@@ -184,10 +119,8 @@ class Solver {
   }
 
   Result run() {
-    std::vector<int> closed;
-    for (int j = 0; j < s_.n_contacts(); ++j)
-      if (st_.g[ix(j)] <= tol_.gap) closed.push_back(j);
-    if (!resolve(closed)) return finish();
+    clock_start_ = std::chrono::steady_clock::now();
+    if (!start()) return finish();
     const double t_p = s_.pulse.duration();
     while (st_.t < s_.t_end) {
       const double seg_end = st_.t < t_p ? std::min(t_p, s_.t_end) : s_.t_end;
@@ -209,21 +142,72 @@ class Solver {
         res_.message = "more than " + std::to_string(cap_) + " events";
         break;
       }
-      if (which >= 0) {
-        const bool ok = st_.active[ix(which)] ? detach() : impact(which);
-        if (!ok) break;
-      } else if (st_.t < s_.t_end) {
-        if (!detach()) break;  // end of the pulse: the load may jump, contacts re-decided
+      if (out_of_time()) break;
+      if (which < 0 && st_.t >= s_.t_end) break;
+      const double e_before = s_.energy(st_.u.data(), st_.v.data());
+      bool ok;
+      if (which >= 0 && !st_.active[ix(which)]) {
+        st_.g[ix(which)] = 0.0;
+        ok = impact();
+      } else {
+        ok = detach();  // a force reached zero, or the pulse ended (the load may jump)
       }
+      if (!ok) break;
+      account(e_before);
     }
     return finish();
   }
 
  private:
+  // t = 0: a closed contact that approaches (a Newton's-cradle kick) is an impact first;
+  // otherwise the contact LCP decides the closed contacts at rest relative to each other.
+  bool start() {
+    const double e_before = s_.energy(st_.u.data(), st_.v.data());
+    bool approach = false;
+    closed_.clear();
+    for (int j = 0; j < s_.n_contacts(); ++j) {
+      if (st_.g[ix(j)] > tol_.gap) continue;
+      const double rate = gap_rate(s_, j, st_.v);
+      approach = approach || rate < -tol_.speed;
+      if (rate <= tol_.speed) closed_.push_back(j);
+    }
+    if (!(approach ? impact() : resolve())) return false;
+    account(e_before);
+    return true;
+  }
+
   Result finish() {
     res_.pi1 = s_.pi1(peak_.value);
     res_.t_max = peak_.t;
+    res_.energy_excess = excess_ / s_.energy_scale();
+    res_.isolated_impacts = isolated_;
+    res_.restitution_low = isolated_ > 0 ? e_low_ : std::numeric_limits<double>::quiet_NaN();
+    res_.restitution_high = isolated_ > 0 ? e_high_ : std::numeric_limits<double>::quiet_NaN();
     return std::move(res_);
+  }
+
+  bool out_of_time() {
+    if (time_limit_ <= 0.0 || res_.steps % kClockEvery != 0) return false;
+    const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start_).count();
+    if (spent <= time_limit_) return false;
+    res_.status = Status::timeout;
+    std::ostringstream msg;
+    msg << "more than " << time_limit_ << " s of wall time (t = " << st_.t << " of " << s_.t_end << ")";
+    res_.message = msg.str();
+    return true;
+  }
+
+  // The energy balance E + D - E0 - W moves only at events (DERIVATION.md §5): adds the jump
+  // from e_before to the energy of the new frame at st.t.
+  void account(double e_before) {
+    double v[2];
+    for (int i = 0; i < s_.n_bodies(); ++i) {
+      fr_.body[ix(i)].eval(st_.t, v, 2);
+      eval_u_[ix(i)] = v[0];
+      eval_v_[ix(i)] = v[1];
+    }
+    balance_ += s_.energy(eval_u_.data(), eval_v_.data()) - e_before;
+    excess_ = std::max(excess_, balance_);
   }
 
   void advance(double t) {
@@ -265,104 +249,230 @@ class Solver {
     }
   }
 
-  // A gap closed at the current time: Poisson impact on every closed contact.
-  bool impact(int j) {
-    st_.g[ix(j)] = 0.0;
-    std::vector<int> set;
-    double approach = 0.0;
-    for (int k = 0; k < s_.n_contacts(); ++k) {
-      if (st_.active[ix(k)] || st_.g[ix(k)] <= tol_.gap) {
-        set.push_back(k);
-        approach = std::min(approach, gap_rate(s_, k, st_.v));
+  // Poisson impact on every closed contact (persistent, or a gap within tol_gap), run by
+  // run; then the contact LCP on those left at rest relative to each other.
+  bool impact() {
+    set_.clear();
+    for (int k = 0; k < s_.n_contacts(); ++k)
+      if (st_.active[ix(k)] || st_.g[ix(k)] <= tol_.gap) set_.push_back(k);
+    for (int k : set_)
+      if (gap_rate(s_, k, st_.v) < -tol_.speed) ++res_.impacts;
+    bool ok = true;
+    for_each_run(s_, std::span<const int>(set_), [&](std::size_t begin, std::size_t end) {
+      if (ok) ok = impact_run(std::span<const int>(set_).subspan(begin, end - begin));
+    });
+    if (!ok) return false;
+    closed_.clear();
+    for (int k : set_) {
+      if (gap_rate(s_, k, st_.v) <= tol_.speed) {
+        closed_.push_back(k);
+        st_.g[ix(k)] = 0.0;
       }
     }
-    for (int k : set)
-      if (gap_rate(s_, k, st_.v) < -tol_.speed) ++res_.impacts;
+    return resolve();
+  }
+
+  bool impact_run(std::span<const int> run) {
+    double approach = 0.0;
+    for (int k : run) approach = std::min(approach, gap_rate(s_, k, st_.v));
+    if (!(approach < 0.0)) return true;  // nothing approaches: no impulse
     // An approach slower than the tolerance ends an accumulation of impacts: plastic.
     const double eps = -approach > tol_.speed ? s_.eps : 0.0;
-    const ImpactOutcome out = poisson_impact(s_, set, st_.v, eps);
-    std::vector<int> closed;
-    for (std::size_t a = 0; a < set.size(); ++a) {
-      if (out.gap_rate[a] <= tol_.speed) {
-        closed.push_back(set[a]);
-        st_.g[ix(set[a])] = 0.0;
-      }
+    try {
+      poisson_run(s_, run, st_.v, eps, work_, std::span<double>(impulse_).first(run.size()));
+    } catch (const std::runtime_error& e) {
+      return fail(e.what());
     }
-    return resolve(closed);
+    if (run.size() == 1 && approach < -floor_) {
+      const double e = -gap_rate(s_, run[0], st_.v) / approach;
+      ++isolated_;
+      e_low_ = isolated_ == 1 ? e : std::min(e_low_, e);
+      e_high_ = isolated_ == 1 ? e : std::max(e_high_, e);
+    }
+    return true;
   }
 
   // A persistent contact's force reached zero, or the load jumped: re-decide all of them.
   bool detach() {
-    std::vector<int> closed;
+    closed_.clear();
     for (int k = 0; k < s_.n_contacts(); ++k)
-      if (st_.active[ix(k)]) closed.push_back(k);
-    return resolve(closed);
+      if (st_.active[ix(k)]) closed_.push_back(k);
+    return resolve();
   }
 
-  // The acceleration-level LCP (paper eq. 1) on the closed contacts with zero relative
-  // velocity, solved by enumerating active sets: a set fits when every active force and
-  // every inactive gap acceleration is lexicographically non-negative in its Taylor
-  // coefficients at t, which decides degenerate starts (zero force, zero relative
-  // acceleration) by the first derivative of the load that does not vanish.
-  bool resolve(const std::vector<int>& closed) {
-    const std::vector<char> before = st_.active;
-    const int n = static_cast<int>(closed.size());
-    close_gaps(closed);
-    if (n > 16) return fail("more than 16 closed contacts at once");
-    // Coefficients within round-off of zero defer to the next derivative. If round-off in
-    // the higher derivatives leaves no set that fits, the plain signs decide, and failing
-    // that the values alone (the LCP at t, which always has a solution).
-    struct Pass {
-      double tol;
-      int depth;
-    };
+  // The acceleration-level LCP (paper eq. 1) on the closed contacts closed_ (ascending, zero
+  // relative velocity). Runs of consecutive contacts share no body with each other, so
+  // each run is decided alone, on a frame of its own bodies; then the whole frame is built.
+  bool resolve() {
+    before_ = st_.active;
+    std::fill(joined_.begin(), joined_.end(), 0);
+    for (int j : closed_) joined_[ix(j)] = 1;
+    close_gaps(s_, joined_, st_.u);
+    std::fill(st_.active.begin(), st_.active.end(), 0);
+    bool ok = true;
+    for_each_run(s_, std::span<const int>(closed_), [&](std::size_t begin, std::size_t end) {
+      if (ok) ok = decide(std::span<const int>(closed_).subspan(begin, end - begin));
+    });
+    if (!ok) return false;
+    build_frame(s_, st_, 0, s_.n_bodies() - 1, fr_);
+    for (std::size_t j = 0; j < before_.size(); ++j)
+      if (st_.active[j] && !before_[j]) ++res_.contact_phases;
+    return true;
+  }
+
+  // A set fits when every active force and every inactive gap acceleration is
+  // lexicographically non-negative in its Taylor coefficients at t, which decides
+  // degenerate starts (zero force, zero relative acceleration) by the first derivative of
+  // the load that does not vanish. Coefficients within round-off of zero defer to the next
+  // derivative; if round-off in the higher derivatives leaves no set that fits, the plain
+  // signs decide, and failing that the values alone (the LCP at t, which always has a
+  // solution for this P-matrix).
+  bool decide(std::span<const int> run) {
+    const int n = static_cast<int>(run.size());
+    const int from = first_body(s_, run.front()), to = last_body(s_, run.back());
     for (const Pass pass : {Pass{tol_.lex, kMaxDerivative - 1}, Pass{0.0, kMaxDerivative - 1}, Pass{tol_.lex, 1}}) {
-      for (int mask = (1 << n) - 1; mask >= 0; --mask) {
-        std::fill(st_.active.begin(), st_.active.end(), 0);
-        for (int a = 0; a < n; ++a)
-          if (mask & (1 << a)) st_.active[ix(closed[ix(a)])] = 1;
-        build_frame(s_, st_, fr_);
-        if (fits(closed, pass.tol, pass.depth)) {
-          for (std::size_t j = 0; j < before.size(); ++j)
-            if (st_.active[j] && !before[j]) ++res_.contact_phases;
-          return true;
+      if (n <= kEnumerateLimit) {
+        for (int mask = (1 << n) - 1; mask >= 0; --mask) {
+          for (int a = 0; a < n; ++a) st_.active[ix(run[ix(a)])] = (mask & (1 << a)) ? 1 : 0;
+          if (try_set(run, from, to, pass)) return true;
         }
+      } else if (propose(run, from, to, pass)) {
+        return true;
       }
     }
     std::ostringstream msg;
-    msg << "no contact configuration fits the acceleration LCP at t = " << st_.t;
+    msg << "no contact configuration fits the acceleration LCP at t = " << st_.t << " (contacts " << run.front()
+        << ".." << run.back() << ")";
     return fail(msg.str());
   }
 
-  // Closed gaps were closed to within tol_gap; move the bodies (keeping their centre of
-  // mass) so that the positions agree exactly. Otherwise the springs would see a gap the
-  // contact logic does not, and late in a run, when the motion itself is that small, the
-  // contact LCP would be decided by it.
-  void close_gaps(const std::vector<int>& closed) {
-    std::vector<char> joined(ix(s_.n_contacts()), 0);
-    for (int j : closed) joined[ix(j)] = 1;
-    for_each_cluster(s_, joined, [&](int first, int last, bool fixed) {
-      if (first == last && !fixed) return;
-      double m = 0.0, mx = 0.0;
-      for (int i = first; i <= last; ++i) {
-        m += s_.bodies[ix(i)].m;
-        mx += s_.bodies[ix(i)].m * (st_.u[ix(i)] - offset(s_, first, i));
-      }
-      const double x = fixed ? -s_.delta : mx / m;
-      for (int i = first; i <= last; ++i) st_.u[ix(i)] = x + offset(s_, first, i);
-    });
+  // A long run. Candidates, each confirmed by the exact test:
+  //  1. every contact active (a chain locked together; the enumeration's first set too);
+  //  2. Chandrasekaran's growth: from no active contact, make active every inactive one
+  //     whose gap would go negative, until none does. For an M-matrix (G = W^T M^-1 W of a
+  //     row is one) this reaches the solution of the LCP, and never has to drop a contact;
+  //     each step costs one frame of the run, O(n);
+  //  3. Lemke's method on the Delassus matrix G with the Taylor coefficients of the free
+  //     gap motion (rate, acceleration, ...) as lexicographic right-hand side, O(n^2) per
+  //     pivot; then that proposal with one contact flipped.
+  // The variant "lemke" proposes by Lemke's method first (then all active, then flips).
+  bool propose(std::span<const int> run, int from, int to, const Pass& pass) {
+    auto try_all_active = [&] {
+      for (int j : run) st_.active[ix(j)] = 1;
+      return try_set(run, from, to, pass);
+    };
+    auto try_proposal = [&] {
+      for (std::size_t a = 0; a < run.size(); ++a) st_.active[ix(run[a])] = proposal_[a];
+      return try_set(run, from, to, pass);
+    };
+    if (!lemke_first_ && try_all_active()) return true;
+    if (!lemke_first_ && grow(run, from, to, pass)) return promote_neutral(run, from, to, pass);
+    lemke_proposal(run, from, to, pass);
+    if (try_proposal()) return promote_neutral(run, from, to, pass);
+    if (lemke_first_ && try_all_active()) return true;
+    for (std::size_t a = 0; a < run.size(); ++a) {
+      proposal_[a] = !proposal_[a];
+      if (try_proposal()) return promote_neutral(run, from, to, pass);
+      proposal_[a] = !proposal_[a];
+    }
+    return false;
   }
 
-  bool fits(const std::vector<int>& closed, double tol, int depth) const {
-    double c[kMaxDerivative + 1];
-    for (int j : closed) {
-      fr_.contact[ix(j)].eval(st_.t, c, kMaxDerivative + 1);
-      const bool ok = st_.active[ix(j)]
-                          ? lex_nonnegative(c, std::min(depth, 4), force_scale_[ix(j)], rate_, tol)
-                          : lex_nonnegative(c + 1, depth + 1, s_.a_p / rate_, rate_, tol);
-      if (!ok) return false;
+  // After a set that fits: a closed contact left inactive whose gap motion vanishes in every
+  // coefficient the test reads (bodies side by side moving alike) fits either way. Taken
+  // inactive, it would be caught only once its gap reached -tol_gap, arriving at about
+  // sqrt(2 a tol_gap) (1e-5 a_p / w_p), above tol_speed: with eps = 1 it would bounce
+  // for ever instead of settling, and the run would depend on that. So such contacts are
+  // made active, as the enumeration's order (all active first) does, if the set still
+  // fits; otherwise the set is kept as it was. Always true (the set fitted).
+  bool promote_neutral(std::span<const int> run, int from, int to, const Pass& pass) {
+    bool any = false;
+    for (std::size_t a = 0; a < run.size(); ++a) {
+      proposal_[a] = st_.active[ix(run[a])];
+      if (!st_.active[ix(run[a])] && neutral(run[a], pass)) {
+        st_.active[ix(run[a])] = 1;
+        any = true;
+      }
     }
+    if (any && !try_set(run, from, to, pass))
+      for (std::size_t a = 0; a < run.size(); ++a) st_.active[ix(run[a])] = proposal_[a];
     return true;
+  }
+
+  // Whether the gap of inactive contact j (in the frame built last) has rate and
+  // derivatives that the test takes as zero, to the pass's depth.
+  bool neutral(int j, const Pass& pass) const {
+    double c[kMaxDerivative + 1];
+    fr_.contact[ix(j)].eval(st_.t, c, kMaxDerivative + 1);
+    double z = pass.tol * s_.a_p / rate_;
+    for (int k = 0; k <= pass.depth; ++k, z *= rate_)
+      if (std::abs(c[1 + k]) > z) return false;
+    return true;
+  }
+
+  bool grow(std::span<const int> run, int from, int to, const Pass& pass) {
+    for (int j : run) st_.active[ix(j)] = 0;
+    for (std::size_t step = 0; step <= run.size(); ++step) {
+      build_frame(s_, st_, from, to, fr_);
+      bool added = false;
+      for (std::size_t a = 0; a < run.size(); ++a) {
+        const int j = run[a];
+        proposal_[a] = 0;
+        if (fits_one(j, pass.tol, pass.depth)) continue;
+        if (st_.active[ix(j)]) return false;  // a force went negative: not this way
+        proposal_[a] = 1;
+        added = true;
+      }
+      if (!added) return true;
+      for (std::size_t a = 0; a < run.size(); ++a)
+        if (proposal_[a]) st_.active[ix(run[a])] = 1;
+    }
+    return false;
+  }
+
+  // Writes Lemke's active set for the run into proposal_ (none if Lemke fails).
+  void lemke_proposal(std::span<const int> run, int from, int to, const Pass& pass) {
+    const auto n = static_cast<Eigen::Index>(run.size());
+    const int cols = pass.depth + 1;
+    for (int j : run) st_.active[ix(j)] = 0;
+    build_frame(s_, st_, from, to, fr_);
+    lex_q_.resize(n, cols);
+    lex_z_.resize(n, cols);
+    delassus_.setZero(n, n);
+    double c[kMaxDerivative + 1];
+    for (Eigen::Index a = 0; a < n; ++a) {
+      const int j = run[static_cast<std::size_t>(a)];
+      fr_.contact[ix(j)].eval(st_.t, c, kMaxDerivative + 1);
+      // The coefficients fits() takes as zero are zero here too, so both see one problem.
+      double z = pass.tol * s_.a_p / rate_;
+      for (int k = 0; k < cols; ++k, z *= rate_) lex_q_(a, k) = std::abs(c[1 + k]) > z ? c[1 + k] : 0.0;
+      const int l = s_.left(j), r = s_.right(j);
+      delassus_(a, a) = 1.0 / s_.bodies[ix(r)].m + (l == kWall ? 0.0 : 1.0 / s_.bodies[ix(l)].m);
+      if (a > 0) delassus_(a - 1, a) = delassus_(a, a - 1) = -1.0 / s_.bodies[ix(l)].m;
+    }
+    std::fill(proposal_.begin(), proposal_.begin() + n, 0);
+    if (lcp::lemke_lex(delassus_, lex_q_, lex_z_, lemke_).status != lcp::Status::solved) return;
+    for (Eigen::Index r = 0; r < n; ++r)
+      if (lemke_.basic(r) >= n) proposal_[static_cast<std::size_t>(lemke_.basic(r) - n)] = 1;
+  }
+
+  // Builds the run's frame for the active flags set in st_ and tests them.
+  bool try_set(std::span<const int> run, int from, int to, const Pass& pass) {
+    build_frame(s_, st_, from, to, fr_);
+    return fits(run, pass.tol, pass.depth);
+  }
+
+  bool fits(std::span<const int> run, double tol, int depth) const {
+    for (int j : run)
+      if (!fits_one(j, tol, depth)) return false;
+    return true;
+  }
+
+  bool fits_one(int j, double tol, int depth) const {
+    double c[kMaxDerivative + 1];
+    fr_.contact[ix(j)].eval(st_.t, c, kMaxDerivative + 1);
+    return st_.active[ix(j)] ? lex_nonnegative(c, std::min(depth, 4), force_scale_[ix(j)], rate_, tol)
+                             : lex_nonnegative(c + 1, depth + 1, s_.a_p / rate_, rate_, tol);
   }
 
   bool fail(std::string why) {
@@ -374,6 +484,10 @@ class Solver {
   const System& s_;
   Tolerances tol_;
   long cap_;
+  double time_limit_;
+  double floor_;  // kRestitutionFloor a_p / w_p
+  bool lemke_first_;
+  std::chrono::steady_clock::time_point clock_start_;
   State st_;
   Frame fr_;
   Peak peak_;
@@ -381,6 +495,17 @@ class Solver {
   double rate_ = 1.0;
   std::vector<double> force_scale_;  // per contact
   int samples_ = 0, next_sample_ = 0;
+  // Energy balance and restitution (Result).
+  double balance_ = 0.0, excess_ = 0.0;
+  long isolated_ = 0;
+  double e_low_ = 0.0, e_high_ = 0.0;
+  // Scratch kept across events so that handling one allocates nothing.
+  std::vector<int> closed_, set_;
+  std::vector<double> impulse_, eval_u_, eval_v_;
+  std::vector<char> joined_, before_, proposal_;
+  ImpactWork work_;
+  lcp::LemkeWorkspace lemke_;
+  Eigen::MatrixXd delassus_, lex_q_, lex_z_;
 };
 
 }  // namespace
@@ -405,6 +530,9 @@ std::string describe(const Settings& settings) {
 std::string check(const Settings& settings) {
   if (!(settings.tol_scale > 0.0) || !std::isfinite(settings.tol_scale)) return "tol-scale: must be finite and > 0";
   if (settings.steps != 0) return "steps: the event-driven solver takes no step";
+  if (settings.wh != 0.0) return "wh: the event-driven solver takes no step";
+  if (!settings.variant.empty() && settings.variant != kLemkeVariant)
+    return "variant: the event-driven solver has the default (empty) and \"lemke\"";
   return {};
 }
 
@@ -413,6 +541,8 @@ double no_contact_pi1(const System& system) {
   alone.bodies = {system.bodies[ix(system.ref)]};
   alone.wall = false;
   alone.ref = 0;
+  alone.u_start = {system.u_start.empty() ? 0.0 : system.u_start[ix(system.ref)]};
+  alone.v_start = {system.v_start.empty() ? 0.0 : system.v_start[ix(system.ref)]};
   return solve(alone, Settings{}).pi1;
 }
 

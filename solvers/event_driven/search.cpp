@@ -134,6 +134,13 @@ double first_root(const Wave& f, double a, double b, double floor, double settle
       }
     }
   }
+  // Far from a root the whole search is skipped: f >= f(a) + f'(a) s - max|f''| s^2 / 2,
+  // and when that stays clear of f's rounding (relative to its terms) up to b, no
+  // evaluation on (a, b] can come out <= 0. Every contact is searched at every event, and
+  // most are far from closing or detaching.
+  const double h = b - p.t;
+  const double low = p.f + std::min(0.0, p.df * h) - 0.5 * f.bound(p.t, 2) * h * h;
+  if (low > 1e-10 * (std::abs(f.f0) + 2.0 * f.bound(f.t0, 0))) return kNaN;
   return crossing(f, p, b, floor);
 }
 

@@ -4,6 +4,29 @@
 
 namespace pb::event_driven {
 
+namespace {
+
+// sin and cos of w t0. Every wave of a frame shares w and t0, and a frame prepares several
+// per body, so the last pair is kept (per thread); the values are the same either way.
+void sin_cos(double w, double t0, double& s, double& c) {
+  thread_local double last_w = 0.0, last_t0 = 0.0, last_s = 0.0, last_c = 1.0;
+  if (w == 0.0) {  // after the pulse most waves have no pulse term
+    s = 0.0;
+    c = 1.0;
+    return;
+  }
+  if (w != last_w || t0 != last_t0) {
+    last_w = w;
+    last_t0 = t0;
+    last_s = std::sin(w * t0);
+    last_c = std::cos(w * t0);
+  }
+  s = last_s;
+  c = last_c;
+}
+
+}  // namespace
+
 void Wave::prepare() {
   for (int m = 0; m < n_modes; ++m) {
     Mode& md = mode[static_cast<std::size_t>(m)];
@@ -23,20 +46,26 @@ void Wave::prepare() {
     md.envelope[0] = std::hypot(md.a, md.b);
     for (std::size_t d = 1; d <= kMaxDerivative; ++d) md.envelope[d] = md.envelope[d - 1] * rate;
   }
-  s0 = std::sin(w * t0);
-  c0 = std::cos(w * t0);
+  sin_cos(w, t0, s0, c0);
   pulse_envelope[0] = std::hypot(ps, pc);
   for (std::size_t d = 1; d <= kMaxDerivative; ++d) pulse_envelope[d] = pulse_envelope[d - 1] * w;
 }
 
 void Wave::eval(double t, double* out, int nd) const {
   const double tau = t - t0;
+  // Searches start where the wave does (tau = 0): there the functions below are skipped
+  // for their exact values (sin 0 = 0, cos 0 = 1, expm1(-0) = -0).
+  const bool start = tau == 0.0;
   for (int d = 0; d < nd; ++d) out[d] = 0.0;
   out[0] = f0;
   if (ps != 0.0 || pc != 0.0) {
     // sin(w t) - sin(w t0) and cos(w t) - cos(w t0) from the half angle of w (t - t0),
     // free of cancellation near t0.
-    const double sh = std::sin(0.5 * w * tau), ch = std::cos(0.5 * w * tau);
+    double sh = 0.0, ch = 1.0;
+    if (!start) {
+      sh = std::sin(0.5 * w * tau);
+      ch = std::cos(0.5 * w * tau);
+    }
     const double dc = -2.0 * sh * sh, ds = 2.0 * sh * ch;  // cos(w tau) - 1, sin(w tau)
     out[0] += ps * (s0 * dc + c0 * ds) + pc * (c0 * dc - s0 * ds);
     if (nd > 1) {
@@ -59,9 +88,13 @@ void Wave::eval(double t, double* out, int nd) const {
   }
   for (int m = 0; m < n_modes; ++m) {
     const Mode& md = mode[static_cast<std::size_t>(m)];
-    const double em1 = std::expm1(-md.sigma * tau);
+    double em1 = -0.0, sh = 0.0, ch = 1.0;
+    if (!start) {
+      em1 = std::expm1(-md.sigma * tau);
+      sh = std::sin(0.5 * md.omega * tau);
+      ch = std::cos(0.5 * md.omega * tau);
+    }
     const double e = em1 + 1.0;
-    const double sh = std::sin(0.5 * md.omega * tau), ch = std::cos(0.5 * md.omega * tau);
     const double cs = 1.0 - 2.0 * sh * sh, sn = 2.0 * sh * ch;
     // e cs - 1 = expm1 cs - 2 sh^2, without cancellation near tau = 0.
     out[0] += md.a * (em1 * cs - 2.0 * sh * sh) + md.b * e * sn;
@@ -78,7 +111,7 @@ double Wave::bound(double t, int d) const {
   const double tau = std::max(t - t0, 0.0);
   for (int m = 0; m < n_modes; ++m) {
     const Mode& md = mode[static_cast<std::size_t>(m)];
-    b += md.envelope[k] * std::exp(-md.sigma * tau);
+    b += md.envelope[k] * (tau == 0.0 ? 1.0 : std::exp(-md.sigma * tau));
   }
   return b;
 }
@@ -155,8 +188,10 @@ Wave oscillator(double t0, double x0, double v0, double m, double c, double k, d
     x.ps = p;
     x.pc = q;
   }
-  const double xp = f_const / k + p * std::sin(w * t0) + q * std::cos(w * t0);
-  const double vp = w * (p * std::cos(w * t0) - q * std::sin(w * t0));
+  double sn, cs;
+  sin_cos(x.w, t0, sn, cs);
+  const double xp = f_const / k + p * sn + q * cs;
+  const double vp = w * (p * cs - q * sn);
   const double sigma = 0.5 * two_zeta_wn;
   const double omega = std::sqrt(wn2 - sigma * sigma);
   Mode& md = x.mode[0];

@@ -1,0 +1,117 @@
+#include "solvers/event_driven/frame.hpp"
+
+namespace pb::event_driven {
+
+namespace {
+
+bool pulse_on(const System& s, double t) { return t < s.pulse.duration(); }
+
+// Ground acceleration over the segment starting at t, as a wave.
+Wave ground(const System& s, double t) {
+  Wave a = constant(t, 0.0);
+  if (pulse_on(s, t)) {
+    a.f0 = s.pulse.accel(t);
+    a.w = s.pulse.w;
+    (s.pulse.shape == PulseShape::sine ? a.ps : a.pc) = s.pulse.amplitude;
+  }
+  a.prepare();
+  return a;
+}
+
+// Calls f(first, last, fixed) for each run of bodies from..to joined by the contacts flagged
+// in `joined` (a run touching the wall through a joined contact is fixed).
+template <class F>
+void for_each_cluster(const System& s, const std::vector<char>& joined, int from, int to, F&& f) {
+  const int wall_shift = s.wall ? 1 : 0;  // contact between bodies i and i+1 is i + wall_shift
+  for (int first = from; first <= to;) {
+    int last = first;
+    while (last + 1 <= to && joined[ix(last + wall_shift)]) ++last;
+    f(first, last, s.wall && first == 0 && joined[0]);
+    first = last + 1;
+  }
+}
+
+// Offset of body i from the first body of its cluster when their gaps are closed.
+double offset(const System& s, int first, int i) { return -(i - first) * s.delta; }
+
+}  // namespace
+
+// A cluster's coordinate x is the displacement of its leftmost body; the others sit at
+// fixed offsets (closed gaps).
+void build_frame(const System& s, const State& st, int from, int to, Frame& fr) {
+  const Wave ag = ground(s, st.t);
+  const int wall_shift = s.wall ? 1 : 0;
+  for_each_cluster(s, st.active, from, to, [&](int first, int last, bool fixed) {
+    double m = 0.0, c = 0.0, k = 0.0, f_const = 0.0, mx = 0.0, mv = 0.0;
+    for (int i = first; i <= last; ++i) {
+      const Body& b = s.bodies[ix(i)];
+      m += b.m;
+      c += b.c;
+      k += b.k;
+      f_const -= b.k * offset(s, first, i);
+      mx += b.m * (st.u[ix(i)] - offset(s, first, i));
+      mv += b.m * st.v[ix(i)];
+    }
+    Wave x;
+    if (fixed) {
+      x = constant(st.t, -s.delta);
+    } else {
+      const bool on = pulse_on(s, st.t);
+      const double load = on ? -m * s.pulse.amplitude : 0.0;
+      const bool sine = s.pulse.shape == PulseShape::sine;
+      x = oscillator(st.t, mx / m, mv / m, m, c, k, f_const, sine ? load : 0.0, sine ? 0.0 : load, s.pulse.w);
+    }
+    for (int i = first; i <= last; ++i) {
+      fr.body[ix(i)] = x;
+      fr.body[ix(i)].f0 += offset(s, first, i);
+    }
+    // Force of a persistent contact: what the bodies right of it need to follow the cluster,
+    // lambda = sum over them of m x'' + c x' + k u + m a_g.
+    if (last > first || fixed) {
+      const Wave dx = derivative(x), ddx = derivative(dx);
+      double mr = 0.0, cr = 0.0, kr = 0.0, ko = 0.0;
+      for (int i = last; i >= first; --i) {
+        const Body& b = s.bodies[ix(i)];
+        mr += b.m;
+        cr += b.c;
+        kr += b.k;
+        ko += b.k * offset(s, first, i);
+        const int j = i - 1 + wall_shift;  // contact left of body i
+        if (j < 0 || (i == first && !fixed)) continue;
+        Wave& f = fr.contact[ix(j)];
+        f = constant(st.t, ko);
+        add_scaled(f, x, kr);
+        if (!fixed) {
+          add_scaled(f, dx, cr);
+          add_scaled(f, ddx, mr);
+        }
+        add_scaled(f, ag, mr);
+        f.prepare();
+      }
+    }
+  });
+  for (int j = first_contact(s, from); j <= last_contact(s, to); ++j) {
+    if (st.active[ix(j)]) continue;
+    Wave& g = fr.contact[ix(j)];
+    g = constant(st.t, 0.0);
+    add_scaled(g, fr.body[ix(s.right(j))], 1.0);
+    if (s.left(j) != kWall) add_scaled(g, fr.body[ix(s.left(j))], -1.0);
+    g.f0 = st.g[ix(j)];
+    g.prepare();
+  }
+}
+
+void close_gaps(const System& s, const std::vector<char>& joined, std::vector<double>& u) {
+  for_each_cluster(s, joined, 0, s.n_bodies() - 1, [&](int first, int last, bool fixed) {
+    if (first == last && !fixed) return;
+    double m = 0.0, mx = 0.0;
+    for (int i = first; i <= last; ++i) {
+      m += s.bodies[ix(i)].m;
+      mx += s.bodies[ix(i)].m * (u[ix(i)] - offset(s, first, i));
+    }
+    const double x = fixed ? -s.delta : mx / m;
+    for (int i = first; i <= last; ++i) u[ix(i)] = x + offset(s, first, i);
+  });
+}
+
+}  // namespace pb::event_driven

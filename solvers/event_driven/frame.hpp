@@ -1,0 +1,54 @@
+#pragma once
+// The reference's state at an event and the closed-form motion that continues it (a
+// "frame"): bodies joined by persistent contacts move as one damped oscillator (a
+// cluster, DERIVATION.md §1), every other body alone; per contact, the gap of an open one
+// or the force of a persistent one.
+//
+// A frame can be rebuilt for a stretch of bodies only. The contact LCP decides each run of
+// closed contacts on its own (runs share no body, so no force of one reaches another) and
+// needs the motion of that run's bodies alone, once per candidate active set: rebuilding
+// the whole chain for each would cost O(N) per candidate.
+
+#include <vector>
+
+#include "cases/system.hpp"
+#include "solvers/event_driven/wave.hpp"
+
+namespace pb::event_driven {
+
+struct State {
+  double t = 0.0;
+  std::vector<double> u, v, g;  // per body, per body, per contact
+  std::vector<char> active;     // per contact: persistent contact
+};
+
+struct Frame {
+  std::vector<Wave> body;
+  std::vector<Wave> contact;  // gap (open contact) or force (persistent contact)
+};
+
+inline std::size_t ix(int i) { return static_cast<std::size_t>(i); }
+
+// The contacts whose bodies all lie in first..last (the wall contact belongs to body 0).
+inline int first_contact(const System& s, int first_body) {
+  return s.wall && first_body == 0 ? 0 : first_body + (s.wall ? 1 : 0);
+}
+inline int last_contact(const System& s, int last_body) { return last_body - 1 + (s.wall ? 1 : 0); }
+// The bodies of contacts first..last.
+inline int first_body(const System& s, int first_contact) {
+  return s.left(first_contact) == kWall ? 0 : s.left(first_contact);
+}
+inline int last_body(const System& s, int last_contact) { return s.right(last_contact); }
+
+// Whether contacts j < k share a body (G = W^T M^-1 W couples only such neighbours).
+inline bool adjacent(const System& s, int j, int k) { return s.right(j) == s.left(k); }
+
+// Rebuilds the motion of bodies first..last, and of the contacts among them, from st at
+// st.t. fr must hold one wave per body and per contact of s; the others are left alone.
+void build_frame(const System& s, const State& st, int first, int last, Frame& fr);
+
+// Moves the bodies of each cluster that `joined` (per contact) makes so that its gaps are
+// exactly closed, keeping its centre of mass (a cluster at the wall goes to it).
+void close_gaps(const System& s, const std::vector<char>& joined, std::vector<double>& u);
+
+}  // namespace pb::event_driven
