@@ -11,6 +11,7 @@
 #include <limits>
 #include <new>
 #include <numbers>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -19,8 +20,12 @@
 #include "cases/case_set.hpp"
 #include "cases/system.hpp"
 #include "solvers/event_driven/event_driven.hpp"
+#include "solvers/lcp/lemke.hpp"
+#include "solvers/monitor.hpp"
+#include "solvers/moreau_jean/dynamic.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
 #include "solvers/moreau_jean/stepper.hpp"
+#include "solvers/moreau_jean/tridiagonal_lcp.hpp"
 
 // Allocation counting for this test binary: operator new counts while the calling thread
 // has switched counting on, and otherwise behaves as the default one. Every non-aligned
@@ -240,14 +245,11 @@ TEST(MoreauJean, ElasticImpactsAndFreeFlightKeepTheEnergyAtThetaOneHalf) {
     c.pi8 = 2.0;
     System s = make_system(c);
     s.pulse.amplitude = 0.0;  // free vibration from the initial velocity only
-    mj::InitialState start;
-    start.u.assign(static_cast<std::size_t>(s.n_bodies()), 0.0);
-    start.v.assign(static_cast<std::size_t>(s.n_bodies()), 0.0);
-    start.v[static_cast<std::size_t>(s.ref)] = -3.0 * s.delta * s.bodies[static_cast<std::size_t>(s.ref)].w;
+    s.v_start[static_cast<std::size_t>(s.ref)] = -3.0 * s.delta * s.bodies[static_cast<std::size_t>(s.ref)].w;
     Settings st;
     st.steps = 200;
     st.history_samples = 1;
-    const Result r = mj::solve_from(s, st, start);
+    const Result r = mj::solve(s, st);
     ASSERT_EQ(r.status, Status::ok) << r.message;
     ASSERT_GT(r.impacts, 3) << name(scene);
     const double e0 = energy(s, Row{r.history, 0});
@@ -268,13 +270,11 @@ TEST(MoreauJean, PlasticAndPartlyElasticImpactsNeverAddEnergy) {
       c.pi8 = 2.0;
       System s = make_system(c);
       s.pulse.amplitude = 0.0;
-      mj::InitialState start{std::vector<double>(static_cast<std::size_t>(s.n_bodies()), 0.0),
-                             std::vector<double>(static_cast<std::size_t>(s.n_bodies()), 0.0)};
-      start.v[static_cast<std::size_t>(s.ref)] = -3.0 * s.delta * s.bodies[static_cast<std::size_t>(s.ref)].w;
+      s.v_start[static_cast<std::size_t>(s.ref)] = -3.0 * s.delta * s.bodies[static_cast<std::size_t>(s.ref)].w;
       Settings st;
       st.steps = 200;
       st.history_samples = 1;
-      const Result r = mj::solve_from(s, st, start);
+      const Result r = mj::solve(s, st);
       ASSERT_EQ(r.status, Status::ok) << r.message;
       ASSERT_GT(r.impacts, 0);
       const double e0 = energy(s, Row{r.history, 0});
@@ -336,7 +336,9 @@ TEST(MoreauJean, ImpactOnTheWallReversesTheApproachSpeedTimesEps) {
     Settings st;
     st.steps = 100;
     st.history_samples = 1;
-    const Result r = mj::solve_from(s, st, mj::InitialState{{0.0}, {-1.0}});
+    s.u_start = {0.0};
+    s.v_start = {-1.0};
+    const Result r = mj::solve(s, st);
     ASSERT_EQ(r.status, Status::ok);
     EXPECT_EQ(r.impacts, 1);
     const Row last{r.history, r.history.rows() - 1};
@@ -361,7 +363,9 @@ TEST(MoreauJean, SimultaneousImpactsFollowNewtonsLawOnEveryContact) {
     Settings st;
     st.steps = 100;
     st.history_samples = 1;
-    const Result r = mj::solve_from(s, st, mj::InitialState{{0.0, 0.0, 0.0}, {1.0, 0.0, -1.0}});
+    s.u_start = {0.0, 0.0, 0.0};
+    s.v_start = {1.0, 0.0, -1.0};
+    const Result r = mj::solve(s, st);
     ASSERT_EQ(r.status, Status::ok);
     EXPECT_EQ(r.impacts, 2);
     const Row after{r.history, 1};
@@ -402,22 +406,65 @@ TEST(MoreauJean, StepLoopNeverAllocates) {
   EXPECT_EQ(allocations, 0) << "over " << steps << " steps";
 
   // Through the public entry point: what allocates does not depend on the step count,
-  // with or without history (which is reserved before the loop).
-  for (bool history : {false, true}) {
-    long few = 0, many = 0;
-    {
-      AllocationCounter counter;
-      (void)run(s, 16, history);
-      few = counter.count();
+  // with or without history (reserved before the loop) and the monitor (its buffers are
+  // made before the loop too), on the fixed-size path (row3) and the any-size one (chain).
+  Case chain = make_case(Scene::chain, PulseShape::cosine, 1.0, 0.5, 0.5);
+  chain.bodies = 12;
+  chain.pi6 = 2.0;
+  for (const System& sys : {s, make_system(chain)}) {
+    for (bool history : {false, true}) {
+      for (bool monitor : {false, true}) {
+        long few = 0, many = 0;
+        Settings st;
+        st.history_samples = history ? 1 : 0;
+        st.monitor = monitor;
+        st.steps = 16;
+        {
+          AllocationCounter counter;
+          (void)mj::solve(sys, st);
+          few = counter.count();
+        }
+        st.steps = 4096;
+        {
+          AllocationCounter counter;
+          (void)mj::solve(sys, st);
+          many = counter.count();
+        }
+        EXPECT_EQ(few, many) << sys.n_bodies() << " bodies, history " << history << ", monitor " << monitor;
+        if (sys.n_bodies() == 3 && !monitor) {
+          EXPECT_LE(many, history ? 1 : 0) << "history " << history;
+        }
+      }
     }
-    {
-      AllocationCounter counter;
-      (void)run(s, 4096, history);
-      many = counter.count();
-    }
-    EXPECT_EQ(few, many) << "history " << history;
-    EXPECT_LE(many, history ? 1 : 0) << "history " << history;
   }
+}
+
+// The any-size loop itself, on a chain with impacts, runs of 3 or more contacts, a
+// history and the monitor: not one allocation over the whole run.
+TEST(MoreauJean, DynamicStepLoopNeverAllocates) {
+  Case c = make_case(Scene::chain, PulseShape::sine, 1.0, 0.5, 0.0);
+  c.bodies = 20;
+  c.pi3 = 0.0;
+  c.pi6 = 2.0;
+  const System s = make_system(c);
+  const double h = s.step(256);
+  const long steps = mj::step_count(s.t_end, h);
+  const mj::dynamic::Scheme scheme = mj::dynamic::make_scheme(s, h, 0.5, 0.5);
+  mj::dynamic::State state = mj::dynamic::make_state(scheme, s.u_start.data(), s.v_start.data());
+  mj::dynamic::Work work = mj::dynamic::make_work(scheme);
+  StepMonitor monitor(s);
+  std::vector<double> history;
+  history.reserve(static_cast<std::size_t>(steps) * static_cast<std::size_t>(1 + 2 * 20 + 2 * 19));
+  mj::Tally tally;
+  long allocations = 0;
+  {
+    AllocationCounter counter;
+    ASSERT_TRUE(mj::dynamic::advance(scheme, state, work, tally, steps, &history, &monitor));
+    allocations = counter.count();
+  }
+  EXPECT_GT(tally.impacts, 0);
+  EXPECT_GT(work.lcp_passes, 0) << "no run of 3 or more contacts was solved";
+  EXPECT_EQ(allocations, 0) << "over " << steps << " steps";
 }
 
 // Pi1 against the event-driven reference on pair and symmetric row3 cases of the Fig. 4
@@ -506,6 +553,15 @@ TEST(MoreauJean, CheckRejectsSettingsOutsideTheScheme) {
   Settings st;
   EXPECT_EQ(mj::check(st), "");
   EXPECT_EQ(mj::describe(st), "steps=64;theta=0.5;gamma=0.5");
+  st.wh = 10.0;
+  EXPECT_EQ(mj::check(st), "");
+  EXPECT_EQ(mj::describe(st), "wh=10;theta=0.5;gamma=0.5");
+  st.steps = 32;
+  EXPECT_EQ(mj::check(st).rfind("wh:", 0), 0u) << "steps and wh together";
+  st.wh = -1.0;
+  st.steps = 0;
+  EXPECT_EQ(mj::check(st).rfind("wh:", 0), 0u);
+  st.wh = 0.0;
   st.theta = 0.4;
   EXPECT_EQ(mj::check(st).rfind("theta:", 0), 0u);
   st.theta = 1.0;
@@ -520,6 +576,288 @@ TEST(MoreauJean, CheckRejectsSettingsOutsideTheScheme) {
   st.variant = "x";
   EXPECT_EQ(mj::check(st).rfind("variant:", 0), 0u);
   EXPECT_NE(find_solver("moreau-jean"), nullptr);
+}
+
+
+Case chain_case(int bodies, PulseShape p, double eps) {
+  Case c = make_case(Scene::chain, p, 1.0, 0.5, eps);
+  c.bodies = bodies;
+  c.pi6 = 2.0;  // alternating masses and frequencies: the bodies collide under the pulse
+  return c;
+}
+
+// The any-size path does the fixed-size path's arithmetic in the same order (the impulses
+// of the two contacts of row3's middle body are summed before they are added, the
+// Delassus entries are the same sums), so on wall, pair and row3 the two agree to
+// round-off; different rounding would show first in the history, where it is checked.
+TEST(MoreauJean, DynamicPathMatchesTheFixedPathOnWallPairAndRow3) {
+  double worst = 0.0;
+  for (Scene scene : {Scene::wall, Scene::pair, Scene::row3}) {
+    for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
+      for (double eps : {0.0, 0.5, 1.0}) {
+        for (double pi3 : {0.0, 0.5}) {
+          Case c = make_case(scene, p, 1.3, 0.5, eps);
+          c.pi3 = pi3;
+          c.pi8 = 2.0;
+          const System s = make_system(c);
+          Settings st;
+          st.steps = 48;
+          st.history_samples = 1;
+          const Result fixed = mj::solve(s, st), any = mj::solve_dynamic(s, st);
+          const std::string what = std::string(name(scene)) + " " + std::string(name(p)) +
+                                   " eps=" + std::to_string(eps) + " pi3=" + std::to_string(pi3);
+          ASSERT_EQ(fixed.status, Status::ok) << what << ": " << fixed.message;
+          ASSERT_EQ(any.status, Status::ok) << what << ": " << any.message;
+          EXPECT_GT(fixed.impacts + fixed.contact_phases, 0) << what;
+          EXPECT_EQ(any.impacts, fixed.impacts) << what;
+          EXPECT_EQ(any.contact_phases, fixed.contact_phases) << what;
+          EXPECT_EQ(any.steps, fixed.steps) << what;
+          EXPECT_EQ(any.step, fixed.step) << what;
+          EXPECT_EQ(any.isolated_impacts, fixed.isolated_impacts) << what;
+          // 1e-12: round-off of a few hundred steps on numbers of order one.
+          EXPECT_NEAR(any.pi1, fixed.pi1, 1e-12 * fixed.pi1) << what;
+          EXPECT_NEAR(any.energy_excess, fixed.energy_excess, 1e-12) << what;
+          if (std::isfinite(fixed.min_gap))
+            EXPECT_NEAR(any.min_gap, fixed.min_gap, 1e-12 * s.length_scale()) << what;
+          else
+            EXPECT_EQ(any.min_gap, fixed.min_gap) << what;
+          ASSERT_EQ(any.history.data.size(), fixed.history.data.size()) << what;
+          ASSERT_EQ(any.history.n_contacts, fixed.history.n_contacts) << what;
+          double scale = 0.0, diff = 0.0;
+          for (std::size_t i = 0; i < fixed.history.data.size(); ++i) {
+            scale = std::max(scale, std::abs(fixed.history.data[i]));
+            diff = std::max(diff, std::abs(any.history.data[i] - fixed.history.data[i]));
+          }
+          worst = std::max(worst, diff / scale);
+          EXPECT_LE(diff, 1e-12 * scale) << what;
+        }
+      }
+    }
+  }
+  RecordProperty("worst_relative_history_difference", scientific(worst));
+}
+
+// LCP(A, q) for tridiagonal Stieltjes matrices made as the Delassus matrices of runs of
+// bodies with random masses, against Lemke and against the conditions themselves.
+TEST(MoreauJean, TridiagonalLcpSolvesRunsExactlyAsLemkeDoes) {
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<double> mass(0.01, 100.0), unit(-1.0, 1.0);
+  mj::TridiagonalLcp solver;
+  lcp::LemkeWorkspace ws;
+  int checked = 0;
+  for (int n : {3, 4, 7, 20, 60}) {
+    solver.reserve(n);
+    for (int trial = 0; trial < 40; ++trial) {
+      std::vector<double> minv(static_cast<std::size_t>(n + 1));
+      for (double& x : minv) x = 1.0 / mass(rng);
+      Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
+      std::vector<double> d(static_cast<std::size_t>(n)), o(static_cast<std::size_t>(n), 0.0);
+      Eigen::VectorXd q(n);
+      std::vector<char> guess(static_cast<std::size_t>(n));
+      for (int i = 0; i < n; ++i) {
+        const auto ii = static_cast<std::size_t>(i);
+        d[ii] = minv[ii] + minv[ii + 1];
+        a(i, i) = d[ii];
+        if (i + 1 < n) {
+          o[ii] = -minv[ii + 1];
+          a(i, i + 1) = a(i + 1, i) = o[ii];
+        }
+        // Half the trials: a cradle, one approaching contact at one end of a closed run.
+        q(i) = trial % 2 == 0 ? unit(rng) : (i == 0 ? -1.0 : 0.0);
+        guess[ii] = static_cast<char>(trial % 3 == 0 && unit(rng) > 0.0);  // warm starts, good and bad
+      }
+      std::vector<double> z(static_cast<std::size_t>(n));
+      const int passes = solver.solve(d.data(), o.data(), q.data(), z.data(), n, trial % 3 == 0 ? guess.data() : nullptr);
+      EXPECT_LE(passes, n + 1) << "at most n passes, and one more when the guess fails";
+      Eigen::VectorXd ref(n);
+      ASSERT_EQ(lcp::lemke(a, q, ref, ws).status, lcp::Status::solved);
+      const Eigen::VectorXd zz = Eigen::Map<const Eigen::VectorXd>(z.data(), n);
+      const Eigen::VectorXd w = a * zz + q;
+      const double q_max = q.cwiseAbs().maxCoeff(), scale = q_max / a.diagonal().minCoeff();
+      for (int i = 0; i < n; ++i) {
+        // 1e-10: masses span 1e4, so A's condition number reaches ~1e4 and the elimination's
+        // round-off ~1e4 ulp; Lemke's answer carries its own rounding of the same size.
+        const double zi = z[static_cast<std::size_t>(i)];
+        EXPECT_GE(zi, 0.0);
+        EXPECT_GE(w(i), -1e-10 * q_max) << "n=" << n << " trial " << trial;
+        EXPECT_LE(std::min(zi / scale, std::abs(w(i)) / q_max), 1e-10) << "complementarity, n=" << n;
+        EXPECT_NEAR(zi, ref(i), 1e-10 * scale) << "n=" << n << " trial " << trial;
+      }
+      if (trial % 2 == 1 && trial % 3 != 0) {
+        EXPECT_EQ(passes, 1) << "a cradle's closed contacts (q = 0) join in the first pass";
+      }
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 200);
+}
+
+// With theta = 1/2 the monitor's balance E + D - E0 - W is the scheme's own: a step
+// changes it by sum_j P_j (g'_j,k + g'_j,k+1) / 2, zero for eps = 1 and <= 0 for an
+// approaching contact with eps < 1 (README). Its largest value stays at round-off, also
+// at steps far beyond the stability limit of an explicit scheme (w_max h = 10, 100).
+TEST(MoreauJean, EnergyBalanceStaysAtRoundOffAtThetaOneHalfAtAnyStep) {
+  double worst = 0.0;
+  int runs = 0;
+  for (Scene scene : {Scene::pair, Scene::row3, Scene::chain}) {
+    for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
+      for (double eps : {0.0, 0.5, 1.0}) {
+        Case c = scene == Scene::chain ? chain_case(8, p, eps) : make_case(scene, p, 1.0, 0.5, eps);
+        if (scene == Scene::chain) c.kick = 2.0;
+        const System s = make_system(c);
+        for (double wh : {0.0, 0.5, 10.0, 100.0}) {
+          Settings st;
+          st.wh = wh;
+          const Result r = mj::solve(s, st);
+          const std::string what = std::string(name(scene)) + " " + std::string(name(p)) +
+                                   " eps=" + std::to_string(eps) + " wh=" + std::to_string(wh);
+          ASSERT_EQ(r.status, Status::ok) << what << ": " << r.message;
+          EXPECT_TRUE(std::isfinite(r.pi1)) << what;
+          ASSERT_TRUE(std::isfinite(r.energy_excess)) << what;
+          if (wh == 0.0) {
+            EXPECT_GT(r.impacts, 0) << what;
+          }
+          // 1e-10 of the energy scale: thousands of steps of round-off, each ~1e-16.
+          EXPECT_LE(r.energy_excess, 1e-10) << what;
+          worst = std::max(worst, r.energy_excess);
+          ++runs;
+        }
+      }
+    }
+  }
+  RecordProperty("worst_energy_excess", scientific(worst));
+  EXPECT_EQ(runs, 72);
+}
+
+// Newton's law on one contact: g'+ = -eps g'- exactly where the contact pushes, so the
+// monitor's measured restitution of every isolated impact is eps to round-off.
+TEST(MoreauJean, IsolatedImpactsRestituteExactlyEps) {
+  for (Scene scene : {Scene::wall, Scene::pair, Scene::row3, Scene::chain}) {
+    for (double eps : {0.0, 0.5, 1.0}) {
+      long isolated = 0;
+      for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
+        const Case c = scene == Scene::chain ? chain_case(6, p, eps) : make_case(scene, p, 1.0, 0.5, eps);
+        const Result r = mj::solve(make_system(c), {});
+        ASSERT_EQ(r.status, Status::ok) << r.message;
+        isolated += r.isolated_impacts;
+        if (r.isolated_impacts == 0) continue;
+        // 1e-12: -g'+/g'- with |g'-| above 1e-3 a_p/w_p and g'+ + eps g'- at round-off.
+        EXPECT_NEAR(r.restitution_low, eps, 1e-12) << name(scene) << " " << name(p) << " eps=" << eps;
+        EXPECT_NEAR(r.restitution_high, eps, 1e-12) << name(scene) << " " << name(p) << " eps=" << eps;
+      }
+      EXPECT_GT(isolated, 0) << name(scene) << " eps=" << eps;
+    }
+  }
+}
+
+// A Newton's cradle: N equal bodies touching at rest, body 0 moving at v0 into the rest,
+// eps = 1. All N - 1 contacts are active in the first step, and Newton's law on all of them
+// at once keeps the relative velocities (v0 at contact 0, 0 elsewhere) and the momentum:
+// v_0 = (2 - N)/N v0 and 2/N v0 for the others. (Not the textbook cradle, where the last
+// body alone leaves at v0: that is a sequence of binary impacts, Poisson's law.)
+TEST(MoreauJean, NewtonsCradleFollowsNewtonsLawOnEveryContactAtOnce) {
+  for (int n : {3, 10}) {
+    Case c = make_case(Scene::chain, PulseShape::cosine, 1.0, 1.0, 1.0);
+    c.bodies = n;
+    c.pi3 = 0.0;
+    c.kick = 100.0;
+    System s = make_system(c);
+    Settings st;
+    st.steps = 1000;
+    st.history_samples = 1;
+    const double h = s.step(st.steps);
+    s.t_end = 3.0 * h;
+    const Result r = mj::solve(s, st);
+    ASSERT_EQ(r.status, Status::ok) << r.message;
+    const Row after{r.history, 1};
+    const double v0 = s.v_start[0], nn = static_cast<double>(n);
+    // Within the step, the smooth forces change body 0's velocity by h (c + h k / 2) v0 / m
+    // at most, and every body's by h a_p (the load); the impact shares body 0's change out
+    // over the N bodies (momentum), and adds the load's common shift to all of them.
+    const Body& b = s.bodies[0];
+    const double tol = v0 / nn * h * (b.c + 0.5 * h * b.k) / b.m + h * s.a_p + 1e-12 * v0;
+    EXPECT_NEAR(after.v(0), (2.0 - nn) / nn * v0, tol) << "N=" << n;
+    for (int i = 1; i < n; ++i) EXPECT_NEAR(after.v(i), 2.0 / nn * v0, tol) << "N=" << n << " body " << i;
+    // The relative velocities themselves are Newton's law exactly: -eps times those before.
+    EXPECT_NEAR(gap_rate(s, after, 0), v0, 1e-12 * v0) << "N=" << n;
+    for (int j = 0; j < n - 1; ++j) EXPECT_GT(after.lambda(j), 0.0) << "N=" << n << " contact " << j;
+    for (int j = 1; j < n - 1; ++j) EXPECT_NEAR(gap_rate(s, after, j), 0.0, 1e-12 * v0) << "N=" << n;
+    RecordProperty("tolerance_over_v0_N" + std::to_string(n), scientific(tol / v0));
+  }
+}
+
+TEST(MoreauJean, ChainKeepsThePenetrationBoundAndScalesExactly) {
+  for (double eps : {0.0, 0.5, 1.0}) {
+    for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
+      const Case c = chain_case(10, p, eps);
+      const System s = make_system(c);
+      const Result r = run(s, 256, true);
+      ASSERT_EQ(r.status, Status::ok) << r.message;
+      ASSERT_GT(r.impacts, 0);
+      ASSERT_FALSE(std::isinf(r.min_gap));
+      double fastest = 0.0;
+      for (std::size_t k = 0; k < r.history.rows(); ++k)
+        for (int j = 0; j < s.n_contacts(); ++j) fastest = std::max(fastest, std::abs(gap_rate(s, Row{r.history, k}, j)));
+      // As in PenetrationIsBelowOneStepOfTheFastestApproach: exact up to round-off.
+      EXPECT_LE(-r.min_gap, (1.0 - 0.5 * eps) * s.step(256) * fastest * (1.0 + 1e-9)) << name(p) << " eps=" << eps;
+      // Self-similarity: powers of two in a_p and w_p change nothing but exact scales.
+      Case scaled = c;
+      scaled.a_p = 8.0;
+      scaled.w_p = 0.25;
+      const Result rs = run(make_system(scaled), 256);
+      EXPECT_EQ(rs.pi1, r.pi1) << name(p) << " eps=" << eps;
+      EXPECT_EQ(rs.impacts, r.impacts);
+      EXPECT_EQ(rs.contact_phases, r.contact_phases);
+    }
+  }
+}
+
+TEST(MoreauJean, StepIsWmaxHOverWmaxWhenWhIsGiven) {
+  const System s = make_system(chain_case(5, PulseShape::sine, 0.5));
+  Settings st;
+  st.wh = 2.0;
+  Result r = mj::solve(s, st);
+  ASSERT_EQ(r.status, Status::ok) << r.message;
+  EXPECT_DOUBLE_EQ(r.step, 2.0 * s.t_min / (2.0 * std::numbers::pi));
+  EXPECT_EQ(r.steps, mj::step_count(s.t_end, r.step));
+  st.wh = 0.0;
+  st.steps = 100;
+  r = mj::solve(s, st);
+  EXPECT_EQ(r.step, s.step(100));
+}
+
+TEST(MoreauJean, DynamicPathReportsCapsNonFiniteDivergentAndTimedOutRuns) {
+  const System s = make_system(chain_case(30, PulseShape::sine, 0.5));
+  Settings st;
+  st.step_cap = 10;
+  Result r = mj::solve(s, st);
+  EXPECT_EQ(r.status, Status::step_cap);
+  EXPECT_EQ(r.steps, 0);
+  EXPECT_TRUE(std::isnan(r.pi1));
+
+  System bad = s;
+  bad.bodies[7].k = std::numeric_limits<double>::quiet_NaN();
+  r = mj::solve(bad, {});
+  EXPECT_EQ(r.status, Status::nan) << r.message;
+
+  System unstable = s;
+  unstable.bodies[12].k = -25.0 * unstable.bodies[12].m;
+  r = mj::solve(unstable, {});
+  EXPECT_EQ(r.status, Status::diverged) << r.message;
+  EXPECT_TRUE(std::isfinite(r.energy_excess)) << "a run that stops still reports what the monitor saw";
+
+  // A clock read after the first chunk of steps (about 2000 here) stops a long run.
+  st = {};
+  st.steps = 100000;
+  st.time_limit = 1e-9;
+  r = mj::solve(s, st);
+  EXPECT_EQ(r.status, Status::timeout) << r.message;
+  EXPECT_GT(r.steps, 0);
+  EXPECT_LT(r.steps, 10000);
+
+  System wrong = s;
+  wrong.v_start.pop_back();
+  EXPECT_EQ(mj::solve(wrong, {}).status, Status::failed);
 }
 
 }  // namespace

@@ -1,50 +1,97 @@
 #include "solvers/moreau_jean/moreau_jean.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <optional>
 #include <sstream>
 
+#include "solvers/monitor.hpp"
+#include "solvers/moreau_jean/dynamic.hpp"
 #include "solvers/moreau_jean/stepper.hpp"
 
 namespace pb::moreau_jean {
 
 namespace {
 
-// Steps between two looks at the wall clock; a multiple of kResync, so chunking never
-// changes where the pulse recurrence is resynchronised (results do not depend on it).
+// Steps between two looks at the wall clock for the fixed-size path (the any-size path
+// divides it by the number of bodies); a multiple of kResync, so chunking never changes
+// where the pulse recurrence is resynchronised (results do not depend on it).
 constexpr long kChunk = 1L << 16;
 static_assert(kChunk % kResync == 0);
 
-int steps_per_period(const Settings& s) { return s.steps == 0 ? kDefaultSteps : s.steps; }
+// Start value i of System::u_start or v_start: empty means rest (a System made by hand).
+double start_value(const std::vector<double>& x, int i) { return x.empty() ? 0.0 : x[static_cast<std::size_t>(i)]; }
 
-template <int NB, int NC>
-Result run(const System& sys, const Settings& set, const InitialState* start) {
-  using VecB = typename Scheme<NB, NC>::VecB;
-  using VecC = typename Scheme<NB, NC>::VecC;
+// The result before any step: the step h, the step count n, and whether the run may start.
+Result prepare(const System& sys, const Settings& set, double& h, long& n) {
   Result res;
-  const double h = sys.step(steps_per_period(set));
-  const long n = step_count(sys.t_end, h);
+  h = time_step(sys, set, kDefaultSteps);
+  n = 0;
+  res.step = h;
+  const auto nb = static_cast<std::size_t>(sys.n_bodies());
   const long cap = set.step_cap > 0 ? set.step_cap : kDefaultStepCap;
-  if (n > cap) {
+  if ((!sys.u_start.empty() && sys.u_start.size() != nb) || (!sys.v_start.empty() && sys.v_start.size() != nb)) {
+    res.status = Status::failed;
+    res.message = "start state: needs one u and one v per body (or none: rest)";
+  } else if (!(h > 0.0) || !std::isfinite(h) || !(sys.t_end / h < 1e18)) {
+    res.status = Status::failed;
+    res.message = "step: h = " + std::to_string(h) + " is not a usable step for t_end = " + std::to_string(sys.t_end);
+  } else if (n = step_count(sys.t_end, h); n > cap) {
     res.status = Status::step_cap;
     res.message = "the run needs " + std::to_string(n) + " steps, more than the cap " + std::to_string(cap);
-    return res;
   }
+  return res;
+}
 
+// Calls advance(k_end) on chunks of `chunk` steps until the state is at step n, and reads
+// the wall clock between chunks against Settings::time_limit. False if the state blew up.
+template <class Advance>
+bool drive(const long& k, long n, long chunk, double h, const Settings& set, Result& res, Advance&& advance) {
+  const auto started = std::chrono::steady_clock::now();
+  while (k < n) {
+    if (!advance(std::min(n, k + chunk))) return false;
+    if (set.time_limit > 0.0 && k < n &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() > set.time_limit) {
+      res.status = Status::timeout;
+      res.message = "time limit reached at t = " + std::to_string(static_cast<double>(k) * h);
+      break;
+    }
+  }
+  return true;
+}
+
+// Counts, status and Pi1 from the tally once the loop has stopped at step k.
+void finish(const System& sys, const Tally& tally, long k, double h, bool finite, bool state_finite,
+            const std::optional<StepMonitor>& monitor, Result& res) {
+  res.steps = k;
+  res.impacts = tally.impacts;
+  res.contact_phases = tally.phases;
+  res.min_gap = tally.g_min < 0.0 ? tally.g_min : std::numeric_limits<double>::infinity();
+  if (monitor) monitor->finish(res);
+  if (!finite) {
+    res.status = state_finite ? Status::diverged : Status::nan;
+    std::ostringstream msg;
+    msg << (res.status == Status::nan ? "non-finite state" : "|u| above 1e6 a_p/w_p^2") << " at step " << k
+        << " (t = " << static_cast<double>(k) * h << ")";
+    res.message = msg.str();
+  }
+  if (res.status != Status::ok) return;
+  res.pi1 = sys.pi1(tally.u_max);
+  res.t_max = static_cast<double>(tally.k_max) * h;
+}
+
+template <int NB, int NC>
+Result run_fixed(const System& sys, const Settings& set, double h, long n, Result res) {
+  using VecB = typename Scheme<NB, NC>::VecB;
+  using VecC = typename Scheme<NB, NC>::VecC;
   const Scheme<NB, NC> sc = make_scheme<NB, NC>(sys, h, set.theta, set.gamma);
-  VecB u0 = VecB::Zero(), v0 = VecB::Zero();
-  if (start) {
-    if (start->u.size() != NB || start->v.size() != NB) {
-      res.status = Status::failed;
-      res.message = "initial state: needs one u and one v per body";
-      return res;
-    }
-    for (int i = 0; i < NB; ++i) {
-      u0(i) = start->u[static_cast<std::size_t>(i)];
-      v0(i) = start->v[static_cast<std::size_t>(i)];
-    }
+  VecB u0, v0;
+  for (int i = 0; i < NB; ++i) {
+    u0(i) = start_value(sys.u_start, i);
+    v0(i) = start_value(sys.v_start, i);
   }
   State<NB, NC> st = make_state(sc, u0, v0);
   Tally tally;
@@ -58,50 +105,67 @@ Result run(const System& sys, const Settings& set, const InitialState* start) {
     rows->reserve(static_cast<std::size_t>(n + 1) * static_cast<std::size_t>(res.history.row_size()));
     record(sc, st, VecC::Zero().eval(), *rows);
   }
+  std::optional<StepMonitor> monitor;
+  if (set.monitor) monitor.emplace(sys);
+  StepMonitor* m = monitor ? &*monitor : nullptr;
 
-  const auto started = std::chrono::steady_clock::now();
-  bool finite = true;
-  while (st.k < n) {
-    const long end = std::min(n, st.k + kChunk);
-    finite =
-        recording ? advance<NB, NC, true>(sc, st, tally, end, rows) : advance<NB, NC, false>(sc, st, tally, end, rows);
-    if (!finite) break;
-    if (set.time_limit > 0.0 && st.k < n &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() > set.time_limit) {
-      res.status = Status::timeout;
-      res.message = "time limit reached at t = " + std::to_string(static_cast<double>(st.k) * h);
-      break;
-    }
-  }
-
-  res.steps = st.k;
-  res.impacts = tally.impacts;
-  res.contact_phases = tally.phases;
-  res.min_gap = tally.g_min < 0.0 ? tally.g_min : std::numeric_limits<double>::infinity();
-  if (!finite) {
-    res.status = st.q.allFinite() && st.v.allFinite() ? Status::diverged : Status::nan;
-    std::ostringstream msg;
-    msg << (res.status == Status::nan ? "non-finite state" : "|u| above 1e6 a_p/w_p^2") << " at step " << st.k
-        << " (t = " << static_cast<double>(st.k) * h << ")";
-    res.message = msg.str();
-  }
-  if (res.status != Status::ok) return res;
-  res.pi1 = sys.pi1(tally.u_max);
-  res.t_max = static_cast<double>(tally.k_max) * h;
+  const bool finite = drive(st.k, n, kChunk, h, set, res, [&](long end) {
+    if (recording)
+      return m ? advance<NB, NC, true, true>(sc, st, tally, end, rows, m)
+               : advance<NB, NC, true, false>(sc, st, tally, end, rows, m);
+    return m ? advance<NB, NC, false, true>(sc, st, tally, end, rows, m)
+             : advance<NB, NC, false, false>(sc, st, tally, end, rows, m);
+  });
+  finish(sys, tally, st.k, h, finite, st.q.allFinite() && st.v.allFinite(), monitor, res);
   return res;
 }
 
-Result dispatch(const System& sys, const Settings& set, const InitialState* start) {
+Result run_dynamic(const System& sys, const Settings& set, double h, long n, Result res) {
+  const dynamic::Scheme sc = dynamic::make_scheme(sys, h, set.theta, set.gamma);
+  std::vector<double> u0(static_cast<std::size_t>(sc.nb)), v0(u0.size());
+  for (int i = 0; i < sc.nb; ++i) {
+    u0[static_cast<std::size_t>(i)] = start_value(sys.u_start, i);
+    v0[static_cast<std::size_t>(i)] = start_value(sys.v_start, i);
+  }
+  dynamic::State st = dynamic::make_state(sc, u0.data(), v0.data());
+  dynamic::Work work = dynamic::make_work(sc);
+  Tally tally;
+  tally.u_max = std::abs(st.q(sc.ref));
+  if (sc.nc > 0) tally.g_min = std::min(0.0, st.g.minCoeff());
+
+  std::vector<double>* rows = set.history_samples > 0 ? &res.history.data : nullptr;
+  if (rows) {
+    res.history.n_bodies = sc.nb;
+    res.history.n_contacts = sc.nc;
+    rows->reserve(static_cast<std::size_t>(n + 1) * static_cast<std::size_t>(res.history.row_size()));
+    dynamic::record(sc, st, work.impulse, *rows);
+  }
+  std::optional<StepMonitor> monitor;
+  if (set.monitor) monitor.emplace(sys);
+  StepMonitor* m = monitor ? &*monitor : nullptr;
+
+  // About kChunk body-steps between looks at the clock, in whole resynchronisation periods.
+  const long chunk = std::max(kResync, kChunk / (sc.nb + 1) / kResync * kResync);
+  const bool finite = drive(st.k, n, chunk, h, set, res,
+                            [&](long end) { return dynamic::advance(sc, st, work, tally, end, rows, m); });
+  finish(sys, tally, st.k, h, finite, st.q.allFinite() && st.v.allFinite(), monitor, res);
+  return res;
+}
+
+Result dispatch(const System& sys, const Settings& set, bool force_dynamic) {
   try {
-    const int nb = sys.n_bodies(), nc = sys.n_contacts();
-    if (nb == 1 && nc == 1) return run<1, 1>(sys, set, start);  // wall
-    if (nb == 2 && nc == 1) return run<2, 1>(sys, set, start);  // pair
-    if (nb == 3 && nc == 2) return run<3, 2>(sys, set, start);  // row3
-    if (nb == 1 && nc == 0) return run<1, 0>(sys, set, start);  // body 0 alone (no-contact response)
-    Result res;
-    res.status = Status::failed;
-    res.message = "no fixed-size path for " + std::to_string(nb) + " bodies and " + std::to_string(nc) + " contacts";
-    return res;
+    double h = 0.0;
+    long n = 0;
+    Result res = prepare(sys, set, h, n);
+    if (res.status != Status::ok) return res;
+    if (!force_dynamic) {
+      const int nb = sys.n_bodies(), nc = sys.n_contacts();
+      if (nb == 1 && nc == 1) return run_fixed<1, 1>(sys, set, h, n, std::move(res));  // wall
+      if (nb == 2 && nc == 1) return run_fixed<2, 1>(sys, set, h, n, std::move(res));  // pair, chain of 2
+      if (nb == 3 && nc == 2) return run_fixed<3, 2>(sys, set, h, n, std::move(res));  // row3, chain of 3
+      if (nb == 1 && nc == 0) return run_fixed<1, 0>(sys, set, h, n, std::move(res));  // body 0 alone
+    }
+    return run_dynamic(sys, set, h, n, std::move(res));
   } catch (const std::exception& e) {
     Result res;
     res.status = Status::failed;
@@ -112,21 +176,23 @@ Result dispatch(const System& sys, const Settings& set, const InitialState* star
 
 }  // namespace
 
-Result solve(const System& system, const Settings& settings) { return dispatch(system, settings, nullptr); }
+Result solve(const System& system, const Settings& settings) { return dispatch(system, settings, false); }
 
-Result solve_from(const System& system, const Settings& settings, const InitialState& start) {
-  return dispatch(system, settings, &start);
-}
+Result solve_dynamic(const System& system, const Settings& settings) { return dispatch(system, settings, true); }
 
 std::string describe(const Settings& settings) {
   std::ostringstream out;
-  out << "steps=" << steps_per_period(settings) << ";theta=" << settings.theta << ";gamma=" << settings.gamma;
+  if (settings.wh > 0.0)
+    out << "wh=" << settings.wh;
+  else
+    out << "steps=" << (settings.steps > 0 ? settings.steps : kDefaultSteps);
+  out << ";theta=" << settings.theta << ";gamma=" << settings.gamma;
   return out.str();
 }
 
 std::string check(const Settings& settings) {
   if (!settings.variant.empty()) return "variant: moreau-jean has no variants";
-  if (settings.steps < 0) return "steps: must be >= 1 (0: the default " + std::to_string(kDefaultSteps) + ")";
+  if (std::string step = check_step(settings, kDefaultSteps); !step.empty()) return step;
   if (!(settings.theta >= 0.5 && settings.theta <= 1.0)) return "theta: must be in [0.5, 1]";
   if (!(settings.gamma >= 0.0 && settings.gamma <= 1.0)) return "gamma: must be in [0, 1]";
   if (settings.step_cap < 0) return "step_cap: must be >= 0 (0: the solver's own cap)";

@@ -1,7 +1,9 @@
 #pragma once
 // The Moreau-Jean step loop for one scene shape: NB bodies and NC contacts known at
 // compile time, so every vector and matrix of a step is a fixed-size Eigen type and the
-// loop never allocates. The scheme and every choice made here are derived and argued in
+// loop never allocates. This path serves wall, pair, row3 and one body alone; any other
+// row of bodies takes the any-size path (dynamic.hpp), which does the same arithmetic.
+// The scheme and every choice made here are derived and argued in
 // solvers/moreau_jean/README.md; in short:
 //
 //   M_hat = M + h theta C + h^2 theta^2 K           (diagonal: bodies couple only by contact)
@@ -11,85 +13,32 @@
 //   v_k+1   = v_free + M_hat^-1 W P,   q_k+1 = q_k + h ((1 - theta) v_k + theta v_k+1)
 //
 // abar_k is the exact mean of a_g over [t_k, t_k+1] (zero past T_p), computed from a
-// rotation recurrence for cos/sin(w_p t_k) resynchronised every kResync steps.
+// rotation recurrence for cos/sin(w_p t_k) resynchronised every kResync steps
+// (loop_common.hpp).
 //
 // Layout follows "constant apart from changing": Scheme holds what a run never changes
 // (built once, before the loop), State what a step changes, Tally what the result needs.
+// What a step records (history) and whether a StepMonitor sees it are template flags, so
+// the plain loop carries no test for either.
 //
-// Rejected alternatives: dynamic-size Eigen types (heap temporaries, and size bookkeeping
-// that outweighs arithmetic on 1 to 3 numbers); a general LCP solver (the scenes need
-// 1x1 and 2x2 only, solved exactly by lcp::solve1 / lcp::solve2); std::sin/std::cos every
-// step (the main cost of a loaded step).
+// Rejected alternatives: dynamic-size Eigen types for these scenes (heap temporaries, and
+// size bookkeeping that outweighs arithmetic on 1 to 3 numbers: measured 2-5x slower, see
+// README); a general LCP solver (the scenes need 1x1 and 2x2 only, solved exactly by
+// lcp::solve1 / lcp::solve2); std::sin/std::cos every step (the main cost of a loaded step).
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <vector>
 
 #include "cases/system.hpp"
 #include "solvers/lcp/small.hpp"
+#include "solvers/moreau_jean/loop_common.hpp"
+#include "solvers/monitor.hpp"
 
 namespace pb::moreau_jean {
-
-// cos/sin(w_p t_k) are recomputed exactly every kResync steps; in between they come from
-// a rotation by w_p h. The drift of a rotation is at most ~3 ulp per step, so the load is
-// within kResync * 3 * 2^-53 ~ 2e-14 of a_p (measured 4e-15: test PulseMeanRecurrence*).
-inline constexpr long kResync = 64;
-
-// The step mean of the ground acceleration, abar_k = (1/h) integral over [t_k, t_k+1] of a_g.
-// A step inside the pulse: abar = p cos(w t_k) + r sin(w t_k). The step that contains
-// T_p integrates only up to T_p, where cos = 1 and sin = 0 exactly.
-struct PulseLoad {
-  double wh = 0.0;                                  // w_p h
-  double cos_wh = 1.0, sin_wh = 0.0;                // the rotation of one step
-  double p = 0.0, r = 0.0;                          // full step
-  double tail_c = 0.0, tail_s = 0.0, tail_1 = 0.0;  // step that contains T_p: tail_c cos + tail_s sin + tail_1
-  long full_steps = 0;                              // steps 0 .. full_steps-1 lie inside [0, T_p]
-  bool straddle = false;                            // step full_steps contains T_p inside it
-
-  double tail(long k) const {
-    const double phase = static_cast<double>(k) * wh;
-    return tail_c * std::cos(phase) + tail_s * std::sin(phase) + tail_1;
-  }
-};
-
-inline PulseLoad make_pulse_load(const Pulse& pulse, double h) {
-  PulseLoad l;
-  l.wh = pulse.w * h;
-  l.cos_wh = std::cos(l.wh);
-  l.sin_wh = std::sin(l.wh);
-  // (1 - cos x) / x and sin x / x, without the cancellation of 1 - cos x.
-  const double half = std::sin(0.5 * l.wh);
-  const double alpha = 2.0 * half * half / l.wh, beta = l.sin_wh / l.wh;
-  const double a = pulse.amplitude, a_wh = a / l.wh;
-  if (pulse.shape == PulseShape::sine) {  // mean of sin = (cos(w t_k) - cos(w t_k+1)) / (w h)
-    l.p = a * alpha;
-    l.r = a * beta;
-    l.tail_c = a_wh;
-    l.tail_1 = -a_wh;
-  } else {  // mean of cos = (sin(w t_k+1) - sin(w t_k)) / (w h)
-    l.p = a * beta;
-    l.r = -a * alpha;
-    l.tail_s = -a_wh;
-  }
-  // A pulse that ends within 1e-9 steps of a step boundary ends on it: the dropped sliver
-  // changes the impulse by < 1e-9 h a_p, and T_p = N h (t_min = T_p) lands there exactly.
-  const double ratio = pulse.duration() / h;
-  const double nearest = std::round(ratio);
-  if (std::abs(ratio - nearest) <= 1e-9 * std::max(1.0, ratio)) {
-    l.full_steps = static_cast<long>(nearest);
-    l.straddle = false;
-  } else {
-    l.full_steps = static_cast<long>(std::floor(ratio));
-    l.straddle = true;
-  }
-  return l;
-}
-
-// Steps of a run: fixed h, and the first step count whose end reaches t_end (to within
-// 1e-9 of a step, so that t_end = n h up to round-off does not add a step).
-inline long step_count(double t_end, double h) { return static_cast<long>(std::ceil(t_end / h - 1e-9)); }
 
 template <int NB, int NC>
 struct Scheme {
@@ -174,14 +123,6 @@ State<NB, NC> make_state(const Scheme<NB, NC>& sc, const typename Scheme<NB, NC>
   return st;
 }
 
-struct Tally {
-  double u_max = 0.0;  // largest |u_ref| over the steps
-  long k_max = 0;      // its step
-  double g_min = 0.0;  // most negative gap (0 if none)
-  long impacts = 0;    // contacts that entered the index set approaching
-  long phases = 0;     // runs of >= 2 consecutive steps with a positive impulse
-};
-
 // The step loop's helpers are forced inline: a call per step costs as much as the step.
 #define PB_MJ_INLINE [[gnu::always_inline]] inline
 
@@ -226,9 +167,9 @@ PB_MJ_INLINE Eigen::Matrix<double, NC, 1> contact_impulse(const Eigen::Matrix<do
 
 // One step from st.k to st.k + 1 under the step-mean ground acceleration abar.
 // Returns false when the state is no longer finite or |u| passed the divergence bound.
-template <int NB, int NC, bool kRecord>
+template <int NB, int NC, bool kRecord, bool kMonitor>
 PB_MJ_INLINE bool step(const Scheme<NB, NC>& sc, State<NB, NC>& st, Tally& t, double abar,
-                       std::vector<double>* history) {
+                       std::vector<double>* history, StepMonitor* monitor) {
   using VecC = typename Scheme<NB, NC>::VecC;
   typename Scheme<NB, NC>::VecB v_new = sc.fv.cwiseProduct(st.v) + sc.fq.cwiseProduct(st.q) + sc.fa * abar;
   typename Scheme<NB, NC>::VecB q_new = sc.qv.cwiseProduct(st.v) + sc.qq.cwiseProduct(st.q) + sc.qa * abar;
@@ -265,40 +206,24 @@ PB_MJ_INLINE bool step(const Scheme<NB, NC>& sc, State<NB, NC>& st, Tally& t, do
     st.g = sc.delta + sc.wt * st.q;
     st.rate = sc.wt * st.v;
   }
+  // Before the divergence test: a diverging run's energy excess shows the growth.
+  if constexpr (kMonitor) {
+    std::array<char, (NC > 0 ? NC : 1)> pushed{};
+    for (int j = 0; j < NC; ++j) pushed[static_cast<std::size_t>(j)] = static_cast<char>((st.pushed >> j) & 1u);
+    monitor->step(sc.h, abar, st.q.data(), st.v.data(), pushed.data());
+  }
   if (!(st.q.array().abs() <= sc.bound).all()) return false;
   tally_state(sc, st, t);
   if constexpr (kRecord) record(sc, st, impulse, *history);
   return true;
 }
 
-// The step means of the full pulse steps, in order from step k: cos/sin(w_p t_k) come from
-// the rotation, and are recomputed exactly at k and at every multiple of kResync.
-struct PulseMeans {
-  const PulseLoad& l;
-  long k;
-  double c = 1.0, s = 0.0;
-
-  PulseMeans(const PulseLoad& load, long first) : l(load), k(first) { resync(); }
-  void resync() {
-    const double phase = static_cast<double>(k) * l.wh;
-    c = std::cos(phase);
-    s = std::sin(phase);
-  }
-  PB_MJ_INLINE double next() {
-    if (k % kResync == 0) resync();
-    const double abar = l.p * c + l.r * s;
-    const double c_next = c * l.cos_wh - s * l.sin_wh;
-    s = s * l.cos_wh + c * l.sin_wh;
-    c = c_next;
-    ++k;
-    return abar;
-  }
-};
-
 // Steps until st.k == k_end. Returns false if the run blew up (st is left at the bad step).
-// history (kRecord) must have room reserved: nothing here allocates.
-template <int NB, int NC, bool kRecord>
-bool advance(const Scheme<NB, NC>& sc, State<NB, NC>& state, Tally& tally, long k_end, std::vector<double>* history) {
+// history (kRecord) must have room reserved, monitor (kMonitor) must be given: nothing here
+// allocates.
+template <int NB, int NC, bool kRecord, bool kMonitor = false>
+bool advance(const Scheme<NB, NC>& sc, State<NB, NC>& state, Tally& tally, long k_end, std::vector<double>* history,
+             StepMonitor* monitor = nullptr) {
   // Work on local copies: the compiler must assume that a store through one reference may
   // change a double behind another, and would reload the state from memory every step.
   State<NB, NC> st = state;
@@ -308,11 +233,11 @@ bool advance(const Scheme<NB, NC>& sc, State<NB, NC>& state, Tally& tally, long 
   if (st.k < l.full_steps) {
     PulseMeans means(l, st.k);
     const long pulse_end = std::min(k_end, l.full_steps);
-    while (ok && st.k < pulse_end) ok = step<NB, NC, kRecord>(sc, st, t, means.next(), history);
+    while (ok && st.k < pulse_end) ok = step<NB, NC, kRecord, kMonitor>(sc, st, t, means.next(), history, monitor);
   }
   if (ok && l.straddle && st.k == l.full_steps && st.k < k_end)
-    ok = step<NB, NC, kRecord>(sc, st, t, l.tail(st.k), history);
-  while (ok && st.k < k_end) ok = step<NB, NC, kRecord>(sc, st, t, 0.0, history);
+    ok = step<NB, NC, kRecord, kMonitor>(sc, st, t, l.tail(st.k), history, monitor);
+  while (ok && st.k < k_end) ok = step<NB, NC, kRecord, kMonitor>(sc, st, t, 0.0, history, monitor);
   state = st;
   tally = t;
   return ok;

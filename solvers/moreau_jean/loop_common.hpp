@@ -1,0 +1,105 @@
+#pragma once
+// What the two step loops share, the fixed-size one (stepper.hpp: wall, pair, row3, one
+// body alone) and the any-size one (dynamic.hpp: chains and every other row): the step mean
+// of the ground load, the number of steps of a run, and the tally a Result is made from.
+
+#include <algorithm>
+#include <cmath>
+
+#include "cases/system.hpp"
+
+namespace pb::moreau_jean {
+
+// cos/sin(w_p t_k) are recomputed exactly every kResync steps; in between they come from
+// a rotation by w_p h. The drift of a rotation is at most ~3 ulp per step, so the load is
+// within kResync * 3 * 2^-53 ~ 2e-14 of a_p (measured 4e-15: test PulseMeanRecurrence*).
+inline constexpr long kResync = 64;
+
+// The step mean of the ground acceleration, abar_k = (1/h) integral over [t_k, t_k+1] of a_g.
+// A step inside the pulse: abar = p cos(w t_k) + r sin(w t_k). The step that contains
+// T_p integrates only up to T_p, where cos = 1 and sin = 0 exactly.
+struct PulseLoad {
+  double wh = 0.0;                                  // w_p h
+  double cos_wh = 1.0, sin_wh = 0.0;                // the rotation of one step
+  double p = 0.0, r = 0.0;                          // full step
+  double tail_c = 0.0, tail_s = 0.0, tail_1 = 0.0;  // step that contains T_p: tail_c cos + tail_s sin + tail_1
+  long full_steps = 0;                              // steps 0 .. full_steps-1 lie inside [0, T_p]
+  bool straddle = false;                            // step full_steps contains T_p inside it
+
+  double tail(long k) const {
+    const double phase = static_cast<double>(k) * wh;
+    return tail_c * std::cos(phase) + tail_s * std::sin(phase) + tail_1;
+  }
+};
+
+inline PulseLoad make_pulse_load(const Pulse& pulse, double h) {
+  PulseLoad l;
+  l.wh = pulse.w * h;
+  l.cos_wh = std::cos(l.wh);
+  l.sin_wh = std::sin(l.wh);
+  // (1 - cos x) / x and sin x / x, without the cancellation of 1 - cos x.
+  const double half = std::sin(0.5 * l.wh);
+  const double alpha = 2.0 * half * half / l.wh, beta = l.sin_wh / l.wh;
+  const double a = pulse.amplitude, a_wh = a / l.wh;
+  if (pulse.shape == PulseShape::sine) {  // mean of sin = (cos(w t_k) - cos(w t_k+1)) / (w h)
+    l.p = a * alpha;
+    l.r = a * beta;
+    l.tail_c = a_wh;
+    l.tail_1 = -a_wh;
+  } else {  // mean of cos = (sin(w t_k+1) - sin(w t_k)) / (w h)
+    l.p = a * beta;
+    l.r = -a * alpha;
+    l.tail_s = -a_wh;
+  }
+  // A pulse that ends within 1e-9 steps of a step boundary ends on it: the dropped sliver
+  // changes the impulse by < 1e-9 h a_p, and T_p = N h (t_min = T_p) lands there exactly.
+  const double ratio = pulse.duration() / h;
+  const double nearest = std::round(ratio);
+  if (std::abs(ratio - nearest) <= 1e-9 * std::max(1.0, ratio)) {
+    l.full_steps = static_cast<long>(nearest);
+    l.straddle = false;
+  } else {
+    l.full_steps = static_cast<long>(std::floor(ratio));
+    l.straddle = true;
+  }
+  return l;
+}
+
+// The step means of the full pulse steps, in order from step k: cos/sin(w_p t_k) come from
+// the rotation, and are recomputed exactly at k and at every multiple of kResync.
+struct PulseMeans {
+  const PulseLoad& l;
+  long k;
+  double c = 1.0, s = 0.0;
+
+  PulseMeans(const PulseLoad& load, long first) : l(load), k(first) { resync(); }
+  void resync() {
+    const double phase = static_cast<double>(k) * l.wh;
+    c = std::cos(phase);
+    s = std::sin(phase);
+  }
+  // Forced inline: in the fixed-size loop a call costs as much as the step.
+  [[gnu::always_inline]] inline double next() {
+    if (k % kResync == 0) resync();
+    const double abar = l.p * c + l.r * s;
+    const double c_next = c * l.cos_wh - s * l.sin_wh;
+    s = s * l.cos_wh + c * l.sin_wh;
+    c = c_next;
+    ++k;
+    return abar;
+  }
+};
+
+// Steps of a run: fixed h, and the first step count whose end reaches t_end (to within
+// 1e-9 of a step, so that t_end = n h up to round-off does not add a step).
+inline long step_count(double t_end, double h) { return static_cast<long>(std::ceil(t_end / h - 1e-9)); }
+
+struct Tally {
+  double u_max = 0.0;  // largest |u_ref| over the steps
+  long k_max = 0;      // its step
+  double g_min = 0.0;  // most negative gap (0 if none)
+  long impacts = 0;    // contacts that entered the index set approaching
+  long phases = 0;     // runs of >= 2 consecutive steps with a positive impulse
+};
+
+}  // namespace pb::moreau_jean
