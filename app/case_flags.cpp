@@ -13,9 +13,9 @@ namespace pb::app {
 namespace {
 
 // Every flag that describes a case, in the order they are checked.
-constexpr std::array<std::string_view, 14> kCaseFlags = {"--scene", "--pulse", "--directivity", "--pi2", "--pi3",
-                                                         "--eps",   "--pi5",   "--pi6",         "--pi7", "--pi8",
-                                                         "--xi",    "--n-free", "--a-p",        "--w-p"};
+constexpr std::array<std::string_view, 16> kCaseFlags = {
+    "--scene", "--pulse", "--directivity", "--pi2", "--pi3",   "--eps", "--pi5", "--pi6",
+    "--pi7",   "--pi8",   "--bodies",      "--kick", "--xi", "--n-free", "--a-p", "--w-p"};
 
 bool given(const CLI::App& command, std::string_view flag) { return command.count(std::string(flag)) > 0; }
 
@@ -53,7 +53,7 @@ ChosenCase case_from_flags(const CLI::App& command, const CaseFlags& flags) {
     if (!given(command, flag)) throw BadInput(std::string(flag) + ": required (or give --case-file)");
 
   Case c;
-  c.scene = parsed("--scene", flags.scene, parse_scene(flags.scene), "wall, pair, row3");
+  c.scene = parsed("--scene", flags.scene, parse_scene(flags.scene), "wall, pair, row3, chain");
   c.pulse = parsed("--pulse", flags.pulse, parse_pulse(flags.pulse), "sine, cosine");
   c.directivity =
       parsed("--directivity", flags.directivity, parse_directivity(flags.directivity), "normal, reverse");
@@ -66,6 +66,10 @@ ChosenCase case_from_flags(const CLI::App& command, const CaseFlags& flags) {
   };
   body_flags(uses_body1(c.scene), "--pi5", "--pi6");
   body_flags(uses_body2(c.scene), "--pi7", "--pi8");
+  const bool chain = c.scene == Scene::chain;
+  if (chain && !given(command, "--bodies")) throw BadInput("--bodies: required by scene chain");
+  for (std::string_view flag : {"--bodies", "--kick"})
+    if (!chain && given(command, flag)) throw BadInput(std::string(flag) + ": not used by scene " + scene);
 
   c.pi2 = flags.pi2;
   c.pi3 = flags.pi3;
@@ -78,6 +82,10 @@ ChosenCase case_from_flags(const CLI::App& command, const CaseFlags& flags) {
     c.pi7 = flags.pi7;
     c.pi8 = flags.pi8;
   }
+  if (chain) {
+    c.bodies = flags.bodies;
+    c.kick = flags.kick;
+  }
   c.xi = flags.xi;
   c.n_free = flags.n_free;
   c.a_p = flags.a_p;
@@ -89,16 +97,19 @@ ChosenCase case_from_flags(const CLI::App& command, const CaseFlags& flags) {
 }  // namespace
 
 void add_case_flags(CLI::App& command, CaseFlags& f) {
-  command.add_option("--scene", f.scene, "Scene: wall, pair or row3");
+  command.add_option("--scene", f.scene, "Scene: wall, pair, row3 or chain");
   command.add_option("--pulse", f.pulse, "Pulse: sine or cosine");
   command.add_option("--directivity", f.directivity, "Directivity: normal or reverse");
   command.add_option("--pi2", f.pi2, "Pi2 = w0 / w_p");
   command.add_option("--pi3", f.pi3, "Pi3 = delta w_p^2 / a_p (gap)");
   command.add_option("--eps", f.eps, "Coefficient of restitution, in [0, 1]");
-  command.add_option("--pi5", f.pi5, "Pi5 = w0 / w1 (pair, row3)");
-  command.add_option("--pi6", f.pi6, "Pi6 = m0 / m1 (pair, row3)");
+  command.add_option("--pi5", f.pi5, "Pi5 = w0 / w1 (pair, row3; chain: the odd bodies)");
+  command.add_option("--pi6", f.pi6, "Pi6 = m0 / m1 (pair, row3; chain: the odd bodies)");
   command.add_option("--pi7", f.pi7, "Pi7 = w0 / w2 (row3)");
   command.add_option("--pi8", f.pi8, "Pi8 = m0 / m2 (row3)");
+  command.add_option("--bodies", f.bodies, "Chain: number of bodies N, 2 to " + std::to_string(kMaxChainBodies));
+  command.add_option("--kick", f.kick, "Chain: start velocity of body 0 (the left end) towards +x, times w_p / a_p")
+      ->capture_default_str();
   command.add_option("--xi", f.xi, "Damping ratio of every body")->capture_default_str();
   command.add_option("--n-free", f.n_free, "Free-vibration periods T_max after the pulse")->capture_default_str();
   command.add_option("--a-p", f.a_p, "Pulse amplitude a_p (Pi1 does not depend on it)")->capture_default_str();

@@ -11,6 +11,7 @@
 #include "app/errors.hpp"
 #include "app/run_command.hpp"
 #include "app/spectrum_command.hpp"
+#include "app/stress_command.hpp"
 #include "app/workprecision_command.hpp"
 #include "cases/case_set.hpp"
 #include "solvers/solver.hpp"
@@ -46,6 +47,8 @@ int main(int argc, char** argv) {
   CLI::App* spectrum = pb::app::add_spectrum_command(app, spectrum_flags);
   pb::app::WorkPrecisionFlags workprecision_flags;
   CLI::App* workprecision = pb::app::add_workprecision_command(app, workprecision_flags);
+  pb::app::StressFlags stress_flags;
+  CLI::App* stress = pb::app::add_stress_command(app, stress_flags);
   CLI::App* solvers = app.add_subcommand("solvers", "List the solvers and what each one is");
 
   try {
@@ -59,6 +62,7 @@ int main(int argc, char** argv) {
     if (*run) return pb::app::run_command(*run, run_flags);
     if (*spectrum) return pb::app::spectrum_command(*spectrum, spectrum_flags);
     if (*workprecision) return pb::app::workprecision_command(*workprecision, workprecision_flags);
+    if (*stress) return pb::app::stress_command(*stress, stress_flags);
     if (*solvers) return list_solvers();
   } catch (const pb::app::BadInput& e) {
     return fail(e.what(), kBadInput);

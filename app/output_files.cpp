@@ -14,11 +14,27 @@ namespace pb::app {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// A device or a pipe (/dev/null, /dev/stdout, a FIFO): written in place, since renaming a
+// temporary onto it would replace it with a regular file.
+bool is_special(const fs::path& file) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(file, ec);
+  return !ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st);
+}
+
+}  // namespace
+
 void check_output_target(const fs::path& file, std::string_view flag) {
   const std::string prefix = std::string(flag) + ": " + file.string() + ": ";
   std::error_code ec;
   if (file.empty()) throw BadInput(std::string(flag) + ": empty file name");
   if (fs::is_directory(file, ec)) throw BadInput(prefix + "is a directory");
+  if (is_special(file)) {
+    if (::access(file.c_str(), W_OK) != 0) throw BadInput(prefix + "is not writable");
+    return;
+  }
   fs::path dir = file.parent_path();
   if (dir.empty()) dir = ".";
   if (!fs::is_directory(dir, ec)) throw BadInput(prefix + "directory " + dir.string() + " does not exist");
@@ -27,6 +43,14 @@ void check_output_target(const fs::path& file, std::string_view flag) {
 }
 
 void write_atomically(const fs::path& file, const std::function<void(std::ostream&)>& write) {
+  if (is_special(file)) {
+    std::ofstream out(file);
+    if (!out) throw std::runtime_error(file.string() + ": cannot open: " + std::strerror(errno));
+    write(out);
+    out.flush();
+    if (!out) throw std::runtime_error(file.string() + ": write failed");
+    return;
+  }
   const fs::path tmp = file.string() + ".tmp";
   {
     std::ofstream out(tmp, std::ios::trunc);

@@ -17,7 +17,7 @@ namespace pb::app {
 void check_output_target(const std::filesystem::path& file, std::string_view flag);
 
 // Writes `file` through "<file>.tmp" and a rename; throws std::runtime_error on failure
-// (the temporary is removed then).
+// (the temporary is removed then). A device or a pipe (/dev/null) is written in place.
 void write_atomically(const std::filesystem::path& file, const std::function<void(std::ostream&)>& write);
 
 // An append-only text file whose every line reaches the operating system as soon as it

@@ -72,6 +72,10 @@ nlohmann::ordered_json case_json(const Case& c) {
     j["pi7"] = c.pi7;
     j["pi8"] = c.pi8;
   }
+  if (c.scene == Scene::chain) {
+    j["bodies"] = c.bodies;
+    j["kick"] = c.kick;
+  }
   j["xi"] = c.xi;
   j["n_free"] = c.n_free;
   j["a_p"] = c.a_p;
@@ -97,6 +101,12 @@ nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {
   j["steps"] = r.steps;
   j["min_gap"] = number_or_null(min_gap_ratio(row));
   j["seconds"] = row.seconds;
+  j["wh"] = number_or_null(row.wh);
+  j["energy_excess"] = number_or_null(r.energy_excess);
+  j["penetration"] = number_or_null(penetration(row));
+  j["isolated_impacts"] = r.isolated_impacts;
+  j["restitution_low"] = number_or_null(r.restitution_low);
+  j["restitution_high"] = number_or_null(r.restitution_high);
   j["solver"] = row.solver;
   j["variant"] = row.variant;
   j["settings"] = row.settings;
@@ -118,7 +128,9 @@ std::string brief(double x) {
 void print_summary(std::ostream& out, const Row& row) {
   const Case& c = row.input;
   const Result& r = row.result;
-  out << name(c.scene) << ' ' << name(c.pulse) << ' ' << name(c.directivity) << "  pi2=" << brief(c.pi2)
+  out << name(c.scene);
+  if (c.scene == Scene::chain) out << " of " << c.bodies << (c.kick != 0.0 ? " kick=" + brief(c.kick) : "");
+  out << ' ' << name(c.pulse) << ' ' << name(c.directivity) << "  pi2=" << brief(c.pi2)
       << " pi3=" << brief(c.pi3) << " eps=" << brief(c.eps);
   if (uses_body1(c.scene)) out << " pi5=" << brief(c.pi5) << " pi6=" << brief(c.pi6);
   if (uses_body2(c.scene)) out << " pi7=" << brief(c.pi7) << " pi8=" << brief(c.pi8);
@@ -130,6 +142,12 @@ void print_summary(std::ostream& out, const Row& row) {
   out << "impacts  " << r.impacts << ", contact phases " << r.contact_phases << ", steps/events " << r.steps << '\n';
   const double gap = min_gap_ratio(row);
   out << "min gap  " << (std::isinf(gap) ? std::string("never below zero") : brief(gap) + " a_p/w_p^2") << '\n';
+  if (std::isfinite(row.wh)) out << "step     w_max h = " << brief(row.wh) << '\n';
+  if (std::isfinite(r.energy_excess)) out << "energy   largest excess " << brief(r.energy_excess) << " of the energy scale\n";
+  out << "penetr.  " << brief(penetration(row)) << (c.pi3 > 0.0 ? " of delta\n" : " a_p/w_p^2\n");
+  if (r.isolated_impacts > 0)
+    out << "restit.  " << brief(r.restitution_low) << " to " << brief(r.restitution_high) << " over "
+        << r.isolated_impacts << " isolated impacts (eps " << brief(c.eps) << ")\n";
   out << "time     " << brief(row.seconds) << " s\n";
 }
 

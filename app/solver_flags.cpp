@@ -28,6 +28,9 @@ void add_solver_flags(CLI::App& command, SolverFlags& flags) {
   command.add_option("--variant", s.variant, "Solver variant (default: the solver's own)");
   command.add_option("--steps", s.steps, "Time-steppers: steps per shortest period N, h = T_min/N (0: default)")
       ->capture_default_str();
+  command.add_option("--wh", s.wh,
+                     "Time-steppers: the step as w_max h, w_max = 2 pi / T_min (> 0 replaces --steps; 0: use --steps)")
+      ->capture_default_str();
   command.add_option("--theta", s.theta, "Moreau-Jean theta")->capture_default_str();
   command.add_option("--gamma", s.gamma, "Moreau-Jean activation look-ahead")->capture_default_str();
   command.add_option("--tol-scale", s.tol_scale, "Event-driven: factor on every internal tolerance")
@@ -40,7 +43,7 @@ void add_solver_flags(CLI::App& command, SolverFlags& flags) {
 
 std::string as_flag_message(const std::string& field_reason) {
   // Solvers name a field either as its Settings member or as its flag without the dashes.
-  static constexpr std::array<std::string_view, 8> kFlags = {"variant",  "steps",    "theta",      "gamma",
+  static constexpr std::array<std::string_view, 9> kFlags = {"variant",  "steps",    "wh",         "theta",  "gamma",
                                                              "tol-scale", "step-cap", "time-limit", "samples"};
   const std::size_t colon = field_reason.find(':');
   if (colon == std::string::npos) return field_reason;

@@ -31,12 +31,12 @@ namespace {
 // Every key a family or [defaults] may hold. From scene to pi2, the order is the order of
 // expansion: scene outermost, pi2 innermost, so the points of one spectrum are contiguous.
 enum class Key {
-  scene, pulse, directivity, eps, pi3, pi5, pi6, pi7, pi8, xi, n_free, a_p, w_p, pi2,
+  scene, bodies, kick, pulse, directivity, eps, pi3, pi5, pi6, pi7, pi8, xi, n_free, a_p, w_p, pi2,
   symmetric, name
 };
 constexpr int kKeyCount = static_cast<int>(Key::name) + 1;
 constexpr std::array<std::string_view, kKeyCount> kKeyNames = {
-    "scene", "pulse", "directivity", "eps", "pi3", "pi5", "pi6", "pi7", "pi8",
+    "scene", "bodies", "kick", "pulse", "directivity", "eps", "pi3", "pi5", "pi6", "pi7", "pi8",
     "xi", "n_free", "a_p", "w_p", "pi2", "symmetric", "name"};
 
 // Limits that keep a typo (points = 2000000) from exhausting memory.
@@ -53,9 +53,11 @@ std::optional<Key> parse_key(std::string_view s) {
 }
 
 bool is_choice(Key k) { return k == Key::scene || k == Key::pulse || k == Key::directivity; }
-bool is_number(Key k) { return index(k) >= index(Key::eps) && index(k) <= index(Key::pi2); }
+bool is_number(Key k) { return !is_choice(k) && index(k) >= index(Key::bodies) && index(k) <= index(Key::pi2); }
 bool is_body1(Key k) { return k == Key::pi5 || k == Key::pi6; }
 bool is_body2(Key k) { return k == Key::pi7 || k == Key::pi8; }
+bool is_chain(Key k) { return k == Key::bodies || k == Key::kick; }
+bool has_chain(Scene s) { return s == Scene::chain; }
 
 // One key as written: its values (numbers, or enum values for scene/pulse/directivity),
 // and the line of the key and of each value so that a later error can point at it.
@@ -241,7 +243,10 @@ class Reader {
       s.field = field;
       s.line = line_of(key);
       if (is_choice(*k)) read_choices(*k, node, s);
-      else if (is_number(*k)) read_numbers(node, s);
+      else if (is_number(*k)) {
+        read_numbers(node, s);
+        if (*k == Key::bodies) require_whole_numbers(s);
+      }
       else if (*k == Key::symmetric) {
         const auto* b = node.as_boolean();
         if (b == nullptr) fail(s.line, field, "must be true or false, got " + std::string(type_phrase(node)));
@@ -275,7 +280,7 @@ class Reader {
       std::string_view expected;
       if (k == Key::scene) {
         if (auto x = parse_scene(v)) parsed = static_cast<int>(*x);
-        expected = "wall, pair or row3";
+        expected = "wall, pair, row3 or chain";
       } else if (k == Key::pulse) {
         if (auto x = parse_pulse(v)) parsed = static_cast<int>(*x);
         expected = "sine or cosine";
@@ -324,6 +329,17 @@ class Reader {
       fail(s.line, s.field,
            "must be a number, a list of numbers or a grid { from, to, points, spacing }, got " +
                std::string(type_phrase(node)));
+    }
+  }
+
+  // A body count is a number like the others (a list, or a linear grid with a whole step),
+  // but every value it takes must be a whole number.
+  void require_whole_numbers(const Setting& s) const {
+    for (std::size_t i = 0; i < s.values.size(); ++i) {
+      if (s.values[i] == std::floor(s.values[i])) continue;
+      std::string field = s.field;
+      if (s.shape == Setting::Shape::list) field += "[" + std::to_string(i) + "]";
+      fail(s.value_lines[i], field, "must be a whole number (got " + format_number(s.values[i]) + ")");
     }
   }
 
@@ -398,6 +414,7 @@ class Reader {
     eff[index(Key::n_free)] = builtin(Key::n_free, 3.0);
     eff[index(Key::a_p)] = builtin(Key::a_p, 1.0);
     eff[index(Key::w_p)] = builtin(Key::w_p, 1.0);
+    eff[index(Key::kick)] = builtin(Key::kick, 0.0);
     for (int i = 0; i < kKeyCount; ++i) {
       const auto u = static_cast<std::size_t>(i);
       if (own[u].given) eff[u] = own[u];
@@ -416,21 +433,27 @@ class Reader {
                                    [](int s) { return uses_body1(static_cast<Scene>(s)); });
     const bool body2 = std::any_of(scenes.begin(), scenes.end(),
                                    [](int s) { return uses_body2(static_cast<Scene>(s)); });
+    const bool chain = std::any_of(scenes.begin(), scenes.end(),
+                                   [](int s) { return has_chain(static_cast<Scene>(s)); });
     const std::string used_by = "not used by scene" + std::string(scenes.size() > 1 ? "s " : " ") +
                                 scene_list(scenes);
 
     // A family's own key for a body its scenes lack is a mistake; a default for it is
     // merely not needed here, since [defaults] serves families of every scene.
-    for (Key k : {Key::pi5, Key::pi6, Key::pi7, Key::pi8, Key::symmetric}) {
-      const bool used = k == Key::pi5 || k == Key::pi6 ? body1 : body2;
+    for (Key k : {Key::pi5, Key::pi6, Key::pi7, Key::pi8, Key::symmetric, Key::bodies, Key::kick}) {
+      const bool used = is_body1(k) ? body1 : is_chain(k) ? chain : body2;
       if (used) continue;
       const Setting& o = own[index(k)];
       if (o.given)
         fail(o.line, o.field,
-             used_by + (is_body1(k) ? " (pi5/pi6 describe body 1, of pair and row3)"
-                                    : " (pi7/pi8/symmetric describe body 2, of row3 only)"));
+             used_by + (is_body1(k)  ? " (pi5/pi6 describe body 1 of pair and row3, and the odd bodies of a chain)"
+                        : is_chain(k) ? " (bodies/kick describe a chain only)"
+                                      : " (pi7/pi8/symmetric describe body 2, of row3 only)"));
       eff[index(k)] = Setting{};
     }
+    if (chain && !eff[index(Key::bodies)].given)
+      fail(line, prefix + ".bodies", "required by scene chain (the number of bodies, 2 to " +
+                                         std::to_string(kMaxChainBodies) + ")");
 
     const Setting& sym = eff[index(Key::symmetric)];
     if (sym.given && sym.flag) {
@@ -465,8 +488,9 @@ class Reader {
     for (int scene_value : eff[index(Key::scene)].choices) {
       const auto scene = static_cast<Scene>(scene_value);
       std::vector<Key> axes;
-      for (int i = index(Key::pulse); i <= index(Key::pi2); ++i) {
+      for (int i = index(Key::bodies); i <= index(Key::pi2); ++i) {
         const auto k = static_cast<Key>(i);
+        if (is_chain(k) && !has_chain(scene)) continue;
         if (is_body1(k) && !uses_body1(scene)) continue;
         if (is_body2(k) && (!uses_body2(scene) || symmetric)) continue;
         axes.push_back(k);
@@ -501,6 +525,11 @@ class Reader {
 
   static void set(Case& c, Key k, const Setting& s, std::size_t i) {
     switch (k) {
+      // Clamped so that a huge count stays an int; validate() then rejects it by its value.
+      case Key::bodies:
+        c.bodies = static_cast<int>(std::clamp(s.values[i], 0.0, static_cast<double>(kMaxChainBodies + 1)));
+        return;
+      case Key::kick: c.kick = s.values[i]; return;
       case Key::pulse: c.pulse = static_cast<PulseShape>(s.choices[i]); return;
       case Key::directivity: c.directivity = static_cast<Directivity>(s.choices[i]); return;
       case Key::eps: c.eps = s.values[i]; return;

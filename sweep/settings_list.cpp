@@ -106,6 +106,10 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
       const double v = r.numbers(node, k).at(0);
       if (!(v > 0.0) || node.is_array()) r.fail(&node, k, "must be one number > 0");
       list.reference_tol_scale = v;
+    } else if (k == "reference_time_limit") {
+      const double v = r.numbers(node, k).at(0);
+      if (!(v >= 0.0) || node.is_array()) r.fail(&node, k, "must be one number >= 0 (seconds; 0: none)");
+      list.reference_time_limit = v;
     } else if (k == "run") {
       runs = node.as_array();
       if (!runs) r.fail(&node, k, "must be [[run]] tables");
@@ -122,9 +126,13 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
     if (!t) r.fail(&rn, field, "must be a table");
     std::string solver;
     std::vector<std::string> variants = {""};
-    std::vector<double> steps = {0}, theta = {Settings{}.theta}, gamma = {Settings{}.gamma}, tol = {1.0};
+    std::vector<double> steps = {0}, wh = {0}, theta = {Settings{}.theta}, gamma = {Settings{}.gamma}, tol = {1.0};
     long long step_cap = 0;
+    double time_limit = 0;
+    bool monitor = Settings{}.monitor;
     const toml::node* solver_node = &rn;
+    const toml::node* steps_node = nullptr;
+    const toml::node* wh_node = nullptr;
     for (auto&& [key, v] : *t) {
       const std::string k(key.str()), f = field + "." + k;
       if (k == "solver") {
@@ -136,6 +144,12 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
         variants = r.strings(v, f);
       } else if (k == "steps") {
         steps = r.steps(v, f);
+        steps_node = &v;
+      } else if (k == "wh") {
+        wh = r.numbers(v, f);
+        for (double x : wh)
+          if (!(x > 0.0)) r.fail(&v, f, "must be > 0 (the step as w_max h)");
+        wh_node = &v;
       } else if (k == "theta") {
         theta = r.numbers(v, f);
       } else if (k == "gamma") {
@@ -146,6 +160,16 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
         const auto* n = v.as_integer();
         if (!n || n->get() < 1) r.fail(&v, f, "must be an integer >= 1");
         step_cap = n->get();
+      } else if (k == "time_limit") {
+        const auto* n = v.as_integer();
+        const auto* x = v.as_floating_point();
+        const double seconds = n ? static_cast<double>(n->get()) : x ? x->get() : -1.0;
+        if (!(seconds > 0.0) || !std::isfinite(seconds)) r.fail(&v, f, "must be one number of seconds > 0");
+        time_limit = seconds;
+      } else if (k == "monitor") {
+        const auto* b = v.as_boolean();
+        if (!b) r.fail(&v, f, "must be true or false");
+        monitor = b->get();
       } else {
         r.fail(&v, f, "unknown key");
       }
@@ -153,18 +177,26 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
     const SolverInfo* info = find_solver(solver);
     if (solver.empty()) r.fail(&rn, field + ".solver", "missing");
     if (!info) r.fail(solver_node, field + ".solver", "unknown solver '" + solver + "'");
+    if (steps_node && wh_node) r.fail(wh_node, field + ".wh", "give steps or wh, not both (one [[run]] each)");
+    // The step axis is innermost: steps N, or w_max h.
+    std::vector<std::pair<int, double>> step_axis;
+    for (double n : steps)
+      for (double x : wh) step_axis.emplace_back(static_cast<int>(n), x);
     for (const std::string& variant : variants)
       for (double th : theta)
         for (double ga : gamma)
           for (double ts : tol)
-            for (double n : steps) {
+            for (const auto& [n, x] : step_axis) {
               RunSpec spec{solver, {}};
               spec.settings.variant = variant;
               spec.settings.theta = th;
               spec.settings.gamma = ga;
               spec.settings.tol_scale = ts;
-              spec.settings.steps = static_cast<int>(n);
+              spec.settings.steps = n;
+              spec.settings.wh = x;
               spec.settings.step_cap = step_cap;
+              spec.settings.time_limit = time_limit;
+              spec.settings.monitor = monitor;
               if (const std::string bad = info->check(spec.settings); !bad.empty()) r.fail(&rn, field, bad);
               list.runs.push_back(std::move(spec));
             }

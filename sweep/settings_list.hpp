@@ -1,16 +1,24 @@
 #pragma once
 // Settings-list files: which solvers, variants and steps a work-precision study runs.
-// TOML, one [[run]] table per solver; every key may be a list, and the runs are the
-// cartesian product (variant, theta, gamma, tol_scale outermost, steps innermost):
+// TOML, one [[run]] table per solver; variant, steps, wh, theta, gamma and tol_scale may
+// be lists, and the runs are their cartesian product (variant, theta, gamma, tol_scale
+// outermost, the step innermost):
 //
 //   name = "quick"
 //   reference_tol_scale = 0.01        # the "truth": the reference, 100x tighter
+//   reference_time_limit = 60         # seconds per truth run (0, the default: none)
 //   [[run]]
 //   solver = "moreau-jean"
 //   theta = [0.5, 1.0]
 //   steps = { from = 8, to = 4096 }   # doubling; or a list, or one number
+//   [[run]]
+//   solver = "moreau-jean"
+//   wh = [0.5, 2, 10, 100]            # the step as w_max h instead of steps (not both)
+//   time_limit = 10                   # seconds of wall time per run
 //
-// Keys of [[run]]: solver (required), variant, steps, theta, gamma, tol_scale, step_cap.
+// Keys of [[run]]: solver (required), variant, steps or wh, theta, gamma, tol_scale, and
+// one value each of step_cap, time_limit (seconds per run) and monitor (true/false: the
+// time-steppers' energy and restitution measurement, on by default).
 // The shipped lists are in cases/settings/.
 
 #include <filesystem>
@@ -37,6 +45,7 @@ struct SettingsList {
   std::string name;
   std::string description;
   double reference_tol_scale = 0.01;
+  double reference_time_limit = 0;  // seconds of wall time per truth run; 0 = none
   std::vector<RunSpec> runs;
 };
 

@@ -28,6 +28,7 @@ WorkPrecision run_work_precision(std::span<const Case> cases, const SettingsList
 
   Settings truth;
   truth.tol_scale = list.reference_tol_scale;
+  truth.time_limit = list.reference_time_limit;
   wp.reference = run_sweep(cases, *find_solver("event-driven"), truth, opt);
   if (cancelled()) return wp;
   done_before += cases.size();

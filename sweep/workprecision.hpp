@@ -24,7 +24,8 @@ struct WorkPrecisionRow {
 
 struct WorkPrecision {
   std::vector<Row> reference;          // the truth, one row per case
-  std::vector<Row> points;             // every run, setting after setting
+  std::vector<Row> points;             // every run, setting after setting: run k of the list
+                                       // is points[k n, (k+1) n), in point order (n cases)
   std::vector<WorkPrecisionRow> table;  // per family (in case order), then per setting
   bool complete = false;                // false: cancelled before the end
 };

@@ -173,6 +173,73 @@ TEST(CaseSetExpansion, AsymmetricRowTakesItsOwnBody2) {
   EXPECT_EQ(set.cases[1].pi5, 2.0);
 }
 
+// A chain takes its body count (and a kick) on top of pair's keys.
+std::string chain_of(const std::string& bodies_line) {
+  return with(kPair, "scene = \"pair\"", "scene = \"chain\"\n" + bodies_line);
+}
+
+TEST(CaseSetChain, ExpandsBodiesAndKickOutsideThePulseAndDefaultsKickToZero) {
+  const CaseSet set = parse_case_set(
+      with(chain_of("bodies = [2, 5]\nkick = [0, 1.5]"), "pulse = \"sine\"", "pulse = [\"sine\", \"cosine\"]"),
+      kFile);
+  ASSERT_EQ(set.cases.size(), 8u);
+  for (std::size_t i = 0; i < set.cases.size(); ++i) {
+    const Case& c = set.cases[i];
+    EXPECT_EQ(c.scene, Scene::chain);
+    EXPECT_EQ(c.bodies, i < 4 ? 2 : 5) << i;  // bodies outermost after the scene
+    EXPECT_EQ(c.kick, (i / 2) % 2 == 0 ? 0.0 : 1.5) << i;
+    EXPECT_EQ(c.pulse, i % 2 == 0 ? PulseShape::sine : PulseShape::cosine) << i;
+    EXPECT_EQ(c.pi5, 2.0);  // pi5/pi6 describe the odd bodies
+    EXPECT_EQ(validate(c), std::nullopt);
+  }
+  const CaseSet still = parse_case_set(chain_of("bodies = 3"), kFile);
+  ASSERT_EQ(still.cases.size(), 1u);
+  EXPECT_EQ(still.cases[0].bodies, 3);
+  EXPECT_EQ(still.cases[0].kick, 0.0);
+}
+
+TEST(CaseSetChain, BodiesMayBeALinearGridOfWholeNumbers) {
+  const CaseSet set =
+      parse_case_set(chain_of("bodies = { from = 2, to = 20, points = 10, spacing = \"linear\" }"), kFile);
+  ASSERT_EQ(set.cases.size(), 10u);
+  for (std::size_t i = 0; i < set.cases.size(); ++i) EXPECT_EQ(set.cases[i].bodies, 2 + 2 * static_cast<int>(i));
+}
+
+TEST(CaseSetChain, MixedScenesGiveTheChainKeysToTheChainOnly) {
+  const CaseSet set = parse_case_set(
+      with(kPair, "scene = \"pair\"", "scene = [\"wall\", \"pair\", \"chain\"]\nbodies = [4, 6]\nkick = 1"),
+      kFile);
+  ASSERT_EQ(set.cases.size(), 4u);  // wall, pair, chain of 4, chain of 6
+  EXPECT_EQ(set.cases[0].bodies, 0);
+  EXPECT_EQ(set.cases[1].kick, 0.0);
+  EXPECT_EQ(set.cases[3].bodies, 6);
+  EXPECT_EQ(set.cases[3].kick, 1.0);
+}
+
+TEST(CaseSetChain, ABodyCountOrKickForAnotherSceneIsRejected) {
+  EXPECT_TRUE(fails_with(kPair + "bodies = 5\n", 12, "family[0].bodies", "not used by scene pair"));
+  EXPECT_TRUE(fails_with(kPair + "kick = 1\n", 12, "family[0].kick", "describe a chain only"));
+  // A default serves the families that have a chain and is ignored by the others.
+  const CaseSet set = parse_case_set(with(kPair, "[[family]]", "[defaults]\nbodies = 7\nkick = 2\n[[family]]"), kFile);
+  ASSERT_EQ(set.cases.size(), 1u);
+  EXPECT_EQ(set.cases[0].bodies, 0);
+}
+
+TEST(CaseSetChain, BadBodyCountsNameTheFieldTheLineAndTheValue) {
+  const int family = line_of(kPair, "[[family]]");
+  EXPECT_TRUE(fails_with(chain_of(""), family, "family[0].bodies", "required by scene chain"));
+  EXPECT_TRUE(fails_with(chain_of("bodies = 1"), 5, "family[0].bodies", "2 to 1000 bodies (got 1)"));
+  EXPECT_TRUE(fails_with(chain_of("bodies = 1e9"), 5, "family[0].bodies", "(got 1e+09)"));
+  EXPECT_TRUE(fails_with(chain_of("bodies = [4, 2.5]"), 5, "family[0].bodies[1]", "whole number (got 2.5)"));
+  EXPECT_TRUE(fails_with(chain_of("bodies = { from = 2, to = 100, points = 6, spacing = \"log\" }"), 5,
+                         "family[0].bodies", "whole number"));
+  EXPECT_TRUE(fails_with(chain_of("bodies = \"many\""), 5, "family[0].bodies", "must be a number"));
+  EXPECT_TRUE(fails_with(chain_of("bodies = 4\nkick = inf"), 6, "family[0].kick", "must be finite"));
+  EXPECT_TRUE(fails_with(without(chain_of("bodies = 4"), "pi6 = 1"), family, "family[0].pi6",
+                         "required by scene chain"));
+  EXPECT_TRUE(fails_with(chain_of("bodies = 4") + "pi7 = 1\n", 13, "family[0].pi7", "not used by scene chain"));
+}
+
 // --- defaults ---------------------------------------------------------------------------
 
 TEST(CaseSetDefaults, UnstatedDampingDurationAndScaleTakeTheSpecDefaults) {

@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include "solvers/solver.hpp"
+#include "sweep/stability.hpp"
 #include "sweep/sweep.hpp"
 
 extern char** environ;
@@ -140,6 +142,56 @@ TEST_F(Cli, RunWritesTheHistoryWithThePapersBodyLabels) {
   EXPECT_EQ(files(), (std::set<std::string>{"h.csv"}));
 }
 
+TEST_F(Cli, RunOfAChainReportsItsBodiesKickAndOneColumnPerBody) {
+  const Outcome o = run(
+      "run --scene chain --bodies 4 --kick 0.5 --pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 1 "
+      "--pi5 0.5 --pi6 2 --json --history h.csv --samples 10");
+  // The solvers' chain support is young: whatever the status, the output must describe the chain.
+  ASSERT_TRUE(o.exit_code == 0 || o.exit_code == 1) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(o.out);
+  EXPECT_EQ(j.at("scene"), "chain");
+  EXPECT_EQ(j.at("bodies"), 4);
+  EXPECT_EQ(j.at("kick").get<double>(), 0.5);
+  EXPECT_EQ(j.at("pi6").get<double>(), 2.0);
+  EXPECT_FALSE(j.contains("pi7"));
+  for (const char* key : {"energy_excess", "penetration", "isolated_impacts", "restitution_low", "restitution_high", "wh"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  const std::string text = read_text(file("h.csv"));
+  EXPECT_EQ(text.substr(0, text.find('\n')), "t,u0,u1,u2,u3,v0,v1,v2,v3,g1,g2,g3,lambda1,lambda2,lambda3");
+
+  const Outcome pair = run(std::string("run ") + kPairCase + " --json");
+  ASSERT_EQ(pair.exit_code, 0) << pair.err;
+  const nlohmann::json p = nlohmann::json::parse(pair.out);
+  EXPECT_FALSE(p.contains("bodies"));
+  EXPECT_FALSE(p.contains("kick"));
+}
+
+TEST_F(Cli, RunWithWhStepsATimeStepperAtThatWmaxH) {
+  const Outcome o = run(std::string("run ") + kPairCase + " --solver moreau-jean --wh 2 --json");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(o.out);
+  EXPECT_NEAR(j.at("wh").get<double>(), 2.0, 1e-12);
+  EXPECT_NE(j.at("settings").get<std::string>().find("wh=2"), std::string::npos) << j.at("settings");
+  // The same run through the library: the JSON is its row.
+  Case c;
+  c.pi2 = 1;
+  c.pi3 = 0.5;
+  c.eps = 0.5;
+  c.pi5 = 0.5;
+  Settings st;
+  st.wh = 2;
+  const Row row = run_point(c, 0, *find_solver("moreau-jean"), st);
+  EXPECT_EQ(j.at("steps").get<long>(), row.result.steps);
+  EXPECT_EQ(j.at("pi1").get<double>(), row.result.pi1);
+  EXPECT_EQ(j.at("isolated_impacts").get<long>(), row.result.isolated_impacts);
+  EXPECT_TRUE(j.at("energy_excess").is_number());  // the stepper's monitor measured it
+  EXPECT_TRUE(j.at("penetration").is_number());
+
+  const Outcome both = run(std::string("run ") + kPairCase + " --solver moreau-jean --wh 2 --steps 64");
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_NE(both.err.find("--wh"), std::string::npos) << both.err;
+}
+
 TEST_F(Cli, RunFromACaseFileNeedsAPointWhenItHasSeveral) {
   write("tiny.toml", kTinySet);
   const Outcome chosen = run("run --case-file tiny.toml --point 4 --json");
@@ -160,8 +212,20 @@ struct BadInput {
 
 // Each bad input exits 2 with one line on stderr naming the culprit, and creates no file:
 // every command below asks for an output file that must not appear.
+constexpr const char* kTinyList = R"(name = "tiny"
+[[run]]
+solver = "moreau-jean"
+steps = 64
+[[run]]
+solver = "moreau-jean"
+wh = [2, 100]
+time_limit = 5
+)";
+
 TEST_F(Cli, EveryBadInputExitsTwoWithOneLineAndNoOutputFile) {
   write("tiny.toml", kTinySet);
+  write("list.toml", kTinyList);
+  write("bad-list.toml", "[[run]]\nsolver = \"moreau-jean\"\nwh = 0\n");
   write("syntax.toml", "name = \"broken\"\n[[family]]\nscene = \"pair\"\npi2 = [1, \n");
   write("semantic.toml", "name = \"bad\"\n[[family]]\nname = \"f\"\nscene = \"pair\"\npulse = \"sine\"\n"
                          "directivity = \"normal\"\neps = 0.5\npi2 = 1\npi3 = 0.5\npi5 = -1\npi6 = 1\n");
@@ -186,6 +250,18 @@ TEST_F(Cli, EveryBadInputExitsTwoWithOneLineAndNoOutputFile) {
       {"spectrum tiny.toml --out out.csv --solver no-such-solver", "--solver"},
       {"spectrum tiny.toml --out no-such-dir/out.csv", "--out"},
       {"spectrum tiny.toml --out out.csv --threads 0", "--threads"},
+      {"run --scene chain --pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 1 --pi5 1 --pi6 1 --history h.csv",
+       "--bodies"},
+      {pair + "--pi5 1 --pi6 1 --bodies 3 --history h.csv", "--bodies"},
+      {pair + "--pi5 1 --pi6 1 --kick 1 --history h.csv", "--kick"},
+      {pair + "--pi5 1 --pi6 1 --solver moreau-jean --wh 0.5 --steps 8 --history h.csv", "--wh"},
+      {pair + "--pi5 1 --pi6 1 --solver moreau-jean --wh -1 --history h.csv", "--wh"},
+      {"stress tiny.toml --settings missing.toml --out out.csv", "missing.toml"},
+      {"stress tiny.toml --settings bad-list.toml --out out.csv", "bad-list.toml:3: run[0].wh"},
+      {"stress tiny.toml --settings list.toml --out no-such-dir/out.csv", "--out"},
+      {"stress tiny.toml --settings list.toml --out out.csv --points no-such-dir/p.csv", "--points"},
+      {"stress semantic.toml --settings list.toml --out out.csv", "semantic.toml"},
+      {"stress tiny.toml --out out.csv", "--settings"},
   };
   const std::set<std::string> inputs = files();
   for (const BadInput& bad : cases) {
@@ -213,6 +289,26 @@ TEST_F(Cli, SpectrumWritesOneRowPerPointInOrderAndNoLeftovers) {
     ++point;
   }
   EXPECT_EQ(point, 6);
+}
+
+// Renaming a temporary onto a device or a pipe would replace it with a regular file (as
+// root, even /dev/null): such an output is written in place.
+TEST_F(Cli, AnOutputThatIsAPipeStaysAPipe) {
+  write("tiny.toml", kTinySet);
+  ASSERT_EQ(::mkfifo(file("pipe").c_str(), 0644), 0);
+  const std::string reader = "cat '" + file("pipe").string() + "' > '" + file("got.csv").string() + "' &";
+  ASSERT_EQ(std::system(reader.c_str()), 0);
+  const Outcome o = run("spectrum tiny.toml --out pipe");
+  // Should poundbench never have opened the pipe, this releases the waiting reader.
+  if (const int fd = ::open(file("pipe").c_str(), O_WRONLY | O_NONBLOCK); fd >= 0) ::close(fd);
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(fs::is_fifo(file("pipe")));
+  // The reader ends when the writer closes the pipe.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (line_count(read_text(file("got.csv"))) < 7 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_EQ(line_count(read_text(file("got.csv"))), 7u);
+  EXPECT_FALSE(fs::exists(file("pipe.tmp")));
 }
 
 TEST_F(Cli, SpectrumToStdoutLeavesNoPartialFile) {
@@ -296,8 +392,53 @@ pi2 = { from = 0.1, to = 10, points = 100000, spacing = "log" }
   EXPECT_NE(err.find("out.csv.partial"), std::string::npos) << err;
 }
 
+TEST_F(Cli, StressWritesASummaryPerFamilyAndSettingAndEveryRunWithItsPi1Error) {
+  write("tiny.toml", kTinySet);
+  write("list.toml", kTinyList);
+  const Outcome o = run("stress tiny.toml --settings list.toml --out sum.csv --points runs.csv --threads 2");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_EQ(o.out, "");
+  EXPECT_EQ(files(), (std::set<std::string>{"tiny.toml", "list.toml", "sum.csv", "runs.csv"}));
+
+  std::ifstream summary(file("sum.csv"));
+  std::string line;
+  std::getline(summary, line);
+  EXPECT_EQ(line, stability_csv_header());
+  std::vector<std::string> solvers;
+  while (std::getline(summary, line)) {
+    EXPECT_EQ(line.rfind("pair,", 0), 0u) << line;  // the one family
+    solvers.push_back(line.substr(5, line.find(',', 5) - 5));
+    EXPECT_NE(line.find(",6,6,"), std::string::npos) << line;  // 6 runs, all finished
+  }
+  // The truth first, then the list's three settings.
+  EXPECT_EQ(solvers, (std::vector<std::string>{"event-driven", "moreau-jean", "moreau-jean", "moreau-jean"}));
+
+  std::ifstream points(file("runs.csv"));
+  std::getline(points, line);
+  EXPECT_EQ(line, stress_points_header());
+  std::size_t rows = 0, compared = 0;
+  while (std::getline(points, line)) {
+    ++rows;
+    const std::string error = line.substr(line.rfind(',') + 1);
+    if (rows <= 6) {
+      EXPECT_EQ(error, "") << line;  // the truth is not compared with itself
+    } else {
+      ++compared;
+      EXPECT_NE(error, "") << line;
+      EXPECT_LT(std::strtod(error.c_str(), nullptr), rows <= 12 ? 0.02 : 10.0) << line;  // N = 64 first
+    }
+  }
+  EXPECT_EQ(rows, 6u * 4u);
+  EXPECT_EQ(compared, 18u);
+
+  const Outcome to_stdout = run("stress tiny.toml --settings list.toml");
+  ASSERT_EQ(to_stdout.exit_code, 0) << to_stdout.err;
+  EXPECT_EQ(line_count(to_stdout.out), 5u);
+}
+
 TEST_F(Cli, HelpExitsZeroOnEverySubcommand) {
-  for (const char* command : {"--help", "run --help", "spectrum --help", "solvers --help"}) {
+  for (const char* command :
+       {"--help", "run --help", "spectrum --help", "workprecision --help", "stress --help", "solvers --help"}) {
     const Outcome o = run(command);
     EXPECT_EQ(o.exit_code, 0) << command;
     EXPECT_NE(o.out.find("Usage"), std::string::npos) << command;

@@ -221,6 +221,33 @@ TEST(Csv, MinGapIsDividedByTheLengthScale) {
   EXPECT_EQ(fields[25], "-0.004");
 }
 
+TEST(Csv, ChainRowsCarryBodiesAndKickAndTimeSteppersTheirWh) {
+  const std::vector<std::string> header = split_csv(csv_header());
+  const auto column = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  Row chain;
+  chain.input.scene = Scene::chain;
+  chain.input.bodies = 5;
+  chain.input.kick = 1.5;
+  const std::vector<std::string> fields = split_csv(csv_line(chain));
+  ASSERT_EQ(fields.size(), header.size());
+  EXPECT_EQ(fields[column("bodies")], "5");
+  EXPECT_EQ(fields[column("kick")], "1.5");
+
+  Case c;  // a pair
+  Settings wh;
+  wh.wh = 2.0;
+  const Row stepper = run_point(c, 0, *find_solver("moreau-jean"), wh);
+  ASSERT_EQ(stepper.result.status, Status::ok) << stepper.result.message;
+  const std::vector<std::string> pair = split_csv(csv_line(stepper));
+  EXPECT_EQ(pair[column("bodies")], "");
+  EXPECT_EQ(pair[column("kick")], "");
+  // Recovered from the step the solver took: 2 up to the rounding of h and back.
+  EXPECT_NEAR(std::strtod(pair[column("wh")].c_str(), nullptr), 2.0, 1e-12);
+  EXPECT_EQ(split_csv(csv_line(run_point(c, 0, reference_solver(), Settings{})))[column("wh")], "");
+}
+
 TEST(Csv, WriteCsvWritesHeaderAndOneLinePerRow) {
   std::vector<Row> rows(3);
   std::ostringstream out;

@@ -67,6 +67,39 @@ tol_scale = [1, 100]
   EXPECT_EQ(list.reference_tol_scale, 0.01);
 }
 
+TEST(SettingsList, TakesTheStepAsWhAndAPerRunTimeLimitAndMonitor) {
+  const SettingsList list = parse_settings_list(R"(
+name = "t"
+reference_time_limit = 30
+[[run]]
+solver = "moreau-jean"
+theta = [0.5, 1]
+wh = [0.5, 2, 100]
+time_limit = 2.5
+monitor = false
+[[run]]
+solver = "moreau-jean"
+steps = 64
+time_limit = 3
+)",
+                                                "t.toml");
+  EXPECT_EQ(list.reference_time_limit, 30.0);
+  ASSERT_EQ(list.runs.size(), 2u * 3u + 1u);
+  EXPECT_EQ(list.runs[0].settings.wh, 0.5);  // the step is innermost
+  EXPECT_EQ(list.runs[2].settings.wh, 100.0);
+  EXPECT_EQ(list.runs[3].settings.theta, 1.0);
+  for (std::size_t i = 0; i < 6; ++i) {
+    EXPECT_EQ(list.runs[i].settings.steps, 0);
+    EXPECT_EQ(list.runs[i].settings.time_limit, 2.5);
+    EXPECT_FALSE(list.runs[i].settings.monitor);
+  }
+  EXPECT_EQ(list.runs[6].settings.steps, 64);
+  EXPECT_EQ(list.runs[6].settings.wh, 0.0);
+  EXPECT_EQ(list.runs[6].settings.time_limit, 3.0);
+  EXPECT_TRUE(list.runs[6].settings.monitor);  // on unless switched off
+  EXPECT_EQ(parse_settings_list("[[run]]\nsolver = \"moreau-jean\"\n", "t.toml").reference_time_limit, 0.0);
+}
+
 std::string error_of(const std::string& text) {
   try {
     parse_settings_list(text, "bad.toml");
@@ -84,6 +117,18 @@ TEST(SettingsList, BadInputNamesFileLineFieldAndReason) {
   EXPECT_NE(error_of("[[run]]\nsolver = \"moreau-jean\"\ntheta = 2\n").find("bad.toml:1: run[0]: theta"),
             std::string::npos);
   EXPECT_EQ(error_of("name = \"x\"\n"), "bad.toml: run: no [[run]] tables");
+  EXPECT_EQ(error_of("[[run]]\nsolver = \"moreau-jean\"\nsteps = 8\nwh = 2\n"),
+            "bad.toml:4: run[0].wh: give steps or wh, not both (one [[run]] each)");
+  EXPECT_EQ(error_of("[[run]]\nsolver = \"moreau-jean\"\nwh = [1, 0]\n"),
+            "bad.toml:3: run[0].wh: must be > 0 (the step as w_max h)");
+  EXPECT_EQ(error_of("[[run]]\nsolver = \"moreau-jean\"\ntime_limit = 0\n"),
+            "bad.toml:3: run[0].time_limit: must be one number of seconds > 0");
+  EXPECT_EQ(error_of("[[run]]\nsolver = \"moreau-jean\"\ntime_limit = [1, 2]\n"),
+            "bad.toml:3: run[0].time_limit: must be one number of seconds > 0");
+  EXPECT_EQ(error_of("[[run]]\nsolver = \"moreau-jean\"\nmonitor = 1\n"),
+            "bad.toml:3: run[0].monitor: must be true or false");
+  EXPECT_EQ(error_of("reference_time_limit = -1\n[[run]]\nsolver = \"moreau-jean\"\n"),
+            "bad.toml:1: reference_time_limit: must be one number >= 0 (seconds; 0: none)");
   EXPECT_NE(error_of("[[run]\n").find("bad.toml:1: syntax:"), std::string::npos);
 }
 

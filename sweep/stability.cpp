@@ -1,0 +1,163 @@
+#include "sweep/stability.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "sweep/stats.hpp"
+
+namespace pb {
+
+namespace {
+
+bool finished(const Row& row) { return row.result.status == Status::ok && std::isfinite(row.result.pi1); }
+
+// NaN-aware maximum: NaN (not measured) never wins, and stays only if nothing was measured.
+void keep_max(double& worst, double x) {
+  if (std::isnan(x)) return;
+  if (std::isnan(worst) || x > worst) worst = x;
+}
+
+Verdict within(double worst, double tolerance) {
+  if (std::isnan(worst)) return Verdict::none;
+  return worst <= tolerance ? Verdict::pass : Verdict::fail;
+}
+
+std::vector<std::string> families_in_order(std::span<const Case> cases) {
+  std::vector<std::string> out;
+  for (const Case& c : cases)
+    if (std::find(out.begin(), out.end(), c.family) == out.end()) out.push_back(c.family);
+  return out;
+}
+
+// One summary per family over a run's rows (one row per case, in point order).
+void summarize_run(std::span<const Row> rows, std::span<const double> reference,
+                   const std::vector<std::string>& families, std::vector<StabilityRow>& table) {
+  for (const std::string& family : families) {
+    std::vector<const Row*> mine;
+    std::vector<double> ref;
+    for (const Row& r : rows) {
+      if (r.input.family != family) continue;
+      mine.push_back(&r);
+      ref.push_back(reference[r.point]);
+    }
+    table.push_back(summarize_stability(mine, ref));
+  }
+}
+
+}  // namespace
+
+std::string_view name(Verdict v) {
+  switch (v) {
+    case Verdict::pass: return "pass";
+    case Verdict::fail: return "fail";
+    case Verdict::none: return "";
+  }
+  return "";
+}
+
+bool StabilityRow::passed() const {
+  for (Verdict v : {finite, energy, gap, restitution})
+    if (v == Verdict::fail) return false;
+  return true;
+}
+
+double pi1_error(const Row& row, double reference) {
+  if (!finished(row) || !std::isfinite(reference)) return std::numeric_limits<double>::quiet_NaN();
+  return std::abs(row.result.pi1 - reference) / std::abs(reference);
+}
+
+double restitution_error(const Row& row) {
+  const Result& r = row.result;
+  if (r.isolated_impacts <= 0) return std::numeric_limits<double>::quiet_NaN();
+  double worst = std::numeric_limits<double>::quiet_NaN();
+  keep_max(worst, std::abs(r.restitution_low - row.input.eps));
+  keep_max(worst, std::abs(r.restitution_high - row.input.eps));
+  return worst;
+}
+
+StabilityRow summarize_stability(std::span<const Row* const> rows, std::span<const double> reference) {
+  StabilityRow s;
+  if (!rows.empty()) {
+    s.family = rows.front()->input.family;
+    s.solver = rows.front()->solver;
+    s.variant = rows.front()->variant;
+    s.settings = rows.front()->settings;
+  }
+  s.runs = rows.size();
+  std::vector<double> errors, cpu;
+  bool any_finished = false;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const Row& row = *rows[i];
+    cpu.push_back(row.cpu_seconds);
+    if (!finished(row)) continue;
+    ++s.ok;
+    any_finished = true;
+    keep_max(s.energy_excess_max, row.result.energy_excess);
+    keep_max(s.penetration_max, penetration(row));
+    s.isolated_impacts += row.result.isolated_impacts;
+    keep_max(s.restitution_error_max, restitution_error(row));
+    if (const double e = pi1_error(row, reference[i]); !std::isnan(e)) errors.push_back(e);
+  }
+  if (!errors.empty()) {
+    s.pi1_err_median = percentile(errors, 50.0);
+    s.pi1_err_max = *std::max_element(errors.begin(), errors.end());
+  }
+  s.cpu_median = percentile(cpu, 50.0);
+  if (!rows.empty()) s.finite = s.ok == s.runs ? Verdict::pass : Verdict::fail;
+  if (any_finished) {
+    s.energy = within(s.energy_excess_max, kEnergyTolerance);
+    s.gap = within(s.penetration_max, kPenetrationTolerance);
+    s.restitution = within(s.restitution_error_max, kRestitutionTolerance);
+  }
+  return s;
+}
+
+Stress run_stress(std::span<const Case> cases, const SettingsList& list, const SweepOptions& options) {
+  Stress st;
+  st.runs = run_work_precision(cases, list, options);
+  if (!st.runs.complete) return st;
+
+  st.truth.assign(cases.size(), std::numeric_limits<double>::quiet_NaN());
+  for (const Row& r : st.runs.reference)
+    if (finished(r)) st.truth[r.point] = r.result.pi1;
+
+  const std::vector<std::string> families = families_in_order(cases);
+  const std::vector<double> no_reference(cases.size(), std::numeric_limits<double>::quiet_NaN());
+  summarize_run(st.runs.reference, no_reference, families, st.table);
+  const std::size_t n = cases.size();
+  for (std::size_t k = 0; k < list.runs.size(); ++k)
+    summarize_run(std::span<const Row>(st.runs.points).subspan(k * n, n), st.truth, families, st.table);
+  // Grouped by family, the truth first and then the list's settings in their order.
+  std::stable_sort(st.table.begin(), st.table.end(), [&](const StabilityRow& a, const StabilityRow& b) {
+    return std::find(families.begin(), families.end(), a.family) <
+           std::find(families.begin(), families.end(), b.family);
+  });
+  st.complete = true;
+  return st;
+}
+
+std::string stability_csv_header() {
+  return "family,solver,variant,settings,runs,ok,energy_excess_max,penetration_max,isolated_impacts,"
+         "restitution_error_max,pi1_err_median,pi1_err_max,cpu_median_s,finite,energy,gap,restitution";
+}
+
+std::string stability_csv_line(const StabilityRow& row) {
+  std::ostringstream line;
+  line << csv_field(row.family) << ',' << csv_field(row.solver) << ',' << csv_field(row.variant) << ','
+       << csv_field(row.settings) << ',' << row.runs << ',' << row.ok;
+  for (double x : {row.energy_excess_max, row.penetration_max}) line << ',' << format_number(x);
+  line << ',' << row.isolated_impacts;
+  for (double x : {row.restitution_error_max, row.pi1_err_median, row.pi1_err_max, row.cpu_median})
+    line << ',' << format_number(x);
+  for (Verdict v : {row.finite, row.energy, row.gap, row.restitution}) line << ',' << name(v);
+  return line.str();
+}
+
+std::string stress_points_header() { return csv_header() + ",pi1_error"; }
+
+std::string stress_points_line(const Row& row, double pi1_error) {
+  return csv_line(row) + "," + format_number(pi1_error);
+}
+
+}  // namespace pb

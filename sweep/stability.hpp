@@ -1,0 +1,96 @@
+#pragma once
+// The stress study: every case through the reference (the truth) and through every
+// setting of a settings list, as a work-precision study runs them (run_work_precision),
+// then four checks per (family, solver, variant, setting). The checks' tolerances are
+// stated here and nowhere else in the code (docs/cli.md repeats them for users).
+//
+//   finite       every run ended with status ok and a finite Pi1
+//   energy       largest Result::energy_excess <= kEnergyTolerance
+//   gap          largest penetration (sweep/row.hpp) <= kPenetrationTolerance
+//   restitution  largest |e - eps| over isolated impacts <= kRestitutionTolerance
+//
+// `finite` judges every run; the other three judge the runs that finished (status ok), so
+// a diverged run counts once, against `finite`, and not again through the state it blew
+// up to. A check with nothing to judge (no finished run measured it: the reference reports
+// no energy balance, a run without an isolated impact has no restitution) is `none`,
+// which is neither a pass nor a fail.
+
+#include <cstddef>
+#include <limits>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cases/case.hpp"
+#include "sweep/settings_list.hpp"
+#include "sweep/sweep.hpp"
+#include "sweep/workprecision.hpp"
+
+namespace pb {
+
+// Of System::energy_scale(): exact dynamics keep the excess <= 0; a sound scheme's
+// round-off stays many orders below this.
+inline constexpr double kEnergyTolerance = 1e-6;
+// Of delta, or of a_p / w_p^2 when delta = 0: a tenth of the gap may be overlapped.
+inline constexpr double kPenetrationTolerance = 0.1;
+// On the measured coefficient of restitution -g'+ / g'- of isolated impacts.
+inline constexpr double kRestitutionTolerance = 1e-3;
+
+enum class Verdict { pass, fail, none };
+std::string_view name(Verdict v);  // "pass", "fail", "" (none)
+
+struct StabilityRow {
+  std::string family;
+  std::string solver;
+  std::string variant;
+  std::string settings;  // SolverInfo::describe
+  std::size_t runs = 0;
+  std::size_t ok = 0;  // status ok and a finite Pi1
+  // Worst values over the finished runs that measured them (NaN: none did).
+  double energy_excess_max = std::numeric_limits<double>::quiet_NaN();
+  double penetration_max = std::numeric_limits<double>::quiet_NaN();
+  long isolated_impacts = 0;  // over the finished runs
+  double restitution_error_max = std::numeric_limits<double>::quiet_NaN();  // max |e - eps|
+  // Relative Pi1 error against the truth, over the finished runs whose truth finished.
+  double pi1_err_median = std::numeric_limits<double>::quiet_NaN();
+  double pi1_err_max = std::numeric_limits<double>::quiet_NaN();
+  double cpu_median = std::numeric_limits<double>::quiet_NaN();  // CPU seconds per run, every run
+  Verdict finite = Verdict::none;
+  Verdict energy = Verdict::none;
+  Verdict gap = Verdict::none;
+  Verdict restitution = Verdict::none;
+
+  bool passed() const;  // no check failed
+};
+
+// |Pi1 - reference| / |reference|; NaN unless the run finished with a finite Pi1 and the
+// reference is finite.
+double pi1_error(const Row& row, double reference);
+
+// The largest |e - eps| of a row's isolated impacts (NaN when it had none).
+double restitution_error(const Row& row);
+
+// One summary of rows that share a family and a setting. reference[i] is the truth's Pi1
+// for rows[i] (NaN where the truth did not finish, or for the truth's own rows); the
+// identifying strings are taken from the first row.
+StabilityRow summarize_stability(std::span<const Row* const> rows, std::span<const double> reference);
+
+struct Stress {
+  WorkPrecision runs;                // the truth and every run (see WorkPrecision)
+  std::vector<double> truth;         // the truth's Pi1 per point, NaN where it did not finish
+  std::vector<StabilityRow> table;   // per family (in case order): the truth, then the list's settings
+  bool complete = false;             // false: cancelled before the end
+};
+
+// options.on_progress receives the runs done over the whole study (cases x (settings + 1)).
+Stress run_stress(std::span<const Case> cases, const SettingsList& list, const SweepOptions& options);
+
+std::string stability_csv_header();
+std::string stability_csv_line(const StabilityRow& row);
+
+// A run's row: the columns of sweep/row.hpp, then pi1_error (empty where not compared).
+std::string stress_points_header();
+std::string stress_points_line(const Row& row, double pi1_error);
+
+}  // namespace pb
