@@ -16,14 +16,15 @@ std::vector<double> start_or_rest(const std::vector<double>& start, const System
 
 StepMonitor::StepMonitor(const System& s)
     : s_(s),
-      v_(start_or_rest(s.v_start, s)),
+      u_(start_or_rest(s.u_start, s)),
       rate_(static_cast<std::size_t>(s.n_contacts())),
       pushed_(static_cast<std::size_t>(s.n_contacts()), 0),
-      energy_(s.energy(start_or_rest(s.u_start, s).data(), v_.data())),
+      energy_(s.energy(u_.data(), start_or_rest(s.v_start, s).data())),
       floor_(kRestitutionFloor * s.a_p / s.pulse.w),
       e_low_(std::numeric_limits<double>::quiet_NaN()),
       e_high_(std::numeric_limits<double>::quiet_NaN()) {
-  for (int j = 0; j < s.n_contacts(); ++j) rate_[static_cast<std::size_t>(j)] = rate(j, v_.data());
+  const std::vector<double> v = start_or_rest(s.v_start, s);
+  for (int j = 0; j < s.n_contacts(); ++j) rate_[static_cast<std::size_t>(j)] = rate(j, v.data());
 }
 
 double StepMonitor::rate(int j, const double* v) const {
@@ -32,15 +33,15 @@ double StepMonitor::rate(int j, const double* v) const {
 }
 
 void StepMonitor::step(double h, double abar, const double* u, const double* v, const char* pushed) {
-  double momentum = 0.0, damping = 0.0;
-  for (std::size_t i = 0; i < v_.size(); ++i) {
-    const double mid = 0.5 * (v_[i] + v[i]);
-    momentum += s_.bodies[i].m * mid;
-    damping += s_.bodies[i].c * mid * mid;
-    v_[i] = v[i];
+  double load = 0.0, damping = 0.0;
+  for (std::size_t i = 0; i < u_.size(); ++i) {
+    const double du = u[i] - u_[i];
+    load += s_.bodies[i].m * du;
+    damping += s_.bodies[i].c * du * du;
+    u_[i] = u[i];
   }
   const double energy = s_.energy(u, v);
-  balance_ += energy - energy_ + h * (damping + abar * momentum);
+  balance_ += energy - energy_ + damping / h + abar * load;
   energy_ = energy;
   excess_ = std::max(excess_, balance_);
 

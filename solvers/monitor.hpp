@@ -2,12 +2,14 @@
 // What every time-stepper measures for the stress checks, from the states at the ends of
 // each step: the energy balance and the restitution of isolated impacts (Result).
 //
-// The balance E + D - E0 - W uses, over a step of length h,
-//   W += -h abar sum m_i (v_i + v_i') / 2     D += h sum c_i ((v_i + v_i') / 2)^2
-// with abar the exact step mean of a_g. For the Moreau-Jean scheme with theta = 1/2 this is
-// the scheme's own discrete balance, so the excess is round-off; for any other scheme it
-// measures the energy the scheme makes or loses over and above the physics, to O(h^2)
-// per unit time.
+// The balance E + D - E0 - W uses, over a step of length h that moves body i by du_i,
+//   W += -abar sum m_i du_i     D += sum c_i du_i^2 / h
+// with abar the exact step mean of a_g: the work of the step's mean load along the step's
+// own displacement, and the damping force at the step's mean velocity du / h doing work
+// along it. For the theta-method (Moreau-Jean) this is the scheme's own discrete balance:
+// the excess is round-off at theta = 1/2 and not positive at theta = 1, except where the
+// impact law itself adds energy. For a scheme that samples the load at the step's start
+// (ODE, Bullet) it measures the energy that sampling makes, to O(h) per unit time.
 //
 // Holds its buffers from construction on: observing a step allocates nothing.
 //
@@ -46,7 +48,7 @@ class StepMonitor {
   double rate(int j, const double* v) const;
 
   const System& s_;
-  std::vector<double> v_, rate_;  // velocities and gap rates at the start of the step
+  std::vector<double> u_, rate_;  // displacements and gap rates at the start of the step
   std::vector<char> pushed_;      // impulses of the step before
   double energy_ = 0.0;           // E at the start of the step
   double balance_ = 0.0;          // E + D - E0 - W
