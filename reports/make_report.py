@@ -19,6 +19,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+import stability  # noqa: E402  (reports/stability.py)
+
 # Columns that label a curve of a spectrum (everything that is neither the abscissa nor a result).
 CASE_KEYS = ["scene", "pulse", "directivity", "eps", "pi3", "pi5", "pi6", "pi7", "pi8", "xi", "n_free", "a_p", "w_p"]
 
@@ -270,6 +272,39 @@ def cost_table(summary):
     return lines
 
 
+def stability_section(summary, points, out_dir):
+    """Where each solver breaks: the stress set's checks per family and setting, and the
+    figures against w_max h and the chain's size."""
+    tol = stability.tolerances()
+    lines = ["## Stability on stiff and extreme cases", "",
+             "Every case of the stress set (`cases/sets/stress.toml`: stiffness and mass contrasts of 1e-2 and "
+             "1e2, bodies touching at rest, eps = 0 and 1, pulse scales 1e-3 to 1e3, 100 free periods, chains "
+             "of up to 100 bodies, a Newton's cradle) through every setting of `cases/settings/stress.toml`, "
+             "the time-steppers at w_max h = 0.5, 2, 10 and 100. Four checks per family and setting "
+             "(tolerances in `sweep/stability.hpp`):", "",
+             "* **finite**: every run ends with status ok and a finite Pi1 (a failed run is shown as ok/runs);",
+             "* **energy**: the mechanical energy never exceeds the start's energy plus the work of the ground "
+             f"load, to {tol['kEnergyTolerance']:g} of the energy scale (largest excess shown);",
+             f"* **gap**: a time-stepper overlaps by at most one step of travel (to {tol['kPenetrationSteps'] - 1:.0e}, room for round-off) "
+             "at its fastest gap rate, h max|g'| (worst overlap shown in such steps); the reference, by at most "
+             f"{tol['kReferencePenetration']:g} of the gap;",
+             f"* **restitution**: every isolated impact restitutes eps to {tol['kRestitutionTolerance']:g} "
+             "(worst |e - eps| shown).", "",
+             "`pass`: no check failed; `-`: nothing to judge (no run finished). Energy, gap and restitution "
+             "judge the finished runs only, so a diverged run counts once. The numbers of every cell are in "
+             "`stability.csv`; every run's row in `poundbench stress --points`.", ""]
+    lines += stability.stability_table(summary)
+    lines.append("")
+    if points:
+        figure = stability.large_step_figure(points, out_dir)
+        if figure:
+            lines += ["### Against the step", "", f"![large steps]({figure})", ""]
+        figure = stability.chain_cost_figure(points, out_dir)
+        if figure:
+            lines += ["### Chain: cost against the number of bodies", "", f"![chain cost]({figure})", ""]
+    return lines
+
+
 def bench_section(path):
     import json
 
@@ -330,6 +365,8 @@ def main():
     parser.add_argument("--workprecision", help="summary CSV from `poundbench workprecision`")
     parser.add_argument("--points", help="per-run CSV from `poundbench workprecision --points`")
     parser.add_argument("--bench", help="Google Benchmark JSON (--benchmark_out) of poundbench_bench")
+    parser.add_argument("--stress", help="summary CSV from `poundbench stress --out`")
+    parser.add_argument("--stress-points", help="per-run CSV from `poundbench stress --points`")
     parser.add_argument("--out", default="reports", help="folder for README.md and figures/")
     args = parser.parse_args()
 
@@ -384,6 +421,9 @@ def main():
                  f"Each solver at N = {MIDDLE_N} over the reference (black), and its error along Pi2.", ""]
         for family, figure in wp_spectra(points, args.out):
             text += [f"### {family}", "", f"![spectra {family}]({figure})", ""]
+    if args.stress:
+        text += stability_section(load([args.stress]), load([args.stress_points]) if args.stress_points else [],
+                                  args.out)
     if args.bench:
         text += bench_section(args.bench)
 

@@ -21,10 +21,15 @@ echo "main: work-precision study ($study)"
 $pb workprecision "$study" --settings cases/settings/default.toml \
   --out results/workprecision.csv --points results/workprecision-points.csv
 
+echo "main: stability on the stress case set"
+$pb stress cases/sets/stress.toml --settings cases/settings/stress.toml \
+  --out results/stability.csv --points results/stability-points.csv
+
 echo "main: benchmarks"
 build/bench/poundbench_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
   --benchmark_min_time=0.05 --benchmark_out=results/bench.json --benchmark_out_format=json > /dev/null
 
 /usr/bin/python3 reports/make_report.py results/paper-*.csv --workprecision results/workprecision.csv \
-  --points results/workprecision-points.csv --bench results/bench.json --out reports
-cp results/workprecision.csv reports/workprecision.csv
+  --points results/workprecision-points.csv --bench results/bench.json \
+  --stress results/stability.csv --stress-points results/stability-points.csv --out reports
+cp results/workprecision.csv results/stability.csv reports/

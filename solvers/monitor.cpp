@@ -1,6 +1,7 @@
 #include "solvers/monitor.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace pb {
@@ -24,7 +25,10 @@ StepMonitor::StepMonitor(const System& s)
       e_low_(std::numeric_limits<double>::quiet_NaN()),
       e_high_(std::numeric_limits<double>::quiet_NaN()) {
   const std::vector<double> v = start_or_rest(s.v_start, s);
-  for (int j = 0; j < s.n_contacts(); ++j) rate_[static_cast<std::size_t>(j)] = rate(j, v.data());
+  for (int j = 0; j < s.n_contacts(); ++j) {
+    rate_[static_cast<std::size_t>(j)] = rate(j, v.data());
+    fastest_ = std::max(fastest_, std::abs(rate_[static_cast<std::size_t>(j)]));
+  }
 }
 
 double StepMonitor::rate(int j, const double* v) const {
@@ -52,6 +56,7 @@ void StepMonitor::step(double h, double abar, const double* u, const double* v, 
     const auto jj = static_cast<std::size_t>(j);
     const double before = rate_[jj];
     rate_[jj] = rate(j, v);
+    fastest_ = std::max(fastest_, std::abs(rate_[jj]));
     if (pushing == 1 && pushed[j] && !pushed_[jj] && before < -floor_) {
       const double e = -rate_[jj] / before;
       ++isolated_;
@@ -67,6 +72,7 @@ void StepMonitor::finish(Result& r) const {
   r.isolated_impacts = isolated_;
   r.restitution_low = e_low_;
   r.restitution_high = e_high_;
+  r.gap_rate_max = fastest_;
 }
 
 Deadline::Deadline(double seconds) : limit_(seconds), start_(std::chrono::steady_clock::now()) {}

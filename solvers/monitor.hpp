@@ -1,6 +1,7 @@
 #pragma once
 // What every time-stepper measures for the stress checks, from the states at the ends of
-// each step: the energy balance and the restitution of isolated impacts (Result).
+// each step: the energy balance, the restitution of isolated impacts and the fastest gap
+// rate (Result).
 //
 // The balance E + D - E0 - W uses, over a step of length h that moves body i by du_i,
 //   W += -abar sum m_i du_i     D += sum c_i du_i^2 / h
@@ -41,7 +42,7 @@ class StepMonitor {
   // it. The state at its start is the one of the previous call (or System's start).
   void step(double h, double abar, const double* u, const double* v, const char* pushed);
 
-  // Writes energy_excess, isolated_impacts and the restitution range into r.
+  // Writes energy_excess, isolated_impacts, the restitution range and gap_rate_max into r.
   void finish(Result& r) const;
 
  private:
@@ -53,6 +54,7 @@ class StepMonitor {
   double energy_ = 0.0;           // E at the start of the step
   double balance_ = 0.0;          // E + D - E0 - W
   double excess_ = 0.0;
+  double fastest_ = 0.0;  // largest |g'| so far
   double floor_ = 0.0;  // kRestitutionFloor a_p / w_p
   long isolated_ = 0;
   double e_low_, e_high_;

@@ -72,6 +72,10 @@ struct Result {
   long isolated_impacts = 0;
   double restitution_low = std::numeric_limits<double>::quiet_NaN();
   double restitution_high = std::numeric_limits<double>::quiet_NaN();
+  // A time-stepper's largest |g'| over the states at its step ends: h times it is one step
+  // of travel at the fastest gap rate, what a velocity-level scheme may overlap (stress
+  // check `gap`). NaN: not measured (the reference, or monitor off).
+  double gap_rate_max = std::numeric_limits<double>::quiet_NaN();
   History history;
 };
 

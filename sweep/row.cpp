@@ -15,6 +15,13 @@ double penetration(const Row& row) {
   return depth / (row.input.pi3 > 0.0 ? row.input.pi3 * row.length_scale : row.length_scale);
 }
 
+double penetration_steps(const Row& row) {
+  const double travel = row.result.step * row.result.gap_rate_max;
+  if (std::isnan(travel)) return std::numeric_limits<double>::quiet_NaN();
+  const double depth = std::max(0.0, -row.result.min_gap);
+  return depth > 0.0 ? depth / travel : 0.0;
+}
+
 std::string format_number(double x) {
   if (std::isnan(x)) return {};
   // Without a format argument to_chars gives the shortest text that round-trips.
@@ -43,7 +50,7 @@ constexpr std::array kColumns = {
     "a_p",    "w_p",    "solver",   "variant", "settings",      "status",  "pi1",
     "pi1_no_contact",   "impacts",  "contact_phases", "steps",  "min_gap", "seconds",
     "cpu_seconds", "message", "bodies", "kick", "wh", "energy_excess", "penetration",
-    "isolated_impacts", "restitution_low", "restitution_high"};
+    "isolated_impacts", "restitution_low", "restitution_high", "penetration_steps"};
 
 // Written as an empty field: a body the scene does not have, a gap that never closed.
 constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
@@ -117,6 +124,7 @@ std::string csv_line(const Row& row) {
   line.count(r.isolated_impacts);
   line.number(r.restitution_low);
   line.number(r.restitution_high);
+  line.number(penetration_steps(row));
   return line.take();
 }
 

@@ -7,7 +7,8 @@
 //   family, point, scene, pulse, directivity, pi2, pi3, eps, pi5, pi6, pi7, pi8, xi,
 //   n_free, a_p, w_p, solver, variant, settings, status, pi1, pi1_no_contact, impacts,
 //   contact_phases, steps, min_gap, seconds, cpu_seconds, message, bodies, kick, wh,
-//   energy_excess, penetration, isolated_impacts, restitution_low, restitution_high
+//   energy_excess, penetration, isolated_impacts, restitution_low, restitution_high,
+//   penetration_steps
 // pi5/pi6 are empty for the wall scene and pi7/pi8 for every scene but row3; bodies and
 // kick are empty except for chain; min_gap is divided by the pulse's length scale
 // a_p / w_p^2 and empty when no contact ever closed (infinite); a NaN is written as an
@@ -45,6 +46,11 @@ double min_gap_ratio(const Row& row);
 
 // The deepest penetration over delta, or over a_p / w_p^2 when delta = 0 (0 if none).
 double penetration(const Row& row);
+
+// The deepest penetration over one step of travel at the run's fastest gap rate,
+// h Result::gap_rate_max: at most 1 for a velocity-level scheme. NaN without a fixed step
+// or a measured rate (the reference, monitor off).
+double penetration_steps(const Row& row);
 
 // Shortest decimal text that reads back (strtod) to exactly x; NaN gives "".
 std::string format_number(double x);

@@ -86,7 +86,7 @@ StabilityRow summarize_stability(std::span<const Row* const> rows, std::span<con
   }
   s.runs = rows.size();
   std::vector<double> errors, cpu;
-  bool any_finished = false;
+  bool any_finished = false, stepped = false;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& row = *rows[i];
     cpu.push_back(row.cpu_seconds);
@@ -95,6 +95,8 @@ StabilityRow summarize_stability(std::span<const Row* const> rows, std::span<con
     any_finished = true;
     keep_max(s.energy_excess_max, row.result.energy_excess);
     keep_max(s.penetration_max, penetration(row));
+    keep_max(s.penetration_steps_max, penetration_steps(row));
+    stepped = stepped || std::isfinite(row.result.step);
     s.isolated_impacts += row.result.isolated_impacts;
     keep_max(s.restitution_error_max, restitution_error(row));
     if (const double e = pi1_error(row, reference[i]); !std::isnan(e)) errors.push_back(e);
@@ -107,7 +109,8 @@ StabilityRow summarize_stability(std::span<const Row* const> rows, std::span<con
   if (!rows.empty()) s.finite = s.ok == s.runs ? Verdict::pass : Verdict::fail;
   if (any_finished) {
     s.energy = within(s.energy_excess_max, kEnergyTolerance);
-    s.gap = within(s.penetration_max, kPenetrationTolerance);
+    s.gap = stepped ? within(s.penetration_steps_max, kPenetrationSteps)
+                    : within(s.penetration_max, kReferencePenetration);
     s.restitution = within(s.restitution_error_max, kRestitutionTolerance);
   }
   return s;
@@ -138,7 +141,8 @@ Stress run_stress(std::span<const Case> cases, const SettingsList& list, const S
 }
 
 std::string stability_csv_header() {
-  return "family,solver,variant,settings,runs,ok,energy_excess_max,penetration_max,isolated_impacts,"
+  return "family,solver,variant,settings,runs,ok,energy_excess_max,penetration_max,penetration_steps_max,"
+         "isolated_impacts,"
          "restitution_error_max,pi1_err_median,pi1_err_max,cpu_median_s,finite,energy,gap,restitution";
 }
 
@@ -146,7 +150,8 @@ std::string stability_csv_line(const StabilityRow& row) {
   std::ostringstream line;
   line << csv_field(row.family) << ',' << csv_field(row.solver) << ',' << csv_field(row.variant) << ','
        << csv_field(row.settings) << ',' << row.runs << ',' << row.ok;
-  for (double x : {row.energy_excess_max, row.penetration_max}) line << ',' << format_number(x);
+  for (double x : {row.energy_excess_max, row.penetration_max, row.penetration_steps_max})
+    line << ',' << format_number(x);
   line << ',' << row.isolated_impacts;
   for (double x : {row.restitution_error_max, row.pi1_err_median, row.pi1_err_max, row.cpu_median})
     line << ',' << format_number(x);

@@ -6,8 +6,14 @@
 //
 //   finite       every run ended with status ok and a finite Pi1
 //   energy       largest Result::energy_excess <= kEnergyTolerance
-//   gap          largest penetration (sweep/row.hpp) <= kPenetrationTolerance
+//   gap          a time-stepper: largest penetration_steps (sweep/row.hpp) <= kPenetrationSteps;
+//                the reference: largest penetration <= kReferencePenetration
 //   restitution  largest |e - eps| over isolated impacts <= kRestitutionTolerance
+//
+// The gap check of a time-stepper is in steps, not in delta: a scheme that imposes the
+// contact on velocities overlaps by up to one step of travel at the approach speed, which
+// is a whole gap at a coarse step and nothing at a fine one. What it must not do is sink
+// further (a soft or pushed-out contact) or pass through.
 //
 // `finite` judges every run; the other three judge the runs that finished (status ok), so
 // a diverged run counts once, against `finite`, and not again through the state it blew
@@ -32,8 +38,14 @@ namespace pb {
 // Of System::energy_scale(): exact dynamics keep the excess <= 0; a sound scheme's
 // round-off stays many orders below this.
 inline constexpr double kEnergyTolerance = 1e-6;
-// Of delta, or of a_p / w_p^2 when delta = 0: a tenth of the gap may be overlapped.
-inline constexpr double kPenetrationTolerance = 0.1;
+// Of h max|g'|, one step of travel at the fastest gap rate: Moreau-Jean at theta = gamma = 1/2
+// stays within (1 - eps/2) of it (tests/moreau_jean_test.cpp), and a scheme that finds a
+// contact only once it overlaps reaches it exactly where touching bodies close at their
+// fastest rate. The 1e-5 is room for round-off there (single-precision Bullet: 1 + 1e-6).
+inline constexpr double kPenetrationSteps = 1.00001;
+// Of delta, or of a_p / w_p^2 when delta = 0: the reference closes a gap to within
+// 1e-10 a_p / w_p^2 (its closure tolerance), 2e-10 of delta at Pi3 = 0.5.
+inline constexpr double kReferencePenetration = 1e-9;
 // On the measured coefficient of restitution -g'+ / g'- of isolated impacts.
 inline constexpr double kRestitutionTolerance = 1e-3;
 
@@ -50,6 +62,7 @@ struct StabilityRow {
   // Worst values over the finished runs that measured them (NaN: none did).
   double energy_excess_max = std::numeric_limits<double>::quiet_NaN();
   double penetration_max = std::numeric_limits<double>::quiet_NaN();
+  double penetration_steps_max = std::numeric_limits<double>::quiet_NaN();  // time-steppers
   long isolated_impacts = 0;  // over the finished runs
   double restitution_error_max = std::numeric_limits<double>::quiet_NaN();  // max |e - eps|
   // Relative Pi1 error against the truth, over the finished runs whose truth finished.

@@ -8,10 +8,13 @@ trap 'rm -rf "$out"' EXIT
 "$pb" spectrum "$src/cases/sets/smoke.toml" --out "$out/smoke.csv"
 "$pb" workprecision "$src/cases/sets/smoke.toml" --settings "$src/cases/settings/smoke.toml" \
   --out "$out/wp.csv" --points "$out/points.csv"
+"$pb" stress "$src/cases/sets/smoke.toml" --settings "$src/cases/settings/stress-smoke.toml" \
+  --out "$out/stability.csv" --points "$out/stability-points.csv"
 "$bench" --benchmark_filter='BM_Solve|BM_SweepFig4' --benchmark_min_time=0.001 \
   --benchmark_out="$out/bench.json" --benchmark_out_format=json > /dev/null
 /usr/bin/python3 "$src/reports/make_report.py" "$out/smoke.csv" --workprecision "$out/wp.csv" \
-  --points "$out/points.csv" --bench "$out/bench.json" --out "$out/report"
+  --points "$out/points.csv" --bench "$out/bench.json" \
+  --stress "$out/stability.csv" --stress-points "$out/stability-points.csv" --out "$out/report"
 families=$(tail -n +2 "$out/smoke.csv" | cut -d, -f1 | sort -u)
 missing=0
 for f in $families; do
@@ -22,5 +25,13 @@ for f in $families; do
     grep -q "figures/$fig.png" "$out/report/README.md" || { echo "README.md does not show $fig"; missing=1; }
   done
 done
+for ext in png svg; do
+  [ -s "$out/report/figures/stability-large-steps.$ext" ] || { echo "missing figure stability-large-steps.$ext"; missing=1; }
+done
+# The engine past its stability limit fails `finite` in the table; the stepper passes.
+grep -q '^| ode dantzig-faithful, w_max h = 10 |.*\*\*fail\*\*: finite' "$out/report/README.md" ||
+  { echo "stability table does not show the diverging engine"; missing=1; }
+grep -q '^| moreau-jean theta=0.5, w_max h = 100 | pass' "$out/report/README.md" ||
+  { echo "stability table does not show the stepper passing"; missing=1; }
 grep -q "faster on 2 threads" "$out/report/README.md" || { echo "no thread speedup line"; missing=1; }
 exit $missing

@@ -30,6 +30,8 @@ Row good_row(double pi1 = 1.0) {
   r.result.status = Status::ok;
   r.result.pi1 = pi1;
   r.result.min_gap = 0.0;
+  r.result.step = 0.25;
+  r.result.gap_rate_max = 2.0;  // one step of travel at the fastest rate: 0.5
   r.result.energy_excess = 0.0;
   r.result.isolated_impacts = 2;
   r.result.restitution_low = 0.5;
@@ -71,14 +73,28 @@ TEST(StabilitySummary, EachCheckFailsJustAboveItsToleranceAndPassesAtIt) {
   EXPECT_EQ(s.energy_excess_max, 2 * kEnergyTolerance);
   EXPECT_FALSE(s.passed());
 
-  // Gap: penetration is over delta (0.5 here), so a gap of -0.05 is 0.1 of it.
+  // Gap, time-stepper: penetration is over one step of travel h max|g'| (0.5 here).
   rows = {good_row(), good_row()};
-  rows[0].result.min_gap = -0.5 * kPenetrationTolerance;
+  rows[0].result.min_gap = -0.5 * kPenetrationSteps;
   EXPECT_EQ(summary_of(rows).gap, Verdict::pass);
-  rows[0].result.min_gap = -0.5 * 2 * kPenetrationTolerance;
+  rows[0].result.min_gap = -0.5 * 2 * kPenetrationSteps;
   s = summary_of(rows);
   EXPECT_EQ(s.gap, Verdict::fail);
-  EXPECT_DOUBLE_EQ(s.penetration_max, 2 * kPenetrationTolerance);
+  EXPECT_DOUBLE_EQ(s.penetration_steps_max, 2 * kPenetrationSteps);
+  EXPECT_DOUBLE_EQ(s.penetration_max, 2 * kPenetrationSteps);  // also over delta = 0.5
+
+  // Gap, the reference (no step): penetration is over delta (0.5 here).
+  rows = {good_row(), good_row()};
+  for (Row& r : rows) {
+    r.solver = "event-driven";
+    r.result.step = r.result.gap_rate_max = kNaN;
+  }
+  rows[0].result.min_gap = -0.5 * kReferencePenetration;
+  s = summary_of(rows);
+  EXPECT_EQ(s.gap, Verdict::pass);
+  EXPECT_TRUE(std::isnan(s.penetration_steps_max));
+  rows[0].result.min_gap = -0.5 * 2 * kReferencePenetration;
+  EXPECT_EQ(summary_of(rows).gap, Verdict::fail);
 
   // Restitution: either end of the measured range may be the worst.
   rows = {good_row(), good_row()};
