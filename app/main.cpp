@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/baseline_command.hpp"
 #include "app/errors.hpp"
 #include "app/run_command.hpp"
 #include "app/spectrum_command.hpp"
@@ -49,6 +50,10 @@ int main(int argc, char** argv) {
   CLI::App* workprecision = pb::app::add_workprecision_command(app, workprecision_flags);
   pb::app::StressFlags stress_flags;
   CLI::App* stress = pb::app::add_stress_command(app, stress_flags);
+  pb::app::BaselineFlags baseline_flags;
+  CLI::App* baseline = pb::app::add_baseline_command(app, baseline_flags);
+  pb::app::CompareFlags compare_flags;
+  CLI::App* compare = pb::app::add_compare_command(app, compare_flags);
   CLI::App* solvers = app.add_subcommand("solvers", "List the solvers and what each one is");
 
   try {
@@ -63,6 +68,8 @@ int main(int argc, char** argv) {
     if (*spectrum) return pb::app::spectrum_command(*spectrum, spectrum_flags);
     if (*workprecision) return pb::app::workprecision_command(*workprecision, workprecision_flags);
     if (*stress) return pb::app::stress_command(*stress, stress_flags);
+    if (*baseline) return pb::app::baseline_command(*baseline, baseline_flags);
+    if (*compare) return pb::app::compare_command(*compare, compare_flags);
     if (*solvers) return list_solvers();
   } catch (const pb::app::BadInput& e) {
     return fail(e.what(), kBadInput);

@@ -436,9 +436,69 @@ TEST_F(Cli, StressWritesASummaryPerFamilyAndSettingAndEveryRunWithItsPi1Error) {
   EXPECT_EQ(line_count(to_stdout.out), 5u);
 }
 
+// A baseline stored, checked unchanged (exit 0), checked after one stored Pi1 was nudged
+// (exit 1, the setting named), and stored again on purpose (exit 0, then clean again).
+TEST_F(Cli, BaselineCheckCatchesAChangedPi1AndUpdateStoresItAgain) {
+  write("tiny.toml", kTinySet);
+  write("list.toml", kTinyList);
+  const Outcome made = run("baseline tiny.toml --settings list.toml --out base.csv");
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  EXPECT_EQ(made.out, "base.csv: 24 rows\n");
+  const std::string stored = read_text(file("base.csv"));
+  EXPECT_EQ(stored.rfind("# poundbench baseline\n# cases: tiny.toml\n# settings: list.toml\n# commit: ", 0), 0u);
+
+  Outcome checked = run("baseline --check base.csv");
+  ASSERT_EQ(checked.exit_code, 0) << checked.out << checked.err;
+  EXPECT_EQ(checked.out.find("FAIL"), std::string::npos);
+
+  // The first Moreau-Jean row's Pi1, one part in 1e9 larger: beyond its 1e-12.
+  std::string nudged = stored;
+  const std::size_t row = nudged.find(",moreau-jean,");
+  const std::size_t pi1 = nudged.find(",ok,", row) + 4;
+  const std::size_t end = nudged.find(',', pi1);
+  const double value = std::strtod(nudged.substr(pi1, end - pi1).c_str(), nullptr);
+  std::ostringstream text;
+  text.precision(17);
+  text << value * (1.0 + 1e-9);
+  nudged.replace(pi1, end - pi1, text.str());
+  write("base.csv", nudged);
+  checked = run("baseline --check base.csv");
+  EXPECT_EQ(checked.exit_code, 1) << checked.out << checked.err;
+  EXPECT_NE(checked.out.find("FAIL"), std::string::npos) << checked.out;
+
+  const Outcome updated = run("baseline --update base.csv");
+  ASSERT_EQ(updated.exit_code, 0) << updated.err;
+  EXPECT_NE(updated.out.find("stored again (24 rows); it had changed"), std::string::npos) << updated.out;
+  EXPECT_EQ(run("baseline --check base.csv").exit_code, 0);
+}
+
+TEST_F(Cli, CompareChecksAnotherSolversRowsAgainstTheStoredReference) {
+  write("tiny.toml", kTinySet);
+  ASSERT_EQ(run("baseline tiny.toml --out base.csv").exit_code, 0);
+  ASSERT_EQ(run("spectrum tiny.toml --solver moreau-jean --steps 64 --out mine.csv").exit_code, 0);
+  // Measured 0.4 % at N = 64 on these six points.
+  Outcome o = run("compare mine.csv --baseline base.csv --tolerance 0.02");
+  EXPECT_EQ(o.exit_code, 0) << o.out << o.err;
+  EXPECT_NE(o.out.find("pass"), std::string::npos) << o.out;
+  o = run("compare mine.csv --baseline base.csv --tolerance 1e-6");
+  EXPECT_EQ(o.exit_code, 1) << o.out << o.err;
+  EXPECT_NE(o.out.find("FAIL"), std::string::npos) << o.out;
+
+  o = run("compare mine.csv --baseline base.csv");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.err, "poundbench: --tolerance: required (or --same-setting)\n");
+  write("bad.csv", "family,point\n");
+  o = run("compare bad.csv --baseline base.csv --tolerance 1");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.err, "poundbench: bad.csv:1: scene: missing column\n");
+  o = run("baseline --check mine.csv");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.err.rfind("poundbench: mine.csv:1: header: not a poundbench baseline", 0), 0u) << o.err;
+}
+
 TEST_F(Cli, HelpExitsZeroOnEverySubcommand) {
-  for (const char* command :
-       {"--help", "run --help", "spectrum --help", "workprecision --help", "stress --help", "solvers --help"}) {
+  for (const char* command : {"--help", "run --help", "spectrum --help", "workprecision --help", "stress --help",
+                              "baseline --help", "compare --help", "solvers --help"}) {
     const Outcome o = run(command);
     EXPECT_EQ(o.exit_code, 0) << command;
     EXPECT_NE(o.out.find("Usage"), std::string::npos) << command;

@@ -16,6 +16,7 @@
 #include "cases/case_set.hpp"
 #include "solvers/solver.hpp"
 #include "sweep/row.hpp"
+#include "sweep/row_reader.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb {
@@ -32,25 +33,6 @@ const SolverInfo& reference_solver() {
 }
 
 // Splits one CSV line as RFC 4180 reads it (quoted fields, doubled quotes).
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char ch = line[i];
-    if (quoted && ch == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-      fields.back() += '"';
-      ++i;
-    } else if (ch == '"') {
-      quoted = !quoted;
-    } else if (ch == ',' && !quoted) {
-      fields.emplace_back();
-    } else {
-      fields.back() += ch;
-    }
-  }
-  return fields;
-}
-
 std::string line_without_time(Row row) {
   row.seconds = 0.0;
   row.cpu_seconds = 0.0;
@@ -175,7 +157,7 @@ TEST(Csv, NumbersReadBackToTheSameDouble) {
 }
 
 TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
-  const std::vector<std::string> header = split_csv(csv_header());
+  const std::vector<std::string> header = split_csv_record(csv_header());
   ASSERT_EQ(header.size(), 38u);
   EXPECT_EQ(header.front(), "family");
   EXPECT_EQ(header[28], "message");  // the columns after it were appended later
@@ -192,7 +174,7 @@ TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   row.result.impacts = 5;
   row.result.message = "stopped, \"early\"\nsee log";
   row.length_scale = 1.0;
-  const std::vector<std::string> fields = split_csv(csv_line(row));
+  const std::vector<std::string> fields = split_csv_record(csv_line(row));
   ASSERT_EQ(fields.size(), header.size());
   const auto field = [&](const std::string& column) {
     for (std::size_t i = 0; i < header.size(); ++i)
@@ -217,12 +199,12 @@ TEST(Csv, MinGapIsDividedByTheLengthScale) {
   row.result.min_gap = -0.002;
   row.length_scale = 0.5;
   EXPECT_DOUBLE_EQ(min_gap_ratio(row), -0.004);
-  const std::vector<std::string> fields = split_csv(csv_line(row));
+  const std::vector<std::string> fields = split_csv_record(csv_line(row));
   EXPECT_EQ(fields[25], "-0.004");
 }
 
 TEST(Csv, ChainRowsCarryBodiesAndKickAndTimeSteppersTheirWh) {
-  const std::vector<std::string> header = split_csv(csv_header());
+  const std::vector<std::string> header = split_csv_record(csv_header());
   const auto column = [&](const std::string& name) {
     return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
   };
@@ -230,7 +212,7 @@ TEST(Csv, ChainRowsCarryBodiesAndKickAndTimeSteppersTheirWh) {
   chain.input.scene = Scene::chain;
   chain.input.bodies = 5;
   chain.input.kick = 1.5;
-  const std::vector<std::string> fields = split_csv(csv_line(chain));
+  const std::vector<std::string> fields = split_csv_record(csv_line(chain));
   ASSERT_EQ(fields.size(), header.size());
   EXPECT_EQ(fields[column("bodies")], "5");
   EXPECT_EQ(fields[column("kick")], "1.5");
@@ -240,7 +222,7 @@ TEST(Csv, ChainRowsCarryBodiesAndKickAndTimeSteppersTheirWh) {
   wh.wh = 2.0;
   const Row stepper = run_point(c, 0, *find_solver("moreau-jean"), wh);
   ASSERT_EQ(stepper.result.status, Status::ok) << stepper.result.message;
-  const std::vector<std::string> pair = split_csv(csv_line(stepper));
+  const std::vector<std::string> pair = split_csv_record(csv_line(stepper));
   EXPECT_EQ(pair[column("bodies")], "");
   EXPECT_EQ(pair[column("kick")], "");
   // Recovered from the step the solver took: 2 up to the rounding of h and back.
@@ -248,7 +230,7 @@ TEST(Csv, ChainRowsCarryBodiesAndKickAndTimeSteppersTheirWh) {
   // Measured by the stepper's monitor; within one step of travel (its proven bound).
   ASSERT_FALSE(pair[column("penetration_steps")].empty());
   EXPECT_LE(std::strtod(pair[column("penetration_steps")].c_str(), nullptr), 1.0);
-  const std::vector<std::string> reference = split_csv(csv_line(run_point(c, 0, reference_solver(), Settings{})));
+  const std::vector<std::string> reference = split_csv_record(csv_line(run_point(c, 0, reference_solver(), Settings{})));
   EXPECT_EQ(reference[column("wh")], "");
   EXPECT_EQ(reference[column("penetration_steps")], "");  // no step
 }

@@ -1,0 +1,202 @@
+#include "app/baseline_command.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include "app/errors.hpp"
+#include "app/output_files.hpp"
+#include "app/sweep_watch.hpp"
+#include "cases/case_set.hpp"
+#include "sweep/baseline.hpp"
+#include "sweep/row_reader.hpp"
+
+namespace pb::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kInterrupted = 130;
+constexpr int kCheckFailed = 1;
+
+// What a command's first output line prints, or "unknown".
+std::string first_line_of(const std::string& command) {
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(::popen(command.c_str(), "r"), ::pclose);
+  if (!pipe) return "unknown";
+  char buffer[256] = {};
+  if (!std::fgets(buffer, sizeof buffer, pipe.get())) return "unknown";
+  std::string line(buffer);
+  while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+  return line.empty() ? "unknown" : line;
+}
+
+// Provenance for people: the commit of the tree the baseline sits in, the compiler, the date.
+std::vector<std::string> provenance(const fs::path& file) {
+  const std::string dir = fs::absolute(file).parent_path().string();
+  std::string commit = first_line_of("git -C '" + dir + "' rev-parse --short HEAD 2>/dev/null");
+  if (commit != "unknown" && first_line_of("git -C '" + dir + "' status --porcelain --untracked-files=no 2>/dev/null") != "unknown")
+    commit += " (with uncommitted changes)";
+  char date[32] = {};
+  const std::time_t now = std::time(nullptr);
+  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+  #if defined(__clang__)
+  const std::string compiler = std::string("clang ") + __clang_version__;
+#else
+  const std::string compiler = std::string("GCC ") + __VERSION__;
+#endif
+  return {"commit: " + commit, "compiler: " + compiler, std::string("made: ") + date};
+}
+
+fs::path relative_to_file(const fs::path& target, const fs::path& file) {
+  return fs::relative(fs::absolute(target), fs::absolute(file).parent_path());
+}
+
+struct Source {
+  CaseSet set;
+  std::optional<SettingsList> list;
+};
+
+Source load_source(const fs::path& cases, const fs::path& settings) {
+  Source s{load_case_set(cases), std::nullopt};  // CaseSetError: bad input
+  if (s.set.cases.empty()) throw BadInput(cases.string() + ": no cases");
+  if (!settings.empty()) {
+    try {
+      s.list = load_settings_list(settings);
+    } catch (const SettingsListError& e) {
+      throw BadInput(e.what());
+    }
+  }
+  return s;
+}
+
+// Runs a baseline's sweeps with a progress bar; nullopt when interrupted.
+std::optional<std::vector<Row>> run(const Source& s, unsigned threads) {
+  const std::size_t total = s.set.cases.size() * ((s.list ? s.list->runs.size() : 0) + 1);
+  SweepWatch watch(total, ::isatty(STDERR_FILENO) == 1, [] { std::_Exit(kInterrupted); });
+  SweepOptions options;
+  options.threads = threads;
+  options.cancel = &watch.cancel();
+  options.on_progress = [&](std::size_t done, std::size_t) { watch.set_done(done); };
+  std::vector<Row> rows = run_baseline(s.set.cases, s.list ? &*s.list : nullptr, options);
+  watch.finish();
+  if (watch.interrupted() || rows.empty()) return std::nullopt;
+  return rows;
+}
+
+void store(const fs::path& file, const BaselineHeader& header, const std::vector<Row>& rows) {
+  write_atomically(file, [&](std::ostream& out) {
+    for (const std::string& line : header_lines(header)) out << '#' << line << '\n';
+    write_csv(out, rows);
+  });
+}
+
+RowFile read_rows(const std::string& path) {
+  try {
+    return read_csv_file(path);
+  } catch (const RowFormatError& e) {
+    throw BadInput(e.what());
+  }
+}
+
+int interrupted() {
+  std::fprintf(stderr, "poundbench: interrupted; nothing was written\n");
+  return kInterrupted;
+}
+
+}  // namespace
+
+CLI::App* add_baseline_command(CLI::App& app, BaselineFlags& flags) {
+  CLI::App* command = app.add_subcommand(
+      "baseline", "Store, check or update accuracy regression baselines (rows of a case set per solver setting)");
+  command->add_option("CASESET", flags.case_set, "Case-set file to store a new baseline of");
+  command->add_option("--settings", flags.settings, "Settings list whose runs the baseline also stores");
+  command->add_option("--out", flags.out, "The new baseline file (CSV)");
+  command->add_option("--check", flags.check, "Rerun these baselines and compare (exit 1 on a change)");
+  command->add_option("--update", flags.update, "Rerun these baselines and store them again");
+  command->add_option("--threads", flags.threads, "Worker threads (default: all cores)");
+  return command;
+}
+
+int baseline_command(const CLI::App& command, const BaselineFlags& flags) {
+  const int modes = (flags.case_set.empty() ? 0 : 1) + (flags.check.empty() ? 0 : 1) + (flags.update.empty() ? 0 : 1);
+  if (modes != 1) throw BadInput("baseline: give one of CASESET (with --out), --check FILE... or --update FILE...");
+  if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
+
+  if (!flags.case_set.empty()) {
+    if (flags.out.empty()) throw BadInput("--out: required with CASESET");
+    check_output_target(flags.out, "--out");
+    const Source s = load_source(flags.case_set, flags.settings);
+    const std::optional<std::vector<Row>> rows = run(s, flags.threads);
+    if (!rows) return interrupted();
+    BaselineHeader header{relative_to_file(flags.case_set, flags.out).string(),
+                          flags.settings.empty() ? "" : relative_to_file(flags.settings, flags.out).string(),
+                          provenance(flags.out)};
+    store(flags.out, header, *rows);
+    std::cout << flags.out << ": " << rows->size() << " rows\n";
+    return 0;
+  }
+
+  const bool update = !flags.update.empty();
+  bool all_passed = true;
+  for (const std::string& file : update ? flags.update : flags.check) {
+    const RowFile stored = read_rows(file);
+    BaselineHeader header;
+    try {
+      header = parse_header(stored.comments, file);
+    } catch (const RowFormatError& e) {
+      throw BadInput(e.what());
+    }
+    const fs::path dir = fs::absolute(file).parent_path();
+    const Source s = load_source(dir / header.cases, header.settings.empty() ? fs::path() : dir / header.settings);
+    const std::optional<std::vector<Row>> rows = run(s, flags.threads);
+    if (!rows) return interrupted();
+    const std::vector<Comparison> table = compare_rows(*rows, stored.rows, Match::same_setting);
+    std::cout << file << ":\n" << comparison_table(table, Match::same_setting);
+    bool passed = true;
+    for (const Comparison& c : table) passed = passed && c.passed(Match::same_setting);
+    if (update) {
+      header.notes = provenance(file);
+      store(file, header, *rows);
+      std::cout << file << ": stored again (" << rows->size() << " rows)" << (passed ? "" : "; it had changed")
+                << '\n';
+    }
+    all_passed = all_passed && passed;
+  }
+  return all_passed || update ? 0 : kCheckFailed;
+}
+
+CLI::App* add_compare_command(CLI::App& app, CompareFlags& flags) {
+  CLI::App* command = app.add_subcommand(
+      "compare", "Compare result rows (spectrum columns) with a baseline's reference rows of the same cases");
+  command->add_option("ROWS", flags.rows, "CSV rows to check (the columns of `poundbench spectrum`)")->required();
+  command->add_option("--baseline", flags.baseline, "Baseline file (tests/baselines/)")->required();
+  command->add_option("--tolerance", flags.tolerance, "Largest relative Pi1 difference let through");
+  command->add_flag("--same-setting", flags.same_setting,
+                    "Compare with the stored rows of each row's own solver setting (its stated tolerance)");
+  return command;
+}
+
+int compare_command(const CLI::App& command, const CompareFlags& flags) {
+  const bool given = command.count("--tolerance") > 0;
+  if (!flags.same_setting && !given) throw BadInput("--tolerance: required (or --same-setting)");
+  if (given && !(flags.tolerance >= 0.0)) throw BadInput("--tolerance: must be >= 0");
+  const RowFile rows = read_rows(flags.rows);
+  const RowFile stored = read_rows(flags.baseline);
+  if (rows.rows.empty()) throw BadInput(flags.rows + ": no rows");
+  const Match match = flags.same_setting ? Match::same_setting : Match::reference;
+  const std::vector<Comparison> table =
+      compare_rows(rows.rows, stored.rows, match, given ? flags.tolerance : std::numeric_limits<double>::quiet_NaN());
+  std::cout << comparison_table(table, match);
+  bool passed = true;
+  for (const Comparison& c : table) passed = passed && c.passed(match);
+  return passed ? 0 : kCheckFailed;
+}
+
+}  // namespace pb::app

@@ -1,0 +1,187 @@
+#include "sweep/baseline.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <map>
+#include <sstream>
+#include <tuple>
+
+#include "sweep/row_reader.hpp"
+#include "sweep/workprecision.hpp"
+
+namespace pb {
+
+namespace {
+
+constexpr std::string_view kFirstLine = " poundbench baseline";
+
+// The physics of a case as text: equal exactly when the cases are the same case.
+std::string case_key(const Case& c) {
+  std::string key(name(c.scene));
+  key += ';';
+  key += name(c.pulse);
+  key += ';';
+  key += name(c.directivity);
+  auto add = [&](double x) { key += ';' + format_number(x); };
+  for (double x : {c.pi2, c.pi3, c.eps, c.xi, c.n_free, c.a_p, c.w_p}) add(x);
+  if (uses_body1(c.scene)) add(c.pi5), add(c.pi6);
+  if (uses_body2(c.scene)) add(c.pi7), add(c.pi8);
+  if (c.scene == Scene::chain) add(c.bodies), add(c.kick);
+  return key;
+}
+
+std::string setting_key(const Row& r) { return r.solver + '\n' + r.variant + '\n' + r.settings; }
+
+bool same_status_and_finite(const Row& a, const Row& b) {
+  return a.result.status == b.result.status && std::isfinite(a.result.pi1) == std::isfinite(b.result.pi1);
+}
+
+// |Pi1 - stored| / |stored|; 0 when both are not finite, inf when the statuses differ.
+double difference(const Row& row, const Row& stored) {
+  if (!same_status_and_finite(row, stored)) return std::numeric_limits<double>::infinity();
+  if (!std::isfinite(row.result.pi1)) return 0.0;
+  if (row.result.pi1 == stored.result.pi1) return 0.0;
+  return std::abs(row.result.pi1 - stored.result.pi1) / std::abs(stored.result.pi1);
+}
+
+}  // namespace
+
+double baseline_tolerance(std::string_view solver) {
+  // The reference: its event times are found to an ulp and its closed forms are exact, so
+  // its Pi1 moves by round-off; issue 7 sets 1e-9.
+  if (solver == "event-driven") return 1e-9;
+  // Fixed-step schemes in double precision (the engines' libraries are Debian's builds, the
+  // same code whatever our flags): a run is a deterministic sequence of floating-point
+  // operations, but an impact whose activation test sits at round-off of its threshold can
+  // flip between compilers and move Pi1 by a whole step's worth. Measured 0 between the
+  // optimised and the sanitizer builds; the margin allows round-off over a run, 1e-12.
+  if (solver == "moreau-jean" || solver == "ode") return 1e-12;
+  // Single-precision Bullet: the same argument at float round-off.
+  if (solver == "bullet") return 1e-6;
+  return 1e-9;
+}
+
+std::vector<Row> run_baseline(std::span<const Case> cases, const SettingsList* list, const SweepOptions& options) {
+  SettingsList runs = list ? *list : SettingsList{};
+  runs.reference_tol_scale = 1.0;  // the reference as users run it
+  WorkPrecision wp = run_work_precision(cases, runs, options);
+  if (!wp.complete) return {};
+  std::vector<Row> rows = std::move(wp.reference);
+  rows.insert(rows.end(), std::make_move_iterator(wp.points.begin()), std::make_move_iterator(wp.points.end()));
+  for (Row& r : rows) r.seconds = r.cpu_seconds = std::numeric_limits<double>::quiet_NaN();
+  return rows;
+}
+
+std::vector<std::string> header_lines(const BaselineHeader& h) {
+  std::vector<std::string> out = {std::string(kFirstLine), " cases: " + h.cases,
+                                  " settings: " + (h.settings.empty() ? std::string("none") : h.settings)};
+  for (const std::string& note : h.notes) out.push_back(" " + note);
+  return out;
+}
+
+BaselineHeader parse_header(std::span<const std::string> comments, std::string_view source) {
+  if (comments.empty() || comments.front() != kFirstLine)
+    throw RowFormatError(std::string(source) + ":1: header: not a poundbench baseline (no '#" +
+                         std::string(kFirstLine) + "' line)");
+  BaselineHeader h;
+  bool has_cases = false, has_settings = false;
+  for (std::size_t i = 1; i < comments.size(); ++i) {
+    const std::string& line = comments[i];
+    if (line.starts_with(" cases: ")) {
+      h.cases = line.substr(8);
+      has_cases = true;
+    } else if (line.starts_with(" settings: ")) {
+      h.settings = line.substr(11) == "none" ? "" : line.substr(11);
+      has_settings = true;
+    } else {
+      h.notes.push_back(line.substr(line.starts_with(' ') ? 1 : 0));
+    }
+  }
+  if (!has_cases || h.cases.empty()) throw RowFormatError(std::string(source) + ": cases: missing header line");
+  if (!has_settings) throw RowFormatError(std::string(source) + ": settings: missing header line");
+  return h;
+}
+
+bool Comparison::passed(Match m) const {
+  if (failed > 0) return false;
+  return m == Match::reference ? compared > 0 : unmatched == 0 && missing == 0;
+}
+
+std::vector<Comparison> compare_rows(std::span<const Row> rows, std::span<const Row> stored, Match match,
+                                     double tolerance) {
+  // The stored row of each (setting, case); in reference mode the setting is the reference's.
+  std::map<std::string, const Row*> index;
+  std::map<std::string, std::size_t> stored_per_setting;
+  for (const Row& s : stored) {
+    if (match == Match::reference && s.solver != "event-driven") continue;
+    const std::string setting = match == Match::reference ? std::string() : setting_key(s);
+    index.emplace(setting + '\n' + case_key(s.input), &s);
+    ++stored_per_setting[setting];
+  }
+  std::vector<Comparison> table;
+  std::map<std::tuple<std::string, std::string>, std::size_t> line_of;  // (family, setting) -> line
+  std::map<std::string, std::size_t> matched_per_setting;
+  for (const Row& r : rows) {
+    const std::string setting = setting_key(r);
+    auto [it, fresh] = line_of.try_emplace({r.input.family, setting}, table.size());
+    if (fresh) {
+      Comparison c;
+      c.family = r.input.family;
+      c.solver = r.solver;
+      c.variant = r.variant;
+      c.settings = r.settings;
+      c.tolerance = std::isnan(tolerance) ? baseline_tolerance(r.solver) : tolerance;
+      table.push_back(c);
+    }
+    Comparison& c = table[it->second];
+    const std::string stored_setting = match == Match::reference ? std::string() : setting;
+    const auto found = index.find(stored_setting + '\n' + case_key(r.input));
+    if (found == index.end()) {
+      ++c.unmatched;
+      continue;
+    }
+    ++c.compared;
+    ++matched_per_setting[stored_setting];
+    const double d = difference(r, *found->second);
+    if (!(d <= c.tolerance)) ++c.failed;
+    if (c.compared == 1 || d > c.max_difference) {
+      c.max_difference = d;
+      c.worst_point = r.point;
+    }
+  }
+  if (match == Match::same_setting) {
+    // Stored rows that no row matched: counted on the setting's first line.
+    std::map<std::string, bool> counted;
+    for (Comparison& c : table) {
+      const std::string setting = c.solver + '\n' + c.variant + '\n' + c.settings;
+      if (counted[setting]) continue;
+      counted[setting] = true;
+      c.missing = stored_per_setting[setting] - matched_per_setting[setting];
+    }
+  }
+  return table;
+}
+
+std::string comparison_table(std::span<const Comparison> table, Match match) {
+  std::ostringstream out;
+  out << std::left << std::setw(22) << "family" << std::setw(40) << "solver setting" << std::right << std::setw(9)
+      << "compared" << std::setw(8) << "failed" << std::setw(10) << "unmatched" << std::setw(9) << "missing"
+      << std::setw(14) << "max |dPi1|" << std::setw(11) << "tolerance" << "  verdict\n";
+  for (const Comparison& c : table) {
+    std::string setting = c.solver + (c.variant.empty() ? "" : " " + c.variant);
+    if (!c.settings.empty()) setting += " " + c.settings;
+    if (setting.size() > 38) setting = setting.substr(0, 35) + "...";
+    std::ostringstream worst;
+    worst << std::setprecision(2) << std::scientific << c.max_difference;
+    std::ostringstream tol;
+    tol << std::setprecision(0) << std::scientific << c.tolerance;
+    out << std::left << std::setw(22) << c.family << std::setw(40) << setting << std::right << std::setw(9)
+        << c.compared << std::setw(8) << c.failed << std::setw(10) << c.unmatched << std::setw(9) << c.missing
+        << std::setw(14) << worst.str() << std::setw(11) << tol.str() << "  "
+        << (c.passed(match) ? "pass" : "FAIL") << '\n';
+  }
+  return out.str();
+}
+
+}  // namespace pb
