@@ -181,3 +181,33 @@ def stability_table(summary):
                 row.append("**fail**: " + failure_note(r))
         lines.append(f"| {label} | " + " | ".join(row) + " |")
     return lines
+
+
+def stability_summary(summary):
+    """One line per solver configuration: for each check, the steps at which it fails on
+    some family, with the worst value there (read off the same rows as the table)."""
+    worst_key = {"energy": "energy_excess_max", "gap": "penetration_steps_max",
+                 "restitution": "restitution_error_max"}
+    by_config = defaultdict(list)
+    for r in summary:
+        by_config[config(r)].append(r)
+    lines = []
+    for label, rows in by_config.items():
+        parts = []
+        for check in CHECKS:
+            failing = [r for r in rows if r[check] == "fail"]
+            if not failing:
+                judged = any(r[check] == "pass" for r in rows)
+                parts.append(f"{check} passes everywhere" if judged else f"{check} not measured")
+                continue
+            steps = sorted({settings_fields(r).get("wh", "") for r in failing}, key=lambda w: float(w or 0))
+            where = "at every step" if len(steps) == len({settings_fields(r).get("wh", "") for r in rows}) \
+                else "at w_max h = " + ", ".join(steps)
+            if check == "finite":
+                lost = sum(int(r["runs"]) - int(r["ok"]) for r in failing)
+                parts.append(f"**{check} fails** {where} ({lost} runs did not finish)")
+            else:
+                worst = max(num(r, worst_key[check]) for r in failing)
+                parts.append(f"**{check} fails** {where} (worst {worst:.2g})")
+        lines.append(f"* `{label}`: " + "; ".join(parts) + ".")
+    return lines
