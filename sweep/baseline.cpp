@@ -48,16 +48,16 @@ double difference(const Row& row, const Row& stored) {
 }  // namespace
 
 double baseline_tolerance(std::string_view solver) {
-  // The reference: its event times are found to an ulp and its closed forms are exact, so
-  // its Pi1 moves by round-off; issue 7 sets 1e-9.
+  // Every solver here is a deterministic sequence of floating-point operations: the stored
+  // rows were reproduced bit for bit by the Release (-O3), RelWithDebInfo (-O2) and
+  // sanitizer (-O0) builds of GCC 12. What a tolerance allows for is another compiler or
+  // libm, where round-off differs. The reference finds event times to an ulp and is exact
+  // between them, so round-off stays round-off: 1e-9 (issue 7's figure), thousands of ulps.
   if (solver == "event-driven") return 1e-9;
-  // Fixed-step schemes in double precision (the engines' libraries are Debian's builds, the
-  // same code whatever our flags): a run is a deterministic sequence of floating-point
-  // operations, but an impact whose activation test sits at round-off of its threshold can
-  // flip between compilers and move Pi1 by a whole step's worth. Measured 0 between the
-  // optimised and the sanitizer builds; the margin allows round-off over a run, 1e-12.
+  // A time-stepper's round-off can flip an activation test that sits at its threshold and
+  // move Pi1 by a step's worth; 1e-12 lets round-off through and catches any such flip.
   if (solver == "moreau-jean" || solver == "ode") return 1e-12;
-  // Single-precision Bullet: the same argument at float round-off.
+  // Debian's Bullet computes in single precision: the same margin at float round-off.
   if (solver == "bullet") return 1e-6;
   return 1e-9;
 }

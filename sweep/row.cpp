@@ -15,10 +15,10 @@ double penetration(const Row& row) {
   return depth / (row.input.pi3 > 0.0 ? row.input.pi3 * row.length_scale : row.length_scale);
 }
 
-double penetration_steps(const Row& row) {
-  const double travel = row.result.step * row.result.gap_rate_max;
+double penetration_steps(const Result& r) {
+  const double travel = r.step * r.gap_rate_max;
   if (std::isnan(travel)) return std::numeric_limits<double>::quiet_NaN();
-  const double depth = std::max(0.0, -row.result.min_gap);
+  const double depth = std::max(0.0, -r.min_gap);
   return depth > 0.0 ? depth / travel : 0.0;
 }
 
@@ -124,7 +124,7 @@ std::string csv_line(const Row& row) {
   line.count(r.isolated_impacts);
   line.number(r.restitution_low);
   line.number(r.restitution_high);
-  line.number(penetration_steps(row));
+  line.number(row.penetration_steps);
   return line.take();
 }
 

@@ -37,6 +37,7 @@ struct Row {
   double pi1_no_contact = std::numeric_limits<double>::quiet_NaN();
   double length_scale = std::numeric_limits<double>::quiet_NaN();  // System::length_scale()
   double wh = std::numeric_limits<double>::quiet_NaN();  // w_max h of a time-stepper's step
+  double penetration_steps = std::numeric_limits<double>::quiet_NaN();  // of the result (a column)
   double seconds = 0.0;      // wall time of the solve alone
   double cpu_seconds = 0.0;  // CPU time of the solve alone, on its thread (robust to load)
 };
@@ -48,9 +49,9 @@ double min_gap_ratio(const Row& row);
 double penetration(const Row& row);
 
 // The deepest penetration over one step of travel at the run's fastest gap rate,
-// h Result::gap_rate_max: at most 1 for a velocity-level scheme. NaN without a fixed step
-// or a measured rate (the reference, monitor off).
-double penetration_steps(const Row& row);
+// Result::step times Result::gap_rate_max: at most 1 for a velocity-level scheme. NaN
+// without a fixed step or a measured rate (the reference, monitor off).
+double penetration_steps(const Result& r);
 
 // Shortest decimal text that reads back (strtod) to exactly x; NaN gives "".
 std::string format_number(double x);

@@ -140,6 +140,7 @@ Row parse_row(const Fields& f) {
   r.restitution_high = f.number("restitution_high");
   row.pi1_no_contact = f.number("pi1_no_contact");
   row.wh = f.number("wh");
+  row.penetration_steps = f.number("penetration_steps");
   row.seconds = f.number("seconds", 0.0);
   row.cpu_seconds = f.number("cpu_seconds", 0.0);
   return row;

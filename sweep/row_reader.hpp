@@ -5,8 +5,7 @@
 // Columns are found by name, so their order does not matter and extra columns are ignored.
 // The case columns and family, point, solver, variant, settings, status and pi1 are
 // required; every other column that Row holds is read when present (an empty field is NaN,
-// or 0 for a count). Columns computed from others (penetration, penetration_steps) are not
-// read back. Lines that start with '#' before the header are comments (a baseline's
+// or 0 for a count). The column computed from others (penetration) is not read back. Lines that start with '#' before the header are comments (a baseline's
 // provenance); a quoted field may hold commas, quotes and line breaks (RFC 4180).
 
 #include <istream>

@@ -95,8 +95,8 @@ StabilityRow summarize_stability(std::span<const Row* const> rows, std::span<con
     any_finished = true;
     keep_max(s.energy_excess_max, row.result.energy_excess);
     keep_max(s.penetration_max, penetration(row));
-    keep_max(s.penetration_steps_max, penetration_steps(row));
-    stepped = stepped || std::isfinite(row.result.step);
+    keep_max(s.penetration_steps_max, row.penetration_steps);
+    stepped = stepped || !std::isnan(row.wh);
     s.isolated_impacts += row.result.isolated_impacts;
     keep_max(s.restitution_error_max, restitution_error(row));
     if (const double e = pi1_error(row, reference[i]); !std::isnan(e)) errors.push_back(e);

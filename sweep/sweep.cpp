@@ -81,6 +81,7 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
   }
 
   row.wh = 2.0 * std::numbers::pi * row.result.step / system.t_min;
+  row.penetration_steps = penetration_steps(row.result);
 
   try {
     row.pi1_no_contact = event_driven::no_contact_pi1(system);

@@ -198,6 +198,8 @@ TEST(RowReader, RowsReadBackToTheCaseAndResultsTheyWereWrittenFrom) {
   r.result.impacts = 5;
   r.result.min_gap = -0.25 * r.length_scale;
   r.result.energy_excess = 1e-3;
+  r.wh = 2.0;
+  r.penetration_steps = 0.75;
   std::ostringstream out;
   out << "# a comment\n";
   write_csv(out, std::vector{r, row(2.0, 1.0)});

@@ -30,8 +30,8 @@ Row good_row(double pi1 = 1.0) {
   r.result.status = Status::ok;
   r.result.pi1 = pi1;
   r.result.min_gap = 0.0;
-  r.result.step = 0.25;
-  r.result.gap_rate_max = 2.0;  // one step of travel at the fastest rate: 0.5
+  r.wh = 2.0;
+  r.penetration_steps = 0.0;
   r.result.energy_excess = 0.0;
   r.result.isolated_impacts = 2;
   r.result.restitution_low = 0.5;
@@ -73,21 +73,22 @@ TEST(StabilitySummary, EachCheckFailsJustAboveItsToleranceAndPassesAtIt) {
   EXPECT_EQ(s.energy_excess_max, 2 * kEnergyTolerance);
   EXPECT_FALSE(s.passed());
 
-  // Gap, time-stepper: penetration is over one step of travel h max|g'| (0.5 here).
+  // Gap, time-stepper: judged in steps of travel, whatever the overlap over delta.
   rows = {good_row(), good_row()};
-  rows[0].result.min_gap = -0.5 * kPenetrationSteps;
+  rows[0].result.min_gap = -10.0;
+  rows[0].penetration_steps = kPenetrationSteps;
   EXPECT_EQ(summary_of(rows).gap, Verdict::pass);
-  rows[0].result.min_gap = -0.5 * 2 * kPenetrationSteps;
+  rows[0].penetration_steps = 2 * kPenetrationSteps;
   s = summary_of(rows);
   EXPECT_EQ(s.gap, Verdict::fail);
   EXPECT_DOUBLE_EQ(s.penetration_steps_max, 2 * kPenetrationSteps);
-  EXPECT_DOUBLE_EQ(s.penetration_max, 2 * kPenetrationSteps);  // also over delta = 0.5
+  EXPECT_DOUBLE_EQ(s.penetration_max, 20.0);  // over delta = 0.5
 
   // Gap, the reference (no step): penetration is over delta (0.5 here).
   rows = {good_row(), good_row()};
   for (Row& r : rows) {
     r.solver = "event-driven";
-    r.result.step = r.result.gap_rate_max = kNaN;
+    r.wh = r.penetration_steps = kNaN;
   }
   rows[0].result.min_gap = -0.5 * kReferencePenetration;
   s = summary_of(rows);
