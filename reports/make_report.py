@@ -6,38 +6,20 @@ and its figures. Run by scripts/main.sh; uses Debian's python3-matplotlib.
 """
 
 import argparse
-import csv
 import datetime
 import os
 import platform
 import subprocess
-import sys
 from collections import defaultdict
 
 import matplotlib
+import matplotlib.pyplot as plt
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-import stability  # noqa: E402  (reports/stability.py)
+import stability
+from rows import config_label, load, num, save
 
 # Columns that label a curve of a spectrum (everything that is neither the abscissa nor a result).
 CASE_KEYS = ["scene", "pulse", "directivity", "eps", "pi3", "pi5", "pi6", "pi7", "pi8", "xi", "n_free", "a_p", "w_p"]
-
-
-def load(paths):
-    rows = []
-    for path in paths:
-        with open(path, newline="") as f:
-            rows.extend(csv.DictReader(f))
-    if not rows:
-        sys.exit("make_report.py: no result rows in " + ", ".join(paths))
-    return rows
-
-
-def num(row, key):
-    value = row.get(key, "")
-    return float(value) if value not in ("", None) else float("nan")
 
 
 def varying(rows, keys):
@@ -89,11 +71,7 @@ def plot_family(family, rows, out_dir):
     axes[0][-1].legend(fontsize=7, loc="upper right")
     fig.suptitle(f"{family}: Pi-spectra of body 0 (colour: with contact, grey: no contact)", fontsize=11)
     fig.tight_layout(rect=(0, 0, 1, 0.96))
-    stem = os.path.join(out_dir, "figures", f"spectrum-{family}")
-    for ext in ("png", "svg"):
-        fig.savefig(f"{stem}.{ext}", dpi=100)
-    plt.close(fig)
-    return f"figures/spectrum-{family}.png"
+    return save(fig, out_dir, f"spectrum-{family}")
 
 
 
@@ -113,20 +91,6 @@ def split_settings(settings):
         else:
             parts.append(item)
     return ";".join(parts), n
-
-
-def config_label(row):
-    """A solver configuration without its step count: one line of a work-precision diagram.
-    The full settings of each are in workprecision.csv and the solvers' READMEs."""
-    fields = dict(item.partition("=")[::2] for item in filter(None, row["settings"].split(";")))
-    label = row["solver"]
-    if row.get("variant"):
-        label += " " + row["variant"]
-    if row["solver"] == "moreau-jean":
-        label += f" theta={fields.get('theta', '?')}"
-    if row["solver"] == "event-driven":
-        label += f" tol_scale={fields.get('tol_scale', '?')}"
-    return label
 
 
 STYLE = {"moreau-jean": "-", "ode": "--", "bullet": ":", "event-driven": ""}
@@ -164,14 +128,6 @@ def wp_diagrams(summary, out_dir):
         fig.tight_layout(rect=(0, 0.17, 1, 1))
         figures.append((family, save(fig, out_dir, f"wp-{family}")))
     return figures
-
-
-def save(fig, out_dir, stem):
-    path = os.path.join(out_dir, "figures", stem)
-    for ext in ("png", "svg"):
-        fig.savefig(f"{path}.{ext}", dpi=100)
-    plt.close(fig)
-    return f"figures/{stem}.png"
 
 
 def wp_spectra(points, out_dir):

@@ -10,6 +10,8 @@ from collections import defaultdict
 
 import matplotlib.pyplot as plt
 
+from rows import config_label as config, num, save, settings_fields
+
 FLOOR = 1e-17  # energy excesses and penetrations at or below this are drawn on the floor
 
 
@@ -21,27 +23,6 @@ def tolerances():
     return {name: float(value) for name, value in found.items()}
 
 
-def num(row, key):
-    value = row.get(key, "")
-    return float(value) if value not in ("", None) else float("nan")
-
-
-def settings_fields(row):
-    return dict(item.partition("=")[::2] for item in filter(None, row["settings"].split(";")))
-
-
-def config(row):
-    """A solver configuration without its step: one line of the stability plots."""
-    label = row["solver"]
-    if row.get("variant"):
-        label += " " + row["variant"]
-    if row["solver"] == "moreau-jean":
-        label += f" theta={settings_fields(row).get('theta', '?')}"
-    if row["solver"] == "event-driven":
-        label += f" tol_scale={settings_fields(row).get('tol_scale', '?')}"
-    return label
-
-
 def step_label(row):
     fields = settings_fields(row)
     if "wh" in fields:
@@ -49,13 +30,6 @@ def step_label(row):
     if "steps" in fields:
         return f"N = {fields['steps']}"
     return ""
-
-
-def save(fig, out_dir, stem):
-    for ext in ("png", "svg"):
-        fig.savefig(f"{out_dir}/figures/{stem}.{ext}", dpi=100)
-    plt.close(fig)
-    return f"figures/{stem}.png"
 
 
 def large_step_figure(points, out_dir):

@@ -1,0 +1,55 @@
+"""What every part of the report reads off poundbench's CSV rows: loading them, their
+numbers and settings, the label of a solver configuration, and saving a figure."""
+
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def load(paths):
+    rows = []
+    for path in paths:
+        with open(path, newline="") as f:
+            rows.extend(csv.DictReader(f))
+    if not rows:
+        sys.exit("make_report.py: no result rows in " + ", ".join(paths))
+    return rows
+
+
+def num(row, key):
+    """A column as a float; an empty field (a value that does not exist) is NaN."""
+    value = row.get(key, "")
+    return float(value) if value not in ("", None) else float("nan")
+
+
+def settings_fields(row):
+    """The `settings` column (`key=value;...`) as a dict."""
+    return dict(item.partition("=")[::2] for item in filter(None, row["settings"].split(";")))
+
+
+def config_label(row):
+    """A solver configuration without its step: one line of a work-precision diagram or a
+    stability plot. The full settings of each are in the CSV and the solvers' READMEs."""
+    fields = settings_fields(row)
+    label = row["solver"]
+    if row.get("variant"):
+        label += " " + row["variant"]
+    if row["solver"] == "moreau-jean":
+        label += f" theta={fields.get('theta', '?')}"
+    if row["solver"] == "event-driven":
+        label += f" tol_scale={fields.get('tol_scale', '?')}"
+    return label
+
+
+def save(fig, out_dir, stem):
+    """Writes figures/STEM.png and .svg under out_dir; returns the PNG's path relative to it."""
+    path = os.path.join(out_dir, "figures", stem)
+    for ext in ("png", "svg"):
+        fig.savefig(f"{path}.{ext}", dpi=100)
+    plt.close(fig)
+    return f"figures/{stem}.png"
