@@ -8,7 +8,6 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from matplotlib.colors import ListedColormap  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 import analysis  # noqa: E402
@@ -127,18 +126,19 @@ def pi6_spectra(curve_list, title, stem, out_dir):
 
 
 def histories(panels, out_dir):
-    """Fig. 6: one row per (title, contact history, no-contact history, impact times):
-    u0 and u1 against t / T_p with and without contact, impacts marked on u0."""
+    """Fig. 6: one row per panel (dict: title, contact and free histories, impact times,
+    tp = T_p, length = a_p / w_p^2): u0 and u1 against t / T_p with and without contact,
+    impacts marked on u0."""
     fig, axes = plt.subplots(len(panels), 1, figsize=(11, 3.6 * len(panels)), squeeze=False)
-    for ax, (title, hist, free, impacts) in zip(axes[:, 0], panels):
-        tp = 2 * math.pi  # the runs use w_p = 1, a_p = 1: lengths are already over a_p / w_p^2
-        ax.plot(free["t"] / tp, free["u0"], color="0.55", lw=1.2, ls="--", label="$u_0$, no contact")
-        ax.plot(hist["t"] / tp, hist["u1"], color="C1", lw=1.0, label="$u_1$ (neighbour), with contact")
-        ax.plot(hist["t"] / tp, hist["u0"], color="C0", lw=1.8, label="$u_0$, with contact")
-        ax.plot(impacts / tp, np.interp(impacts, hist["t"], hist["u0"]), "v", color="k", ms=5,
-                label=f"impact ({len(impacts)})")
+    for ax, p in zip(axes[:, 0], panels):
+        hist, free, tp, length = p["contact"], p["free"], p["tp"], p["length"]
+        ax.plot(free["t"] / tp, free["u0"] / length, color="0.55", lw=1.2, ls="--", label="$u_0$, no contact")
+        ax.plot(hist["t"] / tp, hist["u1"] / length, color="C1", lw=1.0, label="$u_1$ (neighbour), with contact")
+        ax.plot(hist["t"] / tp, hist["u0"] / length, color="C0", lw=1.8, label="$u_0$, with contact")
+        ax.plot(p["impacts"] / tp, np.interp(p["impacts"], hist["t"], hist["u0"]) / length, "v", color="k", ms=5,
+                label=f"impact ({len(p['impacts'])})")
         ax.axvline(1.0, color="0.3", lw=0.8, ls=":")
-        ax.set_title(title, fontsize=10)
+        ax.set_title(p["title"], fontsize=10)
         ax.set_ylabel(r"$u\,\omega_p^2/a_p$")
         ax.grid(True, alpha=0.25)
         ax.legend(fontsize=7.5, loc="upper right", ncol=2)
@@ -210,14 +210,16 @@ def region_map(groups, out_dir):
     effect of contact; Pi2 = 1 dotted, Pi2 = Pi5 marked."""
     fig, axes = plt.subplots(1, len(groups), figsize=(5 * len(groups), 6.2), sharey=True)
     kinds = list(EFFECT_COLORS)
-    cmap = ListedColormap([EFFECT_COLORS[k] for k in kinds])
     for ax, (title, curve_list) in zip(np.atleast_1d(axes), groups):
         labels = []
         for j, c in enumerate(curve_list):
-            codes = np.array([kinds.index(k) for k in analysis.effect(c)])
-            edges = np.sqrt(c.x[1:] * c.x[:-1])
-            edges = np.concatenate([[c.x[0]], edges, [c.x[-1]]])
-            ax.pcolormesh(edges, [j - 0.4, j + 0.4], codes[None, :], cmap=cmap, vmin=-0.5, vmax=len(kinds) - 0.5)
+            # each grid point owns the stretch between the geometric midpoints to its neighbours
+            edges = np.concatenate([[c.x[0]], np.sqrt(c.x[1:] * c.x[:-1]), [c.x[-1]]])
+            kind = analysis.effect(c)
+            starts = np.flatnonzero(np.concatenate([[True], kind[1:] != kind[:-1]]))
+            ends = np.append(starts[1:], len(kind))
+            for a, b in zip(starts, ends):
+                ax.broken_barh([(edges[a], edges[b] - edges[a])], (j - 0.4, 0.8), facecolors=EFFECT_COLORS[kind[a]])
             ax.plot(float(c["pi5"]), j, "k|", ms=9, mew=1.5)
             labels.append(f"{c['pulse']} {float(c['pi5']):g}")
         ax.axvline(1.0, color="k", lw=0.8, ls=":")
