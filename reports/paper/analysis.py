@@ -2,6 +2,7 @@
 collapse of Fig. 3, spectral regions, local maxima, peaks and the scaling-law branches of
 Fig. 10. No plotting (plots.py) and no text (make_paper.py) here."""
 
+import itertools
 import math
 from collections import defaultdict
 from dataclasses import dataclass
@@ -10,8 +11,8 @@ import numpy as np
 
 from make_report import CASE_KEYS, num  # reports/make_report.py
 
-# Below this relative change of Pi1, contact left the maximum as it was: the maximum came
-# before the first impact, or there was none. Far above the reference's error (~1e-9).
+# Below this relative change of Pi1, contact left the maximum as it was (no impact, or
+# none that changed it). Far above the reference's error (~1e-9).
 UNCHANGED = 1e-6
 # Contact changes Pi1 by less than this fraction: the "no effect" region of a spectrum.
 NO_EFFECT = 0.02
@@ -135,13 +136,12 @@ class Region:
 def regions(curve):
     """The spectral regions of a curve: maximal runs of consecutive grid points of one
     effect, at least MIN_RUN points long (shorter runs are the crossings between them)."""
-    kinds = effect(curve)
     out, start = [], 0
-    for i in range(1, len(kinds) + 1):
-        if i == len(kinds) or kinds[i] != kinds[start]:
-            if i - start >= MIN_RUN:
-                out.append(Region(str(kinds[start]), float(curve.x[start]), float(curve.x[i - 1]), i - start))
-            start = i
+    for kind, run in itertools.groupby(effect(curve)):
+        n = len(list(run))
+        if n >= MIN_RUN:
+            out.append(Region(str(kind), float(curve.x[start]), float(curve.x[start + n - 1]), n))
+        start += n
     return out
 
 
@@ -199,7 +199,7 @@ def branches(curve):
     """The branches of one Pi1(Pi6) curve at fixed Pi2:
 
     * "no effect": every point where contact left Pi1 as it was (|Pi1 / Pi1_nc - 1| <
-      UNCHANGED: no impact, or the maximum came before the first one);
+      UNCHANGED);
     * the other points split into maximal runs of consecutive points along which ln Pi1
       keeps the sign of its change ("negative", "positive"; neighbouring runs share their
       turning point), kept when at least MIN_BRANCH points long."""
@@ -209,31 +209,17 @@ def branches(curve):
         idx = np.flatnonzero(same)
         out.append(Branch("no effect", float(curve.x[idx[0]]), float(curve.x[idx[-1]]), len(idx),
                           *fit(curve.x[idx], curve.pi1[idx])))
-    start = None
-    for i in range(len(curve.x)):
-        if same[i]:
-            start = None
-            continue
-        if start is None:
-            start, sign = i, 0
-            continue
-        step = np.sign(curve.pi1[i] - curve.pi1[i - 1])
-        if sign == 0:
-            sign = step
-        if step != sign:  # the run ended at i - 1, the turning point starts the next one
-            out.append(_run(curve, start, i - 1, sign))
-            start, sign = i - 1, step
-        if i == len(curve.x) - 1 or same[i + 1]:
-            out.append(_run(curve, start, i, sign))
-    return [b for b in out if b is not None]
-
-
-def _run(curve, first, last, sign):
-    if last - first + 1 < MIN_BRANCH or sign == 0:
-        return None
-    idx = slice(first, last + 1)
-    return Branch("negative" if sign < 0 else "positive", float(curve.x[first]), float(curve.x[last]),
-                  last - first + 1, *fit(curve.x[idx], curve.pi1[idx]))
+    changed = np.flatnonzero(~same)
+    for segment in np.split(changed, np.flatnonzero(np.diff(changed) > 1) + 1):  # consecutive changed points
+        first = 0
+        for sign, run in itertools.groupby(np.sign(np.diff(curve.pi1[segment]))):
+            n = len(list(run))  # n changes of one sign join n + 1 points
+            idx = segment[first:first + n + 1]
+            if sign != 0 and len(idx) >= MIN_BRANCH:
+                out.append(Branch("negative" if sign < 0 else "positive", float(curve.x[idx[0]]),
+                                  float(curve.x[idx[-1]]), len(idx), *fit(curve.x[idx], curve.pi1[idx])))
+            first += n
+    return out
 
 
 # ---------------------------------------------------------------- Fig. 6: time histories

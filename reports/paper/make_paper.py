@@ -155,7 +155,7 @@ def pi5_limit_section(fam, out):
         f"Pi5. Contact's largest effect on Pi1 {'shrinks' if monotone else 'does not shrink'} monotonically "
         f"from either side as Pi5 -> 1 ({'; '.join(steps)}). At Pi5 = {listed(untouched) or 'none'} the bodies "
         f"never touch within t_end; at {listed(unchanged) or 'none'} they touch, under both pulses, but Pi1 "
-        f"changes by less than {analysis.UNCHANGED:g} (the maximum comes first). The paper's statement "
+        f"changes by less than {analysis.UNCHANGED:g} at every Pi2. The paper's statement "
         f"(\"{STIFFNESS}\") {'holds' if agrees else 'does not hold'} for both pulses.", ""]
     text += table(["pulse", "Pi5", "largest Pi1/Pi1_nc", "smallest Pi1/Pi1_nc", "largest abs(Pi1/Pi1_nc - 1)",
                    "points with impacts (of 200)"], table_rows)
@@ -409,7 +409,7 @@ def sided_section(fam):
         + "; ".join(f"lower on {c[0]}, equal (to 1e-9) on {c[1]} and higher on {c[2]} of {len(flex)} spectra "
                     f"({one})" for one, c in compare.items())
         + (f"; higher at {'; '.join(more)}" if more else "")
-        + f". Equal means the maximum came before body 0 touched its second neighbour. By pulse, {by_pulse}. "
+        + f". By pulse, {by_pulse}. "
         f"**Stiff body**: the two-sided amplification is {span(stiff_ratio)} times the one-sided (normal) one, "
         f"and its deepest suppression is at least as deep as one-sided on {len(deeper)} of {len(stiff)} spectra. "
         f"**Period shift**: a spectral peak inside the grid (not at an end) with and without contact exists on "
@@ -483,7 +483,7 @@ def fig10_section(fam, out):
     kinds = {k: [b for _, bs in fitted for b in bs if b.kind == k] for k in ("no effect", "negative", "positive")}
     flat, neg, pos = kinds["no effect"], kinds["negative"], kinds["positive"]
     unchanged = [np.abs(c.ratio - 1) < analysis.UNCHANGED for c, _ in fitted]
-    after_impact = sum(int((u & (c.impacts > 0)).sum()) for u, (c, _) in zip(unchanged, fitted))
+    with_impacts = sum(int((u & (c.impacts > 0)).sum()) for u, (c, _) in zip(unchanged, fitted))
     sloped = neg + pos
     bent = [b for b in sloped if b.r2 < 0.98]
     flat_max = max((abs(b.slope) for b in flat), default=float("nan"))
@@ -506,8 +506,8 @@ def fig10_section(fam, out):
         "runs share their turning point), and a run of at least "
         f"{analysis.MIN_BRANCH} points is a *negative* or *positive* branch. Each branch is fitted by least "
         "squares on ln Pi1 = ln A + B ln Pi6 over its own points. The no-effect rule is wider than \"no impact\" "
-        f"on purpose: of the {sum(int(u.sum()) for u in unchanged)} unchanged points, {after_impact} had impacts, "
-        "all after the maximum. The no-contact Pi1 does not depend on Pi6, so this branch is flat by "
+        f"on purpose: of the {sum(int(u.sum()) for u in unchanged)} unchanged points, {with_impacts} had impacts "
+        "that left the maximum as it was. The no-contact Pi1 does not depend on Pi6, so this branch is flat by "
         "construction.", ""]
     text += table(["pulse", "Pi5", "Pi2", "branch", "points", "Pi6 range", "slope B", "A", "R²"], lines)
     text += [

@@ -47,14 +47,15 @@ def fig3(by_amplitude, by_duration, note, out_dir):
     """Left: u_max in metres against T0 in seconds; right: the same curves in Pi terms,
     with a note (the measured spread) in the corner."""
     fig, (phys, pi) = plt.subplots(1, 2, figsize=(12, 4.8))
+    # the amplitudes in lines of decreasing width, so that all show where they coincide; the durations dashed
     styles = [dict(lw=5.0, alpha=0.35), dict(lw=2.8, alpha=0.7), dict(lw=1.2)]
-    lines = [(c, f"$a_p$ = {float(c['a_p']):.3g} m/s², $T_p$ = 1 s", dict(color=f"C{i}", **styles[i]))
+    lines = [(c, dict(color=f"C{i}", **styles[i % 3]))
              for i, c in enumerate(sorted(by_amplitude, key=lambda c: float(c["a_p"])))]
-    lines += [(c, f"$a_p$ = {float(c['a_p']):.3g} m/s², $T_p$ = {2 * math.pi / float(c['w_p']):g} s",
-               dict(color=f"C{3 + i}", lw=1.0, ls=(0, (4, 2))))
+    lines += [(c, dict(color=f"C{len(by_amplitude) + i}", lw=1.0, ls=(0, (4, 2))))
               for i, c in enumerate(sorted(by_duration, key=lambda c: float(c["w_p"])))]
-    for c, label, style in lines:
+    for c, style in lines:
         a_p, w_p = float(c["a_p"]), float(c["w_p"])
+        label = f"$a_p$ = {a_p:.3g} m/s², $T_p$ = {2 * math.pi / w_p:.3g} s"
         t0 = 2 * math.pi / (c.x * w_p)
         phys.plot(t0, c.pi1 * a_p / w_p ** 2, label=label, **style)
         phys.plot(t0, c.pi1_nc * a_p / w_p ** 2, color=style["color"], lw=0.8, alpha=0.45)
@@ -224,7 +225,7 @@ def region_map(groups, out_dir):
             labels.append(f"{c['pulse']} {float(c['pi5']):g}")
         ax.axvline(1.0, color="k", lw=0.8, ls=":")
         ax.set_xscale("log")
-        ax.set_xlim(0.1, 10)
+        ax.set_xlim(curve_list[0].x[0], curve_list[0].x[-1])
         ax.set_yticks(range(len(labels)))
         ax.set_yticklabels(labels, fontsize=8)
         ax.invert_yaxis()
