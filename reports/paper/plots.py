@@ -2,10 +2,15 @@
 (analysis.Curve) and returns its path relative to the report (make_report.save)."""
 
 import math
+import os
 
 import matplotlib
 
 matplotlib.use("Agg")
+# Reproducible SVGs, so that regenerating the committed report changes a file only when its
+# data changed: fixed element ids, and the creation date of reproducible builds.
+matplotlib.rcParams["svg.hashsalt"] = "poundbench-paper"
+os.environ.setdefault("SOURCE_DATE_EPOCH", "0")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
