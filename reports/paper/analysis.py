@@ -23,6 +23,11 @@ MIN_RUN = 3
 MIN_BRANCH = 4
 
 
+def near(a, b):
+    """Whether two values of Pi2 are within a factor NEAR of each other."""
+    return abs(math.log(a / b)) <= math.log(NEAR)
+
+
 @dataclass
 class Curve:
     """One line of a figure: Pi1 with and without contact along one abscissa (Pi2 or Pi6)."""
@@ -162,7 +167,7 @@ def three_regions(curve, flexible):
         return False, "no amplified region"
     if deamp is None:
         return False, "no deamplified region"
-    if not deamp.lo / NEAR <= 1 <= deamp.hi * NEAR:
+    if not (deamp.lo <= 1 <= deamp.hi or near(deamp.lo, 1) or near(deamp.hi, 1)):
         return False, "deamplified region not near Pi2 = 1"
     if (amp.hi < deamp.lo) != flexible:
         return False, "amplified region on the wrong side"

@@ -167,7 +167,7 @@ def pi5_limit_section(fam, out):
 def local_maxima_section(fam):
     """Claim 3: the flexible body's spectrum has a local maximum near Pi2 = Pi5."""
     low = fam["flexible-low-pi2"]
-    lines, near = [], {p: 0 for p in plots.PULSES}
+    lines, hits = [], {p: 0 for p in plots.PULSES}
     for number in (4, 5):
         for c in (c for c in pi5_spectra(fam, number) if flexible(c)):
             pi5 = float(c["pi5"])
@@ -178,15 +178,15 @@ def local_maxima_section(fam):
             if i is None:
                 lines.append([f"Fig. {number}", c["pulse"], g(pi5), "none", "", "", "no"])
                 continue
-            hit = abs(math.log(c.x[i] / pi5)) <= math.log(NEAR)
-            near[c["pulse"]] += hit
+            hit = analysis.near(c.x[i], pi5)
+            hits[c["pulse"]] += hit
             lines.append([f"Fig. {number}", c["pulse"], g(pi5), g(c.x[i]), g(c.x[i] / pi5), g(c.ratio[i]),
                           "yes" if hit else "no"])
     per_pulse = len(lines) // len(plots.PULSES)
     free = {p: analysis.peak(select(pi5_spectra(fam, 4), pulse=p)[0], "pi1_nc") for p in plots.PULSES}
     notes = []
     for pulse, (x, _, edge) in free.items():
-        close = sorted({float(r[2]) for r in lines if r[1] == pulse and abs(math.log(x / float(r[2]))) <= math.log(NEAR)})
+        close = sorted({float(r[2]) for r in lines if r[1] == pulse and analysis.near(x, float(r[2]))})
         notes.append(f"under the {pulse} pulse the no-contact spectrum peaks at Pi2 = {g(x)}"
                      + (" (the end of the grid)" if edge else "")
                      + (f", within a factor {NEAR} of Pi5 = {listed(close)}, so there a maximum near Pi2 = Pi5 "
@@ -201,12 +201,12 @@ def local_maxima_section(fam):
         f"Pi2 from {g(min(c.x[0] for c in low))}).", ""]
     text += table(["figure", "pulse", "Pi5", "nearest local max at Pi2", "its Pi2 / Pi5", "Pi1/Pi1_nc there",
                    f"within x{NEAR}"], lines)
-    text += [f"A maximum near Pi2 = Pi5: {near['cosine']} of {per_pulse} spectra under the cosine pulse, "
-             f"{near['sine']} of {per_pulse} under the sine pulse (for which the paper itself says its trends are "
+    text += [f"A maximum near Pi2 = Pi5: {hits['cosine']} of {per_pulse} spectra under the cosine pulse, "
+             f"{hits['sine']} of {per_pulse} under the sine pulse (for which the paper itself says its trends are "
              f"hard to see). For comparison, {'; '.join(notes)}.", ""]
-    total = sum(near.values())
+    total = sum(hits.values())
     return text, ("the flexible body's spectrum has a local maximum near Pi2 = Pi5 (Figs 4, 5)", STIFFNESS,
-                  f"within x{NEAR} of Pi5 on {near['cosine']} of {per_pulse} cosine and {near['sine']} of "
+                  f"within x{NEAR} of Pi5 on {hits['cosine']} of {per_pulse} cosine and {hits['sine']} of "
                   f"{per_pulse} sine spectra", True if total == len(lines) else "partly" if total else False)
 
 
@@ -304,7 +304,8 @@ def regions_section(fam, out):
     for title, curve_list in groups:
         for body in ("flexible", "stiff"):
             for pulse in plots.PULSES:
-                found = [analysis.regions(c) for c in curve_list if c["pulse"] == pulse and (body == "flexible") == flexible(c)]
+                found = [analysis.regions(c) for c in curve_list
+                         if c["pulse"] == pulse and (body == "flexible") == flexible(c)]
                 cells = []
                 for kind in ("amplified", "deamplified"):
                     main = [r for r in (analysis.main_region(f, kind) for f in found) if r]
@@ -389,7 +390,8 @@ def sided_section(fam):
     free_x = {k: analysis.peak(found[k]["two-sided"], "pi1_nc")[0] for k in readable}
     free_peaks = [(p, analysis.peak(found[(p, pi5s[0])]["two-sided"], "pi1_nc")) for p in plots.PULSES]
     shift = "; ".join(f"{k[0]} Pi5 = {g(k[1])}: no contact {g(free_x[k])}, one-sided normal "
-                      f"{g(peaks[k]['one-sided normal'][0])}, two-sided {g(peaks[k]['two-sided'][0])}" for k in readable)
+                      f"{g(peaks[k]['one-sided normal'][0])}, two-sided {g(peaks[k]['two-sided'][0])}"
+                      for k in readable)
     text = [
         "## One-sided against two-sided pounding", "",
         "\"COMPARISON OF ONE-SIDED AND TWO-SIDED POUNDING\": the paper finds that two-sided pounding amplifies "
@@ -515,9 +517,10 @@ def fig10_section(fam, out):
         f"and {len(pos)} positive ({slopes(pos)}). "
         + ("The three kinds of branch and their slope signs are those of the paper; "
            if agrees else "The paper's three kinds of branch are not all found; ")
-        + f"the negative branches are {'the more' if len(neg) > len(pos) else 'not the more'} numerous, as a "
-        f"main trend should be. R² of the sloped branches: {span([b.r2 for b in sloped]) if sloped else 'none'}; {len(bent)} of "
-        f"{len(sloped)} have R² < 0.98 (they bend: a single power law fits them only roughly).", ""]
+        + ("the negative branches are the more numerous, as a main trend should be. " if len(neg) > len(pos) else
+           "the negative branches are not the more numerous, unlike a main trend. ")
+        + (f"R² of the sloped branches: {span([b.r2 for b in sloped])}; {len(bent)} of {len(sloped)} have R² < 0.98 "
+           "(they bend: a single power law fits them only roughly)." if sloped else ""), ""]
     return text, ("Fig. 10: a flat branch without contact, a negative main branch, a positive counter-intuitive "
                   "branch", "INCOMPLETE SIMILARITY",
                   f"{len(flat)} flat (abs(B) <= {flat_max:.0e}), {len(neg)} negative ({slopes(neg)}), "

@@ -195,7 +195,8 @@ def pi5_limit(rows, out_dir):
         pts = sorted((r for r in rows if r[0] == pulse), key=lambda r: r[1])
         x = [r[1] for r in pts]
         ax.plot(x, [r[2] for r in pts], "o-", color=f"C{i}", ms=4, label=f"{pulse}: largest over $\\Pi_2$")
-        ax.plot(x, [r[3] for r in pts], "s--", color=f"C{i}", ms=4, mfc="none", label=f"{pulse}: smallest over $\\Pi_2$")
+        ax.plot(x, [r[3] for r in pts], "s--", color=f"C{i}", ms=4, mfc="none",
+                label=f"{pulse}: smallest over $\\Pi_2$")
     ax.axvline(1.0, color="0.3", lw=0.8, ls=":")
     ax.set_xscale("log")
     ax.set_yscale("log")
