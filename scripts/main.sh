@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The main job: set up, build, run the case sets through every solver, benchmark, report.
+# The main job: set up, build, run the case sets through every solver, benchmark, report;
+# then the paper report (scripts/paper.sh, reports/paper/).
 #   scripts/main.sh          the default study (a few minutes on 2 cores, build included)
 #   scripts/main.sh --full   the same study on 4x denser spectra (longer)
 set -euo pipefail
@@ -33,3 +34,6 @@ build/bench/poundbench_bench --benchmark_repetitions=5 --benchmark_report_aggreg
   --points results/workprecision-points.csv --bench results/bench.json \
   --stress results/stability.csv --stress-points results/stability-points.csv --out reports
 cp results/workprecision.csv results/stability.csv reports/
+
+echo "main: the paper report (reports/paper/)"
+scripts/paper.sh
