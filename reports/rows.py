@@ -8,6 +8,10 @@ import sys
 import matplotlib
 
 matplotlib.use("Agg")
+# Reproducible SVGs, so that regenerating a committed report changes a file only when its
+# data changed: fixed element ids, and the creation date of reproducible builds.
+matplotlib.rcParams["svg.hashsalt"] = "poundbench"
+os.environ.setdefault("SOURCE_DATE_EPOCH", "0")
 import matplotlib.pyplot as plt  # noqa: E402
 
 

@@ -3,7 +3,8 @@
 // disagrees with the paper, the test asserts what the reference does and says so; the
 // report (reports/paper/) shows the same numbers. Contact amplifies (deamplifies) a
 // response when Pi1 is above (below) the no-contact Pi1 by more than kEffect; within it,
-// contact has no effect.
+// contact has no effect. kEffect and kNear are the report's NO_EFFECT and NEAR
+// (reports/paper/analysis.py).
 
 #include <gtest/gtest.h>
 
@@ -21,7 +22,8 @@
 namespace pb {
 namespace {
 
-constexpr double kEffect = 0.01;
+constexpr double kEffect = 0.02;
+constexpr double kNear = 1.25;  // a Pi2 within this factor of another is near it
 
 const CaseSet& paper_set() {
   static const CaseSet set = load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/paper.toml");
@@ -141,7 +143,7 @@ TEST(PaperClaims, AsPi5TendsToOneTheResponseTendsToTheNoContactOne) {
 
 // Section "RESPONSE SPECTRA": the flexible body's spectrum peaks where the stiffer
 // neighbour resonates, Pi2 = Pi5. The reference agrees under the cosine pulse for
-// Pi5 = 0.25, 0.5, 0.75 (a local maximum within 30 % of Pi5) and disagrees under the sine
+// Pi5 = 0.25, 0.5, 0.75 (a local maximum within kNear of Pi5) and disagrees under the sine
 // pulse, whose flexible-body spectra have no local maximum near Pi5 at all.
 TEST(PaperClaims, FlexibleBodyPeaksAtTheStifferNeighboursResonanceUnderTheCosinePulseOnly) {
   for (const auto& [key, curve] : spectra(family("fig4-flexible"))) {
@@ -150,7 +152,7 @@ TEST(PaperClaims, FlexibleBodyPeaksAtTheStifferNeighboursResonanceUnderTheCosine
     for (std::size_t i = 1; i + 1 < curve.size(); ++i) {
       const double y = curve[i].result.pi1;
       const bool local_max = y > curve[i - 1].result.pi1 && y >= curve[i + 1].result.pi1;
-      if (local_max && std::abs(std::log(curve[i].input.pi2 / pi5)) < std::log(1.3)) near = true;
+      if (local_max && std::abs(std::log(curve[i].input.pi2 / pi5)) < std::log(kNear)) near = true;
     }
     if (std::get<0>(key) == PulseShape::cosine && pi5 >= 0.25) {
       EXPECT_TRUE(near) << label(key);
@@ -164,7 +166,7 @@ TEST(PaperClaims, FlexibleBodyPeaksAtTheStifferNeighboursResonanceUnderTheCosine
 // Pi2, deamplified around Pi2 ~ 1, and untouched (no contact) at high Pi2. A stiff body is
 // untouched at low Pi2 and amplified at high Pi2, as the paper says; the deamplification
 // near Pi2 ~ 1 appears under the cosine pulse only: under the sine pulse the stiff body's
-// response is within 1 % of the no-contact one up to where the amplification starts.
+// response is within kEffect of the no-contact one up to where the amplification starts.
 TEST(PaperClaims, ThreeSpectralRegionsSwapBetweenFlexibleAndStiffBodies) {
   for (const auto& [key, c] : spectra(family("fig4-flexible"))) {
     EXPECT_GT(max_ratio(c, 0.1, 0.7), 1 + kEffect) << label(key);  // amplified

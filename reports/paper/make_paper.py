@@ -26,7 +26,8 @@ import numpy as np  # noqa: E402
 import analysis  # noqa: E402
 import plots  # noqa: E402
 from analysis import NEAR, select  # noqa: E402
-from make_report import footer, load  # noqa: E402
+from make_report import footer  # noqa: E402
+from rows import load  # noqa: E402
 
 NO_CONTACT_GAP = 1e6  # Pi3 of the no-contact history: a gap that never closes
 G = 9.81  # m/s², for the pulse amplitudes of Fig. 3
@@ -585,6 +586,9 @@ def main():
         "## The paper's claims against the reference", ""]
     head += table(["", "claim", "paper section", "measured", "verdict"],
                   [[i + 1, c[0], f"\"{c[1]}\"", c[2], verdict(c[3])] for i, c in enumerate(claims)])
+    head += ["", "The same claims are accuracy regression tests (`tests/paper_claims_test.cpp`): each asserts "
+             "what the reference does, with the same thresholds, where it agrees with the paper and where it "
+             "does not.", ""]
     page = head + body + ["## Where this ran", "", footer(), ""]
     path = os.path.join(args.out, "README.md")
     with open(path + ".tmp", "w") as f:

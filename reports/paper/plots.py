@@ -1,22 +1,14 @@
 """The figures of the paper report. Each function draws one figure from curves
-(analysis.Curve) and returns its path relative to the report (make_report.save)."""
+(analysis.Curve) and returns its path relative to the report (rows.save)."""
 
 import math
-import os
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.lines import Line2D
 
-matplotlib.use("Agg")
-# Reproducible SVGs, so that regenerating the committed report changes a file only when its
-# data changed: fixed element ids, and the creation date of reproducible builds.
-matplotlib.rcParams["svg.hashsalt"] = "poundbench-paper"
-os.environ.setdefault("SOURCE_DATE_EPOCH", "0")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.lines import Line2D  # noqa: E402
-
-import analysis  # noqa: E402
-from make_report import save  # noqa: E402  (reports/make_report.py)
+import analysis
+from rows import save  # reports/rows.py
 
 PI1 = r"$\Pi_1 = u_{0,\max}\,\omega_p^2/a_p$"
 PI2 = r"$\Pi_2 = \omega_0/\omega_p$"
