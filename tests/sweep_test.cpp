@@ -16,6 +16,7 @@
 #include "cases/case_set.hpp"
 #include "solvers/solver.hpp"
 #include "sweep/row.hpp"
+#include "sweep/row_read.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb {
@@ -29,26 +30,6 @@ const SolverInfo& reference_solver() {
   const SolverInfo* solver = find_solver("event-driven");
   if (!solver) throw std::logic_error("no event-driven solver in the registry");
   return *solver;
-}
-
-// Splits one CSV line as RFC 4180 reads it (quoted fields, doubled quotes).
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char ch = line[i];
-    if (quoted && ch == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-      fields.back() += '"';
-      ++i;
-    } else if (ch == '"') {
-      quoted = !quoted;
-    } else if (ch == ',' && !quoted) {
-      fields.emplace_back();
-    } else {
-      fields.back() += ch;
-    }
-  }
-  return fields;
 }
 
 std::string line_without_time(Row row) {
@@ -88,6 +69,41 @@ TEST(Sweep, OneAndTwoThreadsGiveIdenticalRows) {
   const std::vector<Row> b = run_sweep(cases, reference_solver(), Settings{}, two);
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(line_without_time(a[i]), line_without_time(b[i]));
+}
+
+TEST(Sweep, RunsEveryRunOverEveryCaseSortedByRunThenPoint) {
+  const std::vector<Case> cases = smoke_cases();
+  Settings loose;
+  loose.tol_scale = 100;
+  const std::vector<SweepRun> runs = {{&reference_solver(), Settings{}}, {&reference_solver(), loose}};
+  SweepOptions options;
+  options.threads = 2;
+  std::size_t last_total = 0;
+  options.on_progress = [&](std::size_t, std::size_t total) { last_total = total; };
+  const std::vector<Row> rows = run_sweep(cases, runs, options);
+  ASSERT_EQ(rows.size(), 2 * cases.size());
+  EXPECT_EQ(last_total, 2 * cases.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i].run, i / cases.size());
+    EXPECT_EQ(rows[i].point, i % cases.size());
+    EXPECT_EQ(rows[i].settings, i < cases.size() ? "tol_scale=1" : "tol_scale=100");
+  }
+  // The first run is the one-run sweep of the same settings.
+  const std::vector<Row> alone = run_sweep(cases, reference_solver(), Settings{}, options);
+  for (std::size_t i = 0; i < cases.size(); ++i) EXPECT_EQ(line_without_time(rows[i]), line_without_time(alone[i]));
+}
+
+TEST(Sweep, ATaskSourceRunsOnlyItsTasks) {
+  const std::vector<Case> cases = smoke_cases();
+  const std::vector<std::size_t> tasks = {39, 3, 17};
+  SweepOptions options;
+  options.threads = 2;
+  options.next_task = tasks_from(tasks);
+  const std::vector<Row> rows = run_sweep(cases, reference_solver(), Settings{}, options);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].point, 3u);
+  EXPECT_EQ(rows[1].point, 17u);
+  EXPECT_EQ(rows[2].point, 39u);
 }
 
 TEST(Sweep, CancelStopsStartingNewPoints) {
