@@ -75,8 +75,7 @@ std::optional<std::vector<Row>> run_resumable(const Processes& processes, std::s
     std::fflush(stderr);
     std::_Exit(kInterrupted);
   };
-  SweepWatch watch(total, progress_for(processes), abandon);
-  watch.set_done(earlier.size());
+  SweepWatch watch(total, earlier.size(), progress_for(processes), abandon);
 
   SweepOptions options;
   options.threads = threads ? threads : processes.default_threads();

@@ -38,8 +38,8 @@ std::string duration_text(double seconds) {
 
 }  // namespace
 
-SweepWatch::SweepWatch(std::size_t total, Progress progress, std::function<void()> abandon)
-    : total_(total), progress_(progress), abandon_(std::move(abandon)), signals_(stop_signals()) {
+SweepWatch::SweepWatch(std::size_t total, std::size_t resumed, Progress progress, std::function<void()> abandon)
+    : total_(total), resumed_(resumed), progress_(progress), abandon_(std::move(abandon)), signals_(stop_signals()), done_(resumed) {
   pthread_sigmask(SIG_BLOCK, &signals_, nullptr);
   thread_ = std::thread([this] { watch(); });
 }
@@ -73,7 +73,7 @@ void SweepWatch::watch() {
 void SweepWatch::draw(bool stopping) {
   const std::size_t done = done_;
   const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-  const double rate = static_cast<double>(done) / elapsed;
+  const double rate = static_cast<double>(done - resumed_) / elapsed;
   const double fraction = total_ ? static_cast<double>(done) / static_cast<double>(total_) : 1.0;
   constexpr int kWidth = 24;
   const int filled = static_cast<int>(fraction * kWidth);
@@ -81,7 +81,7 @@ void SweepWatch::draw(bool stopping) {
                           std::string(static_cast<std::size_t>(kWidth - filled), '-');
   const std::string eta =
       stopping ? "stopping (Ctrl-C again to abandon running points)"
-               : done ? "ETA " + duration_text(static_cast<double>(total_ - done) / rate) : "ETA --:--";
+               : done > resumed_ ? "ETA " + duration_text(static_cast<double>(total_ - done) / rate) : "ETA --:--";
   const bool in_place = progress_ == Progress::bar;
   std::fprintf(stderr, "%s[%s] %zu/%zu  %.*f points/s  %s  elapsed %s%s", in_place ? "\r\033[K" : "poundbench: ",
                bar.c_str(), done, total_, rate < 10 ? 2 : 0, rate, eta.c_str(), duration_text(elapsed).c_str(),

@@ -25,7 +25,8 @@ enum class Progress { none, bar, lines };
 
 class SweepWatch {
  public:
-  SweepWatch(std::size_t total, Progress progress, std::function<void()> abandon);
+  // resumed: of the total, the points an earlier run finished (not counted in the rate).
+  SweepWatch(std::size_t total, std::size_t resumed, Progress progress, std::function<void()> abandon);
   ~SweepWatch();
   SweepWatch(const SweepWatch&) = delete;
   SweepWatch& operator=(const SweepWatch&) = delete;
@@ -41,11 +42,12 @@ class SweepWatch {
   void draw(bool stopping);
 
   std::size_t total_;
+  std::size_t resumed_;
   Progress progress_;
   std::function<void()> abandon_;
   sigset_t signals_;  // the ones the watcher takes
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-  std::atomic<std::size_t> done_{0};
+  std::atomic<std::size_t> done_;
   std::atomic<bool> cancel_{false};
   std::atomic<bool> finished_{false};
   bool drawn_ = false;  // a bar is on the screen

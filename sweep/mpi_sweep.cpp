@@ -153,7 +153,7 @@ std::vector<Row> lead(const Job& job, std::span<const Case> cases, std::span<con
   local.next_task = [&] { return dispenser.take_one(); };
   local.on_row = [&](const Row& row) { keep(row); };
   std::atomic<bool> local_done{false};
-  std::exception_ptr local_error;
+  std::exception_ptr local_error;  // read only once local_done, which is set after it
   std::jthread solver([&] {
     try {
       pb::run_sweep(cases, runs, local);
@@ -168,7 +168,7 @@ std::vector<Row> lead(const Job& job, std::span<const Case> cases, std::span<con
   int active = job.size() - 1;  // ranks that may still send rows
   bool stopping = false;
   try {
-    while ((active > 0 || !local_done) && !local_error) {
+    while ((active > 0 || !local_done) && !(local_done && local_error)) {
       if (!stopping && cancelled(options)) {
         stopping = true;
         dispenser.close();
