@@ -39,7 +39,12 @@ std::string duration_text(double seconds) {
 }  // namespace
 
 SweepWatch::SweepWatch(std::size_t total, std::size_t resumed, Progress progress, std::function<void()> abandon)
-    : total_(total), resumed_(resumed), progress_(progress), abandon_(std::move(abandon)), signals_(stop_signals()), done_(resumed) {
+    : total_(total),
+      resumed_(resumed),
+      progress_(progress),
+      abandon_(std::move(abandon)),
+      signals_(stop_signals()),
+      done_(resumed) {
   pthread_sigmask(SIG_BLOCK, &signals_, nullptr);
   thread_ = std::thread([this] { watch(); });
 }

@@ -9,8 +9,9 @@
 //     its threads never wait for the answer;
 //   - a chunk is a quarter of what is left divided among the ranks (at least what was
 //     asked for), so chunks shrink towards the end and the ranks finish together;
-//   - the tasks are handed out in a fixed shuffled order, so that a chunk holds a fair
-//     sample of cheap and expensive points rather than one costly family.
+//   - the tasks are handed out in a fixed shuffled order of blocks of 32 consecutive
+//     tasks, so that a chunk holds a fair sample of cheap and expensive points rather
+//     than one costly family, while a thread still solves neighbouring points in a row.
 // Rows travel as their partial-file line (sweep/partial_rows.hpp), which reads back bit
 // for bit; rank 0 passes each one to SweepOptions::on_row as it arrives, so its partial
 // file holds every row that reached it. A rank that dies takes only its queued and

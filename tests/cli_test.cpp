@@ -398,7 +398,8 @@ TEST_F(Cli, AStudyResumesFromItsPartialFileToTheSameSummaryAndRuns) {
   for (std::size_t row = 0; row < 24; ++row)
     EXPECT_EQ(resumed.rows[row][runs.column("seconds")] == "12345", row == 2 || row == 7 || row == 20) << row;
   const std::initializer_list<std::string_view> cpu = {"cpu_median_s", "cpu_mean_s"};
-  EXPECT_EQ(CsvTable(read_text(file("sum2.csv"))).without(cpu).rows, CsvTable(read_text(file("sum.csv"))).without(cpu).rows);
+  EXPECT_EQ(CsvTable(read_text(file("sum2.csv"))).without(cpu).rows,
+            CsvTable(read_text(file("sum.csv"))).without(cpu).rows);
 }
 
 TEST_F(Cli, StressWritesASummaryPerFamilyAndSettingAndEveryRunWithItsPi1Error) {

@@ -17,8 +17,8 @@ namespace {
 // Two ranks on whatever cores there are, as root too (CI runs as root); `timeout` ends a
 // job that hangs, which is a failure of its own.
 #ifdef POUNDBENCH_MPIEXEC
-constexpr const char* kTwoRanks = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 60 '" POUNDBENCH_MPIEXEC
-                                  "' -np 2 --oversubscribe";
+constexpr const char* kTwoRanks =
+    "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 60 '" POUNDBENCH_MPIEXEC "' -np 2 --oversubscribe";
 #else
 constexpr const char* kTwoRanks = "";
 #endif
