@@ -148,13 +148,12 @@ std::vector<Row> lead(const Job& job, std::span<const Case> cases, std::span<con
                       std::span<const std::size_t> todo, const SweepOptions& options) {
   const std::size_t total = cases.size() * runs.size();
   Dispenser dispenser(todo, job.size());
-  std::mutex mutex;  // serialises the callbacks and guards rows
-  std::vector<Row> rows;
-  const auto keep = [&](Row row) {
+  std::mutex mutex;  // serialises the callbacks
+  std::size_t done = 0;
+  const auto report = [&](const Row& row) {
     const std::lock_guard lock(mutex);
     if (options.on_row) options.on_row(row);
-    rows.push_back(std::move(row));
-    if (options.on_progress) options.on_progress(rows.size(), total);
+    if (options.on_progress) options.on_progress(++done, total);
   };
 
   // Rank 0's own share, on threads of their own: the main thread stays free for MPI.
@@ -162,18 +161,20 @@ std::vector<Row> lead(const Job& job, std::span<const Case> cases, std::span<con
   local.threads = options.threads;
   local.cancel = options.cancel;
   local.next_task = [&] { return dispenser.take_one(); };
-  local.on_row = [&](const Row& row) { keep(row); };
+  local.on_row = report;
+  std::vector<Row> rows;  // rank 0's own, then those received
   std::atomic<bool> local_done{false};
   std::exception_ptr local_error;  // read only once local_done, which is set after it
   std::jthread solver([&] {
     try {
-      pb::run_sweep(cases, runs, local);
+      rows = pb::run_sweep(cases, runs, local);
     } catch (...) {
       local_error = std::current_exception();
     }
     local_done = true;
   });
 
+  std::vector<Row> received;
   Outgoing<std::uint64_t> outgoing(MPI_UINT64_T);
   std::vector<bool> told_no_more(static_cast<std::size_t>(job.size()), false);
   int active = job.size() - 1;  // ranks that may still send rows
@@ -204,7 +205,8 @@ std::vector<Row> lead(const Job& job, std::span<const Case> cases, std::span<con
         for (std::string line; read_csv_record(lines, line);) {
           Row row = parse_partial_line(line, true);
           row.input = cases[row.point];  // exactly, also in the columns the CSV leaves empty
-          keep(std::move(row));
+          report(row);
+          received.push_back(std::move(row));
         }
       } else if (status->MPI_TAG == kDone) {
         receive<int>(*status, MPI_INT);
@@ -217,6 +219,7 @@ std::vector<Row> lead(const Job& job, std::span<const Case> cases, std::span<con
   }
   solver.join();
   if (local_error) std::rethrow_exception(local_error);
+  rows.insert(rows.end(), std::make_move_iterator(received.begin()), std::make_move_iterator(received.end()));
   std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
     return a.run != b.run ? a.run < b.run : a.point < b.point;
   });
