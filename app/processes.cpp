@@ -7,9 +7,9 @@
 
 #include "app/errors.hpp"
 #include "cases/case_set.hpp"
+#include "sweep/mpi_job.hpp"  // the class alone: its functions exist only in a build with MPI
 
 #ifdef POUNDBENCH_HAVE_MPI
-#include "sweep/mpi_job.hpp"
 #include "sweep/mpi_sweep.hpp"
 #endif
 
@@ -28,7 +28,7 @@ bool launched_by_mpi() {
 #ifdef POUNDBENCH_HAVE_MPI
 
 Processes::Processes(int& argc, char**& argv) {
-  if (launched_by_mpi()) job_ = std::make_unique<mpi::Job>(argc, argv);
+  if (launched_by_mpi()) job_ = std::make_shared<const mpi::Job>(argc, argv);
 }
 
 #else
@@ -51,8 +51,6 @@ Processes::Processes(int&, char**&) {
 }
 
 #endif
-
-Processes::~Processes() = default;
 
 bool Processes::leader() const { return !job_ || job_->rank() == 0; }
 

@@ -42,7 +42,6 @@ class Processes {
   // Joins the MPI job when launched as one (see above); throws std::runtime_error for a
   // build without MPI launched as several processes.
   Processes(int& argc, char**& argv);
-  ~Processes();
   Processes(const Processes&) = delete;
   Processes& operator=(const Processes&) = delete;
 
@@ -67,7 +66,9 @@ class Processes {
   void abort_others(int code) const;
 
  private:
-  std::unique_ptr<mpi::Job> job_;  // null: this process alone
+  // Null: this process alone. A shared_ptr, whose deleter is fixed where the Job is made,
+  // so a build without MPI needs no Job destructor.
+  std::shared_ptr<const mpi::Job> job_;
 };
 
 }  // namespace pb::app

@@ -19,10 +19,6 @@ namespace pb::app {
 
 namespace {
 
-constexpr int kInterrupted = 130;
-
-bool by_task(const Row& a, const Row& b) { return a.run != b.run ? a.run < b.run : a.point < b.point; }
-
 // A bar on a terminal; in a job, rank 0's stderr is a pipe that mpirun forwards to the
 // user, so plain lines there.
 Progress progress_for(const Processes& processes) {
@@ -101,7 +97,7 @@ std::optional<std::vector<Row>> run_resumable(const Processes& processes, std::s
   file->close();
 
   rows.insert(rows.end(), std::make_move_iterator(earlier.begin()), std::make_move_iterator(earlier.end()));
-  std::sort(rows.begin(), rows.end(), by_task);
+  std::sort(rows.begin(), rows.end(), task_order);
   if (rows.size() < total) {
     std::fprintf(stderr, "poundbench: interrupted after %zu of %zu %s; the finished rows are in %s\n", rows.size(),
                  total, runs.size() == 1 ? "points" : "runs", partial.c_str());

@@ -13,8 +13,6 @@ namespace pb::app {
 
 namespace {
 
-constexpr int kInterrupted = 130;
-
 void validate_cases(const CaseSet& set, const std::string& file) {
   if (set.cases.empty()) throw BadInput(file + ": no cases");
   for (std::size_t i = 0; i < set.cases.size(); ++i)

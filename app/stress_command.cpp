@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/resumable_sweep.hpp"
 #include "sweep/stability.hpp"
@@ -11,8 +12,6 @@
 namespace pb::app {
 
 namespace {
-
-constexpr int kInterrupted = 130;
 
 void write_table(std::ostream& out, const Stress& st) {
   out << stability_csv_header() << '\n';

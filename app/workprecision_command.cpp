@@ -3,6 +3,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/resumable_sweep.hpp"
 #include "sweep/workprecision.hpp"
@@ -10,8 +11,6 @@
 namespace pb::app {
 
 namespace {
-
-constexpr int kInterrupted = 130;
 
 void write_table(std::ostream& out, const WorkPrecision& wp) {
   out << work_precision_csv_header() << '\n';

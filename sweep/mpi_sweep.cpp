@@ -220,9 +220,7 @@ std::vector<Row> lead(const Job& job, std::span<const Case> cases, std::span<con
   solver.join();
   if (local_error) std::rethrow_exception(local_error);
   rows.insert(rows.end(), std::make_move_iterator(received.begin()), std::make_move_iterator(received.end()));
-  std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
-    return a.run != b.run ? a.run < b.run : a.point < b.point;
-  });
+  std::sort(rows.begin(), rows.end(), task_order);
   return rows;
 }
 

@@ -68,8 +68,6 @@ class TaskCheck {
   std::vector<std::string> settings_;  // describe() of each run
 };
 
-bool by_task(const Row& a, const Row& b) { return a.run != b.run ? a.run < b.run : a.point < b.point; }
-
 }  // namespace
 
 std::string partial_header(bool with_run) { return (with_run ? "run," : "") + csv_header(); }
@@ -113,7 +111,7 @@ std::vector<Row> read_partial_rows(std::istream& in, std::string_view file, std:
     row.input = cases[row.point];  // exactly the case, also in the columns the CSV leaves empty
     rows.push_back(std::move(row));
   }
-  std::stable_sort(rows.begin(), rows.end(), by_task);
+  std::stable_sort(rows.begin(), rows.end(), task_order);
   rows.erase(std::unique(rows.begin(), rows.end(),
                          [](const Row& a, const Row& b) { return a.run == b.run && a.point == b.point; }),
              rows.end());

@@ -93,6 +93,8 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
   return row;
 }
 
+bool task_order(const Row& a, const Row& b) { return a.run != b.run ? a.run < b.run : a.point < b.point; }
+
 TaskSource tasks_from(std::span<const std::size_t> tasks) {
   auto next = std::make_shared<std::atomic<std::size_t>>(0);
   return [tasks, next]() -> std::optional<std::size_t> {
@@ -155,9 +157,7 @@ std::vector<Row> run_sweep(std::span<const Case> cases, std::span<const SweepRun
   }  // the jthreads join here
 
   if (error) std::rethrow_exception(error);
-  std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
-    return a.run != b.run ? a.run < b.run : a.point < b.point;
-  });
+  std::sort(rows.begin(), rows.end(), task_order);
   return rows;
 }
 

@@ -43,6 +43,9 @@ struct SweepRun {
 // from several threads at once and may block until a task is there.
 using TaskSource = std::function<std::optional<std::size_t>()>;
 
+// The order of a sweep's rows: by run, then by point.
+bool task_order(const Row& a, const Row& b);
+
 // A TaskSource over a fixed list of tasks, in its order (the list must outlive it).
 TaskSource tasks_from(std::span<const std::size_t> tasks);
 
