@@ -1,5 +1,5 @@
 // The `poundbench` command line, run as a separate process: outputs, exit codes, the
-// one-line error of every bad input, and the partial-file behaviour of `spectrum`.
+// one-line error of every bad input, and the partial files of the sweep commands (resuming).
 
 #include <gtest/gtest.h>
 #include <fcntl.h>
