@@ -15,7 +15,7 @@
 #include "app/sweep_watch.hpp"
 #include "cases/case_set.hpp"
 #include "sweep/baseline.hpp"
-#include "sweep/row_reader.hpp"
+#include "sweep/row_read.hpp"
 
 namespace pb::app {
 
@@ -23,7 +23,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int kInterrupted = 130;
 constexpr int kCheckFailed = 1;
 
 // What a command's first output line prints, or "unknown".
@@ -79,7 +78,8 @@ Source load_source(const fs::path& cases, const fs::path& settings) {
 // Runs a baseline's sweeps with a progress bar; nullopt when interrupted.
 std::optional<std::vector<Row>> run(const Source& s, unsigned threads) {
   const std::size_t total = s.set.cases.size() * ((s.list ? s.list->runs.size() : 0) + 1);
-  SweepWatch watch(total, ::isatty(STDERR_FILENO) == 1, [] { std::_Exit(kInterrupted); });
+  SweepWatch watch(total, 0, ::isatty(STDERR_FILENO) == 1 ? Progress::bar : Progress::none,
+                   [] { std::_Exit(kInterrupted); });
   SweepOptions options;
   options.threads = threads;
   options.cancel = &watch.cancel();
@@ -100,7 +100,7 @@ void store(const fs::path& file, const BaselineHeader& header, const std::vector
 RowFile read_rows(const std::string& path) {
   try {
     return read_csv_file(path);
-  } catch (const RowFormatError& e) {
+  } catch (const RowReadError& e) {
     throw BadInput(e.what());
   }
 }
@@ -150,7 +150,7 @@ int baseline_command(const CLI::App& command, const BaselineFlags& flags) {
     BaselineHeader header;
     try {
       header = parse_header(stored.comments, file);
-    } catch (const RowFormatError& e) {
+    } catch (const RowReadError& e) {
       throw BadInput(e.what());
     }
     const fs::path dir = fs::absolute(file).parent_path();

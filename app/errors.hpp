@@ -11,4 +11,7 @@ struct BadInput : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The exit code of a sweep command that a signal stopped (its partial file is kept).
+inline constexpr int kInterrupted = 130;
+
 }  // namespace pb::app

@@ -1,15 +1,19 @@
 // poundbench: the command line. Exit codes: 0 done, 1 runtime failure, 2 bad input (one
 // line on stderr naming the flag or file, the field and the reason), 130 interrupted.
+// Under an MPI launcher every rank runs this; only the leader (rank 0) prints, and the
+// sweep commands share their work among the ranks (app/processes.hpp).
 
 #include <algorithm>
 #include <exception>
 #include <iostream>
+#include <memory>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "app/baseline_command.hpp"
 #include "app/errors.hpp"
+#include "app/processes.hpp"
 #include "app/run_command.hpp"
 #include "app/spectrum_command.hpp"
 #include "app/stress_command.hpp"
@@ -40,6 +44,14 @@ int list_solvers() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::unique_ptr<pb::app::Processes> processes;
+  try {
+    processes = std::make_unique<pb::app::Processes>(argc, argv);
+  } catch (const std::exception& e) {
+    return fail(e.what(), kRuntimeFailure);
+  }
+  const bool leader = processes->leader();
+
   CLI::App app{"poundbench: time-stepping solvers with impacts on the pounding case set"};
   app.require_subcommand(1);
   pb::app::RunFlags run_flags;
@@ -59,24 +71,35 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
-    return fail(e.what(), kBadInput);
+    // Every rank parses the same words, so every rank ends here alike.
+    if (e.get_exit_code() == 0) return leader ? app.exit(e) : 0;  // --help
+    return leader ? fail(e.what(), kBadInput) : kBadInput;
   }
 
+  // A failure of this process alone: the other ranks of a job must not wait for it.
+  const auto local_failure = [&](const char* message, int code) {
+    fail(message, code);
+    processes->abort_others(code);
+    return code;
+  };
   try {
+    if (*spectrum) return pb::app::spectrum_command(*spectrum, spectrum_flags, *processes);
+    if (*workprecision) return pb::app::workprecision_command(*workprecision, workprecision_flags, *processes);
+    if (*stress) return pb::app::stress_command(*stress, stress_flags, *processes);
+    // The other commands are not shared out: the leader alone runs them.
+    if (!leader) return 0;
     if (*run) return pb::app::run_command(*run, run_flags);
-    if (*spectrum) return pb::app::spectrum_command(*spectrum, spectrum_flags);
-    if (*workprecision) return pb::app::workprecision_command(*workprecision, workprecision_flags);
-    if (*stress) return pb::app::stress_command(*stress, stress_flags);
     if (*baseline) return pb::app::baseline_command(*baseline, baseline_flags);
     if (*compare) return pb::app::compare_command(*compare, compare_flags);
     if (*solvers) return list_solvers();
+  } catch (const pb::app::SharedFailure& e) {
+    return leader ? fail(e.what(), e.code) : e.code;
   } catch (const pb::app::BadInput& e) {
-    return fail(e.what(), kBadInput);
+    return local_failure(e.what(), kBadInput);
   } catch (const pb::CaseSetError& e) {
-    return fail(e.what(), kBadInput);
+    return local_failure(e.what(), kBadInput);
   } catch (const std::exception& e) {
-    return fail(e.what(), kRuntimeFailure);
+    return local_failure(e.what(), kRuntimeFailure);
   }
   return kBadInput;
 }

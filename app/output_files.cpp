@@ -71,7 +71,8 @@ void write_atomically(const fs::path& file, const std::function<void(std::ostrea
   }
 }
 
-FlushedFile::FlushedFile(const fs::path& file) : path_(file), file_(std::fopen(file.c_str(), "w")) {
+FlushedFile::FlushedFile(const fs::path& file, Mode mode)
+    : path_(file), file_(std::fopen(file.c_str(), mode == Mode::append ? "a" : "w")) {
   if (!file_) throw std::runtime_error(file.string() + ": cannot create: " + std::strerror(errno));
 }
 

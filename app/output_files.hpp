@@ -24,7 +24,8 @@ void write_atomically(const std::filesystem::path& file, const std::function<voi
 // is written, so that it survives an interrupt or a crash of the program.
 class FlushedFile {
  public:
-  explicit FlushedFile(const std::filesystem::path& file);  // truncates; throws on failure
+  enum class Mode { truncate, append };
+  explicit FlushedFile(const std::filesystem::path& file, Mode mode = Mode::truncate);  // throws on failure
   ~FlushedFile();
   FlushedFile(const FlushedFile&) = delete;
   FlushedFile& operator=(const FlushedFile&) = delete;

@@ -3,14 +3,16 @@
 // row per case in point order (columns: sweep/row.hpp).
 //
 // Rows are appended, flushed, to a partial file as they complete (completion order), so an
-// interrupt or a crash loses only the points that were running. The final output appears
-// only when every point is done: --out is written as FILE.tmp and renamed, stdout gets the
-// rows at the end, and the partial file is removed.
+// interrupt or a crash loses only the points that were running, and a rerun with the same
+// output resumes (app/resumable_sweep.hpp). The final output appears only when every point
+// is done: --out is written as FILE.tmp and renamed, stdout gets the rows at the end, and
+// the partial file is removed. Under mpirun the points are shared among the ranks.
 
 #include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "app/processes.hpp"
 #include "app/solver_flags.hpp"
 
 namespace pb::app {
@@ -22,11 +24,8 @@ struct SpectrumFlags {
   SolverFlags solver_flags;
 };
 
-// Where the finished rows of an unfinished sweep are.
-std::string partial_file_name(const std::string& out);
-
 CLI::App* add_spectrum_command(CLI::App& app, SpectrumFlags& flags);
 // Exit code: 0 done, 130 interrupted (partial file kept).
-int spectrum_command(const CLI::App& command, const SpectrumFlags& flags);
+int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const Processes& processes);
 
 }  // namespace pb::app

@@ -12,6 +12,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr auto kTick = std::chrono::milliseconds(100);  // at most ten redraws a second
 constexpr auto kQuietStart = std::chrono::seconds(1);   // short sweeps show no bar
+constexpr auto kLineEvery = std::chrono::seconds(10);  // Progress::lines
 
 // SIGINT and SIGTERM, but not one that this process was started with ignored: a shell
 // does that to a background job so that a Ctrl-C meant for the foreground leaves it alone.
@@ -37,8 +38,13 @@ std::string duration_text(double seconds) {
 
 }  // namespace
 
-SweepWatch::SweepWatch(std::size_t total, bool draw, std::function<void()> abandon)
-    : total_(total), draw_(draw), abandon_(std::move(abandon)), signals_(stop_signals()) {
+SweepWatch::SweepWatch(std::size_t total, std::size_t resumed, Progress progress, std::function<void()> abandon)
+    : total_(total),
+      resumed_(resumed),
+      progress_(progress),
+      abandon_(std::move(abandon)),
+      signals_(stop_signals()),
+      done_(resumed) {
   pthread_sigmask(SIG_BLOCK, &signals_, nullptr);
   thread_ = std::thread([this] { watch(); });
 }
@@ -59,14 +65,20 @@ void SweepWatch::watch() {
       if (cancel_) abandon_();
       cancel_ = true;
     }
-    if (draw_ && !finished_ && Clock::now() - start_ > kQuietStart) draw(cancel_);
+    if (progress_ == Progress::none || finished_ || Clock::now() - start_ < kQuietStart) continue;
+    if (progress_ == Progress::bar) {
+      draw(cancel_);
+    } else if (Clock::now() - last_line_ >= kLineEvery) {
+      last_line_ = Clock::now();
+      draw(cancel_);
+    }
   }
 }
 
 void SweepWatch::draw(bool stopping) {
   const std::size_t done = done_;
   const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-  const double rate = static_cast<double>(done) / elapsed;
+  const double rate = static_cast<double>(done - resumed_) / elapsed;
   const double fraction = total_ ? static_cast<double>(done) / static_cast<double>(total_) : 1.0;
   constexpr int kWidth = 24;
   const int filled = static_cast<int>(fraction * kWidth);
@@ -74,11 +86,13 @@ void SweepWatch::draw(bool stopping) {
                           std::string(static_cast<std::size_t>(kWidth - filled), '-');
   const std::string eta =
       stopping ? "stopping (Ctrl-C again to abandon running points)"
-               : done ? "ETA " + duration_text(static_cast<double>(total_ - done) / rate) : "ETA --:--";
-  std::fprintf(stderr, "\r\033[K[%s] %zu/%zu  %.*f points/s  %s  elapsed %s", bar.c_str(), done, total_,
-               rate < 10 ? 2 : 0, rate, eta.c_str(), duration_text(elapsed).c_str());
+               : done > resumed_ ? "ETA " + duration_text(static_cast<double>(total_ - done) / rate) : "ETA --:--";
+  const bool in_place = progress_ == Progress::bar;
+  std::fprintf(stderr, "%s[%s] %zu/%zu  %.*f points/s  %s  elapsed %s%s", in_place ? "\r\033[K" : "poundbench: ",
+               bar.c_str(), done, total_, rate < 10 ? 2 : 0, rate, eta.c_str(), duration_text(elapsed).c_str(),
+               in_place ? "" : "\n");
   std::fflush(stderr);
-  drawn_ = true;
+  drawn_ = in_place;
 }
 
 }  // namespace pb::app

@@ -1,7 +1,9 @@
 #pragma once
-// Watches a running sweep from a thread of its own: draws a progress bar on stderr (when
-// stderr is a terminal and the sweep lasts more than a second) and turns SIGINT/SIGTERM
-// into the sweep's cancel flag.
+// Watches a running sweep from a thread of its own: shows its progress on stderr (when the
+// sweep lasts more than a second) and turns SIGINT/SIGTERM into the sweep's cancel flag.
+// Progress is a bar redrawn in place on a terminal, or a plain line every ten seconds
+// where stderr is a pipe that a person may still watch (an MPI job's rank 0, whose stderr
+// mpirun forwards, or a batch job's log).
 //
 // Signals are blocked in the constructing thread, so every thread started after it (the
 // sweep's workers) inherits the block and only the watcher, waiting in sigtimedwait,
@@ -19,9 +21,12 @@
 
 namespace pb::app {
 
+enum class Progress { none, bar, lines };
+
 class SweepWatch {
  public:
-  SweepWatch(std::size_t total, bool draw, std::function<void()> abandon);
+  // resumed: of the total, the points an earlier run finished (not counted in the rate).
+  SweepWatch(std::size_t total, std::size_t resumed, Progress progress, std::function<void()> abandon);
   ~SweepWatch();
   SweepWatch(const SweepWatch&) = delete;
   SweepWatch& operator=(const SweepWatch&) = delete;
@@ -37,14 +42,16 @@ class SweepWatch {
   void draw(bool stopping);
 
   std::size_t total_;
-  bool draw_;
+  std::size_t resumed_;
+  Progress progress_;
   std::function<void()> abandon_;
   sigset_t signals_;  // the ones the watcher takes
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-  std::atomic<std::size_t> done_{0};
+  std::atomic<std::size_t> done_;
   std::atomic<bool> cancel_{false};
   std::atomic<bool> finished_{false};
   bool drawn_ = false;  // a bar is on the screen
+  std::chrono::steady_clock::time_point last_line_ = start_;
   std::thread thread_;
 };
 

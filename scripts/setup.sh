@@ -23,6 +23,7 @@ packages=(
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   libode-dev libbullet-dev
+  libopenmpi-dev openmpi-bin
   python3 python3-matplotlib python3-numpy
 )
 missing=()

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <tuple>
 
-#include "sweep/row_reader.hpp"
+#include "sweep/row_read.hpp"
 #include "sweep/workprecision.hpp"
 
 namespace pb {
@@ -82,7 +82,7 @@ std::vector<std::string> header_lines(const BaselineHeader& h) {
 
 BaselineHeader parse_header(std::span<const std::string> comments, std::string_view source) {
   if (comments.empty() || comments.front() != kFirstLine)
-    throw RowFormatError(std::string(source) + ":1: header: not a poundbench baseline (no '#" +
+    throw RowReadError(std::string(source) + ":1: header: not a poundbench baseline (no '#" +
                          std::string(kFirstLine) + "' line)");
   BaselineHeader h;
   bool has_cases = false, has_settings = false;
@@ -98,8 +98,8 @@ BaselineHeader parse_header(std::span<const std::string> comments, std::string_v
       h.notes.push_back(line.substr(line.starts_with(' ') ? 1 : 0));
     }
   }
-  if (!has_cases || h.cases.empty()) throw RowFormatError(std::string(source) + ": cases: missing header line");
-  if (!has_settings) throw RowFormatError(std::string(source) + ": settings: missing header line");
+  if (!has_cases || h.cases.empty()) throw RowReadError(std::string(source) + ": cases: missing header line");
+  if (!has_settings) throw RowReadError(std::string(source) + ": settings: missing header line");
   return h;
 }
 

@@ -49,7 +49,7 @@ struct BaselineHeader {
   std::vector<std::string> notes;  // further "key: value" lines (commit, compiler, date)
 };
 std::vector<std::string> header_lines(const BaselineHeader& h);
-// Throws RowFormatError (sweep/row_reader.hpp) naming the file when a line is missing.
+// Throws RowReadError (sweep/row_read.hpp) naming the file when a line is missing.
 BaselineHeader parse_header(std::span<const std::string> comments, std::string_view source);
 
 enum class Match { same_setting, reference };

@@ -10,9 +10,11 @@ namespace pb {
 
 double min_gap_ratio(const Row& row) { return row.result.min_gap / row.length_scale; }
 
+// Through min_gap_ratio, the value the CSV carries, so that a row read back from its CSV
+// line (sweep/row_read.hpp) gives the same bits.
 double penetration(const Row& row) {
-  const double depth = std::max(0.0, -row.result.min_gap);
-  return depth / (row.input.pi3 > 0.0 ? row.input.pi3 * row.length_scale : row.length_scale);
+  const double depth = std::max(0.0, -min_gap_ratio(row));
+  return row.input.pi3 > 0.0 ? depth / row.input.pi3 : depth;
 }
 
 double penetration_steps(const Result& r) {

@@ -30,6 +30,7 @@ namespace pb {
 struct Row {
   Case input;              // the case that was solved
   std::size_t point = 0;   // its index in the sweep's list of cases
+  std::size_t run = 0;     // the index of its solver and settings in the sweep's runs (not a column)
   std::string solver;      // SolverInfo::name
   std::string variant;     // Settings::variant as given (empty: the solver's default)
   std::string settings;    // SolverInfo::describe(settings)

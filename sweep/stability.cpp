@@ -116,9 +116,9 @@ StabilityRow summarize_stability(std::span<const Row* const> rows, std::span<con
   return s;
 }
 
-Stress run_stress(std::span<const Case> cases, const SettingsList& list, const SweepOptions& options) {
+Stress stress_of(std::span<const Case> cases, const SettingsList& list, WorkPrecision runs) {
   Stress st;
-  st.runs = run_work_precision(cases, list, options);
+  st.runs = std::move(runs);
   if (!st.runs.complete) return st;
 
   st.truth.assign(cases.size(), std::numeric_limits<double>::quiet_NaN());
@@ -138,6 +138,10 @@ Stress run_stress(std::span<const Case> cases, const SettingsList& list, const S
   });
   st.complete = true;
   return st;
+}
+
+Stress run_stress(std::span<const Case> cases, const SettingsList& list, const SweepOptions& options) {
+  return stress_of(cases, list, run_work_precision(cases, list, options));
 }
 
 std::string stability_csv_header() {

@@ -96,7 +96,11 @@ struct Stress {
   bool complete = false;             // false: cancelled before the end
 };
 
-// options.on_progress receives the runs done over the whole study (cases x (settings + 1)).
+// The checks over a study's runs (work_precision_of); not complete when the study is not.
+Stress stress_of(std::span<const Case> cases, const SettingsList& list, WorkPrecision runs);
+
+// run_work_precision, then stress_of. options.on_progress receives the runs done over the
+// whole study (cases x (settings + 1)).
 Stress run_stress(std::span<const Case> cases, const SettingsList& list, const SweepOptions& options);
 
 std::string stability_csv_header();

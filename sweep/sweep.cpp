@@ -4,6 +4,7 @@
 #include <chrono>
 #include <ctime>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <thread>
 
@@ -93,10 +94,27 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
   return row;
 }
 
-std::vector<Row> run_sweep(std::span<const Case> cases, const SolverInfo& solver, const Settings& settings,
+bool task_order(const Row& a, const Row& b) { return a.run != b.run ? a.run < b.run : a.point < b.point; }
+
+TaskSource tasks_from(std::span<const std::size_t> tasks) {
+  auto next = std::make_shared<std::atomic<std::size_t>>(0);
+  return [tasks, next]() -> std::optional<std::size_t> {
+    const std::size_t i = next->fetch_add(1);
+    if (i >= tasks.size()) return std::nullopt;
+    return tasks[i];
+  };
+}
+
+std::vector<Row> run_sweep(std::span<const Case> cases, std::span<const SweepRun> runs,
                            const SweepOptions& options) {
-  const std::size_t total = cases.size();
+  const std::size_t n = cases.size();
+  const std::size_t total = n * runs.size();
   std::atomic<std::size_t> next{0};
+  const TaskSource next_task = options.next_task ? options.next_task : [&]() -> std::optional<std::size_t> {
+    const std::size_t t = next.fetch_add(1);
+    if (t >= total) return std::nullopt;
+    return t;
+  };
   std::atomic<bool> stop{false};  // a callback threw
 
   std::mutex mutex;  // guards everything below and serialises the callbacks
@@ -109,9 +127,11 @@ std::vector<Row> run_sweep(std::span<const Case> cases, const SolverInfo& solver
   };
   const auto work = [&] {
     while (!stopped()) {
-      const std::size_t i = next.fetch_add(1);
-      if (i >= total) return;
-      Row row = run_point(cases[i], i, solver, settings);
+      const std::optional<std::size_t> task = next_task();
+      if (!task || *task >= total) return;
+      const SweepRun& run = runs[*task / n];
+      Row row = run_point(cases[*task % n], *task % n, *run.solver, run.settings);
+      row.run = *task / n;
 
       const std::lock_guard lock(mutex);
       if (error) return;
@@ -138,8 +158,14 @@ std::vector<Row> run_sweep(std::span<const Case> cases, const SolverInfo& solver
   }  // the jthreads join here
 
   if (error) std::rethrow_exception(error);
-  std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.point < b.point; });
+  std::sort(rows.begin(), rows.end(), task_order);
   return rows;
+}
+
+std::vector<Row> run_sweep(std::span<const Case> cases, const SolverInfo& solver, const Settings& settings,
+                           const SweepOptions& options) {
+  const SweepRun run{&solver, settings};
+  return run_sweep(cases, std::span(&run, 1), options);
 }
 
 }  // namespace pb

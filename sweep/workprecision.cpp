@@ -16,42 +16,40 @@ std::vector<std::string> families_in_order(std::span<const Case> cases) {
 
 }  // namespace
 
-WorkPrecision run_work_precision(std::span<const Case> cases, const SettingsList& list, const SweepOptions& options) {
-  WorkPrecision wp;
-  const std::size_t total = cases.size() * (list.runs.size() + 1);
-  std::size_t done_before = 0;
-  SweepOptions opt = options;
-  opt.on_progress = [&](std::size_t done, std::size_t) {
-    if (options.on_progress) options.on_progress(done_before + done, total);
-  };
-  auto cancelled = [&] { return options.cancel && options.cancel->load(); };
+std::vector<SweepRun> study_runs(const SettingsList& list) {
+  std::vector<SweepRun> runs;
+  SweepRun truth{find_solver("event-driven"), {}};
+  truth.settings.tol_scale = list.reference_tol_scale;
+  truth.settings.time_limit = list.reference_time_limit;
+  runs.push_back(truth);
+  for (const RunSpec& run : list.runs) runs.push_back({find_solver(run.solver), run.settings});
+  return runs;
+}
 
-  Settings truth;
-  truth.tol_scale = list.reference_tol_scale;
-  truth.time_limit = list.reference_time_limit;
-  wp.reference = run_sweep(cases, *find_solver("event-driven"), truth, opt);
-  if (cancelled()) return wp;
-  done_before += cases.size();
-  std::vector<double> reference(cases.size());
+WorkPrecision work_precision_of(std::span<const Case> cases, const SettingsList& list, std::vector<Row> rows) {
+  WorkPrecision wp;
+  const std::size_t n = cases.size();
+  if (rows.size() != n * (list.runs.size() + 1)) return wp;
+  wp.reference.assign(std::make_move_iterator(rows.begin()), std::make_move_iterator(rows.begin() + n));
+  wp.points.assign(std::make_move_iterator(rows.begin() + n), std::make_move_iterator(rows.end()));
+  std::vector<double> reference(n);
   for (const Row& r : wp.reference) reference[r.point] = r.result.pi1;
 
   const std::vector<std::string> families = families_in_order(cases);
-  for (const RunSpec& run : list.runs) {
-    const SolverInfo& solver = *find_solver(run.solver);
-    std::vector<Row> rows = run_sweep(cases, solver, run.settings, opt);
-    if (cancelled()) return wp;
-    done_before += cases.size();
+  for (std::size_t k = 0; k < list.runs.size(); ++k) {
+    const RunSpec& run = list.runs[k];
+    const std::span<const Row> run_rows = std::span<const Row>(wp.points).subspan(k * n, n);
     for (const std::string& family : families) {
       std::vector<const Row*> mine;
       std::vector<double> ref;
-      for (const Row& r : rows) {
+      for (const Row& r : run_rows) {
         if (r.input.family != family) continue;
         mine.push_back(&r);
         ref.push_back(reference[r.point]);
       }
-      wp.table.push_back({family, run.solver, run.settings.variant, solver.describe(run.settings), summarize(mine, ref)});
+      wp.table.push_back({family, run.solver, run.settings.variant,
+                          find_solver(run.solver)->describe(run.settings), summarize(mine, ref)});
     }
-    wp.points.insert(wp.points.end(), std::make_move_iterator(rows.begin()), std::make_move_iterator(rows.end()));
   }
   // Table rows grouped by family, settings in list order within each.
   std::stable_sort(wp.table.begin(), wp.table.end(), [&](const WorkPrecisionRow& a, const WorkPrecisionRow& b) {
@@ -59,6 +57,10 @@ WorkPrecision run_work_precision(std::span<const Case> cases, const SettingsList
   });
   wp.complete = true;
   return wp;
+}
+
+WorkPrecision run_work_precision(std::span<const Case> cases, const SettingsList& list, const SweepOptions& options) {
+  return work_precision_of(cases, list, run_sweep(cases, study_runs(list), options));
 }
 
 std::string work_precision_csv_header() {

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "cases/case_set.hpp"
-#include "sweep/row_reader.hpp"
+#include "sweep/row_read.hpp"
 
 namespace pb {
 namespace {
@@ -177,8 +177,8 @@ TEST(BaselineHeader, LinesRoundTripAndAFileWithoutThemIsNotABaseline) {
   EXPECT_EQ(back.cases, h.cases);
   EXPECT_EQ(back.settings, "");
   EXPECT_EQ(back.notes, h.notes);
-  EXPECT_THROW(parse_header(std::vector<std::string>{" cases: a"}, "x.csv"), RowFormatError);
-  EXPECT_THROW(parse_header(std::vector<std::string>{lines[0], lines[2]}, "x.csv"), RowFormatError);
+  EXPECT_THROW(parse_header(std::vector<std::string>{" cases: a"}, "x.csv"), RowReadError);
+  EXPECT_THROW(parse_header(std::vector<std::string>{lines[0], lines[2]}, "x.csv"), RowReadError);
 }
 
 // --- reading rows back
@@ -220,23 +220,23 @@ TEST(RowReader, BadInputNamesFileLineColumnAndReason) {
   write_csv(out, std::vector{row(1.0, 2.0)});
   std::string text = out.str();
   const std::string good = text;
-  text.replace(text.find(",moreau-jean,"), 13, ",moreau-jean,,x,");  // one field too many
+  text.replace(text.find(",moreau-jean,"), 13, ",moreau-jean,,x,");  // two fields too many
   auto message = [](const std::string& csv) {
     std::istringstream in(csv);
     try {
       read_csv(in, "rows.csv");
-    } catch (const RowFormatError& e) {
+    } catch (const RowReadError& e) {
       return std::string(e.what());
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message(text).substr(0, 17), "rows.csv:2: row: ");
+  EXPECT_EQ(message(text), "rows.csv:2: 40 fields, the header has 38");
   std::string bad_status = good;
   bad_status.replace(bad_status.find(",ok,"), 4, ",fine,");
-  EXPECT_EQ(message(bad_status), "rows.csv:2: status: unknown status 'fine'");
+  EXPECT_EQ(message(bad_status), "rows.csv:2: status: unknown name (\"fine\")");
   std::string bad_number = good;
   bad_number.replace(bad_number.find(",2,"), 3, ",2x,");
-  EXPECT_EQ(message(bad_number), "rows.csv:2: pi1: not a number: '2x'");
+  EXPECT_EQ(message(bad_number), "rows.csv:2: pi1: not a number (\"2x\")");
   EXPECT_EQ(message("family,point\n"), "rows.csv:1: scene: missing column");
 }
 

@@ -1,5 +1,5 @@
 // The `poundbench` command line, run as a separate process: outputs, exit codes, the
-// one-line error of every bad input, and the partial-file behaviour of `spectrum`.
+// one-line error of every bad input, and the partial files of the sweep commands (resuming).
 
 #include <gtest/gtest.h>
 #include <fcntl.h>
@@ -24,67 +24,12 @@
 #include "solvers/solver.hpp"
 #include "sweep/stability.hpp"
 #include "sweep/sweep.hpp"
+#include "tests/cli_fixture.hpp"
 
 extern char** environ;
 
 namespace pb {
 namespace {
-
-namespace fs = std::filesystem;
-
-struct Outcome {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::size_t line_count(const std::string& text) {
-  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
-}
-
-// Every test works in a fresh directory of its own, which it removes afterwards.
-class Cli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("poundbench-cli-" + std::to_string(::getpid()) + "-" + test->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  fs::path file(const std::string& name) const { return dir_ / name; }
-
-  void write(const std::string& name, const std::string& text) const { std::ofstream(file(name)) << text; }
-
-  // Runs poundbench with `args` (a shell word list) in the test directory.
-  Outcome run(const std::string& args) const {
-    const std::string command = "cd '" + dir_.string() + "' && '" POUNDBENCH_EXE "' " + args +
-                                " > stdout.txt 2> stderr.txt";
-    const int status = std::system(command.c_str());
-    Outcome o;
-    o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    o.out = read_text(file("stdout.txt"));
-    o.err = read_text(file("stderr.txt"));
-    fs::remove(file("stdout.txt"));
-    fs::remove(file("stderr.txt"));
-    return o;
-  }
-
-  std::set<std::string> files() const {
-    std::set<std::string> names;
-    for (const auto& entry : fs::directory_iterator(dir_)) names.insert(entry.path().filename().string());
-    return names;
-  }
-
-  fs::path dir_;
-};
 
 constexpr const char* kPairCase =
     "--scene pair --pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 0.5 --pi5 0.5 --pi6 1";
@@ -390,6 +335,71 @@ pi2 = { from = 0.1, to = 10, points = 100000, spacing = "log" }
   const std::string err = read_text(log);
   EXPECT_EQ(line_count(err), 1u) << err;
   EXPECT_NE(err.find("out.csv.partial"), std::string::npos) << err;
+}
+
+// The rows a partial file already holds are kept as they are (their `seconds`, set to
+// 12345 here, shows it) and only the missing points run: the output equals an
+// uninterrupted run's, and the partial file is gone.
+TEST_F(Cli, SpectrumResumesFromItsPartialFileRunningOnlyTheMissingPoints) {
+  write("tiny.toml", kTinySet);
+  ASSERT_EQ(run("spectrum tiny.toml --out full.csv").exit_code, 0);
+  CsvTable full(read_text(file("full.csv")));
+  ASSERT_EQ(full.rows.size(), 6u);
+  const std::string cut_short = CsvTable::line(full.rows[3]).substr(0, 30);  // a write a crash cut
+  full.at(4, "seconds") = "12345";
+  full.at(1, "seconds") = "12345";
+  write("out.csv.partial", CsvTable::line(full.columns) + "\n" + CsvTable::line(full.rows[4]) + "\n" +
+                               CsvTable::line(full.rows[1]) + "\n" + cut_short);
+
+  const Outcome o = run("spectrum tiny.toml --out out.csv");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_EQ(files(), (std::set<std::string>{"tiny.toml", "full.csv", "out.csv"}));
+  CsvTable out(read_text(file("out.csv")));
+  EXPECT_EQ(out.without({"seconds", "cpu_seconds"}).rows, full.without({"seconds", "cpu_seconds"}).rows);
+  for (std::size_t point = 0; point < 6; ++point)
+    EXPECT_EQ(out.at(point, "seconds") == "12345", point == 1 || point == 4) << point;
+}
+
+TEST_F(Cli, SpectrumRefusesThePartialFileOfAnotherSweep) {
+  write("tiny.toml", kTinySet);
+  ASSERT_EQ(run("spectrum tiny.toml --solver moreau-jean --out mj.csv").exit_code, 0);
+  const CsvTable mj(read_text(file("mj.csv")));
+  const std::string partial = CsvTable::line(mj.columns) + "\n" + CsvTable::line(mj.rows[2]) + "\n";
+  write("out.csv.partial", partial);
+
+  const Outcome o = run("spectrum tiny.toml --out out.csv");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(line_count(o.err), 1u) << o.err;
+  EXPECT_NE(o.err.find("out.csv.partial:2: point 2: solver is \"moreau-jean\" there"), std::string::npos) << o.err;
+  EXPECT_EQ(files(), (std::set<std::string>{"tiny.toml", "mj.csv", "out.csv.partial"}));
+  EXPECT_EQ(read_text(file("out.csv.partial")), partial);
+}
+
+// A study's partial file has a run column (0: the truth); its rows are kept and the
+// summary and every run's row come out as an uninterrupted study's.
+TEST_F(Cli, AStudyResumesFromItsPartialFileToTheSameSummaryAndRuns) {
+  write("tiny.toml", kTinySet);
+  write("list.toml", kTinyList);
+  ASSERT_EQ(run("workprecision tiny.toml --settings list.toml --out sum.csv --points runs.csv").exit_code, 0);
+  CsvTable runs(read_text(file("runs.csv")));
+  ASSERT_EQ(runs.rows.size(), 24u);  // 6 points, the truth and 3 settings
+  std::string partial = "run," + CsvTable::line(runs.columns) + "\n";
+  for (std::size_t row : {7u, 2u, 20u}) {
+    runs.at(row, "seconds") = "12345";
+    partial += std::to_string(row / 6) + "," + CsvTable::line(runs.rows[row]) + "\n";
+  }
+  write("sum2.csv.partial", partial);
+
+  const Outcome o = run("workprecision tiny.toml --settings list.toml --out sum2.csv --points runs2.csv");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_FALSE(fs::exists(file("sum2.csv.partial")));
+  const CsvTable resumed(read_text(file("runs2.csv")));
+  EXPECT_EQ(resumed.without({"seconds", "cpu_seconds"}).rows, runs.without({"seconds", "cpu_seconds"}).rows);
+  for (std::size_t row = 0; row < 24; ++row)
+    EXPECT_EQ(resumed.rows[row][runs.column("seconds")] == "12345", row == 2 || row == 7 || row == 20) << row;
+  const std::initializer_list<std::string_view> cpu = {"cpu_median_s", "cpu_mean_s"};
+  EXPECT_EQ(CsvTable(read_text(file("sum2.csv"))).without(cpu).rows,
+            CsvTable(read_text(file("sum.csv"))).without(cpu).rows);
 }
 
 TEST_F(Cli, StressWritesASummaryPerFamilyAndSettingAndEveryRunWithItsPi1Error) {

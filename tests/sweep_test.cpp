@@ -16,7 +16,7 @@
 #include "cases/case_set.hpp"
 #include "solvers/solver.hpp"
 #include "sweep/row.hpp"
-#include "sweep/row_reader.hpp"
+#include "sweep/row_read.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb {
@@ -32,7 +32,6 @@ const SolverInfo& reference_solver() {
   return *solver;
 }
 
-// Splits one CSV line as RFC 4180 reads it (quoted fields, doubled quotes).
 std::string line_without_time(Row row) {
   row.seconds = 0.0;
   row.cpu_seconds = 0.0;
@@ -70,6 +69,41 @@ TEST(Sweep, OneAndTwoThreadsGiveIdenticalRows) {
   const std::vector<Row> b = run_sweep(cases, reference_solver(), Settings{}, two);
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(line_without_time(a[i]), line_without_time(b[i]));
+}
+
+TEST(Sweep, RunsEveryRunOverEveryCaseSortedByRunThenPoint) {
+  const std::vector<Case> cases = smoke_cases();
+  Settings loose;
+  loose.tol_scale = 100;
+  const std::vector<SweepRun> runs = {{&reference_solver(), Settings{}}, {&reference_solver(), loose}};
+  SweepOptions options;
+  options.threads = 2;
+  std::size_t last_total = 0;
+  options.on_progress = [&](std::size_t, std::size_t total) { last_total = total; };
+  const std::vector<Row> rows = run_sweep(cases, runs, options);
+  ASSERT_EQ(rows.size(), 2 * cases.size());
+  EXPECT_EQ(last_total, 2 * cases.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i].run, i / cases.size());
+    EXPECT_EQ(rows[i].point, i % cases.size());
+    EXPECT_EQ(rows[i].settings, i < cases.size() ? "tol_scale=1" : "tol_scale=100");
+  }
+  // The first run is the one-run sweep of the same settings.
+  const std::vector<Row> alone = run_sweep(cases, reference_solver(), Settings{}, options);
+  for (std::size_t i = 0; i < cases.size(); ++i) EXPECT_EQ(line_without_time(rows[i]), line_without_time(alone[i]));
+}
+
+TEST(Sweep, ATaskSourceRunsOnlyItsTasks) {
+  const std::vector<Case> cases = smoke_cases();
+  const std::vector<std::size_t> tasks = {39, 3, 17};
+  SweepOptions options;
+  options.threads = 2;
+  options.next_task = tasks_from(tasks);
+  const std::vector<Row> rows = run_sweep(cases, reference_solver(), Settings{}, options);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].point, 3u);
+  EXPECT_EQ(rows[1].point, 17u);
+  EXPECT_EQ(rows[2].point, 39u);
 }
 
 TEST(Sweep, CancelStopsStartingNewPoints) {
@@ -157,7 +191,7 @@ TEST(Csv, NumbersReadBackToTheSameDouble) {
 }
 
 TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
-  const std::vector<std::string> header = split_csv_record(csv_header());
+  const std::vector<std::string> header = split_csv(csv_header());
   ASSERT_EQ(header.size(), 38u);
   EXPECT_EQ(header.front(), "family");
   EXPECT_EQ(header[28], "message");  // the columns after it were appended later
@@ -174,7 +208,7 @@ TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   row.result.impacts = 5;
   row.result.message = "stopped, \"early\"\nsee log";
   row.length_scale = 1.0;
-  const std::vector<std::string> fields = split_csv_record(csv_line(row));
+  const std::vector<std::string> fields = split_csv(csv_line(row));
   ASSERT_EQ(fields.size(), header.size());
   const auto field = [&](const std::string& column) {
     for (std::size_t i = 0; i < header.size(); ++i)
@@ -199,12 +233,12 @@ TEST(Csv, MinGapIsDividedByTheLengthScale) {
   row.result.min_gap = -0.002;
   row.length_scale = 0.5;
   EXPECT_DOUBLE_EQ(min_gap_ratio(row), -0.004);
-  const std::vector<std::string> fields = split_csv_record(csv_line(row));
+  const std::vector<std::string> fields = split_csv(csv_line(row));
   EXPECT_EQ(fields[25], "-0.004");
 }
 
 TEST(Csv, ChainRowsCarryBodiesAndKickAndTimeSteppersTheirWh) {
-  const std::vector<std::string> header = split_csv_record(csv_header());
+  const std::vector<std::string> header = split_csv(csv_header());
   const auto column = [&](const std::string& name) {
     return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
   };
@@ -212,7 +246,7 @@ TEST(Csv, ChainRowsCarryBodiesAndKickAndTimeSteppersTheirWh) {
   chain.input.scene = Scene::chain;
   chain.input.bodies = 5;
   chain.input.kick = 1.5;
-  const std::vector<std::string> fields = split_csv_record(csv_line(chain));
+  const std::vector<std::string> fields = split_csv(csv_line(chain));
   ASSERT_EQ(fields.size(), header.size());
   EXPECT_EQ(fields[column("bodies")], "5");
   EXPECT_EQ(fields[column("kick")], "1.5");
@@ -222,7 +256,7 @@ TEST(Csv, ChainRowsCarryBodiesAndKickAndTimeSteppersTheirWh) {
   wh.wh = 2.0;
   const Row stepper = run_point(c, 0, *find_solver("moreau-jean"), wh);
   ASSERT_EQ(stepper.result.status, Status::ok) << stepper.result.message;
-  const std::vector<std::string> pair = split_csv_record(csv_line(stepper));
+  const std::vector<std::string> pair = split_csv(csv_line(stepper));
   EXPECT_EQ(pair[column("bodies")], "");
   EXPECT_EQ(pair[column("kick")], "");
   // Recovered from the step the solver took: 2 up to the rounding of h and back.
@@ -230,7 +264,7 @@ TEST(Csv, ChainRowsCarryBodiesAndKickAndTimeSteppersTheirWh) {
   // Measured by the stepper's monitor; within one step of travel (its proven bound).
   ASSERT_FALSE(pair[column("penetration_steps")].empty());
   EXPECT_LE(std::strtod(pair[column("penetration_steps")].c_str(), nullptr), 1.0);
-  const std::vector<std::string> reference = split_csv_record(csv_line(run_point(c, 0, reference_solver(), Settings{})));
+  const std::vector<std::string> reference = split_csv(csv_line(run_point(c, 0, reference_solver(), Settings{})));
   EXPECT_EQ(reference[column("wh")], "");
   EXPECT_EQ(reference[column("penetration_steps")], "");  // no step
 }

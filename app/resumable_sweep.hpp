@@ -1,0 +1,48 @@
+#pragma once
+// The sweep that `spectrum`, `workprecision` and `stress` share: resumed from its partial
+// file, run on every process of the job (app/processes.hpp), each new row appended to the
+// partial file, flushed, as soon as it reaches the leader.
+//
+// The partial file is named after the output (partial_file_name). A rerun with the same
+// output reads it (read_earlier_rows), refuses it with a BadInput if its rows are not this
+// sweep's (sweep/partial_rows.hpp), and runs only the tasks it lacks. The file is rewritten
+// with the rows it had (a torn last line dropped) before new rows are appended. When the
+// sweep is complete the command writes its outputs and then removes the partial file, so
+// there is always one place that holds every finished row.
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "app/processes.hpp"
+#include "cases/case.hpp"
+#include "sweep/row.hpp"
+#include "sweep/sweep.hpp"
+
+namespace pb::app {
+
+// "<out>.partial", or "poundbench-<command>.partial.csv" in the current directory when
+// the output is stdout.
+std::string partial_file_name(const std::string& out, std::string_view command);
+
+// Leader only, while checking inputs: throws BadInput unless the partial file can be
+// written and holds nothing but rows of this sweep; returns them (none if it does not
+// exist). Creates nothing.
+std::vector<Row> read_earlier_rows(const std::string& partial, std::span<const Case> cases,
+                                   std::span<const SweepRun> runs);
+
+// Runs the tasks that `earlier` (the leader's) lacks, on `threads` threads per process
+// (0: Processes::default_threads), with progress and interrupts as SweepWatch has them.
+// On the leader, returns every row (earlier and new, sorted by run then point), or nullopt
+// when interrupted: then one line on stderr says how many tasks are done and where. The
+// other processes return an empty list.
+std::optional<std::vector<Row>> run_resumable(const Processes& processes, std::span<const Case> cases,
+                                              std::span<const SweepRun> runs, const std::string& partial,
+                                              std::vector<Row> earlier, unsigned threads);
+
+// After the outputs are written: the partial file is no longer needed.
+void remove_partial(const std::string& partial);
+
+}  // namespace pb::app

@@ -1,0 +1,45 @@
+#include "app/study_run.hpp"
+
+#include "app/errors.hpp"
+#include "app/output_files.hpp"
+#include "app/resumable_sweep.hpp"
+#include "sweep/workprecision.hpp"
+
+namespace pb::app {
+
+CLI::App* add_study_command(CLI::App& app, StudyFlags& flags, std::string_view name, std::string_view summary,
+                            std::string_view points_help) {
+  CLI::App* command = app.add_subcommand(std::string(name), std::string(summary));
+  command->add_option("CASESET", flags.case_set, "Case-set file (TOML, see cases/README.md)")->required();
+  command->add_option("--settings", flags.settings, "Settings-list file (TOML, see cases/settings/)")->required();
+  command->add_option("--out", flags.out, "Write the summary CSV to this file (default: stdout)");
+  command->add_option("--points", flags.points, std::string(points_help));
+  command->add_option("--threads", flags.threads, "Worker threads (default: all cores)");
+  return command;
+}
+
+Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_view name, const Processes& processes) {
+  Study study;
+  std::vector<SweepRun> runs;
+  std::vector<Row> earlier;
+  study.partial = partial_file_name(flags.out, name);
+  processes.agree([&] {
+    study.set = load_case_set(flags.case_set);
+    if (study.set.cases.empty()) throw BadInput(flags.case_set + ": no cases");
+    try {
+      study.list = load_settings_list(flags.settings);
+    } catch (const SettingsListError& e) {
+      throw BadInput(e.what());
+    }
+    if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
+    runs = study_runs(study.list);
+    if (!processes.leader()) return;
+    if (!flags.out.empty()) check_output_target(flags.out, "--out");
+    if (!flags.points.empty()) check_output_target(flags.points, "--points");
+    earlier = read_earlier_rows(study.partial, study.set.cases, runs);
+  });
+  study.rows = run_resumable(processes, study.set.cases, runs, study.partial, std::move(earlier), flags.threads);
+  return study;
+}
+
+}  // namespace pb::app

@@ -1,0 +1,42 @@
+#pragma once
+// What `workprecision` and `stress` share: a case set and a settings list, checked on every
+// process, the output files checked on the leader, and the study (the truth and every
+// setting, sweep/workprecision.hpp) run as one resumable sweep (app/resumable_sweep.hpp).
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "app/processes.hpp"
+#include "cases/case_set.hpp"
+#include "sweep/row.hpp"
+#include "sweep/settings_list.hpp"
+
+namespace pb::app {
+
+struct StudyFlags {
+  std::string case_set;
+  std::string settings;
+  std::string out;     // empty: stdout
+  std::string points;  // empty: not written
+  unsigned threads = 0;
+};
+
+// CASESET, --settings, --out, --points, --threads.
+CLI::App* add_study_command(CLI::App& app, StudyFlags& flags, std::string_view name, std::string_view summary,
+                            std::string_view points_help);
+
+struct Study {
+  CaseSet set;
+  SettingsList list;
+  std::string partial;                    // its partial file
+  std::optional<std::vector<Row>> rows;   // on the leader, every row; nullopt: interrupted
+};
+
+// `name` names the partial file when the output is stdout.
+Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_view name, const Processes& processes);
+
+}  // namespace pb::app

@@ -1,0 +1,130 @@
+#include "sweep/partial_rows.hpp"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+
+#include "sweep/row_read.hpp"
+
+namespace pb {
+
+namespace {
+
+// The columns that say which task a row is: its case and its solver's settings.
+constexpr std::array kTaskColumns = {"family", "scene", "pulse", "directivity", "pi2",  "pi3",     "eps",
+                                     "pi5",    "pi6",   "pi7",   "pi8",         "xi",   "n_free",  "a_p",
+                                     "w_p",    "solver", "variant", "settings", "bodies", "kick"};
+
+// The run column taken off the front of a record's fields.
+std::size_t take_run(std::vector<std::string>& fields) {
+  std::size_t run = 0;
+  const std::string& text = fields.front();
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), run);
+  if (text.empty() || error != std::errc{} || end != text.data() + text.size())
+    throw RowReadError("run: not an integer (\"" + text + "\")");
+  fields.erase(fields.begin());
+  return run;
+}
+
+// Checks each record against the task it names, field for field as csv_line writes them.
+class TaskCheck {
+ public:
+  TaskCheck(std::span<const Case> cases, std::span<const SweepRun> runs) : cases_(cases), runs_(runs) {
+    const std::vector<std::string> header = split_csv(csv_header());
+    for (const char* column : kTaskColumns)
+      columns_.push_back(static_cast<std::size_t>(std::find(header.begin(), header.end(), column) - header.begin()));
+    for (const SweepRun& run : runs) settings_.push_back(run.solver->describe(run.settings));
+  }
+
+  // "" when the row is the task's; otherwise why not. A row read back prints the line it
+  // was read from, so its fields are compared as printed.
+  std::string mismatch(const Row& row) const {
+    const std::string which =
+        "point " + std::to_string(row.point) + (runs_.size() > 1 ? " of run " + std::to_string(row.run) : "");
+    if (row.run >= runs_.size()) return "run " + std::to_string(row.run) + ": this sweep has " +
+                                        std::to_string(runs_.size()) + " runs";
+    if (row.point >= cases_.size())
+      return which + ": this sweep has " + std::to_string(cases_.size()) + " points";
+    Row expected;
+    expected.input = cases_[row.point];
+    const SweepRun& run = runs_[row.run];
+    expected.solver = std::string(run.solver->name);
+    expected.variant = run.settings.variant;
+    expected.settings = settings_[row.run];
+    const std::vector<std::string> fields = split_csv(csv_line(row));
+    const std::vector<std::string> want = split_csv(csv_line(expected));
+    for (std::size_t k = 0; k < columns_.size(); ++k) {
+      const std::size_t i = columns_[k];
+      if (fields[i] != want[i])
+        return which + ": " + kTaskColumns[k] + " is \"" + fields[i] + "\" there, \"" + want[i] + "\" here";
+    }
+    return {};
+  }
+
+ private:
+  std::span<const Case> cases_;
+  std::span<const SweepRun> runs_;
+  std::vector<std::size_t> columns_;   // of kTaskColumns in the header
+  std::vector<std::string> settings_;  // describe() of each run
+};
+
+}  // namespace
+
+std::string partial_header(bool with_run) { return (with_run ? "run," : "") + csv_header(); }
+
+std::string partial_line(const Row& row, bool with_run) {
+  return (with_run ? std::to_string(row.run) + "," : "") + csv_line(row);
+}
+
+Row parse_partial_line(std::string_view record, bool with_run) {
+  std::vector<std::string> fields = split_csv(record);
+  const std::size_t run = with_run ? take_run(fields) : 0;
+  Row row = parse_row(fields);
+  row.run = run;
+  return row;
+}
+
+std::vector<Row> read_partial_rows(std::istream& in, std::string_view file, std::span<const Case> cases,
+                                   std::span<const SweepRun> runs) {
+  const bool with_run = runs.size() > 1;
+  const std::string afresh = " (remove the file to start afresh)";
+  std::string record;
+  std::size_t line = 1;  // of the record's first line
+  const auto fail = [&](const std::string& reason) -> PartialRowsError {
+    return PartialRowsError(std::string(file) + ":" + std::to_string(line) + ": " + reason);
+  };
+  if (!read_csv_record(in, record)) return {};  // empty, or cut within the header
+  if (record != partial_header(with_run))
+    throw fail("not the partial file of this sweep: its header is not this sweep's" + afresh);
+
+  const TaskCheck check(cases, runs);
+  std::vector<Row> rows;
+  for (line += 1; read_csv_record(in, record); line += 1 + static_cast<std::size_t>(std::ranges::count(record, '\n'))) {
+    Row row;
+    try {
+      row = parse_partial_line(record, with_run);
+    } catch (const RowReadError& e) {
+      throw fail(std::string("not a row: ") + e.what());
+    }
+    if (const std::string why = check.mismatch(row); !why.empty())
+      throw fail(why + ": the file is from another sweep" + afresh);
+    row.input = cases[row.point];  // exactly the case, also in the columns the CSV leaves empty
+    rows.push_back(std::move(row));
+  }
+  std::stable_sort(rows.begin(), rows.end(), task_order);
+  rows.erase(std::unique(rows.begin(), rows.end(),
+                         [](const Row& a, const Row& b) { return a.run == b.run && a.point == b.point; }),
+             rows.end());
+  return rows;
+}
+
+std::vector<std::size_t> missing_tasks(std::span<const Row> done, std::size_t cases, std::size_t runs) {
+  std::vector<bool> have(cases * runs, false);
+  for (const Row& row : done) have[row.run * cases + row.point] = true;
+  std::vector<std::size_t> missing;
+  for (std::size_t t = 0; t < have.size(); ++t)
+    if (!have[t]) missing.push_back(t);
+  return missing;
+}
+
+}  // namespace pb

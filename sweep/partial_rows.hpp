@@ -1,0 +1,52 @@
+#pragma once
+// The partial file of a sweep: the rows it has finished, in the order they finished, so
+// that an interrupted sweep (Ctrl-C, a crash, a lost MPI rank) resumes where it stopped.
+//
+// Format: CSV with the columns of sweep/row.hpp. A sweep of several runs (a work-precision
+// or stress study) puts a `run` column first, the run's index (0 is the truth), since the
+// same point appears once per run; a sweep of one run (spectrum) has exactly the output's
+// columns. The same line, with the run column, carries a row from an MPI rank to rank 0.
+//
+// A partial file is only resumed by the sweep that wrote it: every row must name a task of
+// the sweep (a run and a point in range) whose case, solver, variant and settings are the
+// ones this sweep would run, field for field as the CSV writes them. One row that does not
+// is a PartialRowsError: such a file comes from another case set or other settings, and
+// mixing its rows in would give a wrong result. A last line cut short (a write interrupted
+// by a crash) is dropped. The solver's step cap and time limit are not in a row, so
+// changing them does not invalidate the rows (docs/cli.md says so).
+
+#include <istream>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cases/case.hpp"
+#include "sweep/row.hpp"
+#include "sweep/sweep.hpp"
+
+namespace pb {
+
+// what() is one line: "<file>:<line>: <reason>".
+struct PartialRowsError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Without a line end. with_run: the `run` column first.
+std::string partial_header(bool with_run);
+std::string partial_line(const Row& row, bool with_run);
+// The row of one partial_line record (the run column read into Row::run); throws
+// RowReadError.
+Row parse_partial_line(std::string_view record, bool with_run);
+
+// The rows of a partial file of the sweep (cases, runs), each checked as above, sorted by
+// task; a task found twice is kept once. An empty input has no rows. Throws
+// PartialRowsError naming `file`.
+std::vector<Row> read_partial_rows(std::istream& in, std::string_view file, std::span<const Case> cases,
+                                   std::span<const SweepRun> runs);
+
+// The tasks (run * cases + point) of the sweep that `done` (sorted by task) does not hold.
+std::vector<std::size_t> missing_tasks(std::span<const Row> done, std::size_t cases, std::size_t runs);
+
+}  // namespace pb

@@ -1,0 +1,236 @@
+#include "sweep/row_read.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <sstream>
+
+namespace pb {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::optional<Status> parse_status(std::string_view text) {
+  for (Status s : {Status::ok, Status::diverged, Status::nan, Status::step_cap, Status::timeout, Status::failed})
+    if (name(s) == text) return s;
+  return std::nullopt;
+}
+
+// Reads a record's fields by column name, naming the column of a bad one.
+class FieldReader {
+ public:
+  FieldReader(const Columns& columns, const std::vector<std::string>& fields) : columns_(columns), fields_(fields) {
+    if (fields.size() != columns.size())
+      throw RowReadError(std::to_string(fields.size()) + " fields, the header has " + std::to_string(columns.size()));
+  }
+
+  // The field, or "" when the header has no such column.
+  const std::string& text(const std::string& column) {
+    column_ = column;
+    const std::string* field = columns_.find(fields_, column);
+    return field ? *field : empty_;
+  }
+  // An empty field is `missing` (NaN unless the column says otherwise).
+  double number(const std::string& column, double missing = kNaN) {
+    const std::string& field = text(column);
+    if (field.empty()) return missing;
+    double x = 0.0;
+    const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), x);
+    if (error != std::errc{} || end != field.data() + field.size()) fail(field, "not a number");
+    return x;
+  }
+  template <typename Int>
+  Int count(const std::string& column, Int missing = 0) {
+    const std::string& field = text(column);
+    if (field.empty()) return missing;
+    Int n = 0;
+    const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), n);
+    if (error != std::errc{} || end != field.data() + field.size()) fail(field, "not an integer");
+    return n;
+  }
+  template <typename T>
+  T named(const std::string& column, std::optional<T> (*parse)(std::string_view)) {
+    const std::string& field = text(column);
+    const std::optional<T> value = parse(field);
+    if (!value) fail(field, "unknown name");
+    return *value;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& field, std::string_view reason) const {
+    throw RowReadError(column_ + ": " + std::string(reason) + " (\"" + field + "\")");
+  }
+
+  const Columns& columns_;
+  const std::vector<std::string>& fields_;
+  std::string column_;
+  const std::string empty_;
+};
+
+// Every record of a text with the line it starts on; a quoted field may span lines.
+struct Record {
+  std::string text;
+  std::size_t line;
+};
+
+std::vector<Record> records(std::istream& in) {
+  std::vector<Record> out;
+  std::size_t line = 1;
+  std::string record, piece;
+  bool quoted = false;
+  std::size_t start = 1;
+  while (std::getline(in, piece)) {
+    if (!piece.empty() && piece.back() == '\r') piece.pop_back();
+    if (record.empty() && !quoted) start = line;
+    for (char ch : piece)
+      if (ch == '"') quoted = !quoted;
+    record += piece;
+    ++line;
+    if (quoted) {
+      record += '\n';
+      continue;
+    }
+    out.push_back({std::move(record), start});
+    record.clear();
+  }
+  if (!record.empty()) out.push_back({std::move(record), start});
+  return out;
+}
+
+}  // namespace
+
+Columns::Columns(const std::vector<std::string>& header) : size_(header.size()) {
+  for (std::size_t i = 0; i < header.size(); ++i) index_.emplace(header[i], i);
+  for (const char* required : {"family", "point", "scene", "pulse", "directivity", "pi2", "pi3", "eps", "xi",
+                               "n_free", "a_p", "w_p", "solver", "variant", "settings", "status", "pi1"})
+    if (!index_.contains(std::string_view(required))) throw RowReadError(std::string(required) + ": missing column");
+}
+
+const std::string* Columns::find(const std::vector<std::string>& fields, const std::string& column) const {
+  const auto it = index_.find(column);
+  return it == index_.end() ? nullptr : &fields[it->second];
+}
+
+std::vector<std::string> split_csv(std::string_view record) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < record.size(); ++i) {
+    const char ch = record[i];
+    if (quoted && ch == '"' && i + 1 < record.size() && record[i + 1] == '"') {
+      fields.back() += '"';
+      ++i;
+    } else if (ch == '"') {
+      quoted = !quoted;
+    } else if (ch == ',' && !quoted) {
+      fields.emplace_back();
+    } else {
+      fields.back() += ch;
+    }
+  }
+  return fields;
+}
+
+bool read_csv_record(std::istream& in, std::string& record) {
+  record.clear();
+  std::string line;
+  bool quoted = false;  // inside a quoted field at the end of what was read
+  while (std::getline(in, line)) {
+    if (in.eof()) return false;  // no '\n' after it: cut short
+    for (char ch : line)
+      if (ch == '"') quoted = !quoted;  // a doubled quote toggles twice
+    record += line;
+    if (!quoted) return true;
+    record += '\n';
+  }
+  return false;
+}
+
+Row parse_row(const Columns& columns, const std::vector<std::string>& fields) {
+  FieldReader f(columns, fields);
+  Row row;
+  Case& c = row.input;
+  Result& r = row.result;
+  c.family = f.text("family");
+  row.point = f.count<std::size_t>("point");
+  c.scene = f.named("scene", &parse_scene);
+  c.pulse = f.named("pulse", &parse_pulse);
+  c.directivity = f.named("directivity", &parse_directivity);
+  c.pi2 = f.number("pi2");
+  c.pi3 = f.number("pi3");
+  c.eps = f.number("eps");
+  // Empty where the scene has no such body: the Case keeps its default there.
+  for (auto [pi, column] : {std::pair{&c.pi5, "pi5"}, {&c.pi6, "pi6"}, {&c.pi7, "pi7"}, {&c.pi8, "pi8"}})
+    *pi = f.number(column, *pi);
+  c.xi = f.number("xi");
+  c.n_free = f.number("n_free");
+  c.a_p = f.number("a_p");
+  c.w_p = f.number("w_p");
+  row.solver = f.text("solver");
+  row.variant = f.text("variant");
+  row.settings = f.text("settings");
+  r.status = f.named("status", &parse_status);
+  r.pi1 = f.number("pi1");
+  row.pi1_no_contact = f.number("pi1_no_contact");
+  r.impacts = f.count<long>("impacts");
+  r.contact_phases = f.count<long>("contact_phases");
+  r.steps = f.count<long>("steps");
+  r.min_gap = f.number("min_gap", std::numeric_limits<double>::infinity());  // empty: no contact closed
+  row.length_scale = 1.0;
+  row.seconds = f.number("seconds");
+  row.cpu_seconds = f.number("cpu_seconds");
+  r.message = f.text("message");
+  c.bodies = f.count<int>("bodies", c.bodies);
+  c.kick = f.number("kick", c.kick);
+  row.wh = f.number("wh");
+  r.energy_excess = f.number("energy_excess");
+  r.isolated_impacts = f.count<long>("isolated_impacts");
+  r.restitution_low = f.number("restitution_low");
+  r.restitution_high = f.number("restitution_high");
+  row.penetration_steps = f.number("penetration_steps");
+  return row;  // penetration is not read: it is made from min_gap and pi3
+}
+
+Row parse_row(const std::vector<std::string>& fields) {
+  static const Columns standard(split_csv(csv_header()));
+  return parse_row(standard, fields);
+}
+
+RowFile read_csv(std::istream& in, std::string_view source) {
+  const std::vector<Record> lines = records(in);
+  const auto fail = [&](std::size_t line, const std::string& why) {
+    std::ostringstream out;
+    out << source << ':' << line << ": " << why;
+    return RowReadError(out.str());
+  };
+  RowFile file;
+  std::size_t k = 0;
+  for (; k < lines.size() && lines[k].text.starts_with('#'); ++k) file.comments.push_back(lines[k].text.substr(1));
+  if (k == lines.size()) throw fail(lines.empty() ? 1 : lines.back().line, "header: no header line");
+  std::optional<Columns> columns;
+  try {
+    columns.emplace(split_csv(lines[k].text));
+  } catch (const RowReadError& e) {
+    throw fail(lines[k].line, e.what());
+  }
+  for (++k; k < lines.size(); ++k) {
+    if (lines[k].text.empty()) continue;
+    try {
+      file.rows.push_back(parse_row(*columns, split_csv(lines[k].text)));
+    } catch (const RowReadError& e) {
+      throw fail(lines[k].line, e.what());
+    }
+  }
+  return file;
+}
+
+RowFile read_csv_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw RowReadError(path + ": cannot read: no such file or not readable");
+  return read_csv(in, path);
+}
+
+}  // namespace pb

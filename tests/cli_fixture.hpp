@@ -1,0 +1,115 @@
+#pragma once
+// A test fixture that runs the poundbench binary as a separate process in a fresh
+// directory of its own, and what it needs to read back the outputs.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <set>
+#include <stdexcept>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sweep/row.hpp"
+#include "sweep/row_read.hpp"
+
+namespace pb {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+inline std::string read_text(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+inline std::size_t line_count(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+// A CSV text read back: its header's columns and each record's fields.
+struct CsvTable {
+  std::vector<std::string> columns;
+  std::vector<std::vector<std::string>> rows;
+
+  explicit CsvTable(const std::string& text) {
+    std::istringstream in(text);
+    std::string record;
+    if (read_csv_record(in, record)) columns = split_csv(record);
+    while (read_csv_record(in, record)) rows.push_back(split_csv(record));
+  }
+  std::size_t column(std::string_view name) const {
+    const auto it = std::find(columns.begin(), columns.end(), name);
+    if (it == columns.end()) throw std::logic_error("no column " + std::string(name));
+    return static_cast<std::size_t>(it - columns.begin());
+  }
+  std::string& at(std::size_t row, std::string_view name) { return rows.at(row).at(column(name)); }
+  // The table with these columns emptied: what two runs of one sweep have in common.
+  CsvTable without(std::initializer_list<std::string_view> names) const {
+    CsvTable out = *this;
+    for (std::string_view name : names)
+      for (auto& row : out.rows) row.at(column(name)).clear();
+    return out;
+  }
+  // One record as CSV again.
+  static std::string line(const std::vector<std::string>& fields) {
+    std::string text;
+    for (std::size_t i = 0; i < fields.size(); ++i) text += (i ? "," : "") + csv_field(fields[i]);
+    return text;
+  }
+};
+
+// Every test works in a fresh directory of its own, which it removes afterwards.
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("poundbench-cli-" + std::to_string(::getpid()) + "-" + test->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path file(const std::string& name) const { return dir_ / name; }
+
+  void write(const std::string& name, const std::string& text) const { std::ofstream(file(name)) << text; }
+
+  // Runs poundbench with `args` (a shell word list) in the test directory; `launcher`
+  // comes before the program (an mpiexec command line).
+  Outcome run(const std::string& args, const std::string& launcher = "") const {
+    const std::string command = "cd '" + dir_.string() + "' && " + launcher + " '" POUNDBENCH_EXE "' " + args +
+                                " > stdout.txt 2> stderr.txt";
+    const int status = std::system(command.c_str());
+    Outcome o;
+    o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    o.out = read_text(file("stdout.txt"));
+    o.err = read_text(file("stderr.txt"));
+    fs::remove(file("stdout.txt"));
+    fs::remove(file("stderr.txt"));
+    return o;
+  }
+
+  std::set<std::string> files() const {
+    std::set<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir_)) names.insert(entry.path().filename().string());
+    return names;
+  }
+
+  fs::path dir_;
+};
+
+}  // namespace pb

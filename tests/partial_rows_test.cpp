@@ -1,0 +1,170 @@
+// Rows read back from CSV (sweep/row_read.hpp) and the partial files of resumed sweeps
+// (sweep/partial_rows.hpp): a row read back prints the same line and the same derived
+// values, and a partial file of another sweep is refused.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cases/case_set.hpp"
+#include "solvers/solver.hpp"
+#include "sweep/partial_rows.hpp"
+#include "sweep/row_read.hpp"
+#include "sweep/sweep.hpp"
+
+namespace pb {
+namespace {
+
+std::vector<Case> smoke_cases() {
+  return load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/smoke.toml").cases;
+}
+
+// The reference and a time-stepper with its monitor (energy, restitution, penetration).
+std::vector<SweepRun> two_runs() {
+  Settings coarse;
+  coarse.steps = 16;
+  return {{find_solver("event-driven"), Settings{}}, {find_solver("moreau-jean"), coarse}};
+}
+
+std::string text_of(std::span<const Row> rows, bool with_run) {
+  std::string text = partial_header(with_run) + "\n";
+  for (const Row& row : rows) text += partial_line(row, with_run) + "\n";
+  return text;
+}
+
+std::vector<Row> read(const std::string& text, std::span<const Case> cases, std::span<const SweepRun> runs) {
+  std::istringstream in(text);
+  return read_partial_rows(in, "p.csv", cases, runs);
+}
+
+// The message of the PartialRowsError that reading `text` throws ("" if none).
+std::string refusal(const std::string& text, std::span<const Case> cases, std::span<const SweepRun> runs) {
+  try {
+    read(text, cases, runs);
+  } catch (const PartialRowsError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(RowRead, EveryRowOfASweepPrintsTheSameLineAndTheSameDerivedValues) {
+  const std::vector<Case> cases = smoke_cases();
+  SweepOptions options;
+  options.threads = 2;
+  std::vector<Row> rows = run_sweep(cases, two_runs(), options);
+  Row chain = run_point([] {
+    Case c;
+    c.scene = Scene::chain;
+    c.bodies = 4;
+    c.kick = 0.5;
+    c.eps = 1;
+    return c;
+  }(), 3, *find_solver("moreau-jean"), Settings{});
+  rows.push_back(chain);
+  Row failed = rows.front();
+  failed.result.status = Status::failed;
+  failed.result.message = "a \"quoted\", two-line\nmessage";
+  rows.push_back(failed);
+
+  std::size_t penetrating = 0;
+  for (const Row& row : rows) {
+    const std::string line = csv_line(row);
+    const Row back = parse_row(split_csv(line));
+    EXPECT_EQ(csv_line(back), line);
+    // Exact: the summaries must not change by a bit when rows come back from a file.
+    EXPECT_EQ(penetration(back), penetration(row)) << line;
+    EXPECT_EQ(back.result.status, row.result.status);
+    EXPECT_EQ(back.cpu_seconds, row.cpu_seconds);
+    EXPECT_EQ(back.result.energy_excess, row.result.energy_excess) << line;
+    if (penetration(row) > 0.0) ++penetrating;
+  }
+  EXPECT_GT(penetrating, 0u);  // the stepper's rows do overlap, so penetration was compared
+}
+
+TEST(RowRead, ABadFieldIsRefusedNamingItsColumn) {
+  std::vector<std::string> fields = split_csv(csv_line(Row{}));
+  fields[20] = "1.5x";  // pi1
+  try {
+    parse_row(fields);
+    FAIL() << "read a bad pi1";
+  } catch (const RowReadError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("pi1: not a number", 0), 0u) << e.what();
+  }
+  fields.pop_back();
+  EXPECT_THROW(parse_row(fields), RowReadError);
+}
+
+TEST(RowRead, RecordsSpanQuotedLineBreaksAndALastLineCutShortIsNoRecord) {
+  std::istringstream in("a,\"two\nlines\",c\nd,e\nf,\"cut");
+  std::string record;
+  ASSERT_TRUE(read_csv_record(in, record));
+  EXPECT_EQ(record, "a,\"two\nlines\",c");
+  ASSERT_TRUE(read_csv_record(in, record));
+  EXPECT_EQ(record, "d,e");
+  EXPECT_FALSE(read_csv_record(in, record));
+}
+
+TEST(PartialRows, ReadsBackEveryRowSortedByTaskDroppingATornLastLine) {
+  const std::vector<Case> cases = smoke_cases();
+  const std::vector<SweepRun> runs = two_runs();
+  SweepOptions options;
+  options.threads = 2;
+  const std::vector<Row> rows = run_sweep(cases, runs, options);
+  std::vector<Row> shuffled = rows;
+  std::reverse(shuffled.begin(), shuffled.end());  // as rows finish: in any order
+  shuffled.push_back(rows[5]);                      // a task twice is kept once
+
+  const std::string text = text_of(shuffled, true);
+  const std::vector<Row> back = read(text + "0,wall-sine,3,wa", cases, runs);
+  ASSERT_EQ(back.size(), rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(back[i].run, rows[i].run);
+    EXPECT_EQ(csv_line(back[i]), csv_line(rows[i]));
+  }
+  EXPECT_TRUE(read("", cases, runs).empty());
+  EXPECT_TRUE(missing_tasks(back, cases.size(), runs.size()).empty());
+
+  // A sweep of one run has no run column; what is missing is what was left out.
+  const std::vector<SweepRun> one(runs.begin(), runs.begin() + 1);
+  const std::vector<Row> some = {rows[0], rows[7], rows[3]};
+  const std::vector<Row> read_one = read(text_of(some, false), cases, one);
+  ASSERT_EQ(read_one.size(), 3u);
+  const std::vector<std::size_t> missing = missing_tasks(read_one, cases.size(), 1);
+  EXPECT_EQ(missing.size(), cases.size() - 3);
+  EXPECT_EQ(std::count_if(missing.begin(), missing.end(), [](std::size_t t) { return t == 0 || t == 3 || t == 7; }), 0);
+}
+
+TEST(PartialRows, AFileOfAnotherSweepIsRefusedNamingTheLineAndTheField) {
+  const std::vector<Case> cases = smoke_cases();
+  const std::vector<SweepRun> runs = two_runs();
+  const std::vector<Row> rows = {run_point(cases[2], 2, *runs[0].solver, runs[0].settings),
+                                 run_point(cases[4], 4, *runs[0].solver, runs[0].settings)};
+  const std::vector<SweepRun> reference(runs.begin(), runs.begin() + 1);
+  ASSERT_EQ(read(text_of(rows, false), cases, reference).size(), 2u);
+
+  // Other settings: the reference at another tolerance.
+  std::vector<SweepRun> looser = reference;
+  looser[0].settings.tol_scale = 10;
+  EXPECT_EQ(refusal(text_of(rows, false), cases, looser).rfind("p.csv:2: point 2: settings is", 0), 0u)
+      << refusal(text_of(rows, false), cases, looser);
+  // Another solver.
+  const std::vector<SweepRun> stepper(runs.begin() + 1, runs.end());
+  EXPECT_NE(refusal(text_of(rows, false), cases, stepper).find("solver is \"event-driven\" there"), std::string::npos);
+  // Another case set: point 4 is another case, or there is no point 4.
+  std::vector<Case> other = cases;
+  other[4].pi2 *= 2;
+  EXPECT_EQ(refusal(text_of(rows, false), other, reference).rfind("p.csv:3: point 4: pi2 is", 0), 0u);
+  EXPECT_NE(refusal(text_of(rows, false), std::span(cases).first(4), reference).find("this sweep has 4 points"),
+            std::string::npos);
+  // A study's file (run column) given to a spectrum, a bad row, another header.
+  EXPECT_NE(refusal(text_of(rows, true), cases, reference).find("header"), std::string::npos);
+  EXPECT_NE(refusal(text_of(rows, false) + "x,y\n", cases, reference).find("p.csv:4: not a row"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace pb
