@@ -16,7 +16,7 @@ import matplotlib
 import matplotlib.pyplot as plt
 
 import stability
-from rows import config_label, load, num, save
+from rows import config_label, load, num, save, write_page
 
 # Columns that label a curve of a spectrum (everything that is neither the abscissa nor a result).
 CASE_KEYS = ["scene", "pulse", "directivity", "eps", "pi3", "pi5", "pi6", "pi7", "pi8", "xi", "n_free", "a_p", "w_p"]
@@ -425,11 +425,7 @@ def main():
     text.append("")
     text.append(footer())
     text.append("")
-    path = os.path.join(args.out, "README.md")
-    with open(path + ".tmp", "w") as f:
-        f.write("\n".join(text))
-    os.replace(path + ".tmp", path)
-    print(f"make_report.py: wrote {path}")
+    write_page(args.out, text, "make_report.py")
 
 
 if __name__ == "__main__":

@@ -57,3 +57,12 @@ def save(fig, out_dir, stem):
         fig.savefig(f"{path}.{ext}", dpi=100)
     plt.close(fig)
     return f"figures/{stem}.png"
+
+
+def write_page(out_dir, lines, script):
+    """Writes out_dir/README.md through a temporary file, so a failed run leaves the old one."""
+    path = os.path.join(out_dir, "README.md")
+    with open(path + ".tmp", "w") as f:
+        f.write("\n".join(lines))
+    os.replace(path + ".tmp", path)
+    print(f"{script}: wrote {path}")

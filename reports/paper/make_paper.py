@@ -27,7 +27,7 @@ import analysis  # noqa: E402
 import plots  # noqa: E402
 from analysis import NEAR, select  # noqa: E402
 from make_report import footer  # noqa: E402
-from rows import load  # noqa: E402
+from rows import load, write_page  # noqa: E402
 
 NO_CONTACT_GAP = 1e6  # Pi3 of the no-contact history: a gap that never closes
 G = 9.81  # m/s², for the pulse amplitudes of Fig. 3
@@ -590,11 +590,7 @@ def main():
              "what the reference does, with the same thresholds, where it agrees with the paper and where it "
              "does not.", ""]
     page = head + body + ["## Where this ran", "", footer(), ""]
-    path = os.path.join(args.out, "README.md")
-    with open(path + ".tmp", "w") as f:
-        f.write("\n".join(page))
-    os.replace(path + ".tmp", path)
-    print(f"make_paper.py: wrote {path}")
+    write_page(args.out, page, "make_paper.py")
 
 
 if __name__ == "__main__":
