@@ -19,6 +19,7 @@
 #include <Topology.hpp>
 #include <lcp_cst.h>
 
+#include <cstdlib>
 #include <iostream>
 #include <mutex>
 #include <sstream>
@@ -143,6 +144,29 @@ void read_state(const Model& m, double* u, double* v) {
   }
 }
 
+// Siconos' objects hold each other in cycles of shared pointers: a simulation's integrators
+// and one-step problems hold it, it holds the model, and the model's graph of dynamical
+// systems holds the integrators, which hold the graph. Left alone, the objects of a run are
+// never freed (valgrind: 20 KB a run, 16 KB a point through a sweep). Cut every cycle.
+void cut_cycles(const SP::Simulation& sim) {
+  if (!sim) return;
+  for (const SP::OneStepIntegrator& osi : *sim->oneStepIntegrators()) osi->setSimulationPtr(SP::Simulation());
+  for (const SP::OneStepNSProblem& problem : *sim->oneStepNSProblems())
+    if (problem) problem->setSimulationPtr(SP::Simulation());
+  DynamicalSystemsGraph& bodies = *sim->nonSmoothDynamicalSystem()->topology()->dSG(0);
+  DynamicalSystemsGraph::VIterator v, end;
+  for (std::tie(v, end) = bodies.vertices(); v != end; ++v) bodies.properties(*v).osi.reset();
+}
+
+// An LCP with its solver's options. LCP(int) makes them and never frees the struct itself
+// (Siconos 4.4's solver_options_delete frees only what it points to): 120 bytes a problem.
+SP::LCP make_lcp(int solver) {
+  return std::make_shared<LCP>(SP::SolverOptions(solver_options_create(solver), [](SolverOptions* options) {
+    solver_options_delete(options);
+    std::free(options);
+  }));
+}
+
 bool in_index_set(const Model& m, unsigned int level, int j) {
   return m.nsds->topology()->indexSet(level)->is_vertex(m.contacts[static_cast<std::size_t>(j)]);
 }
@@ -164,6 +188,7 @@ struct TimeStepper::Impl {
   int counter = 0;               // the iparam entry only a solver call writes (see step())
   std::vector<double> impulses;  // of the last step, read before Siconos zeroes them
   LcpCall last;
+  ~Impl() { cut_cycles(sim); }
 };
 
 TimeStepper::TimeStepper(const ModelSpec& spec, double h, double theta, double gamma, bool enumeration) {
@@ -173,7 +198,7 @@ TimeStepper::TimeStepper(const ModelSpec& spec, double h, double theta, double g
       impl_ = std::make_unique<Impl>();
       impl_->model = make_model(spec);
       impl_->osi = std::make_shared<MoreauJeanOSI>(theta, gamma);
-      impl_->lcp = std::make_shared<LCP>(enumeration ? SICONOS_LCP_ENUM : SICONOS_LCP_LEMKE);
+      impl_->lcp = make_lcp(enumeration ? SICONOS_LCP_ENUM : SICONOS_LCP_LEMKE);
       impl_->sim = std::make_shared<TimeStepping>(impl_->model.nsds, std::make_shared<TimeDiscretisation>(0.0, h),
                                                   impl_->osi, impl_->lcp);
       static std::once_flag hook;
@@ -241,6 +266,7 @@ struct EventDrivenRun::Impl {
   SP::LsodarOSI osi;
   SP::EventDriven sim;
   int steps0 = 0, rhs0 = 0;  // LsodarOSI's process-wide counters when the run was made
+  ~Impl() { cut_cycles(sim); }
 };
 
 // A Siconos call: its exception as a std::runtime_error with its message and the gist of what
@@ -263,8 +289,8 @@ EventDrivenRun::EventDrivenRun(const ModelSpec& spec, double output_step, double
     s.osi = std::make_shared<LsodarOSI>();
     s.sim = std::make_shared<EventDriven>(s.model.nsds, std::make_shared<TimeDiscretisation>(0.0, output_step));
     s.sim->insertIntegrator(s.osi);
-    s.sim->insertNonSmoothProblem(std::make_shared<LCP>(), SICONOS_OSNSP_ED_IMPACT);
-    s.sim->insertNonSmoothProblem(std::make_shared<LCP>(), SICONOS_OSNSP_ED_SMOOTH_ACC);
+    s.sim->insertNonSmoothProblem(make_lcp(SICONOS_LCP_LEMKE), SICONOS_OSNSP_ED_IMPACT);
+    s.sim->insertNonSmoothProblem(make_lcp(SICONOS_LCP_LEMKE), SICONOS_OSNSP_ED_SMOOTH_ACC);
     // The array form: the scalar setTol(itol, rtol, atol) of Siconos 4.4 stores rtol as atol.
     SA::doublereal r(new doublereal[1]), a(new doublereal[1]);
     r[0] = rtol;
