@@ -77,7 +77,7 @@ TEST(Siconos, MoreauJeanOsiMatchesTheInHouseStepperWithEndSampledLoads) {
       lemke_runs += paths.solver;
       worst = std::max(worst, relative(theirs.pi1, mine.pi1));
       // 1e-10: the agreement asked of the two implementations; measured 3.2e-15 at most here
-      // (1.2e-14 over 2315 points of the paper's families).
+      // (1.6e-14 over the 23 820 points of the paper set).
       EXPECT_LT(relative(theirs.pi1, mine.pi1), 1e-10) << c.family << " pi2=" << c.pi2 << " " << v;
       EXPECT_EQ(theirs.t_max, mine.t_max) << c.family << " pi2=" << c.pi2;
       EXPECT_EQ(theirs.steps, mine.steps);
@@ -219,11 +219,12 @@ TEST(Siconos, Pi1DoesNotDependOnThePulseScale) {
     const Result ed = siconos::solve(make_system(c), variant("event-driven-lsodar"));
     worst = std::max(worst, relative(r.pi1, base.pi1));
     worst_ed = std::max(worst_ed, relative(ed.pi1, base_ed.pi1));
-    // 1e-12: the rounding of k, c, delta in the pulse's units over ~1300 steps; measured 2e-15.
+    // 1e-12: the rounding of k, c, delta in the pulse's units over ~1300 steps; measured 1.3e-16.
     EXPECT_NEAR(r.pi1, base.pi1, 1e-12 * base.pi1) << "a_p=" << a_p;
     EXPECT_EQ(r.impacts, base.impacts);
-    // 1e-10: LSODAR's steps move with the rounding too, within its tolerance; measured 1e-13.
-    EXPECT_NEAR(ed.pi1, base_ed.pi1, 1e-10 * base_ed.pi1) << "a_p=" << a_p;
+    // 1e-9: LSODAR chooses its steps anew from those rounding-level differences, so Pi1 moves
+    // within its tolerance (rtol = atol = 1e-10); measured 6.1e-11.
+    EXPECT_NEAR(ed.pi1, base_ed.pi1, 1e-9 * base_ed.pi1) << "a_p=" << a_p;
   }
   RecordProperty("worst_relative_pi1", sci(worst));
   RecordProperty("worst_relative_pi1_event_driven", sci(worst_ed));
