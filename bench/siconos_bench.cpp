@@ -53,7 +53,8 @@ double seconds_per_run(pb::SolveFn solve, const pb::System& s, const pb::Setting
 }
 
 benchmark::Counter ratio_to(double baseline_seconds) {
-  return benchmark::Counter(baseline_seconds, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  return benchmark::Counter(baseline_seconds,
+                            benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 void report(benchmark::State& state, const pb::Result& r) {

@@ -125,8 +125,8 @@ Model make_model(const ModelSpec& spec) {
     auto matrix = std::make_shared<SimpleMatrix>(1, wall ? 1 : 2);
     (*matrix)(0, 0) = wall ? 1.0 : -1.0;
     if (!wall) (*matrix)(0, 1) = 1.0;
-    auto contact = std::make_shared<Interaction>(
-        std::make_shared<NewtonImpactNSL>(spec.eps), std::make_shared<LagrangianLinearTIR>(matrix, scalar_vector(spec.delta)));
+    auto relation = std::make_shared<LagrangianLinearTIR>(matrix, scalar_vector(spec.delta));
+    auto contact = std::make_shared<Interaction>(std::make_shared<NewtonImpactNSL>(spec.eps), relation);
     const auto& right = m.bodies[static_cast<std::size_t>(c.right)];
     if (wall)
       m.nsds->link(contact, right);
@@ -227,7 +227,8 @@ bool TimeStepper::step() {
   Impl& s = *impl_;
   if (!s.sim->hasNextEvent()) return false;
   int active = 0;
-  for (std::size_t j = 0; j < s.model.contacts.size(); ++j) active += in_index_set(s.model, 1, static_cast<int>(j)) ? 1 : 0;
+  for (std::size_t j = 0; j < s.model.contacts.size(); ++j)
+    active += in_index_set(s.model, 1, static_cast<int>(j)) ? 1 : 0;
   SolverOptions& options = *s.lcp->numericsSolverOptions();
   options.iparam[s.counter] = -1;
   t_lcp_info = 0;

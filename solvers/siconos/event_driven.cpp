@@ -72,14 +72,6 @@ struct Tally {
   }
 };
 
-void record(double t, const State& st, const std::vector<double>& force, std::vector<double>& out) {
-  out.push_back(t);
-  out.insert(out.end(), st.u.begin(), st.u.end());
-  out.insert(out.end(), st.v.begin(), st.v.end());
-  out.insert(out.end(), st.g.begin(), st.g.end());
-  out.insert(out.end(), force.begin(), force.end());
-}
-
 }  // namespace
 
 Result run_event_driven(const System& sys, const Settings& set) {

@@ -78,10 +78,19 @@ bool State::finite() const {
   return true;
 }
 
+void record(double t, const State& st, const std::vector<double>& force, std::vector<double>& out) {
+  out.push_back(t);
+  out.insert(out.end(), st.u.begin(), st.u.end());
+  out.insert(out.end(), st.v.begin(), st.v.end());
+  out.insert(out.end(), st.g.begin(), st.g.end());
+  out.insert(out.end(), force.begin(), force.end());
+}
+
 const char* runaway(const System& s, const State& st) {
   for (double x : st.u)
     if (!(std::abs(x) <= 1e6 * s.length_scale())) return "|u| above 1e6 a_p/w_p^2";
-  if (!(s.energy(st.u.data(), st.v.data()) <= kDivergedEnergy * s.energy_scale())) return "energy above 1e6 times its scale";
+  if (!(s.energy(st.u.data(), st.v.data()) <= kDivergedEnergy * s.energy_scale()))
+    return "energy above 1e6 times its scale";
   return nullptr;
 }
 

@@ -57,6 +57,9 @@ struct State {
   bool finite() const;
 };
 
+// One History row: t, u, v, g, and the contact forces (solvers/solver.hpp).
+void record(double t, const State& st, const std::vector<double>& force, std::vector<double>& out);
+
 // Why the state counts as diverged (|u| above 1e6 a_p / w_p^2, or the energy above
 // kDivergedEnergy times its scale), or nullptr.
 const char* runaway(const System& s, const State& st);
