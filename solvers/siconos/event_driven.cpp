@@ -158,7 +158,7 @@ Result run_event_driven(const System& sys, const Settings& set) {
       t.g_min = std::min({t.g_min, st.g[jj], before.g[jj]});
     }
     const auto l = static_cast<std::size_t>(last);
-    if (pushed == 1 && before.rate[l] < -floor) t.restitution(-st.rate[l] / before.rate[l]);
+    if (set.monitor && pushed == 1 && before.rate[l] < -floor) t.restitution(-st.rate[l] / before.rate[l]);
     if (recording) record(now, st, force, res.history.data);
     t_last = now;
     if (deadline.passed(events)) {
