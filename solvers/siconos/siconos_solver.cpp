@@ -6,7 +6,6 @@
 #include <sstream>
 
 #include "solvers/siconos/model.hpp"
-#include "solvers/siconos/runs.hpp"
 
 namespace pb::siconos {
 
@@ -33,17 +32,22 @@ const Variant* find_variant(std::string_view name) {
   return nullptr;
 }
 
+// The run of a variant; a Siconos exception that escapes it ends the run as failed.
+Result run(const Variant& variant, const System& system, const Settings& settings, LcpPaths* paths) {
+  try {
+    if (variant.scheme == Scheme::event_driven) return run_event_driven(system, settings);
+    return run_time_stepping(system, settings, variant.enumeration, paths);
+  } catch (const std::exception& e) {
+    return stopped(Status::failed, std::string("Siconos: ") + e.what());
+  }
+}
+
 }  // namespace
 
 Result solve(const System& system, const Settings& settings) {
   const Variant* variant = find_variant(settings.variant);
   if (!variant) return stopped(Status::failed, "unknown variant " + settings.variant);
-  try {
-    if (variant->scheme == Scheme::event_driven) return run_event_driven(system, settings);
-    return run_time_stepping(system, settings, variant->enumeration, nullptr);
-  } catch (const std::exception& e) {
-    return stopped(Status::failed, std::string("Siconos: ") + e.what());
-  }
+  return run(*variant, system, settings, nullptr);
 }
 
 Result solve_counting(const System& system, const Settings& settings, LcpPaths& paths) {
@@ -51,11 +55,7 @@ Result solve_counting(const System& system, const Settings& settings, LcpPaths& 
   const Variant* variant = find_variant(settings.variant);
   if (!variant || variant->scheme != Scheme::time_stepping)
     return stopped(Status::failed, "solve_counting: a time-stepping variant only");
-  try {
-    return run_time_stepping(system, settings, variant->enumeration, &paths);
-  } catch (const std::exception& e) {
-    return stopped(Status::failed, std::string("Siconos: ") + e.what());
-  }
+  return run(*variant, system, settings, &paths);
 }
 
 MoreauJeanSetup moreau_jean_setup(const System& system, const Settings& settings) {

@@ -11,7 +11,6 @@
 
 #include "solvers/monitor.hpp"
 #include "solvers/siconos/model.hpp"
-#include "solvers/siconos/runs.hpp"
 
 namespace pb::siconos {
 
