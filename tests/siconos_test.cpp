@@ -41,14 +41,15 @@ Settings variant(std::string_view name) {
 
 double relative(double a, double b) { return std::abs(a - b) / std::abs(b); }
 
-// A sample of the paper's families: every 797th point of cases/sets/paper.toml (30 points:
-// every family, pair and row3, sine and cosine, normal and reverse, eps 0, 0.5 and 1, a_p != 1),
-// and fig3 points 79 and 479, asymmetric row3 cases where both contacts are active at once with
-// q of mixed signs, so that Lemke (or enumeration) runs.
+// A sample of the paper's families: every 743rd point of cases/sets/paper.toml (33 points:
+// every family, pair and row3, sine and cosine, normal and reverse, eps 0, 0.5 and 1, a_p != 1,
+// Pi2 from 0.1 to 5.7; 27 with impacts, 6 with a contact phase), and fig3 points 79 and 479,
+// asymmetric row3 cases where both contacts are active at once with q of mixed signs, so that
+// Lemke (or enumeration) runs.
 std::vector<Case> paper_sample() {
   const CaseSet set = load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/paper.toml");
   std::vector<Case> cases;
-  for (std::size_t i = 0; i < set.cases.size(); i += 797) cases.push_back(set.cases[i]);
+  for (std::size_t i = 0; i < set.cases.size(); i += 743) cases.push_back(set.cases[i]);
   cases.push_back(set.cases[79]);
   cases.push_back(set.cases[479]);
   return cases;
@@ -60,7 +61,7 @@ std::vector<Case> paper_sample() {
 // monitor's measures agree to round-off on every point, whichever LCP solver Siconos uses.
 TEST(Siconos, MoreauJeanOsiMatchesTheInHouseStepperWithEndSampledLoads) {
   const std::vector<Case> cases = paper_sample();
-  ASSERT_EQ(cases.size(), 32u);
+  ASSERT_EQ(cases.size(), 35u);
   Settings in_house = variant(moreau_jean::kEndSamples);
   double worst = 0.0, worst_default = 0.0;
   long lemke_runs = 0;
@@ -76,7 +77,7 @@ TEST(Siconos, MoreauJeanOsiMatchesTheInHouseStepperWithEndSampledLoads) {
       ASSERT_EQ(theirs.status, Status::ok) << c.family << " " << v << ": " << theirs.message;
       lemke_runs += paths.solver;
       worst = std::max(worst, relative(theirs.pi1, mine.pi1));
-      // 1e-10: the agreement asked of the two implementations; measured 3.2e-15 at most here
+      // 1e-10: the agreement asked of the two implementations; measured 4.2e-15 at most here
       // (1.6e-14 over the 23 820 points of the paper set).
       EXPECT_LT(relative(theirs.pi1, mine.pi1), 1e-10) << c.family << " pi2=" << c.pi2 << " " << v;
       EXPECT_EQ(theirs.t_max, mine.t_max) << c.family << " pi2=" << c.pi2;
@@ -93,8 +94,8 @@ TEST(Siconos, MoreauJeanOsiMatchesTheInHouseStepperWithEndSampledLoads) {
   RecordProperty("worst_relative_pi1_against_step_mean", sci(worst_default));
   EXPECT_GT(lemke_runs, 0) << "the sample must make the LCP solver itself run";
   // The load rule is the whole difference: with moreau-jean's default (the exact step mean of
-  // a_g) Pi1 differs by up to 8.0e-4 on this sample (N = 64), far above round-off.
-  EXPECT_GT(worst_default, 1e-4);
+  // a_g) Pi1 differs by up to 1.1e-2 on this sample (N = 64), far above round-off.
+  EXPECT_GT(worst_default, 1e-3);
 }
 
 // Siconos' dense LCP driver returns z = 0 without a solver when q >= 0, and z = -q / M without
@@ -104,7 +105,7 @@ TEST(Siconos, LcpDriverReachesTheSolverOnlyWithSeveralRowsAndANegativeQ) {
   const std::vector<Case> cases = paper_sample();
   const Case pair = make_case(Scene::pair, PulseShape::cosine, 0.8, 0.5, 0.5);  // 4 impacts
   for (std::string_view v : {"moreau-jean-lemke", "moreau-jean-enum"}) {
-    for (const Case& c : {pair, cases[30], cases[31]}) {  // and fig3's row3 at a_p 1.962 and 9.81
+    for (const Case& c : {pair, cases[33], cases[34]}) {  // and fig3's row3 at a_p 1.962 and 9.81
       siconos::LcpPaths p;
       const Result r = siconos::solve_counting(make_system(c), variant(v), p);
       ASSERT_EQ(r.status, Status::ok) << r.message;
