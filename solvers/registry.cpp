@@ -51,7 +51,7 @@ const std::array kSolvers = {
                &bullet::solve, &bullet::describe, &bullet::check},
 #endif
 #ifdef POUNDBENCH_HAVE_SICONOS
-    SolverInfo{"siconos", "Siconos: MoreauJeanOSI time-stepping (Lemke or enumeration) or LSODAR event-driven (see --variant)",
+    SolverInfo{"siconos", "Siconos: its MoreauJeanOSI (Lemke or enumeration) or event-driven LSODAR (see --variant)",
                &siconos::solve, &siconos::describe, &siconos::check},
 #endif
 };
