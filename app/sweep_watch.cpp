@@ -2,6 +2,7 @@
 
 #include <signal.h>
 
+#include <csignal>
 #include <cstdio>
 #include <string>
 
@@ -26,6 +27,12 @@ sigset_t stop_signals() {
   return set;
 }
 
+// A thread this process did not start may not block the stop signals: a library's worker
+// made before main (OpenBLAS's, which Siconos' libraries load, starts one at load time). A
+// signal delivered to it runs this handler, which only records it for the watcher.
+volatile std::sig_atomic_t g_caught = 0;
+extern "C" void record_signal(int sig) { g_caught = sig; }
+
 std::string duration_text(double seconds) {
   const long s = static_cast<long>(seconds + 0.5);
   char text[32];
@@ -46,6 +53,11 @@ SweepWatch::SweepWatch(std::size_t total, std::size_t resumed, Progress progress
       signals_(stop_signals()),
       done_(resumed) {
   pthread_sigmask(SIG_BLOCK, &signals_, nullptr);
+  struct sigaction record {};
+  record.sa_handler = record_signal;
+  sigemptyset(&record.sa_mask);
+  for (int sig : {SIGINT, SIGTERM})
+    if (sigismember(&signals_, sig) == 1) sigaction(sig, &record, &previous_[sig == SIGINT ? 0 : 1]);
   thread_ = std::thread([this] { watch(); });
 }
 
@@ -53,7 +65,11 @@ SweepWatch::~SweepWatch() { finish(); }
 
 void SweepWatch::finish() {
   finished_ = true;
-  if (thread_.joinable()) thread_.join();
+  if (thread_.joinable()) {
+    thread_.join();
+    for (int sig : {SIGINT, SIGTERM})
+      if (sigismember(&signals_, sig) == 1) sigaction(sig, &previous_[sig == SIGINT ? 0 : 1], nullptr);
+  }
   if (drawn_) std::fputs("\r\033[K", stderr);
   drawn_ = false;
 }
@@ -61,7 +77,9 @@ void SweepWatch::finish() {
 void SweepWatch::watch() {
   const timespec tick{0, std::chrono::nanoseconds(kTick).count()};
   while (!finished_) {
-    if (sigtimedwait(&signals_, nullptr, &tick) > 0) {
+    const bool taken = sigtimedwait(&signals_, nullptr, &tick) > 0;
+    if (taken || g_caught != 0) {
+      g_caught = 0;
       if (cancel_) abandon_();
       cancel_ = true;
     }

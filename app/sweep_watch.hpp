@@ -7,9 +7,13 @@
 //
 // Signals are blocked in the constructing thread, so every thread started after it (the
 // sweep's workers) inherits the block and only the watcher, waiting in sigtimedwait,
-// receives them. A signal the process was started with ignored stays ignored. This avoids doing anything in a signal handler. A first signal cancels
-// (no new points start; running ones finish); a second one calls `abandon`, which must
-// not return (it ends the process without waiting for the running points).
+// receives them. A signal the process was started with ignored stays ignored. This avoids
+// doing anything in a signal handler, but for threads started before main (a library's
+// workers, such as OpenBLAS's), which may not block them: a signal delivered to one of those
+// is recorded by a handler, installed while the watcher runs, and taken by the watcher at its
+// next tick. A first signal cancels (no new points start; running ones finish); a second one
+// calls `abandon`, which must not return (it ends the process without waiting for the
+// running points).
 
 #include <signal.h>
 
@@ -46,6 +50,7 @@ class SweepWatch {
   Progress progress_;
   std::function<void()> abandon_;
   sigset_t signals_;  // the ones the watcher takes
+  struct sigaction previous_[2] = {};  // SIGINT's and SIGTERM's actions before the watcher
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   std::atomic<std::size_t> done_;
   std::atomic<bool> cancel_{false};

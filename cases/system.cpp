@@ -1,6 +1,7 @@
 #include "cases/system.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace pb {
 
@@ -63,6 +64,11 @@ double Pulse::mean(double t0, double t1) const {
   const double mid = 0.5 * w * (a + b), half = std::sin(0.5 * w * (b - a));
   const double integral = 2.0 * half * (shape == PulseShape::sine ? std::sin(mid) : std::cos(mid)) / w;
   return amplitude * integral / (t1 - t0);
+}
+
+double Pulse::sample(double t, double h) const {
+  const double t_p = duration();
+  return accel(std::abs(t - t_p) <= 1e-9 * std::max(h, t_p) ? t_p : t);
 }
 
 double System::energy(const double* u, const double* v) const {

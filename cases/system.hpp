@@ -40,6 +40,10 @@ struct Pulse {
   // The exact mean of a_g over [t0, t1] (t0 < t1): the ground's impulse per unit mass over
   // a step, divided by the step.
   double mean(double t0, double t1) const;
+  // a_g at the step boundary t of a run with step h, for a scheme that samples the load at
+  // step ends: a boundary within 1e-9 max(h, T_p) of T_p counts as T_p itself, inside the
+  // pulse (so that T_p = N h ends the pulse on a boundary however N h rounds).
+  double sample(double t, double h) const;
 };
 
 inline constexpr int kWall = -1;

@@ -43,10 +43,10 @@ def config_label(row):
     label = row["solver"]
     if row.get("variant"):
         label += " " + row["variant"]
-    if row["solver"] == "moreau-jean":
-        label += f" theta={fields.get('theta', '?')}"
-    if row["solver"] == "event-driven":
-        label += f" tol_scale={fields.get('tol_scale', '?')}"
+    if "theta" in fields:  # moreau-jean, and siconos' Moreau-Jean variants
+        label += f" theta={fields['theta']}"
+    if "tol_scale" in fields:  # the reference, and siconos' event-driven variant
+        label += f" tol_scale={fields['tol_scale']}"
     return label
 
 

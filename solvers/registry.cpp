@@ -10,6 +10,9 @@
 #ifdef POUNDBENCH_HAVE_BULLET
 #include "solvers/bullet/bullet_solver.hpp"
 #endif
+#ifdef POUNDBENCH_HAVE_SICONOS
+#include "solvers/siconos/siconos_solver.hpp"
+#endif
 
 namespace pb {
 
@@ -46,6 +49,10 @@ const std::array kSolvers = {
 #ifdef POUNDBENCH_HAVE_BULLET
     SolverInfo{"bullet", "Bullet Physics (single precision): its constraint solvers with restitution (see --variant)",
                &bullet::solve, &bullet::describe, &bullet::check},
+#endif
+#ifdef POUNDBENCH_HAVE_SICONOS
+    SolverInfo{"siconos", "Siconos: its MoreauJeanOSI (Lemke or enumeration) or event-driven LSODAR (see --variant)",
+               &siconos::solve, &siconos::describe, &siconos::check},
 #endif
 };
 

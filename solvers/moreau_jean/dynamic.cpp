@@ -8,7 +8,7 @@
 
 namespace pb::moreau_jean::dynamic {
 
-Scheme make_scheme(const System& s, double h, double theta, double gamma) {
+Scheme make_scheme(const System& s, double h, double theta, double gamma, LoadRule load) {
   Scheme sc;
   sc.nb = s.n_bodies();
   sc.nc = s.n_contacts();
@@ -45,7 +45,7 @@ Scheme make_scheme(const System& s, double h, double theta, double gamma) {
     sc.diag(j) = sc.minv(l) + sc.minv(r);
     sc.off(j) = -sc.minv(r);  // the right body of j is the left body of j + 1
   }
-  sc.load = make_pulse_load(s.pulse, h);
+  sc.load = make_pulse_load(s.pulse, h, load, theta);
   return sc;
 }
 
@@ -123,9 +123,9 @@ void solve_run(const Scheme& sc, const State& st, Work& w, int a, int n) {
   }
 }
 
-// One step from st.k to st.k + 1 under the step-mean ground acceleration abar; false when
-// the state is no longer finite or |u| passed the divergence bound.
-bool step(const Scheme& sc, State& st, Work& w, Tally& t, double abar, std::vector<double>* history,
+// One step from st.k to st.k + 1 under the ground load abar (work: the exact step mean, for
+// the monitor); false when the state is no longer finite or |u| passed the divergence bound.
+bool step(const Scheme& sc, State& st, Work& w, Tally& t, double abar, double work, std::vector<double>* history,
           StepMonitor* monitor) {
   w.v_new = sc.fv.cwiseProduct(st.v) + sc.fq.cwiseProduct(st.q) + sc.fa * abar;
   w.q_new = sc.qv.cwiseProduct(st.v) + sc.qq.cwiseProduct(st.q) + sc.qa * abar;
@@ -174,7 +174,7 @@ bool step(const Scheme& sc, State& st, Work& w, Tally& t, double abar, std::vect
   st.g.array() = sc.delta + (st.q.segment(sc.first + 1, nc) - st.q.segment(sc.first, nc)).array();
   st.rate = st.v.segment(sc.first + 1, nc) - st.v.segment(sc.first, nc);
   // Before the divergence test: a diverging run's energy excess shows the growth.
-  if (monitor) monitor->step(sc.h, abar, st.q.data() + 1, st.v.data() + 1, st.pushed.data());
+  if (monitor) monitor->step(sc.h, work, st.q.data() + 1, st.v.data() + 1, st.pushed.data());
   // Both vectorise; a NaN anywhere makes the sum NaN, whatever maxCoeff makes of it.
   const auto u = st.q.tail(sc.nb);
   if (!(u.cwiseAbs().maxCoeff() <= sc.bound) || std::isnan(u.sum())) return false;
@@ -195,14 +195,24 @@ bool advance(const Scheme& sc, State& st, Work& w, Tally& t, long k_end, std::ve
              StepMonitor* monitor) {
   const PulseLoad& l = sc.load;
   bool ok = true;
-  if (st.k < l.full_steps) {
-    PulseMeans means(l, st.k);
-    const long pulse_end = std::min(k_end, l.full_steps);
-    while (ok && st.k < pulse_end) ok = step(sc, st, w, t, means.next(), history, monitor);
+  if (l.rule == LoadRule::end_samples) {
+    const long loaded_end = std::min(k_end, l.full_steps + 1);
+    while (ok && st.k < loaded_end) ok = step(sc, st, w, t, l.end_mean(st.k), l.exact_mean(st.k), history, monitor);
+  } else {
+    if (st.k < l.full_steps) {
+      PulseMeans means(l, st.k);
+      const long pulse_end = std::min(k_end, l.full_steps);
+      while (ok && st.k < pulse_end) {
+        const double abar = means.next();
+        ok = step(sc, st, w, t, abar, abar, history, monitor);
+      }
+    }
+    if (ok && l.straddle && st.k == l.full_steps && st.k < k_end) {
+      const double abar = l.tail(st.k);
+      ok = step(sc, st, w, t, abar, abar, history, monitor);
+    }
   }
-  if (ok && l.straddle && st.k == l.full_steps && st.k < k_end)
-    ok = step(sc, st, w, t, l.tail(st.k), history, monitor);
-  while (ok && st.k < k_end) ok = step(sc, st, w, t, 0.0, history, monitor);
+  while (ok && st.k < k_end) ok = step(sc, st, w, t, 0.0, 0.0, history, monitor);
   return ok;
 }
 

@@ -46,7 +46,7 @@ struct Scheme {
   PulseLoad load;
 };
 
-Scheme make_scheme(const System& s, double h, double theta, double gamma);
+Scheme make_scheme(const System& s, double h, double theta, double gamma, LoadRule load = LoadRule::step_mean);
 
 struct State {
   Eigen::VectorXd q, v;  // per slot: q is u, the displacement

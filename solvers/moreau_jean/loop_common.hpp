@@ -15,9 +15,17 @@ namespace pb::moreau_jean {
 // within kResync * 3 * 2^-53 ~ 2e-14 of a_p (measured 4e-15: test PulseMeanRecurrence*).
 inline constexpr long kResync = 64;
 
+// How a step's ground load abar_k is formed (Settings::variant of moreau-jean):
+//   step_mean    the exact mean of a_g over [t_k, t_k+1] (the default, see README)
+//   end_samples  (1 - theta) a_g(t_k) + theta a_g(t_k+1), the theta-weighted end samples of
+//                Siconos' MoreauJeanOSI (variant end-samples): for comparing with it
+enum class LoadRule { step_mean, end_samples };
+
 // The step mean of the ground acceleration, abar_k = (1/h) integral over [t_k, t_k+1] of a_g.
 // A step inside the pulse: abar = p cos(w t_k) + r sin(w t_k). The step that contains
 // T_p integrates only up to T_p, where cos = 1 and sin = 0 exactly.
+// With LoadRule::end_samples the loaded steps are k = 0 .. full_steps and end_mean(k) gives
+// their load (std::sin/cos at every sample: this rule is for comparisons, not for speed).
 struct PulseLoad {
   double wh = 0.0;                                  // w_p h
   double cos_wh = 1.0, sin_wh = 0.0;                // the rotation of one step
@@ -25,15 +33,30 @@ struct PulseLoad {
   double tail_c = 0.0, tail_s = 0.0, tail_1 = 0.0;  // step that contains T_p: tail_c cos + tail_s sin + tail_1
   long full_steps = 0;                              // steps 0 .. full_steps-1 lie inside [0, T_p]
   bool straddle = false;                            // step full_steps contains T_p inside it
+  LoadRule rule = LoadRule::step_mean;
+  double theta = 0.5, h = 0.0;  // end_samples: the weight of the end sample, the step
+  Pulse pulse;
 
   double tail(long k) const {
     const double phase = static_cast<double>(k) * wh;
     return tail_c * std::cos(phase) + tail_s * std::sin(phase) + tail_1;
   }
+  // end_samples: the load of step k, from a_g at t_k = k h and t_k+1 (Pulse::sample).
+  double end_mean(long k) const {
+    const double t0 = static_cast<double>(k) * h, t1 = static_cast<double>(k + 1) * h;
+    return (1.0 - theta) * pulse.sample(t0, h) + theta * pulse.sample(t1, h);
+  }
+  // The exact step mean of step k, what StepMonitor counts as the ground's work.
+  double exact_mean(long k) const { return pulse.mean(static_cast<double>(k) * h, static_cast<double>(k + 1) * h); }
 };
 
-inline PulseLoad make_pulse_load(const Pulse& pulse, double h) {
+inline PulseLoad make_pulse_load(const Pulse& pulse, double h, LoadRule rule = LoadRule::step_mean,
+                                 double theta = 0.5) {
   PulseLoad l;
+  l.rule = rule;
+  l.theta = theta;
+  l.h = h;
+  l.pulse = pulse;
   l.wh = pulse.w * h;
   l.cos_wh = std::cos(l.wh);
   l.sin_wh = std::sin(l.wh);

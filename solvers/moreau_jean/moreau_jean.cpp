@@ -22,6 +22,11 @@ namespace {
 constexpr long kChunk = 1L << 16;
 static_assert(kChunk % kResync == 0);
 
+// The load rule a variant names: "" and "step-mean" the default, "end-samples" Siconos'.
+LoadRule load_rule(const Settings& set) {
+  return set.variant == kEndSamples ? LoadRule::end_samples : LoadRule::step_mean;
+}
+
 // Start value i of System::u_start or v_start: empty means rest (a System made by hand).
 double start_value(const std::vector<double>& x, int i) { return x.empty() ? 0.0 : x[static_cast<std::size_t>(i)]; }
 
@@ -87,7 +92,7 @@ template <int NB, int NC>
 Result run_fixed(const System& sys, const Settings& set, double h, long n, Result res) {
   using VecB = typename Scheme<NB, NC>::VecB;
   using VecC = typename Scheme<NB, NC>::VecC;
-  const Scheme<NB, NC> sc = make_scheme<NB, NC>(sys, h, set.theta, set.gamma);
+  const Scheme<NB, NC> sc = make_scheme<NB, NC>(sys, h, set.theta, set.gamma, load_rule(set));
   VecB u0, v0;
   for (int i = 0; i < NB; ++i) {
     u0(i) = start_value(sys.u_start, i);
@@ -121,7 +126,7 @@ Result run_fixed(const System& sys, const Settings& set, double h, long n, Resul
 }
 
 Result run_dynamic(const System& sys, const Settings& set, double h, long n, Result res) {
-  const dynamic::Scheme sc = dynamic::make_scheme(sys, h, set.theta, set.gamma);
+  const dynamic::Scheme sc = dynamic::make_scheme(sys, h, set.theta, set.gamma, load_rule(set));
   std::vector<double> u0(static_cast<std::size_t>(sc.nb)), v0(u0.size());
   for (int i = 0; i < sc.nb; ++i) {
     u0[static_cast<std::size_t>(i)] = start_value(sys.u_start, i);
@@ -187,11 +192,14 @@ std::string describe(const Settings& settings) {
   else
     out << "steps=" << (settings.steps > 0 ? settings.steps : kDefaultSteps);
   out << ";theta=" << settings.theta << ";gamma=" << settings.gamma;
+  if (settings.variant == kEndSamples) out << ";load=end-samples";
   return out.str();
 }
 
 std::string check(const Settings& settings) {
-  if (!settings.variant.empty()) return "variant: moreau-jean has no variants";
+  if (!settings.variant.empty() && settings.variant != kStepMean && settings.variant != kEndSamples)
+    return "variant: unknown '" + settings.variant + "' (known: " + std::string(kStepMean) + " (default), " +
+           std::string(kEndSamples) + ")";
   if (std::string step = check_step(settings, kDefaultSteps); !step.empty()) return step;
   if (!(settings.theta >= 0.5 && settings.theta <= 1.0)) return "theta: must be in [0.5, 1]";
   if (!(settings.gamma >= 0.0 && settings.gamma <= 1.0)) return "gamma: must be in [0, 1]";

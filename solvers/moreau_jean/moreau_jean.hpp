@@ -6,10 +6,15 @@
 // A run starts from System::u_start, v_start (rest when they are empty).
 
 #include <string>
+#include <string_view>
 
 #include "solvers/solver.hpp"
 
 namespace pb::moreau_jean {
+
+// Variants: how a step's ground load is formed (README, "Ground load").
+inline constexpr std::string_view kStepMean = "step-mean";      // the exact step mean of a_g (default)
+inline constexpr std::string_view kEndSamples = "end-samples";  // (1 - theta) a_g(t_k) + theta a_g(t_k+1)
 
 inline constexpr int kDefaultSteps = 64;              // N when neither Settings::steps nor wh is given
 inline constexpr long kDefaultStepCap = 100'000'000;  // when Settings::step_cap is 0

@@ -68,7 +68,8 @@ struct Scheme {
 };
 
 template <int NB, int NC>
-Scheme<NB, NC> make_scheme(const System& s, double h, double theta, double gamma) {
+Scheme<NB, NC> make_scheme(const System& s, double h, double theta, double gamma,
+                           LoadRule load = LoadRule::step_mean) {
   Scheme<NB, NC> sc;
   sc.h = h;
   sc.h_old = h * (1.0 - theta);
@@ -98,7 +99,7 @@ Scheme<NB, NC> make_scheme(const System& s, double h, double theta, double gamma
   sc.minv_w = minv.asDiagonal() * sc.wt.transpose();
   sc.h_minv_w = sc.h_new * sc.minv_w;
   sc.delassus = sc.wt * sc.minv_w;
-  sc.load = make_pulse_load(s.pulse, h);
+  sc.load = make_pulse_load(s.pulse, h, load, theta);
   return sc;
 }
 
@@ -165,10 +166,11 @@ PB_MJ_INLINE Eigen::Matrix<double, NC, 1> contact_impulse(const Eigen::Matrix<do
   return p;
 }
 
-// One step from st.k to st.k + 1 under the step-mean ground acceleration abar.
+// One step from st.k to st.k + 1 under the ground load abar (the step mean of a_g, or its
+// end samples); work is the exact step mean, what the monitor counts as the ground's work.
 // Returns false when the state is no longer finite or |u| passed the divergence bound.
 template <int NB, int NC, bool kRecord, bool kMonitor>
-PB_MJ_INLINE bool step(const Scheme<NB, NC>& sc, State<NB, NC>& st, Tally& t, double abar,
+PB_MJ_INLINE bool step(const Scheme<NB, NC>& sc, State<NB, NC>& st, Tally& t, double abar, double work,
                        std::vector<double>* history, StepMonitor* monitor) {
   using VecC = typename Scheme<NB, NC>::VecC;
   typename Scheme<NB, NC>::VecB v_new = sc.fv.cwiseProduct(st.v) + sc.fq.cwiseProduct(st.q) + sc.fa * abar;
@@ -210,7 +212,7 @@ PB_MJ_INLINE bool step(const Scheme<NB, NC>& sc, State<NB, NC>& st, Tally& t, do
   if constexpr (kMonitor) {
     std::array<char, (NC > 0 ? NC : 1)> pushed{};
     for (int j = 0; j < NC; ++j) pushed[static_cast<std::size_t>(j)] = static_cast<char>((st.pushed >> j) & 1u);
-    monitor->step(sc.h, abar, st.q.data(), st.v.data(), pushed.data());
+    monitor->step(sc.h, work, st.q.data(), st.v.data(), pushed.data());
   }
   if (!(st.q.array().abs() <= sc.bound).all()) return false;
   tally_state(sc, st, t);
@@ -230,14 +232,25 @@ bool advance(const Scheme<NB, NC>& sc, State<NB, NC>& state, Tally& tally, long 
   Tally t = tally;
   const PulseLoad& l = sc.load;
   bool ok = true;
-  if (st.k < l.full_steps) {
-    PulseMeans means(l, st.k);
-    const long pulse_end = std::min(k_end, l.full_steps);
-    while (ok && st.k < pulse_end) ok = step<NB, NC, kRecord, kMonitor>(sc, st, t, means.next(), history, monitor);
+  if (l.rule == LoadRule::end_samples) {
+    const long loaded_end = std::min(k_end, l.full_steps + 1);
+    while (ok && st.k < loaded_end)
+      ok = step<NB, NC, kRecord, kMonitor>(sc, st, t, l.end_mean(st.k), l.exact_mean(st.k), history, monitor);
+  } else {
+    if (st.k < l.full_steps) {
+      PulseMeans means(l, st.k);
+      const long pulse_end = std::min(k_end, l.full_steps);
+      while (ok && st.k < pulse_end) {
+        const double abar = means.next();
+        ok = step<NB, NC, kRecord, kMonitor>(sc, st, t, abar, abar, history, monitor);
+      }
+    }
+    if (ok && l.straddle && st.k == l.full_steps && st.k < k_end) {
+      const double abar = l.tail(st.k);
+      ok = step<NB, NC, kRecord, kMonitor>(sc, st, t, abar, abar, history, monitor);
+    }
   }
-  if (ok && l.straddle && st.k == l.full_steps && st.k < k_end)
-    ok = step<NB, NC, kRecord, kMonitor>(sc, st, t, l.tail(st.k), history, monitor);
-  while (ok && st.k < k_end) ok = step<NB, NC, kRecord, kMonitor>(sc, st, t, 0.0, history, monitor);
+  while (ok && st.k < k_end) ok = step<NB, NC, kRecord, kMonitor>(sc, st, t, 0.0, 0.0, history, monitor);
   state = st;
   tally = t;
   return ok;

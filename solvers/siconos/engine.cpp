@@ -1,0 +1,334 @@
+// Compiled as C++17 (engine.hpp says why); the only file that includes Siconos' headers.
+
+#include "solvers/siconos/engine.hpp"
+
+#include <EventDriven.hpp>
+#include <Interaction.hpp>
+#include <LCP.hpp>
+#include <LagrangianLinearTIDS.hpp>
+#include <LagrangianLinearTIR.hpp>
+#include <LsodarOSI.hpp>
+#include <MoreauJeanOSI.hpp>
+#include <NewtonImpactNSL.hpp>
+#include <NonSmoothDynamicalSystem.hpp>
+#include <SiconosVector.hpp>
+#include <SimpleMatrix.hpp>
+#include <SolverOptions.h>
+#include <TimeDiscretisation.hpp>
+#include <TimeStepping.hpp>
+#include <Topology.hpp>
+#include <lcp_cst.h>
+
+#include <cstdlib>
+#include <iostream>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+
+namespace pb::siconos::engine {
+
+namespace {
+
+std::mutex& siconos_lock() {
+  static std::mutex m;
+  return m;
+}
+using Guard = std::lock_guard<std::mutex>;
+
+// Siconos throws Siconos::exception, whose what() says only "std::exception": the message
+// it carries is passed on in a std::runtime_error.
+template <class F>
+decltype(auto) translated(F&& f) {
+  try {
+    return f();
+  } catch (const Siconos::exception& e) {
+    const std::string* message = boost::get_error_info<Siconos::exception::extra_message>(e);
+    throw std::runtime_error(message ? *message : boost::diagnostic_information(e));
+  }
+}
+
+// std::cout's output while it lives, kept instead of printed: Siconos' event-driven code prints
+// an interaction's state to std::cout before it throws. Swapping std::cout's buffer is safe
+// only while no other thread writes to std::cout: poundbench writes its output after its
+// sweeps, and a time-stepping run prints nothing (TimeStepper's LCP hook).
+class CoutCapture {
+ public:
+  CoutCapture() : old_(std::cout.rdbuf(text_.rdbuf())) {}
+  ~CoutCapture() { std::cout.rdbuf(old_); }
+  CoutCapture(const CoutCapture&) = delete;
+  CoutCapture& operator=(const CoutCapture&) = delete;
+  // What Siconos printed before it threw, in one line: LSODAR's istate when it failed, or
+  // else the last line (EventDriven's offending output).
+  std::string gist() const {
+    std::istringstream in(text_.str());
+    std::string line, last;
+    while (std::getline(in, line)) {
+      if (line.find("Istate") != std::string::npos) return line;
+      if (!line.empty()) last = line;
+    }
+    return last;
+  }
+
+ private:
+  std::ostringstream text_;
+  std::streambuf* old_;
+};
+
+// The parameters of a body's load plugin, in its DynamicalSystem's z vector.
+enum LoadParameter { kMass, kCosine, kAmplitude, kSampleStep, kLoadParameters };
+
+// Siconos' external force F_ext(t) = -m a_g(t) of one body. A plain function of t and z:
+// reentrant.
+void ground_load(double t, unsigned int, double* f, unsigned int, double* z) {
+  f[0] = -z[kMass] * ground_sample(z[kCosine] != 0.0, z[kAmplitude], t, z[kSampleStep]);
+}
+
+SP::SimpleMatrix scalar_matrix(double x) {
+  auto m = std::make_shared<SimpleMatrix>(1, 1);
+  (*m)(0, 0) = x;
+  return m;
+}
+
+SP::SiconosVector scalar_vector(double x) {
+  auto v = std::make_shared<SiconosVector>(1);
+  (*v)(0) = x;
+  return v;
+}
+
+// One LagrangianLinearTIDS per body, one Interaction (LagrangianLinearTIR, NewtonImpactNSL)
+// per contact. Call under siconos_lock().
+struct Model {
+  SP::NonSmoothDynamicalSystem nsds;
+  std::vector<SP::LagrangianLinearTIDS> bodies;
+  std::vector<SP::Interaction> contacts;
+};
+
+Model make_model(const ModelSpec& spec) {
+  Model m;
+  m.nsds = std::make_shared<NonSmoothDynamicalSystem>(0.0, spec.t_end);
+  for (const BodySpec& b : spec.bodies) {
+    auto body = std::make_shared<LagrangianLinearTIDS>(scalar_vector(b.u0), scalar_vector(b.v0), scalar_matrix(b.m),
+                                                       scalar_matrix(b.k), scalar_matrix(b.c));
+    auto z = std::make_shared<SiconosVector>(kLoadParameters);
+    (*z)(kMass) = b.m;
+    (*z)(kCosine) = spec.cosine ? 1.0 : 0.0;
+    (*z)(kAmplitude) = spec.amplitude;
+    (*z)(kSampleStep) = spec.sample_step;
+    body->setzPtr(z);
+    body->setComputeFExtFunction(&ground_load);
+    m.nsds->insertDynamicalSystem(body);
+    m.bodies.push_back(body);
+  }
+  for (const ContactSpec& c : spec.contacts) {
+    // y = C q + delta over (left, right), or over the right body alone against the wall.
+    const bool wall = c.left < 0;
+    auto matrix = std::make_shared<SimpleMatrix>(1, wall ? 1 : 2);
+    (*matrix)(0, 0) = wall ? 1.0 : -1.0;
+    if (!wall) (*matrix)(0, 1) = 1.0;
+    auto relation = std::make_shared<LagrangianLinearTIR>(matrix, scalar_vector(spec.delta));
+    auto contact = std::make_shared<Interaction>(std::make_shared<NewtonImpactNSL>(spec.eps), relation);
+    const auto& right = m.bodies[static_cast<std::size_t>(c.right)];
+    if (wall)
+      m.nsds->link(contact, right);
+    else
+      m.nsds->link(contact, m.bodies[static_cast<std::size_t>(c.left)], right);
+    m.contacts.push_back(contact);
+  }
+  return m;
+}
+
+void read_state(const Model& m, double* u, double* v) {
+  for (std::size_t i = 0; i < m.bodies.size(); ++i) {
+    u[i] = m.bodies[i]->q()->getValue(0);
+    v[i] = m.bodies[i]->velocity()->getValue(0);
+  }
+}
+
+// Siconos' objects hold each other in cycles of shared pointers: a simulation's integrators
+// and one-step problems hold it, it holds the model, and the model's graph of dynamical
+// systems holds the integrators, which hold the graph. Left alone, the objects of a run are
+// never freed (valgrind: 20 KB a run, 16 KB a point through a sweep). Cut every cycle.
+void cut_cycles(const SP::Simulation& sim) {
+  if (!sim) return;
+  for (const SP::OneStepIntegrator& osi : *sim->oneStepIntegrators()) osi->setSimulationPtr(SP::Simulation());
+  for (const SP::OneStepNSProblem& problem : *sim->oneStepNSProblems())
+    if (problem) problem->setSimulationPtr(SP::Simulation());
+  DynamicalSystemsGraph& bodies = *sim->nonSmoothDynamicalSystem()->topology()->dSG(0);
+  DynamicalSystemsGraph::VIterator v, end;
+  for (std::tie(v, end) = bodies.vertices(); v != end; ++v) bodies.properties(*v).osi.reset();
+}
+
+// An LCP with its solver's options. LCP(int) makes them and never frees the struct itself
+// (Siconos 4.4's solver_options_delete frees only what it points to): 120 bytes a problem.
+SP::LCP make_lcp(int solver) {
+  return std::make_shared<LCP>(SP::SolverOptions(solver_options_create(solver), [](SolverOptions* options) {
+    solver_options_delete(options);
+    std::free(options);
+  }));
+}
+
+bool in_index_set(const Model& m, unsigned int level, int j) {
+  return m.nsds->topology()->indexSet(level)->is_vertex(m.contacts[static_cast<std::size_t>(j)]);
+}
+
+// TimeStepping hands each LCP's info to a process-wide hook; its default prints a warning to
+// stdout and carries on. This one, set once, keeps it for the calling thread instead.
+thread_local int t_lcp_info = 0;
+void keep_lcp_info(int info, Simulation*) { t_lcp_info = info; }
+
+}  // namespace
+
+// ---- TimeStepper ----
+
+struct TimeStepper::Impl {
+  Model model;
+  SP::MoreauJeanOSI osi;
+  SP::LCP lcp;
+  SP::TimeStepping sim;
+  int counter = 0;               // the iparam entry only a solver call writes (see step())
+  std::vector<double> impulses;  // of the last step, read before Siconos zeroes them
+  LcpCall last;
+  ~Impl() { cut_cycles(sim); }
+};
+
+TimeStepper::TimeStepper(const ModelSpec& spec, double h, double theta, double gamma, bool enumeration) {
+  const Guard guard(siconos_lock());
+  try {
+    translated([&] {
+      impl_ = std::make_unique<Impl>();
+      impl_->model = make_model(spec);
+      impl_->osi = std::make_shared<MoreauJeanOSI>(theta, gamma);
+      impl_->lcp = make_lcp(enumeration ? SICONOS_LCP_ENUM : SICONOS_LCP_LEMKE);
+      impl_->sim = std::make_shared<TimeStepping>(impl_->model.nsds, std::make_shared<TimeDiscretisation>(0.0, h),
+                                                  impl_->osi, impl_->lcp);
+      static std::once_flag hook;
+      std::call_once(hook, [&] { impl_->sim->setCheckSolverFunction(&keep_lcp_info); });
+      impl_->sim->initialize();
+      // Lemke writes its pivot count, enumeration the number of the case it is at; the
+      // driver's shortcuts write neither.
+      impl_->counter = enumeration ? static_cast<int>(SICONOS_LCP_IPARAM_ENUM_CURRENT_ENUM)
+                                   : static_cast<int>(SICONOS_IPARAM_ITER_DONE);
+      if (impl_->counter >= impl_->lcp->numericsSolverOptions()->iSize)
+        throw std::runtime_error("the LCP solver's options have no iparam entry " + std::to_string(impl_->counter));
+      impl_->impulses.assign(spec.contacts.size(), 0.0);
+    });
+  } catch (...) {
+    impl_.reset();  // under the lock, as every Siconos object is unmade
+    throw;
+  }
+}
+
+TimeStepper::~TimeStepper() {
+  const Guard guard(siconos_lock());
+  impl_.reset();
+}
+
+bool TimeStepper::step() {
+  Impl& s = *impl_;
+  if (!s.sim->hasNextEvent()) return false;
+  int active = 0;
+  for (std::size_t j = 0; j < s.model.contacts.size(); ++j)
+    active += in_index_set(s.model, 1, static_cast<int>(j)) ? 1 : 0;
+  SolverOptions& options = *s.lcp->numericsSolverOptions();
+  options.iparam[s.counter] = -1;
+  t_lcp_info = 0;
+  translated([&] { s.sim->computeOneStep(); });
+  s.last = LcpCall{};
+  s.last.info = t_lcp_info;
+  if (active > 0) {
+    const SiconosVector& q = *s.lcp->q();
+    s.last.called = true;
+    s.last.rows = static_cast<int>(q.size());
+    s.last.q_nonnegative = true;
+    for (unsigned int i = 0; i < q.size(); ++i) s.last.q_nonnegative = s.last.q_nonnegative && q.getValue(i) >= 0.0;
+    s.last.counter_written = options.iparam[s.counter] != -1;
+  }
+  // Before nextStep(): it zeroes the impulse of a contact that leaves the index set.
+  for (std::size_t j = 0; j < s.impulses.size(); ++j) s.impulses[j] = s.model.contacts[j]->lambda(1)->getValue(0);
+  translated([&] { s.sim->nextStep(); });
+  return true;
+}
+
+void TimeStepper::state(double* u, double* v) const { read_state(impl_->model, u, v); }
+bool TimeStepper::active(int j) const { return in_index_set(impl_->model, 1, j); }
+double TimeStepper::impulse(int j) const { return impl_->impulses[static_cast<std::size_t>(j)]; }
+const LcpCall& TimeStepper::last_lcp() const { return impl_->last; }
+double TimeStepper::theta() const { return impl_->osi->theta(); }
+double TimeStepper::gamma() const { return impl_->osi->gamma(); }
+bool TimeStepper::uses_gamma() const { return impl_->osi->useGamma(); }
+double TimeStepper::activation_threshold() const { return impl_->osi->constraintActivationThreshold(); }
+
+// ---- EventDrivenRun ----
+
+struct EventDrivenRun::Impl {
+  Guard guard{siconos_lock()};  // first member: held until the last Siconos object is gone
+  CoutCapture printed;
+  Model model;
+  SP::LsodarOSI osi;
+  SP::EventDriven sim;
+  int steps0 = 0, rhs0 = 0;  // LsodarOSI's process-wide counters when the run was made
+  ~Impl() { cut_cycles(sim); }
+};
+
+// A Siconos call: its exception as a std::runtime_error with its message and the gist of what
+// Siconos printed before it threw.
+template <class F>
+void EventDrivenRun::call(F&& f) {
+  try {
+    translated(f);
+  } catch (const std::exception& e) {
+    const std::string printed = impl_->printed.gist();
+    throw std::runtime_error(std::string(e.what()) + (printed.empty() ? "" : " (" + printed + ")"));
+  }
+}
+
+EventDrivenRun::EventDrivenRun(const ModelSpec& spec, double output_step, double rtol, double atol)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& s = *impl_;
+  call([&] {
+    s.model = make_model(spec);
+    s.osi = std::make_shared<LsodarOSI>();
+    s.sim = std::make_shared<EventDriven>(s.model.nsds, std::make_shared<TimeDiscretisation>(0.0, output_step));
+    s.sim->insertIntegrator(s.osi);
+    s.sim->insertNonSmoothProblem(make_lcp(SICONOS_LCP_LEMKE), SICONOS_OSNSP_ED_IMPACT);
+    s.sim->insertNonSmoothProblem(make_lcp(SICONOS_LCP_LEMKE), SICONOS_OSNSP_ED_SMOOTH_ACC);
+    // The array form: the scalar setTol(itol, rtol, atol) of Siconos 4.4 stores rtol as atol.
+    SA::doublereal r(new doublereal[1]), a(new doublereal[1]);
+    r[0] = rtol;
+    a[0] = atol;
+    s.osi->setTol(1, r, a);
+    s.sim->initialize();
+  });
+  s.steps0 = LsodarOSI::count_steps();
+  s.rhs0 = LsodarOSI::count_rhs_call();
+}
+
+EventDrivenRun::~EventDrivenRun() = default;
+
+bool EventDrivenRun::has_next() const { return impl_->sim->hasNextEvent(); }
+bool EventDrivenRun::advance() {
+  call([&] { impl_->sim->advanceToEvent(); });
+  return impl_->sim->istate() == 3;  // LSODAR's istate: 3, it returned at a root of g
+}
+void EventDrivenRun::process() {
+  call([&] { impl_->sim->processEvents(); });
+}
+
+double EventDrivenRun::time() const { return impl_->sim->startingTime(); }
+void EventDrivenRun::state(double* u, double* v) const { read_state(impl_->model, u, v); }
+double EventDrivenRun::impulse(int j) const {
+  return impl_->model.contacts[static_cast<std::size_t>(j)]->lambda(1)->getValue(0);
+}
+double EventDrivenRun::force(int j) const {
+  return impl_->model.contacts[static_cast<std::size_t>(j)]->lambda(2)->getValue(0);
+}
+bool EventDrivenRun::closed(int j) const { return in_index_set(impl_->model, 2, j); }
+long EventDrivenRun::itol() const { return static_cast<long>(impl_->osi->intData(2)); }
+double EventDrivenRun::rtol() const { return impl_->osi->getRtol()[0]; }
+double EventDrivenRun::atol() const { return impl_->osi->getAtol()[0]; }
+long EventDrivenRun::itask() const { return static_cast<long>(impl_->osi->intData(3)); }
+double EventDrivenRun::event_tolerance() const { return impl_->sim->toleranceED(); }
+long EventDrivenRun::lsodar_steps() const { return LsodarOSI::count_steps() - impl_->steps0; }
+long EventDrivenRun::lsodar_rhs_calls() const { return LsodarOSI::count_rhs_call() - impl_->rhs0; }
+
+}  // namespace pb::siconos::engine

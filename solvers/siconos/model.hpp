@@ -1,0 +1,74 @@
+#pragma once
+// Internal to solvers/siconos/: the two integrations that siconos_solver.cpp dispatches to
+// (time_stepping.cpp, event_driven.cpp), and what they share on this side of engine.hpp: the
+// case in Siconos' units, and the bookkeeping common to both.
+//
+// Units. Siconos is given the case in the pulse's units: lengths over L = a_p / w_p^2, times
+// over 1 / w_p, masses as they are (m0 = 1). Pi1 does not depend on a_p and w_p, and Siconos'
+// absolute tolerances (EventDriven's event tolerance, LSODAR's atol, the LCP solvers'
+// acceptance tests) become tolerances relative to the pulse.
+
+#include <string>
+#include <vector>
+
+#include "cases/system.hpp"
+#include "solvers/siconos/engine.hpp"
+#include "solvers/siconos/siconos_solver.hpp"
+#include "solvers/solver.hpp"
+
+namespace pb::siconos {
+
+// TimeStepping with MoreauJeanOSI; the LCP by Lemke, or by enumeration. paths may be null.
+Result run_time_stepping(const System& system, const Settings& settings, bool enumeration, LcpPaths* paths);
+
+// EventDriven with LsodarOSI.
+Result run_event_driven(const System& system, const Settings& settings);
+
+struct Units {
+  double length = 1.0;  // a_p / w_p^2
+  double time = 1.0;    // 1 / w_p
+  double velocity() const { return length / time; }
+};
+
+Units units_of(const System& s);
+
+// The model of s for engine.hpp, in Siconos' units; sample_step and t_end in System's.
+engine::ModelSpec model_spec(const System& s, double sample_step, double t_end);
+
+// A Result that stops before a run: a status and why.
+Result stopped(Status status, std::string message);
+
+// Checks what Siconos is given: finite parameters (Siconos' LU factorisation prints a message
+// of its own on a NaN) and a start state of one u and one v per body; "" when it is usable.
+std::string check_system(const System& s);
+
+// The fixed steps of a run whose end reaches t_end (to within 1e-9 of a step, as moreau_jean).
+long step_count(double t_end, double h);
+
+// The state of a run in System's units, and the gaps and gap rates it gives.
+struct State {
+  std::vector<double> u, v;     // per body
+  std::vector<double> g, rate;  // per contact
+  explicit State(const System& s);
+  // Reads the engine's state (Siconos' units) and updates the gaps.
+  template <class Run>
+  void read(const Run& run, const System& s, const Units& units) {
+    run.state(u.data(), v.data());
+    for (std::size_t i = 0; i < u.size(); ++i) {
+      u[i] *= units.length;
+      v[i] *= units.velocity();
+    }
+    update_gaps(s);
+  }
+  void update_gaps(const System& s);
+  bool finite() const;
+};
+
+// One History row: t, u, v, g, and the contact forces (solvers/solver.hpp).
+void record(double t, const State& st, const std::vector<double>& force, std::vector<double>& out);
+
+// Why the state counts as diverged (|u| above 1e6 a_p / w_p^2, or the energy above
+// kDivergedEnergy times its scale), or nullptr.
+const char* runaway(const System& s, const State& st);
+
+}  // namespace pb::siconos

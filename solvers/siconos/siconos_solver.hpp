@@ -1,0 +1,75 @@
+#pragma once
+// Siconos (Debian's libsiconos-kernel-dev 4.4), the field's reference library for nonsmooth
+// dynamics, as a pounding solver: the same scenes through its own integrators.
+//
+//   bodies    one LagrangianLinearTIDS per building (1x1 M, K, C), starting from
+//             System::u_start, v_start; its external force -m a_g(t) is a load plugin.
+//   contacts  one Interaction per contact: LagrangianLinearTIR y = C q + delta over the two
+//             neighbours (C = [-1 1]; [1] against the wall), NewtonImpactNSL(eps).
+//   units     Siconos sees every case in the pulse's units (lengths over a_p / w_p^2, times
+//             over 1 / w_p), so that its absolute tolerances are relative to the pulse.
+//   variants  moreau-jean-lemke (default) and moreau-jean-enum: TimeStepping with
+//             MoreauJeanOSI(Settings::theta, Settings::gamma) and an LCP solved by Lemke or by
+//             enumeration, h = time_step(system, settings, 64); event-driven-lsodar:
+//             EventDriven with LsodarOSI at stated tolerances (times Settings::tol_scale).
+//
+// Every Siconos object stays in solvers/siconos/*.cpp; what each variant sets, what the runs
+// measure, the LCP paths and the thread safety are in solvers/siconos/README.md.
+
+#include <string>
+#include <string_view>
+
+#include "solvers/solver.hpp"
+
+namespace pb::siconos {
+
+inline constexpr std::string_view kDefaultVariant = "moreau-jean-lemke";
+inline constexpr int kDefaultSteps = 64;              // N when neither Settings::steps nor wh is given
+inline constexpr long kDefaultStepCap = 100'000'000;  // time-stepping: steps, when Settings::step_cap is 0
+inline constexpr long kDefaultEventCap = 1'000'000;   // event-driven: events, when Settings::step_cap is 0
+
+// event-driven-lsodar: LSODAR's error control (itol = 1: scalar rtol and atol, on every
+// state component in the pulse's units) at Settings::tol_scale = 1, and its output grid:
+// the run stops every T_min / kOutputSteps, where Pi1 is refined by cubic Hermite
+// interpolation of u0 between events (README).
+inline constexpr double kRtol = 1e-10;
+inline constexpr double kAtol = 1e-10;
+inline constexpr int kOutputSteps = 256;
+
+Result solve(const System& system, const Settings& settings);
+std::string describe(const Settings& settings);
+std::string check(const Settings& settings);
+
+// Which path Siconos' dense LCP driver took on the steps of a time-stepping run. The driver
+// is called on every step with a contact in the index set; it returns z = 0 without a solver
+// when q >= 0, and z = -q / M without a solver when the LCP has one row.
+struct LcpPaths {
+  long calls = 0;     // steps with at least one active contact
+  long trivial = 0;   // q >= 0: z = 0
+  long one_row = 0;   // one active contact, q < 0: z = -q / M
+  long solver = 0;    // Lemke or enumeration ran (the other calls)
+  long written = 0;   // calls after which the solver's iteration counter had been written
+};
+
+// solve() for a time-stepping variant, also counting the LCP paths (for tests).
+Result solve_counting(const System& system, const Settings& settings, LcpPaths& paths);
+
+// What the event-driven variant's integrators hold once its simulation is initialised, read
+// back from Siconos (for tests: these must be the values this solver sets).
+struct EventDrivenSetup {
+  long itol = 0;
+  double rtol = 0.0, atol = 0.0;
+  double event_tolerance = 0.0;  // EventDriven::toleranceED(): |y| below it is a closed contact
+  long itask = 0;                // LSODAR's itask (1: overshoot and interpolate to the output time)
+};
+EventDrivenSetup event_driven_setup(const System& system, const Settings& settings);
+
+// What MoreauJeanOSI holds once a time-stepping simulation is initialised (for tests).
+struct MoreauJeanSetup {
+  double theta = 0.0, gamma = 0.0;
+  bool use_gamma = false;
+  double activation_threshold = 0.0;  // a contact is active when y + gamma h y' <= this
+};
+MoreauJeanSetup moreau_jean_setup(const System& system, const Settings& settings);
+
+}  // namespace pb::siconos

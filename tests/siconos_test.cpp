@@ -1,0 +1,354 @@
+// Siconos (solvers/siconos/) as a peer: its MoreauJeanOSI against the in-house Moreau-Jean
+// stepper at equal theta, gamma and h (with the load sampled the way Siconos samples it), its
+// event-driven LSODAR scheme against the event-driven reference, what its LCP driver and its
+// integrators actually do with the settings given, thread safety and status reporting.
+// Built only when CMake finds Siconos (tests/CMakeLists.txt).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cases/case_set.hpp"
+#include "cases/system.hpp"
+#include "solvers/event_driven/event_driven.hpp"
+#include "solvers/moreau_jean/moreau_jean.hpp"
+#include "solvers/siconos/siconos_solver.hpp"
+#include "tests/support.hpp"
+
+namespace pb {
+namespace {
+
+using test::make_case;
+
+std::string sci(double x) {
+  std::ostringstream out;
+  out << std::scientific << std::setprecision(2) << x;
+  return out.str();
+}
+
+Settings variant(std::string_view name) {
+  Settings st;
+  st.variant = std::string(name);
+  return st;
+}
+
+double relative(double a, double b) { return std::abs(a - b) / std::abs(b); }
+
+// A sample of the paper's families: every 743rd point of cases/sets/paper.toml (33 points:
+// every family, pair and row3, sine and cosine, normal and reverse, eps 0, 0.5 and 1, a_p != 1,
+// Pi2 from 0.1 to 5.7; 27 with impacts, 6 with a contact phase), and fig3 points 79 and 479,
+// asymmetric row3 cases where both contacts are active at once with q of mixed signs, so that
+// Lemke (or enumeration) runs.
+std::vector<Case> paper_sample() {
+  const CaseSet set = load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/paper.toml");
+  std::vector<Case> cases;
+  for (std::size_t i = 0; i < set.cases.size(); i += 743) cases.push_back(set.cases[i]);
+  cases.push_back(set.cases[79]);
+  cases.push_back(set.cases[479]);
+  return cases;
+}
+
+// Siconos' MoreauJeanOSI forms the load of a step from fExt at t_k and t_k+1, weighted by theta;
+// moreau-jean's variant end-samples does the same with the same sampling of a_g (Pulse::sample).
+// The two schemes are then the same arithmetic in a different order: Pi1, the counts and the
+// monitor's measures agree to round-off on every point, whichever LCP solver Siconos uses.
+TEST(Siconos, MoreauJeanOsiMatchesTheInHouseStepperWithEndSampledLoads) {
+  const std::vector<Case> cases = paper_sample();
+  ASSERT_EQ(cases.size(), 35u);
+  Settings in_house = variant(moreau_jean::kEndSamples);
+  double worst = 0.0, worst_default = 0.0;
+  long lemke_runs = 0;
+  for (const Case& c : cases) {
+    const System s = make_system(c);
+    const Result mine = moreau_jean::solve(s, in_house);
+    const Result step_mean = moreau_jean::solve(s, {});
+    ASSERT_EQ(mine.status, Status::ok) << mine.message;
+    worst_default = std::max(worst_default, relative(step_mean.pi1, mine.pi1));
+    for (std::string_view v : {"moreau-jean-lemke", "moreau-jean-enum"}) {
+      siconos::LcpPaths paths;
+      const Result theirs = siconos::solve_counting(s, variant(v), paths);
+      ASSERT_EQ(theirs.status, Status::ok) << c.family << " " << v << ": " << theirs.message;
+      lemke_runs += paths.solver;
+      worst = std::max(worst, relative(theirs.pi1, mine.pi1));
+      // 1e-10: the agreement asked of the two implementations; measured 4.2e-15 at most here
+      // (1.6e-14 over the 23 820 points of the paper set).
+      EXPECT_LT(relative(theirs.pi1, mine.pi1), 1e-10) << c.family << " pi2=" << c.pi2 << " " << v;
+      EXPECT_EQ(theirs.t_max, mine.t_max) << c.family << " pi2=" << c.pi2;
+      EXPECT_EQ(theirs.steps, mine.steps);
+      EXPECT_EQ(theirs.impacts, mine.impacts) << c.family << " pi2=" << c.pi2;
+      EXPECT_EQ(theirs.contact_phases, mine.contact_phases) << c.family << " pi2=" << c.pi2;
+      EXPECT_EQ(theirs.isolated_impacts, mine.isolated_impacts);
+      // The energy balance is measured from the states (StepMonitor): equal states, equal
+      // excess, to the round-off of sums over a run (relative to the energy scale).
+      EXPECT_NEAR(theirs.energy_excess, mine.energy_excess, 1e-12);
+    }
+  }
+  RecordProperty("worst_relative_pi1", sci(worst));
+  RecordProperty("worst_relative_pi1_against_step_mean", sci(worst_default));
+  EXPECT_GT(lemke_runs, 0) << "the sample must make the LCP solver itself run";
+  // The load rule is the whole difference: with moreau-jean's default (the exact step mean of
+  // a_g) Pi1 differs by up to 1.1e-2 on this sample (N = 64), far above round-off.
+  EXPECT_GT(worst_default, 1e-3);
+}
+
+// Siconos' dense LCP driver returns z = 0 without a solver when q >= 0, and z = -q / M without
+// a solver when the LCP has one row; only the other calls reach Lemke or enumeration, and only
+// those write the solver's iteration counter (counted independently by the solver).
+TEST(Siconos, LcpDriverReachesTheSolverOnlyWithSeveralRowsAndANegativeQ) {
+  const std::vector<Case> cases = paper_sample();
+  const Case pair = make_case(Scene::pair, PulseShape::cosine, 0.8, 0.5, 0.5);  // 4 impacts
+  for (std::string_view v : {"moreau-jean-lemke", "moreau-jean-enum"}) {
+    for (const Case& c : {pair, cases[33], cases[34]}) {  // and fig3's row3 at a_p 1.962 and 9.81
+      siconos::LcpPaths p;
+      const Result r = siconos::solve_counting(make_system(c), variant(v), p);
+      ASSERT_EQ(r.status, Status::ok) << r.message;
+      EXPECT_GT(p.calls, 0);
+      EXPECT_EQ(p.trivial + p.one_row + p.solver, p.calls);
+      EXPECT_EQ(p.written, p.solver) << v << " " << c.family;
+      if (c.scene == Scene::pair) {
+        EXPECT_EQ(p.solver, 0) << "one contact: the solver never runs";
+      } else {
+        EXPECT_GT(p.solver, 0) << v << " " << c.family;
+      }
+      EXPECT_NE(r.message.find(std::to_string(p.solver) + " by"), std::string::npos) << r.message;
+    }
+  }
+}
+
+TEST(Siconos, MoreauJeanOsiHoldsTheThetaAndGammaGiven) {
+  const System s = make_system(make_case(Scene::pair, PulseShape::cosine, 1.0, 0.5, 0.5));
+  for (double theta : {0.5, 0.75, 1.0})
+    for (double gamma : {0.0, 0.3, 1.0}) {
+      Settings st;
+      st.theta = theta;
+      st.gamma = gamma;
+      const siconos::MoreauJeanSetup held = siconos::moreau_jean_setup(s, st);
+      EXPECT_EQ(held.theta, theta);
+      EXPECT_EQ(held.gamma, gamma);
+      EXPECT_TRUE(held.use_gamma) << "gamma given: the activation rule y + gamma h y' <= 0";
+      EXPECT_EQ(held.activation_threshold, 0.0);
+    }
+}
+
+// LsodarOSI's scalar setTol(itol, rtol, atol) of Siconos 4.4 stores rtol as atol as well; the
+// solver uses the array form, and LSODAR must hold exactly the tolerances set.
+TEST(Siconos, LsodarHoldsTheTolerancesSet) {
+  const System s = make_system(make_case(Scene::row3, PulseShape::sine, 1.0, 0.5, 0.5));
+  for (double scale : {1.0, 100.0}) {
+    Settings st = variant("event-driven-lsodar");
+    st.tol_scale = scale;
+    const siconos::EventDrivenSetup held = siconos::event_driven_setup(s, st);
+    EXPECT_EQ(held.itol, 1) << "scalar rtol and atol";
+    EXPECT_EQ(held.rtol, siconos::kRtol * scale);
+    EXPECT_EQ(held.atol, siconos::kAtol * scale);
+    EXPECT_EQ(held.itask, 1) << "LSODAR overshoots an output time and interpolates back";
+    // Siconos' own event tolerance, 1000 * 10 * DBL_EPSILON (in the pulse's units here).
+    EXPECT_EQ(held.event_tolerance, 1e4 * std::numeric_limits<double>::epsilon());
+  }
+}
+
+// Cases with impacts where Siconos' event-driven run goes to the end (one contact at a time,
+// so Newton's law and the reference's Poisson law coincide): Pi1 within LSODAR's tolerance.
+TEST(Siconos, EventDrivenMatchesTheReferenceToLsodarsTolerance) {
+  struct Point {
+    Scene scene;
+    PulseShape pulse;
+    double pi2;
+  };
+  const Point points[] = {
+      {Scene::wall, PulseShape::sine, 0.8},   {Scene::wall, PulseShape::cosine, 1.5},
+      {Scene::pair, PulseShape::sine, 1.0},   {Scene::pair, PulseShape::cosine, 0.3},
+      {Scene::pair, PulseShape::cosine, 0.8}, {Scene::row3, PulseShape::sine, 1.0},
+      {Scene::row3, PulseShape::cosine, 0.3}, {Scene::row3, PulseShape::cosine, 0.8},
+  };
+  double worst = 0.0;
+  for (const Point& p : points) {
+    const System s = make_system(make_case(p.scene, p.pulse, p.pi2, 0.5, 0.5));
+    const Result ref = event_driven::solve(s, {});
+    const Result r = siconos::solve(s, variant("event-driven-lsodar"));
+    ASSERT_EQ(r.status, Status::ok) << r.message;
+    EXPECT_GT(r.impacts, 0);
+    EXPECT_EQ(r.impacts, ref.impacts) << name(p.scene) << " pi2=" << p.pi2;
+    worst = std::max(worst, relative(r.pi1, ref.pi1));
+    // 1e-8: measured 3.4e-9 at most here (rtol = atol = 1e-10 over a run, and the cubic
+    // Hermite maximum between output points, ~1e-9 at T_min / 256).
+    EXPECT_LT(relative(r.pi1, ref.pi1), 1e-8) << name(p.scene) << " " << name(p.pulse) << " pi2=" << p.pi2;
+    // Newton's law at each isolated impact, through Siconos' impact LCP.
+    if (r.isolated_impacts > 0) {
+      EXPECT_NEAR(r.restitution_low, 0.5, 1e-12);
+      EXPECT_NEAR(r.restitution_high, 0.5, 1e-12);
+    }
+  }
+  RecordProperty("worst_relative_pi1", sci(worst));
+}
+
+// A sequence of impacts that accumulates (eps = 0.5, the sine pulse pressing body 0 against
+// its neighbour) ends, in Siconos 4.4's event-driven scheme, with a gap that LSODAR's root
+// location leaves below Siconos' absolute event tolerance, and Siconos throws. The run reports
+// it as failed, with Siconos' message and the events it got through.
+TEST(Siconos, EventDrivenFailsWithSiconosMessageWhereImpactsAccumulate) {
+  const System s = make_system(make_case(Scene::pair, PulseShape::sine, 0.8, 0.5, 0.5));
+  const Result r = siconos::solve(s, variant("event-driven-lsodar"));
+  EXPECT_EQ(r.status, Status::failed);
+  EXPECT_NE(r.message.find("output of level 0 must be positive"), std::string::npos) << r.message;
+  EXPECT_GT(r.steps, 100) << "events before the failure are kept";
+  EXPECT_GT(r.impacts, 10);
+  EXPECT_TRUE(std::isnan(r.pi1));
+}
+
+// Siconos sees the case in the pulse's units, so its absolute tolerances do not move with a_p
+// and w_p: Pi1 is the same at a_p = 1e-3 and 1e3 as at 1 (to round-off for the time-stepper,
+// where the arithmetic is the same up to the rounding of the scaled parameters).
+TEST(Siconos, Pi1DoesNotDependOnThePulseScale) {
+  Case c = make_case(Scene::row3, PulseShape::cosine, 0.8, 0.5, 0.5);
+  const Result base = siconos::solve(make_system(c), {});
+  const Result base_ed = siconos::solve(make_system(c), variant("event-driven-lsodar"));
+  ASSERT_EQ(base.status, Status::ok);
+  ASSERT_EQ(base_ed.status, Status::ok);
+  double worst = 0.0, worst_ed = 0.0;
+  for (double a_p : {1e-3, 1e3}) {
+    c.a_p = a_p;
+    c.w_p = 3.7;
+    const Result r = siconos::solve(make_system(c), {});
+    const Result ed = siconos::solve(make_system(c), variant("event-driven-lsodar"));
+    worst = std::max(worst, relative(r.pi1, base.pi1));
+    worst_ed = std::max(worst_ed, relative(ed.pi1, base_ed.pi1));
+    // 1e-12: the rounding of k, c, delta in the pulse's units over ~1300 steps; measured 1.3e-16.
+    EXPECT_NEAR(r.pi1, base.pi1, 1e-12 * base.pi1) << "a_p=" << a_p;
+    EXPECT_EQ(r.impacts, base.impacts);
+    // 1e-9: LSODAR chooses its steps anew from those rounding-level differences, so Pi1 moves
+    // within its tolerance (rtol = atol = 1e-10); measured 6.1e-11.
+    EXPECT_NEAR(ed.pi1, base_ed.pi1, 1e-9 * base_ed.pi1) << "a_p=" << a_p;
+  }
+  RecordProperty("worst_relative_pi1", sci(worst));
+  RecordProperty("worst_relative_pi1_event_driven", sci(worst_ed));
+}
+
+// A kicked chain starts from System::u_start, v_start: Siconos' time-stepper follows the
+// in-house one (end samples) on the chain too, history row by history row.
+TEST(Siconos, KickedChainStartsFromTheSystemsStartState) {
+  Case c = make_case(Scene::chain, PulseShape::sine, 1.0, 0.5, 0.5);
+  c.bodies = 5;
+  c.kick = 2.0;
+  const System s = make_system(c);
+  Settings st = variant(moreau_jean::kEndSamples);
+  st.history_samples = 1;
+  const Result mine = moreau_jean::solve(s, st);
+  st.variant = "";
+  const Result theirs = siconos::solve(s, st);
+  ASSERT_EQ(theirs.status, Status::ok) << theirs.message;
+  ASSERT_EQ(theirs.history.rows(), mine.history.rows());
+  ASSERT_EQ(theirs.history.row_size(), mine.history.row_size());
+  EXPECT_GT(theirs.impacts, 4);
+  EXPECT_EQ(test::HistoryRow(theirs.history, 0).v(0), s.v_start[0]);
+  double worst = 0.0;
+  const double scale = s.length_scale() * s.pulse.w;  // a_p / w_p, for velocities and lambda h
+  for (std::size_t k = 0; k < mine.history.data.size(); ++k)
+    worst = std::max(worst, std::abs(theirs.history.data[k] - mine.history.data[k]) / scale);
+  RecordProperty("worst_history_difference", sci(worst));
+  // 1e-11 of a_p / w_p (the velocities; displacements and gaps in a_p / w_p^2, lambda in
+  // a_p): the round-off of ~1000 steps through impacts on every contact; measured 7.8e-14.
+  EXPECT_LT(worst, 1e-11);
+}
+
+// Runs from two threads at once give the results of serial runs, bit for bit: Siconos' global
+// state is touched under the solver's lock only (README, thread safety).
+TEST(Siconos, TwoThreadsGiveTheSerialResultsBitForBit) {
+  std::vector<System> systems;
+  for (Scene scene : {Scene::wall, Scene::pair, Scene::row3})
+    for (double pi2 : {0.8, 1.5}) systems.push_back(make_system(make_case(scene, PulseShape::cosine, pi2, 0.5, 0.5)));
+  for (std::string_view v : {"moreau-jean-lemke", "event-driven-lsodar"}) {
+    std::vector<Result> serial, parallel(systems.size());
+    for (const System& s : systems) serial.push_back(siconos::solve(s, variant(v)));
+    auto half = [&](std::size_t first) {
+      for (std::size_t i = first; i < systems.size(); i += 2) parallel[i] = siconos::solve(systems[i], variant(v));
+    };
+    std::thread a(half, 0), b(half, 1);
+    a.join();
+    b.join();
+    for (std::size_t i = 0; i < systems.size(); ++i) {
+      ASSERT_EQ(serial[i].status, Status::ok) << v << " " << i << ": " << serial[i].message;
+      EXPECT_EQ(parallel[i].pi1, serial[i].pi1) << v << " case " << i;
+      EXPECT_EQ(parallel[i].steps, serial[i].steps) << v << " case " << i;
+    }
+  }
+}
+
+TEST(Siconos, StatusReportsCapsTimeoutsNonFiniteAndDivergentRuns) {
+  const System s = make_system(make_case(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5));
+  for (std::string_view v : {"moreau-jean-lemke", "event-driven-lsodar"}) {
+    Settings st = variant(v);
+    st.step_cap = 10;
+    Result r = siconos::solve(s, st);
+    EXPECT_EQ(r.status, Status::step_cap) << v;
+    EXPECT_TRUE(std::isnan(r.pi1));
+
+    // A negative stiffness (an unstable spring) grows like exp(5 t): past 1e6 a_p / w_p^2.
+    // (A body alone: with a neighbour, Siconos' event-driven scheme fails first, on a gap.)
+    System unstable = s;
+    unstable.bodies = {s.bodies[1]};
+    unstable.ref = 0;
+    unstable.u_start = unstable.v_start = {0.0};
+    unstable.bodies[0].k = -25.0 * unstable.bodies[0].m;
+    r = siconos::solve(unstable, variant(v));
+    EXPECT_EQ(r.status, Status::diverged) << v << ": " << r.message;
+    EXPECT_GT(r.steps, 0);
+
+    // A long free vibration (n_free = 1e4 periods) cannot finish in a millisecond.
+    Case long_case = make_case(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5);
+    long_case.n_free = 1e4;
+    st = variant(v);
+    st.time_limit = 1e-3;
+    r = siconos::solve(make_system(long_case), st);
+    EXPECT_EQ(r.status, Status::timeout) << v;
+    EXPECT_GT(r.steps, 0);
+  }
+  // Siconos would print a message of its own on a NaN: the run stops before it.
+  System bad = s;
+  bad.bodies[0].k = std::numeric_limits<double>::quiet_NaN();
+  const Result r = siconos::solve(bad, {});
+  EXPECT_EQ(r.status, Status::failed);
+  EXPECT_EQ(r.message.rfind("every body needs", 0), 0u) << r.message;
+  EXPECT_EQ(siconos::solve(s, variant("nonsense")).status, Status::failed);
+}
+
+TEST(Siconos, CheckAndDescribeNameEverySetting) {
+  Settings st;
+  EXPECT_EQ(siconos::check(st), "");
+  EXPECT_EQ(siconos::describe(st), "steps=64;theta=0.5;gamma=0.5;lcp=lemke");
+  st.variant = "moreau-jean-enum";
+  st.wh = 2.0;
+  st.theta = 1.0;
+  EXPECT_EQ(siconos::check(st), "");
+  EXPECT_EQ(siconos::describe(st), "wh=2;theta=1;gamma=0.5;lcp=enum");
+  st.theta = 0.4;
+  EXPECT_EQ(siconos::check(st).rfind("theta:", 0), 0u);
+  st.theta = 0.5;
+  st.gamma = 2.0;
+  EXPECT_EQ(siconos::check(st).rfind("gamma:", 0), 0u);
+  st = variant("event-driven-lsodar");
+  EXPECT_EQ(siconos::check(st), "");
+  EXPECT_EQ(siconos::describe(st), "tol_scale=1;rtol=1e-10;atol=1e-10;output=T_min/256");
+  st.steps = 64;
+  EXPECT_EQ(siconos::check(st).rfind("steps:", 0), 0u);
+  st.steps = 0;
+  st.tol_scale = 0.0;
+  EXPECT_EQ(siconos::check(st).rfind("tol_scale:", 0), 0u);
+  st = variant("x");
+  EXPECT_EQ(siconos::check(st).rfind("variant:", 0), 0u);
+  st = {};
+  st.step_cap = -1;
+  EXPECT_EQ(siconos::check(st).rfind("step_cap:", 0), 0u);
+  ASSERT_NE(find_solver("siconos"), nullptr);
+  EXPECT_EQ(find_solver("siconos")->solve, &siconos::solve);
+}
+
+}  // namespace
+}  // namespace pb
