@@ -59,7 +59,9 @@ double baseline_tolerance(std::string_view solver) {
   if (solver == "moreau-jean" || solver == "ode") return 1e-12;
   // Debian's Bullet computes in single precision: the same margin at float round-off.
   if (solver == "bullet") return 1e-6;
-  return 1e-9;
+  // Siconos: its LSODAR variant chooses its own steps, and round-off can move a step choice
+  // and Pi1 with it within its tolerances (1e-10 and below).
+  return 1e-9;  // siconos, and any other solver: as the reference
 }
 
 std::vector<Row> run_baseline(std::span<const Case> cases, const SettingsList* list, const SweepOptions& options) {

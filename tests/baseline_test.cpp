@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cases/case_set.hpp"
+#include "solvers/solver.hpp"
 #include "sweep/row_read.hpp"
 
 namespace pb {
@@ -64,7 +65,7 @@ TEST(Baseline, ReferenceOnTheStressSetIsReproducedTo1e9) { expect_reproduced("st
 
 // The reference and the time-stepper settings of cases/settings/baseline.toml on the smoke set.
 TEST(Baseline, EveryTimeStepperSettingOfTheListReproducesItsStoredRows) {
-  std::size_t settings = 1 + 2;  // the reference, Moreau-Jean theta 1/2 and 1
+  std::size_t settings = 1 + 3;  // the reference, Moreau-Jean theta 1/2 and 1, its end-samples load
 #ifdef POUNDBENCH_HAVE_ODE
   settings += 2;
 #endif
@@ -74,8 +75,14 @@ TEST(Baseline, EveryTimeStepperSettingOfTheListReproducesItsStoredRows) {
   expect_reproduced("smoke.csv", settings);
 }
 
+// Siconos is optional: its settings are stored apart, and checked where it is built.
+TEST(Baseline, SiconosSettingsReproduceTheirStoredRows) {
+  if (!find_solver("siconos")) GTEST_SKIP() << "Siconos is not built here (libsiconos-kernel-dev not found)";
+  expect_reproduced("smoke-siconos.csv", 1 + 3);  // the reference, Lemke, enumeration, LSODAR
+}
+
 TEST(Baseline, EveryStoredFileNamesItsCaseSetSettingsAndCommit) {
-  for (const char* name : {"paper-reference.csv", "stress-reference.csv", "smoke.csv"}) {
+  for (const char* name : {"paper-reference.csv", "stress-reference.csv", "smoke.csv", "smoke-siconos.csv"}) {
     const RowFile stored = read_csv_file((kBaselines / name).string());
     const BaselineHeader h = parse_header(stored.comments, name);
     EXPECT_TRUE(fs::exists(kBaselines / h.cases)) << name << ": " << h.cases;
