@@ -260,7 +260,9 @@ def stability_section(summary, points, out_dir):
              "how much, and shrinks with h: `tests/ode_test.cpp`, `tests/bullet_test.cpp`); as explicit "
              "schemes they diverge from w_max h = 2 on, the stability limit of their semi-implicit Euler step. Where Moreau-Jean makes energy (a plastic impulse on a "
              "separating contact at theta = 1/2, elastic contacts held closed at theta = 1) is derived in "
-             "`solvers/moreau_jean/README.md`.", ""]
+             "`solvers/moreau_jean/README.md`. Siconos' MoreauJeanOSI samples the load at the step's ends "
+             "instead of averaging it over the step, and the work of that sampled load is not the ground's: "
+             "it fails the energy check at every step (`solvers/siconos/README.md`).", ""]
     lines += ["In short, per solver configuration over every family and step:", ""]
     lines += stability.stability_summary(summary)
     lines += ["", "Per family and step:", ""]
