@@ -35,6 +35,18 @@ std::string check_step(const Settings& settings, int default_steps) {
   return {};
 }
 
+std::string check_theta_method(const Settings& settings) {
+  if (!(settings.theta >= 0.5 && settings.theta <= 1.0)) return "theta: must be in [0.5, 1]";
+  if (!(settings.gamma >= 0.0 && settings.gamma <= 1.0)) return "gamma: must be in [0, 1]";
+  return {};
+}
+
+std::string check_limits(const Settings& settings) {
+  if (settings.step_cap < 0) return "step_cap: must be >= 0 (0: the solver's own cap)";
+  if (!(settings.time_limit >= 0.0)) return "time_limit: must be >= 0 (0: none)";
+  return {};
+}
+
 namespace {
 
 const std::array kSolvers = {

@@ -92,6 +92,10 @@ inline double time_step(const System& s, const Settings& settings, int default_s
 
 // Checks Settings::steps and Settings::wh for a time-stepper; "" when they are fine.
 std::string check_step(const Settings& settings, int default_steps);
+// Checks Settings::theta and gamma of a theta-method (moreau-jean, Siconos' MoreauJeanOSI).
+std::string check_theta_method(const Settings& settings);
+// Checks Settings::step_cap and time_limit.
+std::string check_limits(const Settings& settings);
 
 using SolveFn = Result (*)(const System&, const Settings&);
 

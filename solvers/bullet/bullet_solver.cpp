@@ -211,9 +211,7 @@ std::string check(const Settings& settings) {
   if (!find_variant(settings.variant))
     return "variant: unknown bullet variant '" + settings.variant + "' (one of " + variant_names() + ")";
   if (std::string bad = check_step(settings, kDefaultSteps); !bad.empty()) return bad;
-  if (settings.step_cap < 0) return "step_cap: must be >= 0 (0: the solver's own cap)";
-  if (!(settings.time_limit >= 0.0)) return "time_limit: must be >= 0 (0: none)";
-  return {};
+  return check_limits(settings);
 }
 
 }  // namespace pb::bullet

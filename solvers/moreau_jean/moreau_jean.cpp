@@ -201,11 +201,8 @@ std::string check(const Settings& settings) {
     return "variant: unknown '" + settings.variant + "' (known: " + std::string(kStepMean) + " (default), " +
            std::string(kEndSamples) + ")";
   if (std::string step = check_step(settings, kDefaultSteps); !step.empty()) return step;
-  if (!(settings.theta >= 0.5 && settings.theta <= 1.0)) return "theta: must be in [0.5, 1]";
-  if (!(settings.gamma >= 0.0 && settings.gamma <= 1.0)) return "gamma: must be in [0, 1]";
-  if (settings.step_cap < 0) return "step_cap: must be >= 0 (0: the solver's own cap)";
-  if (!(settings.time_limit >= 0.0)) return "time_limit: must be >= 0 (0: none)";
-  return {};
+  if (std::string theta = check_theta_method(settings); !theta.empty()) return theta;
+  return check_limits(settings);
 }
 
 }  // namespace pb::moreau_jean

@@ -97,12 +97,9 @@ std::string check(const Settings& settings) {
     if (!(settings.tol_scale > 0.0) || !std::isfinite(settings.tol_scale)) return "tol_scale: must be finite and > 0";
   } else {
     if (std::string step = check_step(settings, kDefaultSteps); !step.empty()) return step;
-    if (!(settings.theta >= 0.5 && settings.theta <= 1.0)) return "theta: must be in [0.5, 1]";
-    if (!(settings.gamma >= 0.0 && settings.gamma <= 1.0)) return "gamma: must be in [0, 1]";
+    if (std::string theta = check_theta_method(settings); !theta.empty()) return theta;
   }
-  if (settings.step_cap < 0) return "step_cap: must be >= 0 (0: the solver's own cap)";
-  if (!(settings.time_limit >= 0.0)) return "time_limit: must be >= 0 (0: none)";
-  return {};
+  return check_limits(settings);
 }
 
 }  // namespace pb::siconos
