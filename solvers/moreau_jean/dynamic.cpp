@@ -193,27 +193,8 @@ bool step(const Scheme& sc, State& st, Work& w, Tally& t, double abar, double wo
 
 bool advance(const Scheme& sc, State& st, Work& w, Tally& t, long k_end, std::vector<double>* history,
              StepMonitor* monitor) {
-  const PulseLoad& l = sc.load;
-  bool ok = true;
-  if (l.rule == LoadRule::end_samples) {
-    const long loaded_end = std::min(k_end, l.full_steps + 1);
-    while (ok && st.k < loaded_end) ok = step(sc, st, w, t, l.end_mean(st.k), l.exact_mean(st.k), history, monitor);
-  } else {
-    if (st.k < l.full_steps) {
-      PulseMeans means(l, st.k);
-      const long pulse_end = std::min(k_end, l.full_steps);
-      while (ok && st.k < pulse_end) {
-        const double abar = means.next();
-        ok = step(sc, st, w, t, abar, abar, history, monitor);
-      }
-    }
-    if (ok && l.straddle && st.k == l.full_steps && st.k < k_end) {
-      const double abar = l.tail(st.k);
-      ok = step(sc, st, w, t, abar, abar, history, monitor);
-    }
-  }
-  while (ok && st.k < k_end) ok = step(sc, st, w, t, 0.0, 0.0, history, monitor);
-  return ok;
+  return drive(sc.load, st.k, k_end,
+               [&](double abar, double work) { return step(sc, st, w, t, abar, work, history, monitor); });
 }
 
 }  // namespace pb::moreau_jean::dynamic

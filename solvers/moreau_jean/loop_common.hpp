@@ -125,4 +125,34 @@ struct Tally {
   long phases = 0;     // runs of >= 2 consecutive steps with a positive impulse
 };
 
+// Runs the steps from k (the state's step, which `step` advances) to k_end, giving each the
+// ground load its rule makes: step(applied, exact) -> bool, with `applied` the load the
+// scheme uses and `exact` the step mean that the energy monitor counts (the same value
+// under LoadRule::step_mean). Stops at the first step that returns false. Both step loops
+// (stepper.hpp, dynamic.cpp) run through this; forced inline, so that the loop and the
+// step are one function.
+template <typename Step>
+[[gnu::always_inline]] inline bool drive(const PulseLoad& l, const long& k, long k_end, Step&& step) {
+  bool ok = true;
+  if (l.rule == LoadRule::end_samples) {
+    const long loaded_end = std::min(k_end, l.full_steps + 1);
+    while (ok && k < loaded_end) ok = step(l.end_mean(k), l.exact_mean(k));
+  } else {
+    if (k < l.full_steps) {
+      PulseMeans means(l, k);
+      const long pulse_end = std::min(k_end, l.full_steps);
+      while (ok && k < pulse_end) {
+        const double abar = means.next();
+        ok = step(abar, abar);
+      }
+    }
+    if (ok && l.straddle && k == l.full_steps && k < k_end) {
+      const double abar = l.tail(k);
+      ok = step(abar, abar);
+    }
+  }
+  while (ok && k < k_end) ok = step(0.0, 0.0);
+  return ok;
+}
+
 }  // namespace pb::moreau_jean

@@ -230,27 +230,9 @@ bool advance(const Scheme<NB, NC>& sc, State<NB, NC>& state, Tally& tally, long 
   // change a double behind another, and would reload the state from memory every step.
   State<NB, NC> st = state;
   Tally t = tally;
-  const PulseLoad& l = sc.load;
-  bool ok = true;
-  if (l.rule == LoadRule::end_samples) {
-    const long loaded_end = std::min(k_end, l.full_steps + 1);
-    while (ok && st.k < loaded_end)
-      ok = step<NB, NC, kRecord, kMonitor>(sc, st, t, l.end_mean(st.k), l.exact_mean(st.k), history, monitor);
-  } else {
-    if (st.k < l.full_steps) {
-      PulseMeans means(l, st.k);
-      const long pulse_end = std::min(k_end, l.full_steps);
-      while (ok && st.k < pulse_end) {
-        const double abar = means.next();
-        ok = step<NB, NC, kRecord, kMonitor>(sc, st, t, abar, abar, history, monitor);
-      }
-    }
-    if (ok && l.straddle && st.k == l.full_steps && st.k < k_end) {
-      const double abar = l.tail(st.k);
-      ok = step<NB, NC, kRecord, kMonitor>(sc, st, t, abar, abar, history, monitor);
-    }
-  }
-  while (ok && st.k < k_end) ok = step<NB, NC, kRecord, kMonitor>(sc, st, t, 0.0, 0.0, history, monitor);
+  const bool ok = drive(sc.load, st.k, k_end, [&](double abar, double work) __attribute__((always_inline)) {
+    return step<NB, NC, kRecord, kMonitor>(sc, st, t, abar, work, history, monitor);
+  });
   state = st;
   tally = t;
   return ok;
