@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace pb {
 
@@ -75,17 +76,26 @@ void StepMonitor::finish(Result& r) const {
   r.gap_rate_max = fastest_;
 }
 
-Deadline::Deadline(double seconds) : limit_(seconds), start_(std::chrono::steady_clock::now()) {}
+Deadline::Deadline(const Settings& settings)
+    : limit_(settings.time_limit), stop_(settings.stop), start_(std::chrono::steady_clock::now()) {}
 
 bool Deadline::passed(long k) {
-  if (!(limit_ > 0.0) || k < next_) return false;
+  if ((!(limit_ > 0.0) && !stop_) || k < next_) return false;
+  if (stop_ && stop_->load(std::memory_order_relaxed)) return true;
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  if (elapsed > limit_) return true;
+  if (limit_ > 0.0 && elapsed > limit_) return true;
   // The next look after ~1 ms of steps at the mean cost so far (a look costs ~25 ns).
   const double per_step = elapsed / static_cast<double>(k);
   const double stride = per_step > 0.0 ? 1e-3 / per_step : 4096.0;
   next_ = k + std::clamp(static_cast<long>(stride), 1L, 4096L);
   return false;
+}
+
+std::string Deadline::reason() const {
+  if (stop_ && stop_->load(std::memory_order_relaxed)) return "stopped (the sweep was interrupted)";
+  std::ostringstream msg;
+  msg << "more than " << limit_ << " s of wall time";
+  return msg.str();
 }
 
 }  // namespace pb

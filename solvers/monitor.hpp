@@ -17,7 +17,9 @@
 // Also here, for the same step loops: kDivergedEnergy, the divergence test on the energy,
 // and Deadline, Settings::time_limit checked at a rate that follows the cost of a step.
 
+#include <atomic>
 #include <chrono>
+#include <string>
 #include <vector>
 
 #include "cases/system.hpp"
@@ -60,21 +62,28 @@ class StepMonitor {
   double e_low_, e_high_;
 };
 
-// Settings::time_limit in a step loop. The clock is read about once per millisecond of
-// steps, whatever a step costs: a fixed stride would overshoot by seconds where a step
-// takes tens of milliseconds (a 100-body chain through an MLCP), or read the clock more
-// often than it steps where a step takes 100 ns.
+// Settings::time_limit (and Settings::stop) in a step loop. The clock is read about once
+// per millisecond of steps, whatever a step costs: a fixed stride would overshoot by
+// seconds where a step takes tens of milliseconds (a 100-body chain through an MLCP), or
+// read the clock more often than it steps where a step takes 100 ns.
 class Deadline {
  public:
-  explicit Deadline(double seconds);  // 0: no limit
+  explicit Deadline(const Settings& settings);  // time_limit 0 and no stop flag: never passes
 
-  // After step k (k >= 1): true once the limit has passed.
+  // After step k (k >= 1): true once the limit has passed or the stop flag is set.
   bool passed(long k);
+  // The same for a loop that counts nothing itself (the reference's searches): one call
+  // per unit of work.
+  bool tick() { return passed(++ticks_); }
+  // Why it passed, for Result::message.
+  std::string reason() const;
 
  private:
   double limit_;
+  const std::atomic<bool>* stop_;
   std::chrono::steady_clock::time_point start_;
   long next_ = 1;  // the step after which the clock is read next
+  long ticks_ = 0;
 };
 
 }  // namespace pb

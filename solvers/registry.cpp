@@ -22,10 +22,19 @@ std::string_view name(Status s) {
     case Status::diverged: return "diverged";
     case Status::nan: return "nan";
     case Status::step_cap: return "step_cap";
-    case Status::timeout: return "timeout";
+    case Status::time_limit: return "time-limit";
     case Status::failed: return "failed";
+    case Status::penetration: return "penetration";
+    case Status::energy: return "energy";
   }
   return "?";
+}
+
+std::optional<Status> parse_status(std::string_view text) {
+  for (Status s : {Status::ok, Status::diverged, Status::nan, Status::step_cap, Status::time_limit, Status::failed,
+                   Status::penetration, Status::energy})
+    if (name(s) == text) return s;
+  return std::nullopt;
 }
 
 std::string check_step(const Settings& settings, int default_steps) {

@@ -7,7 +7,9 @@
 // physical system (cases/system.hpp) and plain settings, and returns plain data.
 // Solvers are listed by name in the registry (find_solver), which is all a sweep sees.
 
+#include <atomic>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -22,10 +24,13 @@ enum class Status {
   diverged,  // state grew without bound
   nan,       // a NaN or inf appeared
   step_cap,  // more steps or events than Settings::step_cap
-  timeout,   // more wall time than Settings::time_limit
-  failed,    // the solver could not go on (message says why)
+  time_limit,   // more wall time than Settings::time_limit, or stopped (Settings::stop)
+  failed,       // the solver could not go on (message says why)
+  penetration,  // the reference only: a gap went below its closure tolerance (a wrong answer)
+  energy,       // the reference only: the run made energy beyond round-off (a wrong answer)
 };
 std::string_view name(Status s);
+std::optional<Status> parse_status(std::string_view text);  // the inverse of name()
 
 struct Settings {
   std::string variant;   // solver-specific variant; empty = the solver's default
@@ -36,6 +41,9 @@ struct Settings {
   double tol_scale = 1;  // event-driven: multiplies every internal tolerance
   long step_cap = 0;     // 0 = the solver's own cap
   double time_limit = 0;  // seconds of wall time per run; 0 = none
+  // Set by a sweep that is being stopped: a run in progress ends as time_limit at its
+  // next look at the clock. Not a setting of the solver: never part of describe().
+  const std::atomic<bool>* stop = nullptr;
   bool monitor = true;   // time-steppers: measure the energy balance and restitution (StepMonitor)
   int history_samples = 0;  // > 0: record the state at this many equally spaced times
                             // (event-driven) or at every step (time-steppers)

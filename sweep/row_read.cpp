@@ -14,12 +14,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::optional<Status> parse_status(std::string_view text) {
-  for (Status s : {Status::ok, Status::diverged, Status::nan, Status::step_cap, Status::timeout, Status::failed})
-    if (name(s) == text) return s;
-  return std::nullopt;
-}
-
 // Reads a record's fields by column name, naming the column of a bad one.
 class FieldReader {
  public:

@@ -85,7 +85,7 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
   row.penetration_steps = penetration_steps(row.result);
 
   try {
-    row.pi1_no_contact = event_driven::no_contact_pi1(system);
+    row.pi1_no_contact = event_driven::no_contact_pi1(system, settings);
   } catch (...) {
     // The solver's own result stands; only the comparison value is missing.
     if (!row.result.message.empty()) row.result.message += "; ";
@@ -122,16 +122,25 @@ std::vector<Row> run_sweep(std::span<const Case> cases, std::span<const SweepRun
   rows.reserve(total);
   std::exception_ptr error;
 
-  const auto stopped = [&] {
-    return stop.load(std::memory_order_relaxed) || (options.cancel && options.cancel->load());
-  };
+  // What each run's points are solved with: its settings, the sweep's stop flag and, where
+  // the run sets none, the sweep's time limit per point.
+  std::vector<Settings> settings;
+  settings.reserve(runs.size());
+  for (const SweepRun& run : runs) {
+    settings.push_back(run.settings);
+    settings.back().stop = options.cancel;
+    if (settings.back().time_limit == 0.0) settings.back().time_limit = options.point_time_limit;
+  }
+  const auto cancelled = [&] { return options.cancel && options.cancel->load(); };
+  const auto stopped = [&] { return stop.load(std::memory_order_relaxed) || cancelled(); };
   const auto work = [&] {
     while (!stopped()) {
       const std::optional<std::size_t> task = next_task();
       if (!task || *task >= total) return;
-      const SweepRun& run = runs[*task / n];
-      Row row = run_point(cases[*task % n], *task % n, *run.solver, run.settings);
-      row.run = *task / n;
+      const std::size_t r = *task / n;
+      Row row = run_point(cases[*task % n], *task % n, *runs[r].solver, settings[r]);
+      row.run = r;
+      if (cancelled()) return;  // the run may have been cut short by the stop: not a result
 
       const std::lock_guard lock(mutex);
       if (error) return;

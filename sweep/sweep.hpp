@@ -49,6 +49,10 @@ bool task_order(const Row& a, const Row& b);
 // A TaskSource over a fixed list of tasks, in its order (the list must outlive it).
 TaskSource tasks_from(std::span<const std::size_t> tasks);
 
+// The default SweepOptions::point_time_limit: a hundred times the slowest point of the
+// shipped sets (a 100-body chain through Bullet's MLCP at the finest stress step, ~0.6 s).
+inline constexpr double kPointTimeLimit = 60.0;
+
 struct SweepOptions {
   unsigned threads = 0;  // 0: std::thread::hardware_concurrency()
   TaskSource next_task;  // empty: every task, in order
@@ -57,9 +61,14 @@ struct SweepOptions {
   std::function<void(const Row&)> on_row;
   // Called after on_row with the number of rows done so far and the number of tasks.
   std::function<void(std::size_t done, std::size_t total)> on_progress;
-  // When set to true, no new point starts; the points already running finish and are
-  // reported. run_sweep then returns the rows it has (fewer than the tasks).
+  // When set to true, no new point starts, and the points already running end at their
+  // solver's next look at the clock and are dropped (a resumed sweep solves them again).
+  // run_sweep then returns the rows it has (fewer than the tasks).
   const std::atomic<bool>* cancel = nullptr;
+  // Wall seconds a point may take when its run sets no Settings::time_limit of its own:
+  // one point that never ends must not hold a whole sweep. Past it the row has status
+  // time-limit and the sweep goes on. 0: no limit.
+  double point_time_limit = kPointTimeLimit;
 };
 
 // Rows sorted by run, then point: one per task run (every task unless next_task says

@@ -175,7 +175,7 @@ TEST(ChainReference, TimeLimitStopsTheRunAsTimeout) {
   Settings st;
   st.time_limit = 1e-9;
   const Result r = event_driven::solve(make_system(chain_case(100, 0.5, 0.5, 1.0, 2.0, 0.5)), st);
-  EXPECT_EQ(r.status, Status::timeout);
+  EXPECT_EQ(r.status, Status::time_limit);
   EXPECT_FALSE(r.message.empty());
   EXPECT_TRUE(std::isfinite(r.pi1));
 }

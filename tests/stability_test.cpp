@@ -135,7 +135,7 @@ TEST(StabilitySummary, UnmeasuredChecksAreNeitherPassNorFail) {
   EXPECT_TRUE(s.passed());
   EXPECT_EQ(name(s.energy), "");
 
-  rows[0].result.status = Status::timeout;  // nothing finished: only `finite` judges
+  rows[0].result.status = Status::time_limit;  // nothing finished: only `finite` judges
   s = summary_of(rows);
   EXPECT_EQ(s.finite, Verdict::fail);
   EXPECT_EQ(s.gap, Verdict::none);

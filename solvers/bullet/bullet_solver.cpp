@@ -123,7 +123,7 @@ Result run(const System& sys, const Settings& set, const Config& config) {
   }
 
   const double bound = 1e6 * sys.length_scale(), energy_bound = kDivergedEnergy * sys.energy_scale();
-  Deadline deadline(set.time_limit);
+  Deadline deadline(set);
   long k = 0;
   while (k < n) {
     for (int j = 0; j < nc; ++j) rate[ix(j)] = world.gap_rate(j);  // approach speed at t_k
@@ -156,8 +156,8 @@ Result run(const System& sys, const Settings& set, const Config& config) {
     tally_state(sys, world, k, tally);
     if (recording) record(sys, world, static_cast<double>(k) * h, h, true, res.history.data);
     if (k < n && deadline.passed(k)) {
-      res.status = Status::timeout;
-      res.message = "time limit reached at t = " + std::to_string(static_cast<double>(k) * h);
+      res.status = Status::time_limit;
+      res.message = deadline.reason() + " at t = " + std::to_string(static_cast<double>(k) * h);
       break;
     }
   }

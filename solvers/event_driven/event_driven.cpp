@@ -45,8 +45,6 @@ Tolerances tolerances(const System& s, double scale) {
 // Runs of closed contacts up to this length are decided by enumerating their 2^n active
 // sets; longer ones take Lemke's proposal (DERIVATION.md §4).
 constexpr int kEnumerateLimit = 8;
-// The wall clock is read once per this many events (Settings::time_limit).
-constexpr long kClockEvery = 256;
 // Settings::variant that solves long runs of both LCPs by Lemke's method first: slower,
 // and there to check the default's fast paths against it.
 constexpr std::string_view kLemkeVariant = "lemke";
@@ -78,9 +76,10 @@ class Solver {
       : s_(s),
         tol_(tolerances(s, settings.tol_scale)),
         cap_(settings.step_cap > 0 ? settings.step_cap : 1000000),
-        time_limit_(settings.time_limit),
+        deadline_(settings),
         floor_(kRestitutionFloor * s.a_p / s.pulse.w),
-        lemke_first_(settings.variant == kLemkeVariant) {
+        lemke_first_(settings.variant == kLemkeVariant),
+        tol_scale_(settings.tol_scale) {
     work_.lemke_only = lemke_first_;
     const auto n = ix(s.n_bodies()), nc = ix(s.n_contacts());
     st_.u = start_or_rest(s.u_start, s);
@@ -119,8 +118,25 @@ class Solver {
   }
 
   Result run() {
-    clock_start_ = std::chrono::steady_clock::now();
-    if (!start()) return finish();
+    try {
+      events();
+    } catch (const OutOfTime&) {
+      res_.status = Status::time_limit;
+      std::ostringstream msg;
+      msg << deadline_.reason() << " (t = " << st_.t << " of " << s_.t_end << ")";
+      res_.message = msg.str();
+    } catch (const NonFinite&) {
+      res_.status = Status::nan;
+      std::ostringstream msg;
+      msg << "the closed-form motion is not finite at t = " << st_.t;
+      res_.message = msg.str();
+    }
+    return finish();
+  }
+
+ private:
+  void events() {
+    if (!start()) return;
     const double t_p = s_.pulse.duration();
     while (st_.t < s_.t_end) {
       const double seg_end = st_.t < t_p ? std::min(t_p, s_.t_end) : s_.t_end;
@@ -128,13 +144,13 @@ class Solver {
       int which = -1;
       for (int j = 0; j < s_.n_contacts(); ++j) {
         const double noise = st_.active[ix(j)] ? tol_.lex * force_scale_[ix(j)] : tol_.gap;
-        const double r = first_root(fr_.contact[ix(j)], st_.t, b, tol_.floor, tol_.settle, noise);
+        const double r = first_root(fr_.contact[ix(j)], st_.t, b, tol_.floor, tol_.settle, noise, deadline_);
         if (!std::isnan(r) && r <= b) {
           b = r;
           which = j;
         }
       }
-      max_abs(fr_.body[ix(s_.ref)], st_.t, b, tol_.floor, peak_);
+      max_abs(fr_.body[ix(s_.ref)], st_.t, b, tol_.floor, peak_, deadline_);
       record(b);
       advance(b);
       if (++res_.steps > cap_) {
@@ -142,7 +158,7 @@ class Solver {
         res_.message = "more than " + std::to_string(cap_) + " events";
         break;
       }
-      if (out_of_time()) break;
+      if (deadline_.passed(res_.steps)) throw OutOfTime{};
       if (which < 0 && st_.t >= s_.t_end) break;
       const double e_before = s_.energy(st_.u.data(), st_.v.data());
       bool ok;
@@ -155,10 +171,8 @@ class Solver {
       if (!ok) break;
       account(e_before);
     }
-    return finish();
   }
 
- private:
   // t = 0: a closed contact that approaches (a Newton's-cradle kick) is an impact first;
   // otherwise the contact LCP decides the closed contacts at rest relative to each other.
   bool start() {
@@ -183,18 +197,8 @@ class Solver {
     res_.isolated_impacts = isolated_;
     res_.restitution_low = isolated_ > 0 ? e_low_ : std::numeric_limits<double>::quiet_NaN();
     res_.restitution_high = isolated_ > 0 ? e_high_ : std::numeric_limits<double>::quiet_NaN();
+    check_result(s_, tol_scale_, res_);
     return std::move(res_);
-  }
-
-  bool out_of_time() {
-    if (time_limit_ <= 0.0 || res_.steps % kClockEvery != 0) return false;
-    const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start_).count();
-    if (spent <= time_limit_) return false;
-    res_.status = Status::timeout;
-    std::ostringstream msg;
-    msg << "more than " << time_limit_ << " s of wall time (t = " << st_.t << " of " << s_.t_end << ")";
-    res_.message = msg.str();
-    return true;
   }
 
   // The energy balance E + D - E0 - W moves only at events (DERIVATION.md §5): adds the jump
@@ -484,10 +488,10 @@ class Solver {
   const System& s_;
   Tolerances tol_;
   long cap_;
-  double time_limit_;
+  Deadline deadline_;
   double floor_;  // kRestitutionFloor a_p / w_p
   bool lemke_first_;
-  std::chrono::steady_clock::time_point clock_start_;
+  double tol_scale_;
   State st_;
   Frame fr_;
   Peak peak_;
@@ -521,6 +525,26 @@ Result solve(const System& system, const Settings& settings) {
   }
 }
 
+void check_result(const System& s, double tol_scale, Result& r) {
+  if (r.status != Status::ok) return;
+  std::ostringstream msg;
+  const double gap = tolerances(s, tol_scale).gap, energy = kEnergyCheck * std::max(1.0, tol_scale);
+  if (!std::isfinite(r.pi1)) {
+    r.status = Status::nan;
+    msg << "Pi1 is not finite";
+  } else if (r.min_gap < -kPenetrationCheck * gap) {
+    r.status = Status::penetration;
+    msg << "a gap reached " << r.min_gap / s.length_scale() << " a_p/w_p^2, beyond " << kPenetrationCheck
+        << " closure tolerances";
+  } else if (r.energy_excess > energy) {
+    r.status = Status::energy;
+    msg << "the run made " << r.energy_excess << " of the energy scale, beyond " << energy;
+  } else {
+    return;
+  }
+  r.message = msg.str();
+}
+
 std::string describe(const Settings& settings) {
   std::ostringstream out;
   out << "tol_scale=" << settings.tol_scale;
@@ -528,7 +552,13 @@ std::string describe(const Settings& settings) {
 }
 
 std::string check(const Settings& settings) {
-  if (!(settings.tol_scale > 0.0) || !std::isfinite(settings.tol_scale)) return "tol-scale: must be finite and > 0";
+  if (!(settings.tol_scale >= kMinTolScale && settings.tol_scale <= kMaxTolScale)) {
+    std::ostringstream msg;
+    msg << "tol-scale: must be in [" << kMinTolScale << ", " << kMaxTolScale
+        << "]: below, its tolerances fall under double precision's round-off; above, the plastic-approach "
+           "speed passes the restitution floor";
+    return msg.str();
+  }
   if (settings.steps != 0) return "steps: the event-driven solver takes no step";
   if (settings.wh != 0.0) return "wh: the event-driven solver takes no step";
   if (!settings.variant.empty() && settings.variant != kLemkeVariant)
@@ -536,14 +566,17 @@ std::string check(const Settings& settings) {
   return {};
 }
 
-double no_contact_pi1(const System& system) {
+double no_contact_pi1(const System& system, const Settings& limits) {
   System alone = system;
   alone.bodies = {system.bodies[ix(system.ref)]};
   alone.wall = false;
   alone.ref = 0;
   alone.u_start = {system.u_start.empty() ? 0.0 : system.u_start[ix(system.ref)]};
   alone.v_start = {system.v_start.empty() ? 0.0 : system.v_start[ix(system.ref)]};
-  return solve(alone, Settings{}).pi1;
+  Settings settings;
+  settings.time_limit = limits.time_limit;
+  settings.stop = limits.stop;
+  return solve(alone, settings).pi1;
 }
 
 }  // namespace pb::event_driven

@@ -13,6 +13,23 @@ std::string describe(const Settings& settings);
 std::string check(const Settings& settings);
 
 // Pi1 of body 0 with every contact removed: a damped oscillator under the pulse, exact.
-double no_contact_pi1(const System& system);
+// Only the time limit and stop flag of `limits` are used.
+double no_contact_pi1(const System& system, const Settings& limits = {});
+
+// Settings::tol_scale multiplies tolerances of 1e-10 (gaps) to 1e-7 (speeds) relative to
+// the pulse's scales: below 1e-5 the gap tolerance would be under double precision's
+// round-off of the displacements it compares (1e-15 relative); above 1e4 the speed below
+// which an approach counts as plastic (1e-7 tol_scale a_p / w_p) would pass
+// kRestitutionFloor, where impacts are measured.
+inline constexpr double kMinTolScale = 1e-5;
+inline constexpr double kMaxTolScale = 1e4;
+// A run is `ok` only when its answer is one: Pi1 finite, no gap below kPenetrationCheck
+// closure tolerances, the energy balance within kEnergyCheck (times tol_scale when that is
+// > 1) of System::energy_scale(). Beyond these the answer is wrong, not merely rounded
+// (measured on the stress set: at most 1.0005 closure tolerances and 1e-13 of the scale).
+inline constexpr double kPenetrationCheck = 10.0;
+inline constexpr double kEnergyCheck = 1e-9;
+// Turns an `ok` result that fails those checks into the status naming the first that failed.
+void check_result(const System& system, double tol_scale, Result& result);
 
 }  // namespace pb::event_driven

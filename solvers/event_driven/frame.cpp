@@ -1,5 +1,7 @@
 #include "solvers/event_driven/frame.hpp"
 
+#include <limits>
+
 namespace pb::event_driven {
 
 namespace {
@@ -59,7 +61,9 @@ void build_frame(const System& s, const State& st, int from, int to, Frame& fr) 
       const bool on = pulse_on(s, st.t);
       const double load = on ? -m * s.pulse.amplitude : 0.0;
       const bool sine = s.pulse.shape == PulseShape::sine;
-      x = oscillator(st.t, mx / m, mv / m, m, c, k, f_const, sine ? load : 0.0, sine ? 0.0 : load, s.pulse.w);
+      const double horizon = on ? s.pulse.duration() : std::numeric_limits<double>::infinity();
+      x = oscillator(st.t, mx / m, mv / m, m, c, k, f_const, sine ? load : 0.0, sine ? 0.0 : load, s.pulse.w,
+                     horizon);
     }
     for (int i = first; i <= last; ++i) {
       fr.body[ix(i)] = x;

@@ -86,8 +86,14 @@ double refine_root(const Wave& g, Point lo, Point hi) {
   return t;
 }
 
+// One unit of search work: ends the search once the deadline has passed.
+void tick(Deadline& deadline) {
+  if (deadline.tick()) throw OutOfTime{};
+}
+
 // Depth-first search of [a, b] for the first crossing, left half first.
-double search(const Wave& g, const Point& a, const Point& b, double floor) {
+double search(const Wave& g, const Point& a, const Point& b, double floor, Deadline& dl) {
+  tick(dl);
   const double h = b.t - a.t;
   if (b.f <= 0.0) {
     // A crossing is bracketed; it is the first one if g is monotone on the window.
@@ -100,11 +106,11 @@ double search(const Wave& g, const Point& a, const Point& b, double floor) {
   }
   const Point m = at(g, 0.5 * (a.t + b.t));
   if (m.f <= 0.0) {
-    const double r = search(g, a, m, floor);
+    const double r = search(g, a, m, floor, dl);
     return std::isnan(r) ? refine_root(g, a, m) : r;
   }
-  const double r = search(g, a, m, floor);
-  return std::isnan(r) ? search(g, m, b, floor) : r;
+  const double r = search(g, a, m, floor, dl);
+  return std::isnan(r) ? search(g, m, b, floor, dl) : r;
 }
 
 // Window length for which the Hermite error is a fraction of the current value.
@@ -114,26 +120,42 @@ double window(const Wave& g, double t, double f, double rest) {
   return std::min(rest, std::sqrt(std::sqrt(96.0 * std::abs(f) / b4)));
 }
 
-double crossing(const Wave& f, Point p, double b, double floor);
+// A wave whose value or bounds are not finite certifies nothing (and would make every
+// exclusion test false, halving windows down to the floor everywhere).
+void check_finite(const Wave& f, const Point& p) {
+  if (!std::isfinite(p.f) || !std::isfinite(p.df) || !std::isfinite(f.bound(p.t, 4))) throw NonFinite{};
+}
+
+double crossing(const Wave& f, Point p, double b, double floor, Deadline& dl);
+double first_crossing(const Wave& f, const Point& p, double b, double floor, Deadline& dl);
 
 }  // namespace
 
-double first_root(const Wave& f, double a, double b, double floor, double settle, double noise) {
+double first_root(const Wave& f, double a, double b, double floor, double settle, double noise, Deadline& dl) {
   Point p = at(f, a);
-  if (p.f <= 0.0) {
-    if (p.f < -noise) return a;
-    for (double step = floor;; step *= 2.0) {
-      const double t = std::min(a + step, b);
-      p = at(f, t);
-      if (p.f > 0.0) break;
-      if (step > settle || t == b) {
-        Wave shifted = f;
-        shifted.f0 += noise;
-        shifted.prepare();
-        return first_root(shifted, a, b, floor, settle, noise);
-      }
-    }
+  check_finite(f, p);
+  if (p.f > 0.0) return first_crossing(f, p, b, floor, dl);
+  if (p.f < -noise) return a;
+  for (double step = floor;; step *= 2.0) {
+    const double t = std::min(a + step, b);
+    p = at(f, t);
+    if (p.f > 0.0) return first_crossing(f, p, b, floor, dl);
+    if (step > settle || t == b) break;
   }
+  // Neutral: the event is where f first falls below -noise. Shifted once: if that leaves
+  // f(a) at or below zero (f(a) is -noise already, or noise is below f's round-off), the
+  // event is now.
+  Wave shifted = f;
+  shifted.f0 += noise;
+  shifted.prepare();
+  p = at(shifted, a);
+  if (!(p.f > 0.0)) return a;
+  return first_crossing(shifted, p, b, floor, dl);
+}
+
+namespace {
+
+double first_crossing(const Wave& f, const Point& p, double b, double floor, Deadline& dl) {
   // Far from a root the whole search is skipped: f >= f(a) + f'(a) s - max|f''| s^2 / 2,
   // and when that stays clear of f's rounding (relative to its terms) up to b, no
   // evaluation on (a, b] can come out <= 0. Every contact is searched at every event, and
@@ -141,20 +163,19 @@ double first_root(const Wave& f, double a, double b, double floor, double settle
   const double h = b - p.t;
   const double low = p.f + std::min(0.0, p.df * h) - 0.5 * f.bound(p.t, 2) * h * h;
   if (low > 1e-10 * (std::abs(f.f0) + 2.0 * f.bound(f.t0, 0))) return kNaN;
-  return crossing(f, p, b, floor);
+  return crossing(f, p, b, floor, dl);
 }
 
-namespace {
-
 // The first crossing after p, where f(p) > 0.
-double crossing(const Wave& f, Point p, double b, double floor) {
+double crossing(const Wave& f, Point p, double b, double floor, Deadline& dl) {
   const double mean = f.mean();
   while (p.t < b) {
+    tick(dl);
     if (mean - f.swing(p.t) > 0.0) return kNaN;
     const double h = std::max(window(f, p.t, p.f, b - p.t), std::min(floor, b - p.t));
     const double tb = h >= b - p.t ? b : p.t + h;
     const Point q = at(f, tb);
-    const double r = search(f, p, q, floor);
+    const double r = search(f, p, q, floor, dl);
     if (!std::isnan(r)) return r;
     p = q;
   }
@@ -190,7 +211,8 @@ Point stationary(const Wave& f, Point a, Point b) {
   return std::abs(a.df) < std::abs(b.df) ? a : b;
 }
 
-void peak_search(const Wave& f, const Point& a, const Point& b, double floor, Peak& peak) {
+void peak_search(const Wave& f, const Point& a, const Point& b, double floor, Peak& peak, Deadline& dl) {
+  tick(dl);
   const double h = b.t - a.t;
   double lo, hi;
   Cubic(a, b).range(lo, hi);
@@ -209,23 +231,25 @@ void peak_search(const Wave& f, const Point& a, const Point& b, double floor, Pe
   }
   const Point m = at(f, 0.5 * (a.t + b.t));
   consider(m, peak);
-  peak_search(f, a, m, floor, peak);
-  peak_search(f, m, b, floor, peak);
+  peak_search(f, a, m, floor, peak, dl);
+  peak_search(f, m, b, floor, peak, dl);
 }
 
 }  // namespace
 
-void max_abs(const Wave& f, double a, double b, double floor, Peak& peak) {
+void max_abs(const Wave& f, double a, double b, double floor, Peak& peak, Deadline& dl) {
   Point p = at(f, a);
+  check_finite(f, p);
   consider(p, peak);
   const double mean = std::abs(f.mean());
   while (p.t < b) {
+    tick(dl);
     if (mean + f.swing(p.t) <= peak.value) return;
     const double ref = std::max(peak.value, std::abs(p.f));
     const double h = std::max(window(f, p.t, ref, b - p.t), std::min(floor, b - p.t));
     const Point q = at(f, h >= b - p.t ? b : p.t + h);
     consider(q, peak);
-    peak_search(f, p, q, floor, peak);
+    peak_search(f, p, q, floor, peak, dl);
     p = q;
   }
 }

@@ -10,8 +10,16 @@
 // within round-off of the gap.
 
 #include "solvers/event_driven/wave.hpp"
+#include "solvers/monitor.hpp"
 
 namespace pb::event_driven {
+
+// Thrown by a search when its Deadline passes (Settings::time_limit, Settings::stop): a
+// search of a grazing approach may halve its windows down to the floor, and the run must
+// still end when it is told to.
+struct OutOfTime {};
+// Thrown when a wave's value or bounds are not finite: no search could certify anything.
+struct NonFinite {};
 
 // The first t in (a, b] where f falls to <= 0 after being > 0, to within an ulp of the
 // root; NaN if there is none. If f(a) <= 0 (a contact that has just opened or closed, up
@@ -19,7 +27,7 @@ namespace pb::event_driven {
 // than `settle` past a. If it does not become positive by then, f is taken as neutral
 // (a resting contact with zero force, a gap that stays closed) and the event is where it
 // first falls below -noise instead.
-double first_root(const Wave& f, double a, double b, double floor, double settle, double noise);
+double first_root(const Wave& f, double a, double b, double floor, double settle, double noise, Deadline& deadline);
 
 struct Peak {
   double value = 0.0;  // largest |f| found
@@ -28,6 +36,6 @@ struct Peak {
 
 // Raises peak to max |f| on [a, b] if that is larger; interior maxima are located at the
 // zero of f' to within an ulp.
-void max_abs(const Wave& f, double a, double b, double floor, Peak& peak);
+void max_abs(const Wave& f, double a, double b, double floor, Peak& peak, Deadline& deadline);
 
 }  // namespace pb::event_driven

@@ -1,6 +1,7 @@
 #include "solvers/event_driven/wave.hpp"
 
 #include <cassert>
+#include <complex>
 
 namespace pb::event_driven {
 
@@ -23,6 +24,20 @@ void sin_cos(double w, double t0, double& s, double& c) {
   }
   s = last_s;
   c = last_c;
+}
+
+using Complex = std::complex<double>;
+
+bool resonant(const Mode& md) { return md.rr != 0.0 || md.ri != 0.0; }
+
+// E(s) = (exp(d s) - 1) / d, d = sigma + i delta (= i w - z), without the cancellation of
+// exp(d s) - 1 for small |d s|: exp(x) - 1 = expm1(xr) cos(xi) - 2 sin^2(xi / 2) + i exp(xr) sin(xi).
+Complex grow(double sigma, double delta, double s) {
+  const Complex d(sigma, delta), x = d * s;
+  if (std::abs(x) < 1e-4) return s * (1.0 + x * (0.5 + x * (1.0 / 6.0 + x / 24.0)));  // x^4/120 < 1e-18
+  const double h = std::sin(0.5 * x.imag());
+  return Complex(std::expm1(x.real()) * std::cos(x.imag()) - 2.0 * h * h, std::exp(x.real()) * std::sin(x.imag())) /
+         d;
 }
 
 }  // namespace
@@ -102,6 +117,18 @@ void Wave::eval(double t, double* out, int nd) const {
       const auto k = static_cast<std::size_t>(d);
       out[d] += e * (md.re[k] * cs - md.im[k] * sn);
     }
+    if (resonant(md)) {
+      // G^(d)(s) = exp(z s) [(i w)^d E(s) + S_d], S_d = sum_{j<d} (i w)^j z^(d-1-j): the
+      // difference quotient of (i w)^d exp(i w s) and z^d exp(z s), free of 1 / |i w - z|.
+      const Complex ez(e * cs, e * sn), iw(0.0, w), z(-md.sigma, md.omega);
+      const Complex grown = start ? Complex(0.0) : grow(md.sigma, w - md.omega, tau);
+      Complex a(md.rr, md.ri), sum(0.0);  // r (i w)^d, r S_d
+      for (int d = 0; d < nd; ++d) {
+        out[d] += (ez * (a * grown + sum)).real();
+        sum = sum * z + a;
+        a *= iw;
+      }
+    }
   }
 }
 
@@ -111,7 +138,19 @@ double Wave::bound(double t, int d) const {
   const double tau = std::max(t - t0, 0.0);
   for (int m = 0; m < n_modes; ++m) {
     const Mode& md = mode[static_cast<std::size_t>(m)];
-    b += md.envelope[k] * (tau == 0.0 ? 1.0 : std::exp(-md.sigma * tau));
+    const double decay = tau == 0.0 ? 1.0 : std::exp(-md.sigma * tau);
+    b += md.envelope[k] * decay;
+    if (resonant(md)) {
+      // |exp(z s) E(s)| = |exp(i w s) - exp(z s)| / |d| <= 2 / |d|, and <= s (sigma >= 0).
+      const double d_abs = std::hypot(md.sigma, w - md.omega), z_abs = std::hypot(md.sigma, md.omega);
+      const double reach = std::min(horizon - t0, d_abs > 0.0 ? 2.0 / d_abs : horizon - t0);
+      double wd = 1.0, sum = 0.0;  // w^k, sum_{j<k} w^j |z|^(k-1-j)
+      for (int j = 0; j < d; ++j) {
+        sum = sum * z_abs + wd;
+        wd *= w;
+      }
+      b += std::hypot(md.rr, md.ri) * (wd * reach + sum * decay);
+    }
   }
   return b;
 }
@@ -131,6 +170,7 @@ void add_scaled(Wave& acc, const Wave& x, double s) {
     acc.ps += s * x.ps;
     acc.pc += s * x.pc;
   }
+  acc.horizon = std::min(acc.horizon, x.horizon);
   for (int m = 0; m < x.n_modes; ++m) {
     const Mode& xm = x.mode[static_cast<std::size_t>(m)];
     int k = 0;
@@ -140,11 +180,15 @@ void add_scaled(Wave& acc, const Wave& x, double s) {
     assert(k < kMaxModes);
     Mode& am = acc.mode[static_cast<std::size_t>(k)];
     if (k == acc.n_modes) {
-      am = Mode{xm.sigma, xm.omega, 0.0, 0.0, {}, {}, {}};
+      am = Mode{};
+      am.sigma = xm.sigma;
+      am.omega = xm.omega;
       ++acc.n_modes;
     }
     am.a += s * xm.a;
     am.b += s * xm.b;
+    am.rr += s * xm.rr;
+    am.ri += s * xm.ri;
   }
 }
 
@@ -157,29 +201,56 @@ Wave derivative(const Wave& x) {
   d.w = x.w;
   d.ps = -x.w * x.pc;
   d.pc = x.w * x.ps;
+  d.horizon = x.horizon;
   d.n_modes = x.n_modes;
   for (int m = 0; m < x.n_modes; ++m) {
     const Mode& xm = x.mode[static_cast<std::size_t>(m)];
     Mode& dm = d.mode[static_cast<std::size_t>(m)];
     dm.sigma = xm.sigma;
     dm.omega = xm.omega;
-    dm.a = xm.re[1];
-    dm.b = -xm.im[1];
+    // (r G)' = (i w r) G + r exp(z s): the damped term gains r, the resonant one i w r.
+    dm.a = xm.re[1] + xm.rr;
+    dm.b = -(xm.im[1] + xm.ri);
+    dm.rr = -x.w * xm.ri;
+    dm.ri = x.w * xm.rr;
   }
   d.prepare();
   return d;
 }
 
 Wave oscillator(double t0, double x0, double v0, double m, double c, double k, double f_const, double fs,
-                double fc, double w) {
+                double fc, double w, double horizon) {
   Wave x;
   x.t0 = t0;
   x.f0 = x0;
+  x.horizon = horizon;
   const double wn2 = k / m;
   const double two_zeta_wn = c / m;
+  const double sigma = 0.5 * two_zeta_wn;
+  const double omega = std::sqrt(wn2 - sigma * sigma);
+  Mode& md = x.mode[0];
+  md.sigma = sigma;
+  md.omega = omega;
+  x.n_modes = 1;
+  const bool forced = fs != 0.0 || fc != 0.0;
+  if (forced && std::hypot(sigma, w - omega) < kNearResonance * w) {
+    // The load is Re(F exp(i w t)), F = fc - i fs. From rest at t0 it moves the oscillator
+    // by Re(F' / m) times the divided difference of exp(p s) over the poles p = i w, z,
+    // conj(z) (F' = F exp(i w t0)), which is (G(s) - exp(-sigma s) sin(omega s) / omega) /
+    // (i w - conj z): the near-resonant term with r = F' / (m (i w - conj z)), and a sine.
+    // The free motion from (x0 - F0 / K, v0) adds the usual damped term.
+    x.w = w;
+    const Complex r = Complex(fc, -fs) * std::polar(1.0, w * t0) / (m * Complex(sigma, w + omega));
+    md.a = x0 - f_const / k;
+    md.b = (v0 + sigma * md.a - r.real()) / omega;
+    md.rr = r.real();
+    md.ri = r.imag();
+    x.prepare();
+    return x;
+  }
   // Particular solution: f_const / k + P sin(w t) + Q cos(w t).
   double p = 0.0, q = 0.0;
-  if (fs != 0.0 || fc != 0.0) {
+  if (forced) {
     const double a = wn2 - w * w, b = two_zeta_wn * w;
     const double det = a * a + b * b;
     p = (a * fs / m + b * fc / m) / det;
@@ -192,14 +263,8 @@ Wave oscillator(double t0, double x0, double v0, double m, double c, double k, d
   sin_cos(x.w, t0, sn, cs);
   const double xp = f_const / k + p * sn + q * cs;
   const double vp = w * (p * cs - q * sn);
-  const double sigma = 0.5 * two_zeta_wn;
-  const double omega = std::sqrt(wn2 - sigma * sigma);
-  Mode& md = x.mode[0];
-  md.sigma = sigma;
-  md.omega = omega;
   md.a = x0 - xp;
   md.b = (v0 - vp + sigma * md.a) / omega;
-  x.n_modes = 1;
   x.prepare();
   return x;
 }

@@ -51,17 +51,16 @@ Result prepare(const System& sys, const Settings& set, double& h, long& n) {
   return res;
 }
 
-// Calls advance(k_end) on chunks of `chunk` steps until the state is at step n, and reads
-// the wall clock between chunks against Settings::time_limit. False if the state blew up.
+// Calls advance(k_end) on chunks of `chunk` steps until the state is at step n, and looks
+// at the Deadline between chunks. False if the state blew up.
 template <class Advance>
 bool drive(const long& k, long n, long chunk, double h, const Settings& set, Result& res, Advance&& advance) {
-  const auto started = std::chrono::steady_clock::now();
+  Deadline deadline(set);
   while (k < n) {
     if (!advance(std::min(n, k + chunk))) return false;
-    if (set.time_limit > 0.0 && k < n &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() > set.time_limit) {
-      res.status = Status::timeout;
-      res.message = "time limit reached at t = " + std::to_string(static_cast<double>(k) * h);
+    if (k < n && deadline.passed(k)) {
+      res.status = Status::time_limit;
+      res.message = deadline.reason() + " at t = " + std::to_string(static_cast<double>(k) * h);
       break;
     }
   }

@@ -292,7 +292,7 @@ Result run(const System& sys, const Settings& set, const Config& config) {
 
   const long lcp_failures_before = lcp_failures();
   const char* diverged_by = "";
-  Deadline deadline(set.time_limit);
+  Deadline deadline(set);
   const bool quick = config.stepper == Stepper::quickstep;
   while (st.k < n) {
     if (!apply_loads(s, st)) {
@@ -330,8 +330,8 @@ Result run(const System& sys, const Settings& set, const Config& config) {
     tally(s, st, t);
     if (recording) record(s, st, res.history.data);
     if (st.k < n && deadline.passed(st.k)) {
-      res.status = Status::timeout;
-      res.message = "time limit reached at t = " + std::to_string(static_cast<double>(st.k) * h);
+      res.status = Status::time_limit;
+      res.message = deadline.reason() + " at t = " + std::to_string(static_cast<double>(st.k) * h);
       break;
     }
   }

@@ -105,7 +105,7 @@ Result run_event_driven(const System& sys, const Settings& set) {
   }
   double t_last = 0.0;
   long events = 0;
-  Deadline deadline(set.time_limit);
+  Deadline deadline(set);
   while (run.has_next()) {
     if (events >= cap) {
       res.status = Status::step_cap;
@@ -161,8 +161,8 @@ Result run_event_driven(const System& sys, const Settings& set) {
     if (recording) record(now, st, force, res.history.data);
     t_last = now;
     if (deadline.passed(events)) {
-      res.status = Status::timeout;
-      res.message = "time limit reached at t = " + std::to_string(now);
+      res.status = Status::time_limit;
+      res.message = deadline.reason() + " at t = " + std::to_string(now);
       break;
     }
   }

@@ -103,7 +103,7 @@ Result run_time_stepping(const System& sys, const Settings& set, bool enumeratio
   }
   LcpPaths paths;
   const char* stop_reason = nullptr;
-  Deadline deadline(set.time_limit);
+  Deadline deadline(set);
   long k = 0;
   while (k < n) {
     // The index set of this step, chosen by Siconos from the state at t_k.
@@ -164,8 +164,8 @@ Result run_time_stepping(const System& sys, const Settings& set, bool enumeratio
     t.state(sys, st, k);
     if (recording) record(t1, st, c.force, res.history.data);
     if (k < n && deadline.passed(k)) {
-      res.status = Status::timeout;
-      res.message = "time limit reached at t = " + std::to_string(t1);
+      res.status = Status::time_limit;
+      res.message = deadline.reason() + " at t = " + std::to_string(t1);
       break;
     }
   }
