@@ -54,7 +54,7 @@ void step_loop(benchmark::State& state, pb::Scene scene) {
   const pb::System s = pb::bench::fig4_point(scene);
   const bool monitored = state.range(0) != 0;
   const double h = s.step(kStepsPerPeriod);
-  const long steps = mj::step_count(s.t_end, h);
+  const long steps = pb::step_count(s.t_end, h);
   const auto scheme = mj::make_scheme<NB, NC>(s, h, 0.5, 0.5);
   using VecB = typename mj::Scheme<NB, NC>::VecB;
   const auto start = mj::make_state(scheme, VecB::Zero().eval(), VecB::Zero().eval());
@@ -83,7 +83,7 @@ BENCHMARK(BM_MoreauJeanStepLoopRow3)->ArgName("monitor")->Arg(0)->Arg(1)->Unit(b
 // The any-size loop on system s; counters as above, plus tridiagonal solves per step.
 void dynamic_loop(benchmark::State& state, const pb::System& s, bool monitored) {
   const double h = s.step(kStepsPerPeriod);
-  const long steps = mj::step_count(s.t_end, h);
+  const long steps = pb::step_count(s.t_end, h);
   const mj::dynamic::Scheme scheme = mj::dynamic::make_scheme(s, h, 0.5, 0.5);
   const mj::dynamic::State start = mj::dynamic::make_state(scheme, s.u_start.data(), s.v_start.data());
   mj::dynamic::Work work = mj::dynamic::make_work(scheme);

@@ -65,6 +65,11 @@ struct System {
   int n_contacts() const { return n_bodies() - 1 + (wall ? 1 : 0); }
   int left(int j) const { return wall ? j - 1 : j; }
   int right(int j) const { return wall ? j : j + 1; }
+  // Gap of contact j in state u, and its rate in velocities v (one value per body).
+  double gap(int j, const double* u) const {
+    return delta + u[right(j)] - (left(j) == kWall ? 0.0 : u[left(j)]);
+  }
+  double gap_rate(int j, const double* v) const { return v[right(j)] - (left(j) == kWall ? 0.0 : v[left(j)]); }
   // The pulse's length scale a_p / w_p^2 (Pi3 and Pi1 are lengths over it).
   double length_scale() const { return a_p / (pulse.w * pulse.w); }
   double pi1(double u_max) const { return u_max / length_scale(); }

@@ -454,7 +454,7 @@ TEST(MoreauJean, StepLoopNeverAllocates) {
   const auto scheme = mj::make_scheme<3, 2>(s, h, 0.5, 0.5);
   auto state = mj::make_state(scheme, Eigen::Vector3d::Zero().eval(), Eigen::Vector3d::Zero().eval());
   mj::Tally tally;
-  const long steps = mj::step_count(s.t_end, h);
+  const long steps = step_count(s.t_end, h);
   long allocations = 0;
   {
     AllocationCounter counter;
@@ -507,7 +507,7 @@ TEST(MoreauJean, DynamicStepLoopNeverAllocates) {
   c.pi6 = 2.0;
   const System s = make_system(c);
   const double h = s.step(256);
-  const long steps = mj::step_count(s.t_end, h);
+  const long steps = step_count(s.t_end, h);
   const mj::dynamic::Scheme scheme = mj::dynamic::make_scheme(s, h, 0.5, 0.5);
   mj::dynamic::State state = mj::dynamic::make_state(scheme, s.u_start.data(), s.v_start.data());
   mj::dynamic::Work work = mj::dynamic::make_work(scheme);
@@ -884,7 +884,7 @@ TEST(MoreauJean, StepIsWmaxHOverWmaxWhenWhIsGiven) {
   Result r = mj::solve(s, st);
   ASSERT_EQ(r.status, Status::ok) << r.message;
   EXPECT_DOUBLE_EQ(r.step, 2.0 * s.t_min / (2.0 * std::numbers::pi));
-  EXPECT_EQ(r.steps, mj::step_count(s.t_end, r.step));
+  EXPECT_EQ(r.steps, step_count(s.t_end, r.step));
   st.wh = 0.0;
   st.steps = 100;
   r = mj::solve(s, st);

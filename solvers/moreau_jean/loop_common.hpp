@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "cases/system.hpp"
+#include "solvers/fixed_step.hpp"
 
 namespace pb::moreau_jean {
 
@@ -113,17 +114,9 @@ struct PulseMeans {
   }
 };
 
-// Steps of a run: fixed h, and the first step count whose end reaches t_end (to within
-// 1e-9 of a step, so that t_end = n h up to round-off does not add a step).
-inline long step_count(double t_end, double h) { return static_cast<long>(std::ceil(t_end / h - 1e-9)); }
-
-struct Tally {
-  double u_max = 0.0;  // largest |u_ref| over the steps
-  long k_max = 0;      // its step
-  double g_min = 0.0;  // most negative gap (0 if none)
-  long impacts = 0;    // contacts that entered the index set approaching
-  long phases = 0;     // runs of >= 2 consecutive steps with a positive impulse
-};
+// The counts a Result is made from: the shell's (solvers/fixed_step.hpp), filled here by the
+// scheme's own inner loops.
+using Tally = StepTally;
 
 // Runs the steps from k (the state's step, which `step` advances) to k_end, giving each the
 // ground load its rule makes: step(applied, exact) -> bool, with `applied` the load the

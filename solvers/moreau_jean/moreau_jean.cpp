@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 
+#include "solvers/fixed_step.hpp"
 #include "solvers/monitor.hpp"
 #include "solvers/moreau_jean/dynamic.hpp"
 #include "solvers/moreau_jean/stepper.hpp"
@@ -30,27 +31,6 @@ LoadRule load_rule(const Settings& set) {
 // Start value i of System::u_start or v_start: empty means rest (a System made by hand).
 double start_value(const std::vector<double>& x, int i) { return x.empty() ? 0.0 : x[static_cast<std::size_t>(i)]; }
 
-// The result before any step: the step h, the step count n, and whether the run may start.
-Result prepare(const System& sys, const Settings& set, double& h, long& n) {
-  Result res;
-  h = time_step(sys, set, kDefaultSteps);
-  n = 0;
-  res.step = h;
-  const auto nb = static_cast<std::size_t>(sys.n_bodies());
-  const long cap = set.step_cap > 0 ? set.step_cap : kDefaultStepCap;
-  if ((!sys.u_start.empty() && sys.u_start.size() != nb) || (!sys.v_start.empty() && sys.v_start.size() != nb)) {
-    res.status = Status::failed;
-    res.message = "start state: needs one u and one v per body (or none: rest)";
-  } else if (!(h > 0.0) || !std::isfinite(h) || !(sys.t_end / h < 1e18)) {
-    res.status = Status::failed;
-    res.message = "step: h = " + std::to_string(h) + " is not a usable step for t_end = " + std::to_string(sys.t_end);
-  } else if (n = step_count(sys.t_end, h); n > cap) {
-    res.status = Status::step_cap;
-    res.message = "the run needs " + std::to_string(n) + " steps, more than the cap " + std::to_string(cap);
-  }
-  return res;
-}
-
 // Calls advance(k_end) on chunks of `chunk` steps until the state is at step n, and looks
 // at the Deadline between chunks. False if the state blew up.
 template <class Advance>
@@ -67,24 +47,13 @@ bool drive(const long& k, long n, long chunk, double h, const Settings& set, Res
   return true;
 }
 
-// Counts, status and Pi1 from the tally once the loop has stopped at step k.
+// Counts, status and Pi1 once the loop has stopped at step k; `finite`: the loop's own
+// divergence test passed; `state_finite`: no NaN or inf in the state.
 void finish(const System& sys, const Tally& tally, long k, double h, bool finite, bool state_finite,
             const std::optional<StepMonitor>& monitor, Result& res) {
-  res.steps = k;
-  res.impacts = tally.impacts;
-  res.contact_phases = tally.phases;
-  res.min_gap = tally.g_min < 0.0 ? tally.g_min : std::numeric_limits<double>::infinity();
   if (monitor) monitor->finish(res);
-  if (!finite) {
-    res.status = state_finite ? Status::diverged : Status::nan;
-    std::ostringstream msg;
-    msg << (res.status == Status::nan ? "non-finite state" : "|u| above 1e6 a_p/w_p^2") << " at step " << k
-        << " (t = " << static_cast<double>(k) * h << ")";
-    res.message = msg.str();
-  }
-  if (res.status != Status::ok) return;
-  res.pi1 = sys.pi1(tally.u_max);
-  res.t_max = static_cast<double>(tally.k_max) * h;
+  if (!finite) res.status = state_finite ? Status::diverged : Status::nan;
+  finish_steps(sys, tally, k, h, nullptr, res);
 }
 
 template <int NB, int NC>
@@ -158,10 +127,11 @@ Result run_dynamic(const System& sys, const Settings& set, double h, long n, Res
 
 Result dispatch(const System& sys, const Settings& set, bool force_dynamic) {
   try {
-    double h = 0.0;
-    long n = 0;
-    Result res = prepare(sys, set, h, n);
+    StepPlan plan;
+    Result res = plan_steps(sys, set, kDefaultSteps, kDefaultStepCap, plan);
     if (res.status != Status::ok) return res;
+    const double h = plan.h;
+    const long n = plan.n;
     if (!force_dynamic) {
       const int nb = sys.n_bodies(), nc = sys.n_contacts();
       if (nb == 1 && nc == 1) return run_fixed<1, 1>(sys, set, h, n, std::move(res));  // wall
@@ -186,11 +156,7 @@ Result solve_dynamic(const System& system, const Settings& settings) { return di
 
 std::string describe(const Settings& settings) {
   std::ostringstream out;
-  if (settings.wh > 0.0)
-    out << "wh=" << settings.wh;
-  else
-    out << "steps=" << (settings.steps > 0 ? settings.steps : kDefaultSteps);
-  out << ";theta=" << settings.theta << ";gamma=" << settings.gamma;
+  out << describe_step(settings, kDefaultSteps) << ";theta=" << settings.theta << ";gamma=" << settings.gamma;
   if (settings.variant == kEndSamples) out << ";load=end-samples";
   return out.str();
 }

@@ -8,25 +8,14 @@
 #include <optional>
 #include <sstream>
 
-#include "solvers/monitor.hpp"
+#include "solvers/fixed_step.hpp"
 #include "solvers/ode/world.hpp"
 
 namespace pb::ode {
 
 namespace {
 
-// "steps=N" or "wh=X": what fixed the step (solvers/solver.hpp, time_step).
-std::string step_setting(const Settings& s) {
-  std::ostringstream out;
-  if (s.wh > 0.0)
-    out << "wh=" << s.wh;
-  else
-    out << "steps=" << (s.steps == 0 ? kDefaultSteps : s.steps);
-  return out.str();
-}
-
-// The first step count whose end reaches t_end, to within 1e-9 of a step (as moreau_jean).
-long step_count(double t_end, double h) { return static_cast<long>(std::ceil(t_end / h - 1e-9)); }
+std::size_t ix(int i) { return static_cast<std::size_t>(i); }
 
 std::string check_config(const Config& c) {
   if (c.stepper == Stepper::quickstep && c.iterations < 1) return "iterations: must be >= 1";
@@ -39,188 +28,6 @@ std::string check_config(const Config& c) {
   return {};
 }
 
-// The state a step starts from and what it needs to remember of the step before.
-struct State {
-  std::vector<double> u, v;        // per body, read back from ODE after each step
-  std::vector<double> g, rate;     // per contact: gap and gap rate
-  std::vector<double> lambda;      // per contact: force of the last step (0 if no joint)
-  std::vector<char> joint;     // a contact joint was made for the last step
-  std::vector<char> pushed;    // ... and carried a positive force (what StepMonitor takes)
-  std::vector<char> in_phase;  // ... in a run of >= 2 such steps
-  long k = 0;                      // steps taken: the state is at t_k = k h
-};
-
-struct Tally {
-  double u_max = 0.0;  // largest |u_ref|
-  long k_max = 0;      // its step
-  double g_min = 0.0;  // most negative gap (0 if none)
-  long impacts = 0;    // joints made for a contact that had none the step before, approaching
-  long phases = 0;     // runs of >= 2 consecutive steps with a positive contact force
-};
-
-// The ODE objects of a run and what never changes during it.
-struct Engine {
-  const System& sys;
-  const Config& config;
-  double h;
-  double bound;         // |u| above this is divergence
-  double energy_bound;  // and so is a mechanical energy above this
-  World world;
-  std::vector<dBodyID> bodies;
-  std::vector<dJointFeedback> feedback;  // one per contact; ODE writes it during the step
-};
-
-void set_up_world(Engine& s) {
-  const dWorldID w = s.world.id();
-  dWorldSetGravity(w, 0.0, 0.0, 0.0);
-  dWorldSetERP(w, s.config.erp);
-  dWorldSetCFM(w, s.config.cfm);
-  dWorldSetContactMaxCorrectingVel(w, s.config.max_vel);
-  dWorldSetContactSurfaceLayer(w, s.config.surface_layer);
-  dWorldSetAutoDisableFlag(w, 0);
-  dWorldSetDamping(w, 0.0, 0.0);
-  if (s.config.stepper == Stepper::quickstep) {
-    dWorldSetQuickStepNumIterations(w, s.config.iterations);
-    dWorldSetQuickStepW(w, s.config.sor);
-  }
-}
-
-// Bodies are created right to left. ODE keeps its bodies newest first and orders the
-// rows of a step by walking them, so the contact rows reach its Dantzig solver left to
-// right. The order matters only at exact ties, which ODE's Dantzig cannot pivot through:
-// a row at w = 0 (bodies touching and moving alike) taken before the row that pushes it
-// makes a zero step, and ODE gives up on the step (README, degenerate LCPs). Left to
-// right suits the one kick of the case set, body 0 at the left end of a chain.
-void add_bodies(Engine& s, const State& st) {
-  s.bodies.assign(s.sys.bodies.size(), nullptr);
-  for (std::size_t i = s.sys.bodies.size(); i-- > 0;) {
-    const double m = s.sys.bodies[i].m;
-    const dBodyID b = dBodyCreate(s.world.id());
-    dMass mass;
-    // Rotational inertia of a unit radius of gyration: rotation never starts (no torque).
-    dMassSetParameters(&mass, m, 0.0, 0.0, 0.0, m, m, m, 0.0, 0.0, 0.0);
-    dBodySetMass(b, &mass);
-    dBodySetPosition(b, st.u[i], 0.0, 0.0);
-    dBodySetLinearVel(b, st.v[i], 0.0, 0.0);
-    dBodySetAutoDisableFlag(b, 0);
-    s.bodies[i] = b;
-  }
-}
-
-void update_gaps(const System& sys, State& st) {
-  for (int j = 0; j < sys.n_contacts(); ++j) {
-    const auto r = static_cast<std::size_t>(sys.right(j));
-    const int left = sys.left(j);
-    const double u_l = left == kWall ? 0.0 : st.u[static_cast<std::size_t>(left)];
-    const double v_l = left == kWall ? 0.0 : st.v[static_cast<std::size_t>(left)];
-    st.g[static_cast<std::size_t>(j)] = sys.delta + st.u[r] - u_l;
-    st.rate[static_cast<std::size_t>(j)] = st.v[r] - v_l;
-  }
-}
-
-void tally(const Engine& s, const State& st, Tally& t) {
-  const double u = std::abs(st.u[static_cast<std::size_t>(s.sys.ref)]);
-  if (u > t.u_max) {
-    t.u_max = u;
-    t.k_max = st.k;
-  }
-  for (double g : st.g) t.g_min = std::min(t.g_min, g);
-}
-
-void record(const Engine& s, const State& st, std::vector<double>& out) {
-  out.push_back(static_cast<double>(st.k) * s.h);
-  out.insert(out.end(), st.u.begin(), st.u.end());
-  out.insert(out.end(), st.v.begin(), st.v.end());
-  out.insert(out.end(), st.g.begin(), st.g.end());
-  out.insert(out.end(), st.lambda.begin(), st.lambda.end());
-}
-
-// Spring, dashpot and ground load of each body at the start of the step. Returns false
-// if a force is not finite (ODE must never see one).
-bool apply_loads(const Engine& s, const State& st) {
-  const double a_g = s.sys.pulse.accel(static_cast<double>(st.k) * s.h);
-  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
-    const Body& b = s.sys.bodies[i];
-    const double f = -b.k * st.u[i] - b.c * st.v[i] - b.m * a_g;
-    if (!std::isfinite(f)) return false;
-    dBodyAddForce(s.bodies[i], f, 0.0, 0.0);
-  }
-  return true;
-}
-
-// The contact joints of this step, made from the state at its start. Returns their number.
-int make_contacts(Engine& s, State& st, Tally& t) {
-  dJointGroupEmpty(s.world.contacts());
-  int made = 0;
-  for (int j = 0; j < s.sys.n_contacts(); ++j) {
-    const auto jj = static_cast<std::size_t>(j);
-    const double g = st.g[jj], rate = st.rate[jj];
-    const bool make = s.config.detection == Detection::predicted ? g + s.h * rate <= 0.0 : g <= 0.0;
-    if (make && !st.joint[jj] && rate < 0.0) ++t.impacts;
-    st.joint[jj] = make ? 1 : 0;
-    if (!make) continue;
-    ++made;
-    const dBodyID right = s.bodies[static_cast<std::size_t>(s.sys.right(j))];
-    const int left = s.sys.left(j);
-    dContact c{};
-    c.surface.mode = dContactBounce;
-    c.surface.mu = 0.0;
-    c.surface.bounce = s.sys.eps;
-    c.surface.bounce_vel = s.config.bounce_vel;
-    // ODE's normal points into body 1: +x, so body 1 is the right body. The point lies on
-    // the x axis, so the angular rows of the Jacobian are exactly zero.
-    c.geom.pos[0] = st.u[static_cast<std::size_t>(s.sys.right(j))];
-    c.geom.normal[0] = 1.0;
-    c.geom.depth = std::max(0.0, -g);
-    const dJointID joint = dJointCreateContact(s.world.id(), s.world.contacts(), &c);
-    dJointAttach(joint, right, left == kWall ? nullptr : s.bodies[static_cast<std::size_t>(left)]);
-    dJointSetFeedback(joint, &s.feedback[jj]);
-  }
-  return made;
-}
-
-// Reads the state ODE stepped to and the contact forces it used.
-void observe(const Engine& s, State& st, Tally& t) {
-  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
-    st.u[i] = dBodyGetPosition(s.bodies[i])[0];
-    st.v[i] = dBodyGetLinearVel(s.bodies[i])[0];
-  }
-  for (std::size_t j = 0; j < st.lambda.size(); ++j) {
-    st.lambda[j] = st.joint[j] ? s.feedback[j].f1[0] : 0.0;
-    const bool push = st.lambda[j] > 0.0;
-    if (push && st.pushed[j] && !st.in_phase[j]) {
-      ++t.phases;
-      st.in_phase[j] = 1;
-    }
-    if (!push) st.in_phase[j] = 0;
-    st.pushed[j] = push ? 1 : 0;
-  }
-  ++st.k;
-  update_gaps(s.sys, st);
-}
-
-// Why the state counts as diverged, or nullptr.
-const char* runaway(const Engine& s, const State& st) {
-  for (double u : st.u)
-    if (!(std::abs(u) <= s.bound)) return "|u| above 1e6 a_p/w_p^2";
-  if (!(s.sys.energy(st.u.data(), st.v.data()) <= s.energy_bound)) return "energy above 1e6 times its scale";
-  return nullptr;
-}
-
-// Every body must still be on the x axis, unrotated: the model's premise.
-bool still_on_axis(const Engine& s) {
-  for (const dBodyID b : s.bodies) {
-    const dReal* p = dBodyGetPosition(b);
-    const dReal* v = dBodyGetLinearVel(b);
-    const dReal* w = dBodyGetAngularVel(b);
-    const dReal* q = dBodyGetQuaternion(b);
-    if (p[1] != 0.0 || p[2] != 0.0 || v[1] != 0.0 || v[2] != 0.0) return false;
-    if (w[0] != 0.0 || w[1] != 0.0 || w[2] != 0.0) return false;
-    if (q[0] != 1.0 || q[1] != 0.0 || q[2] != 0.0 || q[3] != 0.0) return false;
-  }
-  return true;
-}
-
 Result fail(Status status, std::string message) {
   Result r;
   r.status = status;
@@ -228,136 +35,178 @@ Result fail(Status status, std::string message) {
   return r;
 }
 
-bool finite_state(const State& st) {
-  for (std::size_t i = 0; i < st.u.size(); ++i)
-    if (!std::isfinite(st.u[i]) || !std::isfinite(st.v[i])) return false;
-  return true;
-}
+// ODE behind the shared step loop (solvers/fixed_step.hpp): each step applies the springs,
+// dashpots and ground load of its start, makes the contact joints its detection rule asks
+// for from the gaps there, and lets ODE step.
+class Engine : public StepEngine {
+ public:
+  Engine(const System& sys, const Config& config, double h)
+      : StepEngine(sys), sys_(sys), config_(config), h_(h), joint_(ix(sys.n_contacts()), 0),
+        feedback_(ix(sys.n_contacts()), dJointFeedback{}) {}
 
-// The start state of System, or rest when it gives none. False if it has the wrong size.
-bool set_start(const System& sys, State& st) {
-  const auto nb = static_cast<std::size_t>(sys.n_bodies());
-  st.u.assign(nb, 0.0);
-  st.v.assign(nb, 0.0);
-  if (sys.u_start.empty() && sys.v_start.empty()) return true;
-  if (sys.u_start.size() != nb || sys.v_start.size() != nb) return false;
-  st.u = sys.u_start;
-  st.v = sys.v_start;
-  return true;
-}
-
-Result run(const System& sys, const Settings& set, const Config& config) {
-  if (std::string bad = check_config(config); !bad.empty()) return fail(Status::failed, "config: " + bad);
-  if (std::string bad = check_step(set, kDefaultSteps); !bad.empty()) return fail(Status::failed, bad);
-  const int nb = sys.n_bodies(), nc = sys.n_contacts();
-  for (const Body& b : sys.bodies)
-    if (!(b.m > 0.0 && std::isfinite(b.m))) return fail(Status::failed, "every body needs a finite positive mass");
-  State st;
-  if (!set_start(sys, st)) return fail(Status::failed, "start state: needs one u and one v per body");
-  for (auto* vec : {&st.g, &st.rate, &st.lambda}) vec->assign(static_cast<std::size_t>(nc), 0.0);
-  for (auto* vec : {&st.joint, &st.pushed, &st.in_phase}) vec->assign(static_cast<std::size_t>(nc), 0);
-  update_gaps(sys, st);
-
-  const double h = time_step(sys, set, kDefaultSteps);
-  const long n = step_count(sys.t_end, h);
-  const long cap = set.step_cap > 0 ? set.step_cap : kDefaultStepCap;
-  if (n > cap) {
-    Result r = fail(Status::step_cap,
-                    "the run needs " + std::to_string(n) + " steps, more than the cap " + std::to_string(cap));
-    r.step = h;
-    return r;
-  }
-  if (!prepare_thread()) return fail(Status::failed, "ODE could not be initialised on this thread");
-
-  Engine s{sys, config, h, 1e6 * sys.length_scale(), kDivergedEnergy * sys.energy_scale(), {}, {}, {}};
-  if (!s.world.ok()) return fail(Status::failed, "ODE could not create a world");
-  set_up_world(s);
-  add_bodies(s, st);
-  s.feedback.assign(static_cast<std::size_t>(nc), dJointFeedback{});
-  (void)take_messages();  // only this run's messages go into its result
-
-  Result res;
-  res.step = h;
-  Tally t;
-  tally(s, st, t);
-  std::optional<StepMonitor> monitor;
-  if (set.monitor) monitor.emplace(sys);
-  const bool recording = set.history_samples > 0;
-  if (recording) {
-    res.history.n_bodies = nb;
-    res.history.n_contacts = nc;
-    res.history.data.reserve(static_cast<std::size_t>(n + 1) * static_cast<std::size_t>(res.history.row_size()));
-    record(s, st, res.history.data);
+  // False when ODE could not make the world.
+  bool start() {
+    if (!world_.ok()) return false;
+    set_up_world();
+    add_bodies();
+    (void)take_messages();  // only this run's messages go into its result
+    lcp_failures_before_ = lcp_failures();
+    return true;
   }
 
-  const long lcp_failures_before = lcp_failures();
-  const char* diverged_by = "";
-  Deadline deadline(set);
-  const bool quick = config.stepper == Stepper::quickstep;
-  while (st.k < n) {
-    if (!apply_loads(s, st)) {
+  StepOutcome step(long k, Result& res) override {
+    if (!apply_loads(k)) {
       res.status = Status::nan;
-      break;
+      res.message = "non-finite force";
+      return StepOutcome::refused;
     }
-    const int rows = make_contacts(s, st, t);
-    const int stepped = quick ? quick_step(s.world.id(), h, rows) : dWorldStep(s.world.id(), h);
+    const int rows = make_contacts();
+    const int stepped = config_.stepper == Stepper::quickstep ? quick_step(world_.id(), h_, rows)
+                                                              : dWorldStep(world_.id(), h_);
     if (stepped == 0) {
       res.status = Status::failed;
       res.message = "ODE could not step (working memory)";
-      break;
+      return StepOutcome::refused;
     }
-    observe(s, st, t);
-    if (lcp_failures() != lcp_failures_before) {
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      out_.u[i] = dBodyGetPosition(bodies_[i])[0];
+      out_.v[i] = dBodyGetLinearVel(bodies_[i])[0];
+    }
+    for (std::size_t j = 0; j < joint_.size(); ++j) out_.force[j] = joint_[j] ? feedback_[j].f1[0] : 0.0;
+    if (lcp_failures() != lcp_failures_before_) {
       res.status = Status::failed;
-      res.message = "ODE's Dantzig LCP gave up (degenerate pivot) at step " + std::to_string(st.k) +
+      res.message = "ODE's Dantzig LCP gave up (degenerate pivot) at step " + std::to_string(k + 1) +
                     ": the contact forces of that step are wrong";
-      break;
+      return StepOutcome::taken_then_stop;
     }
-    if (!finite_state(st)) {
-      res.status = Status::nan;
-      break;
+    return StepOutcome::taken;
+  }
+
+  void finish(Result& res) override {
+    if (res.status == Status::ok && !still_on_axis()) {
+      res.status = Status::failed;
+      res.message = "a body left the x axis or rotated";
     }
-    // A diverging state is still seen by the monitor: its energy excess shows the growth.
-    if (monitor) {
-      const double t0 = static_cast<double>(st.k - 1) * h, t1 = static_cast<double>(st.k) * h;
-      monitor->step(h, sys.pulse.mean(t0, t1), st.u.data(), st.v.data(), st.pushed.data());
-    }
-    if (const char* why = runaway(s, st)) {
-      res.status = Status::diverged;
-      diverged_by = why;
-      break;
-    }
-    tally(s, st, t);
-    if (recording) record(s, st, res.history.data);
-    if (st.k < n && deadline.passed(st.k)) {
-      res.status = Status::time_limit;
-      res.message = deadline.reason() + " at t = " + std::to_string(static_cast<double>(st.k) * h);
-      break;
+    if (std::string notes = take_messages(); !notes.empty())
+      res.message += (res.message.empty() ? "" : "; ") + notes;
+  }
+
+ private:
+  void set_up_world() {
+    const dWorldID w = world_.id();
+    dWorldSetGravity(w, 0.0, 0.0, 0.0);
+    dWorldSetERP(w, config_.erp);
+    dWorldSetCFM(w, config_.cfm);
+    dWorldSetContactMaxCorrectingVel(w, config_.max_vel);
+    dWorldSetContactSurfaceLayer(w, config_.surface_layer);
+    dWorldSetAutoDisableFlag(w, 0);
+    dWorldSetDamping(w, 0.0, 0.0);
+    if (config_.stepper == Stepper::quickstep) {
+      dWorldSetQuickStepNumIterations(w, config_.iterations);
+      dWorldSetQuickStepW(w, config_.sor);
     }
   }
 
-  res.steps = st.k;
-  res.impacts = t.impacts;
-  res.contact_phases = t.phases;
-  res.min_gap = t.g_min < 0.0 ? t.g_min : std::numeric_limits<double>::infinity();
-  if (monitor) monitor->finish(res);
-  if (res.status == Status::nan || res.status == Status::diverged) {
-    std::ostringstream msg;
-    msg << (res.status == Status::nan ? "non-finite state or force" : diverged_by) << " at step "
-        << st.k << " (t = " << static_cast<double>(st.k) * h << ", w_max h = " << 2.0 * std::numbers::pi * h / sys.t_min
-        << ")";
-    res.message = msg.str();
+  // Bodies are created right to left. ODE keeps its bodies newest first and orders the
+  // rows of a step by walking them, so the contact rows reach its Dantzig solver left to
+  // right. The order matters only at exact ties, which ODE's Dantzig cannot pivot through:
+  // a row at w = 0 (bodies touching and moving alike) taken before the row that pushes it
+  // makes a zero step, and ODE gives up on the step (README, degenerate LCPs). Left to
+  // right suits the one kick of the case set, body 0 at the left end of a chain.
+  void add_bodies() {
+    bodies_.assign(sys_.bodies.size(), nullptr);
+    for (std::size_t i = sys_.bodies.size(); i-- > 0;) {
+      const double m = sys_.bodies[i].m;
+      const dBodyID b = dBodyCreate(world_.id());
+      dMass mass;
+      // Rotational inertia of a unit radius of gyration: rotation never starts (no torque).
+      dMassSetParameters(&mass, m, 0.0, 0.0, 0.0, m, m, m, 0.0, 0.0, 0.0);
+      dBodySetMass(b, &mass);
+      dBodySetPosition(b, out_.u[i], 0.0, 0.0);
+      dBodySetLinearVel(b, out_.v[i], 0.0, 0.0);
+      dBodySetAutoDisableFlag(b, 0);
+      bodies_[i] = b;
+    }
   }
-  if (res.status == Status::ok && !still_on_axis(s)) {
-    res.status = Status::failed;
-    res.message = "a body left the x axis or rotated";
+
+  // Spring, dashpot and ground load of each body at the start of step k. Returns false
+  // if a force is not finite (ODE must never see one).
+  bool apply_loads(long k) {
+    const double a_g = sys_.pulse.accel(static_cast<double>(k) * h_);
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      const Body& b = sys_.bodies[i];
+      const double f = -b.k * out_.u[i] - b.c * out_.v[i] - b.m * a_g;
+      if (!std::isfinite(f)) return false;
+      dBodyAddForce(bodies_[i], f, 0.0, 0.0);
+    }
+    return true;
   }
-  if (std::string notes = take_messages(); !notes.empty())
-    res.message += (res.message.empty() ? "" : "; ") + notes;
-  if (res.status != Status::ok) return res;
-  res.pi1 = sys.pi1(t.u_max);
-  res.t_max = static_cast<double>(t.k_max) * h;
-  return res;
+
+  // The contact joints of this step, made from the state at its start. Returns their number.
+  int make_contacts() {
+    dJointGroupEmpty(world_.contacts());
+    int made = 0;
+    for (int j = 0; j < sys_.n_contacts(); ++j) {
+      const auto jj = ix(j);
+      const double g = sys_.gap(j, out_.u.data()), rate = sys_.gap_rate(j, out_.v.data());
+      const bool make = config_.detection == Detection::predicted ? g + h_ * rate <= 0.0 : g <= 0.0;
+      out_.entered[jj] = make && !joint_[jj] ? 1 : 0;
+      joint_[jj] = make ? 1 : 0;
+      if (!make) continue;
+      ++made;
+      const dBodyID right = bodies_[ix(sys_.right(j))];
+      const int left = sys_.left(j);
+      dContact c{};
+      c.surface.mode = dContactBounce;
+      c.surface.mu = 0.0;
+      c.surface.bounce = sys_.eps;
+      c.surface.bounce_vel = config_.bounce_vel;
+      // ODE's normal points into body 1: +x, so body 1 is the right body. The point lies on
+      // the x axis, so the angular rows of the Jacobian are exactly zero.
+      c.geom.pos[0] = out_.u[ix(sys_.right(j))];
+      c.geom.normal[0] = 1.0;
+      c.geom.depth = std::max(0.0, -g);
+      const dJointID joint = dJointCreateContact(world_.id(), world_.contacts(), &c);
+      dJointAttach(joint, right, left == kWall ? nullptr : bodies_[ix(left)]);
+      dJointSetFeedback(joint, &feedback_[jj]);
+    }
+    return made;
+  }
+
+  // Every body must still be on the x axis, unrotated: the model's premise.
+  bool still_on_axis() const {
+    for (const dBodyID b : bodies_) {
+      const dReal* p = dBodyGetPosition(b);
+      const dReal* v = dBodyGetLinearVel(b);
+      const dReal* w = dBodyGetAngularVel(b);
+      const dReal* q = dBodyGetQuaternion(b);
+      if (p[1] != 0.0 || p[2] != 0.0 || v[1] != 0.0 || v[2] != 0.0) return false;
+      if (w[0] != 0.0 || w[1] != 0.0 || w[2] != 0.0) return false;
+      if (q[0] != 1.0 || q[1] != 0.0 || q[2] != 0.0 || q[3] != 0.0) return false;
+    }
+    return true;
+  }
+
+  const System& sys_;
+  const Config& config_;
+  double h_;
+  World world_;
+  std::vector<dBodyID> bodies_;
+  std::vector<char> joint_;                // a contact joint was made for the last step
+  std::vector<dJointFeedback> feedback_;   // one per contact; ODE writes it during the step
+  long lcp_failures_before_ = 0;
+};
+
+Result run(const System& sys, const Settings& set, const Config& config) {
+  if (std::string bad = check_config(config); !bad.empty()) return fail(Status::failed, "config: " + bad);
+  for (const Body& b : sys.bodies)
+    if (!(b.m > 0.0 && std::isfinite(b.m))) return fail(Status::failed, "every body needs a finite positive mass");
+  StepPlan plan;
+  if (Result r = plan_steps(sys, set, kDefaultSteps, kDefaultStepCap, plan); r.status != Status::ok) return r;
+  if (!prepare_thread()) return fail(Status::failed, "ODE could not be initialised on this thread");
+  Engine engine(sys, config, plan.h);
+  if (!engine.start()) return fail(Status::failed, "ODE could not create a world");
+  return run_steps(sys, set, plan, engine);
 }
 
 Result guarded(const System& sys, const Settings& set, const Config& config) {
@@ -383,7 +232,7 @@ Result solve_with(const System& system, const Settings& settings, const Config& 
 std::string describe(const Settings& settings) {
   const std::optional<Config> config = find_variant(settings.variant);
   if (!config) return "variant=" + settings.variant;
-  return describe(*config, step_setting(settings));
+  return describe(*config, describe_step(settings, kDefaultSteps));
 }
 
 std::string check(const Settings& settings) {

@@ -9,6 +9,7 @@
 #include <limits>
 #include <sstream>
 
+#include "solvers/fixed_step.hpp"
 #include "solvers/monitor.hpp"
 #include "solvers/siconos/model.hpp"
 
@@ -131,7 +132,7 @@ Result run_event_driven(const System& sys, const Settings& set) {
       res.message = "non-finite state at t = " + std::to_string(now);
       break;
     }
-    if (const char* why = runaway(sys, st)) {
+    if (const char* why = runaway(sys, st.u.data(), st.v.data())) {
       res.status = Status::diverged;
       res.message = std::string(why) + " at t = " + std::to_string(now);
       break;

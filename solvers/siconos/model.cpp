@@ -54,8 +54,6 @@ std::string check_system(const System& s) {
   return {};
 }
 
-long step_count(double t_end, double h) { return static_cast<long>(std::ceil(t_end / h - 1e-9)); }
-
 State::State(const System& s)
     : u(s.bodies.size()),
       v(u.size()),
@@ -86,12 +84,5 @@ void record(double t, const State& st, const std::vector<double>& force, std::ve
   out.insert(out.end(), force.begin(), force.end());
 }
 
-const char* runaway(const System& s, const State& st) {
-  for (double x : st.u)
-    if (!(std::abs(x) <= 1e6 * s.length_scale())) return "|u| above 1e6 a_p/w_p^2";
-  if (!(s.energy(st.u.data(), st.v.data()) <= kDivergedEnergy * s.energy_scale()))
-    return "energy above 1e6 times its scale";
-  return nullptr;
-}
 
 }  // namespace pb::siconos

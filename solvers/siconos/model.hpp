@@ -42,9 +42,6 @@ Result stopped(Status status, std::string message);
 // of its own on a NaN) and a start state of one u and one v per body; "" when it is usable.
 std::string check_system(const System& s);
 
-// The fixed steps of a run whose end reaches t_end (to within 1e-9 of a step, as moreau_jean).
-long step_count(double t_end, double h);
-
 // The state of a run in System's units, and the gaps and gap rates it gives.
 struct State {
   std::vector<double> u, v;     // per body
@@ -66,9 +63,5 @@ struct State {
 
 // One History row: t, u, v, g, and the contact forces (solvers/solver.hpp).
 void record(double t, const State& st, const std::vector<double>& force, std::vector<double>& out);
-
-// Why the state counts as diverged (|u| above 1e6 a_p / w_p^2, or the energy above
-// kDivergedEnergy times its scale), or nullptr.
-const char* runaway(const System& s, const State& st);
 
 }  // namespace pb::siconos

@@ -1,0 +1,104 @@
+#pragma once
+// The shell around every fixed-step solver, written once (as Siconos' TimeStepping is one
+// loop with integrators plugged in). It owns what every time-stepper shares: the step h
+// and the step count, the step cap, the start state, counting impacts and contact phases,
+// the energy monitor, the history, divergence, the deadline and the final Result. An
+// engine (ODE, Bullet, Siconos' time-stepping) supplies only how to take one step and what
+// it saw, through StepEngine. The stages of a run, in order:
+//
+//   plan_steps   h and n from the settings; the start state and the step cap checked
+//   run_steps    per step: engine step -> contacts tallied -> state finite? -> monitor ->
+//                diverged? -> state tallied -> history row -> deadline
+//   finish       counts, the message of a run that stopped, the engine's notes, Pi1
+//
+// Moreau-Jean keeps its own fixed-size inner loop (there a call per step would cost as
+// much as the step) and shares the rest: plan_steps, StepTally, finish_steps, runaway.
+//
+// Rejected: a template over the engine type. The engines' steps cost microseconds, so one
+// virtual call per step is free, and the shell then lives in one .cpp file.
+
+#include <string>
+#include <vector>
+
+#include "cases/system.hpp"
+#include "solvers/solver.hpp"
+
+namespace pb {
+
+// The step of a run and how many steps reach t_end.
+struct StepPlan {
+  double h = 0.0;
+  long n = 0;
+};
+
+// The first step count whose end reaches t_end, to within 1e-9 of a step (so that
+// t_end = n h up to round-off does not add a step).
+long step_count(double t_end, double h);
+
+// h = time_step(settings), n = step_count. A Result with a status other than ok (and its
+// step) when the run cannot start: bad step settings, a start state of the wrong size, a
+// step that is not usable, more steps than the cap (the solver's own when step_cap is 0).
+Result plan_steps(const System& sys, const Settings& set, int default_steps, long default_cap, StepPlan& plan);
+
+// "steps=N" or "wh=X": what fixed the step, for a solver's describe().
+std::string describe_step(const Settings& set, int default_steps);
+
+// Why a finite state counts as diverged (|u| beyond 1e6 a_p / w_p^2, or the mechanical
+// energy beyond kDivergedEnergy times its scale), or nullptr.
+const char* runaway(const System& sys, const double* u, const double* v);
+
+// Counts over a run's steps, as every time-stepper reports them.
+struct StepTally {
+  double u_max = 0.0;  // largest |u_ref| over the states
+  long k_max = 0;      // its step
+  double g_min = 0.0;  // most negative gap (0 if none)
+  long impacts = 0;    // contacts whose constraint entered a step while approaching
+  long phases = 0;     // runs of >= 2 consecutive steps with a positive contact force
+
+  // The state at step k.
+  void state(const System& sys, long k, const double* u);
+};
+
+// What every engine reports after each step (and holds at the start): the state, and per
+// contact the force over the step (impulse / h, History's lambda) and whether its
+// constraint was new in that step.
+struct StepOutput {
+  std::vector<double> u, v;   // per body
+  std::vector<double> force;  // per contact
+  std::vector<char> entered;  // per contact
+  explicit StepOutput(const System& sys);
+};
+
+// How a step of an engine went: `taken`; `refused` (the step did not happen: the run stops
+// at t_k); `taken_then_stop` (the step happened and counts, but its outcome is not to be
+// used: the run stops at t_k+1). When it stops, the engine has set res.status and message.
+enum class StepOutcome { taken, refused, taken_then_stop };
+
+class StepEngine {
+ public:
+  virtual ~StepEngine() = default;
+  // From t_k = k h to t_k+1, leaving out() at t_k+1.
+  virtual StepOutcome step(long k, Result& res) = 0;
+  // Engine notes added to every result (fallbacks, library messages, LCP paths), and any
+  // check that can fail only at the end. Called once, after the counts are in res.
+  virtual void finish(Result& res) { (void)res; }
+  const StepOutput& out() const { return out_; }
+
+ protected:
+  explicit StepEngine(const System& sys) : out_(sys) {}
+  StepOutput out_;
+};
+
+// The start state of a System (rest when it gives none), one value per body.
+std::vector<double> start_u(const System& sys);
+std::vector<double> start_v(const System& sys);
+
+// Runs the engine over plan.n steps of plan.h from its out() at t = 0.
+Result run_steps(const System& sys, const Settings& set, const StepPlan& plan, StepEngine& engine);
+
+// Counts, status message and Pi1 from the tally once a loop has stopped at step k. A nan or
+// diverged run's message says what stopped it (res.message if the engine said, else `why`,
+// else the default wording) and where.
+void finish_steps(const System& sys, const StepTally& tally, long k, double h, const char* why, Result& res);
+
+}  // namespace pb
