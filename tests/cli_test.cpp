@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -216,6 +217,36 @@ TEST_F(Cli, EveryBadInputExitsTwoWithOneLineAndNoOutputFile) {
     EXPECT_NE(o.err.find(bad.names), std::string::npos) << bad.args << "\n" << o.err;
     EXPECT_EQ(o.out, "") << bad.args;
     EXPECT_EQ(files(), inputs) << bad.args;
+  }
+}
+
+// --- issue 15: inputs inside a documented domain, or refused ------------------------------
+
+// The command lines of issue 15's fuzzer and their neighbours.
+class CliInput : public Cli {
+ protected:
+  // Exit 2, one line on stderr holding every one of `names`, nothing on stdout, no new file.
+  void expect_refused(const std::string& args, std::initializer_list<std::string> names) const {
+    SCOPED_TRACE(args.substr(0, 200));
+    const std::set<std::string> before = files();
+    const Outcome o = run(args);
+    const std::string err = o.err.substr(0, 500);
+    EXPECT_EQ(o.exit_code, 2) << err;
+    EXPECT_EQ(line_count(o.err), 1u) << err;
+    for (const std::string& name : names) EXPECT_NE(o.err.find(name), std::string::npos) << name << "\n" << err;
+    EXPECT_EQ(o.out, "");
+    EXPECT_EQ(files(), before);
+  }
+};
+
+TEST_F(CliInput, NegativeOrNanLimitsAreRefusedWhateverTheSolver) {
+  const std::string pair = std::string("run ") + kPairCase + " ";
+  for (const char* solver : {"event-driven", "moreau-jean"}) {
+    const std::string with_solver = pair + "--solver " + solver + " ";
+    expect_refused(with_solver + "--step-cap -1", {"--step-cap: ", ">= 0"});
+    expect_refused(with_solver + "--time-limit -1", {"--time-limit: ", ">= 0"});
+    expect_refused(with_solver + "--time-limit nan", {"--time-limit: ", "finite"});
+    expect_refused(with_solver + "--time-limit inf", {"--time-limit: ", "finite"});
   }
 }
 
