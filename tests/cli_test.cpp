@@ -239,6 +239,54 @@ class CliInput : public Cli {
   }
 };
 
+// `run` of kPairCase with one flag set to `value` (replaced, or added when kPairCase lacks it).
+std::string run_pair_with(const std::string& flag, const std::string& value) {
+  std::istringstream words(kPairCase);
+  std::string args = "run", word;
+  bool replaced = false;
+  while (words >> word) {
+    args += " " + word;
+    if (word == flag) {
+      words >> word;
+      args += " " + value;
+      replaced = true;
+    }
+  }
+  return replaced ? args : args + " " + flag + " " + value;
+}
+
+TEST_F(CliInput, RunRefusesTheFuzzersInputsOutsideTheDomainNamingTheBound) {
+  expect_refused(run_pair_with("--w-p", "1e100"), {"--w-p: ", "[1e-6, 1e6]"});
+  expect_refused(run_pair_with("--a-p", "1e200"), {"--a-p: ", "[1e-12, 1e12]"});
+  expect_refused(run_pair_with("--n-free", "1e308"), {"--n-free: ", "<= 1000"});
+  expect_refused(run_pair_with("--pi2", "1e-100"), {"--pi2: ", "contrast (max/min) of 1e100, more than 1e4"});
+  expect_refused(run_pair_with("--pi5", "1e308"), {"--pi5: ", "more than 1e4"});
+  expect_refused(run_pair_with("--pi3", "1e7"), {"--pi3: ", "<= 1e6"});
+  for (const char* value : {"1e-300", "1e308"}) {
+    expect_refused(run_pair_with("--pi2", value), {"--pi2: ", "more than 1e4"});
+    expect_refused(run_pair_with("--pi5", value), {"--pi5: ", "more than 1e4"});
+    expect_refused(run_pair_with("--pi6", value), {"--pi6: ", "more than 1e6"});
+    expect_refused(run_pair_with("--a-p", value), {"--a-p: ", "[1e-12, 1e12]"});
+    expect_refused(run_pair_with("--w-p", value), {"--w-p: ", "[1e-6, 1e6]"});
+  }
+  // Each value alone is inside, but the run would last (1 + 1000 / 1e-3) shortest periods.
+  expect_refused(run_pair_with("--pi5", "1000") + " --n-free 1000",
+                 {"--n-free: ", "shortest periods", "more than 1e6"});
+}
+
+TEST_F(CliInput, RunAtTheCornersOfThePulseScalesGivesTheSamePi1) {
+  const Outcome unit = run("run --scene pair --pulse cosine --directivity normal --pi2 0.8 --pi3 0.5 --eps 0.5 "
+                           "--pi5 0.5 --pi6 1 --json");
+  ASSERT_EQ(unit.exit_code, 0) << unit.err;
+  const double pi1 = nlohmann::json::parse(unit.out).at("pi1").get<double>();
+  for (const char* scales : {"--a-p 1e-12 --w-p 1e6", "--a-p 1e12 --w-p 1e-6"}) {
+    const Outcome o = run("run --scene pair --pulse cosine --directivity normal --pi2 0.8 --pi3 0.5 --eps 0.5 "
+                          "--pi5 0.5 --pi6 1 --json " + std::string(scales));
+    ASSERT_EQ(o.exit_code, 0) << scales << ": " << o.err;
+    EXPECT_NEAR(nlohmann::json::parse(o.out).at("pi1").get<double>(), pi1, 1e-9 * pi1) << scales;
+  }
+}
+
 TEST_F(CliInput, NegativeOrNanLimitsAreRefusedWhateverTheSolver) {
   const std::string pair = std::string("run ") + kPairCase + " ";
   for (const char* solver : {"event-driven", "moreau-jean"}) {
