@@ -190,4 +190,11 @@ std::optional<std::string> validate(const Case& c) {
   return check_duration(c);
 }
 
+std::string clip(std::string_view text, std::size_t max) {
+  if (text.size() <= max) return std::string(text);
+  std::size_t cut = max;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // inside a UTF-8 character
+  return std::string(text.substr(0, cut)) + "...";
+}
+
 }  // namespace pb

@@ -575,6 +575,25 @@ TEST(CaseDomain, TheReferenceEndsAtTheContrastCornersReachingTEndOrSayingWhy) {
   EXPECT_GE(reached, 6);  // measured: all but the two rattling corners
 }
 
+TEST(CaseDomain, ClipShortensLongUserTextAtACharacterBoundary) {
+  EXPECT_EQ(clip("pi5"), "pi5");
+  EXPECT_EQ(clip(std::string(kMaxEchoed, 'k')), std::string(kMaxEchoed, 'k'));
+  EXPECT_EQ(clip(std::string(10'000'000, 'k')), std::string(kMaxEchoed, 'k') + "...");
+  EXPECT_EQ(clip("ab\xC3\xA9" "cd", 3), "ab...");  // never half of the two-byte e-acute
+}
+
+TEST(CaseDomain, AHugeUnknownKeyIsEchoedClipped) {
+  const std::string key(10'000'000, 'k');
+  const std::string msg = error_of(with(kPair, "pi6 = 1", "pi6 = 1\n" + key + " = 1"));
+  EXPECT_LT(msg.size(), 300u) << msg.substr(0, 300);
+  EXPECT_NE(msg.find("family[0]." + std::string(kMaxEchoed, 'k') + "...: unknown key"), std::string::npos)
+      << msg.substr(0, 300);
+  const std::string value(1'000'000, 'v');
+  const std::string bad_scene = error_of(with(kPair, "scene = \"pair\"", "scene = \"" + value + "\""));
+  EXPECT_LT(bad_scene.size(), 300u);
+  EXPECT_NE(bad_scene.find("unknown scene"), std::string::npos) << bad_scene.substr(0, 300);
+}
+
 // --- the shipped sets ---------------------------------------------------------------------
 
 std::map<std::string, std::size_t> count_by_family(const CaseSet& set) {

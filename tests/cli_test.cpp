@@ -298,6 +298,26 @@ TEST_F(CliInput, NegativeOrNanLimitsAreRefusedWhateverTheSolver) {
   }
 }
 
+TEST_F(CliInput, AHugeKeyOrValueIsEchoedClippedOnOneShortLine) {
+  const std::string key(10'000'000, 'k');
+  write("set.toml", std::string(kTinySet) + key + " = 1\n");
+  write("list.toml", std::string("[[run]]\nsolver = \"moreau-jean\"\n") + key + " = 1\n");
+  write("tiny.toml", kTinySet);
+  expect_refused("spectrum set.toml --out out.csv",
+                 {"set.toml:12: family[0]." + std::string(kMaxEchoed, 'k') + "...: ", "unknown key"});
+  // The settings reader (sweep/) echoes the key whole: main clips every part of the line.
+  expect_refused("stress tiny.toml --settings list.toml --out out.csv", {"list.toml:3: run[0].", "...: unknown key"});
+  for (const char* command :
+       {"spectrum set.toml --out out.csv", "stress tiny.toml --settings list.toml --out out.csv"})
+    EXPECT_LT(run(command).err.size(), 1100u) << command;
+  const std::string value(100'000, 'v');
+  const Outcome scene = run("run --scene " + value + " --pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 1");
+  EXPECT_EQ(scene.exit_code, 2);
+  EXPECT_LT(scene.err.size(), 200u);
+  EXPECT_NE(scene.err.find("--scene: unknown value '" + std::string(kMaxEchoed, 'v') + "...'"), std::string::npos)
+      << scene.err;
+}
+
 TEST_F(Cli, SpectrumWritesOneRowPerPointInOrderAndNoLeftovers) {
   write("tiny.toml", kTinySet);
   const Outcome o = run("spectrum tiny.toml --out out.csv --threads 2");
