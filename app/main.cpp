@@ -51,6 +51,18 @@ int fail(const std::string& message, int code) {
   return code;
 }
 
+// CLI11 reads an empty word as 0, or leaves the default, for a number (`--pi3 ''` ran
+// with Pi3 = 0), and no option of poundbench means anything by an empty value: every
+// option that takes a value, of every subcommand, refuses it.
+void refuse_empty_values(CLI::App& app) {
+  static const CLI::Validator kNotEmpty(
+      [](std::string& value) { return value.empty() ? std::string("empty value (give one)") : std::string(); }, "",
+      "NOT_EMPTY");
+  for (CLI::Option* option : app.get_options())
+    if (option->get_type_size() > 0) option->check(kNotEmpty);
+  for (CLI::App* sub : app.get_subcommands({})) refuse_empty_values(*sub);
+}
+
 int list_solvers() {
   std::size_t width = 0;
   for (const pb::SolverInfo& s : pb::solvers()) width = std::max(width, s.name.size());
@@ -85,6 +97,7 @@ int main(int argc, char** argv) {
   pb::app::CompareFlags compare_flags;
   CLI::App* compare = pb::app::add_compare_command(app, compare_flags);
   CLI::App* solvers = app.add_subcommand("solvers", "List the solvers and what each one is");
+  refuse_empty_values(app);
 
   try {
     app.parse(argc, argv);

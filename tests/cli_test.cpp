@@ -287,6 +287,17 @@ TEST_F(CliInput, RunAtTheCornersOfThePulseScalesGivesTheSamePi1) {
   }
 }
 
+TEST_F(CliInput, EveryOptionRefusesAnEmptyValue) {
+  write("tiny.toml", kTinySet);
+  const std::string pair = std::string("run ") + kPairCase + " ";
+  for (const char* flag : {"--pi3", "--eps", "--pi5", "--xi", "--n-free", "--a-p", "--w-p", "--steps", "--wh",
+                           "--theta", "--step-cap", "--time-limit", "--tol-scale", "--solver", "--variant"})
+    expect_refused(pair + flag + " ''", {std::string(flag) + ": ", "empty value"});
+  expect_refused("compare rows.csv --baseline base.csv --tolerance ''", {"--tolerance: ", "empty value"});
+  expect_refused("spectrum tiny.toml --out ''", {"--out: ", "empty value"});
+  expect_refused("spectrum tiny.toml --threads '' --out out.csv", {"--threads: ", "empty value"});
+}
+
 TEST_F(CliInput, NegativeOrNanLimitsAreRefusedWhateverTheSolver) {
   const std::string pair = std::string("run ") + kPairCase + " ";
   for (const char* solver : {"event-driven", "moreau-jean"}) {
