@@ -309,6 +309,28 @@ TEST_F(CliInput, NegativeOrNanLimitsAreRefusedWhateverTheSolver) {
   }
 }
 
+TEST_F(CliInput, HistorySamplesAreCappedBeforeTheRun) {
+  const std::string pair = std::string("run ") + kPairCase + " --history h.csv ";
+  expect_refused(pair + "--samples 100000000", {"--samples: ", "<= 1000000"});
+  expect_refused(pair + "--samples 1000001", {"--samples: ", "<= 1000000"});
+  // A chain of 1000 bodies has 3999 values a sample.
+  expect_refused("run --scene chain --bodies 1000 --pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 1 "
+                 "--pi5 1 --pi6 1 --history h.csv --samples 10000", {"--samples: at most 5001 for this scene"});
+  const Outcome most = run(pair + "--samples 1000000");
+  ASSERT_EQ(most.exit_code, 0) << most.err;
+  EXPECT_EQ(line_count(read_text(file("h.csv"))), 1'000'001u);
+}
+
+TEST_F(CliInput, AHistoryThatCannotBeCreatedIsRefusedBeforeTheSolve) {
+  // As root, access() says yes to everything; /proc takes no new files from anyone.
+  expect_refused(std::string("run ") + kPairCase + " --history /proc/poundbench-history.csv",
+                 {"--history: /proc/poundbench-history.csv: cannot create: ", "No such file or directory"});
+  EXPECT_FALSE(fs::exists("/proc/poundbench-history.csv.tmp"));
+  // The probe leaves no temporary behind where it can create one.
+  ASSERT_EQ(run(std::string("run ") + kPairCase + " --history h.csv --samples 10").exit_code, 0);
+  EXPECT_EQ(files(), (std::set<std::string>{"h.csv"}));
+}
+
 TEST_F(CliInput, AHugeKeyOrValueIsEchoedClippedOnOneShortLine) {
   const std::string key(10'000'000, 'k');
   write("set.toml", std::string(kTinySet) + key + " = 1\n");
