@@ -78,9 +78,9 @@ std::string text(double x) {
 }
 
 // Each value alone: the spec's rules (cases/README.md), then the bounds of the domain.
-//   pi3 <= 1e6: no pulse closes a gap that wide (an undamped body at resonance stays
-//     within a few pulse lengths a_p / w_p^2), and the gap's rounding, an ulp of delta,
-//     grows with it: at 1e6 it is already 1e-10 of the length the answer is measured in.
+//   pi3 <= 1e6: a gap is delta + u_R - u_L, rounded to about 1e-16 delta; the reference
+//     counts a gap below 1e-10 a_p / w_p^2 as closed, and at pi3 = 1e6 the rounding
+//     reaches that tolerance, so a wider gap could never be seen to close.
 //   n_free <= 1000: three orders beyond the shipped 100; with the contrast it bounds the
 //     length of a run (check_duration).
 //   |kick| <= 1e6: velocities stay within 1e6 of the pulse's velocity scale a_p / w_p.
@@ -141,7 +141,7 @@ struct Span {
 //     shortest periods, and an exact solution is resolved over that span of time scales
 //     (the shipped sets reach 1e3: Pi2 0.1..10 with Pi5 0.01..100).
 //   masses within 1e6: an impact between masses that far apart changes the heavy body's
-//     velocity by 1e-6 of the light one's, still 1e10 ulps; the shipped sets reach 1e2.
+//     velocity by 1e-6 of the light one's, still 5e9 ulps; the shipped sets reach 1e2.
 std::optional<std::string> check_contrasts(const Case& c) {
   const auto too_wide = [](std::string_view field, std::string_view what, const Span& s, double bound) {
     return std::string(field) + ": the " + std::string(what) + " span a contrast (max/min) of " + text(s.contrast()) +
@@ -169,8 +169,10 @@ std::optional<std::string> check_contrasts(const Case& c) {
 
 // t_end / t_min = (T_p + n_free T_max) / min(T_p, T_min of the bodies) <= 1e6: a
 // time-stepper at its default 64 steps per shortest period then takes at most 6.4e7
-// steps, within the 1e8 its solvers allow by default, and a history of every step fits
-// in memory. Within the contrast bound only n_free can exceed it (n_free <= 99 never does).
+// steps, within the 1e8 its solvers allow by default, and the times of a run are still
+// resolved to 2e-9 of its shortest period (8 ulps of t_end, the reference's finest
+// search window). Within the contrast bound only n_free can exceed it (n_free <= 99
+// never does).
 std::optional<std::string> check_duration(const Case& c) {
   Span body{c.pi2, c.pi2};  // body frequencies over w_p
   if (uses_body1(c.scene)) body.add(c.pi2 / c.pi5);
