@@ -21,7 +21,8 @@ bool given(const CLI::App& command, std::string_view flag) { return command.coun
 
 template <class T>
 T parsed(std::string_view flag, const std::string& text, std::optional<T> value, std::string_view choices) {
-  if (!value) throw BadInput(std::string(flag) + ": unknown value '" + text + "' (one of " + std::string(choices) + ")");
+  if (!value)
+    throw BadInput(std::string(flag) + ": unknown value '" + clip(text) + "' (one of " + std::string(choices) + ")");
   return *value;
 }
 

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include <CLI/CLI.hpp>
 
@@ -26,11 +27,40 @@ namespace {
 constexpr int kRuntimeFailure = 1;
 constexpr int kBadInput = 2;
 
+// A message echoes what the user wrote (a key, a value, a file name), and not every
+// source clips it (pb::clip): each ": "-separated part, and then the line, is bounded here
+// so that the field and the reason survive a 10 MB key.
+constexpr std::size_t kMaxMessagePart = 200;
+constexpr std::size_t kMaxMessage = 1000;
+
+std::string bounded(const std::string& message) {
+  std::string line;
+  for (std::size_t start = 0; start <= message.size();) {
+    const std::size_t end = std::min(message.find(": ", start), message.size());
+    if (start > 0) line += ": ";
+    line += pb::clip(std::string_view(message).substr(start, end - start), kMaxMessagePart);
+    start = end + 2;
+  }
+  return pb::clip(line, kMaxMessage);
+}
+
 int fail(const std::string& message, int code) {
-  std::string line = message;
+  std::string line = bounded(message);
   std::replace(line.begin(), line.end(), '\n', ' ');  // one line, whatever the source
   std::cerr << "poundbench: " << line << '\n';
   return code;
+}
+
+// CLI11 reads an empty word as 0, or leaves the default, for a number (`--pi3 ''` ran
+// with Pi3 = 0), and no option of poundbench means anything by an empty value: every
+// option that takes a value, of every subcommand, refuses it.
+void refuse_empty_values(CLI::App& app) {
+  static const CLI::Validator kNotEmpty(
+      [](std::string& value) { return value.empty() ? std::string("empty value (give one)") : std::string(); }, "",
+      "NOT_EMPTY");
+  for (CLI::Option* option : app.get_options())
+    if (option->get_type_size() > 0) option->check(kNotEmpty);
+  for (CLI::App* sub : app.get_subcommands({})) refuse_empty_values(*sub);
 }
 
 int list_solvers() {
@@ -67,6 +97,7 @@ int main(int argc, char** argv) {
   pb::app::CompareFlags compare_flags;
   CLI::App* compare = pb::app::add_compare_command(app, compare_flags);
   CLI::App* solvers = app.add_subcommand("solvers", "List the solvers and what each one is");
+  refuse_empty_values(app);
 
   try {
     app.parse(argc, argv);

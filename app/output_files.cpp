@@ -1,5 +1,6 @@
 #include "app/output_files.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -24,6 +25,22 @@ bool is_special(const fs::path& file) {
   return !ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st);
 }
 
+// access() grants root everything and knows nothing of read-only or virtual file systems
+// (/proc, /sys): only creating a file tells. Creates the temporary that write_atomically
+// writes through, and removes it again unless it was there before.
+void probe_temporary(const fs::path& file, const std::string& prefix) {
+  const fs::path tmp = file.string() + ".tmp";
+  std::error_code ec;
+  const bool existed = fs::exists(tmp, ec);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0666);
+  if (fd < 0) {
+    const int error = errno;
+    throw BadInput(prefix + "cannot create: " + std::strerror(error));
+  }
+  ::close(fd);
+  if (!existed) fs::remove(tmp, ec);
+}
+
 }  // namespace
 
 void check_output_target(const fs::path& file, std::string_view flag) {
@@ -40,6 +57,7 @@ void check_output_target(const fs::path& file, std::string_view flag) {
   if (!fs::is_directory(dir, ec)) throw BadInput(prefix + "directory " + dir.string() + " does not exist");
   if (::access(dir.c_str(), W_OK) != 0) throw BadInput(prefix + "directory " + dir.string() + " is not writable");
   if (fs::exists(file, ec) && ::access(file.c_str(), W_OK) != 0) throw BadInput(prefix + "is not writable");
+  probe_temporary(file, prefix);
 }
 
 void write_atomically(const fs::path& file, const std::function<void(std::ostream&)>& write) {

@@ -13,7 +13,8 @@
 namespace pb::app {
 
 // Throws BadInput ("<flag>: <file>: <reason>") unless a file can be created at `file`:
-// it is not a directory and its directory exists and is writable.
+// it is not a directory, its directory exists and is writable, and the temporary next to
+// it can be created (it is, and removed again).
 void check_output_target(const std::filesystem::path& file, std::string_view flag);
 
 // Writes `file` through "<file>.tmp" and a rename; throws std::runtime_error on failure

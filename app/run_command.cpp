@@ -151,6 +151,25 @@ void print_summary(std::ostream& out, const Row& row) {
   out << "time     " << brief(row.seconds) << " s\n";
 }
 
+// A history is held in memory, then written as CSV (about 20 bytes a value), so its size
+// is bounded before the run: 1e6 samples resolve a run of the longest allowed length
+// (1e6 shortest periods, cases/case.hpp) to one sample a period, finer than any plot
+// or check needs; and 2e7 values (160 MB held, about 400 MB written) bound the history
+// of a long chain, whose rows have 4 N - 1 values. --samples 1e8 of a pair asked for 5.6 GB.
+constexpr long long kMaxHistorySamples = 1'000'000;
+constexpr long long kMaxHistoryValues = 20'000'000;
+
+void check_samples(int samples, const Case& c) {
+  if (samples < 2) throw BadInput("--samples: must be >= 2");
+  if (samples > kMaxHistorySamples)
+    throw BadInput("--samples: must be <= " + std::to_string(kMaxHistorySamples));
+  const long long row = 1 + 2LL * body_count(c) + 2LL * contact_count(c);
+  if (samples * row > kMaxHistoryValues)
+    throw BadInput("--samples: at most " + std::to_string(kMaxHistoryValues / row) + " for this scene (" +
+                   std::to_string(row) + " values a sample, " + std::to_string(kMaxHistoryValues) +
+                   " values of history at most)");
+}
+
 }  // namespace
 
 CLI::App* add_run_command(CLI::App& app, RunFlags& flags) {
@@ -170,7 +189,7 @@ int run_command(const CLI::App& command, RunFlags flags) {
   const bool history = command.count("--history") > 0;
   if (command.count("--samples") && !history) throw BadInput("--samples: only used with --history");
   if (history) {
-    if (flags.samples < 2) throw BadInput("--samples: must be >= 2");
+    check_samples(flags.samples, chosen.input);
     flags.solver_flags.settings.history_samples = flags.samples;
   }
   const SolverInfo& solver = checked_solver(flags.solver_flags);

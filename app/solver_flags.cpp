@@ -56,7 +56,7 @@ std::string as_flag_message(const std::string& field_reason) {
 
 const SolverInfo& checked_solver(const SolverFlags& flags) {
   const SolverInfo* solver = find_solver(flags.solver);
-  if (!solver) throw BadInput("--solver: unknown solver '" + flags.solver + "' (known: " + solver_names() + ")");
+  if (!solver) throw BadInput("--solver: unknown solver '" + clip(flags.solver) + "' (known: " + solver_names() + ")");
   if (std::string bad = solver->check(flags.settings); !bad.empty()) throw BadInput(as_flag_message(bad));
   return *solver;
 }

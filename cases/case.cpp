@@ -1,6 +1,8 @@
 #include "cases/case.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace pb {
@@ -51,12 +53,49 @@ bool uses_body1(Scene s) { return s != Scene::wall; }
 bool uses_body2(Scene s) { return s == Scene::row3; }
 
 namespace {
-bool positive(double x) { return std::isfinite(x) && x > 0.0; }
-}  // namespace
 
-std::optional<std::string> validate(const Case& c) {
+bool positive(double x) { return std::isfinite(x) && x > 0.0; }
+bool within(double x, double lo, double hi) { return std::isfinite(x) && x >= lo && x <= hi; }
+
+// A bound or a value as a message shows it: "1e4", "1.25e308", "1e-12", "1000", "0.5".
+std::string text(double x) {
+  const double a = std::abs(x);
+  const bool scientific = a != 0.0 && (a >= 1e4 || a < 1e-4);
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, scientific ? "%.6e" : "%.6g", x);
+  std::string s = buffer;
+  const std::size_t e = s.find('e');
+  if (e == std::string::npos) return s;
+  std::string mantissa = s.substr(0, e);
+  if (mantissa.find('.') != std::string::npos) {
+    mantissa.erase(mantissa.find_last_not_of('0') + 1);
+    if (mantissa.back() == '.') mantissa.pop_back();
+  }
+  std::string exponent = s.substr(e + 1);
+  const bool negative = exponent.front() == '-';
+  exponent.erase(0, exponent.find_first_not_of("+-0"));
+  return mantissa + "e" + (negative ? "-" : "") + exponent;
+}
+
+// Each value alone: the spec's rules (cases/README.md), then the bounds of the domain.
+//   pi3 <= 1e6: a gap is delta + u_R - u_L, rounded to about 1e-16 delta; the reference
+//     counts a gap below 1e-10 a_p / w_p^2 as closed, and at pi3 = 1e6 the rounding
+//     reaches that tolerance, so a wider gap could never be seen to close.
+//   n_free <= 1000: three orders beyond the shipped 100; with the contrast it bounds the
+//     length of a run (check_duration).
+//   |kick| <= 1e6: velocities stay within 1e6 of the pulse's velocity scale a_p / w_p.
+//   a_p in [1e-12, 1e12], w_p in [1e-6, 1e6]: with the contrasts below, lengths
+//     a_p / w_p^2 lie in [1e-24, 1e24], velocities in [1e-18, 1e18], frequencies in
+//     [1e-10, 1e10], stiffnesses m w^2 in [1e-26, 1e26] and energies m (a_p / w_p)^2 in
+//     [1e-42, 1e42]: squares and products of any two of them stay more than 100 orders
+//     of magnitude away from overflow (1e308) and underflow (1e-308), so every absolute
+//     quantity of a run is as exact as at a_p = w_p = 1 and Pi1 is self-similar (tested
+//     to 1e-9 at the corners). Far outside, a_p = 1e200 lost 3 % of the no-contact Pi1
+//     and w_p = 1e100 gave Pi1 = 0.
+std::optional<std::string> check_values(const Case& c) {
   if (!positive(c.pi2)) return "pi2: must be finite and > 0";
   if (!std::isfinite(c.pi3) || c.pi3 < 0.0) return "pi3: gap must be finite and >= 0";
+  if (c.pi3 > kMaxPi3) return "pi3: gap must be <= " + text(kMaxPi3) + " (no pulse closes a wider one)";
   if (!std::isfinite(c.eps) || c.eps < 0.0 || c.eps > 1.0) return "eps: must be in [0, 1]";
   if (uses_body1(c.scene)) {
     if (!positive(c.pi5)) return "pi5: frequency ratio must be finite and > 0";
@@ -66,20 +105,98 @@ std::optional<std::string> validate(const Case& c) {
     if (!positive(c.pi7)) return "pi7: frequency ratio must be finite and > 0";
     if (!positive(c.pi8)) return "pi8: mass ratio must be finite and > 0";
   }
-  // The closed forms of the reference are those of an underdamped oscillator.
   if (c.scene == Scene::chain) {
     if (c.bodies < 2 || c.bodies > kMaxChainBodies)
       return "bodies: a chain needs 2 to " + std::to_string(kMaxChainBodies) + " bodies";
-    if (!std::isfinite(c.kick)) return "kick: must be finite";
+    if (!within(c.kick, -kMaxKick, kMaxKick))
+      return "kick: must be finite and in [-" + text(kMaxKick) + ", " + text(kMaxKick) + "]";
   } else {
     if (c.bodies != 0) return "bodies: only the chain scene has a body count";
     if (c.kick != 0.0) return "kick: only the chain scene starts moving";
   }
+  // The closed forms of the reference are those of an underdamped oscillator.
   if (!std::isfinite(c.xi) || c.xi < 0.0 || c.xi >= 1.0) return "xi: damping ratio must be in [0, 1)";
   if (!positive(c.n_free)) return "n_free: must be finite and > 0";
+  if (c.n_free > kMaxNFree) return "n_free: must be <= " + text(kMaxNFree);
   if (!positive(c.a_p)) return "a_p: must be finite and > 0";
+  if (!within(c.a_p, kMinAp, kMaxAp)) return "a_p: must be in [" + text(kMinAp) + ", " + text(kMaxAp) + "]";
   if (!positive(c.w_p)) return "w_p: must be finite and > 0";
+  if (!within(c.w_p, kMinWp, kMaxWp)) return "w_p: must be in [" + text(kMinWp) + ", " + text(kMaxWp) + "]";
   return std::nullopt;
+}
+
+// The smallest and largest of some positive numbers.
+struct Span {
+  double lo, hi;
+  void add(double x) {
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  double contrast() const { return hi / lo; }  // inf when a ratio under- or overflowed
+};
+
+// The natural frequencies over w_p, body 0 first, then those of the other bodies in the
+// order their ratios are checked, so that a contrast names the term that widened it.
+//   frequencies (and w_p) within 1e4: the run lasts t_end / t_min <= (1 + n_free) 1e4
+//     shortest periods, and an exact solution is resolved over that span of time scales
+//     (the shipped sets reach 1e3: Pi2 0.1..10 with Pi5 0.01..100).
+//   masses within 1e6: an impact between masses that far apart changes the heavy body's
+//     velocity by 1e-6 of the light one's, still 5e9 ulps; the shipped sets reach 1e2.
+std::optional<std::string> check_contrasts(const Case& c) {
+  const auto too_wide = [](std::string_view field, std::string_view what, const Span& s, double bound) {
+    return std::string(field) + ": the " + std::string(what) + " span a contrast (max/min) of " + text(s.contrast()) +
+           ", more than " + text(bound);
+  };
+  constexpr std::string_view kFrequencies = "natural frequencies and w_p";
+  Span w{1.0, 1.0};
+  w.add(c.pi2);
+  if (w.contrast() > kMaxFrequencyContrast) return too_wide("pi2", kFrequencies, w, kMaxFrequencyContrast);
+  Span m{1.0, 1.0};
+  if (uses_body1(c.scene)) {
+    w.add(c.pi2 / c.pi5);
+    if (w.contrast() > kMaxFrequencyContrast) return too_wide("pi5", kFrequencies, w, kMaxFrequencyContrast);
+    m.add(1.0 / c.pi6);
+    if (m.contrast() > kMaxMassContrast) return too_wide("pi6", "masses", m, kMaxMassContrast);
+  }
+  if (uses_body2(c.scene)) {
+    w.add(c.pi2 / c.pi7);
+    if (w.contrast() > kMaxFrequencyContrast) return too_wide("pi7", kFrequencies, w, kMaxFrequencyContrast);
+    m.add(1.0 / c.pi8);
+    if (m.contrast() > kMaxMassContrast) return too_wide("pi8", "masses", m, kMaxMassContrast);
+  }
+  return std::nullopt;
+}
+
+// t_end / t_min = (T_p + n_free T_max) / min(T_p, T_min of the bodies) <= 1e6: a
+// time-stepper at its default 64 steps per shortest period then takes at most 6.4e7
+// steps, within the 1e8 its solvers allow by default, and the times of a run are still
+// resolved to 2e-9 of its shortest period (8 ulps of t_end, the reference's finest
+// search window). Within the contrast bound only n_free can exceed it (n_free <= 99
+// never does).
+std::optional<std::string> check_duration(const Case& c) {
+  Span body{c.pi2, c.pi2};  // body frequencies over w_p
+  if (uses_body1(c.scene)) body.add(c.pi2 / c.pi5);
+  if (uses_body2(c.scene)) body.add(c.pi2 / c.pi7);
+  const double periods = (1.0 + c.n_free / body.lo) * std::max(1.0, body.hi);
+  if (periods > kMaxPeriodsPerRun)
+    return "n_free: the run would last " + text(periods) + " shortest periods (t_end / t_min), more than " +
+           text(kMaxPeriodsPerRun);
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<std::string> validate(const Case& c) {
+  if (auto bad = check_values(c)) return bad;
+  if (auto bad = check_contrasts(c)) return bad;
+  return check_duration(c);
+}
+
+std::string clip(std::string_view text, std::size_t max) {
+  if (text.size() <= max) return std::string(text);
+  std::size_t cut = max;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // inside a UTF-8 character
+  return std::string(text.substr(0, cut)) + "...";
 }
 
 }  // namespace pb

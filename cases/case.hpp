@@ -4,6 +4,7 @@
 // mapping to physical parameters is make_system() in system.hpp, so every solver receives
 // the same physical scene for the same Case.
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -66,7 +67,25 @@ struct Case {
 int body_count(const Case& c);
 int contact_count(const Case& c);
 
-// Checks every value the case uses. Returns "field: reason" for the first bad one.
+// The valid domain of a case (cases/README.md, "Valid domain"): what lies outside it
+// would ask for more steps or events than a run can take, or for quantities that double
+// precision cannot hold. The reasons for each number are in case.cpp.
+inline constexpr double kMaxFrequencyContrast = 1e4;  // max/min over w_p and the bodies' w
+inline constexpr double kMaxMassContrast = 1e6;       // max/min over the bodies' masses
+inline constexpr double kMaxPeriodsPerRun = 1e6;      // t_end / t_min
+inline constexpr double kMaxNFree = 1000;
+inline constexpr double kMaxPi3 = 1e6;
+inline constexpr double kMaxKick = 1e6;  // |kick|
+inline constexpr double kMinAp = 1e-12, kMaxAp = 1e12;
+inline constexpr double kMinWp = 1e-6, kMaxWp = 1e6;
+
+// Checks every value the case uses, alone and in the contrasts and durations they imply.
+// Returns "field: reason" for the first bad one; the reason names the bound.
 std::optional<std::string> validate(const Case& c);
+
+// User text (a key, a value, a name) as echoed in a message: at most `max` bytes, cut at a
+// character boundary and marked with "...", so that a 10 MB key gives a one-line error.
+inline constexpr std::size_t kMaxEchoed = 60;
+std::string clip(std::string_view text, std::size_t max = kMaxEchoed);
 
 }  // namespace pb

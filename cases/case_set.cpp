@@ -135,6 +135,9 @@ std::string unknown_key_reason(std::string_view key, const std::vector<std::stri
   std::string_view best;
   std::size_t best_d = 3;  // more than two edits is no longer a typo
   for (std::string_view a : allowed) {
+    // A length apart of best_d or more is never closer: skip the quadratic distance (a
+    // 10 MB key would take seconds).
+    if ((key.size() > a.size() ? key.size() - a.size() : a.size() - key.size()) >= best_d) continue;
     const std::size_t d = edit_distance(key, a);
     if (d < best_d) best_d = d, best = a;
   }
@@ -190,7 +193,7 @@ class Reader {
         families = &node;
         families_line = line_of(key);
       } else {
-        fail(line_of(key), k, unknown_key_reason(k, {"name", "description", "defaults", "family"}));
+        fail(line_of(key), clip(k), unknown_key_reason(k, {"name", "description", "defaults", "family"}));
       }
     }
     if (!has_name) fail(0, "name", "required (the name of the case set)");
@@ -216,7 +219,7 @@ class Reader {
       if (!nm.given) fail(line_of(*t), prefix + ".name", "required (every family is named)");
       for (const auto& [other, other_line] : seen)
         if (other == nm.text)
-          fail(nm.line, nm.field, "duplicate family name \"" + nm.text + "\" (first used at line " +
+          fail(nm.line, nm.field, "duplicate family name \"" + clip(nm.text) + "\" (first used at line " +
                                       std::to_string(other_line) + ")");
       seen.emplace_back(nm.text, nm.line);
       expand(resolve(own, defaults, prefix, line_of(*t)), nm.text, set.cases);
@@ -230,7 +233,7 @@ class Reader {
   Settings read_settings(const toml::table& t, const std::string& prefix, bool is_defaults) const {
     Settings out;
     for (const auto& [key, node] : t) {
-      const std::string field = prefix + "." + std::string(key.str());
+      const std::string field = prefix + "." + clip(key.str());
       const std::optional<Key> k = parse_key(key.str());
       if (!k || (is_defaults && *k == Key::name)) {
         if (k) fail(line_of(key), field, "not allowed in [defaults] (each family names itself)");
@@ -289,7 +292,7 @@ class Reader {
         expected = "normal or reverse";
       }
       if (!parsed)
-        fail(line_of(n), field, "unknown " + std::string(key_name(k)) + " \"" + std::string(v) +
+        fail(line_of(n), field, "unknown " + std::string(key_name(k)) + " \"" + clip(v) +
                                     "\" (expected " + std::string(expected) + ")");
       s.choices.push_back(*parsed);
       s.value_lines.push_back(line_of(n));
@@ -350,7 +353,7 @@ class Reader {
     std::optional<std::int64_t> points;
     std::optional<bool> log;
     for (const auto& [key, node] : grid) {
-      const std::string field = s.field + "." + std::string(key.str());
+      const std::string field = s.field + "." + clip(key.str());
       const std::string_view k = key.str();
       if (k == "from" || k == "to") {
         const auto v = as_number(node);
@@ -368,7 +371,7 @@ class Reader {
         const auto* str = node.as_string();
         if (str == nullptr) fail(line_of(key), field, "must be a string, got " + std::string(type_phrase(node)));
         if (str->get() != "log" && str->get() != "linear")
-          fail(line_of(key), field, "must be \"log\" or \"linear\", got \"" + str->get() + "\"");
+          fail(line_of(key), field, "must be \"log\" or \"linear\", got \"" + clip(str->get()) + "\"");
         log = str->get() == "log";
       } else {
         fail(line_of(key), field, unknown_key_reason(k, {"from", "to", "points", "spacing"}));
@@ -499,7 +502,7 @@ class Reader {
       for (Key k : axes) {
         count *= eff[index(k)].size();
         if (count + out.size() > kMaxCases)
-          fail(eff[index(Key::scene)].line, "family \"" + family + "\"",
+          fail(eff[index(Key::scene)].line, "family \"" + clip(family) + "\"",
                "expands to more than " + std::to_string(kMaxCases) + " cases in this file");
       }
 

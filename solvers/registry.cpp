@@ -52,28 +52,38 @@ std::string check_theta_method(const Settings& settings) {
 
 std::string check_limits(const Settings& settings) {
   if (settings.step_cap < 0) return "step_cap: must be >= 0 (0: the solver's own cap)";
-  if (!(settings.time_limit >= 0.0)) return "time_limit: must be >= 0 (0: none)";
+  if (!(settings.time_limit >= 0.0) || !std::isfinite(settings.time_limit))
+    return "time_limit: must be finite and >= 0 (0: none)";
   return {};
 }
 
 namespace {
 
+// The limits of a run mean the same to every solver, so they are checked here, where
+// every solver is reached, and not left to each solver's own check (the reference's
+// never looked at them: a negative --step-cap or a NaN --time-limit went through).
+template <std::string (*OwnCheck)(const Settings&)>
+std::string check_all(const Settings& settings) {
+  if (std::string bad = check_limits(settings); !bad.empty()) return bad;
+  return OwnCheck(settings);
+}
+
 const std::array kSolvers = {
     SolverInfo{"event-driven", "exact between events, Poisson impacts (the reference)", &event_driven::solve,
-               &event_driven::describe, &event_driven::check},
+               &event_driven::describe, &check_all<&event_driven::check>},
     SolverInfo{"moreau-jean", "theta-method time-stepper, Newton impacts on predicted contacts (fixed step)",
-               &moreau_jean::solve, &moreau_jean::describe, &moreau_jean::check},
+               &moreau_jean::solve, &moreau_jean::describe, &check_all<&moreau_jean::check>},
 #ifdef POUNDBENCH_HAVE_ODE
     SolverInfo{"ode", "Open Dynamics Engine: its LCP contact solver with restitution (see --variant)", &ode::solve,
-               &ode::describe, &ode::check},
+               &ode::describe, &check_all<&ode::check>},
 #endif
 #ifdef POUNDBENCH_HAVE_BULLET
     SolverInfo{"bullet", "Bullet Physics (single precision): its constraint solvers with restitution (see --variant)",
-               &bullet::solve, &bullet::describe, &bullet::check},
+               &bullet::solve, &bullet::describe, &check_all<&bullet::check>},
 #endif
 #ifdef POUNDBENCH_HAVE_SICONOS
     SolverInfo{"siconos", "Siconos: its MoreauJeanOSI (Lemke or enumeration) or event-driven LSODAR (see --variant)",
-               &siconos::solve, &siconos::describe, &siconos::check},
+               &siconos::solve, &siconos::describe, &check_all<&siconos::check>},
 #endif
 };
 

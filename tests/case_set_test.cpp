@@ -6,10 +6,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
+
+#include "cases/system.hpp"
+#include "solvers/solver.hpp"
 
 namespace pb {
 namespace {
@@ -418,6 +422,178 @@ TEST(CaseSetErrors, AMissingFileSaysItCannotBeRead) {
   }
 }
 
+// --- the valid domain (cases/README.md) -------------------------------------------------
+
+// A pair whose frequencies span the whole allowed contrast: body 0 at w_p, body 1 at
+// w_p / 1e4 or 1e4 w_p; masses 1e6 apart.
+Case corner_pair(double pi5, double pi6) {
+  Case c;
+  c.scene = Scene::pair;
+  c.pi2 = 1.0;
+  c.pi5 = pi5;
+  c.pi6 = pi6;
+  return c;
+}
+
+TEST(CaseDomain, TheCornersOfTheDomainAreAccepted) {
+  for (double pi5 : {kMaxFrequencyContrast, 1.0 / kMaxFrequencyContrast})
+    for (double pi6 : {kMaxMassContrast, 1.0 / kMaxMassContrast}) {
+      Case c = corner_pair(pi5, pi6);
+      EXPECT_EQ(validate(c), std::nullopt) << pi5 << " " << pi6;
+      for (double a_p : {kMinAp, kMaxAp})
+        for (double w_p : {kMinWp, kMaxWp}) {
+          c.a_p = a_p;
+          c.w_p = w_p;
+          EXPECT_EQ(validate(c), std::nullopt) << a_p << " " << w_p;
+        }
+    }
+  Case c = corner_pair(2.0, 1.0);
+  c.pi3 = kMaxPi3;
+  c.n_free = 99;  // the most free periods that every contrast allows
+  c.pi2 = kMaxFrequencyContrast;
+  c.pi5 = kMaxFrequencyContrast;  // body 1 at w_p: the widest span with n_free = 99
+  EXPECT_EQ(validate(c), std::nullopt);
+  c.pi2 = 1.0;
+  c.pi5 = 2.0;
+  c.n_free = kMaxNFree;
+  EXPECT_EQ(validate(c), std::nullopt);
+  Case chain;
+  chain.scene = Scene::chain;
+  chain.bodies = kMaxChainBodies;
+  chain.kick = -kMaxKick;
+  EXPECT_EQ(validate(chain), std::nullopt);
+}
+
+// What lies outside names its field and its bound.
+::testing::AssertionResult refused(const Case& c, const std::string& field, const std::string& bound) {
+  const std::optional<std::string> bad = validate(c);
+  if (!bad) return ::testing::AssertionFailure() << "accepted";
+  if (bad->rfind(field + ": ", 0) != 0 || bad->find(bound) == std::string::npos)
+    return ::testing::AssertionFailure() << "expected " << field << ": ..." << bound << "..., got " << *bad;
+  return ::testing::AssertionSuccess();
+}
+
+TEST(CaseDomain, InputsBeyondTheDomainAreRefusedNamingTheBound) {
+  const Case pair = corner_pair(0.5, 1.0);
+  auto with_value = [&](double Case::*field, double value) {
+    Case c = pair;
+    c.*field = value;
+    return c;
+  };
+  EXPECT_TRUE(refused(with_value(&Case::pi2, 1e-100), "pi2", "more than 1e4"));
+  EXPECT_TRUE(refused(with_value(&Case::pi2, 2e4), "pi2", "more than 1e4"));
+  EXPECT_TRUE(refused(with_value(&Case::pi5, 1e308), "pi5", "more than 1e4"));
+  EXPECT_TRUE(refused(with_value(&Case::pi5, 1e-300), "pi5", "more than 1e4"));
+  // Within 1e4 of body 0 but 1e5 away from w_p.
+  Case spread = pair;
+  spread.pi2 = 10.0;
+  spread.pi5 = 1e-4;
+  EXPECT_TRUE(refused(spread, "pi5", "contrast (max/min) of 1e5, more than 1e4"));
+  EXPECT_TRUE(refused(with_value(&Case::pi6, 1e-300), "pi6", "more than 1e6"));
+  EXPECT_TRUE(refused(with_value(&Case::pi6, 1e308), "pi6", "more than 1e6"));
+  EXPECT_TRUE(refused(with_value(&Case::pi3, 2e6), "pi3", "<= 1e6"));
+  EXPECT_TRUE(refused(with_value(&Case::n_free, 1e308), "n_free", "<= 1000"));
+  EXPECT_TRUE(refused(with_value(&Case::a_p, 1e200), "a_p", "[1e-12, 1e12]"));
+  EXPECT_TRUE(refused(with_value(&Case::a_p, 1e-300), "a_p", "[1e-12, 1e12]"));
+  EXPECT_TRUE(refused(with_value(&Case::w_p, 1e100), "w_p", "[1e-6, 1e6]"));
+  EXPECT_TRUE(refused(with_value(&Case::w_p, 1e-300), "w_p", "[1e-6, 1e6]"));
+  // Each bound alone is met, but the run would be 1e7 shortest periods long.
+  Case slow = with_value(&Case::n_free, kMaxNFree);
+  slow.pi5 = 1e3;
+  EXPECT_TRUE(refused(slow, "n_free", "more than 1e6"));
+  Case row = pair;
+  row.scene = Scene::row3;
+  row.pi7 = 1e5;
+  EXPECT_TRUE(refused(row, "pi7", "more than 1e4"));
+  row.pi7 = 1.0;
+  row.pi8 = 1e7;
+  EXPECT_TRUE(refused(row, "pi8", "more than 1e6"));
+  Case chain;
+  chain.scene = Scene::chain;
+  chain.bodies = 3;
+  chain.pi6 = 1e7;  // the odd bodies of a chain take pi5 and pi6
+  EXPECT_TRUE(refused(chain, "pi6", "more than 1e6"));
+  chain.pi6 = 1.0;
+  chain.kick = 1e7;
+  EXPECT_TRUE(refused(chain, "kick", "1e6"));
+}
+
+TEST(CaseDomain, ACaseSetValueBeyondTheDomainNamesItsLineAndValue) {
+  EXPECT_TRUE(fails_with(with(kPair, "pi5 = 2", "pi5 = [2, 1e5]"), 10, "family[0].pi5[1]",
+                         "more than 1e4 (got 100000)"));
+  EXPECT_TRUE(fails_with(kPair + "w_p = 1e100\n", 12, "family[0].w_p", "[1e-6, 1e6] (got 1e+100)"));
+  EXPECT_TRUE(fails_with(kPair + "n_free = 1e308\n", 12, "family[0].n_free", "<= 1000"));
+}
+
+TEST(CaseDomain, Pi1IsSelfSimilarAtTheCornersOfThePulseScales) {
+  const SolverInfo& reference = *find_solver("event-driven");
+  Case c;  // the README's pair case
+  c.scene = Scene::pair;
+  c.pulse = PulseShape::cosine;
+  c.pi2 = 0.8;
+  c.pi3 = 0.5;
+  c.eps = 0.5;
+  c.pi5 = 0.5;
+  c.pi6 = 1.0;
+  const Result unit = reference.solve(make_system(c), Settings{});
+  ASSERT_EQ(unit.status, Status::ok) << unit.message;
+  ASSERT_GT(unit.impacts, 0);
+  for (double a_p : {kMinAp, kMaxAp})
+    for (double w_p : {kMinWp, kMaxWp}) {
+      Case scaled = c;
+      scaled.a_p = a_p;
+      scaled.w_p = w_p;
+      ASSERT_EQ(validate(scaled), std::nullopt);
+      const Result r = reference.solve(make_system(scaled), Settings{});
+      EXPECT_EQ(r.status, Status::ok) << a_p << " " << w_p << ": " << r.message;
+      EXPECT_NEAR(r.pi1, unit.pi1, 1e-9 * unit.pi1) << a_p << " " << w_p;
+      EXPECT_EQ(r.impacts, unit.impacts) << a_p << " " << w_p;
+    }
+}
+
+// At the contrast corners the reference either reaches t_end with a finite Pi1 or says it
+// stopped. A light body 0 against a heavy, soft body 1 with eps = 1 rattles against it
+// for the whole run (measured: over 1e6 events); that is the physics, and the event cap
+// reports it.
+TEST(CaseDomain, TheReferenceEndsAtTheContrastCornersReachingTEndOrSayingWhy) {
+  const SolverInfo& reference = *find_solver("event-driven");
+  Settings capped;
+  capped.step_cap = 100'000;
+  int reached = 0;
+  for (double pi5 : {kMaxFrequencyContrast, 1.0 / kMaxFrequencyContrast})
+    for (double pi6 : {kMaxMassContrast, 1.0 / kMaxMassContrast})
+      for (double eps : {0.0, 1.0}) {
+        Case c = corner_pair(pi5, pi6);
+        c.eps = eps;
+        const Result r = reference.solve(make_system(c), capped);
+        const std::string label = std::to_string(pi5) + " " + std::to_string(pi6) + " " + std::to_string(eps);
+        EXPECT_TRUE(r.status == Status::ok || r.status == Status::step_cap) << label << ": " << r.message;
+        if (r.status != Status::ok) continue;
+        ++reached;
+        EXPECT_TRUE(std::isfinite(r.pi1) && r.pi1 > 0.0) << label;
+      }
+  EXPECT_GE(reached, 6);  // measured: all but the two rattling corners
+}
+
+TEST(CaseDomain, ClipShortensLongUserTextAtACharacterBoundary) {
+  EXPECT_EQ(clip("pi5"), "pi5");
+  EXPECT_EQ(clip(std::string(kMaxEchoed, 'k')), std::string(kMaxEchoed, 'k'));
+  EXPECT_EQ(clip(std::string(10'000'000, 'k')), std::string(kMaxEchoed, 'k') + "...");
+  EXPECT_EQ(clip("ab\xC3\xA9" "cd", 3), "ab...");  // never half of the two-byte e-acute
+}
+
+TEST(CaseDomain, AHugeUnknownKeyIsEchoedClipped) {
+  const std::string key(10'000'000, 'k');
+  const std::string msg = error_of(with(kPair, "pi6 = 1", "pi6 = 1\n" + key + " = 1"));
+  EXPECT_LT(msg.size(), 300u) << msg.substr(0, 300);
+  EXPECT_NE(msg.find("family[0]." + std::string(kMaxEchoed, 'k') + "...: unknown key"), std::string::npos)
+      << msg.substr(0, 300);
+  const std::string value(1'000'000, 'v');
+  const std::string bad_scene = error_of(with(kPair, "scene = \"pair\"", "scene = \"" + value + "\""));
+  EXPECT_LT(bad_scene.size(), 300u);
+  EXPECT_NE(bad_scene.find("unknown scene"), std::string::npos) << bad_scene.substr(0, 300);
+}
+
 // --- the shipped sets ---------------------------------------------------------------------
 
 std::map<std::string, std::size_t> count_by_family(const CaseSet& set) {
@@ -467,6 +643,20 @@ TEST(ShippedCaseSets, SmokeSetIsSmallAndCoversEveryClass) {
     EXPECT_GT(seen[k], 0) << k;
   EXPECT_TRUE(symmetric_row);
   EXPECT_TRUE(asymmetric_row);
+}
+
+// Every shipped set lies inside the valid domain (loading validates every case), with
+// its widest contrasts: stress reaches 1e3 in frequency and 1e2 in mass.
+TEST(ShippedCaseSets, EveryShippedSetLiesInsideTheValidDomain) {
+  std::size_t sets = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets")) {
+    if (entry.path().extension() != ".toml") continue;
+    ++sets;
+    CaseSet set;
+    EXPECT_NO_THROW(set = load_case_set(entry.path())) << entry.path();
+    EXPECT_FALSE(set.cases.empty()) << entry.path();
+  }
+  EXPECT_GE(sets, 6u);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -217,6 +218,137 @@ TEST_F(Cli, EveryBadInputExitsTwoWithOneLineAndNoOutputFile) {
     EXPECT_EQ(o.out, "") << bad.args;
     EXPECT_EQ(files(), inputs) << bad.args;
   }
+}
+
+// --- issue 15: inputs inside a documented domain, or refused ------------------------------
+
+// The command lines of issue 15's fuzzer and their neighbours.
+class CliInput : public Cli {
+ protected:
+  // Exit 2, one line on stderr holding every one of `names`, nothing on stdout, no new file.
+  void expect_refused(const std::string& args, std::initializer_list<std::string> names) const {
+    SCOPED_TRACE(args.substr(0, 200));
+    const std::set<std::string> before = files();
+    const Outcome o = run(args);
+    const std::string err = o.err.substr(0, 500);
+    EXPECT_EQ(o.exit_code, 2) << err;
+    EXPECT_EQ(line_count(o.err), 1u) << err;
+    for (const std::string& name : names) EXPECT_NE(o.err.find(name), std::string::npos) << name << "\n" << err;
+    EXPECT_EQ(o.out, "");
+    EXPECT_EQ(files(), before);
+  }
+};
+
+// `run` of kPairCase with one flag set to `value` (replaced, or added when kPairCase lacks it).
+std::string run_pair_with(const std::string& flag, const std::string& value) {
+  std::istringstream words(kPairCase);
+  std::string args = "run", word;
+  bool replaced = false;
+  while (words >> word) {
+    args += " " + word;
+    if (word == flag) {
+      words >> word;
+      args += " " + value;
+      replaced = true;
+    }
+  }
+  return replaced ? args : args + " " + flag + " " + value;
+}
+
+TEST_F(CliInput, RunRefusesTheFuzzersInputsOutsideTheDomainNamingTheBound) {
+  expect_refused(run_pair_with("--w-p", "1e100"), {"--w-p: ", "[1e-6, 1e6]"});
+  expect_refused(run_pair_with("--a-p", "1e200"), {"--a-p: ", "[1e-12, 1e12]"});
+  expect_refused(run_pair_with("--n-free", "1e308"), {"--n-free: ", "<= 1000"});
+  expect_refused(run_pair_with("--pi2", "1e-100"), {"--pi2: ", "contrast (max/min) of 1e100, more than 1e4"});
+  expect_refused(run_pair_with("--pi5", "1e308"), {"--pi5: ", "more than 1e4"});
+  expect_refused(run_pair_with("--pi3", "1e7"), {"--pi3: ", "<= 1e6"});
+  for (const char* value : {"1e-300", "1e308"}) {
+    expect_refused(run_pair_with("--pi2", value), {"--pi2: ", "more than 1e4"});
+    expect_refused(run_pair_with("--pi5", value), {"--pi5: ", "more than 1e4"});
+    expect_refused(run_pair_with("--pi6", value), {"--pi6: ", "more than 1e6"});
+    expect_refused(run_pair_with("--a-p", value), {"--a-p: ", "[1e-12, 1e12]"});
+    expect_refused(run_pair_with("--w-p", value), {"--w-p: ", "[1e-6, 1e6]"});
+  }
+  // Each value alone is inside, but the run would last (1 + 1000 / 1e-3) shortest periods.
+  expect_refused(run_pair_with("--pi5", "1000") + " --n-free 1000",
+                 {"--n-free: ", "shortest periods", "more than 1e6"});
+}
+
+TEST_F(CliInput, RunAtTheCornersOfThePulseScalesGivesTheSamePi1) {
+  const Outcome unit = run("run --scene pair --pulse cosine --directivity normal --pi2 0.8 --pi3 0.5 --eps 0.5 "
+                           "--pi5 0.5 --pi6 1 --json");
+  ASSERT_EQ(unit.exit_code, 0) << unit.err;
+  const double pi1 = nlohmann::json::parse(unit.out).at("pi1").get<double>();
+  for (const char* scales : {"--a-p 1e-12 --w-p 1e6", "--a-p 1e12 --w-p 1e-6"}) {
+    const Outcome o = run("run --scene pair --pulse cosine --directivity normal --pi2 0.8 --pi3 0.5 --eps 0.5 "
+                          "--pi5 0.5 --pi6 1 --json " + std::string(scales));
+    ASSERT_EQ(o.exit_code, 0) << scales << ": " << o.err;
+    EXPECT_NEAR(nlohmann::json::parse(o.out).at("pi1").get<double>(), pi1, 1e-9 * pi1) << scales;
+  }
+}
+
+TEST_F(CliInput, EveryOptionRefusesAnEmptyValue) {
+  write("tiny.toml", kTinySet);
+  const std::string pair = std::string("run ") + kPairCase + " ";
+  for (const char* flag : {"--pi3", "--eps", "--pi5", "--xi", "--n-free", "--a-p", "--w-p", "--steps", "--wh",
+                           "--theta", "--step-cap", "--time-limit", "--tol-scale", "--solver", "--variant"})
+    expect_refused(pair + flag + " ''", {std::string(flag) + ": ", "empty value"});
+  expect_refused("compare rows.csv --baseline base.csv --tolerance ''", {"--tolerance: ", "empty value"});
+  expect_refused("spectrum tiny.toml --out ''", {"--out: ", "empty value"});
+  expect_refused("spectrum tiny.toml --threads '' --out out.csv", {"--threads: ", "empty value"});
+}
+
+TEST_F(CliInput, NegativeOrNanLimitsAreRefusedWhateverTheSolver) {
+  const std::string pair = std::string("run ") + kPairCase + " ";
+  for (const char* solver : {"event-driven", "moreau-jean"}) {
+    const std::string with_solver = pair + "--solver " + solver + " ";
+    expect_refused(with_solver + "--step-cap -1", {"--step-cap: ", ">= 0"});
+    expect_refused(with_solver + "--time-limit -1", {"--time-limit: ", ">= 0"});
+    expect_refused(with_solver + "--time-limit nan", {"--time-limit: ", "finite"});
+    expect_refused(with_solver + "--time-limit inf", {"--time-limit: ", "finite"});
+  }
+}
+
+TEST_F(CliInput, HistorySamplesAreCappedBeforeTheRun) {
+  const std::string pair = std::string("run ") + kPairCase + " --history h.csv ";
+  expect_refused(pair + "--samples 100000000", {"--samples: ", "<= 1000000"});
+  expect_refused(pair + "--samples 1000001", {"--samples: ", "<= 1000000"});
+  // A chain of 1000 bodies has 3999 values a sample.
+  expect_refused("run --scene chain --bodies 1000 --pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 1 "
+                 "--pi5 1 --pi6 1 --history h.csv --samples 10000", {"--samples: at most 5001 for this scene"});
+  const Outcome most = run(pair + "--samples 1000000");
+  ASSERT_EQ(most.exit_code, 0) << most.err;
+  EXPECT_EQ(line_count(read_text(file("h.csv"))), 1'000'001u);
+}
+
+TEST_F(CliInput, AHistoryThatCannotBeCreatedIsRefusedBeforeTheSolve) {
+  // As root, access() says yes to everything; /proc takes no new files from anyone.
+  expect_refused(std::string("run ") + kPairCase + " --history /proc/poundbench-history.csv",
+                 {"--history: /proc/poundbench-history.csv: cannot create: ", "No such file or directory"});
+  EXPECT_FALSE(fs::exists("/proc/poundbench-history.csv.tmp"));
+  // The probe leaves no temporary behind where it can create one.
+  ASSERT_EQ(run(std::string("run ") + kPairCase + " --history h.csv --samples 10").exit_code, 0);
+  EXPECT_EQ(files(), (std::set<std::string>{"h.csv"}));
+}
+
+TEST_F(CliInput, AHugeKeyOrValueIsEchoedClippedOnOneShortLine) {
+  const std::string key(10'000'000, 'k');
+  write("set.toml", std::string(kTinySet) + key + " = 1\n");
+  write("list.toml", std::string("[[run]]\nsolver = \"moreau-jean\"\n") + key + " = 1\n");
+  write("tiny.toml", kTinySet);
+  expect_refused("spectrum set.toml --out out.csv",
+                 {"set.toml:12: family[0]." + std::string(kMaxEchoed, 'k') + "...: ", "unknown key"});
+  // The settings reader (sweep/) echoes the key whole: main clips every part of the line.
+  expect_refused("stress tiny.toml --settings list.toml --out out.csv", {"list.toml:3: run[0].", "...: unknown key"});
+  for (const char* command :
+       {"spectrum set.toml --out out.csv", "stress tiny.toml --settings list.toml --out out.csv"})
+    EXPECT_LT(run(command).err.size(), 1100u) << command;
+  const std::string value(100'000, 'v');
+  const Outcome scene = run("run --scene " + value + " --pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 1");
+  EXPECT_EQ(scene.exit_code, 2);
+  EXPECT_LT(scene.err.size(), 200u);
+  EXPECT_NE(scene.err.find("--scene: unknown value '" + std::string(kMaxEchoed, 'v') + "...'"), std::string::npos)
+      << scene.err;
 }
 
 TEST_F(Cli, SpectrumWritesOneRowPerPointInOrderAndNoLeftovers) {
