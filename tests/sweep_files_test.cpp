@@ -13,7 +13,6 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <set>
 #include <string>
@@ -48,9 +47,9 @@ steps = 64
 
 class SweepFiles : public Cli {
  protected:
-  // poundbench with `args` (no shell), stderr to `log`, SIGINT at its default whatever
-  // the test runner inherited; returns its pid.
-  pid_t spawn(std::vector<std::string> args, const fs::path& log) const {
+  // poundbench with `args` (no shell), stdout to `out`, stderr to `log`, SIGINT at its
+  // default whatever the test runner inherited; returns its pid.
+  pid_t spawn(std::vector<std::string> args, const fs::path& log, const char* out = "/dev/null") const {
     args.insert(args.begin(), POUNDBENCH_EXE);
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
@@ -67,7 +66,7 @@ class SweepFiles : public Cli {
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addchdir_np(&actions, dir_.c_str());
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out, O_WRONLY, 0);
     posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     pid_t pid = 0;
     const int spawned = posix_spawn(&pid, argv[0], &actions, &attr, argv.data(), environ);
@@ -183,9 +182,8 @@ TEST_F(SweepFiles, AnOutputThatIsNotARegularFileIsRefusedBeforeTheSweep) {
 // which a rerun writes the output without running anything again.
 TEST_F(SweepFiles, AFailedFinalWriteNamesTheReasonAndKeepsTheRows) {
   write("tiny.toml", kTinySet);
-  const std::string command =
-      "cd '" + dir_.string() + "' && '" POUNDBENCH_EXE "' spectrum tiny.toml > /dev/full 2> err.txt";
-  const int status = std::system(command.c_str());
+  int status = 0;
+  ASSERT_GT(::waitpid(spawn({"spectrum", "tiny.toml"}, file("err.txt"), "/dev/full"), &status, 0), 0);
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 1);
   const std::string err = read_text(file("err.txt"));
