@@ -1,6 +1,11 @@
 #include "app/baseline_command.hpp"
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <cerrno>
 
 #include <cstdio>
 #include <cstdlib>
@@ -17,6 +22,8 @@
 #include "sweep/baseline.hpp"
 #include "sweep/row_read.hpp"
 
+extern char** environ;
+
 namespace pb::app {
 
 namespace fs = std::filesystem;
@@ -25,22 +32,47 @@ namespace {
 
 constexpr int kCheckFailed = 1;
 
-// What a command's first output line prints, or "unknown".
-std::string first_line_of(const std::string& command) {
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(::popen(command.c_str(), "r"), ::pclose);
-  if (!pipe) return "unknown";
-  char buffer[256] = {};
-  if (!std::fgets(buffer, sizeof buffer, pipe.get())) return "unknown";
-  std::string line(buffer);
-  while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+// The first line a program prints, or "unknown". The program runs from an argument vector,
+// never through a shell: its arguments hold paths the user chose, which a shell would
+// read as commands. stdin and stderr are /dev/null.
+std::string first_line_of(std::vector<std::string> args) {
+  int out[2];
+  if (::pipe2(out, O_CLOEXEC) != 0) return "unknown";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, out[1], STDOUT_FILENO);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int spawned = ::posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(out[1]);
+  std::string text;
+  if (spawned == 0) {
+    char buffer[256];
+    ssize_t n = 0;
+    // Read to the end, so the program never blocks on a full pipe.
+    while ((n = ::read(out[0], buffer, sizeof buffer)) > 0 || (n < 0 && errno == EINTR))
+      if (n > 0 && text.size() < 4096) text.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(out[0]);
+  int status = 0;
+  if (spawned != 0 || ::waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    return "unknown";
+  std::string line = text.substr(0, text.find('\n'));
+  if (!line.empty() && line.back() == '\r') line.pop_back();
   return line.empty() ? "unknown" : line;
 }
 
 // Provenance for people: the commit of the tree the baseline sits in, the compiler, the date.
 std::vector<std::string> provenance(const fs::path& file) {
   const std::string dir = fs::absolute(file).parent_path().string();
-  std::string commit = first_line_of("git -C '" + dir + "' rev-parse --short HEAD 2>/dev/null");
-  if (commit != "unknown" && first_line_of("git -C '" + dir + "' status --porcelain --untracked-files=no 2>/dev/null") != "unknown")
+  std::string commit = first_line_of({"git", "-C", dir, "rev-parse", "--short", "HEAD"});
+  if (commit != "unknown" &&
+      first_line_of({"git", "-C", dir, "status", "--porcelain", "--untracked-files=no"}) != "unknown")
     commit += " (with uncommitted changes)";
   char date[32] = {};
   const std::time_t now = std::time(nullptr);

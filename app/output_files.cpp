@@ -3,9 +3,11 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <array>
 #include <cerrno>
 #include <cstring>
-#include <fstream>
+#include <iostream>
+#include <streambuf>
 #include <stdexcept>
 #include <system_error>
 
@@ -41,6 +43,61 @@ void probe_temporary(const fs::path& file, const std::string& prefix) {
   if (!existed) fs::remove(tmp, ec);
 }
 
+// An ostream's buffer on a file descriptor that keeps the errno of a failed write, which
+// std::ofstream does not promise to: the message of a failed output names the reason.
+class FdBuffer : public std::streambuf {
+ public:
+  explicit FdBuffer(int fd) : fd_(fd) { setp(buffer_.data(), buffer_.data() + buffer_.size()); }
+  int error() const { return error_; }
+
+ protected:
+  int_type overflow(int_type ch) override {
+    if (!drain()) return traits_type::eof();
+    if (!traits_type::eq_int_type(ch, traits_type::eof())) {
+      *pptr() = traits_type::to_char_type(ch);
+      pbump(1);
+    }
+    return traits_type::not_eof(ch);
+  }
+  int sync() override { return drain() ? 0 : -1; }
+
+ private:
+  bool drain() {
+    const char* at = pbase();
+    while (error_ == 0 && at < pptr()) {
+      const ssize_t n = ::write(fd_, at, static_cast<std::size_t>(pptr() - at));
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) error_ = errno;
+      else at += n;
+    }
+    setp(buffer_.data(), buffer_.data() + buffer_.size());
+    return error_ == 0;
+  }
+
+  int fd_;
+  int error_ = 0;
+  std::array<char, 1 << 16> buffer_{};
+};
+
+// Runs `write` on an ostream over `fd`, then (sync) fsyncs and (close) closes it; returns
+// the errno of the first failure, 0 if none.
+int write_fd(int fd, const std::function<void(std::ostream&)>& write, bool sync, bool close = true) {
+  FdBuffer buffer(fd);
+  std::ostream out(&buffer);
+  try {
+    write(out);
+  } catch (...) {
+    if (close) ::close(fd);
+    throw;
+  }
+  out.flush();
+  int error = buffer.error();
+  if (error == 0 && !out) error = EIO;  // the stream failed without a write failing
+  if (error == 0 && sync && ::fsync(fd) != 0) error = errno;
+  if (close && ::close(fd) != 0 && error == 0) error = errno;
+  return error;
+}
+
 }  // namespace
 
 void check_output_target(const fs::path& file, std::string_view flag) {
@@ -60,26 +117,40 @@ void check_output_target(const fs::path& file, std::string_view flag) {
   probe_temporary(file, prefix);
 }
 
+void check_sweep_output(const fs::path& file, std::string_view flag) {
+  check_output_target(file, flag);
+  std::error_code ec;
+  const fs::file_status st = fs::status(file, ec);
+  if (!ec && fs::exists(st) && !fs::is_regular_file(st))
+    throw BadInput(std::string(flag) + ": " + file.string() +
+                   ": not a regular file (a device or a pipe): a sweep writes its output through a temporary file "
+                   "and a partial file next to it; leave out " + std::string(flag) + " to write to stdout");
+}
+
 void write_atomically(const fs::path& file, const std::function<void(std::ostream&)>& write) {
   if (is_special(file)) {
-    std::ofstream out(file);
-    if (!out) throw std::runtime_error(file.string() + ": cannot open: " + std::strerror(errno));
-    write(out);
-    out.flush();
-    if (!out) throw std::runtime_error(file.string() + ": write failed");
+    const int fd = ::open(file.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+    if (fd < 0) throw std::runtime_error(file.string() + ": cannot open: " + std::strerror(errno));
+    const int error = write_fd(fd, write, false);
+    if (error != 0) throw std::runtime_error(file.string() + ": write failed: " + std::strerror(error));
     return;
   }
   const fs::path tmp = file.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    if (!out) throw std::runtime_error(tmp.string() + ": cannot create: " + std::strerror(errno));
-    write(out);
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw std::runtime_error(tmp.string() + ": write failed");
-    }
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::runtime_error(tmp.string() + ": cannot create: " + std::strerror(errno));
+  // fsync before the rename: otherwise a power cut can leave the new name on an empty file.
+  int error = 0;
+  try {
+    error = write_fd(fd, write, true);
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw;
+  }
+  if (error != 0) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw std::runtime_error(tmp.string() + ": write failed: " + std::strerror(error));
   }
   std::error_code ec;
   fs::rename(tmp, file, ec);
@@ -87,6 +158,12 @@ void write_atomically(const fs::path& file, const std::function<void(std::ostrea
     fs::remove(tmp, ec);
     throw std::runtime_error(file.string() + ": cannot rename " + tmp.string() + " into place: " + ec.message());
   }
+}
+
+void write_to_stdout(const std::function<void(std::ostream&)>& write) {
+  std::cout.flush();  // nothing of the sweeps' is in it; keeps the order should that change
+  const int error = write_fd(STDOUT_FILENO, write, false, false);
+  if (error != 0) throw std::runtime_error(std::string("stdout: write failed: ") + std::strerror(error));
 }
 
 FlushedFile::FlushedFile(const fs::path& file, Mode mode)

@@ -33,6 +33,13 @@ std::string partial_file_name(const std::string& out, std::string_view command) 
   return out.empty() ? "poundbench-" + std::string(command) + ".partial.csv" : out + ".partial";
 }
 
+OutputLock take_output_lock(const std::string& out, std::string_view command, const std::string& partial) {
+  check_output_target(partial, "partial file");  // before the lock names the same directory
+  const std::string lock_file = lock_file_name(out, command);
+  check_output_target(lock_file, "lock file");
+  return OutputLock(lock_file, out.empty() ? "partial file: " + partial : "--out: " + out);
+}
+
 std::vector<Row> read_earlier_rows(const std::string& partial, std::span<const Case> cases,
                                    std::span<const SweepRun> runs) {
   check_output_target(partial, "partial file");
@@ -49,7 +56,7 @@ std::vector<Row> read_earlier_rows(const std::string& partial, std::span<const C
 
 std::optional<std::vector<Row>> run_resumable(const Processes& processes, std::span<const Case> cases,
                                               std::span<const SweepRun> runs, const std::string& partial,
-                                              std::vector<Row> earlier, unsigned threads) {
+                                              OutputLock& lock, std::vector<Row> earlier, unsigned threads) {
   const std::size_t total = cases.size() * runs.size();
   const bool with_run = runs.size() > 1;
   std::vector<std::size_t> todo;
@@ -64,21 +71,25 @@ std::optional<std::vector<Row>> run_resumable(const Processes& processes, std::s
   }
 
   std::mutex file_mutex;  // held while a row is written, so an abandon never cuts a line
+  const Progress progress = progress_for(processes);
   const auto abandon = [&] {
     file_mutex.lock();
+    // Erases the bar; on a file or a pipe the escape sequence would be garbage in the log.
+    const char* erase = progress == Progress::bar ? "\r\033[K" : "";
     if (processes.leader())
-      std::fprintf(stderr, "\r\033[Kpoundbench: interrupted; the finished rows are in %s\n", partial.c_str());
+      std::fprintf(stderr, "%spoundbench: interrupted; the finished rows are in %s\n", erase, partial.c_str());
     std::fflush(stderr);
+    lock.release();  // _Exit runs no destructor
     std::_Exit(kInterrupted);
   };
-  SweepWatch watch(total, earlier.size(), progress_for(processes), abandon);
+  SweepWatch watch(total, earlier.size(), progress, abandon);
 
   SweepOptions options;
   options.threads = threads ? threads : processes.default_threads();
   options.cancel = &watch.cancel();
   if (file) {
     options.on_row = [&](const Row& row) {
-      const std::lock_guard lock(file_mutex);
+      const std::lock_guard hold(file_mutex);
       file->write_line(partial_line(row, with_run));
     };
     options.on_progress = [&](std::size_t done, std::size_t) { watch.set_done(earlier.size() + done); };
@@ -106,7 +117,13 @@ std::optional<std::vector<Row>> run_resumable(const Processes& processes, std::s
   return rows;
 }
 
-void remove_partial(const std::string& partial) {
+void write_outputs(const std::string& partial, const std::function<void()>& write) {
+  try {
+    write();
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string(e.what()) + "; every finished row is kept in " + partial +
+                             ": rerun the same command to write the output from it");
+  }
   std::error_code ec;
   std::filesystem::remove(partial, ec);
 }

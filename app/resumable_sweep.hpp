@@ -10,12 +10,14 @@
 // sweep is complete the command writes its outputs and then removes the partial file, so
 // there is always one place that holds every finished row.
 
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "app/output_lock.hpp"
 #include "app/processes.hpp"
 #include "cases/case.hpp"
 #include "sweep/row.hpp"
@@ -27,6 +29,11 @@ namespace pb::app {
 // the output is stdout.
 std::string partial_file_name(const std::string& out, std::string_view command);
 
+// Leader only, while checking inputs and before read_earlier_rows: the lock of the output
+// `out` ("" for stdout) and its partial file (app/output_lock.hpp); BadInput when another
+// sweep holds it.
+OutputLock take_output_lock(const std::string& out, std::string_view command, const std::string& partial);
+
 // Leader only, while checking inputs: throws BadInput unless the partial file can be
 // written and holds nothing but rows of this sweep; returns them (none if it does not
 // exist). Creates nothing.
@@ -35,14 +42,17 @@ std::vector<Row> read_earlier_rows(const std::string& partial, std::span<const C
 
 // Runs the tasks that `earlier` (the leader's) lacks, on `threads` threads per process
 // (0: Processes::default_threads), with progress and interrupts as SweepWatch has them.
+// `lock` is the leader's lock of the output (app/output_lock.hpp; empty elsewhere),
+// released before a second signal ends the process at once.
 // On the leader, returns every row (earlier and new, sorted by run then point), or nullopt
 // when interrupted: then one line on stderr says how many tasks are done and where. The
 // other processes return an empty list.
 std::optional<std::vector<Row>> run_resumable(const Processes& processes, std::span<const Case> cases,
                                               std::span<const SweepRun> runs, const std::string& partial,
-                                              std::vector<Row> earlier, unsigned threads);
+                                              OutputLock& lock, std::vector<Row> earlier, unsigned threads);
 
-// After the outputs are written: the partial file is no longer needed.
-void remove_partial(const std::string& partial);
+// Runs `write` (the command's outputs), then removes the partial file, which is no longer
+// needed. A failure to write keeps it, and the error says so: its rows are the result.
+void write_outputs(const std::string& partial, const std::function<void()>& write);
 
 }  // namespace pb::app

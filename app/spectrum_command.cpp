@@ -20,13 +20,11 @@ void validate_cases(const CaseSet& set, const std::string& file) {
 }
 
 void write_final(const SpectrumFlags& flags, const std::vector<Row>& rows) {
-  if (!flags.out.empty()) {
-    write_atomically(flags.out, [&](std::ostream& out) { write_csv(out, rows); });
-    return;
-  }
-  write_csv(std::cout, rows);
-  std::cout.flush();
-  if (!std::cout) throw std::runtime_error("stdout: write failed");
+  const auto csv = [&](std::ostream& out) { write_csv(out, rows); };
+  if (flags.out.empty())
+    write_to_stdout(csv);
+  else
+    write_atomically(flags.out, csv);
 }
 
 }  // namespace
@@ -47,21 +45,22 @@ int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const 
   std::vector<SweepRun> runs(1);
   std::vector<Row> earlier;
   const std::string partial = partial_file_name(flags.out, "spectrum");
+  OutputLock lock;  // held until the output is written and the partial file removed
   processes.agree([&] {
     set = load_case_set(flags.case_set);
     validate_cases(set, flags.case_set);
     runs[0] = {&checked_solver(flags.solver_flags), flags.solver_flags.settings};
     if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
     if (!processes.leader()) return;
-    if (!flags.out.empty()) check_output_target(flags.out, "--out");
+    if (!flags.out.empty()) check_sweep_output(flags.out, "--out");
+    lock = take_output_lock(flags.out, "spectrum", partial);
     earlier = read_earlier_rows(partial, set.cases, runs);
   });
 
-  const auto rows = run_resumable(processes, set.cases, runs, partial, std::move(earlier), flags.threads);
+  const auto rows = run_resumable(processes, set.cases, runs, partial, lock, std::move(earlier), flags.threads);
   if (!rows) return kInterrupted;
   if (!processes.leader()) return 0;
-  write_final(flags, *rows);
-  remove_partial(partial);
+  write_outputs(partial, [&] { write_final(flags, *rows); });
   return 0;
 }
 

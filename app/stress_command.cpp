@@ -40,15 +40,14 @@ int stress_command(const CLI::App& command, const StressFlags& flags, const Proc
   const Stress st =
       stress_of(study.set.cases, study.list, work_precision_of(study.set.cases, study.list, std::move(*study.rows)));
 
-  if (!flags.points.empty()) write_atomically(flags.points, [&](std::ostream& out) { write_points(out, st); });
-  if (!flags.out.empty()) {
-    write_atomically(flags.out, [&](std::ostream& out) { write_table(out, st); });
-  } else {
-    write_table(std::cout, st);
-    std::cout.flush();
-    if (!std::cout) throw std::runtime_error("stdout: write failed");
-  }
-  remove_partial(study.partial);
+  write_outputs(study.partial, [&] {
+    if (!flags.points.empty()) write_atomically(flags.points, [&](std::ostream& out) { write_points(out, st); });
+    const auto table = [&](std::ostream& out) { write_table(out, st); };
+    if (flags.out.empty())
+      write_to_stdout(table);
+    else
+      write_atomically(flags.out, table);
+  });
   return 0;
 }
 

@@ -34,11 +34,13 @@ Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_vi
     if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
     runs = study_runs(study.list);
     if (!processes.leader()) return;
-    if (!flags.out.empty()) check_output_target(flags.out, "--out");
-    if (!flags.points.empty()) check_output_target(flags.points, "--points");
+    if (!flags.out.empty()) check_sweep_output(flags.out, "--out");
+    if (!flags.points.empty()) check_sweep_output(flags.points, "--points");
+    study.lock = take_output_lock(flags.out, name, study.partial);
     earlier = read_earlier_rows(study.partial, study.set.cases, runs);
   });
-  study.rows = run_resumable(processes, study.set.cases, runs, study.partial, std::move(earlier), flags.threads);
+  study.rows =
+      run_resumable(processes, study.set.cases, runs, study.partial, study.lock, std::move(earlier), flags.threads);
   return study;
 }
 

@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/output_lock.hpp"
 #include "app/processes.hpp"
 #include "cases/case_set.hpp"
 #include "sweep/row.hpp"
@@ -33,6 +34,7 @@ struct Study {
   CaseSet set;
   SettingsList list;
   std::string partial;                    // its partial file
+  OutputLock lock;                        // of the outputs, on the leader, while the Study lives
   std::optional<std::vector<Row>> rows;   // on the leader, every row; nullopt: interrupted
 };
 

@@ -99,22 +99,29 @@ std::vector<Row> read_partial_rows(std::istream& in, std::string_view file, std:
 
   const TaskCheck check(cases, runs);
   std::vector<Row> rows;
+  std::vector<std::size_t> seen(cases.size() * runs.size(), 0);  // each task's line; 0: none yet
   for (line += 1; read_csv_record(in, record); line += 1 + static_cast<std::size_t>(std::ranges::count(record, '\n'))) {
     Row row;
     try {
       row = parse_partial_line(record, with_run);
     } catch (const RowReadError& e) {
-      throw fail(std::string("not a row: ") + e.what());
+      // Only an edit or a damaged disk makes one: poundbench writes rows that pass the
+      // same check. Refused rather than rerun, so that nothing is recomputed unasked.
+      throw fail(std::string("not a row: ") + e.what() + " (delete the line to run that point again, or remove the file to start afresh)");
     }
     if (const std::string why = check.mismatch(row); !why.empty())
       throw fail(why + ": the file is from another sweep" + afresh);
+    // Two rows of one task (files joined, or two sweeps on one output) may differ, and
+    // keeping either would be a silent choice.
+    std::size_t& first = seen[row.run * cases.size() + row.point];
+    if (first != 0)
+      throw fail("point " + std::to_string(row.point) + (with_run ? " of run " + std::to_string(row.run) : "") +
+                 ": a second row (the first is on line " + std::to_string(first) + "); delete one of the two lines");
+    first = line;
     row.input = cases[row.point];  // exactly the case, also in the columns the CSV leaves empty
     rows.push_back(std::move(row));
   }
-  std::stable_sort(rows.begin(), rows.end(), task_order);
-  rows.erase(std::unique(rows.begin(), rows.end(),
-                         [](const Row& a, const Row& b) { return a.run == b.run && a.point == b.point; }),
-             rows.end());
+  std::sort(rows.begin(), rows.end(), task_order);
   return rows;
 }
 

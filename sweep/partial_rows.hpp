@@ -40,9 +40,10 @@ std::string partial_line(const Row& row, bool with_run);
 // RowReadError.
 Row parse_partial_line(std::string_view record, bool with_run);
 
-// The rows of a partial file of the sweep (cases, runs), each checked as above, sorted by
-// task; a task found twice is kept once. An empty input has no rows. Throws
-// PartialRowsError naming `file`.
+// The rows of a partial file of the sweep (cases, runs), each checked as above and by
+// row_problem (sweep/row.hpp), sorted by task. An empty input has no rows. Throws
+// PartialRowsError naming `file` and the line: for a row of another sweep, a damaged row
+// (an ok without a finite Pi1, a negative count), and a second row of one task.
 std::vector<Row> read_partial_rows(std::istream& in, std::string_view file, std::span<const Case> cases,
                                    std::span<const SweepRun> runs);
 

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace pb {
 
@@ -22,6 +23,25 @@ double penetration_steps(const Result& r) {
   if (std::isnan(travel)) return std::numeric_limits<double>::quiet_NaN();
   const double depth = std::max(0.0, -r.min_gap);
   return depth > 0.0 ? depth / travel : 0.0;
+}
+
+namespace {
+
+std::string shown(double x) { return std::isnan(x) ? "nan" : std::isinf(x) ? (x > 0 ? "inf" : "-inf") : format_number(x); }
+
+}  // namespace
+
+std::string row_problem(const Row& row) {
+  const Result& r = row.result;
+  if (r.status == Status::ok && !(std::isfinite(r.pi1) && r.pi1 >= 0.0))
+    return "pi1: must be a finite number >= 0 when status is ok (it is " + shown(r.pi1) + ")";
+  for (const auto& [count, column] : {std::pair{r.impacts, "impacts"}, {r.contact_phases, "contact_phases"},
+                                      {r.steps, "steps"}, {r.isolated_impacts, "isolated_impacts"}})
+    if (count < 0) return std::string(column) + ": must be >= 0 (it is " + std::to_string(count) + ")";
+  for (const auto& [t, column] : {std::pair{row.seconds, "seconds"}, {row.cpu_seconds, "cpu_seconds"}})
+    if (!std::isnan(t) && !(std::isfinite(t) && t >= 0.0))
+      return std::string(column) + ": must be a finite number >= 0, or empty (it is " + shown(t) + ")";
+  return {};
 }
 
 std::string format_number(double x) {

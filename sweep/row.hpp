@@ -54,6 +54,14 @@ double penetration(const Row& row);
 // without a fixed step or a measured rate (the reference, monitor off).
 double penetration_steps(const Result& r);
 
+// What a row must be, whether it was just solved or read back from a file: "" when it
+// is, otherwise the column and why not ("pi1: ..."). A row with status ok has a finite
+// Pi1 >= 0; counts are >= 0; timing columns are >= 0 and finite, or missing (NaN, as a
+// baseline leaves them). run_point turns a solver's result that breaks this into a failed
+// row, and the readers (sweep/row_read.hpp) refuse a record that breaks it, so a resumed
+// sweep or a comparison never takes a damaged row for a result.
+std::string row_problem(const Row& row);
+
 // Shortest decimal text that reads back (strtod) to exactly x; NaN gives "".
 std::string format_number(double x);
 // A CSV field, quoted as RFC 4180 asks only when it holds a comma, a quote, CR or LF.

@@ -185,6 +185,7 @@ Row parse_row(const Columns& columns, const std::vector<std::string>& fields) {
   r.restitution_low = f.number("restitution_low");
   r.restitution_high = f.number("restitution_high");
   row.penetration_steps = f.number("penetration_steps");
+  if (const std::string bad = row_problem(row); !bad.empty()) throw RowReadError(bad);
   return row;  // penetration is not read: it is made from min_gap and pi3
 }
 

@@ -50,7 +50,8 @@ class Columns {
   std::size_t size_ = 0;
 };
 
-// The row of a record under `columns`; throws RowReadError.
+// The row of a record under `columns`; throws RowReadError, also for a row that
+// row_problem (sweep/row.hpp) refuses: rows read back pass the checks of rows written.
 Row parse_row(const Columns& columns, const std::vector<std::string>& fields);
 // The row of csv_line's fields (the columns of csv_header, in its order).
 Row parse_row(const std::vector<std::string>& fields);

@@ -10,6 +10,16 @@ namespace pb {
 
 namespace {
 
+// Steps per shortest period: Settings::steps is an int, and 1e9 steps per period already
+// means hours per run. Checked before the doubling loop, so the loop cannot overflow.
+constexpr long long kMaxSteps = 1'000'000'000;
+
+// Settings a list may expand to: every one runs every point of the case set, and the
+// summary has a row per family and setting. The largest shipped list (default.toml) has
+// 133; 10,000 settings even over the 40-point smoke set are 400,000 runs. Beyond that
+// the list is a typo (a product of long lists), refused as case sets refuse theirs.
+constexpr std::size_t kMaxSettings = 10'000;
+
 class Reader {
  public:
   explicit Reader(std::string_view source) : source_(source) {}
@@ -58,12 +68,15 @@ class Reader {
 
   // An integer, a list of them, or { from, to }: powers of two apart.
   std::vector<double> steps(const toml::node& n, const std::string& field) const {
+    const std::string range = "must be a whole number from 1 to " + std::to_string(kMaxSteps);
     if (const auto* t = n.as_table()) {
       long long from = 0, to = 0;
       for (auto&& [k, v] : *t) {
+        const std::string f = field + "." + std::string(k.str());
+        if (k.str() != "from" && k.str() != "to") fail(&v, f, "unknown key");
         const auto* i = v.as_integer();
-        if (k.str() != "from" && k.str() != "to") fail(&v, field + "." + std::string(k.str()), "unknown key");
-        if (!i || i->get() < 1) fail(&v, field + "." + std::string(k.str()), "must be an integer >= 1");
+        if (!i) fail(&v, f, range);
+        if (i->get() < 1 || i->get() > kMaxSteps) fail(&v, f, range + " (got " + std::to_string(i->get()) + ")");
         (k.str() == "from" ? from : to) = i->get();
       }
       if (from == 0 || to == 0) fail(&n, field, "a doubling range needs from and to");
@@ -74,7 +87,7 @@ class Reader {
     }
     std::vector<double> out = numbers(n, field);
     for (double x : out)
-      if (x < 1 || x != std::floor(x) || x > 1e9) fail(&n, field, "must be a whole number >= 1");
+      if (x < 1 || x != std::floor(x) || x > static_cast<double>(kMaxSteps)) fail(&n, field, range);
     return out;
   }
 
@@ -178,6 +191,16 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
     if (solver.empty()) r.fail(&rn, field + ".solver", "missing");
     if (!info) r.fail(solver_node, field + ".solver", "unknown solver '" + solver + "'");
     if (steps_node && wh_node) r.fail(wh_node, field + ".wh", "give steps or wh, not both (one [[run]] each)");
+    // Counted before anything is expanded; the product so far is at most kMaxSettings
+    // when the next list's length (bounded by the file's size) multiplies it, so it
+    // cannot overflow.
+    std::size_t product = 1;
+    for (std::size_t axis : {variants.size(), theta.size(), gamma.size(), tol.size(), steps.size(), wh.size()}) {
+      product *= axis;
+      if (list.runs.size() + product > kMaxSettings)
+        r.fail(&rn, field, "the list expands to more than " + std::to_string(kMaxSettings) +
+                               " settings (the product of its lists' lengths); split the study");
+    }
     // The step axis is innermost: steps N, or w_max h.
     std::vector<std::pair<int, double>> step_axis;
     for (double n : steps)

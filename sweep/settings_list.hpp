@@ -19,6 +19,8 @@
 // Keys of [[run]]: solver (required), variant, steps or wh, theta, gamma, tol_scale, and
 // one value each of step_cap, time_limit (seconds per run) and monitor (true/false: the
 // time-steppers' energy and restitution measurement, on by default).
+// Limits: steps from 1 to 1e9; at most 10,000 settings in the whole list (settings_list.cpp
+// says why), counted before expansion.
 // The shipped lists are in cases/settings/.
 
 #include <filesystem>

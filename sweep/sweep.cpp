@@ -91,6 +91,14 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
     if (!row.result.message.empty()) row.result.message += "; ";
     row.result.message += "no-contact pi1: " + describe_exception(std::current_exception());
   }
+  // A result the row check refuses (an ok with no Pi1) would be written and then refused
+  // on resume; it is a solver's failure, so the row says so.
+  if (std::string bad = row_problem(row); !bad.empty()) {
+    const std::string message = row.result.message;
+    row.result = Result{};  // none of its values can be trusted
+    row.result.status = Status::failed;
+    row.result.message = "the solver returned an inconsistent result: " + bad + (message.empty() ? "" : "; " + message);
+  }
   return row;
 }
 

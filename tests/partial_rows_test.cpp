@@ -117,7 +117,6 @@ TEST(PartialRows, ReadsBackEveryRowSortedByTaskDroppingATornLastLine) {
   const std::vector<Row> rows = run_sweep(cases, runs, options);
   std::vector<Row> shuffled = rows;
   std::reverse(shuffled.begin(), shuffled.end());  // as rows finish: in any order
-  shuffled.push_back(rows[5]);                      // a task twice is kept once
 
   const std::string text = text_of(shuffled, true);
   const std::vector<Row> back = read(text + "0,wall-sine,3,wa", cases, runs);
@@ -164,6 +163,65 @@ TEST(PartialRows, AFileOfAnotherSweepIsRefusedNamingTheLineAndTheField) {
   // A study's file (run column) given to a spectrum, a bad row, another header.
   EXPECT_NE(refusal(text_of(rows, true), cases, reference).find("header"), std::string::npos);
   EXPECT_NE(refusal(text_of(rows, false) + "x,y\n", cases, reference).find("p.csv:4: not a row"), std::string::npos);
+}
+
+// A row's line with the field of `column` replaced by `value`.
+std::string edited(const std::string& line_of_row, const std::string& column, const std::string& value) {
+  const std::vector<std::string> header = split_csv(csv_header());
+  std::vector<std::string> fields = split_csv(line_of_row);
+  fields.at(static_cast<std::size_t>(std::find(header.begin(), header.end(), column) - header.begin())) = value;
+  std::string line;
+  for (std::size_t i = 0; i < fields.size(); ++i) line += (i ? "," : "") + csv_field(fields[i]);
+  return line;
+}
+
+// A row read back passes the check of a row written (row_problem), and a point has one
+// row: anything else is refused with the file and the line, never taken or dropped.
+TEST(PartialRows, ADamagedRowOrASecondRowOfOnePointIsRefusedNamingTheLine) {
+  const std::vector<Case> cases = smoke_cases();
+  const std::vector<SweepRun> runs = two_runs();
+  const std::vector<SweepRun> reference(runs.begin(), runs.begin() + 1);
+  const Row good = run_point(cases[2], 2, *runs[0].solver, runs[0].settings);
+  const Row other = run_point(cases[4], 4, *runs[0].solver, runs[0].settings);
+  ASSERT_EQ(good.result.status, Status::ok);
+  ASSERT_EQ(row_problem(good), "");
+  const std::string head = partial_header(false) + "\n" + csv_line(other) + "\n";
+
+  const std::vector<std::pair<std::string, std::string>> damaged = {
+      {"pi1", "nan"}, {"pi1", ""}, {"pi1", "inf"}, {"pi1", "-1"}, {"impacts", "-5"}, {"steps", "-1"},
+      {"cpu_seconds", "-inf"}};
+  for (const auto& [column, value] : damaged) {
+    const std::string why = refusal(head + edited(csv_line(good), column, value) + "\n", cases, reference);
+    EXPECT_EQ(why.rfind("p.csv:3: not a row: " + column + ": must be", 0), 0u) << column << "=" << value << ": " << why;
+    EXPECT_NE(why.find("delete the line"), std::string::npos) << why;
+  }
+  // A failed or diverged row has no Pi1 to check.
+  EXPECT_EQ(read(head + edited(edited(csv_line(good), "status", "failed"), "pi1", "") + "\n", cases, reference).size(), 2u);
+
+  // Two rows of point 4, even identical ones.
+  EXPECT_EQ(refusal(head + csv_line(good) + "\n" + csv_line(other) + "\n", cases, reference),
+            "p.csv:4: point 4: a second row (the first is on line 2); delete one of the two lines");
+  const std::string study = text_of(std::vector<Row>{good, good}, true);
+  EXPECT_EQ(refusal(study, cases, runs), "p.csv:3: point 2 of run 0: a second row (the first is on line 2); "
+                                         "delete one of the two lines");
+}
+
+// What a solver returns that the row check refuses becomes a failed row, so that the
+// sweep never writes a row it would refuse on resume.
+TEST(RowCheck, RowsWrittenPassTheChecksOfRowsRead) {
+  Row row;
+  row.result.status = Status::ok;
+  row.result.pi1 = 1.5;
+  EXPECT_EQ(row_problem(row), "");
+  row.result.impacts = -5;
+  EXPECT_EQ(row_problem(row), "impacts: must be >= 0 (it is -5)");
+  row.result.impacts = 0;
+  row.result.pi1 = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(row_problem(row), "pi1: must be a finite number >= 0 when status is ok (it is nan)");
+  row.result.status = Status::nan;
+  EXPECT_EQ(row_problem(row), "");
+  row.seconds = std::numeric_limits<double>::quiet_NaN();  // a baseline's empty timing
+  EXPECT_EQ(row_problem(row), "");
 }
 
 }  // namespace

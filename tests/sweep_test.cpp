@@ -162,6 +162,33 @@ TEST(RunPoint, TurnsASolverExceptionIntoAFailedRow) {
   EXPECT_TRUE(std::isfinite(row.pi1_no_contact));
 }
 
+Result ok_without_pi1(const System&, const Settings&) {
+  Result r;
+  r.status = Status::ok;
+  r.impacts = 3;
+  return r;  // pi1 left NaN
+}
+
+Result negative_count(const System&, const Settings&) {
+  Result r;
+  r.status = Status::diverged;
+  r.impacts = -5;
+  return r;
+}
+
+// A solver's result that a row read back could not be (sweep/row.hpp row_problem) is
+// written as a failed row saying why, never as the result.
+TEST(RunPoint, TurnsAnInconsistentResultIntoAFailedRow) {
+  for (auto* solve : {&ok_without_pi1, &negative_count}) {
+    const SolverInfo liar{"liar", "returns what no row may hold", solve, &no_settings, &accept};
+    const Row row = run_point(smoke_cases().front(), 0, liar, Settings{});
+    EXPECT_EQ(row.result.status, Status::failed);
+    EXPECT_EQ(row.result.message.rfind("the solver returned an inconsistent result: ", 0), 0u) << row.result.message;
+    EXPECT_EQ(row.result.impacts, 0);
+    EXPECT_EQ(row_problem(row), "");
+  }
+}
+
 TEST(RunPoint, TurnsAnInvalidCaseIntoAFailedRow) {
   Case c = smoke_cases().front();
   c.eps = 1.5;

@@ -113,7 +113,7 @@ TEST(SettingsList, BadInputNamesFileLineFieldAndReason) {
   EXPECT_EQ(error_of("[[run]]\nsolver = \"moreau-jean\"\nstep = 8\n"), "bad.toml:3: run[0].step: unknown key");
   EXPECT_EQ(error_of("[[run]]\nsolver = \"nope\"\n"), "bad.toml:2: run[0].solver: unknown solver 'nope'");
   EXPECT_EQ(error_of("[[run]]\nsolver = \"moreau-jean\"\nsteps = [8, 0]\n"),
-            "bad.toml:3: run[0].steps: must be a whole number >= 1");
+            "bad.toml:3: run[0].steps: must be a whole number from 1 to 1000000000");
   EXPECT_NE(error_of("[[run]]\nsolver = \"moreau-jean\"\ntheta = 2\n").find("bad.toml:1: run[0]: theta"),
             std::string::npos);
   EXPECT_EQ(error_of("name = \"x\"\n"), "bad.toml: run: no [[run]] tables");
@@ -130,6 +130,39 @@ TEST(SettingsList, BadInputNamesFileLineFieldAndReason) {
   EXPECT_EQ(error_of("reference_time_limit = -1\n[[run]]\nsolver = \"moreau-jean\"\n"),
             "bad.toml:1: reference_time_limit: must be one number >= 0 (seconds; 0: none)");
   EXPECT_NE(error_of("[[run]\n").find("bad.toml:1: syntax:"), std::string::npos);
+}
+
+// n values in [0.5, 1): valid thetas and gammas.
+std::string number_list(std::size_t n) {
+  std::string text = "[";
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i) text += ", ";
+    text += std::to_string(0.5 + 0.5 * static_cast<double>(i) / static_cast<double>(n));
+  }
+  return text + "]";
+}
+
+// A range is bounded before it is expanded (no overflow, no endless doubling), and a list
+// whose product of lists runs past the cap is refused before it is built.
+TEST(SettingsList, RangesAreBoundedAndAProductPastTheCapIsRefused) {
+  const std::string mj = "[[run]]\nsolver = \"moreau-jean\"\n";
+  EXPECT_EQ(error_of(mj + "steps = { from = 1, to = 9223372036854775807 }\n"),
+            "bad.toml:3: run[0].steps.to: must be a whole number from 1 to 1000000000 (got 9223372036854775807)");
+  EXPECT_EQ(error_of(mj + "steps = { from = 8, to = 1099511627776 }\n"),
+            "bad.toml:3: run[0].steps.to: must be a whole number from 1 to 1000000000 (got 1099511627776)");
+  EXPECT_EQ(error_of(mj + "steps = { from = 0, to = 8 }\n"),
+            "bad.toml:3: run[0].steps.from: must be a whole number from 1 to 1000000000 (got 0)");
+  EXPECT_EQ(error_of(mj + "steps = [8, 1e12]\n"), "bad.toml:3: run[0].steps: must be a whole number from 1 to 1000000000");
+  EXPECT_EQ(parse_settings_list(mj + "steps = { from = 1, to = 1000000000 }\n", "t.toml").runs.size(), 30u);
+
+  EXPECT_EQ(error_of(mj + "theta = " + number_list(3000) + "\ngamma = " + number_list(3000) + "\n"),
+            "bad.toml:1: run[0]: the list expands to more than 10000 settings (the product of its lists' lengths); "
+            "split the study");
+  // The cap is on the whole list, over every [[run]].
+  const std::string half = mj + "theta = " + number_list(100) + "\ngamma = " + number_list(50) + "\n";
+  EXPECT_EQ(parse_settings_list(half + half, "t.toml").runs.size(), 10000u);
+  EXPECT_NE(error_of(half + half + mj).find("bad.toml:9: run[2]: the list expands to more than 10000 settings"),
+            std::string::npos);
 }
 
 TEST(WorkPrecision, SmokeStudyHasARowPerFamilyAndSettingAndTheReferenceMatchesItself) {
