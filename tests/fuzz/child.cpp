@@ -1,0 +1,141 @@
+#include "tests/fuzz/child.hpp"
+
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+namespace pb::fuzz {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::size_t resident_bytes(pid_t pid) {
+  std::ifstream statm("/proc/" + std::to_string(pid) + "/statm");
+  std::size_t size = 0, resident = 0;
+  statm >> size >> resident;
+  return resident * static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+}
+
+void keep(std::string& into, std::size_t& size, const char* data, std::size_t n) {
+  size += n;
+  if (into.size() < ChildOutcome::kKeep) into.append(data, std::min(n, ChildOutcome::kKeep - into.size()));
+}
+
+// Forks; in the child, `in_child` runs with stdout/stderr on pipes and must not return.
+template <class InChild>
+ChildOutcome supervise(InChild in_child, const ChildLimits& limits) {
+  int out_pipe[2], err_pipe[2];
+  if (::pipe(out_pipe) != 0 || ::pipe(err_pipe) != 0) throw std::runtime_error("pipe failed");
+  const auto start = Clock::now();
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error("fork failed");
+  if (pid == 0) {
+    ::dup2(out_pipe[1], 1);
+    ::dup2(err_pipe[1], 2);
+    for (int fd : {out_pipe[0], out_pipe[1], err_pipe[0], err_pipe[1]}) ::close(fd);
+    in_child();
+    ::_exit(127);
+  }
+  ::close(out_pipe[1]);
+  ::close(err_pipe[1]);
+
+  ChildOutcome o;
+  pollfd fds[2] = {{out_pipe[0], POLLIN, 0}, {err_pipe[0], POLLIN, 0}};
+  int open = 2;
+  bool killed = false;
+  char buffer[65536];
+  // Read both pipes until the child closes them (it exits), watching its time and memory.
+  while (open > 0) {
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    if (!killed && elapsed > limits.seconds) {
+      o.timed_out = killed = true;
+      ::kill(pid, SIGKILL);
+    } else if (!killed && resident_bytes(pid) > limits.max_rss_bytes) {
+      o.over_memory = killed = true;
+      ::kill(pid, SIGKILL);
+    }
+    if (::poll(fds, 2, 20) < 0 && errno != EINTR) break;
+    for (int i = 0; i < 2; ++i) {
+      if (fds[i].fd < 0 || !(fds[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
+      const ssize_t n = ::read(fds[i].fd, buffer, sizeof buffer);
+      if (n > 0) {
+        keep(i == 0 ? o.out : o.err, i == 0 ? o.out_size : o.err_size, buffer, static_cast<std::size_t>(n));
+      } else if (n == 0 || errno != EINTR) {
+        ::close(fds[i].fd);
+        fds[i].fd = -1;
+        --open;
+      }
+    }
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  o.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  o.exited = WIFEXITED(status);
+  o.exit_code = o.exited ? WEXITSTATUS(status) : -1;
+  o.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+  return o;
+}
+
+}  // namespace
+
+std::string ChildOutcome::describe() const {
+  char seconds_text[32];
+  std::snprintf(seconds_text, sizeof seconds_text, "%.1f", seconds);
+  if (timed_out) return std::string("hang: no exit within ") + seconds_text + " s (killed)";
+  if (over_memory) return "memory: over the limit after " + std::string(seconds_text) + " s (killed)";
+  if (const std::string line = sanitizer_line(err); !line.empty()) return "sanitizer: " + line;
+  if (!exited) return "crash: signal " + std::to_string(signal) + " (" + ::strsignal(signal) + ")";
+  return "exit " + std::to_string(exit_code);
+}
+
+ChildOutcome run_in_child(const std::function<void()>& body, const ChildLimits& limits) {
+  return supervise(
+      [&] {
+        body();
+        std::fflush(stdout);
+        std::fflush(stderr);
+        ::_exit(0);
+      },
+      limits);
+}
+
+ChildOutcome run_program(const std::string& program, const std::vector<std::string>& args,
+                         const std::filesystem::path& dir, const ChildLimits& limits) {
+  // Built before the fork: the child only calls async-signal-safe functions.
+  std::vector<char*> argv;
+  std::vector<std::string> words = {program};
+  words.insert(words.end(), args.begin(), args.end());
+  for (std::string& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  const std::string where = dir.string();
+  return supervise(
+      [&] {
+        if (::chdir(where.c_str()) != 0) ::_exit(126);
+        ::execv(program.c_str(), argv.data());
+        ::_exit(127);
+      },
+      limits);
+}
+
+std::string sanitizer_line(const std::string& err) {
+  for (const char* marker : {"ERROR: AddressSanitizer", "ERROR: LeakSanitizer", "runtime error:"}) {
+    const std::size_t at = err.find(marker);
+    if (at == std::string::npos) continue;
+    const std::size_t begin = err.rfind('\n', at);
+    const std::size_t end = err.find('\n', at);
+    return err.substr(begin == std::string::npos ? 0 : begin + 1,
+                      (end == std::string::npos ? err.size() : end) - (begin == std::string::npos ? 0 : begin + 1));
+  }
+  return {};
+}
+
+}  // namespace pb::fuzz

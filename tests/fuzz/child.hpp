@@ -1,0 +1,43 @@
+#pragma once
+// Runs one fuzz input in a child process, so that a crash, a sanitizer abort, a hang or a
+// runaway allocation is a finding about that input and never takes the test down with it.
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace pb::fuzz {
+
+struct ChildLimits {
+  double seconds = 5;                    // wall clock; then SIGKILL
+  std::size_t max_rss_bytes = 2UL << 30;  // resident memory; then SIGKILL
+};
+
+struct ChildOutcome {
+  bool exited = false;     // else killed by a signal (ours or its own)
+  int exit_code = -1;
+  int signal = 0;
+  bool timed_out = false;  // we killed it at the time limit
+  bool over_memory = false;  // we killed it at the memory limit
+  double seconds = 0;
+  std::string out, err;    // the first kKeep bytes of each
+  std::size_t out_size = 0, err_size = 0;  // every byte written
+  static constexpr std::size_t kKeep = 1 << 20;
+
+  // "exit 3", "signal 11 (Segmentation fault)", "hang: killed after 5 s", ...
+  std::string describe() const;
+};
+
+// Forks; the child runs `body` with stdout and stderr on pipes, then _exit(0) (no atexit
+// handlers: the parent's test framework must not run twice).
+ChildOutcome run_in_child(const std::function<void()>& body, const ChildLimits& limits);
+
+// Forks and executes `program` with `args` (argv[1..]) in `dir`.
+ChildOutcome run_program(const std::string& program, const std::vector<std::string>& args,
+                         const std::filesystem::path& dir, const ChildLimits& limits);
+
+// The first line that a sanitizer prints, if `err` holds a sanitizer report.
+std::string sanitizer_line(const std::string& err);
+
+}  // namespace pb::fuzz
