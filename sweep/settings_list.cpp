@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "cases/case.hpp"
+
 namespace pb {
 
 namespace {
@@ -28,7 +30,8 @@ class Reader {
     std::ostringstream out;
     out << source_;
     if (at && at->source().begin.line) out << ':' << at->source().begin.line;
-    out << ": " << field << ": " << why;
+    // A field is built from the file's own keys: clipped, so a huge key cannot flood the line.
+    out << ": " << clip(field) << ": " << why;
     throw SettingsListError(out.str());
   }
 
@@ -189,7 +192,7 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
     }
     const SolverInfo* info = find_solver(solver);
     if (solver.empty()) r.fail(&rn, field + ".solver", "missing");
-    if (!info) r.fail(solver_node, field + ".solver", "unknown solver '" + solver + "'");
+    if (!info) r.fail(solver_node, field + ".solver", "unknown solver '" + clip(solver) + "'");
     if (steps_node && wh_node) r.fail(wh_node, field + ".wh", "give steps or wh, not both (one [[run]] each)");
     // Counted before anything is expanded; the product so far is at most kMaxSettings
     // when the next list's length (bounded by the file's size) multiplies it, so it

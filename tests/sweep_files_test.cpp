@@ -199,8 +199,9 @@ TEST_F(SweepFiles, AFailedFinalWriteNamesTheReasonAndKeepsTheRows) {
   EXPECT_EQ(files(), (std::set<std::string>{"tiny.toml"}));
 }
 
-// Terminal control sequences only go to a terminal: the line of an abandoned sweep, in a
-// log file, is plain text.
+// Terminal control sequences only go to a terminal: the line of an interrupted sweep, in a
+// log file, is plain text. (The first SIGINT now ends the running points at once, so the
+// sweep stops on its own before a second one could abandon it.)
 TEST_F(SweepFiles, TheInterruptedLineHasNoTerminalControlWhenStderrIsAFile) {
   write("tiny.toml", kTinySet);
   const fs::path log = file("sweep.log");
@@ -210,7 +211,7 @@ TEST_F(SweepFiles, TheInterruptedLineHasNoTerminalControlWhenStderrIsAFile) {
   ASSERT_TRUE(wait_for(file("out.csv.partial")));
   EXPECT_EQ(abandon(pid), 130);
   const std::string err = read_text(log);
-  EXPECT_EQ(err, "poundbench: interrupted; the finished rows are in out.csv.partial\n");
+  EXPECT_EQ(err, "poundbench: interrupted after 0 of 6 points; the finished rows are in out.csv.partial\n");
   EXPECT_EQ(err.find('\033'), std::string::npos);
   EXPECT_EQ(err.find('\r'), std::string::npos);
 }
