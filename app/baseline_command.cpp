@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 
 #include <cstdio>
 #include <cstdlib>
@@ -218,7 +219,8 @@ CLI::App* add_compare_command(CLI::App& app, CompareFlags& flags) {
 int compare_command(const CLI::App& command, const CompareFlags& flags) {
   const bool given = command.count("--tolerance") > 0;
   if (!flags.same_setting && !given) throw BadInput("--tolerance: required (or --same-setting)");
-  if (given && !(flags.tolerance >= 0.0)) throw BadInput("--tolerance: must be >= 0");
+  if (given && !(flags.tolerance >= 0.0 && std::isfinite(flags.tolerance)))
+    throw BadInput("--tolerance: must be finite and >= 0");
   const RowFile rows = read_rows(flags.rows);
   const RowFile stored = read_rows(flags.baseline);
   if (rows.rows.empty()) throw BadInput(flags.rows + ": no rows");

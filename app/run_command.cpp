@@ -199,12 +199,12 @@ int run_command(const CLI::App& command, RunFlags flags) {
   if (history)
     write_atomically(flags.history, [&](std::ostream& out) { write_history(out, row.result.history, row.input); });
 
-  if (flags.json)
-    std::cout << row_json(row, chosen).dump() << '\n';
-  else
-    print_summary(std::cout, row);
-  std::cout.flush();
-  if (!std::cout) throw std::runtime_error("stdout: write failed");
+  write_to_stdout([&](std::ostream& out) {
+    if (flags.json)
+      out << row_json(row, chosen).dump() << '\n';
+    else
+      print_summary(out, row);
+  });
   return row.result.status == Status::ok ? 0 : 1;
 }
 

@@ -193,10 +193,16 @@ std::optional<std::string> validate(const Case& c) {
 }
 
 std::string clip(std::string_view text, std::size_t max) {
-  if (text.size() <= max) return std::string(text);
-  std::size_t cut = max;
-  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // inside a UTF-8 character
-  return std::string(text.substr(0, cut)) + "...";
+  std::size_t cut = text.size();
+  if (cut > max) {
+    cut = max;
+    while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // inside a UTF-8 character
+  }
+  std::string out(text.substr(0, cut));
+  // A control character (a newline in a TOML string) would break the one-line message.
+  for (char& c : out)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  return cut < text.size() ? out + "..." : out;
 }
 
 }  // namespace pb

@@ -580,7 +580,7 @@ CaseSet parse_case_set(std::string_view toml_text, std::string_view source_name)
   try {
     root = toml::parse(toml_text, source_name);
   } catch (const toml::parse_error& e) {
-    reader.fail(e.source().begin.line, "syntax", e.description());
+    reader.fail(e.source().begin.line, "syntax", clip(e.description(), kMaxEchoedReason));
   }
   return reader.read(root);
 }

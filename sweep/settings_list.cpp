@@ -107,7 +107,7 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
     doc = toml::parse(text, source);
   } catch (const toml::parse_error& e) {
     std::ostringstream out;
-    out << source << ':' << e.source().begin.line << ": syntax: " << e.description();
+    out << source << ':' << e.source().begin.line << ": syntax: " << clip(e.description(), kMaxEchoedReason);
     throw SettingsListError(out.str());
   }
   SettingsList list;
@@ -223,7 +223,8 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
               spec.settings.step_cap = step_cap;
               spec.settings.time_limit = time_limit;
               spec.settings.monitor = monitor;
-              if (const std::string bad = info->check(spec.settings); !bad.empty()) r.fail(&rn, field, bad);
+              if (const std::string bad = info->check(spec.settings); !bad.empty())
+                r.fail(&rn, field, clip(bad, kMaxEchoedReason));  // it may echo the file's own values
               list.runs.push_back(std::move(spec));
             }
   }
