@@ -7,15 +7,11 @@
 
 #include "app/errors.hpp"
 #include "cases/case_set.hpp"
+#include "cases/fields.hpp"
 
 namespace pb::app {
 
 namespace {
-
-// Every flag that describes a case, in the order they are checked.
-constexpr std::array<std::string_view, 16> kCaseFlags = {
-    "--scene", "--pulse", "--directivity", "--pi2", "--pi3",   "--eps", "--pi5", "--pi6",
-    "--pi7",   "--pi8",   "--bodies",      "--kick", "--xi", "--n-free", "--a-p", "--w-p"};
 
 bool given(const CLI::App& command, std::string_view flag) { return command.count(std::string(flag)) > 0; }
 
@@ -27,8 +23,10 @@ T parsed(std::string_view flag, const std::string& text, std::optional<T> value,
 }
 
 ChosenCase case_from_file(const CLI::App& command, const CaseFlags& flags) {
-  for (std::string_view flag : kCaseFlags)
+  for (std::string_view flag : {"--scene", "--pulse", "--directivity"})
     if (given(command, flag)) throw BadInput(std::string(flag) + ": cannot be combined with --case-file");
+  for (const CaseField& field : kCaseFields)
+    if (given(command, flag_of(field))) throw BadInput(flag_of(field) + ": cannot be combined with --case-file");
   const CaseSet set = load_case_set(flags.case_file);
   const std::size_t n = set.cases.size();
   const std::string file = flags.case_file;
@@ -50,7 +48,7 @@ ChosenCase case_from_file(const CLI::App& command, const CaseFlags& flags) {
 
 ChosenCase case_from_flags(const CLI::App& command, const CaseFlags& flags) {
   if (given(command, "--point")) throw BadInput("--point: only used with --case-file");
-  for (std::string_view flag : {"--scene", "--pulse", "--directivity", "--pi2", "--pi3", "--eps"})
+  for (std::string_view flag : {"--scene", "--pulse", "--directivity"})
     if (!given(command, flag)) throw BadInput(std::string(flag) + ": required (or give --case-file)");
 
   Case c;
@@ -59,38 +57,21 @@ ChosenCase case_from_flags(const CLI::App& command, const CaseFlags& flags) {
   c.directivity =
       parsed("--directivity", flags.directivity, parse_directivity(flags.directivity), "normal, reverse");
   const std::string scene(name(c.scene));
-  const auto body_flags = [&](bool used, std::string_view a, std::string_view b) {
-    for (std::string_view flag : {a, b}) {
-      if (used && !given(command, flag)) throw BadInput(std::string(flag) + ": required by scene " + scene);
-      if (!used && given(command, flag)) throw BadInput(std::string(flag) + ": not used by scene " + scene);
-    }
-  };
-  body_flags(uses_body1(c.scene), "--pi5", "--pi6");
-  body_flags(uses_body2(c.scene), "--pi7", "--pi8");
-  const bool chain = c.scene == Scene::chain;
-  if (chain && !given(command, "--bodies")) throw BadInput("--bodies: required by scene chain");
-  for (std::string_view flag : {"--bodies", "--kick"})
-    if (!chain && given(command, flag)) throw BadInput(std::string(flag) + ": not used by scene " + scene);
-
-  c.pi2 = flags.pi2;
-  c.pi3 = flags.pi3;
-  c.eps = flags.eps;
-  if (uses_body1(c.scene)) {
-    c.pi5 = flags.pi5;
-    c.pi6 = flags.pi6;
+  // A field the scene uses is taken from its flag (a required one must be given); one it
+  // does not use must not be given, and keeps Case's default.
+  for (const CaseField& field : kCaseFields) {
+    const std::string flag = flag_of(field);
+    const bool used = used_by(field, c.scene);
+    if (used && field.required && !given(command, flag))
+      throw BadInput(flag + (field.use == FieldUse::every ? ": required (or give --case-file)"
+                                                          : ": required by scene " + scene));
+    if (!used && given(command, flag)) throw BadInput(flag + ": not used by scene " + scene);
+    if (!used) continue;
+    if (field.number)
+      c.*field.number = flags.numbers.*field.number;
+    else
+      c.*field.integer = flags.numbers.*field.integer;
   }
-  if (uses_body2(c.scene)) {
-    c.pi7 = flags.pi7;
-    c.pi8 = flags.pi8;
-  }
-  if (chain) {
-    c.bodies = flags.bodies;
-    c.kick = flags.kick;
-  }
-  c.xi = flags.xi;
-  c.n_free = flags.n_free;
-  c.a_p = flags.a_p;
-  c.w_p = flags.w_p;
   if (auto bad = validate(c)) throw BadInput(case_flag_message(*bad));
   return {c, 0, {}};
 }
@@ -101,21 +82,11 @@ void add_case_flags(CLI::App& command, CaseFlags& f) {
   command.add_option("--scene", f.scene, "Scene: wall, pair, row3 or chain");
   command.add_option("--pulse", f.pulse, "Pulse: sine or cosine");
   command.add_option("--directivity", f.directivity, "Directivity: normal or reverse");
-  command.add_option("--pi2", f.pi2, "Pi2 = w0 / w_p");
-  command.add_option("--pi3", f.pi3, "Pi3 = delta w_p^2 / a_p (gap)");
-  command.add_option("--eps", f.eps, "Coefficient of restitution, in [0, 1]");
-  command.add_option("--pi5", f.pi5, "Pi5 = w0 / w1 (pair, row3; chain: the odd bodies)");
-  command.add_option("--pi6", f.pi6, "Pi6 = m0 / m1 (pair, row3; chain: the odd bodies)");
-  command.add_option("--pi7", f.pi7, "Pi7 = w0 / w2 (row3)");
-  command.add_option("--pi8", f.pi8, "Pi8 = m0 / m2 (row3)");
-  command.add_option("--bodies", f.bodies, "Chain: number of bodies N, 2 to " + std::to_string(kMaxChainBodies));
-  command.add_option("--kick", f.kick, "Chain: start velocity of body 0 (the left end) towards +x, times w_p / a_p")
-      ->capture_default_str();
-  command.add_option("--xi", f.xi, "Damping ratio of every body")->capture_default_str();
-  command.add_option("--n-free", f.n_free, "Free-vibration periods T_max after the pulse")->capture_default_str();
-  command.add_option("--a-p", f.a_p, "Pulse amplitude a_p (Pi1 does not depend on it)")->capture_default_str();
-  command.add_option("--w-p", f.w_p, "Pulse circular frequency w_p (Pi1 does not depend on it)")
-      ->capture_default_str();
+  for (const CaseField& field : kCaseFields) {
+    CLI::Option* option = field.number ? command.add_option(flag_of(field), f.numbers.*field.number, std::string(field.help))
+                                       : command.add_option(flag_of(field), f.numbers.*field.integer, std::string(field.help));
+    if (!field.required) option->capture_default_str();
+  }
   command.add_option("--case-file", f.case_file, "Take the case from a case-set file instead of the flags above");
   command.add_option("--point", f.point, "Which case of --case-file (0-based; needed when it has several)");
 }

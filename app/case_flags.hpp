@@ -13,10 +13,7 @@ namespace pb::app {
 
 struct CaseFlags {
   std::string scene, pulse, directivity;
-  double pi2 = 0, pi3 = 0, eps = 0, pi5 = 0, pi6 = 0, pi7 = 0, pi8 = 0;
-  double xi = Case{}.xi, n_free = Case{}.n_free, a_p = Case{}.a_p, w_p = Case{}.w_p;
-  int bodies = 0;  // chain only
-  double kick = 0;  // chain only
+  Case numbers;  // the flags of cases/fields.hpp write into their members; defaults are Case's
   std::string case_file;
   long long point = 0;
 };

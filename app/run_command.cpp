@@ -11,6 +11,7 @@
 
 #include "app/errors.hpp"
 #include "app/output_files.hpp"
+#include "cases/fields.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb::app {
@@ -61,25 +62,13 @@ nlohmann::ordered_json case_json(const Case& c) {
   j["scene"] = name(c.scene);
   j["pulse"] = name(c.pulse);
   j["directivity"] = name(c.directivity);
-  j["pi2"] = c.pi2;
-  j["pi3"] = c.pi3;
-  j["eps"] = c.eps;
-  if (uses_body1(c.scene)) {
-    j["pi5"] = c.pi5;
-    j["pi6"] = c.pi6;
+  for (const CaseField& field : kCaseFields) {
+    if (!used_by(field, c.scene)) continue;
+    if (field.integer)
+      j[std::string(field.name)] = c.*field.integer;
+    else
+      j[std::string(field.name)] = c.*field.number;
   }
-  if (uses_body2(c.scene)) {
-    j["pi7"] = c.pi7;
-    j["pi8"] = c.pi8;
-  }
-  if (c.scene == Scene::chain) {
-    j["bodies"] = c.bodies;
-    j["kick"] = c.kick;
-  }
-  j["xi"] = c.xi;
-  j["n_free"] = c.n_free;
-  j["a_p"] = c.a_p;
-  j["w_p"] = c.w_p;
   return j;
 }
 
@@ -130,10 +119,11 @@ void print_summary(std::ostream& out, const Row& row) {
   const Result& r = row.result;
   out << name(c.scene);
   if (c.scene == Scene::chain) out << " of " << c.bodies << (c.kick != 0.0 ? " kick=" + brief(c.kick) : "");
-  out << ' ' << name(c.pulse) << ' ' << name(c.directivity) << "  pi2=" << brief(c.pi2)
-      << " pi3=" << brief(c.pi3) << " eps=" << brief(c.eps);
-  if (uses_body1(c.scene)) out << " pi5=" << brief(c.pi5) << " pi6=" << brief(c.pi6);
-  if (uses_body2(c.scene)) out << " pi7=" << brief(c.pi7) << " pi8=" << brief(c.pi8);
+  out << ' ' << name(c.pulse) << ' ' << name(c.directivity) << ' ';
+  // The scene's numbers: those it requires, and the others where they are not the default.
+  for (const CaseField& f : kCaseFields)
+    if (used_by(f, c.scene) && f.use != FieldUse::chain && (f.required || f.get(c) != f.get(Case{})))
+      out << ' ' << f.name << '=' << brief(f.get(c));
   out << '\n';
   out << "solver   " << row.solver << (row.settings.empty() ? "" : "  (" + row.settings + ")") << '\n';
   out << "status   " << name(r.status) << (r.message.empty() ? "" : ": " + r.message) << '\n';

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "cases/fields.hpp"
 #include "sweep/row_read.hpp"
 #include "sweep/workprecision.hpp"
 
@@ -23,11 +24,8 @@ std::string case_key(const Case& c) {
   key += name(c.pulse);
   key += ';';
   key += name(c.directivity);
-  auto add = [&](double x) { key += ';' + format_number(x); };
-  for (double x : {c.pi2, c.pi3, c.eps, c.xi, c.n_free, c.a_p, c.w_p}) add(x);
-  if (uses_body1(c.scene)) add(c.pi5), add(c.pi6);
-  if (uses_body2(c.scene)) add(c.pi7), add(c.pi8);
-  if (c.scene == Scene::chain) add(c.bodies), add(c.kick);
+  for (const CaseField& field : kCaseFields)
+    if (used_by(field, c.scene)) key += ';' + format_number(field.get(c));
   return key;
 }
 

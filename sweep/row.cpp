@@ -7,6 +7,8 @@
 #include <limits>
 #include <utility>
 
+#include "cases/fields.hpp"
+
 namespace pb {
 
 double min_gap_ratio(const Row& row) { return row.result.min_gap / row.length_scale; }
@@ -66,13 +68,16 @@ std::string csv_field(std::string_view text) {
 
 namespace {
 
-constexpr std::array kColumns = {
-    "family", "point",  "scene",    "pulse",  "directivity",    "pi2",     "pi3",
-    "eps",    "pi5",    "pi6",      "pi7",    "pi8",            "xi",      "n_free",
-    "a_p",    "w_p",    "solver",   "variant", "settings",      "status",  "pi1",
-    "pi1_no_contact",   "impacts",  "contact_phases", "steps",  "min_gap", "seconds",
-    "cpu_seconds", "message", "bodies", "kick", "wh", "energy_excess", "penetration",
-    "isolated_impacts", "restitution_low", "restitution_high", "penetration_steps"};
+// The columns around the case's numbers (cases/fields.hpp): those of every scene's bodies
+// come after the directivity, the chain's after the message (where they were added).
+constexpr std::array kLeadColumns = {"family", "point", "scene", "pulse", "directivity"};
+constexpr std::array kMiddleColumns = {"solver",         "variant", "settings",       "status", "pi1",
+                                       "pi1_no_contact", "impacts", "contact_phases", "steps",  "min_gap",
+                                       "seconds",        "cpu_seconds", "message"};
+constexpr std::array kTailColumns = {"wh",          "energy_excess",   "penetration",     "isolated_impacts",
+                                     "restitution_low", "restitution_high", "penetration_steps"};
+
+bool chain_field(const CaseField& f) { return f.use == FieldUse::chain; }
 
 // Written as an empty field: a body the scene does not have, a gap that never closed.
 constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
@@ -94,11 +99,30 @@ class LineBuilder {
   bool first_ = true;
 };
 
+// A case's numbers, those of the chain or the others: empty where the scene does not use them.
+void case_numbers(LineBuilder& line, const Case& c, bool chain) {
+  for (const CaseField& f : kCaseFields) {
+    if (chain_field(f) != chain) continue;
+    if (!used_by(f, c.scene))
+      line.text("");
+    else if (f.integer)
+      line.count(c.*f.integer);
+    else
+      line.number(c.*f.number);
+  }
+}
+
 }  // namespace
 
 std::string csv_header() {
   LineBuilder line;
-  for (const char* column : kColumns) line.text(column);
+  for (const char* column : kLeadColumns) line.text(column);
+  for (const CaseField& f : kCaseFields)
+    if (!chain_field(f)) line.text(f.name);
+  for (const char* column : kMiddleColumns) line.text(column);
+  for (const CaseField& f : kCaseFields)
+    if (chain_field(f)) line.text(f.name);
+  for (const char* column : kTailColumns) line.text(column);
   return line.take();
 }
 
@@ -111,15 +135,7 @@ std::string csv_line(const Row& row) {
   line.text(name(c.scene));
   line.text(name(c.pulse));
   line.text(name(c.directivity));
-  line.number(c.pi2);
-  line.number(c.pi3);
-  line.number(c.eps);
-  for (double pi : {c.pi5, c.pi6}) line.number(uses_body1(c.scene) ? pi : kMissing);
-  for (double pi : {c.pi7, c.pi8}) line.number(uses_body2(c.scene) ? pi : kMissing);
-  line.number(c.xi);
-  line.number(c.n_free);
-  line.number(c.a_p);
-  line.number(c.w_p);
+  case_numbers(line, c, false);
   line.text(row.solver);
   line.text(row.variant);
   line.text(row.settings);
@@ -134,12 +150,7 @@ std::string csv_line(const Row& row) {
   line.number(row.seconds);
   line.number(row.cpu_seconds);
   line.text(r.message);
-  const bool chain = c.scene == Scene::chain;
-  if (chain)
-    line.count(c.bodies);
-  else
-    line.text("");
-  line.number(chain ? c.kick : kMissing);
+  case_numbers(line, c, true);
   line.number(row.wh);
   line.number(r.energy_excess);
   line.number(penetration(row));

@@ -8,6 +8,8 @@
 #include <optional>
 #include <sstream>
 
+#include "cases/fields.hpp"
+
 namespace pb {
 
 namespace {
@@ -99,9 +101,13 @@ std::vector<Record> records(std::istream& in) {
 
 Columns::Columns(const std::vector<std::string>& header) : size_(header.size()) {
   for (std::size_t i = 0; i < header.size(); ++i) index_.emplace(header[i], i);
-  for (const char* required : {"family", "point", "scene", "pulse", "directivity", "pi2", "pi3", "eps", "xi",
-                               "n_free", "a_p", "w_p", "solver", "variant", "settings", "status", "pi1"})
-    if (!index_.contains(std::string_view(required))) throw RowReadError(std::string(required) + ": missing column");
+  const auto require = [&](std::string_view column) {
+    if (!index_.contains(column)) throw RowReadError(std::string(column) + ": missing column");
+  };
+  for (const char* column : {"family", "point", "scene", "pulse", "directivity"}) require(column);
+  for (const CaseField& field : kCaseFields)
+    if (field.use == FieldUse::every) require(field.name);
+  for (const char* column : {"solver", "variant", "settings", "status", "pi1"}) require(column);
 }
 
 const std::string* Columns::find(const std::vector<std::string>& fields, const std::string& column) const {
@@ -153,16 +159,18 @@ Row parse_row(const Columns& columns, const std::vector<std::string>& fields) {
   c.scene = f.named("scene", &parse_scene);
   c.pulse = f.named("pulse", &parse_pulse);
   c.directivity = f.named("directivity", &parse_directivity);
-  c.pi2 = f.number("pi2");
-  c.pi3 = f.number("pi3");
-  c.eps = f.number("eps");
-  // Empty where the scene has no such body: the Case keeps its default there.
-  for (auto [pi, column] : {std::pair{&c.pi5, "pi5"}, {&c.pi6, "pi6"}, {&c.pi7, "pi7"}, {&c.pi8, "pi8"}})
-    *pi = f.number(column, *pi);
-  c.xi = f.number("xi");
-  c.n_free = f.number("n_free");
-  c.a_p = f.number("a_p");
-  c.w_p = f.number("w_p");
+  // Every number of the case by its column. Those of every scene must be there; those of
+  // some scenes' bodies are empty elsewhere (or missing, in older files) and keep the Case's
+  // default there.
+  for (const CaseField& field : kCaseFields) {
+    const std::string column(field.name);
+    if (field.use == FieldUse::every)
+      c.*field.number = f.number(column);
+    else if (field.number)
+      c.*field.number = f.number(column, c.*field.number);
+    else
+      c.*field.integer = f.count<int>(column, c.*field.integer);
+  }
   row.solver = f.text("solver");
   row.variant = f.text("variant");
   row.settings = f.text("settings");
@@ -177,8 +185,6 @@ Row parse_row(const Columns& columns, const std::vector<std::string>& fields) {
   row.seconds = f.number("seconds");
   row.cpu_seconds = f.number("cpu_seconds");
   r.message = f.text("message");
-  c.bodies = f.count<int>("bodies", c.bodies);
-  c.kick = f.number("kick", c.kick);
   row.wh = f.number("wh");
   r.energy_excess = f.number("energy_excess");
   r.isolated_impacts = f.count<long>("isolated_impacts");

@@ -1,0 +1,59 @@
+#pragma once
+// Every number of a Case, declared once (as MuJoCo's mjxmacro.h declares its model's
+// fields): its name, its member, the scenes that use it, its unit and its help. The
+// command-line flags (--name with '_' as '-'), the CSV columns and the JSON keys of a row,
+// the key that matches a row with a stored one and the reading of rows back are derived
+// from this table, so adding a number to Case takes its member, a row here, and its rule
+// in validate() and make_system(). The case-set reader keeps its own key list, as it also
+// sets the order in which lists expand (cases/README.md).
+//
+// The scene, pulse and directivity are names, not numbers, and the family a label: each
+// has one spelling everywhere already (name()/parse_*() in case.hpp).
+
+#include <array>
+#include <string>
+#include <string_view>
+
+#include "cases/case.hpp"
+
+namespace pb {
+
+// Which scenes use a field: every scene, those with a body 1 (pair, row3, and a chain's odd
+// bodies), row3's body 2, the chain alone.
+enum class FieldUse { every, body1, body2, chain };
+
+struct CaseField {
+  std::string_view name;  // case-set key, CSV column, JSON key
+  double Case::* number;  // one of these two is set
+  int Case::* integer;
+  FieldUse use;
+  bool required;          // no default: a case given by flags must state it
+  std::string_view help;  // with its unit, for --help
+
+  double get(const Case& c) const { return number ? c.*number : static_cast<double>(c.*integer); }
+};
+
+inline constexpr std::array<CaseField, 13> kCaseFields = {{
+    {"pi2", &Case::pi2, nullptr, FieldUse::every, true, "Pi2 = w0 / w_p"},
+    {"pi3", &Case::pi3, nullptr, FieldUse::every, true, "Pi3 = delta w_p^2 / a_p (gap)"},
+    {"eps", &Case::eps, nullptr, FieldUse::every, true, "Coefficient of restitution, in [0, 1]"},
+    {"pi5", &Case::pi5, nullptr, FieldUse::body1, true, "Pi5 = w0 / w1 (pair, row3; chain: the odd bodies)"},
+    {"pi6", &Case::pi6, nullptr, FieldUse::body1, true, "Pi6 = m0 / m1 (pair, row3; chain: the odd bodies)"},
+    {"pi7", &Case::pi7, nullptr, FieldUse::body2, true, "Pi7 = w0 / w2 (row3)"},
+    {"pi8", &Case::pi8, nullptr, FieldUse::body2, true, "Pi8 = m0 / m2 (row3)"},
+    {"xi", &Case::xi, nullptr, FieldUse::every, false, "Damping ratio of every body"},
+    {"n_free", &Case::n_free, nullptr, FieldUse::every, false, "Free-vibration periods T_max after the pulse"},
+    {"a_p", &Case::a_p, nullptr, FieldUse::every, false, "Pulse amplitude a_p (Pi1 does not depend on it)"},
+    {"w_p", &Case::w_p, nullptr, FieldUse::every, false, "Pulse circular frequency w_p (Pi1 does not depend on it)"},
+    {"bodies", nullptr, &Case::bodies, FieldUse::chain, true, "Chain: number of bodies N (2 to 1000: kMaxChainBodies)"},
+    {"kick", &Case::kick, nullptr, FieldUse::chain, false,
+     "Chain: start velocity of body 0 (the left end) towards +x, times w_p / a_p"},
+}};
+
+// Whether a scene has the bodies (or the start) a field describes.
+bool used_by(const CaseField& field, Scene scene);
+
+// The command-line flag of a field: "--n-free" for n_free.
+std::string flag_of(const CaseField& field);
+
+}  // namespace pb
