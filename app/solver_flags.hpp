@@ -10,7 +10,7 @@
 namespace pb::app {
 
 struct SolverFlags {
-  std::string solver = "event-driven";
+  std::string solver{reference_solver().name};  // the default: the reference
   Settings settings;
 };
 

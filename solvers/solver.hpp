@@ -115,9 +115,18 @@ struct SolverInfo {
   std::string (*describe)(const Settings&);
   // Checks settings before a run; returns "field: reason" or an empty string.
   std::string (*check)(const Settings&);
+  // How far a rerun's Pi1 may move from its stored baseline (relative): round-off only,
+  // on another compiler or libm. The registry says why per solver.
+  double baseline_tolerance = 1e-9;
+  // The solver every error is measured against (exactly one).
+  bool reference = false;
 };
 
 std::span<const SolverInfo> solvers();
 const SolverInfo* find_solver(std::string_view name);
+const SolverInfo& reference_solver();
+// Pi1 of body 0 with every contact removed, by the reference; only the time limit and stop
+// flag of `limits` are used.
+double no_contact_pi1(const System& system, const Settings& limits);
 
 }  // namespace pb

@@ -46,20 +46,9 @@ double difference(const Row& row, const Row& stored) {
 }  // namespace
 
 double baseline_tolerance(std::string_view solver) {
-  // Every solver here is a deterministic sequence of floating-point operations: the stored
-  // rows were reproduced bit for bit by the Release (-O3), RelWithDebInfo (-O2) and
-  // sanitizer (-O0) builds of GCC 12. What a tolerance allows for is another compiler or
-  // libm, where round-off differs. The reference finds event times to an ulp and is exact
-  // between them, so round-off stays round-off: 1e-9 (issue 7's figure), thousands of ulps.
-  if (solver == "event-driven") return 1e-9;
-  // A time-stepper's round-off can flip an activation test that sits at its threshold and
-  // move Pi1 by a step's worth; 1e-12 lets round-off through and catches any such flip.
-  if (solver == "moreau-jean" || solver == "ode") return 1e-12;
-  // Debian's Bullet computes in single precision: the same margin at float round-off.
-  if (solver == "bullet") return 1e-6;
-  // Siconos: its LSODAR variant chooses its own steps, and round-off can move a step choice
-  // and Pi1 with it within its tolerances (1e-10 and below).
-  return 1e-9;  // siconos, and any other solver: as the reference
+  // Another program's solver, unknown here: as the reference.
+  const SolverInfo* info = find_solver(solver);
+  return info ? info->baseline_tolerance : reference_solver().baseline_tolerance;
 }
 
 std::vector<Row> run_baseline(std::span<const Case> cases, const SettingsList* list, const SweepOptions& options) {
@@ -114,7 +103,7 @@ std::vector<Comparison> compare_rows(std::span<const Row> rows, std::span<const 
   std::map<std::string, const Row*> index;
   std::map<std::string, std::size_t> stored_per_setting;
   for (const Row& s : stored) {
-    if (match == Match::reference && s.solver != "event-driven") continue;
+    if (match == Match::reference && s.solver != reference_solver().name) continue;
     const std::string setting = match == Match::reference ? std::string() : setting_key(s);
     index.emplace(setting + '\n' + case_key(s.input), &s);
     ++stored_per_setting[setting];

@@ -9,7 +9,6 @@
 #include <thread>
 
 #include "cases/system.hpp"
-#include "solvers/event_driven/event_driven.hpp"
 
 namespace pb {
 
@@ -85,7 +84,7 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
   row.penetration_steps = penetration_steps(row.result);
 
   try {
-    row.pi1_no_contact = event_driven::no_contact_pi1(system, settings);
+    row.pi1_no_contact = no_contact_pi1(system, settings);
   } catch (...) {
     // The solver's own result stands; only the comparison value is missing.
     if (!row.result.message.empty()) row.result.message += "; ";

@@ -18,7 +18,7 @@ std::vector<std::string> families_in_order(std::span<const Case> cases) {
 
 std::vector<SweepRun> study_runs(const SettingsList& list) {
   std::vector<SweepRun> runs;
-  SweepRun truth{find_solver("event-driven"), {}};
+  SweepRun truth{&reference_solver(), {}};
   truth.settings.tol_scale = list.reference_tol_scale;
   truth.settings.time_limit = list.reference_time_limit;
   runs.push_back(truth);

@@ -2,7 +2,7 @@
 // Poisson's impact law for frictionless, centric contacts of bodies in a row, through the
 // compression and expansion LCPs of Pfeiffer & Glocker (the paper's eqs 2 and 3, with the
 // expansion complementarity on the extra impulse Lambda_P = Lambda_E - eps Lambda_C, as
-// cases.md prescribes):
+// cases/README.md prescribes):
 //
 //   compression: gd_C = G Lambda_C + gd_A,               0 <= gd_C  perp  Lambda_C >= 0
 //   expansion:   gd_E = G Lambda_P + eps G Lambda_C + gd_C, 0 <= gd_E perp Lambda_P >= 0
