@@ -200,8 +200,7 @@ TEST_F(SweepFiles, AFailedFinalWriteNamesTheReasonAndKeepsTheRows) {
 }
 
 // Terminal control sequences only go to a terminal: the line of an interrupted sweep, in a
-// log file, is plain text. (The first SIGINT now ends the running points at once, so the
-// sweep stops on its own before a second one could abandon it.)
+// log file, is plain text.
 TEST_F(SweepFiles, TheInterruptedLineHasNoTerminalControlWhenStderrIsAFile) {
   write("tiny.toml", kTinySet);
   const fs::path log = file("sweep.log");
@@ -211,7 +210,12 @@ TEST_F(SweepFiles, TheInterruptedLineHasNoTerminalControlWhenStderrIsAFile) {
   ASSERT_TRUE(wait_for(file("out.csv.partial")));
   EXPECT_EQ(abandon(pid), 130);
   const std::string err = read_text(log);
-  EXPECT_EQ(err, "poundbench: interrupted after 0 of 6 points; the finished rows are in out.csv.partial\n");
+  // The first SIGINT ends the running points at their next look at the clock and the
+  // sweep says how far it got; where that look comes later than the second SIGINT (an
+  // unoptimised build), the sweep is abandoned and says so. Either line is plain text.
+  EXPECT_TRUE(err == "poundbench: interrupted after 0 of 6 points; the finished rows are in out.csv.partial\n" ||
+              err == "poundbench: interrupted; the finished rows are in out.csv.partial\n")
+      << err;
   EXPECT_EQ(err.find('\033'), std::string::npos);
   EXPECT_EQ(err.find('\r'), std::string::npos);
 }
