@@ -3,6 +3,9 @@
 // directory of its own, and what it needs to read back the outputs.
 
 #include <gtest/gtest.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -77,6 +80,51 @@ struct CsvTable {
 };
 
 // Every test works in a fresh directory of its own, which it removes afterwards.
+// A case set of 6 quick points (two Pi2 spectra of 3 points of a pair).
+inline constexpr const char* kTinySet = R"(name = "tiny"
+[[family]]
+name = "pair"
+scene = "pair"
+pulse = ["sine", "cosine"]
+directivity = "normal"
+eps = 0.5
+pi3 = 0.5
+pi5 = 0.75
+pi6 = 1
+pi2 = { from = 0.5, to = 2, points = 3, spacing = "log" }
+)";
+
+// Starts poundbench with `args` (an argument vector, no shell) in `dir`, stdout to `out`,
+// stderr to `err`, SIGINT at its default whatever the test runner inherited (so that a
+// test can interrupt it); returns its pid.
+inline pid_t spawn_poundbench(std::vector<std::string> args, const fs::path& dir, const fs::path& out,
+                              const fs::path& err) {
+  args.insert(args.begin(), POUNDBENCH_EXE);
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t signals, none;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigemptyset(&none);
+  posix_spawnattr_setsigdefault(&attr, &signals);
+  posix_spawnattr_setsigmask(&attr, &none);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSIGMASK);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addchdir_np(&actions, dir.c_str());
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, argv[0], &actions, &attr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attr);
+  if (spawned != 0) throw std::runtime_error("cannot start poundbench");
+  return pid;
+}
+
 class Cli : public ::testing::Test {
  protected:
   void SetUp() override {

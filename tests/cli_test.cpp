@@ -35,19 +35,6 @@ namespace {
 constexpr const char* kPairCase =
     "--scene pair --pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 0.5 --pi5 0.5 --pi6 1";
 
-constexpr const char* kTinySet = R"(name = "tiny"
-[[family]]
-name = "pair"
-scene = "pair"
-pulse = ["sine", "cosine"]
-directivity = "normal"
-eps = 0.5
-pi3 = 0.5
-pi5 = 0.75
-pi6 = 1
-pi2 = { from = 0.5, to = 2, points = 3, spacing = "log" }
-)";
-
 TEST_F(Cli, RunJsonPrintsTheSolversPi1) {
   const Outcome o = run(std::string("run ") + kPairCase + " --json");
   ASSERT_EQ(o.exit_code, 0) << o.err;
@@ -416,31 +403,9 @@ pi5 = 0.5
 pi6 = 1
 pi2 = { from = 0.1, to = 10, points = 100000, spacing = "log" }
 )");
-  const std::string exe = POUNDBENCH_EXE;
   const std::string big = file("big.toml").string(), out = file("out.csv").string();
   const std::string log = file("stderr.txt").string();
-  std::vector<std::string> args = {exe, "spectrum", big, "--out", out, "--threads", "2"};
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-
-  // The child gets default SIGINT handling whatever the test runner inherited.
-  posix_spawnattr_t attr;
-  posix_spawnattr_init(&attr);
-  sigset_t signals, none;
-  sigemptyset(&signals);
-  sigaddset(&signals, SIGINT);
-  sigemptyset(&none);
-  posix_spawnattr_setsigdefault(&attr, &signals);
-  posix_spawnattr_setsigmask(&attr, &none);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSIGMASK);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, exe.c_str(), &actions, &attr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&actions);
-  posix_spawnattr_destroy(&attr);
+  const pid_t pid = spawn_poundbench({"spectrum", big, "--out", out, "--threads", "2"}, dir_, "/dev/null", log);
 
   // Wait (at most 20 s) for the header and a few rows in the partial file, then interrupt.
   const fs::path partial = file("out.csv.partial");

@@ -26,19 +26,6 @@ extern char** environ;
 namespace pb {
 namespace {
 
-constexpr const char* kTinySet = R"(name = "tiny"
-[[family]]
-name = "pair"
-scene = "pair"
-pulse = ["sine", "cosine"]
-directivity = "normal"
-eps = 0.5
-pi3 = 0.5
-pi5 = 0.75
-pi6 = 1
-pi2 = { from = 0.5, to = 2, points = 3, spacing = "log" }
-)";
-
 constexpr const char* kTinyList = R"(name = "tiny"
 [[run]]
 solver = "moreau-jean"
@@ -50,30 +37,7 @@ class SweepFiles : public Cli {
   // poundbench with `args` (no shell), stdout to `out`, stderr to `log`, SIGINT at its
   // default whatever the test runner inherited; returns its pid.
   pid_t spawn(std::vector<std::string> args, const fs::path& log, const char* out = "/dev/null") const {
-    args.insert(args.begin(), POUNDBENCH_EXE);
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawnattr_t attr;
-    posix_spawnattr_init(&attr);
-    sigset_t signals, none;
-    sigemptyset(&signals);
-    sigaddset(&signals, SIGINT);
-    sigemptyset(&none);
-    posix_spawnattr_setsigdefault(&attr, &signals);
-    posix_spawnattr_setsigmask(&attr, &none);
-    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSIGMASK);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addchdir_np(&actions, dir_.c_str());
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out, O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    pid_t pid = 0;
-    const int spawned = posix_spawn(&pid, argv[0], &actions, &attr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    posix_spawnattr_destroy(&attr);
-    if (spawned != 0) throw std::runtime_error("cannot start poundbench");
-    return pid;
+    return spawn_poundbench(std::move(args), dir_, out, log);
   }
 
   // Waits (at most 20 s) until `file` exists; then a little longer, so that the sweep
