@@ -7,7 +7,7 @@
 #include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/resumable_sweep.hpp"
-#include "sweep/stability.hpp"
+#include "sweep/stress.hpp"
 
 namespace pb::app {
 
@@ -15,7 +15,7 @@ namespace {
 
 void write_table(std::ostream& out, const Stress& st) {
   out << stability_csv_header() << '\n';
-  for (const StabilityRow& row : st.table) out << stability_csv_line(row) << '\n';
+  for (const StressRow& row : st.table) out << stability_csv_line(row) << '\n';
 }
 
 void write_points(std::ostream& out, const Stress& st) {

@@ -82,7 +82,8 @@ std::string one_line(std::string_view s) {
   return out;
 }
 
-std::string format_number(double x) {
+// A number as a message shows it (six significant digits).
+std::string brief(double x) {
   std::ostringstream os;
   os << x;
   return os.str();
@@ -342,7 +343,7 @@ class Reader {
       if (s.values[i] == std::floor(s.values[i])) continue;
       std::string field = s.field;
       if (s.shape == Setting::Shape::list) field += "[" + std::to_string(i) + "]";
-      fail(s.value_lines[i], field, "must be a whole number (got " + format_number(s.values[i]) + ")");
+      fail(s.value_lines[i], field, "must be a whole number (got " + brief(s.values[i]) + ")");
     }
   }
 
@@ -567,7 +568,7 @@ class Reader {
     if (s.shape == Setting::Shape::list) field += "[" + std::to_string(i) + "]";
     const std::size_t start = reason.find_first_not_of(' ');
     std::string text = start == std::string::npos ? reason : reason.substr(start);
-    text += " (got " + format_number(s.values[i]) + ")";
+    text += " (got " + brief(s.values[i]) + ")";
     fail(s.value_lines[i], field, text);
   }
 };

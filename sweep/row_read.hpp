@@ -4,7 +4,7 @@
 // (sweep/baseline.hpp), and another program's rows in the same columns.
 //
 // A row read back prints the same CSV line, bit for bit, and gives the same summaries
-// (sweep/stats.hpp, sweep/stability.hpp). The CSV carries min_gap already divided by the
+// (sweep/stats.hpp, sweep/stress.hpp). The CSV carries min_gap already divided by the
 // length scale, so a row read back holds that ratio in Result::min_gap with length_scale
 // 1; min_gap_ratio and penetration, the only users of the two, then give the same values.
 // What the CSV does not carry stays at its default: Result::t_max, step, gap_rate_max and

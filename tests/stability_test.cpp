@@ -1,7 +1,7 @@
-// The stress study's checks (sweep/stability.hpp): pass and fail from hand-made rows at and
+// The stress study's checks (sweep/stress.hpp): pass and fail from hand-made rows at and
 // around each tolerance, what a failed run counts against, and a tiny study end to end.
 
-#include "sweep/stability.hpp"
+#include "sweep/stress.hpp"
 
 #include <gtest/gtest.h>
 
@@ -40,15 +40,15 @@ Row good_row(double pi1 = 1.0) {
   return r;
 }
 
-StabilityRow summary_of(const std::vector<Row>& rows, std::vector<double> reference = {}) {
+StressRow summary_of(const std::vector<Row>& rows, std::vector<double> reference = {}) {
   std::vector<const Row*> ptrs;
   for (const Row& r : rows) ptrs.push_back(&r);
   if (reference.empty()) reference.assign(rows.size(), kNaN);
-  return summarize_stability(ptrs, reference);
+  return summarize_stress(ptrs, reference);
 }
 
 TEST(StabilitySummary, CleanRunsPassEveryCheck) {
-  const StabilityRow s = summary_of({good_row(), good_row()});
+  const StressRow s = summary_of({good_row(), good_row()});
   EXPECT_EQ(s.family, "f");
   EXPECT_EQ(s.solver, "moreau-jean");
   EXPECT_EQ(s.settings, "wh=2");
@@ -68,7 +68,7 @@ TEST(StabilitySummary, EachCheckFailsJustAboveItsToleranceAndPassesAtIt) {
   rows[1].result.energy_excess = kEnergyTolerance;
   EXPECT_EQ(summary_of(rows).energy, Verdict::pass);
   rows[1].result.energy_excess = 2 * kEnergyTolerance;
-  StabilityRow s = summary_of(rows);
+  StressRow s = summary_of(rows);
   EXPECT_EQ(s.energy, Verdict::fail);
   EXPECT_EQ(s.energy_excess_max, 2 * kEnergyTolerance);
   EXPECT_FALSE(s.passed());
@@ -113,7 +113,7 @@ TEST(StabilitySummary, AFailedRunFailsFiniteOnlyAndItsStateIsNotJudged) {
   rows[1].result.energy_excess = 1e30;  // what it blew up to: already counted by `finite`
   rows[1].result.min_gap = -1e30;
   rows[2].result.pi1 = std::numeric_limits<double>::infinity();  // status ok, Pi1 not finite
-  const StabilityRow s = summary_of(rows);
+  const StressRow s = summary_of(rows);
   EXPECT_EQ(s.runs, 3u);
   EXPECT_EQ(s.ok, 1u);
   EXPECT_EQ(s.finite, Verdict::fail);
@@ -128,7 +128,7 @@ TEST(StabilitySummary, UnmeasuredChecksAreNeitherPassNorFail) {
   rows[0].result.energy_excess = kNaN;  // the solver keeps no energy balance
   rows[0].result.isolated_impacts = 0;
   rows[0].result.restitution_low = rows[0].result.restitution_high = kNaN;
-  StabilityRow s = summary_of(rows);
+  StressRow s = summary_of(rows);
   EXPECT_EQ(s.energy, Verdict::none);
   EXPECT_EQ(s.restitution, Verdict::none);
   EXPECT_EQ(s.gap, Verdict::pass);
@@ -145,7 +145,7 @@ TEST(StabilitySummary, UnmeasuredChecksAreNeitherPassNorFail) {
 TEST(StabilitySummary, Pi1ErrorIsRelativeAndOnlyWhereBothRunsFinished) {
   std::vector<Row> rows = {good_row(1.1), good_row(2.4), good_row(3.0), good_row(9.0)};
   rows[3].result.status = Status::nan;
-  const StabilityRow s = summary_of(rows, {1.0, 2.0, kNaN, 1.0});  // errors 0.1 and 0.2 only
+  const StressRow s = summary_of(rows, {1.0, 2.0, kNaN, 1.0});  // errors 0.1 and 0.2 only
   EXPECT_NEAR(s.pi1_err_median, 0.15, 1e-15);
   EXPECT_NEAR(s.pi1_err_max, 0.2, 1e-15);
   EXPECT_TRUE(std::isnan(pi1_error(rows[2], kNaN)));
@@ -200,7 +200,7 @@ wh = [0.5, 100]
   ASSERT_EQ(st.table.size(), 2u * 4u);  // 2 families x (the truth + 3 settings)
   EXPECT_EQ(st.runs.points.size(), 4u * 3u);
   for (std::size_t i = 0; i < st.table.size(); ++i) {
-    const StabilityRow& row = st.table[i];
+    const StressRow& row = st.table[i];
     EXPECT_EQ(row.family, i < 4 ? "pair" : "row3");
     EXPECT_EQ(row.runs, 2u);
     EXPECT_EQ(row.finite, Verdict::pass) << row.family << " " << row.settings;

@@ -1,4 +1,4 @@
-// The stress case set (cases/sets/stress.toml) through the stress study (sweep/stability.hpp):
+// The stress case set (cases/sets/stress.toml) through the stress study (sweep/stress.hpp):
 // the reference and the in-house stepper must pass its checks with the tolerances stated
 // there, where their theory says they do, and Pi1 must not depend on the pulse scale.
 // Where the stepper's own theory says it makes energy (theta = 1 with elastic impacts, a
@@ -16,7 +16,7 @@
 #include "cases/case_set.hpp"
 #include "cases/system.hpp"
 #include "solvers/solver.hpp"
-#include "sweep/stability.hpp"
+#include "sweep/stress.hpp"
 
 namespace pb {
 namespace {
@@ -48,7 +48,7 @@ SettingsList moreau_jean_at(double theta, std::initializer_list<double> whs) {
 
 bool passes(Verdict v) { return v != Verdict::fail; }
 
-std::string what(const StabilityRow& row) { return row.family + " " + row.solver + " " + row.settings; }
+std::string what(const StressRow& row) { return row.family + " " + row.solver + " " + row.settings; }
 
 // Every family of the stress set, the stepper from a resolved step (w_max h = 0.5) to a step
 // a hundred radians long. The reference passes every check. Moreau-Jean at theta = 1/2 stays
@@ -60,7 +60,7 @@ TEST(Stress, ReferenceAndMoreauJeanPassTheChecksTheirTheoryPromises) {
   const Stress st = run_stress(stress_set().cases, moreau_jean_at(0.5, {0.5, 2, 10, 100}), {});
   ASSERT_TRUE(st.complete);
   ASSERT_EQ(st.table.size(), 8u * 5u);  // 8 families x (the reference + 4 steps)
-  for (const StabilityRow& row : st.table) {
+  for (const StressRow& row : st.table) {
     EXPECT_EQ(row.finite, Verdict::pass) << what(row);
     EXPECT_TRUE(passes(row.gap)) << what(row) << ": " << row.penetration_max << " / " << row.penetration_steps_max;
     EXPECT_TRUE(passes(row.restitution)) << what(row) << ": " << row.restitution_error_max;

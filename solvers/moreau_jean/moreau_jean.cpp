@@ -34,7 +34,7 @@ double start_value(const std::vector<double>& x, int i) { return x.empty() ? 0.0
 // Calls advance(k_end) on chunks of `chunk` steps until the state is at step n, and looks
 // at the Deadline between chunks. False if the state blew up.
 template <class Advance>
-bool drive(const long& k, long n, long chunk, double h, const Settings& set, Result& res, Advance&& advance) {
+bool run_chunks(const long& k, long n, long chunk, double h, const Settings& set, Result& res, Advance&& advance) {
   Deadline deadline(set);
   while (k < n) {
     if (!advance(std::min(n, k + chunk))) return false;
@@ -82,7 +82,7 @@ Result run_fixed(const System& sys, const Settings& set, double h, long n, Resul
   if (set.monitor) monitor.emplace(sys);
   StepMonitor* m = monitor ? &*monitor : nullptr;
 
-  const bool finite = drive(st.k, n, kChunk, h, set, res, [&](long end) {
+  const bool finite = run_chunks(st.k, n, kChunk, h, set, res, [&](long end) {
     if (recording)
       return m ? advance<NB, NC, true, true>(sc, st, tally, end, rows, m)
                : advance<NB, NC, true, false>(sc, st, tally, end, rows, m);
@@ -119,7 +119,7 @@ Result run_dynamic(const System& sys, const Settings& set, double h, long n, Res
 
   // About kChunk body-steps between looks at the clock, in whole resynchronisation periods.
   const long chunk = std::max(kResync, kChunk / (sc.nb + 1) / kResync * kResync);
-  const bool finite = drive(st.k, n, chunk, h, set, res,
+  const bool finite = run_chunks(st.k, n, chunk, h, set, res,
                             [&](long end) { return dynamic::advance(sc, st, work, tally, end, rows, m); });
   finish(sys, tally, st.k, h, finite, st.q.allFinite() && st.v.allFinite(), monitor, res);
   return res;

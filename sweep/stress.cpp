@@ -1,4 +1,4 @@
-#include "sweep/stability.hpp"
+#include "sweep/stress.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -32,7 +32,7 @@ std::vector<std::string> families_in_order(std::span<const Case> cases) {
 
 // One summary per family over a run's rows (one row per case, in point order).
 void summarize_run(std::span<const Row> rows, std::span<const double> reference,
-                   const std::vector<std::string>& families, std::vector<StabilityRow>& table) {
+                   const std::vector<std::string>& families, std::vector<StressRow>& table) {
   for (const std::string& family : families) {
     std::vector<const Row*> mine;
     std::vector<double> ref;
@@ -41,7 +41,7 @@ void summarize_run(std::span<const Row> rows, std::span<const double> reference,
       mine.push_back(&r);
       ref.push_back(reference[r.point]);
     }
-    table.push_back(summarize_stability(mine, ref));
+    table.push_back(summarize_stress(mine, ref));
   }
 }
 
@@ -56,7 +56,7 @@ std::string_view name(Verdict v) {
   return "";
 }
 
-bool StabilityRow::passed() const {
+bool StressRow::passed() const {
   for (Verdict v : {finite, energy, gap, restitution})
     if (v == Verdict::fail) return false;
   return true;
@@ -76,8 +76,8 @@ double restitution_error(const Row& row) {
   return worst;
 }
 
-StabilityRow summarize_stability(std::span<const Row* const> rows, std::span<const double> reference) {
-  StabilityRow s;
+StressRow summarize_stress(std::span<const Row* const> rows, std::span<const double> reference) {
+  StressRow s;
   if (!rows.empty()) {
     s.family = rows.front()->input.family;
     s.solver = rows.front()->solver;
@@ -132,7 +132,7 @@ Stress stress_of(std::span<const Case> cases, const SettingsList& list, WorkPrec
   for (std::size_t k = 0; k < list.runs.size(); ++k)
     summarize_run(std::span<const Row>(st.runs.points).subspan(k * n, n), st.truth, families, st.table);
   // Grouped by family, the truth first and then the list's settings in their order.
-  std::stable_sort(st.table.begin(), st.table.end(), [&](const StabilityRow& a, const StabilityRow& b) {
+  std::stable_sort(st.table.begin(), st.table.end(), [&](const StressRow& a, const StressRow& b) {
     return std::find(families.begin(), families.end(), a.family) <
            std::find(families.begin(), families.end(), b.family);
   });
@@ -150,7 +150,7 @@ std::string stability_csv_header() {
          "restitution_error_max,pi1_err_median,pi1_err_max,cpu_median_s,finite,energy,gap,restitution";
 }
 
-std::string stability_csv_line(const StabilityRow& row) {
+std::string stability_csv_line(const StressRow& row) {
   std::ostringstream line;
   line << csv_field(row.family) << ',' << csv_field(row.solver) << ',' << csv_field(row.variant) << ','
        << csv_field(row.settings) << ',' << row.runs << ',' << row.ok;

@@ -52,7 +52,7 @@ inline constexpr double kRestitutionTolerance = 1e-3;
 enum class Verdict { pass, fail, none };
 std::string_view name(Verdict v);  // "pass", "fail", "" (none)
 
-struct StabilityRow {
+struct StressRow {
   std::string family;
   std::string solver;
   std::string variant;
@@ -87,12 +87,12 @@ double restitution_error(const Row& row);
 // One summary of rows that share a family and a setting. reference[i] is the truth's Pi1
 // for rows[i] (NaN where the truth did not finish, or for the truth's own rows); the
 // identifying strings are taken from the first row.
-StabilityRow summarize_stability(std::span<const Row* const> rows, std::span<const double> reference);
+StressRow summarize_stress(std::span<const Row* const> rows, std::span<const double> reference);
 
 struct Stress {
   WorkPrecision runs;                // the truth and every run (see WorkPrecision)
   std::vector<double> truth;         // the truth's Pi1 per point, NaN where it did not finish
-  std::vector<StabilityRow> table;   // per family (in case order): the truth, then the list's settings
+  std::vector<StressRow> table;   // per family (in case order): the truth, then the list's settings
   bool complete = false;             // false: cancelled before the end
 };
 
@@ -104,7 +104,7 @@ Stress stress_of(std::span<const Case> cases, const SettingsList& list, WorkPrec
 Stress run_stress(std::span<const Case> cases, const SettingsList& list, const SweepOptions& options);
 
 std::string stability_csv_header();
-std::string stability_csv_line(const StabilityRow& row);
+std::string stability_csv_line(const StressRow& row);
 
 // A run's row: the columns of sweep/row.hpp, then pi1_error (empty where not compared).
 std::string stress_points_header();
