@@ -42,14 +42,9 @@ std::vector<bullet::Config> variants_of(bool faithful) {
 }
 
 using test::make_case;
-
-// A measured number for RecordProperty, in scientific notation (std::to_string would
-// print 1e-13 as 0.000000).
-std::string sci(double x) {
-  std::ostringstream out;
-  out << std::scientific << std::setprecision(2) << x;
-  return out.str();
-}
+using test::cradle;
+using test::observed_order;
+using test::sci;
 
 Result run(const System& s, const bullet::Config& config, int n, bool history = false) {
   Settings st;
@@ -83,20 +78,6 @@ Result run_from(System s, const bullet::Config& config, int n, std::vector<doubl
   s.u_start = std::move(u);
   s.v_start = std::move(v);
   return bullet::solve_with(s, st, config);
-}
-
-// Least-squares slope of log(err) against log(h), h quartering along errs.
-double observed_order(const std::vector<double>& errs) {
-  double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
-  const double n = static_cast<double>(errs.size());
-  for (std::size_t i = 0; i < errs.size(); ++i) {
-    const double x = 2.0 * static_cast<double>(i), y = std::log2(errs[i]);
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-  }
-  return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 // ---------------------------------------------------------------- settings
@@ -335,7 +316,7 @@ TEST(BulletFaithful, Pi1ConvergesToTheReferenceAtFirstOrder) {
       }
     }
   }
-  const double order = observed_order(mean);
+  const double order = observed_order(mean, 2);  // N quadruples
   RecordProperty("order", std::to_string(order));
   RecordProperty("mean_error_N4096", std::to_string(mean.back()));
   // Measured: order 1.02 (mean error 2.3e-2 at N = 64, 5.2e-3, 1.3e-3, 3.3e-4 at
@@ -518,20 +499,6 @@ TEST(Bullet, AnUnknownVariantFailsTheRun) {
 
 // ---------------------------------------------------------------- the chain
 
-// Newton's cradle start of a uniform chain of n bodies: touching (Pi3 = 0), eps = 1, body 0
-// kicked at 100 a_p / w_p, no damping and a sine pulse (zero at t = 0), so that the first
-// step carries no force but the contacts'; t_end is one step of N = 64.
-System cradle(int n) {
-  Case c = make_case(Scene::chain, PulseShape::sine, 1.0, 1.0, 1.0);
-  c.bodies = n;
-  c.pi3 = 0.0;
-  c.kick = 100.0;
-  c.xi = 0.0;
-  System s = make_system(c);
-  s.t_end = s.step(64);
-  return s;
-}
-
 // Newton's law on every contact at once with eps = 1 (the LCP of the first step): body 0
 // leaves at (2 - n) / n v0, the others, locked together, at 2 / n v0. Returns the largest
 // deviation from it over v0, and checks momentum.
@@ -590,13 +557,7 @@ TEST(BulletFaithful, SequentialImpulseReachesTheCradleOutcomeOnlyWithinItsSweeps
 // and the energy excess is the scheme's first-order error (loads sampled at the step
 // start against the exact work of the step-mean pulse).
 TEST(BulletFaithful, MonitorMeasuresRestitutionEpsToSinglePrecisionAndAFirstOrderEnergyExcess) {
-  std::vector<System> systems;
-  for (Scene scene : {Scene::wall, Scene::pair, Scene::row3, Scene::chain})
-    for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
-      Case c = make_case(scene, p, 0.5, 0.5, 0.5);
-      c.bodies = scene == Scene::chain ? 6 : 0;
-      systems.push_back(make_system(c));
-    }
+  const std::vector<System> systems = test::monitor_systems();
   for (std::string_view name : {"si-faithful", "mlcp-dantzig-faithful"}) {
     const bullet::Config config = variant(name);
     long isolated = 0;

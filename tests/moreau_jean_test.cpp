@@ -76,6 +76,7 @@ struct AllocationCounter {
 };
 
 using test::make_case;
+using test::observed_order;
 
 Result run(const System& s, int n, bool history = false) {
   Settings st;
@@ -100,20 +101,6 @@ std::string scientific(double x) {
   std::ostringstream out;
   out << std::setprecision(3) << std::scientific << x;
   return out.str();
-}
-
-// Least-squares slope of log(err) against log(h), h halving along errs.
-double observed_order(const std::vector<double>& errs) {
-  double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
-  const double n = static_cast<double>(errs.size());
-  for (std::size_t i = 0; i < errs.size(); ++i) {
-    const double x = static_cast<double>(i), y = std::log2(errs[i]);
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-  }
-  return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 TEST(MoreauJean, Pi1IsBitIdenticalAtAnyPowerOfTwoPulseScale) {

@@ -33,14 +33,9 @@ ode::Config variant(std::string_view name) {
 }
 
 using test::make_case;
-
-// A measured number for RecordProperty, in scientific notation (std::to_string would
-// print 1e-13 as 0.000000).
-std::string sci(double x) {
-  std::ostringstream out;
-  out << std::scientific << std::setprecision(2) << x;
-  return out.str();
-}
+using test::cradle;
+using test::observed_order;
+using test::sci;
 
 Result run(const System& s, std::string_view name, int n, bool history = false) {
   Settings st;
@@ -52,20 +47,6 @@ Result run(const System& s, std::string_view name, int n, bool history = false) 
 
 using Row = test::HistoryRow;
 using test::gap_rate;
-
-// Least-squares slope of log(err) against log(h), h halving along errs.
-double observed_order(const std::vector<double>& errs) {
-  double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
-  const double n = static_cast<double>(errs.size());
-  for (std::size_t i = 0; i < errs.size(); ++i) {
-    const double x = static_cast<double>(i), y = std::log2(errs[i]);
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-  }
-  return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
 
 // A free mass (no spring, no damper, no pulse) moving at v0 towards the wall from a gap g0,
 // with h = 0.01 (t_min 0.64, N = 64).
@@ -438,20 +419,6 @@ TEST(Ode, CheckAndDescribeNameEverySetting) {
 
 // ---------------------------------------------------------------- the chain
 
-// Newton's cradle start of a uniform chain of n bodies: touching (Pi3 = 0), eps = 1, body 0
-// kicked at 100 a_p / w_p, no damping and a sine pulse (zero at t = 0), so that the first
-// step carries no force but the contacts'; t_end is one step of N = 64.
-System cradle(int n) {
-  Case c = make_case(Scene::chain, PulseShape::sine, 1.0, 1.0, 1.0);
-  c.bodies = n;
-  c.pi3 = 0.0;
-  c.kick = 100.0;
-  c.xi = 0.0;
-  System s = make_system(c);
-  s.t_end = s.step(64);
-  return s;
-}
-
 struct CradleStep {
   double error;     // largest |v_i - v_i(Newton)| over the bodies, over v0
   double momentum;  // sum m_i v_i over m v0, 1 if kept
@@ -560,13 +527,7 @@ TEST(Ode, QuickStepReachesTheCradleOutcomeOnlyOnShortChains) {
 // the energy excess is the scheme's first-order error (loads sampled at the step start
 // against the exact work of the step-mean pulse), not a restitution defect.
 TEST(Ode, MonitorMeasuresRestitutionEpsToRoundOffAndAFirstOrderEnergyExcess) {
-  std::vector<System> systems;
-  for (Scene scene : {Scene::wall, Scene::pair, Scene::row3, Scene::chain})
-    for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
-      Case c = make_case(scene, p, 0.5, 0.5, 0.5);
-      c.bodies = scene == Scene::chain ? 6 : 0;
-      systems.push_back(make_system(c));
-    }
+  const std::vector<System> systems = test::monitor_systems();
   for (std::string_view name : {"dantzig-faithful", "quickstep-faithful"}) {
     long isolated = 0;
     double worst_e = 0.0, worst_excess = 0.0, least_drop = std::numeric_limits<double>::infinity();

@@ -26,12 +26,7 @@ namespace pb {
 namespace {
 
 using test::make_case;
-
-std::string sci(double x) {
-  std::ostringstream out;
-  out << std::scientific << std::setprecision(2) << x;
-  return out.str();
-}
+using test::sci;
 
 Settings variant(std::string_view name) {
   Settings st;

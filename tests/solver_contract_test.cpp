@@ -43,6 +43,7 @@ namespace pb {
 namespace {
 
 using test::make_case;
+using test::sci;
 
 // ---------------------------------------------------------------- the facts
 
@@ -158,12 +159,6 @@ std::string subject_name(const testing::TestParamInfo<Subject>& info) {
 
 void PrintTo(const Subject& s, std::ostream* out) {
   *out << s.solver->name << (s.facts->variant.empty() ? "" : " --variant ") << s.facts->variant;
-}
-
-std::string sci(double x) {
-  std::ostringstream out;
-  out << std::scientific << std::setprecision(2) << x;
-  return out.str();
 }
 
 class Contract : public testing::TestWithParam<Subject> {
