@@ -7,9 +7,9 @@
 //   BM_BulletMoreauJean/<scene>/N     one pb::moreau_jean::solve per iteration
 //
 // Counters: time_per_step (CPU seconds per step), steps, impacts, and on BM_Bullet
-// vs_moreau_jean: the CPU time of these Bullet runs over the CPU time of as many
-// moreau-jean runs of the same case, timed right after them in the same process (so the
-// ratio is read from one run even on a loaded machine).
+// vs_moreau_jean: the CPU time of a Bullet run over that of a moreau-jean run of the same
+// case, timed right after it in the same process (so the ratio is read from one run even on
+// a loaded machine; bench/support.hpp).
 //
 //   BM_BulletChain/bodies:<n>         the default variant on a chain of n = 2 .. 100
 //                                     bodies, alternating (odd bodies Pi5 = 0.5, Pi6 = 1)
@@ -24,8 +24,6 @@
 
 #include <benchmark/benchmark.h>
 
-#include <time.h>
-
 #include <string>
 
 #include "bench/support.hpp"
@@ -35,68 +33,18 @@
 
 namespace {
 
-// CPU seconds of this thread: the ratio below compares two CPU times, which a loaded
-// machine disturbs less than wall times.
-double thread_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
 void bullet_solve(benchmark::State& state, const pb::bullet::Config& config, pb::Scene scene) {
-  const pb::System s = pb::bench::fig4_point(scene);
-  pb::Settings settings;
-  settings.variant = std::string(config.name);
-  settings.steps = static_cast<int>(state.range(0));
-  long steps = 0, impacts = 0;
-  const double started = thread_seconds();
-  for (auto _ : state) {
-    const pb::Result r = pb::bullet::solve(s, settings);
-    steps = r.steps;
-    impacts = r.impacts;
-    benchmark::DoNotOptimize(r.pi1);
-  }
-  const double bullet_seconds = thread_seconds() - started;
-
+  const int n = static_cast<int>(state.range(0));
+  const double started = pb::bench::thread_seconds();
+  pb::bench::time_variant(state, &pb::bullet::solve, std::string(config.name).c_str(), scene, n);
+  const double bullet_seconds = (pb::bench::thread_seconds() - started) / static_cast<double>(state.iterations());
   pb::Settings mj;
-  mj.steps = settings.steps;
-  const double mj_started = thread_seconds();
-  for (benchmark::IterationCount i = 0; i < state.iterations(); ++i) benchmark::DoNotOptimize(pb::moreau_jean::solve(s, mj).pi1);
-  const double mj_seconds = thread_seconds() - mj_started;
-
-  state.counters["time_per_step"] = pb::bench::per_step(steps);
-  state.counters["steps"] = static_cast<double>(steps);
-  state.counters["impacts"] = static_cast<double>(impacts);
+  mj.steps = n;
+  const double mj_seconds = pb::bench::seconds_per_run(&pb::moreau_jean::solve, pb::bench::fig4_point(scene), mj);
   state.counters["vs_moreau_jean"] = mj_seconds > 0.0 ? bullet_seconds / mj_seconds : 0.0;
 }
 
-pb::System chain_point(int bodies) {
-  pb::Case c;
-  c.scene = pb::Scene::chain;
-  c.bodies = bodies;
-  c.pulse = pb::PulseShape::cosine;
-  c.pi2 = 1.0;
-  c.pi3 = 0.5;
-  c.pi5 = 0.5;
-  c.pi6 = 1.0;
-  c.eps = 0.5;
-  return pb::make_system(c);
-}
-
-void BM_BulletChain(benchmark::State& state) {
-  const int bodies = static_cast<int>(state.range(0));
-  const pb::System s = chain_point(bodies);
-  pb::Result r;
-  for (auto _ : state) {
-    r = pb::bullet::solve(s, pb::Settings{});
-    benchmark::DoNotOptimize(r.pi1);
-  }
-  if (r.status != pb::Status::ok) state.SkipWithError(r.message.c_str());
-  state.counters["time_per_step"] = pb::bench::per_step(r.steps);
-  state.counters["time_per_body_step"] = pb::bench::per_step(r.steps * bodies);
-  state.counters["steps"] = static_cast<double>(r.steps);
-  state.counters["impacts"] = static_cast<double>(r.impacts);
-}
+void BM_BulletChain(benchmark::State& state) { pb::bench::time_chain(state, &pb::bullet::solve); }
 BENCHMARK(BM_BulletChain)->ArgName("bodies")->Arg(2)->Arg(5)->Arg(10)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMillisecond);
 
 void moreau_jean_solve(benchmark::State& state, pb::Scene scene) {

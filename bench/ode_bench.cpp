@@ -16,9 +16,6 @@
 
 #include <benchmark/benchmark.h>
 
-#include <ctime>
-#include <string>
-
 #include "bench/support.hpp"
 #include "cases/system.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
@@ -26,77 +23,15 @@
 
 namespace {
 
-// Thread CPU seconds, what the benchmark library divides rate counters by.
-double cpu_now() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-// CPU seconds per moreau_jean::solve run of the same system, over >= 20 ms, measured on
-// every call right after the ODE loop, so that both see the same machine load.
-double baseline_seconds(const pb::System& s, int n) {
-  pb::Settings settings;
-  settings.steps = n;
-  long runs = 0;
-  const double start = cpu_now();
-  double elapsed = 0.0;
-  do {
-    const pb::Result r = pb::moreau_jean::solve(s, settings);
-    benchmark::DoNotOptimize(r.pi1);
-    ++runs;
-    elapsed = cpu_now() - start;
-  } while (elapsed < 0.02);
-  return elapsed / static_cast<double>(runs);
-}
-
 void BM_Ode(benchmark::State& state, const char* variant, pb::Scene scene) {
-  const pb::System s = pb::bench::fig4_point(scene);
-  pb::Settings settings;
-  settings.variant = variant;
-  settings.steps = static_cast<int>(state.range(0));
-  pb::Result r;
-  for (auto _ : state) {
-    r = pb::ode::solve(s, settings);
-    benchmark::DoNotOptimize(r.pi1);
-  }
-  if (r.status != pb::Status::ok) state.SkipWithError(r.message.c_str());
-  state.counters["time_per_step"] = pb::bench::per_step(r.steps);
-  state.counters["steps"] = static_cast<double>(r.steps);
-  state.counters["impacts"] = static_cast<double>(r.impacts);
-  // CPU time per run over the baseline's: an inverted rate of (baseline seconds) per run.
+  pb::bench::time_variant(state, &pb::ode::solve, variant, scene, static_cast<int>(state.range(0)));
+  pb::Settings in_house;
+  in_house.steps = static_cast<int>(state.range(0));
   state.counters["x_moreau_jean"] =
-      benchmark::Counter(baseline_seconds(s, settings.steps),
-                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+      pb::bench::ratio_to(pb::bench::seconds_per_run(&pb::moreau_jean::solve, pb::bench::fig4_point(scene), in_house));
 }
 
-pb::System chain_point(int bodies) {
-  pb::Case c;
-  c.scene = pb::Scene::chain;
-  c.bodies = bodies;
-  c.pulse = pb::PulseShape::cosine;
-  c.pi2 = 1.0;
-  c.pi3 = 0.5;
-  c.pi5 = 0.5;
-  c.pi6 = 1.0;
-  c.eps = 0.5;
-  return pb::make_system(c);
-}
-
-void BM_OdeChain(benchmark::State& state) {
-  const int bodies = static_cast<int>(state.range(0));
-  const pb::System s = chain_point(bodies);
-  pb::Result r;
-  for (auto _ : state) {
-    r = pb::ode::solve(s, pb::Settings{});
-    benchmark::DoNotOptimize(r.pi1);
-  }
-  if (r.status != pb::Status::ok) state.SkipWithError(r.message.c_str());
-  state.counters["time_per_step"] = pb::bench::per_step(r.steps);
-  state.counters["time_per_body_step"] = pb::bench::per_step(r.steps * bodies);
-  state.counters["steps"] = static_cast<double>(r.steps);
-  state.counters["impacts"] = static_cast<double>(r.impacts);
-}
+void BM_OdeChain(benchmark::State& state) { pb::bench::time_chain(state, &pb::ode::solve); }
 
 void BM_OdeBaselineMoreauJean(benchmark::State& state, pb::Scene scene) {
   pb::bench::time_solve(state, &pb::moreau_jean::solve, scene);

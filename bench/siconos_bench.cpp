@@ -21,9 +21,6 @@
 
 #include <benchmark/benchmark.h>
 
-#include <ctime>
-#include <string>
-
 #include "bench/support.hpp"
 #include "cases/system.hpp"
 #include "solvers/event_driven/event_driven.hpp"
@@ -32,84 +29,25 @@
 
 namespace {
 
-double cpu_now() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-// CPU seconds per run of solve(s, settings), over >= 20 ms.
-double seconds_per_run(pb::SolveFn solve, const pb::System& s, const pb::Settings& settings) {
-  long runs = 0;
-  const double start = cpu_now();
-  double elapsed = 0.0;
-  do {
-    const pb::Result r = solve(s, settings);
-    benchmark::DoNotOptimize(r.pi1);
-    ++runs;
-    elapsed = cpu_now() - start;
-  } while (elapsed < 0.02);
-  return elapsed / static_cast<double>(runs);
-}
-
-benchmark::Counter ratio_to(double baseline_seconds) {
-  return benchmark::Counter(baseline_seconds,
-                            benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-}
-
-void report(benchmark::State& state, const pb::Result& r) {
-  if (r.status != pb::Status::ok) state.SkipWithError(r.message.c_str());
-  state.counters["time_per_step"] = pb::bench::per_step(r.steps);
-  state.counters["steps"] = static_cast<double>(r.steps);
-  state.counters["impacts"] = static_cast<double>(r.impacts);
-}
+using pb::bench::ratio_to;
+using pb::bench::seconds_per_run;
 
 void BM_Siconos(benchmark::State& state, const char* variant, pb::Scene scene) {
-  const pb::System s = pb::bench::fig4_point(scene);
-  pb::Settings settings;
-  settings.variant = variant;
-  settings.steps = static_cast<int>(state.range(0));
-  pb::Result r;
-  for (auto _ : state) {
-    r = pb::siconos::solve(s, settings);
-    benchmark::DoNotOptimize(r.pi1);
-  }
-  report(state, r);
+  pb::bench::time_variant(state, &pb::siconos::solve, variant, scene, static_cast<int>(state.range(0)));
   pb::Settings in_house;
-  in_house.steps = settings.steps;
-  state.counters["x_moreau_jean"] = ratio_to(seconds_per_run(&pb::moreau_jean::solve, s, in_house));
+  in_house.steps = static_cast<int>(state.range(0));
+  state.counters["x_moreau_jean"] =
+      ratio_to(seconds_per_run(&pb::moreau_jean::solve, pb::bench::fig4_point(scene), in_house));
 }
 
 void BM_SiconosEventDriven(benchmark::State& state, pb::Scene scene) {
-  const pb::System s = pb::bench::fig4_point(scene);
-  pb::Settings settings;
-  settings.variant = "event-driven-lsodar";
-  pb::Result r;
-  for (auto _ : state) {
-    r = pb::siconos::solve(s, settings);
-    benchmark::DoNotOptimize(r.pi1);
-  }
-  report(state, r);
-  state.counters["x_event_driven"] = ratio_to(seconds_per_run(&pb::event_driven::solve, s, {}));
+  pb::bench::time_variant(state, &pb::siconos::solve, "event-driven-lsodar", scene, 0);
+  state.counters["x_event_driven"] = ratio_to(seconds_per_run(&pb::event_driven::solve, pb::bench::fig4_point(scene), {}));
 }
 
 void BM_SiconosChain(benchmark::State& state) {
-  pb::Case c;
-  c.scene = pb::Scene::chain;
-  c.bodies = static_cast<int>(state.range(0));
-  c.pulse = pb::PulseShape::cosine;
-  c.pi2 = 1.0;
-  c.pi3 = 0.5;
-  c.pi5 = 0.5;
-  c.pi6 = 1.0;
-  c.eps = 0.5;
-  const pb::System s = pb::make_system(c);
-  pb::Result r;
-  for (auto _ : state) {
-    r = pb::siconos::solve(s, pb::Settings{});
-    benchmark::DoNotOptimize(r.pi1);
-  }
-  report(state, r);
+  pb::bench::time_chain(state, &pb::siconos::solve);
+  const pb::System s = pb::bench::chain_point(static_cast<int>(state.range(0)));
   state.counters["x_moreau_jean"] = ratio_to(seconds_per_run(&pb::moreau_jean::solve, s, {}));
 }
 

@@ -1,9 +1,12 @@
 #pragma once
-// What the benchmarks share: the cases they time and the per-step counter.
+// What the benchmarks share: the cases they time, the per-step counter, and the timing of an
+// engine against an in-house solver on the same case (the engine benchmarks: ODE, Bullet,
+// Siconos).
 
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <ctime>
 #include <vector>
 
 #include "cases/system.hpp"
@@ -69,6 +72,90 @@ inline std::vector<System> fig4_family() {
     }
   }
   return systems;
+}
+
+// CPU seconds of this thread: what the benchmark library divides rate counters by, and what a
+// loaded machine disturbs less than wall time.
+inline double thread_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// CPU seconds per run of solve(s, settings), over >= 20 ms: the baseline of a ratio, measured
+// right after the timed loop so that both see the same machine load.
+inline double seconds_per_run(SolveFn solve, const System& s, const Settings& settings) {
+  long runs = 0;
+  const double start = thread_seconds();
+  double elapsed = 0.0;
+  do {
+    const Result r = solve(s, settings);
+    benchmark::DoNotOptimize(r.pi1);
+    ++runs;
+    elapsed = thread_seconds() - start;
+  } while (elapsed < 0.02);
+  return elapsed / static_cast<double>(runs);
+}
+
+// A run's CPU time over `baseline_seconds`, as a counter: an inverted rate of the baseline's
+// seconds per run (the console prints it with an "s"; read it as a plain ratio).
+inline benchmark::Counter ratio_to(double baseline_seconds) {
+  return benchmark::Counter(baseline_seconds,
+                            benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+// The counters of a timed run: time_per_step, steps, impacts; an error if it did not end ok.
+inline void report(benchmark::State& state, const Result& r) {
+  if (r.status != Status::ok) state.SkipWithError(r.message.c_str());
+  state.counters["time_per_step"] = per_step(r.steps);
+  state.counters["steps"] = static_cast<double>(r.steps);
+  state.counters["impacts"] = static_cast<double>(r.impacts);
+}
+
+// The chain of the engine benchmarks: n bodies alternating (odd bodies Pi5 = 0.5, Pi6 = 1)
+// with a gap (Pi3 = 0.5) under the cosine pulse (Pi2 = 1, eps = 0.5).
+inline System chain_point(int bodies) {
+  Case c;
+  c.scene = Scene::chain;
+  c.bodies = bodies;
+  c.pulse = PulseShape::cosine;
+  c.pi2 = 1.0;
+  c.pi3 = 0.5;
+  c.pi5 = 0.5;
+  c.pi6 = 1.0;
+  c.eps = 0.5;
+  return make_system(c);
+}
+
+// Times `solve` with default settings on chain_point(state.range(0)): the counters of
+// report() and time_per_body_step. Returns the last result.
+inline Result time_chain(benchmark::State& state, SolveFn solve) {
+  const int bodies = static_cast<int>(state.range(0));
+  const System s = chain_point(bodies);
+  Result r;
+  for (auto _ : state) {
+    r = solve(s, Settings{});
+    benchmark::DoNotOptimize(r.pi1);
+  }
+  report(state, r);
+  state.counters["time_per_body_step"] = per_step(r.steps * bodies);
+  return r;
+}
+
+// Times `solve` with `variant` and N = `steps` (0: none) on fig4_point(scene): the counters
+// of report(). Returns the last result.
+inline Result time_variant(benchmark::State& state, SolveFn solve, const char* variant, Scene scene, int steps) {
+  const System s = fig4_point(scene);
+  Settings settings;
+  settings.variant = variant;
+  settings.steps = steps;
+  Result r;
+  for (auto _ : state) {
+    r = solve(s, settings);
+    benchmark::DoNotOptimize(r.pi1);
+  }
+  report(state, r);
+  return r;
 }
 
 }  // namespace pb::bench

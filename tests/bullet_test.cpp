@@ -3,18 +3,17 @@
 // semi-implicit Euler between impacts, self-similarity) and against the event-driven
 // reference as the step shrinks. The default variants against the contact law that
 // Bullet's own defaults give, with numbers, so that a change of Bullet's version shows.
+// What every solver must do (statuses, threads, the smoke set, large steps, time limits) is
+// checked once for all in solver_contract_test.cpp.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <limits>
 #include <sstream>
-#include <numbers>
 #include <string>
-#include <thread>
 #include <vector>
 
 #ifdef POUNDBENCH_HAVE_BULLET
@@ -22,11 +21,9 @@
 #include <BulletDynamics/MLCPSolvers/btLemkeSolver.h>
 
 #include "tests/support.hpp"
-#include "cases/case_set.hpp"
 #include "cases/system.hpp"
 #include "solvers/bullet/bullet_solver.hpp"
 #include "solvers/event_driven/event_driven.hpp"
-#include "sweep/sweep.hpp"
 
 namespace pb {
 namespace {
@@ -45,14 +42,9 @@ std::vector<bullet::Config> variants_of(bool faithful) {
 }
 
 using test::make_case;
-
-// A measured number for RecordProperty, in scientific notation (std::to_string would
-// print 1e-13 as 0.000000).
-std::string sci(double x) {
-  std::ostringstream out;
-  out << std::scientific << std::setprecision(2) << x;
-  return out.str();
-}
+using test::cradle;
+using test::observed_order;
+using test::sci;
 
 Result run(const System& s, const bullet::Config& config, int n, bool history = false) {
   Settings st;
@@ -86,20 +78,6 @@ Result run_from(System s, const bullet::Config& config, int n, std::vector<doubl
   s.u_start = std::move(u);
   s.v_start = std::move(v);
   return bullet::solve_with(s, st, config);
-}
-
-// Least-squares slope of log(err) against log(h), h quartering along errs.
-double observed_order(const std::vector<double>& errs) {
-  double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
-  const double n = static_cast<double>(errs.size());
-  for (std::size_t i = 0; i < errs.size(); ++i) {
-    const double x = 2.0 * static_cast<double>(i), y = std::log2(errs[i]);
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-  }
-  return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 // ---------------------------------------------------------------- settings
@@ -338,7 +316,7 @@ TEST(BulletFaithful, Pi1ConvergesToTheReferenceAtFirstOrder) {
       }
     }
   }
-  const double order = observed_order(mean);
+  const double order = observed_order(mean, 2);  // N quadruples
   RecordProperty("order", std::to_string(order));
   RecordProperty("mean_error_N4096", std::to_string(mean.back()));
   // Measured: order 1.02 (mean error 2.3e-2 at N = 64, 5.2e-3, 1.3e-3, 3.3e-4 at
@@ -510,154 +488,16 @@ TEST(BulletDefault, DefaultsBreakSelfSimilarity) {
   }
 }
 
-// ---------------------------------------------------------------- robustness, threads
-
-TEST(Bullet, SmokeCasesStayFiniteAtCoarseStepsInEveryVariant) {
-  const CaseSet set = load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/smoke.toml");
-  ASSERT_FALSE(set.cases.empty());
-  for (const bullet::Config& config : bullet::variants()) {
-    for (int n : {4, 16}) {
-      for (const Case& c : set.cases) {
-        const Result r = run(make_system(c), config, n);
-        EXPECT_EQ(r.status, Status::ok) << config.name << " " << c.family << " N=" << n << ": " << r.message;
-        EXPECT_TRUE(std::isfinite(r.pi1) && r.pi1 >= 0.0) << config.name << " " << c.family << " N=" << n;
-      }
-    }
-  }
-}
-
-TEST(Bullet, RunsThatCannotFinishEndWithAStatus) {
-  const System s = make_system(make_case(Scene::pair, PulseShape::sine, 1.0, 2.0, 0.5));
-  Settings st;
-  st.step_cap = 100;
-  EXPECT_EQ(bullet::solve(s, st).status, Status::step_cap);
-
-  System unstable = s;
-  unstable.bodies[0].k = -unstable.bodies[0].k * 100.0;  // a negative spring: exponential growth
-  const Result grown = bullet::solve(unstable, Settings{});
-  EXPECT_EQ(grown.status, Status::diverged) << grown.message;
-  EXPECT_TRUE(std::isnan(grown.pi1));
-
-  System broken = s;
-  broken.bodies[1].c = std::numeric_limits<double>::quiet_NaN();
-  const Result nan = bullet::solve(broken, Settings{});
-  EXPECT_EQ(nan.status, Status::nan) << nan.message;
-
+// The statuses every solver reports are the contract's (solver_contract_test.cpp); Bullet's
+// own: an unknown variant fails the run (the check refuses it before a sweep).
+TEST(Bullet, AnUnknownVariantFailsTheRun) {
   Settings unknown;
   unknown.variant = "si-fast";
+  const System s = make_system(make_case(Scene::pair, PulseShape::sine, 1.0, 2.0, 0.5));
   EXPECT_EQ(bullet::solve(s, unknown).status, Status::failed);
 }
 
-// Every world owns its objects; Bullet 3.24 as Debian builds it has no profiler and no
-// shared scratch in these solvers except Dantzig's error flag (README), which only a
-// failing LCP writes with anything but false. Two threads give the serial results.
-TEST(Bullet, TwoThreadsGiveTheSerialResultsBitForBit) {
-  std::vector<std::pair<System, bullet::Config>> jobs;
-  for (const bullet::Config& config : bullet::variants())
-    for (Scene scene : {Scene::pair, Scene::row3})
-      for (PulseShape p : {PulseShape::sine, PulseShape::cosine})
-        jobs.emplace_back(make_system(make_case(scene, p, 1.0, 0.5, 0.5)), config);
-  std::vector<double> serial, parallel(jobs.size());
-  for (const auto& [s, config] : jobs) serial.push_back(run(s, config, 256).pi1);
-  auto worker = [&](std::size_t first) {
-    for (std::size_t i = first; i < jobs.size(); i += 2) parallel[i] = run(jobs[i].first, jobs[i].second, 256).pi1;
-  };
-  std::thread a(worker, 0), b(worker, 1);
-  a.join();
-  b.join();
-  for (std::size_t i = 0; i < jobs.size(); ++i) EXPECT_EQ(parallel[i], serial[i]) << jobs[i].second.name;
-}
-
-// ---------------------------------------------------------------- large steps
-
-// Springs and dashpots enter as forces of the step's start (symplectic Euler): stable only
-// for w h below ~1.9 (xi = 0.05). A pair whose body 1 is 100 times stiffer than the pulse
-// (Pi5 = 0.01) at w_max h = 10 and 100 grows by ~100 and ~1e4 per step.
-TEST(Bullet, LargeStepsDivergeWithAStatusAMessageAndFiniteCounts) {
-  const System s = make_system(make_case(Scene::pair, PulseShape::sine, 1.0, 0.01, 0.5));
-  for (const bullet::Config& config : bullet::variants()) {
-    for (double wh : {10.0, 100.0}) {
-      Settings st;
-      st.wh = wh;
-      const Result r = bullet::solve_with(s, st, config);
-      EXPECT_TRUE(r.status == Status::diverged || r.status == Status::nan) << config.name << " wh=" << wh;
-      EXPECT_NE(r.message.find("w_max h"), std::string::npos) << r.message;
-      EXPECT_DOUBLE_EQ(r.step, wh * s.t_min / (2.0 * std::numbers::pi));
-      EXPECT_GE(r.steps, 1);
-      EXPECT_LT(static_cast<double>(r.steps), s.t_end / r.step);
-      EXPECT_TRUE(std::isfinite(r.energy_excess)) << config.name << " wh=" << wh;
-      EXPECT_GT(r.energy_excess, 1e3) << "a runaway makes energy";
-      EXPECT_TRUE(std::isnan(r.pi1));
-    }
-    Settings st;
-    st.wh = 0.5;
-    const Result ok = bullet::solve_with(s, st, config);
-    EXPECT_EQ(ok.status, Status::ok) << config.name << ": " << ok.message;
-    EXPECT_DOUBLE_EQ(ok.step, 0.5 * s.t_min / (2.0 * std::numbers::pi));
-  }
-}
-
-// A diverging run is one row of a sweep like the others. At wh = 10 the step is 1.6 T_p
-// wherever the pulse is the shortest period: bodies with Pi2 = 0.1, 0.15 step at
-// w h = 1, 1.5 and stay stable, while the stiff pair's body 1 runs away.
-TEST(Bullet, SweepRecordsADivergingRowAndFinishesTheOthers) {
-  std::vector<Case> cases;
-  for (double pi2 : {0.1, 0.15}) cases.push_back(make_case(Scene::pair, PulseShape::cosine, pi2, 1.0, 0.5));
-  cases.push_back(make_case(Scene::pair, PulseShape::sine, 1.0, 0.01, 0.5));
-  for (double pi2 : {0.1, 0.15}) cases.push_back(make_case(Scene::wall, PulseShape::cosine, pi2, 1.0, 0.5));
-  const SolverInfo* solver = find_solver("bullet");
-  ASSERT_NE(solver, nullptr);
-  Settings st;
-  st.wh = 10.0;
-  SweepOptions options;
-  options.threads = 2;
-  const std::vector<pb::Row> rows = run_sweep(cases, *solver, st, options);
-  ASSERT_EQ(rows.size(), cases.size());
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    EXPECT_EQ(rows[i].point, i);
-    EXPECT_NE(rows[i].settings.find("wh=10"), std::string::npos) << rows[i].settings;
-    if (i == 2) {
-      EXPECT_TRUE(rows[i].result.status == Status::diverged || rows[i].result.status == Status::nan);
-      EXPECT_FALSE(rows[i].result.message.empty());
-    } else {
-      EXPECT_EQ(rows[i].result.status, Status::ok) << i << ": " << rows[i].result.message;
-      EXPECT_TRUE(std::isfinite(rows[i].result.pi1));
-    }
-  }
-}
-
-// The clock is read about once a millisecond of steps whatever a step costs, so the limit
-// holds on a 100-body chain as on a pair.
-TEST(Bullet, TimeLimitStopsAHundredBodyChainSoon) {
-  Case c = make_case(Scene::chain, PulseShape::cosine, 1.0, 0.5, 0.5);
-  c.bodies = 100;
-  c.n_free = 1e4;  // ~1e6 steps: minutes without the limit
-  Settings st;
-  st.time_limit = 0.05;
-  const auto start = std::chrono::steady_clock::now();
-  const Result r = bullet::solve(make_system(c), st);
-  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EXPECT_EQ(r.status, Status::time_limit) << r.message;
-  EXPECT_GT(r.steps, 0);
-  // Measured 0.05 s; the margin is for a loaded machine and the sanitizer build.
-  EXPECT_LT(elapsed, 0.5);
-}
-
 // ---------------------------------------------------------------- the chain
-
-// Newton's cradle start of a uniform chain of n bodies: touching (Pi3 = 0), eps = 1, body 0
-// kicked at 100 a_p / w_p, no damping and a sine pulse (zero at t = 0), so that the first
-// step carries no force but the contacts'; t_end is one step of N = 64.
-System cradle(int n) {
-  Case c = make_case(Scene::chain, PulseShape::sine, 1.0, 1.0, 1.0);
-  c.bodies = n;
-  c.pi3 = 0.0;
-  c.kick = 100.0;
-  c.xi = 0.0;
-  System s = make_system(c);
-  s.t_end = s.step(64);
-  return s;
-}
 
 // Newton's law on every contact at once with eps = 1 (the LCP of the first step): body 0
 // leaves at (2 - n) / n v0, the others, locked together, at 2 / n v0. Returns the largest
@@ -717,13 +557,7 @@ TEST(BulletFaithful, SequentialImpulseReachesTheCradleOutcomeOnlyWithinItsSweeps
 // and the energy excess is the scheme's first-order error (loads sampled at the step
 // start against the exact work of the step-mean pulse).
 TEST(BulletFaithful, MonitorMeasuresRestitutionEpsToSinglePrecisionAndAFirstOrderEnergyExcess) {
-  std::vector<System> systems;
-  for (Scene scene : {Scene::wall, Scene::pair, Scene::row3, Scene::chain})
-    for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
-      Case c = make_case(scene, p, 0.5, 0.5, 0.5);
-      c.bodies = scene == Scene::chain ? 6 : 0;
-      systems.push_back(make_system(c));
-    }
+  const std::vector<System> systems = test::monitor_systems();
   for (std::string_view name : {"si-faithful", "mlcp-dantzig-faithful"}) {
     const bullet::Config config = variant(name);
     long isolated = 0;

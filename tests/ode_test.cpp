@@ -1,31 +1,27 @@
 // The Open Dynamics Engine solver: its faithful variants against exact impact laws and the
 // event-driven reference; its default variants as documented facts (what ODE's defaults do
-// to an impact, with numbers, so that a change of ODE's version shows); reproducibility
-// across threads; status reporting.
+// to an impact, with numbers, so that a change of ODE's version shows); its chains. What
+// every solver must do (statuses, threads, the smoke set, large steps, time limits) is
+// checked once for all in solver_contract_test.cpp.
 
 #include <gtest/gtest.h>
 
 #include <ode/ode.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <limits>
 #include <sstream>
-#include <numbers>
 #include <optional>
 #include <string>
-#include <thread>
 #include <type_traits>
 #include <vector>
 
 #include "tests/support.hpp"
-#include "cases/case_set.hpp"
 #include "cases/system.hpp"
 #include "solvers/event_driven/event_driven.hpp"
 #include "solvers/ode/ode_solver.hpp"
-#include "sweep/sweep.hpp"
 
 namespace pb {
 namespace {
@@ -37,14 +33,9 @@ ode::Config variant(std::string_view name) {
 }
 
 using test::make_case;
-
-// A measured number for RecordProperty, in scientific notation (std::to_string would
-// print 1e-13 as 0.000000).
-std::string sci(double x) {
-  std::ostringstream out;
-  out << std::scientific << std::setprecision(2) << x;
-  return out.str();
-}
+using test::cradle;
+using test::observed_order;
+using test::sci;
 
 Result run(const System& s, std::string_view name, int n, bool history = false) {
   Settings st;
@@ -56,20 +47,6 @@ Result run(const System& s, std::string_view name, int n, bool history = false) 
 
 using Row = test::HistoryRow;
 using test::gap_rate;
-
-// Least-squares slope of log(err) against log(h), h halving along errs.
-double observed_order(const std::vector<double>& errs) {
-  double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
-  const double n = static_cast<double>(errs.size());
-  for (std::size_t i = 0; i < errs.size(); ++i) {
-    const double x = static_cast<double>(i), y = std::log2(errs[i]);
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-  }
-  return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
 
 // A free mass (no spring, no damper, no pulse) moving at v0 towards the wall from a gap g0,
 // with h = 0.01 (t_min 0.64, N = 64).
@@ -394,71 +371,15 @@ TEST(Ode, HistoryForcesAreWhatODEAppliedWithLoadsAtTheStepStart) {
   }
 }
 
-TEST(Ode, ParallelRunsGiveTheSerialPi1ToTheBit) {
-  std::vector<System> systems;
-  for (Scene scene : {Scene::wall, Scene::pair, Scene::row3})
-    for (double pi3 : {0.0, 0.5})
-      for (double pi6 : {0.1, 1.0}) {
-        Case c = make_case(scene, PulseShape::sine, 1.0, 0.5, 0.0);
-        c.pi3 = pi3;
-        c.pi6 = pi6;
-        c.pi8 = 2.0 * pi6;
-        systems.push_back(make_system(c));
-      }
-  for (const ode::Config& c : ode::variants()) {
-    std::vector<double> serial(systems.size()), parallel(systems.size());
-    for (std::size_t i = 0; i < systems.size(); ++i) serial[i] = run(systems[i], c.name, 64).pi1;
-    auto half = [&](std::size_t first) {
-      for (std::size_t i = first; i < systems.size(); i += 2) parallel[i] = run(systems[i], c.name, 64).pi1;
-    };
-    std::thread a(half, 0), b(half, 1);
-    a.join();
-    b.join();
-    for (std::size_t i = 0; i < systems.size(); ++i) {
-      EXPECT_TRUE(std::isfinite(serial[i])) << c.name << " case " << i;
-      EXPECT_EQ(parallel[i], serial[i]) << c.name << " case " << i;
-    }
-  }
-}
-
-TEST(Ode, SmokeCasesRunToTheEndOnEveryVariant) {
-  const CaseSet set = load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/smoke.toml");
-  ASSERT_FALSE(set.cases.empty());
-  for (const ode::Config& c : ode::variants())
-    for (int n : {8, 64})
-      for (const Case& k : set.cases) {
-        const Result r = run(make_system(k), c.name, n);
-        // ok also means every body stayed on the x axis, unrotated (checked by the solver).
-        EXPECT_EQ(r.status, Status::ok) << c.name << " " << k.family << " N=" << n << ": " << r.message;
-        EXPECT_TRUE(std::isfinite(r.pi1) && r.pi1 >= 0.0);
-      }
-}
-
-TEST(Ode, StatusReportsCapsNonFiniteAndDivergentRuns) {
-  const System s = make_system(make_case(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5));
+// The statuses every solver reports are the contract's (solver_contract_test.cpp); what is
+// ODE's own: explicit springs diverge at N = 3 (w h = 2 pi / 3 > 2), and an unknown variant
+// fails the run (the check refuses it before a sweep).
+TEST(Ode, CoarseStepsDivergeAndAnUnknownVariantFailsTheRun) {
+  Result r = run(make_system(make_case(Scene::row3, PulseShape::sine, 1.0, 2.0, 0.5)), "dantzig-faithful", 3);
+  EXPECT_EQ(r.status, Status::diverged) << r.message;
   Settings st;
-  st.step_cap = 10;
-  Result r = ode::solve(s, st);
-  EXPECT_EQ(r.status, Status::step_cap);
-  EXPECT_TRUE(std::isnan(r.pi1));
-
-  System bad = s;
-  bad.bodies[0].k = std::numeric_limits<double>::quiet_NaN();
-  r = ode::solve(bad, {});
-  EXPECT_EQ(r.status, Status::nan) << r.message;
-
-  System unstable = s;
-  unstable.bodies[1].k = -25.0 * unstable.bodies[1].m;
-  r = ode::solve(unstable, {});
-  EXPECT_EQ(r.status, Status::diverged) << r.message;
-
-  // Too coarse for explicit springs: w h = 2 pi / 3 > 2.
-  r = run(make_system(make_case(Scene::row3, PulseShape::sine, 1.0, 2.0, 0.5)), "dantzig-faithful", 3);
-  EXPECT_EQ(r.status, Status::diverged) << r.message;
-
-  st = {};
   st.variant = "nonsense";
-  r = ode::solve(s, st);
+  r = ode::solve(make_system(make_case(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5)), st);
   EXPECT_EQ(r.status, Status::failed);
 }
 
@@ -496,101 +417,7 @@ TEST(Ode, CheckAndDescribeNameEverySetting) {
   EXPECT_EQ(ode::check(st).rfind("wh:", 0), 0u);
 }
 
-// ---------------------------------------------------------------- large steps
-
-// The springs and dashpots are explicit forces of the step's start (symplectic Euler),
-// stable only for w h below ~1.9 (xi = 0.05). A pair whose body 1 is 100 times stiffer
-// than the pulse (Pi5 = 0.01) at w_max h = 10 and 100 grows by ~100 and ~1e4 per step.
-TEST(Ode, LargeStepsDivergeWithAStatusAMessageAndFiniteCounts) {
-  Case c = make_case(Scene::pair, PulseShape::sine, 1.0, 0.01, 0.5);
-  const System s = make_system(c);
-  for (const ode::Config& config : ode::variants()) {
-    for (double wh : {10.0, 100.0}) {
-      Settings st;
-      st.wh = wh;
-      const Result r = ode::solve_with(s, st, config);
-      EXPECT_TRUE(r.status == Status::diverged || r.status == Status::nan) << config.name << " wh=" << wh;
-      EXPECT_NE(r.message.find("w_max h"), std::string::npos) << r.message;
-      EXPECT_DOUBLE_EQ(r.step, wh * s.t_min / (2.0 * std::numbers::pi));
-      // Stopped early, with every count and the energy excess measured so far.
-      EXPECT_GE(r.steps, 1);
-      EXPECT_LT(static_cast<double>(r.steps), s.t_end / r.step);
-      EXPECT_GE(r.impacts, 0);
-      EXPECT_TRUE(std::isfinite(r.energy_excess)) << config.name << " wh=" << wh;
-      EXPECT_GT(r.energy_excess, 1e3) << "a runaway makes energy";
-      EXPECT_TRUE(std::isnan(r.pi1));
-    }
-    // Below the limit the same case runs to the end.
-    Settings st;
-    st.wh = 0.5;
-    const Result ok = ode::solve_with(s, st, config);
-    EXPECT_EQ(ok.status, Status::ok) << config.name << ": " << ok.message;
-    EXPECT_DOUBLE_EQ(ok.step, 0.5 * s.t_min / (2.0 * std::numbers::pi));
-  }
-}
-
-// A diverging run is one row of a sweep like any other. At wh = 10 the step is 1.6 T_p
-// wherever the pulse is the shortest period (t_min = T_p): bodies with Pi2 = 0.1, 0.15
-// then step at w h = 1, 1.5 and stay stable, while the stiff pair's body 1 runs away.
-TEST(Ode, SweepRecordsADivergingRowAndFinishesTheOthers) {
-  std::vector<Case> cases;
-  for (double pi2 : {0.1, 0.15}) cases.push_back(make_case(Scene::pair, PulseShape::cosine, pi2, 1.0, 0.5));
-  cases.push_back(make_case(Scene::pair, PulseShape::sine, 1.0, 0.01, 0.5));
-  for (double pi2 : {0.1, 0.15}) cases.push_back(make_case(Scene::wall, PulseShape::cosine, pi2, 1.0, 0.5));
-  const SolverInfo* solver = find_solver("ode");
-  ASSERT_NE(solver, nullptr);
-  Settings st;
-  st.wh = 10.0;
-  SweepOptions options;
-  options.threads = 2;
-  const std::vector<pb::Row> rows = run_sweep(cases, *solver, st, options);
-  ASSERT_EQ(rows.size(), cases.size());
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    EXPECT_EQ(rows[i].point, i);
-    EXPECT_NE(rows[i].settings.find("wh=10"), std::string::npos) << rows[i].settings;
-    EXPECT_NEAR(rows[i].wh, 10.0, 1e-12);
-    if (i == 2) {
-      EXPECT_TRUE(rows[i].result.status == Status::diverged || rows[i].result.status == Status::nan);
-      EXPECT_FALSE(rows[i].result.message.empty());
-    } else {
-      EXPECT_EQ(rows[i].result.status, Status::ok) << i << ": " << rows[i].result.message;
-      EXPECT_TRUE(std::isfinite(rows[i].result.pi1));
-    }
-  }
-}
-
-// The clock is read about once a millisecond of steps whatever a step costs, so a limit
-// holds on a 100-body chain too (whose step costs ~100 times a pair's).
-TEST(Ode, TimeLimitStopsAHundredBodyChainSoon) {
-  Case c = make_case(Scene::chain, PulseShape::cosine, 1.0, 0.5, 0.5);
-  c.bodies = 100;
-  c.n_free = 1e4;  // ~1e6 steps: minutes without the limit
-  Settings st;
-  st.time_limit = 0.05;
-  const auto start = std::chrono::steady_clock::now();
-  const Result r = ode::solve(make_system(c), st);
-  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EXPECT_EQ(r.status, Status::time_limit) << r.message;
-  EXPECT_GT(r.steps, 0);
-  // Measured 0.05 s; the margin is for a loaded machine and the sanitizer build.
-  EXPECT_LT(elapsed, 0.5);
-}
-
 // ---------------------------------------------------------------- the chain
-
-// Newton's cradle start of a uniform chain of n bodies: touching (Pi3 = 0), eps = 1, body 0
-// kicked at 100 a_p / w_p, no damping and a sine pulse (zero at t = 0), so that the first
-// step carries no force but the contacts'; t_end is one step of N = 64.
-System cradle(int n) {
-  Case c = make_case(Scene::chain, PulseShape::sine, 1.0, 1.0, 1.0);
-  c.bodies = n;
-  c.pi3 = 0.0;
-  c.kick = 100.0;
-  c.xi = 0.0;
-  System s = make_system(c);
-  s.t_end = s.step(64);
-  return s;
-}
 
 struct CradleStep {
   double error;     // largest |v_i - v_i(Newton)| over the bodies, over v0
@@ -700,13 +527,7 @@ TEST(Ode, QuickStepReachesTheCradleOutcomeOnlyOnShortChains) {
 // the energy excess is the scheme's first-order error (loads sampled at the step start
 // against the exact work of the step-mean pulse), not a restitution defect.
 TEST(Ode, MonitorMeasuresRestitutionEpsToRoundOffAndAFirstOrderEnergyExcess) {
-  std::vector<System> systems;
-  for (Scene scene : {Scene::wall, Scene::pair, Scene::row3, Scene::chain})
-    for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
-      Case c = make_case(scene, p, 0.5, 0.5, 0.5);
-      c.bodies = scene == Scene::chain ? 6 : 0;
-      systems.push_back(make_system(c));
-    }
+  const std::vector<System> systems = test::monitor_systems();
   for (std::string_view name : {"dantzig-faithful", "quickstep-faithful"}) {
     long isolated = 0;
     double worst_e = 0.0, worst_excess = 0.0, least_drop = std::numeric_limits<double>::infinity();

@@ -1,7 +1,8 @@
 // Siconos (solvers/siconos/) as a peer: its MoreauJeanOSI against the in-house Moreau-Jean
 // stepper at equal theta, gamma and h (with the load sampled the way Siconos samples it), its
 // event-driven LSODAR scheme against the event-driven reference, what its LCP driver and its
-// integrators actually do with the settings given, thread safety and status reporting.
+// integrators actually do with the settings given. Thread safety and statuses: the contract
+// of every solver (solver_contract_test.cpp).
 // Built only when CMake finds Siconos (tests/CMakeLists.txt).
 
 #include <gtest/gtest.h>
@@ -12,7 +13,6 @@
 #include <limits>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "cases/case_set.hpp"
@@ -26,12 +26,7 @@ namespace pb {
 namespace {
 
 using test::make_case;
-
-std::string sci(double x) {
-  std::ostringstream out;
-  out << std::scientific << std::setprecision(2) << x;
-  return out.str();
-}
+using test::sci;
 
 Settings variant(std::string_view name) {
   Settings st;
@@ -258,64 +253,11 @@ TEST(Siconos, KickedChainStartsFromTheSystemsStartState) {
   EXPECT_LT(worst, 1e-11);
 }
 
-// Runs from two threads at once give the results of serial runs, bit for bit: Siconos' global
-// state is touched under the solver's lock only (README, thread safety).
-TEST(Siconos, TwoThreadsGiveTheSerialResultsBitForBit) {
-  std::vector<System> systems;
-  for (Scene scene : {Scene::wall, Scene::pair, Scene::row3})
-    for (double pi2 : {0.8, 1.5}) systems.push_back(make_system(make_case(scene, PulseShape::cosine, pi2, 0.5, 0.5)));
-  for (std::string_view v : {"moreau-jean-lemke", "event-driven-lsodar"}) {
-    std::vector<Result> serial, parallel(systems.size());
-    for (const System& s : systems) serial.push_back(siconos::solve(s, variant(v)));
-    auto half = [&](std::size_t first) {
-      for (std::size_t i = first; i < systems.size(); i += 2) parallel[i] = siconos::solve(systems[i], variant(v));
-    };
-    std::thread a(half, 0), b(half, 1);
-    a.join();
-    b.join();
-    for (std::size_t i = 0; i < systems.size(); ++i) {
-      ASSERT_EQ(serial[i].status, Status::ok) << v << " " << i << ": " << serial[i].message;
-      EXPECT_EQ(parallel[i].pi1, serial[i].pi1) << v << " case " << i;
-      EXPECT_EQ(parallel[i].steps, serial[i].steps) << v << " case " << i;
-    }
-  }
-}
-
-TEST(Siconos, StatusReportsCapsTimeoutsNonFiniteAndDivergentRuns) {
+// The statuses every solver reports are the contract's (solver_contract_test.cpp: step cap,
+// a refused non-finite body, runaway, stop flag, time limit); Siconos' own: an unknown
+// variant fails the run (the check refuses it before a sweep).
+TEST(Siconos, AnUnknownVariantFailsTheRun) {
   const System s = make_system(make_case(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5));
-  for (std::string_view v : {"moreau-jean-lemke", "event-driven-lsodar"}) {
-    Settings st = variant(v);
-    st.step_cap = 10;
-    Result r = siconos::solve(s, st);
-    EXPECT_EQ(r.status, Status::step_cap) << v;
-    EXPECT_TRUE(std::isnan(r.pi1));
-
-    // A negative stiffness (an unstable spring) grows like exp(5 t): past 1e6 a_p / w_p^2.
-    // (A body alone: with a neighbour, Siconos' event-driven scheme fails first, on a gap.)
-    System unstable = s;
-    unstable.bodies = {s.bodies[1]};
-    unstable.ref = 0;
-    unstable.u_start = unstable.v_start = {0.0};
-    unstable.bodies[0].k = -25.0 * unstable.bodies[0].m;
-    r = siconos::solve(unstable, variant(v));
-    EXPECT_EQ(r.status, Status::diverged) << v << ": " << r.message;
-    EXPECT_GT(r.steps, 0);
-
-    // A long free vibration (n_free = 1e4 periods) cannot finish in a millisecond.
-    Case long_case = make_case(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5);
-    long_case.n_free = 1e4;
-    st = variant(v);
-    st.time_limit = 1e-3;
-    r = siconos::solve(make_system(long_case), st);
-    EXPECT_EQ(r.status, Status::time_limit) << v;
-    EXPECT_GT(r.steps, 0);
-  }
-  // Siconos would print a message of its own on a NaN: the run stops before it.
-  System bad = s;
-  bad.bodies[0].k = std::numeric_limits<double>::quiet_NaN();
-  const Result r = siconos::solve(bad, {});
-  EXPECT_EQ(r.status, Status::failed);
-  EXPECT_EQ(r.message.rfind("every body needs", 0), 0u) << r.message;
   EXPECT_EQ(siconos::solve(s, variant("nonsense")).status, Status::failed);
 }
 

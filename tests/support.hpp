@@ -1,8 +1,14 @@
 #pragma once
-// What the solver tests share: the paper's standard pair/row3 case, and reading a
-// time-stepper's History one row at a time, by column meaning.
+// What the solver tests share: the paper's standard pair/row3 case, reading a time-stepper's
+// History one row at a time, by column meaning, the measured-number format, the observed
+// order of a list of errors, the cradle start and the stress monitor's cases.
 
+#include <cmath>
 #include <cstddef>
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "cases/system.hpp"
 #include "solvers/solver.hpp"
@@ -22,6 +28,56 @@ inline Case make_case(Scene scene, PulseShape p, double pi2, double pi5, double 
   c.pi8 = 1.0;
   c.eps = eps;
   return c;
+}
+
+// A measured number for RecordProperty and messages, in scientific notation (std::to_string
+// would print 1e-13 as 0.000000).
+inline std::string sci(double x) {
+  std::ostringstream out;
+  out << std::scientific << std::setprecision(2) << x;
+  return out.str();
+}
+
+// Least-squares slope of log(err) against log(h), h divided by 2^halvings from one error to
+// the next (1: N doubling, 2: N quadrupling).
+inline double observed_order(const std::vector<double>& errs, int halvings = 1) {
+  double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+  const double n = static_cast<double>(errs.size());
+  for (std::size_t i = 0; i < errs.size(); ++i) {
+    const double x = halvings * static_cast<double>(i), y = std::log2(errs[i]);
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+  }
+  return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+// Newton's cradle start of a uniform chain of n bodies: touching (Pi3 = 0), eps = 1, body 0
+// kicked at 100 a_p / w_p, no damping and a sine pulse (zero at t = 0), so that the first
+// step carries no force but the contacts'; t_end is one step of N = 64.
+inline System cradle(int n) {
+  Case c = make_case(Scene::chain, PulseShape::sine, 1.0, 1.0, 1.0);
+  c.bodies = n;
+  c.pi3 = 0.0;
+  c.kick = 100.0;
+  c.xi = 0.0;
+  System s = make_system(c);
+  s.t_end = s.step(64);
+  return s;
+}
+
+// The stress monitor's cases of the engine tests: wall, pair, row3 and a 6-body chain under
+// both pulses (Pi2 = Pi5 = 0.5, eps = 0.5).
+inline std::vector<System> monitor_systems() {
+  std::vector<System> systems;
+  for (Scene scene : {Scene::wall, Scene::pair, Scene::row3, Scene::chain})
+    for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
+      Case c = make_case(scene, p, 0.5, 0.5, 0.5);
+      c.bodies = scene == Scene::chain ? 6 : 0;
+      systems.push_back(make_system(c));
+    }
+  return systems;
 }
 
 // Row r of a History: t, u[nb], v[nb], g[nc], lambda[nc] (solvers/solver.hpp).
