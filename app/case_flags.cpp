@@ -83,8 +83,9 @@ void add_case_flags(CLI::App& command, CaseFlags& f) {
   command.add_option("--pulse", f.pulse, "Pulse: sine or cosine");
   command.add_option("--directivity", f.directivity, "Directivity: normal or reverse");
   for (const CaseField& field : kCaseFields) {
-    CLI::Option* option = field.number ? command.add_option(flag_of(field), f.numbers.*field.number, std::string(field.help))
-                                       : command.add_option(flag_of(field), f.numbers.*field.integer, std::string(field.help));
+    const std::string flag = flag_of(field), help(field.help);
+    CLI::Option* option = field.number ? command.add_option(flag, f.numbers.*field.number, help)
+                                       : command.add_option(flag, f.numbers.*field.integer, help);
     if (!field.required) option->capture_default_str();
   }
   command.add_option("--case-file", f.case_file, "Take the case from a case-set file instead of the flags above");

@@ -45,7 +45,7 @@ inline constexpr std::array<CaseField, 13> kCaseFields = {{
     {"n_free", &Case::n_free, nullptr, FieldUse::every, false, "Free-vibration periods T_max after the pulse"},
     {"a_p", &Case::a_p, nullptr, FieldUse::every, false, "Pulse amplitude a_p (Pi1 does not depend on it)"},
     {"w_p", &Case::w_p, nullptr, FieldUse::every, false, "Pulse circular frequency w_p (Pi1 does not depend on it)"},
-    {"bodies", nullptr, &Case::bodies, FieldUse::chain, true, "Chain: number of bodies N (2 to 1000: kMaxChainBodies)"},
+    {"bodies", nullptr, &Case::bodies, FieldUse::chain, true, "Chain: number of bodies N, 2 to 1000"},
     {"kick", &Case::kick, nullptr, FieldUse::chain, false,
      "Chain: start velocity of body 0 (the left end) towards +x, times w_p / a_p"},
 }};

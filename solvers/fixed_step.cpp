@@ -194,8 +194,8 @@ void finish_steps(const System& sys, const StepTally& tally, long k, double h, c
       msg << res.message;
     else
       msg << (why ? why : res.status == Status::nan ? "non-finite state" : "|u| above 1e6 a_p/w_p^2");
-    msg << " at step " << k << " (t = " << static_cast<double>(k) * h << ", w_max h = " << 2.0 * std::numbers::pi * h / sys.t_min
-        << ")";
+    msg << " at step " << k << " (t = " << static_cast<double>(k) * h
+        << ", w_max h = " << 2.0 * std::numbers::pi * h / sys.t_min << ")";
     res.message = msg.str();
   }
   if (res.status != Status::ok) return;

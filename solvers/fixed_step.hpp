@@ -25,6 +25,12 @@
 
 namespace pb {
 
+// Every time-stepper's defaults: N when neither Settings::steps nor wh is given (64 steps
+// per shortest period: Moreau-Jean's Pi1 error is ~1e-3 there on the paper set), and the
+// step cap when Settings::step_cap is 0 (1e8 steps: seconds to minutes of any engine).
+inline constexpr int kDefaultSteps = 64;
+inline constexpr long kDefaultStepCap = 100'000'000;
+
 // The step of a run and how many steps reach t_end.
 struct StepPlan {
   double h = 0.0;

@@ -29,7 +29,9 @@ double penetration_steps(const Result& r) {
 
 namespace {
 
-std::string shown(double x) { return std::isnan(x) ? "nan" : std::isinf(x) ? (x > 0 ? "inf" : "-inf") : format_number(x); }
+std::string shown(double x) {
+  return std::isnan(x) ? "nan" : std::isinf(x) ? (x > 0 ? "inf" : "-inf") : format_number(x);
+}
 
 }  // namespace
 

@@ -12,7 +12,6 @@
 //             (applyCentralForce); Bullet's step is semi-implicit Euler:
 //             v_k+1 = v_k + h F_k / m + (contact impulse) / m, u_k+1 = u_k + h v_k+1:
 //             explicit springs, stable only for w h below ~1.9 (README, large steps).
-//   step      h = time_step(system, settings, kDefaultSteps): t_min / N, or Settings::wh.
 //   contacts  no collision detection: while g_j <= 0 at the start of a step, contact j has
 //             one btManifoldPoint (normal +x, distance g_j, no friction acting) in its
 //             btPersistentManifold, and the manifolds go to the variant's solveGroup
@@ -20,22 +19,23 @@
 //             restitution: target separation speed = restitution x approach speed at the
 //             start of the step (setupContactConstraint), with the variant's threshold,
 //             ERP, split impulse and warm start.
-//   monitor   with Settings::monitor, a StepMonitor (solvers/monitor.hpp) sees every step,
-//             a contact counting as pushed when Bullet applied a positive impulse to it.
+//   pushed    a contact counts as pushing (StepMonitor, contact phases) when its force
+//             over the step is positive.
 //
-// Variants and every setting: variants.hpp; the engine objects and the step: engine.hpp;
-// modelling, restitution law, single precision and what Bullet's defaults change, with
-// numbers: solvers/bullet/README.md.
+// The run around the steps (h, step count and cap, counts, monitor, history, limits) is
+// the shell every time-stepper shares, solvers/fixed_step.hpp. Variants and every setting:
+// variants.hpp; the engine objects and the step: engine.hpp; modelling, restitution law,
+// single precision and what Bullet's defaults change, with numbers:
+// solvers/bullet/README.md.
 
 #include <string>
 
 #include "solvers/bullet/variants.hpp"
+#include "solvers/fixed_step.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb::bullet {
 
-inline constexpr int kDefaultSteps = 64;              // N when Settings::steps is 0
-inline constexpr long kDefaultStepCap = 100'000'000;  // when Settings::step_cap is 0
 
 Result solve(const System& system, const Settings& settings);
 std::string describe(const Settings& settings);

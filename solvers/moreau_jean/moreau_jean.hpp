@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "solvers/fixed_step.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb::moreau_jean {
@@ -16,8 +17,6 @@ namespace pb::moreau_jean {
 inline constexpr std::string_view kStepMean = "step-mean";      // the exact step mean of a_g (default)
 inline constexpr std::string_view kEndSamples = "end-samples";  // (1 - theta) a_g(t_k) + theta a_g(t_k+1)
 
-inline constexpr int kDefaultSteps = 64;              // N when neither Settings::steps nor wh is given
-inline constexpr long kDefaultStepCap = 100'000'000;  // when Settings::step_cap is 0
 
 Result solve(const System& system, const Settings& settings);
 std::string describe(const Settings& settings);

@@ -10,27 +10,27 @@
 //   forces    -k u - c v - m a_g(t) at the start of each step (dBodyAddForce); ODE then
 //             steps v += h/m (F + contact force), u += h v_new (semi-implicit Euler):
 //             explicit springs, stable only for w h below ~1.9 (README, large steps).
-//   step      h = time_step(system, settings, kDefaultSteps): t_min / N, or Settings::wh.
 //   contacts  no collision detection: for each contact of the scene whose gap passes the
 //             variant's test (variants.hpp) a dContactJoint with normal +x on the right
 //             body (the wall is the static environment), depth max(0, -g), mu 0, and
 //             dContactBounce with bounce = eps: ODE's Newton-type law, target separation
 //             speed eps times the approach speed at the start of the step.
-//   monitor   with Settings::monitor, a StepMonitor (solvers/monitor.hpp) sees every step,
-//             a contact counting as pushed when its joint feedback force is positive.
+//   pushed    a contact counts as pushing (StepMonitor, contact phases) when its force
+//             over the step is positive.
 //
-// The modelling, the settings of each variant and what ODE's defaults change are in
-// solvers/ode/README.md; the engine set-up and its thread safety in world.hpp.
+// The run around the steps (h, step count and cap, counts, monitor, history, limits) is
+// the shell every time-stepper shares, solvers/fixed_step.hpp. The modelling, the settings
+// of each variant and what ODE's defaults change are in solvers/ode/README.md; the engine
+// set-up and its thread safety in world.hpp.
 
 #include <string>
 
 #include "solvers/ode/variants.hpp"
+#include "solvers/fixed_step.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb::ode {
 
-inline constexpr int kDefaultSteps = 64;              // N when Settings::steps is 0
-inline constexpr long kDefaultStepCap = 100'000'000;  // when Settings::step_cap is 0
 
 Result solve(const System& system, const Settings& settings);
 std::string describe(const Settings& settings);

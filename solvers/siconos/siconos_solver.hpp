@@ -19,13 +19,12 @@
 #include <string>
 #include <string_view>
 
+#include "solvers/fixed_step.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb::siconos {
 
 inline constexpr std::string_view kDefaultVariant = "moreau-jean-lemke";
-inline constexpr int kDefaultSteps = 64;              // N when neither Settings::steps nor wh is given
-inline constexpr long kDefaultStepCap = 100'000'000;  // time-stepping: steps, when Settings::step_cap is 0
 inline constexpr long kDefaultEventCap = 1'000'000;   // event-driven: events, when Settings::step_cap is 0
 
 // event-driven-lsodar: LSODAR's error control (itol = 1: scalar rtol and atol, on every

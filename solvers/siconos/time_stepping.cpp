@@ -81,8 +81,8 @@ class Engine : public StepEngine {
     count(run_.last_lcp(), paths_);
     if (run_.last_lcp().info != 0) {
       res.status = Status::failed;
-      res.message =
-          "Siconos' LCP solver returned info " + std::to_string(run_.last_lcp().info) + " at step " + std::to_string(k + 1);
+      res.message = "Siconos' LCP solver returned info " + std::to_string(run_.last_lcp().info) + " at step " +
+                    std::to_string(k + 1);
       return StepOutcome::taken_then_stop;
     }
     for (int j = 0; j < sys_.n_contacts(); ++j) out_.force[static_cast<std::size_t>(j)] = run_.impulse(j) * force_unit_;
