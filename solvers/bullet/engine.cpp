@@ -113,11 +113,6 @@ double World::gap(int j) const {
   return system_.delta + u(system_.right(j)) - (left == kWall ? 0.0 : u(left));
 }
 
-double World::gap_rate(int j) const {
-  const int left = system_.left(j);
-  return v(system_.right(j)) - (left == kWall ? 0.0 : v(left));
-}
-
 double World::impulse(int j) const {
   const btPersistentManifold& m = *manifolds_[ix(j)];
   return m.getNumContacts() > 0 ? m.getContactPoint(0).m_appliedImpulse : 0.0;

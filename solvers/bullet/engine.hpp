@@ -57,7 +57,6 @@ class World {
   double u(int i) const { return bodies_[ix(i)]->getWorldTransform().getOrigin().x(); }
   double v(int i) const { return bodies_[ix(i)]->getLinearVelocity().x(); }
   double gap(int j) const;
-  double gap_rate(int j) const;
   // Whether contact j had a manifold point in the last step, and whether it was new then.
   bool in_contact(int j) const { return manifolds_[ix(j)]->getNumContacts() > 0; }
   bool added(int j) const { return added_[ix(j)] != 0; }

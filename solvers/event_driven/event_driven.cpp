@@ -85,10 +85,7 @@ class Solver {
     st_.u = start_or_rest(s.u_start, s);
     st_.v = start_or_rest(s.v_start, s);
     st_.g.resize(nc);
-    for (int j = 0; j < s.n_contacts(); ++j) {
-      const int l = s.left(j);
-      st_.g[ix(j)] = s.delta + st_.u[ix(s.right(j))] - (l == kWall ? 0.0 : st_.u[ix(l)]);
-    }
+    for (int j = 0; j < s.n_contacts(); ++j) st_.g[ix(j)] = s.gap(j, st_.u.data());
     st_.active.assign(nc, 0);
     fr_.body.resize(n);
     fr_.contact.resize(nc);

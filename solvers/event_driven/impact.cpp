@@ -9,10 +9,7 @@
 
 namespace pb::event_driven {
 
-double gap_rate(const System& s, int j, std::span<const double> v) {
-  const int l = s.left(j), r = s.right(j);
-  return v[static_cast<std::size_t>(r)] - (l == kWall ? 0.0 : v[static_cast<std::size_t>(l)]);
-}
+double gap_rate(const System& s, int j, std::span<const double> v) { return s.gap_rate(j, v.data()); }
 
 namespace {
 

@@ -62,11 +62,8 @@ State::State(const System& s)
 
 void State::update_gaps(const System& s) {
   for (int j = 0; j < s.n_contacts(); ++j) {
-    const auto jj = static_cast<std::size_t>(j);
-    const int l = s.left(j);
-    const auto r = static_cast<std::size_t>(s.right(j));
-    g[jj] = s.delta + u[r] - (l == kWall ? 0.0 : u[static_cast<std::size_t>(l)]);
-    rate[jj] = v[r] - (l == kWall ? 0.0 : v[static_cast<std::size_t>(l)]);
+    g[static_cast<std::size_t>(j)] = s.gap(j, u.data());
+    rate[static_cast<std::size_t>(j)] = s.gap_rate(j, v.data());
   }
 }
 
