@@ -490,13 +490,6 @@ TEST(BulletDefault, DefaultsBreakSelfSimilarity) {
 
 // The statuses every solver reports are the contract's (solver_contract_test.cpp); Bullet's
 // own: an unknown variant fails the run (the check refuses it before a sweep).
-TEST(Bullet, AnUnknownVariantFailsTheRun) {
-  Settings unknown;
-  unknown.variant = "si-fast";
-  const System s = make_system(make_case(Scene::pair, PulseShape::sine, 1.0, 2.0, 0.5));
-  EXPECT_EQ(bullet::solve(s, unknown).status, Status::failed);
-}
-
 // ---------------------------------------------------------------- the chain
 
 // Newton's law on every contact at once with eps = 1 (the LCP of the first step): body 0

@@ -256,11 +256,6 @@ TEST(Siconos, KickedChainStartsFromTheSystemsStartState) {
 // The statuses every solver reports are the contract's (solver_contract_test.cpp: step cap,
 // a refused non-finite body, runaway, stop flag, time limit); Siconos' own: an unknown
 // variant fails the run (the check refuses it before a sweep).
-TEST(Siconos, AnUnknownVariantFailsTheRun) {
-  const System s = make_system(make_case(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5));
-  EXPECT_EQ(siconos::solve(s, variant("nonsense")).status, Status::failed);
-}
-
 TEST(Siconos, CheckAndDescribeNameEverySetting) {
   Settings st;
   EXPECT_EQ(siconos::check(st), "");

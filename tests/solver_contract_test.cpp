@@ -217,6 +217,17 @@ TEST_P(SolverContract, CheckRefusesAnUnknownVariantAndBadLimits) {
   EXPECT_EQ(solver().check(st).rfind("time_limit:", 0), 0u) << solver().check(st);
 }
 
+TEST_P(SolverContract, AnUnknownVariantFailsTheRun) {
+  Settings st = settings();
+  st.variant = "no-such-variant";
+  Case c;
+  c.scene = Scene::pair;
+  c.pi5 = 0.5;
+  const Result r = solver().solve(make_system(c), st);
+  EXPECT_EQ(r.status, Status::failed) << r.message;
+  EXPECT_FALSE(r.message.empty());
+}
+
 TEST_P(SolverContract, StepCapEndsTheRunAsStepCap) {
   Settings st = settings();
   st.step_cap = 2;

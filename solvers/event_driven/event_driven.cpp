@@ -512,6 +512,13 @@ class Solver {
 }  // namespace
 
 Result solve(const System& system, const Settings& settings) {
+  // A variant it does not have fails the run, as every solver's does (the contract).
+  if (!settings.variant.empty() && settings.variant != kLemkeVariant) {
+    Result r;
+    r.status = Status::failed;
+    r.message = "variant: unknown '" + clip(settings.variant) + "'";
+    return r;
+  }
   try {
     return Solver(system, settings).run();
   } catch (const std::exception& e) {

@@ -126,6 +126,12 @@ Result run_dynamic(const System& sys, const Settings& set, double h, long n, Res
 }
 
 Result dispatch(const System& sys, const Settings& set, bool force_dynamic) {
+  if (!set.variant.empty() && set.variant != kStepMean && set.variant != kEndSamples) {
+    Result res;
+    res.status = Status::failed;
+    res.message = "variant: unknown '" + clip(set.variant) + "'";
+    return res;
+  }
   try {
     StepPlan plan;
     Result res = plan_steps(sys, set, kDefaultSteps, kDefaultStepCap, plan);
