@@ -20,8 +20,8 @@
 #include "app/output_files.hpp"
 #include "app/sweep_watch.hpp"
 #include "cases/case_set.hpp"
-#include "sweep/baseline.hpp"
-#include "sweep/row_read.hpp"
+#include "studies/baseline.hpp"
+#include "rows/row_read.hpp"
 
 extern char** environ;
 

@@ -1,6 +1,6 @@
 #pragma once
 // `poundbench baseline` and `poundbench compare`: the accuracy regression baselines
-// (sweep/baseline.hpp) from the command line.
+// (studies/baseline.hpp) from the command line.
 //
 //   baseline CASESET [--settings LIST] --out FILE   store the rows of a case set through the
 //                                                   reference and every setting of LIST

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "cases/case.hpp"
-#include "sweep/row.hpp"
+#include "rows/row.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb::mpi {

@@ -20,7 +20,7 @@
 #include "app/output_lock.hpp"
 #include "app/processes.hpp"
 #include "cases/case.hpp"
-#include "sweep/row.hpp"
+#include "rows/row.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb::app {

@@ -1,6 +1,6 @@
 #pragma once
 // `poundbench spectrum CASESET`: every case of a case-set file through one solver, one CSV
-// row per case in point order (columns: sweep/row.hpp).
+// row per case in point order (columns: rows/row.hpp).
 //
 // Rows are appended, flushed, to a partial file as they complete (completion order), so an
 // interrupt or a crash loses only the points that were running, and a rerun with the same

@@ -7,7 +7,7 @@
 #include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/resumable_sweep.hpp"
-#include "sweep/stress.hpp"
+#include "studies/stress.hpp"
 
 namespace pb::app {
 

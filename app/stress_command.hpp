@@ -1,7 +1,7 @@
 #pragma once
 // `poundbench stress CASESET --settings LIST`: every case through the reference (the truth)
 // and through every setting of a settings list, then the stability checks of
-// sweep/stress.hpp per (family, solver, variant, setting): one summary CSV row each,
+// studies/stress.hpp per (family, solver, variant, setting): one summary CSV row each,
 // with pass or fail per check. --points also writes every run's row (the columns of
 // `spectrum` plus pi1_error), the truth first. Finished runs go to a partial file, from
 // which a rerun resumes (app/resumable_sweep.hpp).

@@ -3,7 +3,7 @@
 #include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/resumable_sweep.hpp"
-#include "sweep/workprecision.hpp"
+#include "studies/workprecision.hpp"
 
 namespace pb::app {
 

@@ -1,7 +1,7 @@
 #pragma once
 // What `workprecision` and `stress` share: a case set and a settings list, checked on every
 // process, the output files checked on the leader, and the study (the truth and every
-// setting, sweep/workprecision.hpp) run as one resumable sweep (app/resumable_sweep.hpp).
+// setting, studies/workprecision.hpp) run as one resumable sweep (app/resumable_sweep.hpp).
 
 #include <optional>
 #include <string>
@@ -13,8 +13,8 @@
 #include "app/output_lock.hpp"
 #include "app/processes.hpp"
 #include "cases/case_set.hpp"
-#include "sweep/row.hpp"
-#include "sweep/settings_list.hpp"
+#include "rows/row.hpp"
+#include "studies/settings_list.hpp"
 
 namespace pb::app {
 

@@ -1,6 +1,6 @@
 #pragma once
 // `poundbench workprecision CASESET --settings LIST`: every case through the reference and
-// through every setting of a settings list (sweep/settings_list.hpp); one CSV row per
+// through every setting of a settings list (studies/settings_list.hpp); one CSV row per
 // (family, solver, variant, setting) with the median, 95th percentile and max relative
 // Pi1 error, the failed runs, and the median and mean CPU time per run. --points also
 // writes every run's row (the columns of `spectrum`), reference first. Finished runs go to

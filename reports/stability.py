@@ -16,8 +16,8 @@ FLOOR = 1e-17  # energy excesses and penetrations at or below this are drawn on 
 
 
 def tolerances():
-    """The checks' tolerances, read from where the code states them (sweep/stress.hpp)."""
-    header = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "sweep", "stress.hpp")
+    """The checks' tolerances, read from where the code states them (studies/stress.hpp)."""
+    header = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "studies", "stress.hpp")
     with open(header) as f:
         found = dict(re.findall(r"inline constexpr double (k\w+) = ([^;]+);", f.read()))
     return {name: float(value) for name, value in found.items()}

@@ -18,7 +18,7 @@
 #include <thread>
 
 #include "sweep/partial_rows.hpp"
-#include "sweep/row_read.hpp"
+#include "rows/row_read.hpp"
 
 namespace pb::mpi {
 

@@ -34,7 +34,7 @@
 
 #include "cases/case.hpp"
 #include "sweep/mpi_job.hpp"
-#include "sweep/row.hpp"
+#include "rows/row.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb::mpi {

@@ -4,7 +4,7 @@
 #include <array>
 #include <charconv>
 
-#include "sweep/row_read.hpp"
+#include "rows/row_read.hpp"
 
 namespace pb {
 

@@ -2,7 +2,7 @@
 // The partial file of a sweep: the rows it has finished, in the order they finished, so
 // that an interrupted sweep (Ctrl-C, a crash, a lost MPI rank) resumes where it stopped.
 //
-// Format: CSV with the columns of sweep/row.hpp. A sweep of several runs (a work-precision
+// Format: CSV with the columns of rows/row.hpp. A sweep of several runs (a work-precision
 // or stress study) puts a `run` column first, the run's index (0 is the truth), since the
 // same point appears once per run; a sweep of one run (spectrum) has exactly the output's
 // columns. The same line, with the run column, carries a row from an MPI rank to rank 0.
@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "cases/case.hpp"
-#include "sweep/row.hpp"
+#include "rows/row.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb {
@@ -41,7 +41,7 @@ std::string partial_line(const Row& row, bool with_run);
 Row parse_partial_line(std::string_view record, bool with_run);
 
 // The rows of a partial file of the sweep (cases, runs), each checked as above and by
-// row_problem (sweep/row.hpp), sorted by task. An empty input has no rows. Throws
+// row_problem (rows/row.hpp), sorted by task. An empty input has no rows. Throws
 // PartialRowsError naming `file` and the line: for a row of another sweep, a damaged row
 // (an ok without a finite Pi1, a negative count), and a second row of one task.
 std::vector<Row> read_partial_rows(std::istream& in, std::string_view file, std::span<const Case> cases,

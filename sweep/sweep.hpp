@@ -24,7 +24,7 @@
 
 #include "cases/case.hpp"
 #include "solvers/solver.hpp"
-#include "sweep/row.hpp"
+#include "rows/row.hpp"
 
 namespace pb {
 

@@ -1,10 +1,10 @@
-// Accuracy regression baselines (sweep/baseline.hpp, tests/baselines/): the stored rows are
+// Accuracy regression baselines (studies/baseline.hpp, tests/baselines/): the stored rows are
 // reproduced by the current solvers within each solver's stated tolerance, and the
 // comparison catches what it must (a moved Pi1, a changed status, a lost or new case).
 // A failure here means a solver's results changed: if on purpose, re-baseline with
 // `poundbench baseline --update tests/baselines/FILE.csv` and say why in the commit.
 
-#include "sweep/baseline.hpp"
+#include "studies/baseline.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@
 
 #include "cases/case_set.hpp"
 #include "solvers/solver.hpp"
-#include "sweep/row_read.hpp"
+#include "rows/row_read.hpp"
 
 namespace pb {
 namespace {

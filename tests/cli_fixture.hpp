@@ -21,8 +21,8 @@
 #include <string_view>
 #include <vector>
 
-#include "sweep/row.hpp"
-#include "sweep/row_read.hpp"
+#include "rows/row.hpp"
+#include "rows/row_read.hpp"
 
 namespace pb {
 

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "solvers/solver.hpp"
-#include "sweep/stress.hpp"
+#include "studies/stress.hpp"
 #include "sweep/sweep.hpp"
 #include "tests/cli_fixture.hpp"
 

@@ -1,4 +1,4 @@
-// Rows read back from CSV (sweep/row_read.hpp) and the partial files of resumed sweeps
+// Rows read back from CSV (rows/row_read.hpp) and the partial files of resumed sweeps
 // (sweep/partial_rows.hpp): a row read back prints the same line and the same derived
 // values, and a partial file of another sweep is refused.
 
@@ -14,7 +14,7 @@
 #include "cases/case_set.hpp"
 #include "solvers/solver.hpp"
 #include "sweep/partial_rows.hpp"
-#include "sweep/row_read.hpp"
+#include "rows/row_read.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb {

@@ -1,7 +1,7 @@
-// The stress study's checks (sweep/stress.hpp): pass and fail from hand-made rows at and
+// The stress study's checks (studies/stress.hpp): pass and fail from hand-made rows at and
 // around each tolerance, what a failed run counts against, and a tiny study end to end.
 
-#include "sweep/stress.hpp"
+#include "studies/stress.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The stress case set (cases/sets/stress.toml) through the stress study (sweep/stress.hpp):
+// The stress case set (cases/sets/stress.toml) through the stress study (studies/stress.hpp):
 // the reference and the in-house stepper must pass its checks with the tolerances stated
 // there, where their theory says they do, and Pi1 must not depend on the pulse scale.
 // Where the stepper's own theory says it makes energy (theta = 1 with elastic impacts, a
@@ -16,7 +16,7 @@
 #include "cases/case_set.hpp"
 #include "cases/system.hpp"
 #include "solvers/solver.hpp"
-#include "sweep/stress.hpp"
+#include "studies/stress.hpp"
 
 namespace pb {
 namespace {

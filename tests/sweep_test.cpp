@@ -1,4 +1,4 @@
-// The sweep runner (sweep/sweep.hpp) and its CSV rows (sweep/row.hpp).
+// The sweep runner (sweep/sweep.hpp) and its CSV rows (rows/row.hpp).
 
 #include <gtest/gtest.h>
 
@@ -15,8 +15,8 @@
 
 #include "cases/case_set.hpp"
 #include "solvers/solver.hpp"
-#include "sweep/row.hpp"
-#include "sweep/row_read.hpp"
+#include "rows/row.hpp"
+#include "rows/row_read.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb {
@@ -176,7 +176,7 @@ Result negative_count(const System&, const Settings&) {
   return r;
 }
 
-// A solver's result that a row read back could not be (sweep/row.hpp row_problem) is
+// A solver's result that a row read back could not be (rows/row.hpp row_problem) is
 // written as a failed row saying why, never as the result.
 TEST(RunPoint, TurnsAnInconsistentResultIntoAFailedRow) {
   for (auto* solve : {&ok_without_pi1, &negative_count}) {

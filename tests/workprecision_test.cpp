@@ -8,9 +8,9 @@
 #include <string>
 
 #include "cases/case_set.hpp"
-#include "sweep/settings_list.hpp"
-#include "sweep/stats.hpp"
-#include "sweep/workprecision.hpp"
+#include "studies/settings_list.hpp"
+#include "studies/stats.hpp"
+#include "studies/workprecision.hpp"
 
 namespace pb {
 namespace {

@@ -13,7 +13,7 @@
 #include <typeinfo>
 
 #include "cases/case_set.hpp"
-#include "sweep/settings_list.hpp"
+#include "studies/settings_list.hpp"
 
 namespace pb::fuzz {
 

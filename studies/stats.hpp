@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "sweep/row.hpp"
+#include "rows/row.hpp"
 
 namespace pb {
 

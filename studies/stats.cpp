@@ -1,4 +1,4 @@
-#include "sweep/stats.hpp"
+#include "studies/stats.hpp"
 
 #include <algorithm>
 #include <cmath>

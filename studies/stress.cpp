@@ -1,10 +1,10 @@
-#include "sweep/stress.hpp"
+#include "studies/stress.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "sweep/stats.hpp"
+#include "studies/stats.hpp"
 
 namespace pb {
 

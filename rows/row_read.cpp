@@ -1,4 +1,4 @@
-#include "sweep/row_read.hpp"
+#include "rows/row_read.hpp"
 
 #include <charconv>
 #include <cmath>

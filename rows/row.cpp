@@ -1,4 +1,4 @@
-#include "sweep/row.hpp"
+#include "rows/row.hpp"
 
 #include <algorithm>
 #include <array>
@@ -14,7 +14,7 @@ namespace pb {
 double min_gap_ratio(const Row& row) { return row.result.min_gap / row.length_scale; }
 
 // Through min_gap_ratio, the value the CSV carries, so that a row read back from its CSV
-// line (sweep/row_read.hpp) gives the same bits.
+// line (rows/row_read.hpp) gives the same bits.
 double penetration(const Row& row) {
   const double depth = std::max(0.0, -min_gap_ratio(row));
   return row.input.pi3 > 0.0 ? depth / row.input.pi3 : depth;

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "cases/case.hpp"
-#include "sweep/settings_list.hpp"
-#include "sweep/stats.hpp"
+#include "studies/settings_list.hpp"
+#include "studies/stats.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb {

@@ -1,4 +1,4 @@
-#include "sweep/baseline.hpp"
+#include "studies/baseline.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,8 +8,8 @@
 #include <tuple>
 
 #include "cases/fields.hpp"
-#include "sweep/row_read.hpp"
-#include "sweep/workprecision.hpp"
+#include "rows/row_read.hpp"
+#include "studies/workprecision.hpp"
 
 namespace pb {
 

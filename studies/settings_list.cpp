@@ -1,4 +1,4 @@
-#include "sweep/settings_list.hpp"
+#include "studies/settings_list.hpp"
 
 #include <toml++/toml.h>
 

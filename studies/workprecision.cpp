@@ -1,4 +1,4 @@
-#include "sweep/workprecision.hpp"
+#include "studies/workprecision.hpp"
 
 #include <algorithm>
 #include <sstream>

@@ -1,10 +1,10 @@
 #pragma once
-// Rows read back from the CSV that sweep/row.hpp writes: the rows of a resumed sweep's
+// Rows read back from the CSV that rows/row.hpp writes: the rows of a resumed sweep's
 // partial file, the rows the ranks of an MPI job send to rank 0, a stored baseline
-// (sweep/baseline.hpp), and another program's rows in the same columns.
+// (studies/baseline.hpp), and another program's rows in the same columns.
 //
 // A row read back prints the same CSV line, bit for bit, and gives the same summaries
-// (sweep/stats.hpp, sweep/stress.hpp). The CSV carries min_gap already divided by the
+// (studies/stats.hpp, studies/stress.hpp). The CSV carries min_gap already divided by the
 // length scale, so a row read back holds that ratio in Result::min_gap with length_scale
 // 1; min_gap_ratio and penetration, the only users of the two, then give the same values.
 // What the CSV does not carry stays at its default: Result::t_max, step, gap_rate_max and
@@ -17,7 +17,7 @@
 #include <string_view>
 #include <vector>
 
-#include "sweep/row.hpp"
+#include "rows/row.hpp"
 
 namespace pb {
 
@@ -51,7 +51,7 @@ class Columns {
 };
 
 // The row of a record under `columns`; throws RowReadError, also for a row that
-// row_problem (sweep/row.hpp) refuses: rows read back pass the checks of rows written.
+// row_problem (rows/row.hpp) refuses: rows read back pass the checks of rows written.
 Row parse_row(const Columns& columns, const std::vector<std::string>& fields);
 // The row of csv_line's fields (the columns of csv_header, in its order).
 Row parse_row(const std::vector<std::string>& fields);

@@ -6,7 +6,7 @@
 //
 //   finite       every run ended with status ok and a finite Pi1
 //   energy       largest Result::energy_excess <= kEnergyTolerance
-//   gap          a time-stepper: largest penetration_steps (sweep/row.hpp) <= kPenetrationSteps;
+//   gap          a time-stepper: largest penetration_steps (rows/row.hpp) <= kPenetrationSteps;
 //                the reference: largest penetration <= kReferencePenetration
 //   restitution  largest |e - eps| over isolated impacts <= kRestitutionTolerance
 //
@@ -29,9 +29,9 @@
 #include <vector>
 
 #include "cases/case.hpp"
-#include "sweep/settings_list.hpp"
+#include "studies/settings_list.hpp"
 #include "sweep/sweep.hpp"
-#include "sweep/workprecision.hpp"
+#include "studies/workprecision.hpp"
 
 namespace pb {
 
@@ -106,7 +106,7 @@ Stress run_stress(std::span<const Case> cases, const SettingsList& list, const S
 std::string stability_csv_header();
 std::string stability_csv_line(const StressRow& row);
 
-// A run's row: the columns of sweep/row.hpp, then pi1_error (empty where not compared).
+// A run's row: the columns of rows/row.hpp, then pi1_error (empty where not compared).
 std::string stress_points_header();
 std::string stress_points_line(const Row& row, double pi1_error);
 

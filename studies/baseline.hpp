@@ -27,8 +27,8 @@
 #include <vector>
 
 #include "cases/case.hpp"
-#include "sweep/row.hpp"
-#include "sweep/settings_list.hpp"
+#include "rows/row.hpp"
+#include "studies/settings_list.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb {
@@ -49,7 +49,7 @@ struct BaselineHeader {
   std::vector<std::string> notes;  // further "key: value" lines (commit, compiler, date)
 };
 std::vector<std::string> header_lines(const BaselineHeader& h);
-// Throws RowReadError (sweep/row_read.hpp) naming the file when a line is missing.
+// Throws RowReadError (rows/row_read.hpp) naming the file when a line is missing.
 BaselineHeader parse_header(std::span<const std::string> comments, std::string_view source);
 
 enum class Match { same_setting, reference };

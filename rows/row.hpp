@@ -58,7 +58,7 @@ double penetration_steps(const Result& r);
 // is, otherwise the column and why not ("pi1: ..."). A row with status ok has a finite
 // Pi1 >= 0; counts are >= 0; timing columns are >= 0 and finite, or missing (NaN, as a
 // baseline leaves them). run_point turns a solver's result that breaks this into a failed
-// row, and the readers (sweep/row_read.hpp) refuse a record that breaks it, so a resumed
+// row, and the readers (rows/row_read.hpp) refuse a record that breaks it, so a resumed
 // sweep or a comparison never takes a damaged row for a result.
 std::string row_problem(const Row& row);
 
