@@ -40,14 +40,8 @@ int stress_command(const CLI::App& command, const StressFlags& flags, const Proc
   const Stress st =
       stress_of(study.set.cases, study.list, work_precision_of(study.set.cases, study.list, std::move(*study.rows)));
 
-  write_outputs(study.partial, [&] {
-    if (!flags.points.empty()) write_atomically(flags.points, [&](std::ostream& out) { write_points(out, st); });
-    const auto table = [&](std::ostream& out) { write_table(out, st); };
-    if (flags.out.empty())
-      write_to_stdout(table);
-    else
-      write_atomically(flags.out, table);
-  });
+  write_study(
+      flags, study, [&](std::ostream& out) { write_points(out, st); }, [&](std::ostream& out) { write_table(out, st); });
   return 0;
 }
 

@@ -44,4 +44,15 @@ Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_vi
   return study;
 }
 
+void write_study(const StudyFlags& flags, const Study& study, const std::function<void(std::ostream&)>& points,
+                 const std::function<void(std::ostream&)>& table) {
+  write_outputs(study.partial, [&] {
+    if (!flags.points.empty()) write_atomically(flags.points, points);
+    if (flags.out.empty())
+      write_to_stdout(table);
+    else
+      write_atomically(flags.out, table);
+  });
+}
+
 }  // namespace pb::app

@@ -3,7 +3,9 @@
 // process, the output files checked on the leader, and the study (the truth and every
 // setting, studies/workprecision.hpp) run as one resumable sweep (app/resumable_sweep.hpp).
 
+#include <functional>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -40,5 +42,11 @@ struct Study {
 
 // `name` names the partial file when the output is stdout.
 Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_view name, const Processes& processes);
+
+// Writes a finished study's outputs, whole or not at all: the rows of every run to
+// --points when asked, then the summary table to --out or stdout; the partial file goes
+// once both are written.
+void write_study(const StudyFlags& flags, const Study& study, const std::function<void(std::ostream&)>& points,
+                 const std::function<void(std::ostream&)>& table);
 
 }  // namespace pb::app

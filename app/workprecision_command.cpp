@@ -31,19 +31,13 @@ int workprecision_command(const CLI::App& command, const WorkPrecisionFlags& fla
   if (!processes.leader()) return 0;
   const WorkPrecision wp = work_precision_of(study.set.cases, study.list, std::move(*study.rows));
 
-  write_outputs(study.partial, [&] {
-    if (!flags.points.empty()) {
-      write_atomically(flags.points, [&](std::ostream& out) {
+  write_study(
+      flags, study,
+      [&](std::ostream& out) {
         write_csv(out, wp.reference);
         for (const Row& row : wp.points) out << csv_line(row) << '\n';
-      });
-    }
-    const auto table = [&](std::ostream& out) { write_table(out, wp); };
-    if (flags.out.empty())
-      write_to_stdout(table);
-    else
-      write_atomically(flags.out, table);
-  });
+      },
+      [&](std::ostream& out) { write_table(out, wp); });
   return 0;
 }
 
