@@ -57,6 +57,17 @@ std::string format_number(double x) {
   return {buffer.data(), end};
 }
 
+std::string case_key(const Case& c) {
+  std::string key(name(c.scene));
+  key += ';';
+  key += name(c.pulse);
+  key += ';';
+  key += name(c.directivity);
+  for (const CaseField& field : kCaseFields)
+    if (used_by(field, c.scene)) key += ';' + format_number(field.get(c));
+  return key;
+}
+
 std::string csv_field(std::string_view text) {
   if (text.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(text);
   std::string quoted = "\"";

@@ -64,6 +64,10 @@ std::string row_problem(const Row& row);
 
 // Shortest decimal text that reads back (strtod) to exactly x; NaN gives "".
 std::string format_number(double x);
+
+// The physics of a case as text (scene, pulse, directivity, every number the scene uses):
+// equal exactly when two rows are of the same case. Matches rows with stored ones.
+std::string case_key(const Case& c);
 // A CSV field, quoted as RFC 4180 asks only when it holds a comma, a quote, CR or LF.
 std::string csv_field(std::string_view text);
 

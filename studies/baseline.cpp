@@ -17,17 +17,6 @@ namespace {
 
 constexpr std::string_view kFirstLine = " poundbench baseline";
 
-// The physics of a case as text: equal exactly when the cases are the same case.
-std::string case_key(const Case& c) {
-  std::string key(name(c.scene));
-  key += ';';
-  key += name(c.pulse);
-  key += ';';
-  key += name(c.directivity);
-  for (const CaseField& field : kCaseFields)
-    if (used_by(field, c.scene)) key += ';' + format_number(field.get(c));
-  return key;
-}
 
 std::string setting_key(const Row& r) { return r.solver + '\n' + r.variant + '\n' + r.settings; }
 
