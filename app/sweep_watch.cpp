@@ -67,8 +67,12 @@ void SweepWatch::finish() {
   finished_ = true;
   if (thread_.joinable()) {
     thread_.join();
-    for (int sig : {SIGINT, SIGTERM})
-      if (sigismember(&signals_, sig) == 1) sigaction(sig, &previous_[sig == SIGINT ? 0 : 1], nullptr);
+    // A stopped sweep is on its way out (exit 130): its handler stays, so that a second
+    // Ctrl-C arriving during the teardown is recorded, not taken by the default action
+    // on whichever thread has the signal unblocked (the process would die by the signal).
+    if (!cancel_)
+      for (int sig : {SIGINT, SIGTERM})
+        if (sigismember(&signals_, sig) == 1) sigaction(sig, &previous_[sig == SIGINT ? 0 : 1], nullptr);
   }
   if (drawn_) std::fputs("\r\033[K", stderr);
   drawn_ = false;
