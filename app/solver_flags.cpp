@@ -5,6 +5,8 @@
 #include <string_view>
 
 #include "app/errors.hpp"
+#include "cases/fields.hpp"
+#include "solvers/settings_fields.hpp"
 
 namespace pb::app {
 
@@ -26,32 +28,27 @@ void add_solver_flags(CLI::App& command, SolverFlags& flags) {
   command.add_option("--solver", flags.solver, "Solver: " + solver_names() + " (see `poundbench solvers`)")
       ->capture_default_str();
   command.add_option("--variant", s.variant, "Solver variant (default: the solver's own)");
-  command.add_option("--steps", s.steps, "Time-steppers: steps per shortest period N, h = T_min/N (0: default)")
-      ->capture_default_str();
-  command.add_option("--wh", s.wh,
-                     "Time-steppers: the step as w_max h, w_max = 2 pi / T_min (> 0 replaces --steps; 0: use --steps)")
-      ->capture_default_str();
-  command.add_option("--theta", s.theta, "Moreau-Jean theta")->capture_default_str();
-  command.add_option("--gamma", s.gamma, "Moreau-Jean activation look-ahead")->capture_default_str();
-  command.add_option("--tol-scale", s.tol_scale, "Event-driven: factor on every internal tolerance")
-      ->capture_default_str();
-  command.add_option("--step-cap", s.step_cap, "Most steps or events per run (0: the solver's own cap)")
-      ->capture_default_str();
-  command.add_option("--time-limit", s.time_limit, "Most wall-clock seconds per run (0: none)")
-      ->capture_default_str();
+  for (const SettingField& f : kSettingFields) {
+    const std::string flag = flag_of(f.name), help(f.help);
+    CLI::Option* option = f.number    ? command.add_option(flag, s.*f.number, help)
+                          : f.integer ? command.add_option(flag, s.*f.integer, help)
+                                      : command.add_option(flag, s.*f.count, help);
+    option->capture_default_str();
+  }
 }
 
 std::string as_flag_message(const std::string& field_reason) {
   // Solvers name a field either as its Settings member or as its flag without the dashes.
-  static constexpr std::array<std::string_view, 9> kFlags = {"variant",  "steps",    "wh",         "theta",  "gamma",
-                                                             "tol-scale", "step-cap", "time-limit", "samples"};
   const std::size_t colon = field_reason.find(':');
   if (colon == std::string::npos) return field_reason;
-  std::string flag = field_reason.substr(0, colon);
-  std::replace(flag.begin(), flag.end(), '_', '-');
-  if (flag == "history-samples") flag = "samples";
-  if (std::find(kFlags.begin(), kFlags.end(), flag) == kFlags.end()) return field_reason;
-  return "--" + flag + field_reason.substr(colon);
+  std::string field = field_reason.substr(0, colon);
+  std::replace(field.begin(), field.end(), '-', '_');
+  const auto known = [&](std::string_view name) { return field == name; };
+  if (field == "history_samples" || field == "samples") return "--samples" + field_reason.substr(colon);
+  if (!known("variant") && std::none_of(kSettingFields.begin(), kSettingFields.end(),
+                                        [&](const SettingField& f) { return known(f.name); }))
+    return field_reason;
+  return flag_of(field) + field_reason.substr(colon);
 }
 
 const SolverInfo& checked_solver(const SolverFlags& flags) {

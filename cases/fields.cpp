@@ -14,8 +14,8 @@ bool used_by(const CaseField& field, Scene scene) {
   return false;
 }
 
-std::string flag_of(const CaseField& field) {
-  std::string flag = "--" + std::string(field.name);
+std::string flag_of(std::string_view name) {
+  std::string flag = "--" + std::string(name);
   std::replace(flag.begin(), flag.end(), '_', '-');
   return flag;
 }

@@ -53,7 +53,8 @@ inline constexpr std::array<CaseField, 13> kCaseFields = {{
 // Whether a scene has the bodies (or the start) a field describes.
 bool used_by(const CaseField& field, Scene scene);
 
-// The command-line flag of a field: "--n-free" for n_free.
-std::string flag_of(const CaseField& field);
+// The command-line flag of a field (of a Case, or of solver Settings): "--n-free" for n_free.
+std::string flag_of(std::string_view name);
+inline std::string flag_of(const CaseField& field) { return flag_of(field.name); }
 
 }  // namespace pb

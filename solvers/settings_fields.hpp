@@ -1,0 +1,38 @@
+#pragma once
+// Every number of a solver's Settings, declared once (as cases/fields.hpp declares a
+// Case's): its name (the settings-list key and, with '_' as '-', the command-line flag),
+// its member and its help. The flags of `run` and `spectrum`, and the naming of a field in
+// a solver's check() message as its flag, are made from this table.
+//
+// Settings::variant (a name) and Settings::monitor (a switch of the studies) are not
+// numbers; Settings::history_samples is `run --samples`.
+
+#include <array>
+#include <string_view>
+
+#include "solvers/solver.hpp"
+
+namespace pb {
+
+struct SettingField {
+  std::string_view name;
+  double Settings::* number;  // one of these three is set
+  int Settings::* integer;
+  long Settings::* count;
+  std::string_view help;
+};
+
+inline constexpr std::array<SettingField, 7> kSettingFields = {{
+    {"steps", nullptr, &Settings::steps, nullptr,
+     "Time-steppers: steps per shortest period N, h = T_min/N (0: default)"},
+    {"wh", &Settings::wh, nullptr, nullptr,
+     "Time-steppers: the step as w_max h, w_max = 2 pi / T_min (> 0 replaces --steps; 0: use --steps)"},
+    {"theta", &Settings::theta, nullptr, nullptr, "Moreau-Jean theta"},
+    {"gamma", &Settings::gamma, nullptr, nullptr, "Moreau-Jean activation look-ahead"},
+    {"tol_scale", &Settings::tol_scale, nullptr, nullptr, "Event-driven: factor on every internal tolerance"},
+    {"step_cap", nullptr, nullptr, &Settings::step_cap, "Most steps or events per run (0: the solver's own cap)"},
+    {"time_limit", &Settings::time_limit, nullptr, nullptr,
+     "Most wall-clock seconds per run (0: none for `run`; a sweep's points get 60 s each)"},
+}};
+
+}  // namespace pb
