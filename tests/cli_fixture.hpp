@@ -79,7 +79,6 @@ struct CsvTable {
   }
 };
 
-// Every test works in a fresh directory of its own, which it removes afterwards.
 // A case set of 6 quick points (two Pi2 spectra of 3 points of a pair).
 inline constexpr const char* kTinySet = R"(name = "tiny"
 [[family]]
@@ -125,6 +124,7 @@ inline pid_t spawn_poundbench(std::vector<std::string> args, const fs::path& dir
   return pid;
 }
 
+// Every test works in a fresh directory of its own, which it removes afterwards.
 class Cli : public ::testing::Test {
  protected:
   void SetUp() override {
