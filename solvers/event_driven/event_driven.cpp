@@ -48,6 +48,7 @@ constexpr int kEnumerateLimit = 8;
 // Settings::variant that solves long runs of both LCPs by Lemke's method first: slower,
 // and there to check the default's fast paths against it.
 constexpr std::string_view kLemkeVariant = "lemke";
+bool known_variant(std::string_view v) { return v.empty() || v == kLemkeVariant; }
 
 // True when the first coefficient that is not negligible is positive.
 bool lex_nonnegative(const double* c, int n, double scale, double rate, double tol) {
@@ -155,7 +156,7 @@ class Solver {
         res_.message = "more than " + std::to_string(cap_) + " events";
         break;
       }
-      if (deadline_.passed(res_.steps)) throw OutOfTime{};
+      if (deadline_.tick()) throw OutOfTime{};  // one counter with the searches' looks
       if (which < 0 && st_.t >= s_.t_end) break;
       const double e_before = s_.energy(st_.u.data(), st_.v.data());
       bool ok;
@@ -513,7 +514,7 @@ class Solver {
 
 Result solve(const System& system, const Settings& settings) {
   // A variant it does not have fails the run, as every solver's does (the contract).
-  if (!settings.variant.empty() && settings.variant != kLemkeVariant) {
+  if (!known_variant(settings.variant)) {
     Result r;
     r.status = Status::failed;
     r.message = "variant: unknown '" + clip(settings.variant) + "'";
@@ -565,7 +566,7 @@ std::string check(const Settings& settings) {
   }
   if (settings.steps != 0) return "steps: the event-driven solver takes no step";
   if (settings.wh != 0.0) return "wh: the event-driven solver takes no step";
-  if (!settings.variant.empty() && settings.variant != kLemkeVariant)
+  if (!known_variant(settings.variant))
     return "variant: the event-driven solver has the default (empty) and \"lemke\"";
   return {};
 }

@@ -24,6 +24,8 @@ constexpr long kChunk = 1L << 16;
 static_assert(kChunk % kResync == 0);
 
 // The load rule a variant names: "" and "step-mean" the default, "end-samples" Siconos'.
+bool known_variant(std::string_view v) { return v.empty() || v == kStepMean || v == kEndSamples; }
+
 LoadRule load_rule(const Settings& set) {
   return set.variant == kEndSamples ? LoadRule::end_samples : LoadRule::step_mean;
 }
@@ -126,7 +128,7 @@ Result run_dynamic(const System& sys, const Settings& set, double h, long n, Res
 }
 
 Result dispatch(const System& sys, const Settings& set, bool force_dynamic) {
-  if (!set.variant.empty() && set.variant != kStepMean && set.variant != kEndSamples) {
+  if (!known_variant(set.variant)) {
     Result res;
     res.status = Status::failed;
     res.message = "variant: unknown '" + clip(set.variant) + "'";
@@ -168,7 +170,7 @@ std::string describe(const Settings& settings) {
 }
 
 std::string check(const Settings& settings) {
-  if (!settings.variant.empty() && settings.variant != kStepMean && settings.variant != kEndSamples)
+  if (!known_variant(settings.variant))
     return "variant: unknown '" + settings.variant + "' (known: " + std::string(kStepMean) + " (default), " +
            std::string(kEndSamples) + ")";
   if (std::string step = check_step(settings, kDefaultSteps); !step.empty()) return step;
