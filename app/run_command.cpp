@@ -98,7 +98,7 @@ nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {
   j["restitution_high"] = number_or_null(r.restitution_high);
   j["solver"] = row.solver;
   j["variant"] = row.variant;
-  j["settings"] = row.settings;
+  j["settings"] = nlohmann::json::parse(row.settings);
   if (!chosen.case_file.empty()) {
     j["case_file"] = chosen.case_file;
     j["point"] = chosen.point;
@@ -125,7 +125,15 @@ void print_summary(std::ostream& out, const Row& row) {
     if (used_by(f, c.scene) && f.use != FieldUse::chain && (f.required || f.get(c) != f.get(Case{})))
       out << ' ' << f.name << '=' << brief(f.get(c));
   out << '\n';
-  out << "solver   " << row.solver << (row.settings.empty() ? "" : "  (" + row.settings + ")") << '\n';
+  out << "solver   " << row.solver << "  (";
+  // The named values as "name value, ...": a line to read; --json has them as an object.
+  const char* sep = "";
+  const auto settings = nlohmann::ordered_json::parse(row.settings);
+  for (const auto& [key, value] : settings.items()) {
+    out << sep << key << ' ' << (value.is_string() ? value.get<std::string>() : value.dump());
+    sep = ", ";
+  }
+  out << ")\n";
   out << "status   " << name(r.status) << (r.message.empty() ? "" : ": " + r.message) << '\n';
   out << "Pi1      " << brief(r.pi1) << "  (no contact " << brief(row.pi1_no_contact)
       << "), at t = " << brief(r.t_max) << '\n';

@@ -16,7 +16,7 @@ import matplotlib
 import matplotlib.pyplot as plt
 
 import stability
-from rows import config_label, load, num, save, write_page
+from rows import config_label, load, num, save, settings_fields, steps_of, write_page
 
 # Columns that label a curve of a spectrum (everything that is neither the abscissa nor a result).
 CASE_KEYS = ["scene", "pulse", "directivity", "eps", "pi3", "pi5", "pi6", "pi7", "pi8", "xi", "n_free", "a_p", "w_p"]
@@ -81,18 +81,6 @@ TARGETS = [1e-1, 1e-2, 1e-3, 1e-4]
 MIDDLE_N = 64  # the step count whose spectra and errors along Pi2 are drawn
 
 
-def split_settings(settings):
-    """('steps'/'N' removed settings, N or None) from a `key=value;...` description."""
-    parts, n = [], None
-    for item in filter(None, settings.split(";")):
-        key, _, value = item.partition("=")
-        if key in ("steps", "N"):
-            n = int(float(value))
-        else:
-            parts.append(item)
-    return ";".join(parts), n
-
-
 def is_event_driven(row):
     """The reference, or another solver's event-driven variant (siconos event-driven-lsodar)."""
     return row["solver"] == "event-driven" or row.get("variant", "").startswith("event-driven")
@@ -139,11 +127,11 @@ def wp_spectra(points, out_dir):
     """At N = MIDDLE_N: each solver's spectrum over the reference, and its error along Pi2."""
     reference = {}
     for r in points:
-        if r["solver"] == "event-driven" and r["settings"].startswith("tol_scale=0.01"):
+        if r["solver"] == "event-driven" and settings_fields(r)["tol_scale"] == 0.01:
             reference.setdefault(r["point"], r)
     figures = []
     for family in dict.fromkeys(r["family"] for r in points):
-        frows = [r for r in points if r["family"] == family and split_settings(r["settings"])[1] == MIDDLE_N]
+        frows = [r for r in points if r["family"] == family and steps_of(r) == MIDDLE_N]
         if not frows:
             continue
         panels = sorted({(r["pulse"], r["pi5"]) for r in frows}, reverse=True)
@@ -199,15 +187,15 @@ def recommendation(summary, time_steppers_only=False):
         cells = []
         for key in ("err_median", "err_p95"):
             best = None
-            for (solver, variant, desc), per_family in settings.items():
+            for per_family in settings.values():
                 if set(per_family) != families:
                     continue
                 if any(int(r["failed"]) > 0 or not num(r, key) <= target for r in per_family.values()):
                     continue
                 cost = max(num(r, "cpu_mean_s") for r in per_family.values())
                 if best is None or cost < best[0]:
-                    best = (cost, f"{config_label(next(iter(per_family.values())))}"
-                                  + (f", N = {split_settings(desc)[1]}" if split_settings(desc)[1] else ""))
+                    some = next(iter(per_family.values()))
+                    best = (cost, config_label(some) + (f", N = {steps_of(some)}" if steps_of(some) else ""))
             cells.append(("none", "") if best is None else (best[1], f"{1e6 * best[0]:.1f}"))
         lines.append(f"| {target:g} | {cells[0][0]} | {cells[0][1]} | {cells[1][0]} | {cells[1][1]} |")
     return lines
@@ -219,15 +207,14 @@ def cost_table(summary):
              "|---|---|---:|---:|"]
     for family in dict.fromkeys(r["family"] for r in summary):
         rows = [r for r in summary if r["family"] == family]
-        base = [r for r in rows if r["solver"] == "moreau-jean" and split_settings(r["settings"])[1] == MIDDLE_N
-                and "theta=0.5" in r["settings"]]
+        base = [r for r in rows if r["solver"] == "moreau-jean" and steps_of(r) == MIDDLE_N
+                and settings_fields(r)["theta"] == 0.5]
         if not base:
             continue
         b = num(base[0], "cpu_mean_s")
         for r in rows:
-            n = split_settings(r["settings"])[1]
-            if n not in (None, MIDDLE_N) or (is_event_driven(r) and not r["settings"].startswith("tol_scale=1;")
-                                               and r["settings"] != "tol_scale=1"):
+            n = steps_of(r)
+            if n not in (None, MIDDLE_N) or (is_event_driven(r) and settings_fields(r).get("tol_scale") != 1):
                 continue
             lines.append(f"| {family} | {config_label(r)}{'' if n is None else f', N = {n}'} | "
                          f"{1e6 * num(r, 'cpu_mean_s'):.1f} | {num(r, 'cpu_mean_s') / b:.2f} |")

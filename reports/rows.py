@@ -2,6 +2,7 @@
 numbers and settings, the label of a solver configuration, and saving a figure."""
 
 import csv
+import json
 import os
 import sys
 
@@ -32,8 +33,14 @@ def num(row, key):
 
 
 def settings_fields(row):
-    """The `settings` column (`key=value;...`) as a dict."""
-    return dict(item.partition("=")[::2] for item in filter(None, row["settings"].split(";")))
+    """The `settings` column (a JSON object of the solver's named values) as a dict."""
+    return json.loads(row["settings"] or "{}")
+
+
+def steps_of(row):
+    """The run's step count N, or None for a run whose step is set another way (wh) or has none."""
+    steps = settings_fields(row).get("steps")
+    return None if steps is None else int(steps)
 
 
 def config_label(row):

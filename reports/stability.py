@@ -174,9 +174,9 @@ def stability_summary(summary):
                 judged = any(r[check] == "pass" for r in rows)
                 parts.append(f"{check} passes everywhere" if judged else f"{check} not measured")
                 continue
-            steps = sorted({settings_fields(r).get("wh", "") for r in failing}, key=lambda w: float(w or 0))
-            where = "at every step" if len(steps) == len({settings_fields(r).get("wh", "") for r in rows}) \
-                else "at w_max h = " + ", ".join(steps)
+            steps = sorted({settings_fields(r).get("wh", 0) for r in failing})
+            where = "at every step" if len(steps) == len({settings_fields(r).get("wh", 0) for r in rows}) \
+                else "at w_max h = " + ", ".join(f"{w:g}" for w in steps)
             if check == "finite":
                 lost = sum(int(r["runs"]) - int(r["ok"]) for r in failing)
                 parts.append(f"**{check} fails** {where} ({lost} runs did not finish)")

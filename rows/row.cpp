@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -46,15 +45,6 @@ std::string row_problem(const Row& row) {
     if (!std::isnan(t) && !(std::isfinite(t) && t >= 0.0))
       return std::string(column) + ": must be a finite number >= 0, or empty (it is " + shown(t) + ")";
   return {};
-}
-
-std::string format_number(double x) {
-  if (std::isnan(x)) return {};
-  // Without a format argument to_chars gives the shortest text that round-trips.
-  std::array<char, 64> buffer{};
-  const auto [end, error] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), x);
-  if (error != std::errc{}) return {};
-  return {buffer.data(), end};
 }
 
 std::string case_key(const Case& c) {

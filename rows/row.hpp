@@ -23,6 +23,7 @@
 #include <string_view>
 
 #include "cases/case.hpp"
+#include "solvers/named_values.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb {
@@ -33,7 +34,7 @@ struct Row {
   std::size_t run = 0;     // the index of its solver and settings in the sweep's runs (not a column)
   std::string solver;      // SolverInfo::name
   std::string variant;     // Settings::variant as given (empty: the solver's default)
-  std::string settings;    // SolverInfo::describe(settings)
+  std::string settings;    // SolverInfo::describe(settings): a JSON object of named values
   Result result;
   double pi1_no_contact = std::numeric_limits<double>::quiet_NaN();
   double length_scale = std::numeric_limits<double>::quiet_NaN();  // System::length_scale()
@@ -61,9 +62,6 @@ double penetration_steps(const Result& r);
 // row, and the readers (rows/row_read.hpp) refuse a record that breaks it, so a resumed
 // sweep or a comparison never takes a damaged row for a result.
 std::string row_problem(const Row& row);
-
-// Shortest decimal text that reads back (strtod) to exactly x; NaN gives "".
-std::string format_number(double x);
 
 // The physics of a case as text (scene, pulse, directivity, every number the scene uses):
 // equal exactly when two rows are of the same case. Matches rows with stored ones.

@@ -85,13 +85,11 @@ Result plan_steps(const System& sys, const Settings& set, int default_steps, lon
   return ok;
 }
 
-std::string describe_step(const Settings& set, int default_steps) {
-  std::ostringstream out;
+void add_step(NamedValues& out, const Settings& set, int default_steps) {
   if (set.wh > 0.0)
-    out << "wh=" << set.wh;
+    out.add("wh", set.wh);
   else
-    out << "steps=" << (set.steps > 0 ? set.steps : default_steps);
-  return out.str();
+    out.add("steps", set.steps > 0 ? set.steps : default_steps);
 }
 
 const char* runaway(const System& sys, const double* u, const double* v) {

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "cases/system.hpp"
+#include "solvers/named_values.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb {
@@ -46,8 +47,8 @@ long step_count(double t_end, double h);
 // step that is not usable, more steps than the cap (the solver's own when step_cap is 0).
 Result plan_steps(const System& sys, const Settings& set, int default_steps, long default_cap, StepPlan& plan);
 
-// "steps=N" or "wh=X": what fixed the step, for a solver's describe().
-std::string describe_step(const Settings& set, int default_steps);
+// steps = N or wh = X, whichever fixed the step: the first of a time-stepper's describe().
+void add_step(NamedValues& out, const Settings& set, int default_steps);
 
 // Why a finite state counts as diverged (|u| beyond 1e6 a_p / w_p^2, or the mechanical
 // energy beyond kDivergedEnergy times its scale), or nullptr.

@@ -100,7 +100,7 @@ Row row(double pi2, double pi1, const std::string& solver = "moreau-jean") {
   r.input.family = "f";
   r.input.pi2 = pi2;
   r.solver = solver;
-  r.settings = solver == "event-driven" ? "tol_scale=1" : "steps=64";
+  r.settings = solver == "event-driven" ? R"({"tol_scale":1})" : R"({"steps":64})";
   r.result.pi1 = pi1;
   return r;
 }

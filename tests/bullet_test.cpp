@@ -103,20 +103,22 @@ TEST(Bullet, CheckRejectsUnknownVariantsAndNegativeSteps) {
 TEST(Bullet, DescribeNamesEverySettingThatShapesAnImpact) {
   Settings st;
   EXPECT_EQ(bullet::describe(st),
-            "variant=si-faithful;steps=64;solver=si;iterations=100;erp2=0;split_impulse=0;restitution_threshold=0;"
-            "warmstart=0;restitution=eps;contact=overlap;precision=single");
+            R"({"variant":"si-faithful","steps":64,"solver":"si","iterations":100,"erp2":0,"split_impulse":0,)"
+            R"("restitution_threshold":0,"warmstart":0,"restitution":"eps","contact":"overlap",)"
+            R"("precision":"single"})");
   st.variant = "mlcp-lemke-default";
   st.steps = 256;
   // Bullet 3.24's btContactSolverInfo defaults.
   EXPECT_EQ(bullet::describe(st),
-            "variant=mlcp-lemke-default;steps=256;solver=mlcp-lemke;iterations=10;erp2=0.2;split_impulse=1;"
-            "split_threshold=-0.04;restitution_threshold=0.2;warmstart=0.85;restitution=product;contact=overlap;"
-            "precision=single");
+            R"({"variant":"mlcp-lemke-default","steps":256,"solver":"mlcp-lemke","iterations":10,"erp2":0.2,)"
+            R"("split_impulse":1,"split_threshold":-0.04,"restitution_threshold":0.2,"warmstart":0.85,)"
+            R"("restitution":"product","contact":"overlap","precision":"single"})");
   // A step given as w_max h replaces steps; check() refuses both at once.
   st.steps = 0;
   st.wh = 2.5;
   EXPECT_EQ(bullet::check(st), "");
-  EXPECT_EQ(bullet::describe(st).rfind("variant=mlcp-lemke-default;wh=2.5;solver=", 0), 0u) << bullet::describe(st);
+  EXPECT_EQ(bullet::describe(st).rfind(R"({"variant":"mlcp-lemke-default","wh":2.5,"solver":)", 0), 0u)
+      << bullet::describe(st);
   st.steps = 64;
   EXPECT_EQ(bullet::check(st).rfind("wh:", 0), 0u);
 }

@@ -564,10 +564,10 @@ TEST(MoreauJean, HistoryHasARowPerStepAndTheStart) {
 TEST(MoreauJean, CheckRejectsSettingsOutsideTheScheme) {
   Settings st;
   EXPECT_EQ(mj::check(st), "");
-  EXPECT_EQ(mj::describe(st), "steps=64;theta=0.5;gamma=0.5");
+  EXPECT_EQ(mj::describe(st), R"({"steps":64,"theta":0.5,"gamma":0.5})");
   st.wh = 10.0;
   EXPECT_EQ(mj::check(st), "");
-  EXPECT_EQ(mj::describe(st), "wh=10;theta=0.5;gamma=0.5");
+  EXPECT_EQ(mj::describe(st), R"({"wh":10,"theta":0.5,"gamma":0.5})");
   st.steps = 32;
   EXPECT_EQ(mj::check(st).rfind("wh:", 0), 0u) << "steps and wh together";
   st.wh = -1.0;
@@ -589,10 +589,10 @@ TEST(MoreauJean, CheckRejectsSettingsOutsideTheScheme) {
   EXPECT_EQ(mj::check(st).rfind("variant:", 0), 0u);
   st.variant = mj::kEndSamples;
   EXPECT_EQ(mj::check(st), "");
-  EXPECT_EQ(mj::describe(st), "steps=1;theta=1;gamma=0;load=end-samples");
+  EXPECT_EQ(mj::describe(st), R"({"steps":1,"theta":1,"gamma":0,"load":"end-samples"})");
   st.variant = mj::kStepMean;
   EXPECT_EQ(mj::check(st), "");
-  EXPECT_EQ(mj::describe(st), "steps=1;theta=1;gamma=0");
+  EXPECT_EQ(mj::describe(st), R"({"steps":1,"theta":1,"gamma":0})");
   EXPECT_NE(find_solver("moreau-jean"), nullptr);
 }
 

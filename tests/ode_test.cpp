@@ -383,16 +383,16 @@ TEST(Ode, CheckAndDescribeNameEverySetting) {
   Settings st;
   EXPECT_EQ(ode::check(st), "");
   EXPECT_EQ(ode::describe(st),
-            "variant=dantzig-faithful;steps=64;stepper=dantzig;erp=0;cfm=0;bounce_vel=0;surface_layer=0;max_vel=0;"
-            "contacts=predicted");
+            R"({"variant":"dantzig-faithful","steps":64,"stepper":"dantzig","erp":0,"cfm":0,"bounce_vel":0,)"
+            R"("surface_layer":0,"max_vel":0,"contacts":"predicted"})");
   st.variant = "quickstep-default";
   st.steps = 256;
   EXPECT_EQ(ode::check(st), "");
   EXPECT_EQ(ode::describe(st),
-            "variant=quickstep-default;steps=256;stepper=quickstep;iterations=20;sor=1.3;erp=0.2;cfm=1e-10;bounce_vel=0;"
-            "surface_layer=0;max_vel=inf;contacts=overlap");
+            R"({"variant":"quickstep-default","steps":256,"stepper":"quickstep","iterations":20,"sor":1.3,)"
+            R"("erp":0.2,"cfm":1e-10,"bounce_vel":0,"surface_layer":0,"max_vel":"inf","contacts":"overlap"})");
   st.variant = "quickstep-faithful";
-  EXPECT_NE(ode::describe(st).find("iterations=50;sor=1.3;erp=0;cfm=0"), std::string::npos);
+  EXPECT_NE(ode::describe(st).find(R"("iterations":50,"sor":1.3,"erp":0,"cfm":0)"), std::string::npos);
   st.variant = "dantzig";
   EXPECT_EQ(ode::check(st).rfind("variant:", 0), 0u);
   st.variant = "";
@@ -405,7 +405,8 @@ TEST(Ode, CheckAndDescribeNameEverySetting) {
   st.steps = 0;
   st.wh = 10.0;
   EXPECT_EQ(ode::check(st), "");
-  EXPECT_EQ(ode::describe(st).rfind("variant=dantzig-faithful;wh=10;stepper=dantzig;", 0), 0u) << ode::describe(st);
+  EXPECT_EQ(ode::describe(st).rfind(R"({"variant":"dantzig-faithful","wh":10,"stepper":"dantzig",)", 0), 0u)
+      << ode::describe(st);
   st.steps = 64;
   EXPECT_EQ(ode::check(st).rfind("wh:", 0), 0u) << "steps and wh together";
   st.steps = 0;

@@ -259,12 +259,12 @@ TEST(Siconos, KickedChainStartsFromTheSystemsStartState) {
 TEST(Siconos, CheckAndDescribeNameEverySetting) {
   Settings st;
   EXPECT_EQ(siconos::check(st), "");
-  EXPECT_EQ(siconos::describe(st), "steps=64;theta=0.5;gamma=0.5;lcp=lemke");
+  EXPECT_EQ(siconos::describe(st), R"({"steps":64,"theta":0.5,"gamma":0.5,"lcp":"lemke"})");
   st.variant = "moreau-jean-enum";
   st.wh = 2.0;
   st.theta = 1.0;
   EXPECT_EQ(siconos::check(st), "");
-  EXPECT_EQ(siconos::describe(st), "wh=2;theta=1;gamma=0.5;lcp=enum");
+  EXPECT_EQ(siconos::describe(st), R"({"wh":2,"theta":1,"gamma":0.5,"lcp":"enum"})");
   st.theta = 0.4;
   EXPECT_EQ(siconos::check(st).rfind("theta:", 0), 0u);
   st.theta = 0.5;
@@ -272,7 +272,7 @@ TEST(Siconos, CheckAndDescribeNameEverySetting) {
   EXPECT_EQ(siconos::check(st).rfind("gamma:", 0), 0u);
   st = variant("event-driven-lsodar");
   EXPECT_EQ(siconos::check(st), "");
-  EXPECT_EQ(siconos::describe(st), "tol_scale=1;rtol=1e-10;atol=1e-10;output=T_min/256");
+  EXPECT_EQ(siconos::describe(st), R"({"tol_scale":1,"rtol":1e-10,"atol":1e-10,"output":"T_min/256"})");
   st.steps = 64;
   EXPECT_EQ(siconos::check(st).rfind("steps:", 0), 0u);
   st.steps = 0;

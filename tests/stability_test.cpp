@@ -25,7 +25,7 @@ Row good_row(double pi1 = 1.0) {
   r.input.pi3 = 0.5;
   r.input.eps = 0.5;
   r.solver = "moreau-jean";
-  r.settings = "wh=2";
+  r.settings = R"({"wh":2})";
   r.length_scale = 1.0;
   r.result.status = Status::ok;
   r.result.pi1 = pi1;
@@ -51,7 +51,7 @@ TEST(StabilitySummary, CleanRunsPassEveryCheck) {
   const StressRow s = summary_of({good_row(), good_row()});
   EXPECT_EQ(s.family, "f");
   EXPECT_EQ(s.solver, "moreau-jean");
-  EXPECT_EQ(s.settings, "wh=2");
+  EXPECT_EQ(s.settings, R"({"wh":2})");
   EXPECT_EQ(s.runs, 2u);
   EXPECT_EQ(s.ok, 2u);
   EXPECT_EQ(s.isolated_impacts, 4);

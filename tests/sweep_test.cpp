@@ -86,7 +86,7 @@ TEST(Sweep, RunsEveryRunOverEveryCaseSortedByRunThenPoint) {
   for (std::size_t i = 0; i < rows.size(); ++i) {
     EXPECT_EQ(rows[i].run, i / cases.size());
     EXPECT_EQ(rows[i].point, i % cases.size());
-    EXPECT_EQ(rows[i].settings, i < cases.size() ? "tol_scale=1" : "tol_scale=100");
+    EXPECT_EQ(rows[i].settings, i < cases.size() ? R"({"tol_scale":1})" : R"({"tol_scale":100})");
   }
   // The first run is the one-run sweep of the same settings.
   const std::vector<Row> alone = run_sweep(cases, reference_solver(), Settings{}, options);
@@ -146,7 +146,7 @@ TEST(Sweep, AnExceptionFromOnRowStopsTheSweepAndIsRethrown) {
 }
 
 Result throwing_solve(const System&, const Settings&) { throw std::runtime_error("matrix is singular"); }
-std::string no_settings(const Settings&) { return "x=1"; }
+std::string no_settings(const Settings&) { return R"({"x":1})"; }
 std::string accept(const Settings&) { return {}; }
 
 TEST(RunPoint, TurnsASolverExceptionIntoAFailedRow) {
@@ -154,7 +154,7 @@ TEST(RunPoint, TurnsASolverExceptionIntoAFailedRow) {
   const Row row = run_point(smoke_cases().front(), 7, thrower, Settings{});
   EXPECT_EQ(row.point, 7u);
   EXPECT_EQ(row.solver, "thrower");
-  EXPECT_EQ(row.settings, "x=1");
+  EXPECT_EQ(row.settings, R"({"x":1})");
   EXPECT_EQ(row.result.status, Status::failed);
   EXPECT_EQ(row.result.message, "matrix is singular");
   EXPECT_TRUE(std::isnan(row.result.pi1));
@@ -230,7 +230,7 @@ TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   row.input.pi2 = 1.0 / 3.0;
   row.point = 12;
   row.solver = "event-driven";
-  row.settings = "tol_scale=1";
+  row.settings = R"({"tol_scale":1})";
   row.result.pi1 = 2.0 / 7.0;
   row.result.impacts = 5;
   row.result.message = "stopped, \"early\"\nsee log";

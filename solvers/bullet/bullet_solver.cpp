@@ -5,7 +5,6 @@
 #include <limits>
 #include <numbers>
 #include <optional>
-#include <sstream>
 
 #include "solvers/bullet/engine.hpp"
 #include "solvers/fixed_step.hpp"
@@ -82,8 +81,12 @@ Result solve(const System& system, const Settings& settings) {
 
 std::string describe(const Settings& settings) {
   const std::optional<Config> config = find_variant(settings.variant);
-  if (!config) return "variant=" + settings.variant + ";unknown";
-  return describe(*config, describe_step(settings, kDefaultSteps));
+  NamedValues out;
+  out.add("variant", config ? config->name : settings.variant);
+  if (!config) return out.add("unknown", true).json();
+  add_step(out, settings, kDefaultSteps);
+  add_config(out, *config);
+  return out.json();
 }
 
 std::string check(const Settings& settings) {

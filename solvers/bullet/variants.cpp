@@ -1,7 +1,6 @@
 #include "solvers/bullet/variants.hpp"
 
 #include <array>
-#include <sstream>
 
 #include "solvers/bullet/engine.hpp"
 
@@ -47,18 +46,15 @@ std::string variant_names() {
   return out;
 }
 
-std::string describe(const Config& config, std::string_view step) {
+void add_config(NamedValues& out, const Config& config) {
   // The step does not change any of these settings; 1 stands for it.
   const btContactSolverInfo info = solver_info(config, 1.0);
-  std::ostringstream out;
-  out << "variant=" << config.name << ";" << step << ";solver=" << solver_name(config.engine)
-      << ";iterations=" << info.m_numIterations << ";erp2=" << info.m_erp2
-      << ";split_impulse=" << info.m_splitImpulse;
-  if (info.m_splitImpulse) out << ";split_threshold=" << info.m_splitImpulsePenetrationThreshold;
-  out << ";restitution_threshold=" << info.m_restitutionVelocityThreshold
-      << ";warmstart=" << ((info.m_solverMode & SOLVER_USE_WARMSTARTING) ? info.m_warmstartingFactor : 0.0f)
-      << ";restitution=" << (config.faithful ? "eps" : "product") << ";contact=overlap;precision=single";
-  return out.str();
+  out.add("solver", solver_name(config.engine)).add("iterations", info.m_numIterations);
+  out.add("erp2", info.m_erp2).add("split_impulse", info.m_splitImpulse);
+  if (info.m_splitImpulse) out.add("split_threshold", info.m_splitImpulsePenetrationThreshold);
+  out.add("restitution_threshold", info.m_restitutionVelocityThreshold);
+  out.add("warmstart", (info.m_solverMode & SOLVER_USE_WARMSTARTING) ? info.m_warmstartingFactor : 0.0f);
+  out.add("restitution", config.faithful ? "eps" : "product").add("contact", "overlap").add("precision", "single");
 }
 
 }  // namespace pb::bullet

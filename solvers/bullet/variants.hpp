@@ -11,6 +11,8 @@
 #include <string>
 #include <string_view>
 
+#include "solvers/named_values.hpp"
+
 namespace pb::bullet {
 
 // Which btConstraintSolver gets the contacts of a step.
@@ -41,9 +43,8 @@ std::optional<Config> find_variant(std::string_view name);
 // "a, b, c" for messages.
 std::string variant_names();
 
-// "variant=...;<step>;solver=...;iterations=...;..." with every setting that shapes an
-// impact, read back from the solver info a run uses; step is what fixed the step,
-// "steps=64" or "wh=10".
-std::string describe(const Config& config, std::string_view step);
+// Every setting that shapes an impact (solver, iterations, ...), read back from the
+// solver info a run uses, for describe() after the variant and the step.
+void add_config(NamedValues& out, const Config& config);
 
 }  // namespace pb::bullet

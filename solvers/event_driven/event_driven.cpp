@@ -16,6 +16,7 @@
 #include "solvers/event_driven/impact.hpp"
 #include "solvers/event_driven/search.hpp"
 #include "solvers/lcp/lemke.hpp"
+#include "solvers/named_values.hpp"
 
 namespace pb::event_driven {
 
@@ -551,9 +552,7 @@ void check_result(const System& s, double tol_scale, Result& r) {
 }
 
 std::string describe(const Settings& settings) {
-  std::ostringstream out;
-  out << "tol_scale=" << settings.tol_scale;
-  return out.str();
+  return NamedValues().add("tol_scale", settings.tol_scale).json();
 }
 
 std::string check(const Settings& settings) {

@@ -6,7 +6,6 @@
 #include <exception>
 #include <limits>
 #include <optional>
-#include <sstream>
 
 #include "solvers/fixed_step.hpp"
 #include "solvers/monitor.hpp"
@@ -163,10 +162,11 @@ Result solve(const System& system, const Settings& settings) { return dispatch(s
 Result solve_dynamic(const System& system, const Settings& settings) { return dispatch(system, settings, true); }
 
 std::string describe(const Settings& settings) {
-  std::ostringstream out;
-  out << describe_step(settings, kDefaultSteps) << ";theta=" << settings.theta << ";gamma=" << settings.gamma;
-  if (settings.variant == kEndSamples) out << ";load=end-samples";
-  return out.str();
+  NamedValues out;
+  add_step(out, settings, kDefaultSteps);
+  out.add("theta", settings.theta).add("gamma", settings.gamma);
+  if (settings.variant == kEndSamples) out.add("load", "end-samples");
+  return out.json();
 }
 
 std::string check(const Settings& settings) {

@@ -6,7 +6,6 @@
 #include <limits>
 #include <numbers>
 #include <optional>
-#include <sstream>
 
 #include "solvers/fixed_step.hpp"
 #include "solvers/ode/world.hpp"
@@ -231,8 +230,12 @@ Result solve_with(const System& system, const Settings& settings, const Config& 
 
 std::string describe(const Settings& settings) {
   const std::optional<Config> config = find_variant(settings.variant);
-  if (!config) return "variant=" + settings.variant;
-  return describe(*config, describe_step(settings, kDefaultSteps));
+  NamedValues out;
+  out.add("variant", config ? config->name : settings.variant);
+  if (!config) return out.json();
+  add_step(out, settings, kDefaultSteps);
+  add_config(out, *config);
+  return out.json();
 }
 
 std::string check(const Settings& settings) {

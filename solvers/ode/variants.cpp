@@ -2,7 +2,6 @@
 
 #include <array>
 #include <limits>
-#include <sstream>
 
 namespace pb::ode {
 
@@ -36,15 +35,12 @@ std::optional<Config> find_variant(std::string_view name) {
   return std::nullopt;
 }
 
-std::string describe(const Config& config, std::string_view step) {
-  std::ostringstream out;
-  out << "variant=" << config.name << ";" << step
-      << ";stepper=" << (config.stepper == Stepper::dantzig ? "dantzig" : "quickstep");
-  if (config.stepper == Stepper::quickstep) out << ";iterations=" << config.iterations << ";sor=" << config.sor;
-  out << ";erp=" << config.erp << ";cfm=" << config.cfm << ";bounce_vel=" << config.bounce_vel
-      << ";surface_layer=" << config.surface_layer << ";max_vel=" << config.max_vel
-      << ";contacts=" << (config.detection == Detection::predicted ? "predicted" : "overlap");
-  return out.str();
+void add_config(NamedValues& out, const Config& config) {
+  out.add("stepper", config.stepper == Stepper::dantzig ? "dantzig" : "quickstep");
+  if (config.stepper == Stepper::quickstep) out.add("iterations", config.iterations).add("sor", config.sor);
+  out.add("erp", config.erp).add("cfm", config.cfm).add("bounce_vel", config.bounce_vel);
+  out.add("surface_layer", config.surface_layer).add("max_vel", config.max_vel);
+  out.add("contacts", config.detection == Detection::predicted ? "predicted" : "overlap");
 }
 
 }  // namespace pb::ode

@@ -9,6 +9,8 @@
 #include <string>
 #include <string_view>
 
+#include "solvers/named_values.hpp"
+
 namespace pb::ode {
 
 enum class Stepper { dantzig, quickstep };
@@ -38,8 +40,8 @@ std::span<const Config> variants();
 // The variant of that name; the empty name is kDefaultVariant.
 std::optional<Config> find_variant(std::string_view name);
 
-// "variant=...;<step>;stepper=...;..." with every setting of the configuration; step is
-// what fixed the step, "steps=64" or "wh=10".
-std::string describe(const Config& config, std::string_view step);
+// Every setting of the configuration (stepper, ...), for describe() after the variant
+// and the step.
+void add_config(NamedValues& out, const Config& config);
 
 }  // namespace pb::ode

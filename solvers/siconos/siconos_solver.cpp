@@ -3,7 +3,6 @@
 #include <array>
 #include <cmath>
 #include <exception>
-#include <sstream>
 
 #include "solvers/siconos/model.hpp"
 
@@ -68,20 +67,16 @@ MoreauJeanSetup moreau_jean_setup(const System& system, const Settings& settings
 
 std::string describe(const Settings& settings) {
   const Variant* variant = find_variant(settings.variant);
-  if (!variant) return "variant=" + settings.variant;
-  std::ostringstream out;
+  NamedValues out;
+  if (!variant) return out.add("variant", settings.variant).json();
   if (variant->scheme == Scheme::event_driven) {
-    out << "tol_scale=" << settings.tol_scale << ";rtol=" << kRtol * settings.tol_scale
-        << ";atol=" << kAtol * settings.tol_scale << ";output=T_min/" << kOutputSteps;
-    return out.str();
+    out.add("tol_scale", settings.tol_scale).add("rtol", kRtol * settings.tol_scale);
+    out.add("atol", kAtol * settings.tol_scale).add("output", "T_min/" + std::to_string(kOutputSteps));
+    return out.json();
   }
-  if (settings.wh > 0.0)
-    out << "wh=" << settings.wh;
-  else
-    out << "steps=" << (settings.steps > 0 ? settings.steps : kDefaultSteps);
-  out << ";theta=" << settings.theta << ";gamma=" << settings.gamma
-      << ";lcp=" << (variant->enumeration ? "enum" : "lemke");
-  return out.str();
+  add_step(out, settings, kDefaultSteps);
+  out.add("theta", settings.theta).add("gamma", settings.gamma).add("lcp", variant->enumeration ? "enum" : "lemke");
+  return out.json();
 }
 
 std::string check(const Settings& settings) {
