@@ -45,7 +45,7 @@ void bullet_solve(benchmark::State& state, const pb::bullet::Config& config, pb:
 }
 
 void BM_BulletChain(benchmark::State& state) { pb::bench::time_chain(state, &pb::bullet::solve); }
-BENCHMARK(BM_BulletChain)->ArgName("bodies")->Arg(2)->Arg(5)->Arg(10)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BulletChain)->ArgName("bodies")->ArgsProduct({{2, 5, 10, 20, 50, 100}})->Unit(benchmark::kMillisecond);
 
 void moreau_jean_solve(benchmark::State& state, pb::Scene scene) {
   pb::bench::time_solve(state, &pb::moreau_jean::solve, scene);
@@ -55,18 +55,11 @@ const bool registered = [] {
   for (pb::Scene scene : {pb::Scene::wall, pb::Scene::pair, pb::Scene::row3}) {
     const std::string scene_name(pb::name(scene));
     for (const pb::bullet::Config& config : pb::bullet::variants())
-      benchmark::RegisterBenchmark(("BM_Bullet/" + std::string(config.name) + "/" + scene_name).c_str(),
-                                   [config, scene](benchmark::State& st) { bullet_solve(st, config, scene); })
-          ->ArgName("N")
-          ->Arg(64)
-          ->Arg(256)
-          ->Unit(benchmark::kMicrosecond);
-    benchmark::RegisterBenchmark(("BM_BulletMoreauJean/" + scene_name).c_str(),
-                                 [scene](benchmark::State& st) { moreau_jean_solve(st, scene); })
-        ->ArgName("N")
-        ->Arg(64)
-        ->Arg(256)
-        ->Unit(benchmark::kMicrosecond);
+      pb::bench::at_each_n(
+          benchmark::RegisterBenchmark(("BM_Bullet/" + std::string(config.name) + "/" + scene_name).c_str(),
+                                       [config, scene](benchmark::State& st) { bullet_solve(st, config, scene); }));
+    pb::bench::at_each_n(benchmark::RegisterBenchmark(("BM_BulletMoreauJean/" + scene_name).c_str(),
+                                                      [scene](benchmark::State& st) { moreau_jean_solve(st, scene); }));
   }
   return true;
 }();

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "solvers/lcp/lemke.hpp"
@@ -90,55 +91,59 @@ void BM_Solve2(benchmark::State& state) {
 }
 BENCHMARK(BM_Solve2);
 
-void BM_Lemke(benchmark::State& state) {
+// Times `solve(problem, z)`, which returns its iterations and whether it solved, cycling through
+// problems(n, family) with (n, family) = state.range(0), state.range(1); counters: the mean
+// iterations per solve as `iterations`, and the solves that failed.
+template <class Solve>
+void time_cycle(benchmark::State& state, const char* iterations, Solve solve) {
   const int n = static_cast<int>(state.range(0));
   const std::vector<Problem> ps = problems(n, static_cast<int>(state.range(1)));
-  pb::lcp::LemkeWorkspace ws;
   Eigen::VectorXd z(n);
-  long pivots = 0, solves = 0, failed = 0;
+  long total = 0, solves = 0, failed = 0;
   int t = 0;
   for (auto _ : state) {
-    const pb::lcp::LemkeResult r = pb::lcp::lemke(ps[t].a, ps[t].q, z, ws);
+    const auto [count, solved] = solve(ps[t], z);
     benchmark::DoNotOptimize(z.data());
-    pivots += r.pivots;
-    failed += r.status != pb::lcp::Status::solved;
+    total += count;
+    failed += !solved;
     ++solves;
     t = (t + 1) % kProblems;
   }
-  state.counters["pivots"] = static_cast<double>(pivots) / static_cast<double>(solves);
+  state.counters[iterations] = static_cast<double>(total) / static_cast<double>(solves);
   state.counters["failed"] = static_cast<double>(failed);
 }
-BENCHMARK(BM_Lemke)
-    ->ArgNames({"n", "dense"})
-    ->ArgsProduct({{2, 10, 100}, {0, 1}})
-    ->Unit(benchmark::kMicrosecond);
+
+// n = 2, 10, 100 contacts of either family.
+void sizes_and_families(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"n", "dense"})->ArgsProduct({{2, 10, 100}, {0, 1}})->Unit(benchmark::kMicrosecond);
+}
+
+void BM_Lemke(benchmark::State& state) {
+  pb::lcp::LemkeWorkspace ws;
+  time_cycle(state, "pivots", [&ws](const Problem& p, Eigen::VectorXd& z) {
+    const pb::lcp::LemkeResult r = pb::lcp::lemke(p.a, p.q, z, ws);
+    return std::pair{r.pivots, r.status == pb::lcp::Status::solved};
+  });
+}
+BENCHMARK(BM_Lemke)->Apply(sizes_and_families);
 
 // Cold start (z = 0), absolute residual tolerance 1e-10 on problems with |q| ~ 1.
-void BM_Pgs(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  const std::vector<Problem> ps = problems(n, static_cast<int>(state.range(1)));
+pb::lcp::PgsSettings cold_start_settings() {
   pb::lcp::PgsSettings settings;
   settings.tol = 1e-10;
   settings.max_sweeps = 1000000;
-  Eigen::VectorXd z(n);
-  long sweeps = 0, solves = 0, failed = 0;
-  int t = 0;
-  for (auto _ : state) {
-    z.setZero();
-    const pb::lcp::PgsResult r = pb::lcp::pgs(ps[t].a, ps[t].q, z, settings);
-    benchmark::DoNotOptimize(z.data());
-    sweeps += r.sweeps;
-    failed += r.status != pb::lcp::Status::solved;
-    ++solves;
-    t = (t + 1) % kProblems;
-  }
-  state.counters["sweeps"] = static_cast<double>(sweeps) / static_cast<double>(solves);
-  state.counters["failed"] = static_cast<double>(failed);
+  return settings;
 }
-BENCHMARK(BM_Pgs)
-    ->ArgNames({"n", "dense"})
-    ->ArgsProduct({{2, 10, 100}, {0, 1}})
-    ->Unit(benchmark::kMicrosecond);
+
+void BM_Pgs(benchmark::State& state) {
+  const pb::lcp::PgsSettings settings = cold_start_settings();
+  time_cycle(state, "sweeps", [&settings](const Problem& p, Eigen::VectorXd& z) {
+    z.setZero();
+    const pb::lcp::PgsResult r = pb::lcp::pgs(p.a, p.q, z, settings);
+    return std::pair{r.sweeps, r.status == pb::lcp::Status::solved};
+  });
+}
+BENCHMARK(BM_Pgs)->Apply(sizes_and_families);
 
 // The fixed-size PGS at n = 2 (the two-contact scene), same problems as BM_Pgs/2/0.
 void BM_PgsFixed2(benchmark::State& state) {
@@ -146,9 +151,7 @@ void BM_PgsFixed2(benchmark::State& state) {
   std::vector<Eigen::Matrix2d> a(kProblems);
   std::vector<Eigen::Vector2d> q(kProblems);
   for (int t = 0; t < kProblems; ++t) a[t] = ps[t].a, q[t] = ps[t].q;
-  pb::lcp::PgsSettings settings;
-  settings.tol = 1e-10;
-  settings.max_sweeps = 1000000;
+  const pb::lcp::PgsSettings settings = cold_start_settings();
   int t = 0;
   for (auto _ : state) {
     Eigen::Vector2d z = Eigen::Vector2d::Zero();

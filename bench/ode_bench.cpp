@@ -17,45 +17,17 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/support.hpp"
-#include "cases/system.hpp"
-#include "solvers/moreau_jean/moreau_jean.hpp"
 #include "solvers/ode/ode_solver.hpp"
 
 namespace {
 
-void BM_Ode(benchmark::State& state, const char* variant, pb::Scene scene) {
-  pb::bench::time_variant(state, &pb::ode::solve, variant, scene, static_cast<int>(state.range(0)));
-  pb::Settings in_house;
-  in_house.steps = static_cast<int>(state.range(0));
-  state.counters["x_moreau_jean"] =
-      pb::bench::ratio_to(pb::bench::seconds_per_run(&pb::moreau_jean::solve, pb::bench::fig4_point(scene), in_house));
-}
+const bool registered = pb::bench::register_vs_moreau_jean(
+    "BM_Ode", &pb::ode::solve,
+    {{"dantzig_faithful", "dantzig-faithful"}, {"dantzig_default", "dantzig-default"},
+     {"quickstep_faithful", "quickstep-faithful"}, {"quickstep_default", "quickstep-default"}});
 
 void BM_OdeChain(benchmark::State& state) { pb::bench::time_chain(state, &pb::ode::solve); }
 
-void BM_OdeBaselineMoreauJean(benchmark::State& state, pb::Scene scene) {
-  pb::bench::time_solve(state, &pb::moreau_jean::solve, scene);
-}
-
-#define PB_ODE_BENCH(fn, label, ...) \
-  BENCHMARK_CAPTURE(fn, label, __VA_ARGS__)->ArgName("N")->Arg(64)->Arg(256)->Unit(benchmark::kMicrosecond)
-
-PB_ODE_BENCH(BM_Ode, dantzig_faithful_wall, "dantzig-faithful", pb::Scene::wall);
-PB_ODE_BENCH(BM_Ode, dantzig_faithful_pair, "dantzig-faithful", pb::Scene::pair);
-PB_ODE_BENCH(BM_Ode, dantzig_faithful_row3, "dantzig-faithful", pb::Scene::row3);
-PB_ODE_BENCH(BM_Ode, dantzig_default_wall, "dantzig-default", pb::Scene::wall);
-PB_ODE_BENCH(BM_Ode, dantzig_default_pair, "dantzig-default", pb::Scene::pair);
-PB_ODE_BENCH(BM_Ode, dantzig_default_row3, "dantzig-default", pb::Scene::row3);
-PB_ODE_BENCH(BM_Ode, quickstep_faithful_wall, "quickstep-faithful", pb::Scene::wall);
-PB_ODE_BENCH(BM_Ode, quickstep_faithful_pair, "quickstep-faithful", pb::Scene::pair);
-PB_ODE_BENCH(BM_Ode, quickstep_faithful_row3, "quickstep-faithful", pb::Scene::row3);
-PB_ODE_BENCH(BM_Ode, quickstep_default_wall, "quickstep-default", pb::Scene::wall);
-PB_ODE_BENCH(BM_Ode, quickstep_default_pair, "quickstep-default", pb::Scene::pair);
-PB_ODE_BENCH(BM_Ode, quickstep_default_row3, "quickstep-default", pb::Scene::row3);
-PB_ODE_BENCH(BM_OdeBaselineMoreauJean, wall, pb::Scene::wall);
-PB_ODE_BENCH(BM_OdeBaselineMoreauJean, pair, pb::Scene::pair);
-PB_ODE_BENCH(BM_OdeBaselineMoreauJean, row3, pb::Scene::row3);
-
-BENCHMARK(BM_OdeChain)->ArgName("bodies")->Arg(2)->Arg(5)->Arg(10)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OdeChain)->ArgName("bodies")->ArgsProduct({{2, 5, 10, 20, 50, 100}})->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -1,7 +1,7 @@
 // Cost of the Siconos solver per run and per step, on wall, pair and row3 at the Fig. 4 point
 // of bench/support.hpp (Pi2 = 1, Pi3 = 0.5, Pi5 = Pi7 = 0.5, Pi6 = Pi8 = 1, eps = 0.5,
-// cosine, normal), against the in-house solvers on the same cases. Built only when CMake
-// finds Siconos (bench/CMakeLists.txt).
+// cosine, normal), against the in-house solvers on the same cases. Empty unless CMake finds
+// Siconos (POUNDBENCH_HAVE_SICONOS), as bullet_bench.cpp is without Bullet.
 //
 //   BM_Siconos/<variant>_<scene>/N           moreau-jean-lemke and moreau-jean-enum, N = 64, 256:
 //                                            one pb::siconos::solve per iteration (the model and
@@ -19,6 +19,8 @@
 // (printed with an "s": an inverted rate; read it as a plain ratio).
 // Run with --benchmark_repetitions=9 (or more) and read the medians.
 
+#ifdef POUNDBENCH_HAVE_SICONOS
+
 #include <benchmark/benchmark.h>
 
 #include "bench/support.hpp"
@@ -32,17 +34,13 @@ namespace {
 using pb::bench::ratio_to;
 using pb::bench::seconds_per_run;
 
-void BM_Siconos(benchmark::State& state, const char* variant, pb::Scene scene) {
-  pb::bench::time_variant(state, &pb::siconos::solve, variant, scene, static_cast<int>(state.range(0)));
-  pb::Settings in_house;
-  in_house.steps = static_cast<int>(state.range(0));
-  state.counters["x_moreau_jean"] =
-      ratio_to(seconds_per_run(&pb::moreau_jean::solve, pb::bench::fig4_point(scene), in_house));
-}
+const bool registered = pb::bench::register_vs_moreau_jean(
+    "BM_Siconos", &pb::siconos::solve, {{"lemke", "moreau-jean-lemke"}, {"enum", "moreau-jean-enum"}});
 
 void BM_SiconosEventDriven(benchmark::State& state, pb::Scene scene) {
   pb::bench::time_variant(state, &pb::siconos::solve, "event-driven-lsodar", scene, 0);
-  state.counters["x_event_driven"] = ratio_to(seconds_per_run(&pb::event_driven::solve, pb::bench::fig4_point(scene), {}));
+  state.counters["x_event_driven"] =
+      ratio_to(seconds_per_run(&pb::event_driven::solve, pb::bench::fig4_point(scene), {}));
 }
 
 void BM_SiconosChain(benchmark::State& state) {
@@ -51,25 +49,11 @@ void BM_SiconosChain(benchmark::State& state) {
   state.counters["x_moreau_jean"] = ratio_to(seconds_per_run(&pb::moreau_jean::solve, s, {}));
 }
 
-void BM_SiconosBaselineMoreauJean(benchmark::State& state, pb::Scene scene) {
-  pb::bench::time_solve(state, &pb::moreau_jean::solve, scene);
-}
-
-#define PB_SICONOS_BENCH(fn, label, ...) \
-  BENCHMARK_CAPTURE(fn, label, __VA_ARGS__)->ArgName("N")->Arg(64)->Arg(256)->Unit(benchmark::kMicrosecond)
-
-PB_SICONOS_BENCH(BM_Siconos, lemke_wall, "moreau-jean-lemke", pb::Scene::wall);
-PB_SICONOS_BENCH(BM_Siconos, lemke_pair, "moreau-jean-lemke", pb::Scene::pair);
-PB_SICONOS_BENCH(BM_Siconos, lemke_row3, "moreau-jean-lemke", pb::Scene::row3);
-PB_SICONOS_BENCH(BM_Siconos, enum_wall, "moreau-jean-enum", pb::Scene::wall);
-PB_SICONOS_BENCH(BM_Siconos, enum_pair, "moreau-jean-enum", pb::Scene::pair);
-PB_SICONOS_BENCH(BM_Siconos, enum_row3, "moreau-jean-enum", pb::Scene::row3);
-PB_SICONOS_BENCH(BM_SiconosBaselineMoreauJean, wall, pb::Scene::wall);
-PB_SICONOS_BENCH(BM_SiconosBaselineMoreauJean, pair, pb::Scene::pair);
-PB_SICONOS_BENCH(BM_SiconosBaselineMoreauJean, row3, pb::Scene::row3);
 BENCHMARK_CAPTURE(BM_SiconosEventDriven, wall, pb::Scene::wall)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_SiconosEventDriven, pair, pb::Scene::pair)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_SiconosEventDriven, row3, pb::Scene::row3)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SiconosChain)->ArgName("bodies")->Arg(2)->Arg(10)->Arg(50)->Unit(benchmark::kMillisecond);
 
 }  // namespace
+
+#endif  // POUNDBENCH_HAVE_SICONOS

@@ -7,16 +7,19 @@
 
 #include <cmath>
 #include <ctime>
+#include <initializer_list>
+#include <string>
 #include <vector>
 
 #include "cases/system.hpp"
+#include "solvers/moreau_jean/moreau_jean.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb::bench {
 
-// A Fig. 4 point (Pi2 = 1, Pi3 = 0.5, Pi5 = 0.5, Pi6 = 1, eps = 0.5, cosine, normal) with
+// A Fig. 4 case (Pi2 = 1, Pi3 = 0.5, Pi5 = 0.5, Pi6 = 1, eps = 0.5, cosine, normal) with
 // impacts in every scene; row3 is the symmetric configuration of Fig. 7.
-inline System fig4_point(Scene scene) {
+inline Case fig4_case(Scene scene) {
   Case c;
   c.scene = scene;
   c.pulse = PulseShape::cosine;
@@ -27,8 +30,10 @@ inline System fig4_point(Scene scene) {
   c.pi7 = 0.5;
   c.pi8 = 1.0;
   c.eps = 0.5;
-  return make_system(c);
+  return c;
 }
+
+inline System fig4_point(Scene scene) { return make_system(fig4_case(scene)); }
 
 // CPU seconds per step (the console prints it with an SI prefix: "7.5n" is 7.5 ns).
 inline benchmark::Counter per_step(long steps) {
@@ -59,13 +64,9 @@ inline std::vector<System> fig4_family() {
   for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
     for (double pi5 : {0.1, 0.25, 0.5, 0.75, 1.33, 2.0, 4.0, 10.0}) {
       for (int k = 0; k < 50; ++k) {
-        Case c;
-        c.scene = Scene::pair;
+        Case c = fig4_case(Scene::pair);
         c.pulse = p;
-        c.pi3 = 0.5;
         c.pi5 = pi5;
-        c.pi6 = 1.0;
-        c.eps = 0.5;
         c.pi2 = 0.1 * std::pow(100.0, k / 49.0);
         systems.push_back(make_system(c));
       }
@@ -113,17 +114,10 @@ inline void report(benchmark::State& state, const Result& r) {
 }
 
 // The chain of the engine benchmarks: n bodies alternating (odd bodies Pi5 = 0.5, Pi6 = 1)
-// with a gap (Pi3 = 0.5) under the cosine pulse (Pi2 = 1, eps = 0.5).
+// with a gap (Pi3 = 0.5) under the cosine pulse (Pi2 = 1, eps = 0.5): the Fig. 4 case's.
 inline System chain_point(int bodies) {
-  Case c;
-  c.scene = Scene::chain;
+  Case c = fig4_case(Scene::chain);
   c.bodies = bodies;
-  c.pulse = PulseShape::cosine;
-  c.pi2 = 1.0;
-  c.pi3 = 0.5;
-  c.pi5 = 0.5;
-  c.pi6 = 1.0;
-  c.eps = 0.5;
   return make_system(c);
 }
 
@@ -156,6 +150,46 @@ inline Result time_variant(benchmark::State& state, SolveFn solve, const char* v
   }
   report(state, r);
   return r;
+}
+
+// The step counts of the per-case benchmarks: N = 64 and 256, timed in microseconds.
+inline benchmark::internal::Benchmark* at_each_n(benchmark::internal::Benchmark* b) {
+  return b->ArgName("N")->Arg(64)->Arg(256)->Unit(benchmark::kMicrosecond);
+}
+
+// time_variant at N = state.range(0), and x_moreau_jean: the CPU time of a run over
+// moreau_jean::solve's on the same case and N.
+inline void time_vs_moreau_jean(benchmark::State& state, SolveFn solve, const char* variant, Scene scene) {
+  const int steps = static_cast<int>(state.range(0));
+  time_variant(state, solve, variant, scene, steps);
+  Settings in_house;
+  in_house.steps = steps;
+  state.counters["x_moreau_jean"] = ratio_to(seconds_per_run(&moreau_jean::solve, fig4_point(scene), in_house));
+}
+
+// A variant of an engine, and what its benchmark names call it.
+struct Labelled {
+  const char* label;
+  const char* variant;
+};
+
+// Registers, at_each_n, <prefix>/<label>_<scene> for every variant on wall, pair and row3
+// (time_vs_moreau_jean), then <prefix>BaselineMoreauJean/<scene>: the baseline on its own.
+// Returns true, to initialise a namespace-scope flag with.
+inline bool register_vs_moreau_jean(const std::string& prefix, SolveFn solve,
+                                    std::initializer_list<Labelled> variants) {
+  const auto add = [](const std::string& title, auto fn) {
+    at_each_n(benchmark::RegisterBenchmark(title.c_str(), fn));
+  };
+  constexpr Scene kScenes[] = {Scene::wall, Scene::pair, Scene::row3};
+  for (const Labelled& v : variants)
+    for (Scene scene : kScenes)
+      add(prefix + "/" + v.label + "_" + std::string(name(scene)),
+          [solve, v, scene](benchmark::State& state) { time_vs_moreau_jean(state, solve, v.variant, scene); });
+  for (Scene scene : kScenes)
+    add(prefix + "BaselineMoreauJean/" + std::string(name(scene)),
+        [scene](benchmark::State& state) { time_solve(state, &moreau_jean::solve, scene); });
+  return true;
 }
 
 }  // namespace pb::bench

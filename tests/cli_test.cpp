@@ -26,6 +26,7 @@
 #include "studies/stress.hpp"
 #include "sweep/sweep.hpp"
 #include "tests/cli_fixture.hpp"
+#include "tests/support.hpp"
 
 extern char** environ;
 
@@ -41,15 +42,7 @@ TEST_F(Cli, RunJsonPrintsTheSolversPi1) {
   EXPECT_EQ(o.err, "");
   const nlohmann::json j = nlohmann::json::parse(o.out);
 
-  Case c;
-  c.scene = Scene::pair;
-  c.pulse = PulseShape::sine;
-  c.directivity = Directivity::normal;
-  c.pi2 = 1;
-  c.pi3 = 0.5;
-  c.eps = 0.5;
-  c.pi5 = 0.5;
-  c.pi6 = 1;
+  const Case c = test::make_case(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5);  // kPairCase
   const Row row = run_point(c, 0, *find_solver("event-driven"), Settings{});
   // JSON carries doubles with round-trip precision and the solver is deterministic.
   EXPECT_EQ(j.at("pi1").get<double>(), row.result.pi1);
@@ -106,11 +99,7 @@ TEST_F(Cli, RunWithWhStepsATimeStepperAtThatWmaxH) {
   EXPECT_NEAR(j.at("wh").get<double>(), 2.0, 1e-12);
   EXPECT_EQ(j.at("settings").at("wh"), 2.0) << j.at("settings");
   // The same run through the library: the JSON is its row.
-  Case c;
-  c.pi2 = 1;
-  c.pi3 = 0.5;
-  c.eps = 0.5;
-  c.pi5 = 0.5;
+  const Case c = test::make_case(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5);
   Settings st;
   st.wh = 2;
   const Row row = run_point(c, 0, *find_solver("moreau-jean"), st);
@@ -143,8 +132,7 @@ struct BadInput {
   std::string names;  // the flag or file the error line must name
 };
 
-// Each bad input exits 2 with one line on stderr naming the culprit, and creates no file:
-// every command below asks for an output file that must not appear.
+// Three settings of moreau-jean: N = 64, and w_max h = 2 and 100 under a time limit.
 constexpr const char* kTinyList = R"(name = "tiny"
 [[run]]
 solver = "moreau-jean"
@@ -155,23 +143,39 @@ wh = [2, 100]
 time_limit = 5
 )";
 
-TEST_F(Cli, EveryBadInputExitsTwoWithOneLineAndNoOutputFile) {
-  write("tiny.toml", kTinySet);
-  write("list.toml", kTinyList);
+// The studies' inputs in place: kTinySet as tiny.toml, kTinyList as list.toml.
+class CliStudy : public Cli {
+ protected:
+  void SetUp() override {
+    Cli::SetUp();
+    write("tiny.toml", kTinySet);
+    write("list.toml", kTinyList);
+  }
+};
+
+// Each bad input exits 2 with one line on stderr naming the culprit, and creates no file:
+// every command below asks for an output file that must not appear.
+TEST_F(CliStudy, EveryBadInputExitsTwoWithOneLineAndNoOutputFile) {
   write("bad-list.toml", "[[run]]\nsolver = \"moreau-jean\"\nwh = 0\n");
   write("syntax.toml", "name = \"broken\"\n[[family]]\nscene = \"pair\"\npi2 = [1, \n");
   write("semantic.toml", "name = \"bad\"\n[[family]]\nname = \"f\"\nscene = \"pair\"\npulse = \"sine\"\n"
                          "directivity = \"normal\"\neps = 0.5\npi2 = 1\npi3 = 0.5\npi5 = -1\npi6 = 1\n");
   const std::string wall = "--pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 0.5 --history h.csv";
   const std::string pair = "run --scene pair --pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 0.5 ";
+  // The wall run with the value of `flag` replaced.
+  const auto wall_with = [&wall](const std::string& flag, const std::string& value) {
+    std::string args = "run --scene wall " + wall;
+    const std::size_t at = args.find(flag + " ") + flag.size() + 1;
+    return args.replace(at, args.find(' ', at) - at, value);
+  };
   const std::vector<BadInput> cases = {
       {"run --scene tower " + wall, "--scene"},
       {pair + "--pi6 1 --history h.csv", "--pi5"},
       {pair + "--pi5 1 --pi6 1 --pi7 1 --history h.csv", "--pi7"},
-      {"run --scene wall --pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 1.5 --history h.csv", "--eps"},
-      {"run --scene wall --pulse sine --directivity normal --pi2 nan --pi3 0.5 --eps 1 --history h.csv", "--pi2"},
-      {"run --scene wall --pulse sine --directivity normal --pi2 1 --pi3 -0.5 --eps 1 --history h.csv", "--pi3"},
-      {"run --scene wall --pulse sine --directivity normal --pi2 abc --pi3 0.5 --eps 1 --history h.csv", "--pi2"},
+      {wall_with("--eps", "1.5"), "--eps"},
+      {wall_with("--pi2", "nan"), "--pi2"},
+      {wall_with("--pi3", "-0.5"), "--pi3"},
+      {wall_with("--pi2", "abc"), "--pi2"},
       {"run --scene wall " + wall + " --solver no-such-solver", "--solver"},
       {"run --scene wall " + wall + " --tol-scale 0", "--tol-scale"},
       {"run --scene wall " + wall + " --bogus-flag", "--bogus-flag"},
@@ -388,21 +392,13 @@ TEST_F(Cli, SpectrumToStdoutLeavesNoPartialFile) {
   EXPECT_EQ(files(), (std::set<std::string>{"tiny.toml"}));
 }
 
-// A sweep of 200000 points (far more than finish in the test's few seconds): interrupt it
-// once rows are arriving, then check what it leaves.
+// A sweep of 200000 points (kTinySet's two spectra at 100000 points each: far more than
+// finish in the test's few seconds): interrupt it once rows are arriving, then check what
+// it leaves.
 TEST_F(Cli, InterruptedSpectrumKeepsThePartialFileAndWritesNoFinalFile) {
-  write("big.toml", R"(name = "big"
-[[family]]
-name = "many"
-scene = "pair"
-pulse = ["sine", "cosine"]
-directivity = "normal"
-eps = 0.5
-pi3 = 0.5
-pi5 = 0.5
-pi6 = 1
-pi2 = { from = 0.1, to = 10, points = 100000, spacing = "log" }
-)");
+  std::string big_set = kTinySet;
+  const std::string tiny_grid = "points = 3";
+  write("big.toml", big_set.replace(big_set.find(tiny_grid), tiny_grid.size(), "points = 100000"));
   const std::string big = file("big.toml").string(), out = file("out.csv").string();
   const std::string log = file("stderr.txt").string();
   const pid_t pid = spawn_poundbench({"spectrum", big, "--out", out, "--threads", "2"}, dir_, "/dev/null", log);
@@ -479,9 +475,7 @@ TEST_F(Cli, SpectrumRefusesThePartialFileOfAnotherSweep) {
 
 // A study's partial file has a run column (0: the truth); its rows are kept and the
 // summary and every run's row come out as an uninterrupted study's.
-TEST_F(Cli, AStudyResumesFromItsPartialFileToTheSameSummaryAndRuns) {
-  write("tiny.toml", kTinySet);
-  write("list.toml", kTinyList);
+TEST_F(CliStudy, AStudyResumesFromItsPartialFileToTheSameSummaryAndRuns) {
   ASSERT_EQ(run("workprecision tiny.toml --settings list.toml --out sum.csv --points runs.csv").exit_code, 0);
   CsvTable runs(read_text(file("runs.csv")));
   ASSERT_EQ(runs.rows.size(), 24u);  // 6 points, the truth and 3 settings
@@ -504,9 +498,7 @@ TEST_F(Cli, AStudyResumesFromItsPartialFileToTheSameSummaryAndRuns) {
             CsvTable(read_text(file("sum.csv"))).without(cpu).rows);
 }
 
-TEST_F(Cli, StressWritesASummaryPerFamilyAndSettingAndEveryRunWithItsPi1Error) {
-  write("tiny.toml", kTinySet);
-  write("list.toml", kTinyList);
+TEST_F(CliStudy, StressWritesASummaryPerFamilyAndSettingAndEveryRunWithItsPi1Error) {
   const Outcome o = run("stress tiny.toml --settings list.toml --out sum.csv --points runs.csv --threads 2");
   ASSERT_EQ(o.exit_code, 0) << o.err;
   EXPECT_EQ(o.out, "");
@@ -550,9 +542,7 @@ TEST_F(Cli, StressWritesASummaryPerFamilyAndSettingAndEveryRunWithItsPi1Error) {
 
 // A baseline stored, checked unchanged (exit 0), checked after one stored Pi1 was nudged
 // (exit 1, the setting named), and stored again on purpose (exit 0, then clean again).
-TEST_F(Cli, BaselineCheckCatchesAChangedPi1AndUpdateStoresItAgain) {
-  write("tiny.toml", kTinySet);
-  write("list.toml", kTinyList);
+TEST_F(CliStudy, BaselineCheckCatchesAChangedPi1AndUpdateStoresItAgain) {
   const Outcome made = run("baseline tiny.toml --settings list.toml --out base.csv");
   ASSERT_EQ(made.exit_code, 0) << made.err;
   EXPECT_EQ(made.out, "base.csv: 24 rows\n");

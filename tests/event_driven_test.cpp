@@ -302,6 +302,23 @@ TEST(EventDriven, CheckRejectsAStepOfAnyKind) {
 namespace pb {
 namespace {
 
+// Case i of a random sweep over the whole parameter box: wall, pair and row3 in turn, the
+// pulses in turn every three cases, every Pi over two decades around 1 and Pi3 around 0.3,
+// or touching at rest (Pi3 = 0) in one case of every `touching_every`. eps is the caller's.
+Case random_case(int i, int touching_every, std::mt19937& rng) {
+  std::uniform_real_distribution<double> decade(-1.0, 1.0);
+  Case c;
+  c.scene = i % 3 == 0 ? Scene::wall : i % 3 == 1 ? Scene::pair : Scene::row3;
+  c.pulse = (i / 3) % 2 ? PulseShape::cosine : PulseShape::sine;
+  c.pi2 = std::pow(10.0, decade(rng));
+  c.pi3 = i % touching_every == 0 ? 0.0 : std::pow(10.0, decade(rng) - 0.5);
+  c.pi5 = std::pow(10.0, decade(rng));
+  c.pi6 = std::pow(10.0, decade(rng));
+  c.pi7 = std::pow(10.0, decade(rng));
+  c.pi8 = std::pow(10.0, decade(rng));
+  return c;
+}
+
 // The energy balance changes only at events, where impacts lose energy and the rest is
 // rounding: over random wall, pair and row3 cases its largest excess stays at rounding
 // (measured 1.8e-14 over the shipped case sets), and every isolated impact restitutes eps
@@ -309,18 +326,10 @@ namespace {
 // counted, kRestitutionFloor a_p / w_p).
 TEST(EventDriven, EnergyBalanceAndRestitutionOfIsolatedImpactsAreExactToRounding) {
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> decade(-1.0, 1.0), unit(0.0, 1.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
   long isolated = 0;
   for (int i = 0; i < 600; ++i) {
-    Case c;
-    c.scene = i % 3 == 0 ? Scene::wall : i % 3 == 1 ? Scene::pair : Scene::row3;
-    c.pulse = (i / 3) % 2 ? PulseShape::cosine : PulseShape::sine;
-    c.pi2 = std::pow(10.0, decade(rng));
-    c.pi3 = i % 5 == 0 ? 0.0 : std::pow(10.0, decade(rng) - 0.5);
-    c.pi5 = std::pow(10.0, decade(rng));
-    c.pi6 = std::pow(10.0, decade(rng));
-    c.pi7 = std::pow(10.0, decade(rng));
-    c.pi8 = std::pow(10.0, decade(rng));
+    Case c = random_case(i, 5, rng);
     c.eps = i % 4 == 0 ? 1.0 : unit(rng);
     const Result r = event_driven::solve(make_system(c), {});
     ASSERT_EQ(r.status, Status::ok) << "case " << i << ": " << r.message;
@@ -339,18 +348,10 @@ TEST(EventDriven, EnergyBalanceAndRestitutionOfIsolatedImpactsAreExactToRounding
 // a gap open below round-off, and stay within its event budget.
 TEST(EventDriven, EveryRandomCaseFinishesWithoutPenetration) {
   std::mt19937 rng(1);
-  std::uniform_real_distribution<double> decade(-1.0, 1.0), unit(0.0, 1.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int i = 0; i < 3000; ++i) {
-    Case c;
-    c.scene = i % 3 == 0 ? Scene::wall : i % 3 == 1 ? Scene::pair : Scene::row3;
-    c.pulse = (i / 3) % 2 ? PulseShape::cosine : PulseShape::sine;
+    Case c = random_case(i, 7, rng);
     c.directivity = (i / 6) % 2 ? Directivity::reverse : Directivity::normal;
-    c.pi2 = std::pow(10.0, decade(rng));
-    c.pi3 = i % 7 == 0 ? 0.0 : std::pow(10.0, decade(rng) - 0.5);
-    c.pi5 = std::pow(10.0, decade(rng));
-    c.pi6 = std::pow(10.0, decade(rng));
-    c.pi7 = std::pow(10.0, decade(rng));
-    c.pi8 = std::pow(10.0, decade(rng));
     const double e = unit(rng);
     c.eps = i % 4 == 0 ? 0.0 : i % 4 == 1 ? 1.0 : e;
     const System s = make_system(c);

@@ -215,62 +215,48 @@ constexpr double kAgreeTol = 1e-13;
 // At condition 1e10 z is determined only to cond * eps ~ 1e-6 (measured 1.1e-6).
 constexpr double kAgreeTolNearSingular = 1e-4;
 
-TEST(LcpLemke, MatchesEnumerationAndPlantedSolutionOnDiagonallyDominantMatrices) {
-  const Worst w = run_family(Family::dominant, 0.0, 1);
+// A family of planted problems and what Lemke and enumeration must reach on it.
+struct FamilyCase {
+  const char* name;
+  Family family;
+  double degenerate_share;  // of the components with z*_i = w*_i = 0: the ratio tests tie
+  unsigned long seed;
+  double fit_tol;
+  // The solutions' agreement with each other and with the planted one; 0: not compared,
+  // where solutions need not be unique.
+  double agree_tol;
+};
+
+class LcpLemkeFamily : public ::testing::TestWithParam<FamilyCase> {};
+
+TEST_P(LcpLemkeFamily, SolvesPlantedProblemsWithinTheFamilysFitAndAgreementTolerances) {
+  const FamilyCase& c = GetParam();
+  const Worst w = run_family(c.family, c.degenerate_share, c.seed);
   EXPECT_EQ(w.not_solved, 0);
-  EXPECT_LE(w.lemke_fit, kFitTol);
-  EXPECT_LE(w.enum_fit, kFitTol);
-  EXPECT_LE(w.lemke_vs_planted, kAgreeTol);
-  EXPECT_LE(w.enum_vs_planted, kAgreeTol);
-  EXPECT_LE(w.lemke_vs_enum, kAgreeTol);
+  EXPECT_LE(w.lemke_fit, c.fit_tol);
+  EXPECT_LE(w.enum_fit, c.fit_tol);
+  if (c.agree_tol == 0.0) return;
+  EXPECT_LE(w.lemke_vs_planted, c.agree_tol);
+  EXPECT_LE(w.enum_vs_planted, c.agree_tol);
+  EXPECT_LE(w.lemke_vs_enum, c.agree_tol);
 }
 
-TEST(LcpLemke, MatchesEnumerationAndPlantedSolutionOnSpdMatrices) {
-  const Worst w = run_family(Family::spd, 0.0, 2);
-  EXPECT_EQ(w.not_solved, 0);
-  EXPECT_LE(w.lemke_fit, kFitTol);
-  EXPECT_LE(w.enum_fit, kFitTol);
-  EXPECT_LE(w.lemke_vs_planted, kAgreeTol);
-  EXPECT_LE(w.enum_vs_planted, kAgreeTol);
-  EXPECT_LE(w.lemke_vs_enum, kAgreeTol);
-}
-
-TEST(LcpLemke, SolvesDegenerateProblemsWhereZAndWVanishTogether) {
-  // A third of the components have z*_i = w*_i = 0: the ratio tests tie.
-  for (Family f : {Family::dominant, Family::spd}) {
-    const Worst w = run_family(f, 1.0 / 3.0, 3);
-    EXPECT_EQ(w.not_solved, 0);
-    EXPECT_LE(w.lemke_fit, kFitTol);
-    EXPECT_LE(w.enum_fit, kFitTol);
-    EXPECT_LE(w.lemke_vs_planted, kAgreeTol);
-    EXPECT_LE(w.lemke_vs_enum, kAgreeTol);
-  }
-}
-
-TEST(LcpLemke, SolvesRankDeficientSemidefiniteProblems) {
-  // Solutions need not be unique: only the fit is checked, for both solvers.
-  for (double share : {0.0, 1.0 / 3.0}) {
-    const Worst w = run_family(Family::rank_deficient, share, 4);
-    EXPECT_EQ(w.not_solved, 0);
-    EXPECT_LE(w.lemke_fit, kFitTolRankDeficient);
-    EXPECT_LE(w.enum_fit, kFitTolRankDeficient);
-  }
-}
-
-TEST(LcpLemke, SolvesNearSingularProblemsToRoundingFit) {
-  // Condition 1e10, with and without degenerate components: the fit (a backward error)
-  // stays at rounding level, z itself is determined only to about cond * eps.
-  // (Without LemkeSettings::polish the fit here was up to 4e-8 and z off by O(1).)
-  for (double share : {0.0, 1.0 / 3.0}) {
-    const Worst w = run_family(Family::near_singular, share, 5);
-    EXPECT_EQ(w.not_solved, 0);
-    EXPECT_LE(w.lemke_fit, kFitTol);
-    EXPECT_LE(w.enum_fit, kFitTol);
-    EXPECT_LE(w.lemke_vs_planted, kAgreeTolNearSingular);
-    EXPECT_LE(w.enum_vs_planted, kAgreeTolNearSingular);
-    EXPECT_LE(w.lemke_vs_enum, kAgreeTolNearSingular);
-  }
-}
+// Near-singular: condition 1e10, with and without degenerate components; the fit (a
+// backward error) stays at rounding level, z itself is determined only to about cond * eps.
+// (Without LemkeSettings::polish the fit there was up to 4e-8 and z off by O(1).)
+INSTANTIATE_TEST_SUITE_P(
+    LcpLemke, LcpLemkeFamily,
+    ::testing::Values(
+        FamilyCase{"DiagonallyDominant", Family::dominant, 0.0, 1, kFitTol, kAgreeTol},
+        FamilyCase{"Spd", Family::spd, 0.0, 2, kFitTol, kAgreeTol},
+        FamilyCase{"DegenerateDiagonallyDominant", Family::dominant, 1.0 / 3.0, 3, kFitTol, kAgreeTol},
+        FamilyCase{"DegenerateSpd", Family::spd, 1.0 / 3.0, 3, kFitTol, kAgreeTol},
+        FamilyCase{"RankDeficientSemidefinite", Family::rank_deficient, 0.0, 4, kFitTolRankDeficient, 0.0},
+        FamilyCase{"DegenerateRankDeficientSemidefinite", Family::rank_deficient, 1.0 / 3.0, 4,
+                   kFitTolRankDeficient, 0.0},
+        FamilyCase{"NearSingular", Family::near_singular, 0.0, 5, kFitTol, kAgreeTolNearSingular},
+        FamilyCase{"DegenerateNearSingular", Family::near_singular, 1.0 / 3.0, 5, kFitTol, kAgreeTolNearSingular}),
+    [](const ::testing::TestParamInfo<FamilyCase>& row) { return std::string(row.param.name); });
 
 // W^T M^-1 W of n contacts between n + 1 bodies in a row (a wall at the left end),
 // masses spread over a decade: tridiagonal, SPD.

@@ -155,18 +155,25 @@ TEST(MoreauJean, PulseMeanRecurrenceStaysWithinRoundOffOfTheExactMean) {
   }
 }
 
-// A free mass (no spring, no damper, no contact) under the pulse: the scheme gives
-// v_k = -h sum of the step means, so v_k must equal the exact -integral of a_g to t_k.
+// A free mass (no spring, no damper, no contact) under the pulse p, t_min = T_p / ratio,
+// until 1.7 T_p: its velocity is the integral of the load alone.
+System free_mass_under_pulse(PulseShape p, double ratio) {
+  System s;
+  s.bodies = {Body{2.0, 0.0, 0.0, 0.0}};
+  s.ref = 0;
+  s.a_p = 1.5;
+  s.pulse = {p, -1.5, 3.0};
+  s.t_min = s.pulse.duration() / ratio;
+  s.t_end = 1.7 * s.pulse.duration();
+  return s;
+}
+
+// A free mass under the pulse: the scheme gives v_k = -h sum of the step means, so v_k
+// must equal the exact -integral of a_g to t_k.
 TEST(MoreauJean, GroundLoadIsTheExactStepMeanOfThePulseAlsoAcrossItsEnd) {
   for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
-    System s;
-    s.bodies = {Body{2.0, 0.0, 0.0, 0.0}};
-    s.ref = 0;
-    s.a_p = 1.5;
-    s.pulse = {p, -1.5, 3.0};
+    const System s = free_mass_under_pulse(p, 2.3);  // T_p / h = 2.3 N: the pulse ends inside a step
     const double t_p = s.pulse.duration();
-    s.t_min = t_p / 2.3;  // T_p / h = 2.3 N: the pulse ends inside a step
-    s.t_end = 1.7 * t_p;
     for (int n : {64, 100, 1000}) {
       const Result r = run(s, n, true);
       ASSERT_EQ(r.status, Status::ok) << r.message;
@@ -247,14 +254,7 @@ TEST(MoreauJean, EndSampledLoadIsTheThetaWeightOfTheSamplesAtTheStepEnds) {
   for (PulseShape p : {PulseShape::sine, PulseShape::cosine})
     for (double ratio : {2.3, 1.0})  // T_p / t_min: the pulse ends inside a step, or on a boundary
       for (double theta : {0.5, 1.0}) {
-        System s;
-        s.bodies = {Body{2.0, 0.0, 0.0, 0.0}};
-        s.ref = 0;
-        s.a_p = 1.5;
-        s.pulse = {p, -1.5, 3.0};
-        const double t_p = s.pulse.duration();
-        s.t_min = t_p / ratio;
-        s.t_end = 1.7 * t_p;
+        const System s = free_mass_under_pulse(p, ratio);
         Settings st;
         st.variant = std::string(mj::kEndSamples);
         st.steps = 100;
@@ -280,21 +280,25 @@ TEST(MoreauJean, EndSampledLoadIsTheThetaWeightOfTheSamplesAtTheStepEnds) {
       }
 }
 
+// Undamped free vibration of a wall, pair or row3 case (Pi2 = 1, Pi5 = 0.6, Pi8 = 2) from
+// the reference body's initial velocity alone.
+System free_vibration(Scene scene, double eps) {
+  Case c = make_case(scene, PulseShape::sine, 1.0, 0.6, eps);
+  c.xi = 0.0;
+  c.pi8 = 2.0;
+  System s = make_system(c);
+  s.pulse.amplitude = 0.0;
+  s.v_start[static_cast<std::size_t>(s.ref)] = -3.0 * s.delta * s.bodies[static_cast<std::size_t>(s.ref)].w;
+  return s;
+}
+
 // A contact step of the scheme at theta = 1/2 changes the energy by
 // sum_j P_j (g'_j,k + g'_j,k+1) / 2, which Newton's law with eps = 1 makes zero, and
 // the steps between impacts keep the quadratic energy exactly (trapezoidal rule).
 TEST(MoreauJean, ElasticImpactsAndFreeFlightKeepTheEnergyAtThetaOneHalf) {
   for (Scene scene : {Scene::wall, Scene::pair, Scene::row3}) {
-    Case c = make_case(scene, PulseShape::sine, 1.0, 0.6, 1.0);
-    c.xi = 0.0;
-    c.pi8 = 2.0;
-    System s = make_system(c);
-    s.pulse.amplitude = 0.0;  // free vibration from the initial velocity only
-    s.v_start[static_cast<std::size_t>(s.ref)] = -3.0 * s.delta * s.bodies[static_cast<std::size_t>(s.ref)].w;
-    Settings st;
-    st.steps = 200;
-    st.history_samples = 1;
-    const Result r = mj::solve(s, st);
+    const System s = free_vibration(scene, 1.0);
+    const Result r = run(s, 200, true);
     ASSERT_EQ(r.status, Status::ok) << r.message;
     ASSERT_GT(r.impacts, 3) << name(scene);
     const double e0 = energy(s, Row{r.history, 0});
@@ -310,16 +314,8 @@ TEST(MoreauJean, ElasticImpactsAndFreeFlightKeepTheEnergyAtThetaOneHalf) {
 TEST(MoreauJean, PlasticAndPartlyElasticImpactsNeverAddEnergy) {
   for (double eps : {0.0, 0.5}) {
     for (Scene scene : {Scene::wall, Scene::pair, Scene::row3}) {
-      Case c = make_case(scene, PulseShape::sine, 1.0, 0.6, eps);
-      c.xi = 0.0;
-      c.pi8 = 2.0;
-      System s = make_system(c);
-      s.pulse.amplitude = 0.0;
-      s.v_start[static_cast<std::size_t>(s.ref)] = -3.0 * s.delta * s.bodies[static_cast<std::size_t>(s.ref)].w;
-      Settings st;
-      st.steps = 200;
-      st.history_samples = 1;
-      const Result r = mj::solve(s, st);
+      const System s = free_vibration(scene, eps);
+      const Result r = run(s, 200, true);
       ASSERT_EQ(r.status, Status::ok) << r.message;
       ASSERT_GT(r.impacts, 0);
       const double e0 = energy(s, Row{r.history, 0});
@@ -367,23 +363,26 @@ TEST(MoreauJean, PenetrationIsBelowOneStepOfTheFastestApproach) {
   EXPECT_GT(cases_with_penetration, 100);
 }
 
+// Free bodies (no spring, no damper, no load: no force but the contacts') of `s` from u = 0
+// at velocities v0, at h = 0.01 (t_min = 1, N = 100), every step in the history.
+Result free_run(System s, const std::vector<double>& v0) {
+  s.a_p = 1.0;
+  s.pulse.amplitude = 0.0;
+  s.t_min = 1.0;
+  s.u_start.assign(v0.size(), 0.0);
+  s.v_start = v0;
+  return run(s, 100, true);
+}
+
 TEST(MoreauJean, ImpactOnTheWallReversesTheApproachSpeedTimesEps) {
   for (double eps : {0.0, 0.3, 1.0}) {
     System s;
-    s.bodies = {Body{2.0, 0.0, 0.0, 0.0}};  // a free mass: no force but the contact
+    s.bodies = {Body{2.0, 0.0, 0.0, 0.0}};
     s.wall = true;
     s.delta = 0.05;
     s.eps = eps;
-    s.a_p = 1.0;
-    s.pulse.amplitude = 0.0;
-    s.t_min = 1.0;
     s.t_end = 1.0;
-    Settings st;
-    st.steps = 100;
-    st.history_samples = 1;
-    s.u_start = {0.0};
-    s.v_start = {-1.0};
-    const Result r = mj::solve(s, st);
+    const Result r = free_run(s, {-1.0});
     ASSERT_EQ(r.status, Status::ok);
     EXPECT_EQ(r.impacts, 1);
     const Row last{r.history, r.history.rows() - 1};
@@ -401,23 +400,15 @@ TEST(MoreauJean, SimultaneousImpactsFollowNewtonsLawOnEveryContact) {
     s.ref = 1;
     s.delta = 0.0;
     s.eps = eps;
-    s.a_p = 1.0;
-    s.pulse.amplitude = 0.0;
-    s.t_min = 1.0;
     s.t_end = 0.02;
-    Settings st;
-    st.steps = 100;
-    st.history_samples = 1;
-    s.u_start = {0.0, 0.0, 0.0};
-    s.v_start = {1.0, 0.0, -1.0};
-    const Result r = mj::solve(s, st);
+    const Result r = free_run(s, {1.0, 0.0, -1.0});
     ASSERT_EQ(r.status, Status::ok);
     EXPECT_EQ(r.impacts, 2);
     const Row after{r.history, 1};
     EXPECT_NEAR(after.v(0), -eps, 1e-15);
     EXPECT_NEAR(after.v(1), 0.0, 1e-15);
     EXPECT_NEAR(after.v(2), eps, 1e-15);
-    EXPECT_NEAR(after.lambda(0) * s.step(100), 1.0 + eps, 1e-14) << "impulse, as lambda h";
+    EXPECT_NEAR(after.lambda(0) * r.step, 1.0 + eps, 1e-14) << "impulse, as lambda h";
   }
 }
 
@@ -507,22 +498,15 @@ TEST(MoreauJean, Pi1ConvergesToTheEventDrivenReferenceAtFirstOrder) {
   std::vector<int> ns = {64, 128, 256, 512, 1024};
   std::vector<double> mean(ns.size(), 0.0);
   int cases = 0;
-  for (Scene scene : {Scene::pair, Scene::row3}) {
-    for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
-      for (double pi5 : {0.5, 2.0}) {
-        for (double pi2 : {0.5, 1.0, 2.0}) {
-          const System s = make_system(make_case(scene, p, pi2, pi5, 0.5));
-          const Result ref = event_driven::solve(s, {});
-          ASSERT_EQ(ref.status, Status::ok) << ref.message;
-          if (ref.impacts == 0) continue;
-          ++cases;
-          for (std::size_t i = 0; i < ns.size(); ++i) {
-            const Result r = run(s, ns[i]);
-            ASSERT_EQ(r.status, Status::ok) << r.message;
-            mean[i] += std::abs(r.pi1 - ref.pi1);
-          }
-        }
-      }
+  for (const System& s : test::convergence_systems()) {
+    const Result ref = event_driven::solve(s, {});
+    ASSERT_EQ(ref.status, Status::ok) << ref.message;
+    if (ref.impacts == 0) continue;
+    ++cases;
+    for (std::size_t i = 0; i < ns.size(); ++i) {
+      const Result r = run(s, ns[i]);
+      ASSERT_EQ(r.status, Status::ok) << r.message;
+      mean[i] += std::abs(r.pi1 - ref.pi1);
     }
   }
   for (double& m : mean) m /= cases;

@@ -1,7 +1,8 @@
 #pragma once
 // What the solver tests share: the paper's standard pair/row3 case, reading a time-stepper's
 // History one row at a time, by column meaning, the measured-number format, the observed
-// order of a list of errors, the cradle start and the stress monitor's cases.
+// order of a list of errors, the cradle start, the stress monitor's cases and the
+// convergence set.
 
 #include <cmath>
 #include <cstddef>
@@ -77,6 +78,18 @@ inline std::vector<System> monitor_systems() {
       c.bodies = scene == Scene::chain ? 6 : 0;
       systems.push_back(make_system(c));
     }
+  return systems;
+}
+
+// The convergence set of the time-stepper tests: pair and symmetric row3 cases of the Fig. 4
+// and Fig. 7 families (Pi3 = 0.5, Pi6 = 1, eps = 0.5) under both pulses, Pi5 = 0.5 and 2,
+// Pi2 = 0.5, 1 and 2. Those without impacts in the reference tell nothing of the contacts.
+inline std::vector<System> convergence_systems() {
+  std::vector<System> systems;
+  for (Scene scene : {Scene::pair, Scene::row3})
+    for (PulseShape p : {PulseShape::sine, PulseShape::cosine})
+      for (double pi5 : {0.5, 2.0})
+        for (double pi2 : {0.5, 1.0, 2.0}) systems.push_back(make_system(make_case(scene, p, pi2, pi5, 0.5)));
   return systems;
 }
 

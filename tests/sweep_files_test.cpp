@@ -40,6 +40,16 @@ class SweepFiles : public Cli {
     return spawn_poundbench(std::move(args), dir_, out, log);
   }
 
+  // Writes kTinySet as tiny.toml and starts a spectrum of it to out.csv that is still on its
+  // first points for as long as a test needs it to run: moreau-jean at 1e8 steps per shortest
+  // period (7e8 steps, past the default cap) takes about 10 s a point. Returns its pid.
+  pid_t spawn_slow_spectrum(const fs::path& log) const {
+    write("tiny.toml", kTinySet);
+    return spawn({"spectrum", "tiny.toml", "--out", "out.csv", "--solver", "moreau-jean", "--steps", "100000000",
+                  "--step-cap", "2000000000", "--threads", "1"},
+                 log);
+  }
+
   // Waits (at most 20 s) until `file` exists; then a little longer, so that the sweep
   // that writes it is past its checks and watching for signals.
   static bool wait_for(const fs::path& file) {
@@ -72,15 +82,9 @@ class SweepFiles : public Cli {
 
 // While a sweep runs, another on the same --out is refused (exit 2, one line naming the
 // holder's pid) and touches nothing; the lock goes with the first sweep however it ends,
-// here abandoned by a second Ctrl-C, and the output is free again. Its points (moreau-jean
-// at 1e8 steps per shortest period: 7e8 steps, past the default cap) take about 10 s each,
-// so the sweep is still on its first ones for as long as the test needs it to run.
+// here abandoned by a second Ctrl-C, and the output is free again.
 TEST_F(SweepFiles, ASecondSweepOnTheSameOutputIsRefusedNamingTheHolder) {
-  write("tiny.toml", kTinySet);
-  const fs::path log = file("first.log");
-  const pid_t first = spawn({"spectrum", "tiny.toml", "--out", "out.csv", "--solver", "moreau-jean", "--steps",
-                             "100000000", "--step-cap", "2000000000", "--threads", "1"},
-                            log);
+  const pid_t first = spawn_slow_spectrum(file("first.log"));
   ASSERT_TRUE(wait_for(file("out.csv.partial")));
   const std::string partial = read_text(file("out.csv.partial"));
 
@@ -166,11 +170,8 @@ TEST_F(SweepFiles, AFailedFinalWriteNamesTheReasonAndKeepsTheRows) {
 // Terminal control sequences only go to a terminal: the line of an interrupted sweep, in a
 // log file, is plain text.
 TEST_F(SweepFiles, TheInterruptedLineHasNoTerminalControlWhenStderrIsAFile) {
-  write("tiny.toml", kTinySet);
   const fs::path log = file("sweep.log");
-  const pid_t pid = spawn({"spectrum", "tiny.toml", "--out", "out.csv", "--solver", "moreau-jean", "--steps",
-                           "100000000", "--step-cap", "2000000000", "--threads", "1"},
-                          log);
+  const pid_t pid = spawn_slow_spectrum(log);
   ASSERT_TRUE(wait_for(file("out.csv.partial")));
   EXPECT_EQ(abandon(pid), 130);
   const std::string err = read_text(log);
