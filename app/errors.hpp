@@ -3,6 +3,7 @@
 // BadInput (exit 2) is the user's to fix and its what() is the one line printed; any other
 // exception is a runtime failure (exit 1).
 
+#include <exception>
 #include <stdexcept>
 
 namespace pb::app {
@@ -10,6 +11,10 @@ namespace pb::app {
 struct BadInput : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+// The exit code main() gives a failure: 2 for the user's input (BadInput, a case-set or
+// settings-list error), 1 for anything else. Processes::agree uses it for every rank.
+int exit_code_of(const std::exception& e);
 
 // The exit code of a sweep command that a signal stopped (its partial file is kept).
 inline constexpr int kInterrupted = 130;

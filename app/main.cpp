@@ -1,7 +1,7 @@
 // poundbench: the command line. Exit codes: 0 done, 1 runtime failure, 2 bad input (one
 // line on stderr naming the flag or file, the field and the reason), 130 interrupted.
 // Under an MPI launcher every rank runs this; only the leader (rank 0) prints, and the
-// sweep commands share their work among the ranks (app/processes.hpp).
+// sweep commands share their work among the ranks (sweep/processes.hpp).
 
 #include <algorithm>
 #include <exception>
@@ -14,13 +14,13 @@
 
 #include "app/baseline_command.hpp"
 #include "app/errors.hpp"
-#include "app/processes.hpp"
 #include "app/run_command.hpp"
 #include "app/spectrum_command.hpp"
 #include "app/stress_command.hpp"
 #include "app/workprecision_command.hpp"
 #include "cases/case_set.hpp"
 #include "solvers/solver.hpp"
+#include "sweep/processes.hpp"
 
 namespace {
 
@@ -74,9 +74,9 @@ int list_solvers() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::unique_ptr<pb::app::Processes> processes;
+  std::unique_ptr<pb::Processes> processes;
   try {
-    processes = std::make_unique<pb::app::Processes>(argc, argv);
+    processes = std::make_unique<pb::Processes>(argc, argv);
   } catch (const std::exception& e) {
     return fail(e.what(), kRuntimeFailure);
   }
@@ -123,14 +123,10 @@ int main(int argc, char** argv) {
     if (*baseline) return pb::app::baseline_command(*baseline, baseline_flags);
     if (*compare) return pb::app::compare_command(*compare, compare_flags);
     if (*solvers) return list_solvers();
-  } catch (const pb::app::SharedFailure& e) {
+  } catch (const pb::SharedFailure& e) {
     return leader ? fail(e.what(), e.code) : e.code;
-  } catch (const pb::app::BadInput& e) {
-    return local_failure(e.what(), kBadInput);
-  } catch (const pb::CaseSetError& e) {
-    return local_failure(e.what(), kBadInput);
   } catch (const std::exception& e) {
-    return local_failure(e.what(), kRuntimeFailure);
+    return local_failure(e.what(), pb::app::exit_code_of(e));
   }
   return kBadInput;
 }

@@ -1,6 +1,6 @@
 #pragma once
 // The sweep that `spectrum`, `workprecision` and `stress` share: resumed from its partial
-// file, run on every process of the job (app/processes.hpp), each new row appended to the
+// file, run on every process of the job (sweep/processes.hpp), each new row appended to the
 // partial file, flushed, as soon as it reaches the leader.
 //
 // The partial file is named after the output (partial_file_name). A rerun with the same
@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "app/output_lock.hpp"
-#include "app/processes.hpp"
+#include "sweep/processes.hpp"
 #include "cases/case.hpp"
 #include "rows/row.hpp"
 #include "sweep/sweep.hpp"

@@ -55,7 +55,7 @@ int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const 
     if (!flags.out.empty()) check_sweep_output(flags.out, "--out");
     lock = take_output_lock(flags.out, "spectrum", partial);
     earlier = read_earlier_rows(partial, set.cases, runs);
-  });
+  }, exit_code_of);
 
   const auto rows = run_resumable(processes, set.cases, runs, partial, lock, std::move(earlier), flags.threads);
   if (!rows) return kInterrupted;

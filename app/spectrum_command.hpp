@@ -12,7 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/processes.hpp"
+#include "sweep/processes.hpp"
 #include "app/solver_flags.hpp"
 
 namespace pb::app {

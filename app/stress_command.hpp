@@ -8,7 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/processes.hpp"
+#include "sweep/processes.hpp"
 #include "app/study_run.hpp"
 
 namespace pb::app {

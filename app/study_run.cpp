@@ -38,7 +38,7 @@ Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_vi
     if (!flags.points.empty()) check_sweep_output(flags.points, "--points");
     study.lock = take_output_lock(flags.out, name, study.partial);
     earlier = read_earlier_rows(study.partial, study.set.cases, runs);
-  });
+  }, exit_code_of);
   study.rows =
       run_resumable(processes, study.set.cases, runs, study.partial, study.lock, std::move(earlier), flags.threads);
   return study;

@@ -13,7 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/output_lock.hpp"
-#include "app/processes.hpp"
+#include "sweep/processes.hpp"
 #include "cases/case_set.hpp"
 #include "rows/row.hpp"
 #include "studies/settings_list.hpp"

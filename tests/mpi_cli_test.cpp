@@ -1,4 +1,4 @@
-// `poundbench` under mpiexec with two ranks (app/processes.hpp, sweep/mpi_sweep.hpp): the
+// `poundbench` under mpiexec with two ranks (sweep/processes.hpp, sweep/mpi_sweep.hpp): the
 // rows, summaries and resumed results of one process, bad inputs that end every rank.
 // Skipped, saying so, when poundbench was built without MPI.
 

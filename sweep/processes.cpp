@@ -1,19 +1,18 @@
-#include "app/processes.hpp"
+#include "sweep/processes.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
 #include <thread>
 
-#include "app/errors.hpp"
-#include "cases/case_set.hpp"
 #include "sweep/mpi_job.hpp"  // the class alone: its functions exist only in a build with MPI
 
 #ifdef POUNDBENCH_HAVE_MPI
 #include "sweep/mpi_sweep.hpp"
 #endif
 
-namespace pb::app {
+namespace pb {
 
 namespace {
 
@@ -62,21 +61,19 @@ unsigned Processes::default_threads() const {
   return std::max(1u, cores / static_cast<unsigned>(job_->ranks_on_this_node()));
 }
 
-void Processes::agree(const std::function<void()>& check) const {
+void Processes::agree(const std::function<void()>& check, ExitCodeOf exit_code) const {
   if (!job_) return check();
 #ifdef POUNDBENCH_HAVE_MPI
   mpi::Failure mine;
   try {
     check();
-  } catch (const BadInput& e) {
-    mine = {2, e.what()};
-  } catch (const CaseSetError& e) {
-    mine = {2, e.what()};
   } catch (const std::exception& e) {
-    mine = {1, e.what()};
+    mine = {exit_code(e), e.what()};
   }
   const mpi::Failure first = job_->first_failure(mine);
   if (first.code != 0) throw SharedFailure(first.code, first.message);
+#else
+  (void)exit_code;
 #endif
 }
 
@@ -96,4 +93,4 @@ void Processes::abort_others(int code) const {
   (void)code;
 }
 
-}  // namespace pb::app
+}  // namespace pb

@@ -13,9 +13,16 @@
 // the sweep's tasks (sweep/mpi_sweep.hpp). Before the first message of a sweep the ranks
 // agree on the inputs (agree), so that a bad input ends every rank with the same exit code
 // and no rank waits for one that has already left.
+//
+// It lives in sweep/ beside the MPI sweep it wraps, so that the command line (app/) calls
+// down into one sweep layer; which failure means which exit code stays the caller's
+// (agree takes it as a function).
 
 #include <cstddef>
+#include <exception>
 #include <functional>
+#include <stdexcept>
+#include <string>
 #include <memory>
 #include <span>
 #include <vector>
@@ -28,7 +35,7 @@ namespace pb::mpi {
 class Job;
 }
 
-namespace pb::app {
+namespace pb {
 
 // A failure that every process of the job has, so each one exits with `code` and only
 // the leader prints it (the first process's failure, as Processes::agree finds it).
@@ -53,8 +60,9 @@ class Processes {
 
   // Every process runs `check`. Alone, its exceptions pass through unchanged. In a job, if
   // it threw on any process, every process throws a SharedFailure with the failure of the
-  // lowest rank that failed: exit code 2 for a BadInput or CaseSetError, 1 otherwise.
-  void agree(const std::function<void()>& check) const;
+  // lowest rank that failed, and the exit code exit_code(exception) gave on that rank.
+  using ExitCodeOf = int (*)(const std::exception&);
+  void agree(const std::function<void()>& check, ExitCodeOf exit_code) const;
 
   // Runs the sweep's tasks `todo` (the leader's list) on every process: run_sweep alone,
   // mpi::run_sweep in a job. The leader gets every new row, the other processes none.
@@ -71,4 +79,4 @@ class Processes {
   std::shared_ptr<const mpi::Job> job_;
 };
 
-}  // namespace pb::app
+}  // namespace pb
