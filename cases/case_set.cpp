@@ -1,8 +1,8 @@
 // Reading case-set files (format: cases/README.md).
 //
 // A file is read in three passes: TOML syntax (toml++), then every table's keys into
-// Settings (type and shape checks, each value remembering its line), then each family's
-// Settings are resolved against [defaults] and expanded into Cases, which pb::validate
+// Entries, one per key (type and shape checks, each value remembering its line), then each
+// family's Entries are resolved against [defaults] and expanded into Cases, which pb::validate
 // checks. Errors carry the line of the value that caused them, so the value rules stay
 // in one place (validate) and this file only maps a field back to where it was written.
 //
@@ -11,6 +11,8 @@
 // whole list, and the expansion limits below keep it small enough to hold).
 
 #include "cases/case_set.hpp"
+
+#include "cases/fields.hpp"
 
 #include <toml++/toml.h>
 
@@ -28,40 +30,98 @@
 namespace pb {
 namespace {
 
-// Every key a family or [defaults] may hold. From scene to pi2, the order is the order of
-// expansion: scene outermost, pi2 innermost, so the points of one spectrum are contiguous.
-enum class Key {
-  scene, bodies, kick, pulse, directivity, eps, pi3, pi5, pi6, pi7, pi8, xi, n_free, a_p, w_p, pi2,
-  symmetric, name
-};
-constexpr int kKeyCount = static_cast<int>(Key::name) + 1;
-constexpr std::array<std::string_view, kKeyCount> kKeyNames = {
-    "scene", "bodies", "kick", "pulse", "directivity", "eps", "pi3", "pi5", "pi6", "pi7", "pi8",
-    "xi", "n_free", "a_p", "w_p", "pi2", "symmetric", "name"};
+// Every key a family or [defaults] may hold: the scene, pulse and directivity (names), every
+// number of a Case as cases/fields.hpp declares it (in its order), and two keys of the file's
+// own, symmetric and name. A number added to the table is a key here with nothing more.
+using Key = int;
+constexpr Key kScene = 0, kPulse = 1, kDirectivity = 2, kFirstNumber = 3;
+constexpr Key kSymmetric = kFirstNumber + static_cast<Key>(kCaseFields.size());
+constexpr Key kName = kSymmetric + 1;
+constexpr int kKeyCount = kName + 1;
 
 // Limits that keep a typo (points = 2000000) from exhausting memory.
 constexpr std::int64_t kMaxGridPoints = 100'000;
 constexpr std::size_t kMaxCases = 1'000'000;
 
-constexpr int index(Key k) { return static_cast<int>(k); }
-constexpr std::string_view key_name(Key k) { return kKeyNames[static_cast<std::size_t>(k)]; }
+constexpr std::size_t index(Key k) { return static_cast<std::size_t>(k); }
+
+// The number a key sets, or nullptr for the names and the file's own keys.
+constexpr const CaseField* number_field(Key k) {
+  return k >= kFirstNumber && k < kSymmetric ? &kCaseFields[index(k - kFirstNumber)] : nullptr;
+}
+
+constexpr std::string_view key_name(Key k) {
+  if (const CaseField* f = number_field(k)) return f->name;
+  switch (k) {
+    case kScene: return "scene";
+    case kPulse: return "pulse";
+    case kDirectivity: return "directivity";
+    case kSymmetric: return "symmetric";
+    default: return "name";
+  }
+}
 
 std::optional<Key> parse_key(std::string_view s) {
-  for (int i = 0; i < kKeyCount; ++i)
-    if (kKeyNames[static_cast<std::size_t>(i)] == s) return static_cast<Key>(i);
+  for (Key k = 0; k < kKeyCount; ++k)
+    if (key_name(k) == s) return k;
   return std::nullopt;
 }
 
-bool is_choice(Key k) { return k == Key::scene || k == Key::pulse || k == Key::directivity; }
-bool is_number(Key k) { return !is_choice(k) && index(k) >= index(Key::bodies) && index(k) <= index(Key::pi2); }
-bool is_body1(Key k) { return k == Key::pi5 || k == Key::pi6; }
-bool is_body2(Key k) { return k == Key::pi7 || k == Key::pi8; }
-bool is_chain(Key k) { return k == Key::bodies || k == Key::kick; }
+Key key_of(std::string_view s) { return *parse_key(s); }
+
+bool is_choice(Key k) { return k < kFirstNumber; }
+bool is_number(Key k) { return number_field(k) != nullptr; }
+// Which scenes use a key: symmetric speaks of body 2, as pi7 and pi8 do.
+FieldUse use_of(Key k) {
+  if (const CaseField* f = number_field(k)) return f->use;
+  return k == kSymmetric ? FieldUse::body2 : FieldUse::every;
+}
+bool is_body1(Key k) { return use_of(k) == FieldUse::body1; }
+bool is_body2(Key k) { return use_of(k) == FieldUse::body2; }
+bool is_chain(Key k) { return use_of(k) == FieldUse::chain; }
 bool has_chain(Scene s) { return s == Scene::chain; }
+
+// The order in which a family's lists expand: scene outermost (not listed: it is the outer
+// loop), pi2 innermost, so the points of one spectrum are contiguous. A number not listed
+// here expands just outside pi2. Changing this order renumbers the points of every case set.
+constexpr std::array<std::string_view, 15> kExpansionOrder = {
+    "bodies", "kick", "pulse", "directivity", "eps", "pi3", "pi5", "pi6", "pi7", "pi8", "xi", "n_free", "a_p", "w_p",
+    "pi2"};
+
+const std::vector<Key>& expansion_order() {
+  static const std::vector<Key> order = [] {
+    std::vector<Key> out;
+    for (std::string_view n : kExpansionOrder) out.push_back(key_of(n));
+    for (Key k = kFirstNumber; k < kSymmetric; ++k)
+      if (std::find(out.begin(), out.end(), k) == out.end()) out.insert(out.end() - 1, k);
+    return out;
+  }();
+  return order;
+}
+
+// The body-1 number that a symmetric row3 copies into a body-2 number (pi5 into pi7): the
+// same place in the table's list of each.
+Key body1_twin(Key body2_key) {
+  std::vector<Key> ones, twos;
+  for (Key k = kFirstNumber; k < kSymmetric; ++k) {
+    if (is_body1(k)) ones.push_back(k);
+    if (is_body2(k)) twos.push_back(k);
+  }
+  const auto at = std::find(twos.begin(), twos.end(), body2_key) - twos.begin();
+  return ones.at(static_cast<std::size_t>(at));
+}
+
+// The keys of one kind of use, as a message lists them: "pi5/pi6".
+std::string keys_of(FieldUse use) {
+  std::string out;
+  for (Key k = 0; k < kKeyCount; ++k)
+    if (use_of(k) == use) out += (out.empty() ? "" : "/") + std::string(key_name(k));
+  return out;
+}
 
 // One key as written: its values (numbers, or enum values for scene/pulse/directivity),
 // and the line of the key and of each value so that a later error can point at it.
-struct Setting {
+struct Entry {
   bool given = false;
   std::string field;  // "family[2].pi5" or "defaults.pi5"
   std::uint32_t line = 0;
@@ -74,7 +134,7 @@ struct Setting {
 
   std::size_t size() const { return choices.empty() ? values.size() : choices.size(); }
 };
-using Settings = std::array<Setting, kKeyCount>;
+using Entries = std::array<Entry, kKeyCount>;
 
 std::string one_line(std::string_view s) {
   std::string out(s);
@@ -199,7 +259,7 @@ class Reader {
     }
     if (!has_name) fail(0, "name", "required (the name of the case set)");
 
-    Settings defaults;
+    Entries defaults;
     if (defaults_table != nullptr) defaults = read_settings(*defaults_table, "defaults", true);
 
     if (families == nullptr) fail(0, "family", "no [[family]] tables: a case set needs at least one");
@@ -215,8 +275,8 @@ class Reader {
       const std::string prefix = "family[" + std::to_string(i) + "]";
       const toml::table* t = node.as_table();
       if (t == nullptr) fail(line_of(node), prefix, "must be a table, got " + std::string(type_phrase(node)));
-      const Settings own = read_settings(*t, prefix, false);
-      const Setting& nm = own[index(Key::name)];
+      const Entries own = read_settings(*t, prefix, false);
+      const Entry& nm = own[index(kName)];
       if (!nm.given) fail(line_of(*t), prefix + ".name", "required (every family is named)");
       for (const auto& [other, other_line] : seen)
         if (other == nm.text)
@@ -231,27 +291,27 @@ class Reader {
  private:
   std::string file_;
 
-  Settings read_settings(const toml::table& t, const std::string& prefix, bool is_defaults) const {
-    Settings out;
+  Entries read_settings(const toml::table& t, const std::string& prefix, bool is_defaults) const {
+    Entries out;
     for (const auto& [key, node] : t) {
       const std::string field = prefix + "." + clip(key.str());
       const std::optional<Key> k = parse_key(key.str());
-      if (!k || (is_defaults && *k == Key::name)) {
+      if (!k || (is_defaults && *k == kName)) {
         if (k) fail(line_of(key), field, "not allowed in [defaults] (each family names itself)");
-        std::vector<std::string_view> allowed(kKeyNames.begin(), kKeyNames.end());
-        if (is_defaults) allowed.pop_back();
+        std::vector<std::string_view> allowed;
+        for (Key a = 0; a < (is_defaults ? kName : kKeyCount); ++a) allowed.push_back(key_name(a));
         fail(line_of(key), field, unknown_key_reason(key.str(), allowed));
       }
-      Setting& s = out[index(*k)];
+      Entry& s = out[index(*k)];
       s.given = true;
       s.field = field;
       s.line = line_of(key);
       if (is_choice(*k)) read_choices(*k, node, s);
       else if (is_number(*k)) {
         read_numbers(node, s);
-        if (*k == Key::bodies) require_whole_numbers(s);
+        if (number_field(*k)->integer) require_whole_numbers(s);
       }
-      else if (*k == Key::symmetric) {
+      else if (*k == kSymmetric) {
         const auto* b = node.as_boolean();
         if (b == nullptr) fail(s.line, field, "must be true or false, got " + std::string(type_phrase(node)));
         s.flag = b->get();
@@ -262,7 +322,7 @@ class Reader {
     return out;
   }
 
-  void read_family_name(const toml::node& node, Setting& s) const {
+  void read_family_name(const toml::node& node, Entry& s) const {
     const auto* str = node.as_string();
     if (str == nullptr) fail(s.line, s.field, "must be a string, got " + std::string(type_phrase(node)));
     s.text = str->get();
@@ -275,17 +335,17 @@ class Reader {
     }
   }
 
-  void read_choices(Key k, const toml::node& node, Setting& s) const {
+  void read_choices(Key k, const toml::node& node, Entry& s) const {
     auto one = [&](const toml::node& n, const std::string& field) {
       const auto* str = n.as_string();
       if (str == nullptr) fail(line_of(n), field, "must be a string, got " + std::string(type_phrase(n)));
       const std::string_view v = str->get();
       std::optional<int> parsed;
       std::string_view expected;
-      if (k == Key::scene) {
+      if (k == kScene) {
         if (auto x = parse_scene(v)) parsed = static_cast<int>(*x);
         expected = "wall, pair, row3 or chain";
-      } else if (k == Key::pulse) {
+      } else if (k == kPulse) {
         if (auto x = parse_pulse(v)) parsed = static_cast<int>(*x);
         expected = "sine or cosine";
       } else {
@@ -299,7 +359,7 @@ class Reader {
       s.value_lines.push_back(line_of(n));
     };
     if (const auto* arr = node.as_array()) {
-      s.shape = Setting::Shape::list;
+      s.shape = Entry::Shape::list;
       if (arr->empty()) fail(s.line, s.field, "empty list: give at least one value");
       for (std::size_t i = 0; i < arr->size(); ++i)
         one(*arr->get(i), s.field + "[" + std::to_string(i) + "]");
@@ -310,12 +370,12 @@ class Reader {
     }
   }
 
-  void read_numbers(const toml::node& node, Setting& s) const {
+  void read_numbers(const toml::node& node, Entry& s) const {
     if (auto x = as_number(node)) {
       s.values.push_back(*x);
       s.value_lines.push_back(line_of(node));
     } else if (const auto* arr = node.as_array()) {
-      s.shape = Setting::Shape::list;
+      s.shape = Entry::Shape::list;
       if (arr->empty()) fail(s.line, s.field, "empty list: give at least one value");
       for (std::size_t i = 0; i < arr->size(); ++i) {
         const toml::node& n = *arr->get(i);
@@ -327,7 +387,7 @@ class Reader {
         s.value_lines.push_back(line_of(n));
       }
     } else if (const auto* grid = node.as_table()) {
-      s.shape = Setting::Shape::grid;
+      s.shape = Entry::Shape::grid;
       read_grid(*grid, s);
     } else {
       fail(s.line, s.field,
@@ -338,18 +398,18 @@ class Reader {
 
   // A body count is a number like the others (a list, or a linear grid with a whole step),
   // but every value it takes must be a whole number.
-  void require_whole_numbers(const Setting& s) const {
+  void require_whole_numbers(const Entry& s) const {
     for (std::size_t i = 0; i < s.values.size(); ++i) {
       if (s.values[i] == std::floor(s.values[i])) continue;
       std::string field = s.field;
-      if (s.shape == Setting::Shape::list) field += "[" + std::to_string(i) + "]";
+      if (s.shape == Entry::Shape::list) field += "[" + std::to_string(i) + "]";
       fail(s.value_lines[i], field, "must be a whole number (got " + brief(s.values[i]) + ")");
     }
   }
 
   // { from = a, to = b, points = n, spacing = "log" | "linear" }. Both ends are exact;
   // a log grid has a constant ratio between neighbours.
-  void read_grid(const toml::table& grid, Setting& s) const {
+  void read_grid(const toml::table& grid, Entry& s) const {
     std::optional<double> from, to;
     std::optional<std::int64_t> points;
     std::optional<bool> log;
@@ -402,10 +462,10 @@ class Reader {
 
   // The family's own keys, else [defaults], else the built-in defaults; and the rules on
   // which keys a family's scenes need.
-  Settings resolve(const Settings& own, const Settings& defaults, const std::string& prefix,
+  Entries resolve(const Entries& own, const Entries& defaults, const std::string& prefix,
                    std::uint32_t line) const {
     auto builtin = [&](Key k, double v) {
-      Setting s;
+      Entry s;
       s.given = true;
       s.field = prefix + "." + std::string(key_name(k));
       s.line = line;
@@ -413,26 +473,24 @@ class Reader {
       s.value_lines = {line};
       return s;
     };
-    Settings eff;
-    eff[index(Key::xi)] = builtin(Key::xi, 0.05);
-    eff[index(Key::n_free)] = builtin(Key::n_free, 3.0);
-    eff[index(Key::a_p)] = builtin(Key::a_p, 1.0);
-    eff[index(Key::w_p)] = builtin(Key::w_p, 1.0);
-    eff[index(Key::kick)] = builtin(Key::kick, 0.0);
+    Entries eff;
+    for (Key k = kFirstNumber; k < kSymmetric; ++k)
+      if (!number_field(k)->required) eff[index(k)] = builtin(k, number_field(k)->get(Case{}));
     for (int i = 0; i < kKeyCount; ++i) {
       const auto u = static_cast<std::size_t>(i);
       if (own[u].given) eff[u] = own[u];
       else if (defaults[u].given) eff[u] = defaults[u];
     }
 
-    for (Key k : {Key::scene, Key::pulse, Key::directivity, Key::pi2, Key::pi3, Key::eps}) {
-      if (eff[index(k)].given) continue;
+    for (Key k = 0; k < kSymmetric; ++k) {
+      const bool required = is_choice(k) || (number_field(k)->required && use_of(k) == FieldUse::every);
+      if (!required || eff[index(k)].given) continue;
       const std::string field = prefix + "." + std::string(key_name(k));
-      if (k == Key::eps) fail(line, field, "required (the coefficient of restitution is always stated)");
+      if (key_name(k) == "eps") fail(line, field, "required (the coefficient of restitution is always stated)");
       fail(line, field, "required");
     }
 
-    const std::vector<int>& scenes = eff[index(Key::scene)].choices;
+    const std::vector<int>& scenes = eff[index(kScene)].choices;
     const bool body1 = std::any_of(scenes.begin(), scenes.end(),
                                    [](int s) { return uses_body1(static_cast<Scene>(s)); });
     const bool body2 = std::any_of(scenes.begin(), scenes.end(),
@@ -444,34 +502,39 @@ class Reader {
 
     // A family's own key for a body its scenes lack is a mistake; a default for it is
     // merely not needed here, since [defaults] serves families of every scene.
-    for (Key k : {Key::pi5, Key::pi6, Key::pi7, Key::pi8, Key::symmetric, Key::bodies, Key::kick}) {
+    for (Key k = kFirstNumber; k < kName; ++k) {
+      if (use_of(k) == FieldUse::every) continue;
       const bool used = is_body1(k) ? body1 : is_chain(k) ? chain : body2;
       if (used) continue;
-      const Setting& o = own[index(k)];
+      const Entry& o = own[index(k)];
       if (o.given)
         fail(o.line, o.field,
-             used_by + (is_body1(k)  ? " (pi5/pi6 describe body 1 of pair and row3, and the odd bodies of a chain)"
-                        : is_chain(k) ? " (bodies/kick describe a chain only)"
-                                      : " (pi7/pi8/symmetric describe body 2, of row3 only)"));
-      eff[index(k)] = Setting{};
+             used_by + " (" + keys_of(use_of(k)) +
+                 (is_body1(k)  ? " describe body 1 of pair and row3, and the odd bodies of a chain)"
+                  : is_chain(k) ? " describe a chain only)"
+                                : " describe body 2, of row3 only)"));
+      eff[index(k)] = Entry{};
     }
-    if (chain && !eff[index(Key::bodies)].given)
-      fail(line, prefix + ".bodies", "required by scene chain (the number of bodies, 2 to " +
-                                         std::to_string(kMaxChainBodies) + ")");
+    for (Key k = kFirstNumber; k < kSymmetric; ++k)
+      if (chain && is_chain(k) && number_field(k)->required && !eff[index(k)].given)
+        fail(line, prefix + "." + std::string(key_name(k)), "required by scene chain (" +
+                                                                std::string(number_field(k)->help) + ")");
 
-    const Setting& sym = eff[index(Key::symmetric)];
+    const Entry& sym = eff[index(kSymmetric)];
     if (sym.given && sym.flag) {
-      for (Key k : {Key::pi7, Key::pi8}) {
-        const Setting& o = own[index(k)];
+      for (Key k = kFirstNumber; k < kSymmetric; ++k) {
+        if (!is_body2(k)) continue;
+        const Entry& o = own[index(k)];
         if (o.given)
           fail(o.line, o.field,
-               "not allowed with symmetric = true (line " + std::to_string(sym.line) +
-                   "), which sets pi7 = pi5 and pi8 = pi6");
-        eff[index(k)] = Setting{};  // a default pi7/pi8 gives way to the family's symmetry
+               "not allowed with symmetric = true (line " + std::to_string(sym.line) + "), which sets " +
+                   std::string(key_name(k)) + " = " + std::string(key_name(body1_twin(k))));
+        eff[index(k)] = Entry{};  // a default gives way to the family's symmetry
       }
     }
 
-    for (Key k : {Key::pi5, Key::pi6, Key::pi7, Key::pi8}) {
+    for (Key k = kFirstNumber; k < kSymmetric; ++k) {
+      if (!(is_body1(k) || is_body2(k)) || !number_field(k)->required) continue;
       const bool needed = is_body1(k) ? body1 : body2 && !(sym.given && sym.flag);
       if (!needed || eff[index(k)].given) continue;
       std::vector<int> users;
@@ -487,13 +550,12 @@ class Reader {
   // The cartesian product, in Key order (scene outermost, pi2 innermost). Keys a scene
   // does not use are left out of its product, so mixing scenes in one family does not
   // repeat cases.
-  void expand(const Settings& eff, const std::string& family, std::vector<Case>& out) const {
-    const bool symmetric = eff[index(Key::symmetric)].given && eff[index(Key::symmetric)].flag;
-    for (int scene_value : eff[index(Key::scene)].choices) {
+  void expand(const Entries& eff, const std::string& family, std::vector<Case>& out) const {
+    const bool symmetric = eff[index(kSymmetric)].given && eff[index(kSymmetric)].flag;
+    for (int scene_value : eff[index(kScene)].choices) {
       const auto scene = static_cast<Scene>(scene_value);
       std::vector<Key> axes;
-      for (int i = index(Key::bodies); i <= index(Key::pi2); ++i) {
-        const auto k = static_cast<Key>(i);
+      for (Key k : expansion_order()) {
         if (is_chain(k) && !has_chain(scene)) continue;
         if (is_body1(k) && !uses_body1(scene)) continue;
         if (is_body2(k) && (!uses_body2(scene) || symmetric)) continue;
@@ -503,7 +565,7 @@ class Reader {
       for (Key k : axes) {
         count *= eff[index(k)].size();
         if (count + out.size() > kMaxCases)
-          fail(eff[index(Key::scene)].line, "family \"" + clip(family) + "\"",
+          fail(eff[index(kScene)].line, "family \"" + clip(family) + "\"",
                "expands to more than " + std::to_string(kMaxCases) + " cases in this file");
       }
 
@@ -513,10 +575,9 @@ class Reader {
       c.scene = scene;
       for (std::size_t n = 0; n < count; ++n) {
         for (std::size_t a = 0; a < axes.size(); ++a) set(c, axes[a], eff[index(axes[a])], at[a]);
-        if (symmetric && uses_body2(scene)) {
-          c.pi7 = c.pi5;
-          c.pi8 = c.pi6;
-        }
+        if (symmetric && uses_body2(scene))
+          for (Key k = kFirstNumber; k < kSymmetric; ++k)
+            if (is_body2(k)) c.*(number_field(k)->number) = c.*(number_field(body1_twin(k))->number);
         if (auto bad = validate(c)) report_invalid(*bad, eff, axes, at, symmetric);
         out.push_back(c);
         for (std::size_t a = axes.size(); a-- > 0;) {  // odometer: the last axis turns fastest
@@ -527,45 +588,29 @@ class Reader {
     }
   }
 
-  static void set(Case& c, Key k, const Setting& s, std::size_t i) {
-    switch (k) {
+  static void set(Case& c, Key k, const Entry& s, std::size_t i) {
+    if (k == kPulse) c.pulse = static_cast<PulseShape>(s.choices[i]);
+    else if (k == kDirectivity) c.directivity = static_cast<Directivity>(s.choices[i]);
+    else if (const CaseField* f = number_field(k)) {
       // Clamped so that a huge count stays an int; validate() then rejects it by its value.
-      case Key::bodies:
-        c.bodies = static_cast<int>(std::clamp(s.values[i], 0.0, static_cast<double>(kMaxChainBodies + 1)));
-        return;
-      case Key::kick: c.kick = s.values[i]; return;
-      case Key::pulse: c.pulse = static_cast<PulseShape>(s.choices[i]); return;
-      case Key::directivity: c.directivity = static_cast<Directivity>(s.choices[i]); return;
-      case Key::eps: c.eps = s.values[i]; return;
-      case Key::pi3: c.pi3 = s.values[i]; return;
-      case Key::pi5: c.pi5 = s.values[i]; return;
-      case Key::pi6: c.pi6 = s.values[i]; return;
-      case Key::pi7: c.pi7 = s.values[i]; return;
-      case Key::pi8: c.pi8 = s.values[i]; return;
-      case Key::xi: c.xi = s.values[i]; return;
-      case Key::n_free: c.n_free = s.values[i]; return;
-      case Key::a_p: c.a_p = s.values[i]; return;
-      case Key::w_p: c.w_p = s.values[i]; return;
-      case Key::pi2: c.pi2 = s.values[i]; return;
-      case Key::scene:
-      case Key::symmetric:
-      case Key::name: return;
+      if (f->integer) c.*(f->integer) = static_cast<int>(std::clamp(s.values[i], -1e9, 1e9));
+      else c.*(f->number) = s.values[i];
     }
   }
 
   // validate() names the bad field; point at the value of that field that this case used.
-  [[noreturn]] void report_invalid(const std::string& bad, const Settings& eff, const std::vector<Key>& axes,
+  [[noreturn]] void report_invalid(const std::string& bad, const Entries& eff, const std::vector<Key>& axes,
                                    const std::vector<std::size_t>& at, bool symmetric) const {
     const std::size_t colon = bad.find(':');
     const std::string reason = colon == std::string::npos ? bad : bad.substr(colon + 1);
     std::optional<Key> k = parse_key(bad.substr(0, colon));
-    if (k && symmetric && is_body2(*k)) k = *k == Key::pi7 ? Key::pi5 : Key::pi6;
+    if (k && symmetric && is_body2(*k)) k = body1_twin(*k);
     const auto pos = k ? std::find(axes.begin(), axes.end(), *k) : axes.end();
     if (pos == axes.end()) fail(0, "", bad);  // validate checked a field this file does not set
-    const Setting& s = eff[index(*k)];
+    const Entry& s = eff[index(*k)];
     const auto i = static_cast<std::size_t>(at[static_cast<std::size_t>(pos - axes.begin())]);
     std::string field = s.field;
-    if (s.shape == Setting::Shape::list) field += "[" + std::to_string(i) + "]";
+    if (s.shape == Entry::Shape::list) field += "[" + std::to_string(i) + "]";
     const std::size_t start = reason.find_first_not_of(' ');
     std::string text = start == std::string::npos ? reason : reason.substr(start);
     text += " (got " + brief(s.values[i]) + ")";

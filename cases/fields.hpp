@@ -3,9 +3,10 @@
 // fields): its name, its member, the scenes that use it, its unit and its help. The
 // command-line flags (--name with '_' as '-'), the CSV columns and the JSON keys of a row,
 // the key that matches a row with a stored one and the reading of rows back are derived
-// from this table, so adding a number to Case takes its member, a row here, and its rule
-// in validate() and make_system(). The case-set reader keeps its own key list, as it also
-// sets the order in which lists expand (cases/README.md).
+// from this table, and so are the case-set keys (cases/case_set.cpp), so adding a number to
+// Case takes its member, a row here, and its rule in validate() and make_system(). The
+// case-set reader fixes only the order in which a family's lists expand (a new number
+// expands just outside pi2, cases/README.md).
 //
 // The scene, pulse and directivity are names, not numbers, and the family a label: each
 // has one spelling everywhere already (name()/parse_*() in case.hpp).
