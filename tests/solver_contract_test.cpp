@@ -68,9 +68,6 @@ struct Facts {
   // A lone body on a negative spring: diverged, or nan where the solver's motion cannot
   // hold an unstable spring at all.
   Status runaway;
-  // A run that stops early (cap, nan, time limit) still reports the largest |u0| so far as
-  // Pi1; otherwise Pi1 is NaN.
-  bool partial_pi1;
   // Fails (status failed, with the library's message) where the reference has a contact
   // phase (persistent contact); everywhere else it must end ok.
   bool fails_where_contact_persists;
@@ -88,45 +85,45 @@ const std::vector<Facts>& facts_table() {
   static const std::vector<Facts> table = {
       // The reference: exact between events, Poisson's law at impacts. |e - eps| measured
       // 1.1e-16 (2.2e-13 over 600 random cases: event_driven_test). Its closed form has no
-      // unstable spring (nan at t = 0), and a run that stops keeps the largest |u0| so far.
-      {"event-driven", "", false, 1e-11, 0.0, false, nan, nan, true, false, 1, 0.5},
+      // unstable spring (nan at t = 0).
+      {"event-driven", "", false, 1e-11, 0.0, false, nan, nan, false, 1, 0.5},
       // Newton's law on the predicted contacts, in double: measured 2.2e-16. Drops 2.2, 3.3.
       // theta = 1/2 is unconditionally stable.
-      {"moreau-jean", "", true, 1e-12, 1.8, false, nan, diverged, false, false, 1, 0.5},
-      {"moreau-jean", "end-samples", true, 1e-12, 1.8, false, nan, diverged, false, false, 1, 0.5},
+      {"moreau-jean", "", true, 1e-12, 1.8, false, nan, diverged, false, 1, 0.5},
+      {"moreau-jean", "end-samples", true, 1e-12, 1.8, false, nan, diverged, false, 1, 0.5},
       // ODE faithful: bounce without push-out, one LCP in double: measured 4.4e-16. Drops
       // 2.3, 4.4. Explicit springs.
-      {"ode", "dantzig-faithful", true, 1e-12, 1.8, true, nan, diverged, false, false, 1, 0.5},
-      {"ode", "quickstep-faithful", true, 1e-12, 1.8, true, nan, diverged, false, false, 1, 0.5},
+      {"ode", "dantzig-faithful", true, 1e-12, 1.8, true, nan, diverged, false, 1, 0.5},
+      {"ode", "quickstep-faithful", true, 1e-12, 1.8, true, nan, diverged, false, 1, 0.5},
       // ODE default: ERP pushes a plastic impact out of the wall (measured e = 0.15 for
       // eps = 0, ode_test's DefaultPushOutGivesAPlasticImpactARebound), CFM softens the others
       // by 2e-9. Drops 3.3, 4.0.
-      {"ode", "dantzig-default", true, 0.2, 1.8, true, nan, diverged, false, false, 1, 0.5},
-      {"ode", "quickstep-default", true, 0.2, 1.8, true, nan, diverged, false, false, 1, 0.5},
+      {"ode", "dantzig-default", true, 0.2, 1.8, true, nan, diverged, false, 1, 0.5},
+      {"ode", "quickstep-default", true, 0.2, 1.8, true, nan, diverged, false, 1, 0.5},
       // Bullet faithful, single precision: measured 1.1e-7. Drops 3.3, 4.0.
-      {"bullet", "si-faithful", true, 1e-6, 1.8, true, nan, diverged, false, false, 1, 0.5},
-      {"bullet", "mlcp-dantzig-faithful", true, 1e-6, 1.8, true, nan, diverged, false, false, 1, 0.5},
-      {"bullet", "mlcp-lemke-faithful", true, 1e-6, 1.8, true, nan, diverged, false, false, 1, 0.5},
+      {"bullet", "si-faithful", true, 1e-6, 1.8, true, nan, diverged, false, 1, 0.5},
+      {"bullet", "mlcp-dantzig-faithful", true, 1e-6, 1.8, true, nan, diverged, false, 1, 0.5},
+      {"bullet", "mlcp-lemke-faithful", true, 1e-6, 1.8, true, nan, diverged, false, 1, 0.5},
       // Bullet default: restitution eps^2 (product with the wall's), none below 0.2 m/s, ERP
       // push-out: measured |e - eps| up to 0.47 (eps = 0.5 gives 0.25 and less). Drops 2.7,
       // 1.7: the 0.2 m/s threshold does not shrink with h. The Lemke default's steps on a
       // 100-body chain cost ~1 ms once its contacts close, after the clock's pace is set:
       // measured 0.25 to 0.68 s.
-      {"bullet", "si-default", true, 0.6, 1.3, true, nan, diverged, false, false, 1, 0.5},
-      {"bullet", "mlcp-dantzig-default", true, 0.6, 1.3, true, nan, diverged, false, false, 1, 0.5},
-      {"bullet", "mlcp-lemke-default", true, 0.6, 1.3, true, nan, diverged, false, false, 1, 2.0},
+      {"bullet", "si-default", true, 0.6, 1.3, true, nan, diverged, false, 1, 0.5},
+      {"bullet", "mlcp-dantzig-default", true, 0.6, 1.3, true, nan, diverged, false, 1, 0.5},
+      {"bullet", "mlcp-lemke-default", true, 0.6, 1.3, true, nan, diverged, false, 1, 2.0},
       // Siconos refuses a non-finite body (its own checks would print). MoreauJeanOSI as
       // moreau-jean end-samples: measured 4.4e-16, drops 2.2, 3.3. LSODAR fails where contact
       // persists (solvers/siconos/README.md); its runs cost ~10 ms, so every 2nd smoke point.
-      {"siconos", "moreau-jean-lemke", true, 1e-12, 1.8, false, failed, diverged, false, false, 1, 0.5},
-      {"siconos", "moreau-jean-enum", true, 1e-12, 1.8, false, failed, diverged, false, false, 1, 0.5},
-      {"siconos", "event-driven-lsodar", false, 1e-12, 0.0, false, failed, diverged, false, true, 2, 0.5},
+      {"siconos", "moreau-jean-lemke", true, 1e-12, 1.8, false, failed, diverged, false, 1, 0.5},
+      {"siconos", "moreau-jean-enum", true, 1e-12, 1.8, false, failed, diverged, false, 1, 0.5},
+      {"siconos", "event-driven-lsodar", false, 1e-12, 0.0, false, failed, diverged, true, 2, 0.5},
   };
   return table;
 }
 
 // What a solver without a row is held to: the strictest facts.
-const Facts kUnstated{"", "", false, 1e-12, 1.8, false, Status::nan, Status::diverged, false, false, 1, 0.5};
+const Facts kUnstated{"", "", false, 1e-12, 1.8, false, Status::nan, Status::diverged, false, 1, 0.5};
 
 struct Subject {
   const SolverInfo* solver;
@@ -163,13 +160,8 @@ void PrintTo(const Subject& s, std::ostream* out) {
 
 class Contract : public testing::TestWithParam<Subject> {
  protected:
-  // A run that ended early has no Pi1, unless the solver keeps the largest |u0| so far.
-  void expect_no_pi1(const Result& r) const {
-    if (facts().partial_pi1)
-      EXPECT_TRUE(std::isfinite(r.pi1)) << "the largest |u0| so far";
-    else
-      EXPECT_TRUE(std::isnan(r.pi1)) << r.pi1;
-  }
+  // A run that did not end ok has no Pi1, whichever the solver.
+  static void expect_no_pi1(const Result& r) { EXPECT_TRUE(std::isnan(r.pi1)) << r.pi1; }
   const SolverInfo& solver() const { return *GetParam().solver; }
   const Facts& facts() const { return *GetParam().facts; }
   Settings settings() const {

@@ -197,6 +197,9 @@ class Solver {
     res_.restitution_low = isolated_ > 0 ? e_low_ : std::numeric_limits<double>::quiet_NaN();
     res_.restitution_high = isolated_ > 0 ? e_high_ : std::numeric_limits<double>::quiet_NaN();
     check_result(s_, tol_scale_, res_);
+    // As every solver: a run that did not end ok has no Pi1 (the largest |u0| of a run cut
+    // short, or of a run that failed its own checks, is not an answer to report).
+    if (res_.status != Status::ok) res_.pi1 = res_.t_max = std::numeric_limits<double>::quiet_NaN();
     return std::move(res_);
   }
 
