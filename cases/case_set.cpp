@@ -13,16 +13,14 @@
 #include "cases/case_set.hpp"
 
 #include "cases/fields.hpp"
+#include "cases/toml_input.hpp"
 
 #include <toml++/toml.h>
 
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstring>
 #include <optional>
 #include <sstream>
 #include <utility>
@@ -621,31 +619,11 @@ class Reader {
 }  // namespace
 
 CaseSet parse_case_set(std::string_view toml_text, std::string_view source_name) {
-  const Reader reader(source_name);
-  toml::table root;
-  try {
-    root = toml::parse(toml_text, source_name);
-  } catch (const toml::parse_error& e) {
-    reader.fail(e.source().begin.line, "syntax", clip(e.description(), kMaxEchoedReason));
-  }
-  return reader.read(root);
+  return Reader(source_name).read(parse_toml<CaseSetError>(toml_text, source_name));
 }
 
 CaseSet load_case_set(const std::filesystem::path& file) {
-  const std::string source = file.string();
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec))
-    throw CaseSetError(source + ": cannot read: is a directory");
-  std::FILE* f = std::fopen(source.c_str(), "rb");
-  if (f == nullptr) throw CaseSetError(source + ": cannot read: " + std::strerror(errno));
-  std::string text;
-  char buffer[1 << 14];
-  std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) text.append(buffer, n);
-  const bool failed = std::ferror(f) != 0;
-  std::fclose(f);
-  if (failed) throw CaseSetError(source + ": cannot read: read error");
-  return parse_case_set(text, source);
+  return parse_case_set(read_input_file<CaseSetError>(file), file.string());
 }
 
 }  // namespace pb

@@ -3,10 +3,10 @@
 #include <toml++/toml.h>
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "cases/case.hpp"
+#include "cases/toml_input.hpp"
 
 namespace pb {
 
@@ -102,14 +102,7 @@ class Reader {
 
 SettingsList parse_settings_list(std::string_view text, std::string_view source) {
   const Reader r(source);
-  toml::table doc;
-  try {
-    doc = toml::parse(text, source);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream out;
-    out << source << ':' << e.source().begin.line << ": syntax: " << clip(e.description(), kMaxEchoedReason);
-    throw SettingsListError(out.str());
-  }
+  const toml::table doc = parse_toml<SettingsListError>(text, source);
   SettingsList list;
   const toml::array* runs = nullptr;
   for (auto&& [key, node] : doc) {
@@ -232,11 +225,7 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
 }
 
 SettingsList load_settings_list(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw SettingsListError(file.string() + ": cannot read: no such file or not readable");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_settings_list(text.str(), file.string());
+  return parse_settings_list(read_input_file<SettingsListError>(file), file.string());
 }
 
 }  // namespace pb
