@@ -8,6 +8,7 @@
 // numbers; Settings::history_samples is `run --samples`.
 
 #include <array>
+#include <optional>
 #include <string_view>
 
 #include "solvers/solver.hpp"
@@ -20,6 +21,16 @@ struct SettingField {
   int Settings::* integer;
   long Settings::* count;
   std::string_view help;
+
+  double get(const Settings& s) const {
+    return number ? s.*number : integer ? static_cast<double>(s.*integer) : static_cast<double>(s.*count);
+  }
+  // A whole-number field takes the value as it is: the caller has checked it is whole.
+  void set(Settings& s, double value) const {
+    if (number) s.*number = value;
+    else if (integer) s.*integer = static_cast<int>(value);
+    else s.*count = static_cast<long>(value);
+  }
 };
 
 inline constexpr std::array<SettingField, 7> kSettingFields = {{
@@ -34,5 +45,12 @@ inline constexpr std::array<SettingField, 7> kSettingFields = {{
     {"time_limit", &Settings::time_limit, nullptr, nullptr,
      "Most wall-clock seconds per run (0: none for `run`; a sweep's points get 60 s each)"},
 }};
+
+// The index of a field in kSettingFields by its name, if there is one.
+inline std::optional<std::size_t> setting_field_index(std::string_view name) {
+  for (std::size_t j = 0; j < kSettingFields.size(); ++j)
+    if (kSettingFields[j].name == name) return j;
+  return std::nullopt;
+}
 
 }  // namespace pb

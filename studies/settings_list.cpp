@@ -2,11 +2,13 @@
 
 #include <toml++/toml.h>
 
+#include <array>
 #include <cmath>
 #include <sstream>
 
 #include "cases/case.hpp"
 #include "cases/toml_input.hpp"
+#include "solvers/settings_fields.hpp"
 
 namespace pb {
 
@@ -135,15 +137,16 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
     if (!t) r.fail(&rn, field, "must be a table");
     std::string solver;
     std::vector<std::string> variants = {""};
-    std::vector<double> steps = {0}, wh = {0}, theta = {Settings{}.theta}, gamma = {Settings{}.gamma}, tol = {1.0};
-    long long step_cap = 0;
-    double time_limit = 0;
+    // Every number of Settings (solvers/settings_fields.hpp) may be a list; unset, its
+    // default. The rules below are the list's own: the solver's check() judges the rest.
+    std::array<std::vector<double>, kSettingFields.size()> values;
+    std::array<const toml::node*, kSettingFields.size()> given{};
+    for (std::size_t j = 0; j < kSettingFields.size(); ++j) values[j] = {kSettingFields[j].get(Settings{})};
     bool monitor = Settings{}.monitor;
     const toml::node* solver_node = &rn;
-    const toml::node* steps_node = nullptr;
-    const toml::node* wh_node = nullptr;
     for (auto&& [key, v] : *t) {
       const std::string k(key.str()), f = field + "." + k;
+      const auto j = setting_field_index(k);
       if (k == "solver") {
         const auto* s = v.as_string();
         if (!s) r.fail(&v, f, "must be a string");
@@ -151,75 +154,71 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
         solver_node = &v;
       } else if (k == "variant") {
         variants = r.strings(v, f);
+      } else if (k == "monitor") {
+        const auto* b = v.as_boolean();
+        if (!b) r.fail(&v, f, "must be true or false");
+        monitor = b->get();
+      } else if (!j) {
+        r.fail(&v, f, "unknown key");
       } else if (k == "steps") {
-        steps = r.steps(v, f);
-        steps_node = &v;
-      } else if (k == "wh") {
-        wh = r.numbers(v, f);
-        for (double x : wh)
-          if (!(x > 0.0)) r.fail(&v, f, "must be > 0 (the step as w_max h)");
-        wh_node = &v;
-      } else if (k == "theta") {
-        theta = r.numbers(v, f);
-      } else if (k == "gamma") {
-        gamma = r.numbers(v, f);
-      } else if (k == "tol_scale") {
-        tol = r.numbers(v, f);
+        values[*j] = r.steps(v, f);
       } else if (k == "step_cap") {
         const auto* n = v.as_integer();
         if (!n || n->get() < 1) r.fail(&v, f, "must be an integer >= 1");
-        step_cap = n->get();
+        values[*j] = {static_cast<double>(n->get())};
       } else if (k == "time_limit") {
         const auto* n = v.as_integer();
         const auto* x = v.as_floating_point();
         const double seconds = n ? static_cast<double>(n->get()) : x ? x->get() : -1.0;
         if (!(seconds > 0.0) || !std::isfinite(seconds)) r.fail(&v, f, "must be one number of seconds > 0");
-        time_limit = seconds;
-      } else if (k == "monitor") {
-        const auto* b = v.as_boolean();
-        if (!b) r.fail(&v, f, "must be true or false");
-        monitor = b->get();
+        values[*j] = {seconds};
       } else {
-        r.fail(&v, f, "unknown key");
+        values[*j] = r.numbers(v, f);
+        for (double x : values[*j])
+          if (!kSettingFields[*j].number && x != std::floor(x)) r.fail(&v, f, "must be a whole number");
+        if (k == "wh")
+          for (double x : values[*j])
+            if (!(x > 0.0)) r.fail(&v, f, "must be > 0 (the step as w_max h)");
       }
+      if (j) given[*j] = &v;
     }
     const SolverInfo* info = find_solver(solver);
     if (solver.empty()) r.fail(&rn, field + ".solver", "missing");
     if (!info) r.fail(solver_node, field + ".solver", "unknown solver '" + clip(solver) + "'");
-    if (steps_node && wh_node) r.fail(wh_node, field + ".wh", "give steps or wh, not both (one [[run]] each)");
+    const std::size_t steps = *setting_field_index("steps"), wh = *setting_field_index("wh");
+    if (given[steps] && given[wh]) r.fail(given[wh], field + ".wh", "give steps or wh, not both (one [[run]] each)");
+    // The order of the product: variant outermost, then the numbers in the table's order,
+    // the step (steps or w_max h) innermost, so that one setting's step sizes are adjacent.
+    std::vector<std::size_t> axes;
+    for (std::size_t j = 0; j < kSettingFields.size(); ++j)
+      if (j != steps && j != wh) axes.push_back(j);
+    axes.push_back(steps);
+    axes.push_back(wh);
     // Counted before anything is expanded; the product so far is at most kMaxSettings
     // when the next list's length (bounded by the file's size) multiplies it, so it
     // cannot overflow.
-    std::size_t product = 1;
-    for (std::size_t axis : {variants.size(), theta.size(), gamma.size(), tol.size(), steps.size(), wh.size()}) {
-      product *= axis;
+    std::size_t product = variants.size();
+    for (std::size_t j : axes) {
+      product *= values[j].size();
       if (list.runs.size() + product > kMaxSettings)
         r.fail(&rn, field, "the list expands to more than " + std::to_string(kMaxSettings) +
                                " settings (the product of its lists' lengths); split the study");
     }
-    // The step axis is innermost: steps N, or w_max h.
-    std::vector<std::pair<int, double>> step_axis;
-    for (double n : steps)
-      for (double x : wh) step_axis.emplace_back(static_cast<int>(n), x);
+    std::vector<std::size_t> at(axes.size(), 0);
     for (const std::string& variant : variants)
-      for (double th : theta)
-        for (double ga : gamma)
-          for (double ts : tol)
-            for (const auto& [n, x] : step_axis) {
-              RunSpec spec{solver, {}};
-              spec.settings.variant = variant;
-              spec.settings.theta = th;
-              spec.settings.gamma = ga;
-              spec.settings.tol_scale = ts;
-              spec.settings.steps = n;
-              spec.settings.wh = x;
-              spec.settings.step_cap = step_cap;
-              spec.settings.time_limit = time_limit;
-              spec.settings.monitor = monitor;
-              if (const std::string bad = info->check(spec.settings); !bad.empty())
-                r.fail(&rn, field, clip(bad, kMaxEchoedReason));  // it may echo the file's own values
-              list.runs.push_back(std::move(spec));
-            }
+      for (std::size_t n = 0; n < product / variants.size(); ++n) {
+        RunSpec spec{solver, {}};
+        spec.settings.variant = variant;
+        spec.settings.monitor = monitor;
+        for (std::size_t a = 0; a < axes.size(); ++a) kSettingFields[axes[a]].set(spec.settings, values[axes[a]][at[a]]);
+        for (std::size_t a = axes.size(); a-- > 0;) {  // odometer: the last axis turns fastest
+          if (++at[a] < values[axes[a]].size()) break;
+          at[a] = 0;
+        }
+        if (const std::string bad = info->check(spec.settings); !bad.empty())
+          r.fail(&rn, field, clip(bad, kMaxEchoedReason));  // it may echo the file's own values
+        list.runs.push_back(std::move(spec));
+      }
   }
   return list;
 }
