@@ -1,19 +1,14 @@
 """What every part of the report reads off poundbench's CSV rows: loading them, their
-numbers and settings, the label of a solver configuration, and saving a figure."""
+numbers and settings, the label of a solver configuration, and writing a page. No
+matplotlib here (figure.py), so that checking README's numbers starts in a blink."""
 
 import csv
 import json
 import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-# Reproducible SVGs, so that regenerating a committed report changes a file only when its
-# data changed: fixed element ids, and the creation date of reproducible builds.
-matplotlib.rcParams["svg.hashsalt"] = "poundbench"
-os.environ.setdefault("SOURCE_DATE_EPOCH", "0")
-import matplotlib.pyplot as plt  # noqa: E402
+# Columns that label a curve of a spectrum (everything that is neither the abscissa nor a result).
+CASE_KEYS = ["scene", "pulse", "directivity", "eps", "pi3", "pi5", "pi6", "pi7", "pi8", "xi", "n_free", "a_p", "w_p"]
 
 
 def load(paths):
@@ -57,13 +52,17 @@ def config_label(row):
     return label
 
 
-def save(fig, out_dir, stem):
-    """Writes figures/STEM.png and .svg under out_dir; returns the PNG's path relative to it."""
-    path = os.path.join(out_dir, "figures", stem)
-    for ext in ("png", "svg"):
-        fig.savefig(f"{path}.{ext}", dpi=100)
-    plt.close(fig)
-    return f"figures/{stem}.png"
+def setting_label(row):
+    """A solver configuration with its step count: one setting of a study."""
+    n = steps_of(row)
+    return config_label(row) + ("" if n is None else f", N = {n}")
+
+
+def median(values):
+    """The median of a non-empty list (the mean of the middle two for an even count)."""
+    values = sorted(values)
+    mid = len(values) // 2
+    return values[mid] if len(values) % 2 else 0.5 * (values[mid - 1] + values[mid])
 
 
 def write_page(out_dir, lines, script):

@@ -8,9 +8,12 @@ import os
 import re
 from collections import defaultdict
 
-import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.colors import to_rgb
+from matplotlib.patches import Patch
 
-from rows import config_label as config, num, save, settings_fields
+from figure import plt, save, solver_styles
+from rows import config_label as config, median, num, settings_fields
 
 FLOOR = 1e-17  # energy excesses and penetrations at or below this are drawn on the floor
 
@@ -41,13 +44,13 @@ def large_step_figure(points, out_dir):
     by_config = defaultdict(lambda: defaultdict(list))
     for r in runs:
         by_config[config(r)][float(settings_fields(r)["wh"])].append(r)
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.8))
-    colors = plt.get_cmap("tab20").colors
-    for i, (label, per_wh) in enumerate(sorted(by_config.items())):
+    fig, axes = plt.subplots(1, 3, figsize=(17, 4.8), layout="constrained")
+    styles = solver_styles(runs)
+    for label, per_wh in sorted(by_config.items()):
         whs = sorted(per_wh)
         ok = [[r for r in per_wh[w] if r["status"] == "ok"] for w in whs]
         share = [len(o) / len(per_wh[w]) for o, w in zip(ok, whs)]
-        style = dict(color=colors[i % 20], marker="o", ms=4, lw=1.3, label=label)
+        style = dict(styles[label], ms=4.5, lw=1.3, label=label)
         axes[0].plot(whs, share, **style)
         for ax, key in ((axes[1], "energy_excess"), (axes[2], "penetration")):
             xs, ys = [], []
@@ -67,10 +70,10 @@ def large_step_figure(points, out_dir):
         ax.grid(True, which="both", alpha=0.25)
     for ax in axes[1:]:
         ax.set_yscale("log")
-    axes[0].legend(fontsize=7, loc="lower left")
+    axes[-1].legend(*axes[0].get_legend_handles_labels(), fontsize=7.5, loc="upper left", bbox_to_anchor=(1.02, 1.0),
+                    frameon=False)
     fig.suptitle(f"Large steps: every stress case at each w_max h (energy and penetration over the finished runs; "
                  f"values <= {FLOOR:g} drawn at {FLOOR:g})", fontsize=10)
-    fig.tight_layout(rect=(0, 0, 1, 0.94))
     return save(fig, out_dir, "stability-large-steps")
 
 
@@ -85,15 +88,11 @@ def chain_cost_figure(points, out_dir, wh=0.5):
     for r in runs:
         by_config[config(r)][int(r["bodies"])].append(r)
 
-    def median(values):
-        values = sorted(values)
-        return values[len(values) // 2]
-
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
-    colors = plt.get_cmap("tab20").colors
-    for i, (label, per_n) in enumerate(sorted(by_config.items())):
+    fig, axes = plt.subplots(1, 2, figsize=(14, 4.8), layout="constrained")
+    styles = solver_styles(runs)
+    for label, per_n in sorted(by_config.items()):
         ns = sorted(per_n)
-        style = dict(color=colors[i % 20], marker="o", ms=4, lw=1.3, label=label)
+        style = dict(styles[label], ms=4.5, lw=1.3, label=label)
         axes[0].plot(ns, [1e6 * median([num(r, "cpu_seconds") for r in per_n[n]]) for n in ns], **style)
         if not label.startswith("event-driven"):
             axes[1].plot(ns, [1e9 * median([num(r, "cpu_seconds") / max(num(r, "steps"), 1) for r in per_n[n]])
@@ -105,83 +104,95 @@ def chain_cost_figure(points, out_dir, wh=0.5):
         ax.set_yscale("log")
         ax.set_xlabel("bodies in the chain, N")
         ax.grid(True, which="both", alpha=0.25)
-    axes[0].legend(fontsize=7, loc="upper left")
+    axes[-1].legend(*axes[0].get_legend_handles_labels(), fontsize=7.5, loc="upper left", bbox_to_anchor=(1.02, 1.0),
+                    frameon=False)
     fig.suptitle(f"Chain: cost against the number of bodies (finished runs of the stress set's chain families; "
                  f"time-steppers at w_max h = {wh:g})", fontsize=10)
-    fig.tight_layout(rect=(0, 0, 1, 0.94))
     return save(fig, out_dir, "stability-chain-cost")
 
-CHECKS = ("finite", "energy", "gap", "restitution")
+CHECKS = ("finite", "energy", "gap", "restitution", "accuracy")  # the verdict columns, where the CSV has them
+VERDICT_COLOURS = {"pass": "#74c476", "fail": "#de2d26"}  # anything else: nothing to judge
+NOT_JUDGED = "#e3e3e3"
+
+
+def checks_of(summary):
+    return [c for c in CHECKS if c in summary[0]]
 
 
 def table_config(row):
-    """A solver setting as the stability table names it: config plus its step."""
+    """A solver setting as the stability figure names it: config plus its step."""
     step = step_label(row)
     return config(row) + (f", {step}" if step else "")
 
 
-def failure_note(row):
-    """What failed in one (family, setting), with the worst number of each failed check."""
-    notes = []
-    if row["finite"] == "fail":
-        notes.append(f"finite {row['ok']}/{row['runs']}")
-    if row["energy"] == "fail":
-        notes.append(f"energy {num(row, 'energy_excess_max'):.1e}")
-    if row["gap"] == "fail":
-        steps = num(row, "penetration_steps_max")
-        notes.append(f"gap {steps:.2g} steps" if steps == steps else f"gap {num(row, 'penetration_max'):.1e}")
-    if row["restitution"] == "fail":
-        notes.append(f"e {num(row, 'restitution_error_max'):.1e}")
-    return ", ".join(notes)
-
-
-def stability_table(summary):
-    """Markdown: one line per solver setting, one column per stress family; a cell is `pass`
-    or the checks that failed with their worst values (`-` where no check could judge)."""
+def verdict_figure(summary, out_dir):
+    """The verdicts as a grid: a row per solver setting, a block of columns per stress family,
+    a column per check in it; green pass, red fail, grey nothing to judge."""
+    checks = checks_of(summary)
     families = list(dict.fromkeys(r["family"] for r in summary))
-    cells = defaultdict(dict)
-    for r in summary:
-        cells[table_config(r)][r["family"]] = r
-    lines = ["| solver setting | " + " | ".join(families) + " |", "|---" * (len(families) + 1) + "|"]
-    for label, per_family in cells.items():
-        row = []
-        for family in families:
-            r = per_family.get(family)
-            if r is None:
-                row.append("")
-            elif all(r[k] != "fail" for k in CHECKS):
-                row.append("pass" if any(r[k] == "pass" for k in CHECKS) else "-")
-            else:
-                row.append("**fail**: " + failure_note(r))
-        lines.append(f"| {label} | " + " | ".join(row) + " |")
-    return lines
+    settings = list(dict.fromkeys(table_config(r) for r in summary))
+    cells = {(table_config(r), r["family"]): r for r in summary}
+    width = len(checks) + 1  # a blank column after each family
+    image = np.ones((len(settings), len(families) * width - 1, 3))
+    for i, setting in enumerate(settings):
+        for j, family in enumerate(families):
+            r = cells.get((setting, family))
+            for c, check in enumerate(checks):
+                if r is not None:
+                    image[i, j * width + c] = to_rgb(VERDICT_COLOURS.get(r[check], NOT_JUDGED))
+    fig, ax = plt.subplots(figsize=(3.5 + 0.26 * image.shape[1], 1.6 + 0.24 * len(settings)), layout="constrained")
+    ax.imshow(image, aspect="auto", interpolation="nearest")
+    ax.set_yticks(range(len(settings)), settings, fontsize=8)
+    ax.set_xticks([j * width + c for j in range(len(families)) for c in range(len(checks))],
+                  [check[0].upper() for _ in families for check in checks], fontsize=7)
+    top = ax.secondary_xaxis("top")
+    top.set_xticks([j * width + (len(checks) - 1) / 2 for j in range(len(families))], families, fontsize=8.5,
+                   rotation=30, ha="left")
+    top.tick_params(length=0)
+    solvers = [s.split()[0] for s in settings]
+    for i in range(1, len(settings)):  # a white line between two settings, a black one between two solvers
+        ax.axhline(i - 0.5, color="k" if solvers[i] != solvers[i - 1] else "white", lw=0.8)
+    for j in range(len(families)):  # white lines between the checks of a family
+        for c in range(1, len(checks)):
+            ax.axvline(j * width + c - 0.5, color="white", lw=0.8)
+    ax.tick_params(axis="both", length=0)
+    for side in ax.spines.values():
+        side.set_visible(False)
+    handles = [Patch(color=VERDICT_COLOURS["pass"], label="pass"), Patch(color=VERDICT_COLOURS["fail"], label="fail"),
+               Patch(color=NOT_JUDGED, label="nothing to judge")]
+    handles += [Patch(color="white", label=f"{check[0].upper()}: {check}") for check in checks]
+    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
+    ax.set_title("Stress set: the verdict of every check per family (column blocks) and solver setting (rows)",
+                 fontsize=10)
+    return save(fig, out_dir, "stability-verdicts")
 
 
 def stability_summary(summary):
     """One line per solver configuration: for each check, the steps at which it fails on
     some family, with the worst value there (read off the same rows as the table)."""
     worst_key = {"energy": "energy_excess_max", "gap": "penetration_steps_max",
-                 "restitution": "restitution_error_max"}
+                 "restitution": "restitution_error_max", "accuracy": "pi1_err_p95"}
     by_config = defaultdict(list)
     for r in summary:
         by_config[config(r)].append(r)
     lines = []
     for label, rows in by_config.items():
         parts = []
-        for check in CHECKS:
+        for check in checks_of(summary):
             failing = [r for r in rows if r[check] == "fail"]
             if not failing:
                 judged = any(r[check] == "pass" for r in rows)
                 parts.append(f"{check} passes everywhere" if judged else f"{check} not measured")
                 continue
             steps = sorted({settings_fields(r).get("wh", 0) for r in failing})
-            where = "at every step" if len(steps) == len({settings_fields(r).get("wh", 0) for r in rows}) \
-                else "at w_max h = " + ", ".join(f"{w:g}" for w in steps)
+            every = len(steps) == len({settings_fields(r).get("wh", 0) for r in rows})
+            where = "" if steps == [0] else " at every step" if every else \
+                " at w_max h = " + ", ".join(f"{w:g}" for w in steps)
             if check == "finite":
                 lost = sum(int(r["runs"]) - int(r["ok"]) for r in failing)
-                parts.append(f"**{check} fails** {where} ({lost} runs did not finish)")
+                parts.append(f"**{check} fails**{where} ({lost} run{'' if lost == 1 else 's'} did not finish)")
             else:
                 worst = max(num(r, worst_key[check]) for r in failing)
-                parts.append(f"**{check} fails** {where} (worst {worst:.2g})")
+                parts.append(f"**{check} fails**{where} (worst {worst:.2g})")
         lines.append(f"* `{label}`: " + "; ".join(parts) + ".")
     return lines

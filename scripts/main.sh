@@ -12,28 +12,41 @@ study=cases/sets/workprecision.toml
 scripts/setup.sh --build-dir build --build-type Release
 mkdir -p results
 pb=build/poundbench
+# What the numbers were measured on (commit, machine, compiler), and each step's wall time:
+# README's generated blocks name them (reports/make_report.py).
+/usr/bin/python3 reports/provenance.py --build-dir build > results/provenance.json
+echo "step,wall_s" > results/timings.csv
+timed() {  # timed STEP COMMAND...: runs the command and appends its wall time to results/timings.csv
+  local step=$1 start
+  shift
+  start=$(date +%s.%N)
+  "$@"
+  awk -v s="$step" -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%s,%.3f\n", s, b - a }' >> results/timings.csv
+}
 
 echo "main: the paper case set through the reference"
-$pb spectrum cases/sets/paper.toml --solver event-driven --out results/paper-event-driven.csv
+timed paper-reference $pb spectrum cases/sets/paper.toml --solver event-driven --out results/paper-event-driven.csv
 echo "main: the paper case set through the in-house stepper at its default N"
-$pb spectrum cases/sets/paper.toml --solver moreau-jean --out results/paper-moreau-jean.csv
+timed paper-moreau-jean $pb spectrum cases/sets/paper.toml --solver moreau-jean --out results/paper-moreau-jean.csv
 
 echo "main: work-precision study ($study)"
-$pb workprecision "$study" --settings cases/settings/default.toml \
+timed workprecision $pb workprecision "$study" --settings cases/settings/default.toml \
   --out results/workprecision.csv --points results/workprecision-points.csv
 
 echo "main: stability on the stress case set"
-$pb stress cases/sets/stress.toml --settings cases/settings/stress.toml \
+timed stress $pb stress cases/sets/stress.toml --settings cases/settings/stress.toml \
   --out results/stability.csv --points results/stability-points.csv
 
 echo "main: benchmarks"
-build/bench/poundbench_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+timed benchmarks build/bench/poundbench_bench --benchmark_repetitions=5 --benchmark_display_aggregates_only=true \
   --benchmark_min_time=0.05 --benchmark_out=results/bench.json --benchmark_out_format=json > /dev/null
 
+# The report, the result files it commits beside it (reports/*.csv, provenance.json), and
+# README's generated blocks written from those files (checked by the readme_numbers test).
 /usr/bin/python3 reports/make_report.py results/paper-*.csv --workprecision results/workprecision.csv \
-  --points results/workprecision-points.csv --bench results/bench.json \
-  --stress results/stability.csv --stress-points results/stability-points.csv --out reports
-cp results/workprecision.csv results/stability.csv reports/
+  --points results/workprecision-points.csv --bench results/bench.json --timings results/timings.csv \
+  --provenance results/provenance.json --stress results/stability.csv --stress-points results/stability-points.csv \
+  --out reports --readme README.md
 
 echo "main: the paper report (reports/paper/)"
 scripts/paper.sh

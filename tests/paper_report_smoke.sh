@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The paper report script (reports/paper/make_paper.py) on the paper's own case sets: every
-# figure it should draw exists, README.md shows it, and the claims table has its six rows.
+# figure it should draw exists, README.md shows it, and the summary and claims tables have
+# their six rows.
 # The sweeps take about a second on 2 cores; drawing the figures takes the rest.
 #   paper_report_smoke.sh POUNDBENCH SOURCE_DIR
 set -euo pipefail
@@ -21,4 +22,8 @@ for fig in fig3-self-similarity fig4-normal fig5-reverse pi5-limit fig6-time-his
 done
 claims=$(grep -c '^| [0-9] | ' "$out/report/README.md" || true)
 [ "$claims" -eq 6 ] || { echo "claims table has $claims rows, not 6"; missing=1; }
+# The page opens with the summary: claim (a link to its section), whether it holds, evidence.
+summary=$(sed -n '/^## /q; /^| claim | holds? | evidence |$/,/^$/p' "$out/report/README.md" |
+  grep -c '^| \[[^]]*\](#[a-z0-9-]*) | \(yes\|\*\*partly\*\*\|\*\*no\*\*\) | ' || true)
+[ "$summary" -eq 6 ] || { echo "summary table has $summary rows, not 6"; missing=1; }
 exit $missing

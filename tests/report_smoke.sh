@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The report script on a tiny sweep: every figure it should draw exists afterwards.
+# The report script on a tiny sweep: every figure it should draw exists afterwards, and the
+# README blocks it writes from its result files pass `make_report.py --check`.
 #   report_smoke.sh POUNDBENCH BENCH SOURCE_DIR
 set -euo pipefail
 pb=$1 bench=$2 src=$3
@@ -12,9 +13,12 @@ trap 'rm -rf "$out"' EXIT
   --out "$out/stability.csv" --points "$out/stability-points.csv"
 "$bench" --benchmark_filter='BM_Solve|BM_SweepFig4' --benchmark_min_time=0.001 \
   --benchmark_out="$out/bench.json" --benchmark_out_format=json > /dev/null
+/usr/bin/python3 "$src/reports/provenance.py" --build-dir "$(dirname "$pb")" > "$out/provenance.json"
+cp "$src/README.md" "$out/README.md"
 /usr/bin/python3 "$src/reports/make_report.py" "$out/smoke.csv" --workprecision "$out/wp.csv" \
-  --points "$out/points.csv" --bench "$out/bench.json" \
-  --stress "$out/stability.csv" --stress-points "$out/stability-points.csv" --out "$out/report"
+  --points "$out/points.csv" --bench "$out/bench.json" --provenance "$out/provenance.json" \
+  --stress "$out/stability.csv" --stress-points "$out/stability-points.csv" --out "$out/report" \
+  --readme "$out/README.md" > /dev/null
 families=$(tail -n +2 "$out/smoke.csv" | cut -d, -f1 | sort -u)
 missing=0
 for f in $families; do
@@ -25,13 +29,21 @@ for f in $families; do
     grep -q "figures/$fig.png" "$out/report/README.md" || { echo "README.md does not show $fig"; missing=1; }
   done
 done
-for ext in png svg; do
-  [ -s "$out/report/figures/stability-large-steps.$ext" ] || { echo "missing figure stability-large-steps.$ext"; missing=1; }
+for fig in stability-large-steps stability-verdicts; do
+  for ext in png svg; do
+    [ -s "$out/report/figures/$fig.$ext" ] || { echo "missing figure $fig.$ext"; missing=1; }
+  done
+  grep -q "figures/$fig.png" "$out/report/README.md" || { echo "README.md does not show $fig"; missing=1; }
 done
-# The engine past its stability limit fails `finite` in the table; the stepper passes.
-grep -q '^| ode dantzig-faithful, w_max h = 10 |.*\*\*fail\*\*: finite' "$out/report/README.md" ||
-  { echo "stability table does not show the diverging engine"; missing=1; }
-grep -q '^| moreau-jean theta=0.5, w_max h = 100 | pass' "$out/report/README.md" ||
-  { echo "stability table does not show the stepper passing"; missing=1; }
-grep -q "faster on 2 threads" "$out/report/README.md" || { echo "no thread speedup line"; missing=1; }
+# The engine past its stability limit fails `finite`; the stepper passes it at every step.
+grep -q '^\* `ode dantzig-faithful`: \*\*finite fails\*\* at w_max h = .*10' "$out/report/README.md" ||
+  { echo "stability summary does not show the diverging engine"; missing=1; }
+grep -q '^\* `moreau-jean theta=0.5`: finite passes everywhere' "$out/report/README.md" ||
+  { echo "stability summary does not show the stepper passing"; missing=1; }
+# README's blocks: written from the report's result files, and they pass the check.
+grep -q "^| sweep throughput, 2 threads against 1" "$out/README.md" ||
+  { echo "no thread speedup in README"; missing=1; }
+grep -q "^| pair | 0.1 | " "$out/README.md" || { echo "no answer for the pair scene in README"; missing=1; }
+/usr/bin/python3 "$src/reports/make_report.py" --check --readme "$out/README.md" --out "$out/report" > /dev/null ||
+  { echo "README's blocks as written fail the check"; missing=1; }
 exit $missing

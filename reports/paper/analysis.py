@@ -9,8 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from make_report import CASE_KEYS  # reports/make_report.py
-from rows import num  # reports/rows.py
+from rows import CASE_KEYS, num  # reports/rows.py
 
 # Below this relative change of Pi1, contact left the maximum as it was (no impact, or
 # none that changed it). Far above the reference's error (~1e-9).

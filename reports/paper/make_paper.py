@@ -17,7 +17,9 @@ import math
 import os
 import subprocess
 import sys
+import re
 import tempfile
+from dataclasses import dataclass
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # reports/
 
@@ -26,6 +28,7 @@ import numpy as np  # noqa: E402
 import analysis  # noqa: E402
 import plots  # noqa: E402
 from analysis import NEAR, select  # noqa: E402
+import provenance  # noqa: E402
 from make_report import footer  # noqa: E402
 from rows import load, write_page  # noqa: E402
 
@@ -90,17 +93,20 @@ def fig3_section(fam, out):
         f"{listed({float(c['a_p']) for c in by_duration})} m/s² with T_p = {listed(tp_other)} s (`fig3-duration` "
         "of `cases/sets/paper-report.toml`), all at Pi3 = 0.5. In metres (left) the spectra scale with the "
         f"pulse's length a_p T_p² / 4π² (a factor {g(a_p[-1] / a_p[0])} between the smallest and largest "
-        "amplitude) and the durations shift them along T0; in Pi terms (right) they are one curve. The "
+        "amplitude) and the durations shift them along T0; in Pi terms (right) they lie exactly on each other, "
+        "which is the finding: the curves are drawn in decreasing widths, the other durations dashed, so that "
+        "each one shows under the others. The "
         "largest relative spread (max - min) / max of Pi1 between the amplitudes at one Pi2 is "
         f"**{spread:.1e}** (at Pi2 = {g(at)}; no contact: {spread_nc:.1e}); with the other durations as well, "
         f"{spread_all:.1e} (at Pi2 = {g(at_all)}). Impacts occur at {impacted} of the {len(by_amplitude[0].x)} "
         "Pi2 points. The paper's self-similarity (\"IMPLEMENTATION OF DIMENSIONAL ANALYSIS\") "
         f"{'holds' if agrees else 'does not hold'} for this pounding row, impacts included (the test: a spread "
         f"below {analysis.UNCHANGED:g}; the reference's own error is about 1e-9).", ""]
-    return text, ("spectra for any a_p and T_p collapse onto one curve in Pi terms (Fig. 3)",
-                  "IMPLEMENTATION OF DIMENSIONAL ANALYSIS",
-                  f"largest relative spread of Pi1 {spread_all:.1e} over {len(a_p)} amplitudes and "
-                  f"{len(tp) + len(tp_other)} durations", agrees)
+    return text, Claim("spectra for any a_p and T_p collapse onto one curve in Pi terms (Fig. 3)",
+                       "IMPLEMENTATION OF DIMENSIONAL ANALYSIS",
+                       f"largest relative spread of Pi1 {spread_all:.1e} over {len(a_p)} amplitudes and "
+                       f"{len(tp) + len(tp_other)} durations", agrees,
+                       f"the {len(by_amplitude + by_duration)} pulses' spectra differ by {spread_all:.0e} at most")
 
 
 # ---------------------------------------------------------------- Figs 4, 5: stiffness ratio
@@ -160,9 +166,11 @@ def pi5_limit_section(fam, out):
         f"(\"{STIFFNESS}\") {'holds' if agrees else 'does not hold'} for both pulses.", ""]
     text += table(["pulse", "Pi5", "largest Pi1/Pi1_nc", "smallest Pi1/Pi1_nc", "largest abs(Pi1/Pi1_nc - 1)",
                    "points with impacts (of 200)"], table_rows)
-    return text, ("as Pi5 -> 1 (Pi6 = 1) the response tends to the no-contact one", STIFFNESS,
-                  f"largest abs(Pi1/Pi1_nc - 1) over Pi2: {'; '.join(steps)}; below {analysis.UNCHANGED:g} at "
-                  f"Pi5 = {listed(sorted(set.intersection(*nil.values())))}", agrees)
+    return text, Claim("as Pi5 -> 1 (Pi6 = 1) the response tends to the no-contact one", STIFFNESS,
+                       f"largest abs(Pi1/Pi1_nc - 1) over Pi2: {'; '.join(steps)}; below {analysis.UNCHANGED:g} at "
+                       f"Pi5 = {listed(sorted(set.intersection(*nil.values())))}", agrees,
+                       f"contact's effect {'shrinks' if monotone else 'does not shrink'} monotonically; below "
+                       f"{analysis.UNCHANGED:g} at Pi5 = {listed(sorted(set.intersection(*nil.values())))}")
 
 
 def local_maxima_section(fam):
@@ -206,9 +214,10 @@ def local_maxima_section(fam):
              f"{hits['sine']} of {per_pulse} under the sine pulse (for which the paper itself says its trends are "
              f"hard to see). For comparison, {'; '.join(notes)}.", ""]
     total = sum(hits.values())
-    return text, ("the flexible body's spectrum has a local maximum near Pi2 = Pi5 (Figs 4, 5)", STIFFNESS,
-                  f"within x{NEAR} of Pi5 on {hits['cosine']} of {per_pulse} cosine and {hits['sine']} of "
-                  f"{per_pulse} sine spectra", True if total == len(lines) else "partly" if total else False)
+    return text, Claim("the flexible body's spectrum has a local maximum near Pi2 = Pi5 (Figs 4, 5)", STIFFNESS,
+                       f"within x{NEAR} of Pi5 on {hits['cosine']} of {per_pulse} cosine and {hits['sine']} of "
+                       f"{per_pulse} sine spectra", True if total == len(lines) else "partly" if total else False,
+                       f"{hits['cosine']} of {per_pulse} cosine, {hits['sine']} of {per_pulse} sine spectra")
 
 
 # ---------------------------------------------------------------- Fig. 6: time histories
@@ -339,11 +348,12 @@ def regions_section(fam, out):
     text += table(["figure", "body 0", "pulse", "amplified", "deamplified", "no effect at the far end"], located)
     text += [f"Pi2 ranges of every region of every spectrum (runs of at least {analysis.MIN_RUN} points):", ""]
     text += table(["figure", "pulse", "Pi5", "amplified", "deamplified", "no effect", "three regions"], lines)
-    return text, ("three regions: amplification (flexible: low Pi2, stiff: high Pi2), deamplification near "
-                  "Pi2 = 1, no effect", STIFFNESS,
-                  f"{agree} of {total} spectra of Figs 4, 5, 7 (" +
-                  ", ".join(f"{k[0]} {k[1]} {s[0]}/{s[1]}" for k, s in score.items()) + ")",
-                  True if agree == total else "partly" if agree else False)
+    return text, Claim("three regions: amplification (flexible: low Pi2, stiff: high Pi2), deamplification near "
+                       "Pi2 = 1, no effect", STIFFNESS,
+                       f"{agree} of {total} spectra of Figs 4, 5, 7 (" +
+                       ", ".join(f"{k[0]} {k[1]} {s[0]}/{s[1]}" for k, s in score.items()) + ")",
+                       True if agree == total else "partly" if agree else False,
+                       f"{agree} of {total} spectra of Figs 4, 5, 7")
 
 
 def sided_section(fam):
@@ -420,15 +430,18 @@ def sided_section(fam):
         f"a lower Pi2 than the one-sided (normal) one on {len(lower)} of {len(readable)}."
         + "".join(f" Under the {p} pulse the no-contact spectrum is largest at the grid's end Pi2 = {g(x)}, so no "
                   "shift can be read from it." for p, (x, _, edge) in free_peaks if edge), ""]
-    return text, ("two-sided pounding amplifies a flexible body less than one-sided; the period shift is as "
-                  "large", "COMPARISON OF ONE-SIDED AND TWO-SIDED POUNDING",
-                  "largest Pi1/Pi1_nc of the flexible body two-sided against one-sided: "
-                  + ", ".join(f"{c[0]} lower / {c[1]} equal / {c[2]} higher ({one.split()[-1]})"
-                              for one, c in compare.items())
-                  + f" of {len(flex)}; peak at the same or lower Pi2 two-sided on {len(lower)} of {len(readable)} "
-                  "readable spectra",
-                  True if not more and len(lower) == len(readable) else "partly" if lower or
-                  any(c[0] for c in compare.values()) else False)
+    return text, Claim("two-sided pounding amplifies a flexible body less than one-sided; the period shift is as "
+                       "large", "COMPARISON OF ONE-SIDED AND TWO-SIDED POUNDING",
+                       "largest Pi1/Pi1_nc of the flexible body two-sided against one-sided: "
+                       + ", ".join(f"{c[0]} lower / {c[1]} equal / {c[2]} higher ({one.split()[-1]})"
+                                   for one, c in compare.items())
+                       + f" of {len(flex)}; peak at the same or lower Pi2 two-sided on {len(lower)} of "
+                       f"{len(readable)} readable spectra",
+                       True if not more and len(lower) == len(readable) else "partly" if lower or
+                       any(c[0] for c in compare.values()) else False,
+                       f"less than one-sided on {sum(c[0] for c in compare.values())}, more on "
+                       f"{sum(c[2] for c in compare.values())} of {len(flex) * len(compare)} flexible spectra "
+                       f"(normal and reverse); peak shift as large on {len(lower)} of {len(readable)}")
 
 
 # ---------------------------------------------------------------- Figs 8, 9: mass ratio
@@ -522,16 +535,32 @@ def fig10_section(fam, out):
            "the negative branches are not the more numerous, unlike a main trend. ")
         + (f"R² of the sloped branches: {span([b.r2 for b in sloped])}; {len(bent)} of {len(sloped)} have R² < 0.98 "
            "(they bend: a single power law fits them only roughly)." if sloped else ""), ""]
-    return text, ("Fig. 10: a flat branch without contact, a negative main branch, a positive counter-intuitive "
-                  "branch", "INCOMPLETE SIMILARITY",
-                  f"{len(flat)} flat (abs(B) <= {flat_max:.0e}), {len(neg)} negative ({slopes(neg)}), "
-                  f"{len(pos)} positive ({slopes(pos)})", agrees)
+    return text, Claim("Fig. 10: a flat branch without contact, a negative main branch, a positive "
+                       "counter-intuitive branch", "INCOMPLETE SIMILARITY",
+                       f"{len(flat)} flat (abs(B) <= {flat_max:.0e}), {len(neg)} negative ({slopes(neg)}), "
+                       f"{len(pos)} positive ({slopes(pos)})", agrees,
+                       f"{len(flat)} flat, {len(neg)} negative, {len(pos)} positive branches")
 
 
 # ---------------------------------------------------------------- the page
 
-def verdict(v):
-    return {True: "agrees", False: "**disagrees**", "partly": "**partly**"}[v]
+@dataclass
+class Claim:
+    """One of the paper's claims against the reference."""
+    claim: str
+    section: str  # the paper's section heading it comes from
+    measured: str  # the numbers behind the verdict, in full
+    verdict: object  # True, False or "partly"
+    evidence: str  # the same in a few words, for the summary at the top of the page
+
+
+def holds(v):
+    return {True: "yes", False: "**no**", "partly": "**partly**"}[v]
+
+
+def anchor(heading):
+    """The link GitHub gives a Markdown heading: lower case, punctuation dropped, spaces to hyphens."""
+    return "#" + re.sub(r"[^\w\- ]", "", heading.lstrip("#").strip().lower()).replace(" ", "-")
 
 
 def main():
@@ -563,11 +592,16 @@ def main():
         text, claim = section()
         body += text
         if claim:
-            claims.append(claim)
+            claims.append((claim, anchor(text[0])))  # its details: the section's heading
 
     eps = sorted({r["eps"] for r in rows if r["family"] != "eps-cover"})
     head = [
         "# The paper's findings, reproduced by the reference", "",
+        "Which of the findings of Dimitrakopoulos, Makris & Kappos (2009) the event-driven reference reproduces, "
+        "computed from its result rows (details below and in each section):", ""]
+    head += table(["claim", "holds?", "evidence"],
+                  [[f"[{c.claim}]({link})", holds(c.verdict), c.evidence] for c, link in claims])
+    head += [
         "Regenerated by `bash scripts/paper.sh` (build, the sweeps, `reports/paper/make_paper.py`); "
         "`scripts/main.sh` runs the same step. Every number on this page is computed from the result rows.", "",
         "The paper is Dimitrakopoulos, Makris & Kappos, *Dimensional analysis of the earthquake-induced "
@@ -583,13 +617,15 @@ def main():
         "/ a_p = 0.5, Pi5 = w0 / w1, Pi6 = m0 / m1, damping 5 %, t_end = T_p + 3 longest natural periods. "
         "Pi1_nc is the same case without contacts. Spectra run over 200 log-spaced Pi2 in [0.1, 10].",
         "* Section headings in quotes are the paper's; the text here does not copy it.", "",
-        "## The paper's claims against the reference", ""]
+        "## The claims in detail", ""]
     head += table(["", "claim", "paper section", "measured", "verdict"],
-                  [[i + 1, c[0], f"\"{c[1]}\"", c[2], verdict(c[3])] for i, c in enumerate(claims)])
+                  [[i + 1, c.claim, f"\"{c.section}\"", c.measured, holds(c.verdict)]
+                   for i, (c, _) in enumerate(claims)])
     head += ["", "The same claims are accuracy regression tests (`tests/paper_claims_test.cpp`): each asserts "
              "what the reference does, with the same thresholds, where it agrees with the paper and where it "
              "does not.", ""]
-    page = head + body + ["## Where this ran", "", footer(), ""]
+    measured_on = provenance.measure(os.path.dirname(args.poundbench) or ".")  # the binary's build
+    page = head + body + ["## Where this ran", "", footer(measured_on), ""]
     write_page(args.out, page, "make_paper.py")
 
 

@@ -1,14 +1,13 @@
 """The figures of the paper report. Each function draws one figure from curves
-(analysis.Curve) and returns its path relative to the report (rows.save)."""
+(analysis.Curve) and returns its path relative to the report (figure.save)."""
 
 import math
 
-import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.lines import Line2D
 
 import analysis
-from rows import save  # reports/rows.py
+from figure import plt, save  # reports/figure.py: matplotlib set up for files
 
 PI1 = r"$\Pi_1 = u_{0,\max}\,\omega_p^2/a_p$"
 PI2 = r"$\Pi_2 = \omega_0/\omega_p$"

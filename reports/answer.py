@@ -1,0 +1,130 @@
+"""Which setting to use: for each target error, the cheapest setting of the work-precision
+study that meets it, per scene and over every family. Read off the study's summary rows
+(workprecision.csv); no matplotlib, so README's check runs in a blink."""
+
+from collections import defaultdict
+
+from rows import num, setting_label, settings_fields, steps_of
+
+MIDDLE_N = 64  # the step count of the cost table and of the spectra drawn against the reference
+TARGETS = [1e-1, 1e-2, 1e-3, 1e-4]
+ERRORS = (("err_median", "median"), ("err_p95", "95th percentile"))
+
+
+def is_event_driven(row):
+    """The reference, or another solver's event-driven variant (siconos event-driven-lsodar)."""
+    return row["solver"] == "event-driven" or row.get("variant", "").startswith("event-driven")
+
+
+def has_spread(row, key="cpu_median"):
+    """Whether a row carries the low and high of its timing repetitions (KEY_low_s, KEY_high_s)."""
+    return row.get(f"{key}_low_s", "") not in ("", None) and row.get(f"{key}_high_s", "") not in ("", None)
+
+
+def us(seconds):
+    """Microseconds to three significant digits, without an exponent."""
+    v = 1e6 * seconds
+    return f"{v:.0f}" if v >= 100 else f"{v:.1f}" if v >= 10 else f"{v:.2f}"
+
+
+def cost_cell(row):
+    """A row's median CPU time per run in us, with the low-high of its repetitions when the
+    row has them (none is drawn otherwise)."""
+    text = us(num(row, "cpu_median_s"))
+    if has_spread(row):
+        text += f" ({us(num(row, 'cpu_median_low_s'))}–{us(num(row, 'cpu_median_high_s'))})"
+    return text
+
+
+def answer_label(row):
+    label = setting_label(row)
+    return label + " (the reference)" if row["solver"] == "event-driven" else label
+
+
+def settings_over(summary, families, time_steppers_only=False):
+    """The rows of each setting (solver, variant, settings) on the given families, for the
+    settings that ran on all of them."""
+    by_setting = defaultdict(dict)
+    for r in summary:
+        if r["family"] in families and not (time_steppers_only and is_event_driven(r)):
+            by_setting[(r["solver"], r["variant"], r["settings"])][r["family"]] = r
+    return [per_family for per_family in by_setting.values() if set(per_family) == set(families)]
+
+
+def cheapest(settings, key, target):
+    """Among settings (each its rows by family), those with no failed run and an error `key`
+    <= target on every family; the cheapest by its median CPU time per run on its most
+    expensive family. Returns that family's row, or None."""
+    best = None
+    for per_family in settings:
+        rows = list(per_family.values())
+        if any(int(r["failed"]) > 0 or not num(r, key) <= target for r in rows):
+            continue
+        costliest = max(rows, key=lambda r: num(r, "cpu_median_s"))
+        if best is None or num(costliest, "cpu_median_s") < num(best, "cpu_median_s"):
+            best = costliest
+    return best
+
+
+def cells(best):
+    return ["none", ""] if best is None else [answer_label(best), cost_cell(best)]
+
+
+HEADER = ["by median error", "CPU per run (us)", "by 95th percentile", "CPU per run (us)"]
+
+
+def scene_table(summary, scenes):
+    """Markdown: for each scene (scenes: family -> scene) and target, the cheapest setting by
+    the median and by the 95th percentile of the error."""
+    by_scene = defaultdict(list)
+    for family in dict.fromkeys(r["family"] for r in summary):
+        by_scene[scenes[family]].append(family)
+    lines = ["| scene | target | " + " | ".join(HEADER) + " |", "|---|---:|---|---:|---|---:|"]
+    for scene, families in by_scene.items():
+        settings = settings_over(summary, families)
+        for target in TARGETS:
+            row = [cells(cheapest(settings, key, target)) for key, _ in ERRORS]
+            lines.append(f"| {scene} | {target:g} | " + " | ".join(row[0] + row[1]) + " |")
+    return lines
+
+
+def overall_table(summary, time_steppers_only=False):
+    """Markdown: for each target, the cheapest setting that meets it on every family."""
+    families = list(dict.fromkeys(r["family"] for r in summary))
+    settings = settings_over(summary, families, time_steppers_only)
+    lines = ["| target | " + " | ".join(HEADER) + " |", "|---:|---|---:|---|---:|"]
+    for target in TARGETS:
+        row = [cells(cheapest(settings, key, target)) for key, _ in ERRORS]
+        lines.append(f"| {target:g} | " + " | ".join(row[0] + row[1]) + " |")
+    return lines
+
+
+def rule(summary):
+    """The sentence that says how the tables are read off the rows."""
+    spread = any(has_spread(r) for r in summary)
+    return ("A setting meets a target when its relative Pi1 error against the reference solved 100x tighter "
+            "(the median, or the 95th percentile, over the points of a family) is at most the target on every "
+            "family of the scene (of the study, for the overall tables), with no failed run. Its cost is its "
+            "median CPU time per run, on its most expensive family" +
+            (" (in brackets, the lowest and highest of the timing repetitions)" if spread else "") +
+            ". The reference is a setting like any other: it is exact up to its tolerances, so it wins where it "
+            "is cheapest. `none`: no setting of the study meets the target.")
+
+
+def cost_table(summary):
+    """Markdown: CPU time per run at N = MIDDLE_N (and the reference at its own tolerance), as
+    a ratio to the in-house Moreau-Jean stepper (theta = 1/2) on the same family."""
+    lines = ["| family | solver setting | CPU per run, median (us) | ratio to moreau-jean theta=0.5 |",
+             "|---|---|---:|---:|"]
+    for family in dict.fromkeys(r["family"] for r in summary):
+        rows = [r for r in summary if r["family"] == family]
+        base = [r for r in rows if r["solver"] == "moreau-jean" and steps_of(r) == MIDDLE_N
+                and settings_fields(r)["theta"] == 0.5]
+        if not base:
+            continue
+        for r in rows:
+            if steps_of(r) not in (None, MIDDLE_N) or (is_event_driven(r) and settings_fields(r).get("tol_scale") != 1):
+                continue
+            lines.append(f"| {family} | {setting_label(r)} | {cost_cell(r)} | "
+                         f"{num(r, 'cpu_median_s') / num(base[0], 'cpu_median_s'):.2f} |")
+    return lines
