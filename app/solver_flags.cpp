@@ -32,7 +32,8 @@ void add_solver_flags(CLI::App& command, SolverFlags& flags) {
     const std::string flag = flag_of(f.name), help(f.help);
     CLI::Option* option = f.number    ? command.add_option(flag, s.*f.number, help)
                           : f.integer ? command.add_option(flag, s.*f.integer, help)
-                                      : command.add_option(flag, s.*f.count, help);
+                          : f.count   ? command.add_option(flag, s.*f.count, help)
+                                      : command.add_option(flag, s.*f.text, help);
     option->capture_default_str();
   }
 }

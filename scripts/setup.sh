@@ -22,7 +22,7 @@ packages=(
   g++ cmake make pkg-config
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
-  libode-dev libbullet-dev libsiconos-kernel-dev
+  libode-dev libbullet-dev libsiconos-kernel-dev libsundials-dev
   libopenmpi-dev openmpi-bin
   python3 python3-matplotlib python3-numpy
 )

@@ -14,6 +14,9 @@
 #ifdef POUNDBENCH_HAVE_SICONOS
 #include "solvers/siconos/siconos_solver.hpp"
 #endif
+#ifdef POUNDBENCH_HAVE_SUNDIALS
+#include "solvers/compliant/compliant.hpp"
+#endif
 
 namespace pb {
 
@@ -95,6 +98,12 @@ const std::array kSolvers = {
     // with it within its tolerances (1e-10 and below): as the reference.
     SolverInfo{"siconos", "Siconos: its MoreauJeanOSI (Lemke or enumeration) or event-driven LSODAR (see --variant)",
                &siconos::solve, &siconos::describe, &check_all<&siconos::check>, 1e-9},
+#endif
+#ifdef POUNDBENCH_HAVE_SUNDIALS
+    // CVODE chooses its steps, and round-off can move a step choice and Pi1 with it within
+    // its tolerance (1e-8 by default): 1e-7 lets that through.
+    SolverInfo{"compliant", "compliant contact elements (see --variant), integrated by CVODE or Newmark",
+               &compliant::solve, &compliant::describe, &check_all<&compliant::check>, 1e-7},
 #endif
 };
 

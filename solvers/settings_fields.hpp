@@ -4,8 +4,9 @@
 // its member and its help. The flags of `run` and `spectrum`, and the naming of a field in
 // a solver's check() message as its flag, are made from this table.
 //
-// Settings::variant (a name) and Settings::monitor (a switch of the studies) are not
-// numbers; Settings::history_samples is `run --samples`.
+// A field is a number (number, integer or count set) or a name (text set). Settings::variant
+// (a name every solver has) and Settings::monitor (a switch of the studies) are not in the
+// table; Settings::history_samples is `run --samples`.
 
 #include <array>
 #include <optional>
@@ -17,11 +18,13 @@ namespace pb {
 
 struct SettingField {
   std::string_view name;
-  double Settings::* number;  // one of these three is set
+  double Settings::* number;  // one of these four is set
   int Settings::* integer;
   long Settings::* count;
   std::string_view help;
+  std::string Settings::* text = nullptr;
 
+  // A number's value (not for a name).
   double get(const Settings& s) const {
     return number ? s.*number : integer ? static_cast<double>(s.*integer) : static_cast<double>(s.*count);
   }
@@ -33,7 +36,7 @@ struct SettingField {
   }
 };
 
-inline constexpr std::array<SettingField, 7> kSettingFields = {{
+inline constexpr std::array<SettingField, 11> kSettingFields = {{
     {"steps", nullptr, &Settings::steps, nullptr,
      "Time-steppers: steps per shortest period N, h = T_min/N (0: default)"},
     {"wh", &Settings::wh, nullptr, nullptr,
@@ -44,6 +47,11 @@ inline constexpr std::array<SettingField, 7> kSettingFields = {{
     {"step_cap", nullptr, nullptr, &Settings::step_cap, "Most steps or events per run (0: the solver's own cap)"},
     {"time_limit", &Settings::time_limit, nullptr, nullptr,
      "Most wall-clock seconds per run (0: none for `run`; a sweep's points get 60 s each)"},
+    {"stiffness", &Settings::stiffness, nullptr, nullptr,
+     "Compliant: contact stiffness as the Pi term K, k = K m0 w0^2 (Hertz family: over sqrt(a_p/w_p^2)); 0: default"},
+    {"rtol", &Settings::rtol, nullptr, nullptr, "Compliant with cvode: relative tolerance (0: default)"},
+    {"integrator", nullptr, nullptr, nullptr, "Compliant: cvode or newmark (default: cvode)", &Settings::integrator},
+    {"method", nullptr, nullptr, nullptr, "Compliant with cvode: bdf or adams (default: bdf)", &Settings::method},
 }};
 
 // The index of a field in kSettingFields by its name, if there is one.

@@ -39,6 +39,10 @@ struct Settings {
   double theta = 0.5;    // Moreau-Jean theta
   double gamma = 0.5;    // Moreau-Jean activation look-ahead
   double tol_scale = 1;  // event-driven: multiplies every internal tolerance
+  double stiffness = 0;  // compliant: contact stiffness as the Pi term K (cases/README.md); 0 = default
+  double rtol = 0;       // compliant with cvode: relative tolerance; 0 = default
+  std::string integrator;  // compliant: cvode or newmark; empty = the solver's default
+  std::string method;      // compliant with cvode: bdf or adams; empty = the solver's default
   long step_cap = 0;     // 0 = the solver's own cap
   double time_limit = 0;  // seconds of wall time per run; 0 = none
   // Set by a sweep that is being stopped: a run in progress ends as time_limit at its

@@ -140,8 +140,13 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
     // Every number of Settings (solvers/settings_fields.hpp) may be a list; unset, its
     // default. The rules below are the list's own: the solver's check() judges the rest.
     std::array<std::vector<double>, kSettingFields.size()> values;
+    std::array<std::vector<std::string>, kSettingFields.size()> names;  // a name's values
     std::array<const toml::node*, kSettingFields.size()> given{};
-    for (std::size_t j = 0; j < kSettingFields.size(); ++j) values[j] = {kSettingFields[j].get(Settings{})};
+    for (std::size_t j = 0; j < kSettingFields.size(); ++j) {
+      if (kSettingFields[j].text) names[j] = {Settings{}.*kSettingFields[j].text};
+      else values[j] = {kSettingFields[j].get(Settings{})};
+    }
+    const auto axis_size = [&](std::size_t j) { return kSettingFields[j].text ? names[j].size() : values[j].size(); };
     bool monitor = Settings{}.monitor;
     const toml::node* solver_node = &rn;
     for (auto&& [key, v] : *t) {
@@ -160,6 +165,8 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
         monitor = b->get();
       } else if (!j) {
         r.fail(&v, f, "unknown key");
+      } else if (kSettingFields[*j].text) {
+        names[*j] = r.strings(v, f);
       } else if (k == "steps") {
         values[*j] = r.steps(v, f);
       } else if (k == "step_cap") {
@@ -199,7 +206,7 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
     // cannot overflow.
     std::size_t product = variants.size();
     for (std::size_t j : axes) {
-      product *= values[j].size();
+      product *= axis_size(j);
       if (list.runs.size() + product > kMaxSettings)
         r.fail(&rn, field, "the list expands to more than " + std::to_string(kMaxSettings) +
                                " settings (the product of its lists' lengths); split the study");
@@ -210,9 +217,13 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
         RunSpec spec{solver, {}};
         spec.settings.variant = variant;
         spec.settings.monitor = monitor;
-        for (std::size_t a = 0; a < axes.size(); ++a) kSettingFields[axes[a]].set(spec.settings, values[axes[a]][at[a]]);
+        for (std::size_t a = 0; a < axes.size(); ++a) {
+          const SettingField& sf = kSettingFields[axes[a]];
+          if (sf.text) spec.settings.*sf.text = names[axes[a]][at[a]];
+          else sf.set(spec.settings, values[axes[a]][at[a]]);
+        }
         for (std::size_t a = axes.size(); a-- > 0;) {  // odometer: the last axis turns fastest
-          if (++at[a] < values[axes[a]].size()) break;
+          if (++at[a] < axis_size(axes[a])) break;
           at[a] = 0;
         }
         if (const std::string bad = info->check(spec.settings); !bad.empty())

@@ -75,6 +75,8 @@ struct Facts {
   int smoke_stride;
   // How long a run told to stop after 0.05 s may take (the clock is not read inside a step).
   double time_limit_bound;
+  // Fails (status failed, the message naming eps) where its model has no element for eps.
+  bool refuses_plastic = false;
 };
 
 // Measured restitution errors are on the wall cases of the restitution test (eps 0, 0.5, 1,
@@ -118,6 +120,18 @@ const std::vector<Facts>& facts_table() {
       {"siconos", "moreau-jean-lemke", true, 1e-12, 1.8, false, failed, diverged, false, 1, 0.5},
       {"siconos", "moreau-jean-enum", true, 1e-12, 1.8, false, failed, diverged, false, 1, 0.5},
       {"siconos", "event-driven-lsodar", false, 1e-12, 0.0, false, failed, diverged, true, 2, 0.5},
+      // Compliant contact through CVODE at the default stiffness K = 1e4: an isolated wall
+      // impact restitutes eps only up to what the body's spring, its dashpot and the pulse do
+      // during the contact (measured |e - eps| up to 5.8e-3 for Kelvin-Voigt; it falls as K
+      // grows). The Hertz family is softer at small penetrations (k p^(1/2) of a_p/w_p^2),
+      // its contacts last longer and those forces move e further: Hunt-Crossley and
+      // Jankowski (whose zeta(eps) is his approximation) measured up to 0.07 and 0.05.
+      // It refuses a non-finite body. (Hertz, elastic, refuses eps != 1 by name: the
+      // contract's cases have eps = 0.5, so it is tested in compliant_test.cpp.)
+      {"compliant", "kelvin-voigt", false, 0.02, 0.0, false, failed, diverged, false, 1, 0.5},
+      // Hunt-Crossley's and Jankowski's damping grows without bound as eps -> 0: both refuse eps = 0.
+      {"compliant", "hunt-crossley", false, 0.15, 0.0, false, failed, diverged, false, 1, 0.5, true},
+      {"compliant", "jankowski", false, 0.15, 0.0, false, failed, diverged, false, 1, 0.5, true},
   };
   return table;
 }
@@ -309,8 +323,10 @@ Result reference(const System& s) {
   return ref ? ref->solve(s, Settings{}) : Result{};
 }
 
-// Whether the solver documents a failure on this case: where contact persists.
+// Whether the solver documents a failure on this case: where contact persists, or a model
+// without a plastic element at eps = 0.
 bool may_fail(const Facts& f, const Case& c) {
+  if (f.refuses_plastic && c.eps == 0.0) return true;
   return f.fails_where_contact_persists && reference(make_system(c)).contact_phases > 0;
 }
 

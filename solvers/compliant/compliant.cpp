@@ -1,0 +1,80 @@
+#include "solvers/compliant/compliant.hpp"
+
+#include <cmath>
+#include <exception>
+
+#include "solvers/compliant/contact_law.hpp"
+#include "solvers/compliant/integrators.hpp"
+#include "solvers/fixed_step.hpp"
+#include "solvers/named_values.hpp"
+
+namespace pb::compliant {
+
+namespace {
+
+bool is_newmark(const Settings& s) { return s.integrator == "newmark"; }
+bool is_adams(const Settings& s) { return s.method == "adams"; }
+double stiffness(const Settings& s) { return s.stiffness > 0.0 ? s.stiffness : kDefaultStiffness; }
+
+Result failed(std::string message) {
+  Result r;
+  r.status = Status::failed;
+  r.message = std::move(message);
+  return r;
+}
+
+}  // namespace
+
+std::string check(const Settings& settings) {
+  if (!parse_model(settings.variant))
+    return "variant: unknown '" + settings.variant + "' (known: kelvin-voigt, hertz, hunt-crossley, jankowski)";
+  if (!(settings.stiffness >= 0.0) || !std::isfinite(settings.stiffness))
+    return "stiffness: must be finite and > 0 (0: the default " + format_number(kDefaultStiffness) + ")";
+  if (!settings.integrator.empty() && settings.integrator != "cvode" && settings.integrator != "newmark")
+    return "integrator: unknown '" + settings.integrator + "' (known: cvode, newmark)";
+  if (!settings.method.empty() && settings.method != "bdf" && settings.method != "adams")
+    return "method: unknown '" + settings.method + "' (known: bdf, adams)";
+  if (is_newmark(settings)) {
+    if (!settings.method.empty()) return "method: only the cvode integrator has one";
+    if (settings.rtol != 0.0) return "rtol: the newmark integrator takes a fixed step (--steps or --wh)";
+    return check_step(settings, kDefaultSteps);
+  }
+  if (!(settings.rtol >= 0.0 && settings.rtol < 1.0)) return "rtol: must be in (0, 1) (0: the default 1e-8)";
+  if (settings.rtol > 0.0 && settings.rtol < 1e-14) return "rtol: below 1e-14 is below double precision's round-off";
+  if (settings.steps != 0 || settings.wh != 0.0) return "steps: the cvode integrator chooses its own steps (--rtol)";
+  return {};
+}
+
+Result solve(const System& system, const Settings& settings) {
+  if (std::string bad = check(settings); !bad.empty()) return failed(bad);
+  const Model model = *parse_model(settings.variant);
+  if (std::string_view bad = eps_problem(model, system.eps); !bad.empty())
+    return failed("eps: " + std::string(bad));
+  for (const Body& b : system.bodies)
+    if (!(b.m > 0.0 && std::isfinite(b.m) && std::isfinite(b.k) && std::isfinite(b.c)))
+      return failed("every body needs a finite positive mass and a finite spring and dashpot");
+  try {
+    return is_newmark(settings) ? run_newmark(system, settings, model, stiffness(settings))
+                                : run_cvode(system, settings, model, stiffness(settings), is_adams(settings));
+  } catch (const std::exception& e) {
+    return failed(e.what());
+  }
+}
+
+std::string describe(const Settings& settings) {
+  NamedValues out;
+  const auto model = parse_model(settings.variant);
+  out.add("variant", model ? name(*model) : std::string_view(settings.variant));
+  out.add("stiffness", stiffness(settings));
+  if (is_newmark(settings)) {
+    out.add("integrator", "newmark");
+    add_step(out, settings, kDefaultSteps);
+  } else {
+    out.add("integrator", "cvode");
+    out.add("method", is_adams(settings) ? "adams" : "bdf");
+    out.add("rtol", settings.rtol > 0.0 ? settings.rtol : kDefaultRtol);
+  }
+  return out.json();
+}
+
+}  // namespace pb::compliant

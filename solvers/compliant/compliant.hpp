@@ -1,0 +1,43 @@
+#pragma once
+// Compliant contact, as earthquake engineers model pounding: a contact element (a spring,
+// or a spring and a dashpot) acts between neighbours while their gap is closed
+// (contact_law.hpp), and the motion is an ordinary differential equation, integrated by
+//
+//   cvode    SUNDIALS CVODE (BDF or Adams, variable order and step, error-controlled at
+//            --rtol), with root functions on every gap (the element starts and ends exactly
+//            there, and CVODE restarts, as the force may jump) and on body 0's velocity (the
+//            extremum of u0, so Pi1 is read at its root, not at a step). Pi1 = max |u0| over
+//            those roots, the steps' ends and the run's ends.
+//   newmark  average-acceleration Newmark (gamma 1/2, beta 1/4) at the fixed step
+//            h = T_min / N, with Newton iterations on the contact forces: what OpenSees runs
+//            by default (`integrator Newmark 0.5 0.25`, `algorithm Newton`). The contact's
+//            own period is not in T_min: a step that does not resolve it shows as
+//            penetration, restitution and energy in the row, and a Newton iteration that
+//            does not converge ends the run with status failed and says where.
+//
+// The variant is the element (kelvin-voigt, the default; hertz; hunt-crossley; jankowski);
+// --stiffness is its Pi term K (default kDefaultStiffness). Both integrators load the
+// bodies with -m a_g(t) at the times they evaluate (CVODE: every stage; Newmark: the step
+// ends, as its trapezoidal rule asks).
+//
+// Counts: impacts are contact onsets while approaching; contact_phases stays 0 (a compliant
+// contact has no persistent phase of its own). Restitution is measured per isolated contact
+// (the only one closed from its onset to its end, approaching faster than the floor) as
+// -q(end) / q(onset). CVODE reports no energy balance (NaN); Newmark's runs through the
+// shell's monitor, which counts no energy stored in the elements (so a contact in progress
+// lowers the balance, never raises it).
+
+#include <string>
+
+#include "solvers/solver.hpp"
+
+namespace pb::compliant {
+
+inline constexpr double kDefaultRtol = 1e-8;
+inline constexpr long kDefaultCvodeStepCap = 10'000'000;
+
+Result solve(const System& system, const Settings& settings);
+std::string describe(const Settings& settings);
+std::string check(const Settings& settings);
+
+}  // namespace pb::compliant

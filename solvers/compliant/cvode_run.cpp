@@ -1,0 +1,267 @@
+// The cvode integrator of the compliant solver (compliant.hpp): SUNDIALS CVODE over the
+// state y = (u0, v0, u1, v1, ...) interleaved, so that a contact couples entries at most
+// three apart and the Jacobian is banded (CVODE's band solver, its difference-quotient
+// Jacobian). The run is cut at the pulse's end (the cosine pulse's load jumps there) and
+// restarted (CVodeReInit) wherever a contact closes or opens.
+
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_band.h>
+#include <sunmatrix/sunmatrix_band.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "solvers/compliant/compliant.hpp"
+#include "solvers/compliant/integrators.hpp"
+#include "solvers/compliant/elements.hpp"
+#include "solvers/fixed_step.hpp"
+#include "solvers/monitor.hpp"
+
+namespace pb::compliant {
+
+namespace {
+
+std::size_t ix(int i) { return static_cast<std::size_t>(i); }
+
+struct Problem {
+  const System& sys;
+  Elements& elements;
+  std::vector<double> u, v, f;  // scratch, one per body
+  std::string library_message;  // the last error CVODE reported
+};
+
+void unpack(const double* y, std::vector<double>& u, std::vector<double>& v) {
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    u[i] = y[2 * i];
+    v[i] = y[2 * i + 1];
+  }
+}
+
+int rhs(double t, N_Vector y, N_Vector ydot, void* data) {
+  auto& pr = *static_cast<Problem*>(data);
+  const double* yy = N_VGetArrayPointer(y);
+  double* dy = N_VGetArrayPointer(ydot);
+  unpack(yy, pr.u, pr.v);
+  std::fill(pr.f.begin(), pr.f.end(), 0.0);
+  pr.elements.add_forces(pr.u.data(), pr.v.data(), pr.f.data());
+  const double ag = pr.sys.pulse.accel(t);
+  for (std::size_t i = 0; i < pr.u.size(); ++i) {
+    const Body& b = pr.sys.bodies[i];
+    dy[2 * i] = pr.v[i];
+    dy[2 * i + 1] = (pr.f[i] - b.k * pr.u[i] - b.c * pr.v[i]) / b.m - ag;
+  }
+  return 0;
+}
+
+// Roots: every gap (the element starts and ends there) and body 0's velocity (the extremum
+// of u0). Not the gap rates: two bodies that an element holds together move as one, their
+// gap rate stays at zero, and CVODE stops on a root function that stays zero; the deepest
+// penetration is read at the steps' ends instead.
+int roots(double, N_Vector y, double* g, void* data) {
+  auto& pr = *static_cast<Problem*>(data);
+  unpack(N_VGetArrayPointer(y), pr.u, pr.v);
+  const int nc = pr.sys.n_contacts();
+  for (int j = 0; j < nc; ++j) g[j] = pr.sys.gap(j, pr.u.data());
+  g[nc] = pr.v[ix(pr.sys.ref)];
+  return 0;
+}
+
+void keep_message(int, const char* module, const char* function, char* msg, void* data) {
+  auto& pr = *static_cast<Problem*>(data);
+  pr.library_message = std::string(module ? module : "") + "::" + (function ? function : "") + ": " + msg;
+}
+
+std::string flag_name(int flag) {
+  char* text = CVodeGetReturnFlagName(flag);
+  std::string out = text ? text : std::to_string(flag);
+  std::free(text);
+  return out;
+}
+
+// The SUNDIALS objects of one run, released in order whatever happens.
+struct Cvode {
+  SUNContext context = nullptr;
+  N_Vector y = nullptr, dky = nullptr;
+  SUNMatrix band = nullptr;
+  SUNLinearSolver linear = nullptr;
+  void* mem = nullptr;
+  ~Cvode() {
+    if (mem) CVodeFree(&mem);
+    if (linear) SUNLinSolFree(linear);
+    if (band) SUNMatDestroy(band);
+    if (dky) N_VDestroy(dky);
+    if (y) N_VDestroy(y);
+    if (context) SUNContext_Free(&context);
+  }
+};
+
+Result failure(Status status, std::string message) {
+  Result r;
+  r.status = status;
+  r.message = std::move(message);
+  return r;
+}
+
+}  // namespace
+
+Result run_cvode(const System& sys, const Settings& set, Model model, double K, bool adams) {
+  const int n = sys.n_bodies(), nc = sys.n_contacts();
+  const auto neq = static_cast<sunindextype>(2 * n);
+  const double rtol = set.rtol > 0.0 ? set.rtol : kDefaultRtol;
+  const double L = sys.length_scale();
+  const long cap = set.step_cap > 0 ? set.step_cap : kDefaultCvodeStepCap;
+
+  Elements elements(sys, model, K);
+  Problem pr{sys, elements, start_u(sys), start_v(sys), std::vector<double>(ix(n), 0.0), {}};
+  Cvode cv;
+  if (SUNContext_Create(nullptr, &cv.context) != 0) return failure(Status::failed, "SUNDIALS: no context");
+  cv.y = N_VNew_Serial(neq, cv.context);
+  cv.dky = N_VNew_Serial(neq, cv.context);
+  N_Vector atol = N_VNew_Serial(neq, cv.context);
+  double* y = N_VGetArrayPointer(cv.y);
+  double* at = N_VGetArrayPointer(atol);
+  for (int i = 0; i < n; ++i) {
+    y[2 * i] = pr.u[ix(i)];
+    y[2 * i + 1] = pr.v[ix(i)];
+    // Lengths to rtol of a_p / w_p^2, velocities to rtol of a_p / w_p.
+    at[2 * i] = rtol * L;
+    at[2 * i + 1] = rtol * L * sys.pulse.w;
+  }
+  cv.mem = CVodeCreate(adams ? CV_ADAMS : CV_BDF, cv.context);
+  CVodeSetErrHandlerFn(cv.mem, keep_message, &pr);  // a solver prints nothing
+  int flag = CVodeInit(cv.mem, rhs, 0.0, cv.y);
+  if (flag == CV_SUCCESS) flag = CVodeSVtolerances(cv.mem, rtol, atol);
+  N_VDestroy(atol);
+  if (flag == CV_SUCCESS) flag = CVodeSetUserData(cv.mem, &pr);
+  cv.band = SUNBandMatrix(neq, 3, 3, cv.context);
+  cv.linear = SUNLinSol_Band(cv.y, cv.band, cv.context);
+  if (flag == CV_SUCCESS) flag = CVodeSetLinearSolver(cv.mem, cv.linear, cv.band);
+  if (flag == CV_SUCCESS) flag = CVodeRootInit(cv.mem, nc + 1, roots);
+  if (flag == CV_SUCCESS) flag = CVodeSetNoInactiveRootWarn(cv.mem);
+  if (flag != CV_SUCCESS) return failure(Status::failed, "CVODE set-up: " + flag_name(flag));
+
+  Result res;
+  double u_max = std::abs(pr.u[ix(sys.ref)]), t_max = 0.0, g_min = 0.0;
+  std::vector<int> found(ix(nc + 1));
+  std::vector<double>* rows = set.history_samples > 0 ? &res.history.data : nullptr;
+  std::size_t next_sample = 0;
+  const std::size_t samples = static_cast<std::size_t>(std::max(set.history_samples, 0));
+  if (rows) {
+    res.history.n_bodies = n;
+    res.history.n_contacts = nc;
+  }
+  const auto sample_time = [&](std::size_t s) {
+    return samples > 1 ? sys.t_end * static_cast<double>(s) / static_cast<double>(samples - 1) : 0.0;
+  };
+  // History rows up to t from CVODE's interpolant (valid back to the last step's start).
+  const auto record_until = [&](double t) {
+    while (rows && next_sample < samples && sample_time(next_sample) <= t) {
+      const double ts = sample_time(next_sample++);
+      CVodeGetDky(cv.mem, ts, 0, cv.dky);
+      const double* d = N_VGetArrayPointer(cv.dky);
+      std::vector<double> u(ix(n)), v(ix(n));
+      unpack(d, u, v);
+      rows->push_back(ts);
+      rows->insert(rows->end(), u.begin(), u.end());
+      rows->insert(rows->end(), v.begin(), v.end());
+      for (int j = 0; j < nc; ++j) rows->push_back(sys.gap(j, u.data()));
+      for (int j = 0; j < nc; ++j) rows->push_back(elements.force(j, u.data(), v.data()));
+    }
+  };
+  // A contact whose state disagrees with its gap by more than round-off (one that closed
+  // at t = 0 with Pi3 = 0, where CVODE ignores a root function that starts at zero).
+  const double slack = 1e-10 * L;
+  const auto reconcile = [&]() {
+    bool changed = false;
+    for (int j = 0; j < nc; ++j) {
+      const double g = sys.gap(j, pr.u.data());
+      if (!elements.closed(j) && g < -slack) elements.close(j, elements.q(j, pr.v.data())), changed = true;
+      if (elements.closed(j) && g > slack) elements.open(j, elements.q(j, pr.v.data())), changed = true;
+    }
+    return changed;
+  };
+
+  Deadline deadline(set);
+  long done = 0;  // the steps of the segments before the last restart
+  const auto total_steps = [&]() {
+    long nst = 0;
+    CVodeGetNumSteps(cv.mem, &nst);
+    return done + nst;
+  };
+  double t = 0.0;
+  const double t_pulse = std::min(sys.pulse.duration(), sys.t_end);
+  double stop = t_pulse > 0.0 ? t_pulse : sys.t_end;
+  CVodeSetStopTime(cv.mem, stop);
+  const auto restart = [&](double at_t) {
+    done = total_steps();
+    CVodeReInit(cv.mem, at_t, cv.y);
+    CVodeSetStopTime(cv.mem, stop);
+  };
+  const char* why = nullptr;
+  while (t < sys.t_end) {
+    flag = CVode(cv.mem, sys.t_end, cv.y, &t, CV_ONE_STEP);
+    if (flag < 0) {
+      res.status = Status::failed;
+      res.message = "CVODE: " + flag_name(flag) + " at t = " + std::to_string(t) +
+                    (pr.library_message.empty() ? "" : " (" + pr.library_message + ")");
+      break;
+    }
+    unpack(y, pr.u, pr.v);
+    bool finite = true;
+    for (sunindextype i = 0; i < neq; ++i) finite = finite && std::isfinite(y[i]);
+    if (!finite) {
+      res.status = Status::nan;
+      why = "non-finite state";
+      break;
+    }
+    record_until(t);
+    const double a = std::abs(pr.u[ix(sys.ref)]);
+    if (a > u_max) u_max = a, t_max = t;
+    for (int j = 0; j < nc; ++j) g_min = std::min(g_min, sys.gap(j, pr.u.data()));
+    if ((why = runaway(sys, pr.u.data(), pr.v.data()))) {
+      res.status = Status::diverged;
+      break;
+    }
+    bool contacts_changed = false;
+    if (flag == CV_ROOT_RETURN) {
+      CVodeGetRootInfo(cv.mem, found.data());
+      for (int j = 0; j < nc; ++j) {
+        if (found[ix(j)] < 0) elements.close(j, elements.q(j, pr.v.data())), contacts_changed = true;
+        if (found[ix(j)] > 0) elements.open(j, elements.q(j, pr.v.data())), contacts_changed = true;
+      }
+    }
+    contacts_changed = reconcile() || contacts_changed;
+    if (flag == CV_TSTOP_RETURN && t < sys.t_end) {
+      stop = sys.t_end;
+      contacts_changed = true;  // the load may jump at the pulse's end
+    }
+    if (contacts_changed && t < sys.t_end) restart(t);
+    const long steps = total_steps();
+    if (steps > cap) {
+      res.status = Status::step_cap;
+      res.message = "more than " + std::to_string(cap) + " CVODE steps";
+      break;
+    }
+    if (deadline.passed(steps)) {
+      res.status = Status::time_limit;
+      res.message = deadline.reason() + " at t = " + std::to_string(t);
+      break;
+    }
+  }
+  res.steps = total_steps();
+  res.impacts = elements.impacts();
+  res.min_gap = g_min < 0.0 ? g_min : std::numeric_limits<double>::infinity();
+  elements.finish(res);
+  if (res.status == Status::nan || res.status == Status::diverged)
+    res.message = std::string(why) + " at t = " + std::to_string(t);
+  if (res.status == Status::ok) {
+    res.pi1 = sys.pi1(u_max);
+    res.t_max = t_max;
+  }
+  return res;
+}
+
+}  // namespace pb::compliant

@@ -1,0 +1,14 @@
+#pragma once
+// The two integrators of the compliant solver (compliant.hpp), each a whole run.
+
+#include "solvers/compliant/contact_law.hpp"
+#include "solvers/solver.hpp"
+
+namespace pb::compliant {
+
+// SUNDIALS CVODE, BDF or Adams (cvode_run.cpp).
+Result run_cvode(const System& sys, const Settings& set, Model model, double K, bool adams);
+// Average-acceleration Newmark in the fixed-step shell (newmark.cpp).
+Result run_newmark(const System& sys, const Settings& set, Model model, double K);
+
+}  // namespace pb::compliant

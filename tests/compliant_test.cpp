@@ -1,0 +1,160 @@
+// What is particular to the compliant solver (solvers/compliant/): its elements' damping
+// calibration, the rigid limit, self-similarity with the stiffness as a Pi term, and its two
+// integrators against each other. The checks every solver passes are in
+// solver_contract_test.cpp.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cases/system.hpp"
+#include "solvers/compliant/compliant.hpp"
+#include "solvers/compliant/contact_law.hpp"
+#include "solvers/event_driven/event_driven.hpp"
+#include "support.hpp"
+
+namespace pb {
+namespace {
+
+using test::make_case;
+using test::sci;
+
+Result solve(const Case& c, const char* variant, double K, const char* integrator = "", int steps = 0) {
+  Settings st;
+  st.variant = variant;
+  st.stiffness = K;
+  st.integrator = integrator;
+  st.steps = steps;
+  return compliant::solve(make_system(c), st);
+}
+
+double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
+
+TEST(CompliantLaw, KelvinVoigtDampingIsTheTextbookOneOfTheUnclampedElement) {
+  EXPECT_NEAR(compliant::kelvin_voigt_zeta(0.5), 0.2155, 5e-5);
+  EXPECT_EQ(compliant::kelvin_voigt_zeta(1.0), 0.0);
+  EXPECT_EQ(compliant::kelvin_voigt_zeta(0.0), 1.0);  // critical: the penetration never ends alone
+}
+
+TEST(CompliantLaw, HuntCrossleyChiIsCalibratedToRestituteEps) {
+  for (double eps : {0.1, 0.5, 0.9}) {
+    const double chi = compliant::hunt_crossley_chi(eps);
+    EXPECT_NEAR(compliant::hunt_crossley_restitution(chi), eps, 1e-9) << "eps " << eps << ", chi " << chi;
+  }
+  EXPECT_GT(compliant::hunt_crossley_chi(0.1), compliant::hunt_crossley_chi(0.5));
+}
+
+// The published closed forms miss: measured here as the prototype measured them.
+TEST(CompliantLaw, PublishedHuntCrossleyFormulasMissTheTargetRestitution) {
+  const double ln = compliant::hunt_crossley_restitution(compliant::lankarani_nikravesh_chi(0.5));
+  const double flores = compliant::hunt_crossley_restitution(compliant::flores_chi(0.5));
+  RecordProperty("lankarani_nikravesh_e", sci(ln));
+  RecordProperty("flores_e", sci(flores));
+  EXPECT_NEAR(ln, 0.725, 0.01);
+  EXPECT_NEAR(flores, 0.470, 0.01);
+}
+
+TEST(Compliant, HertzRefusesAnInelasticCaseByName) {
+  const Result r = solve(make_case(Scene::wall, PulseShape::sine, 0.5, 1.0, 0.5), "hertz", 0.0);
+  EXPECT_EQ(r.status, Status::failed);
+  EXPECT_NE(r.message.find("eps"), std::string::npos) << r.message;
+  EXPECT_EQ(solve(make_case(Scene::wall, PulseShape::sine, 0.5, 1.0, 1.0), "hertz", 0.0).status, Status::ok);
+}
+
+// Kelvin-Voigt's model error against the rigid answer falls as the stiffness grows (about as
+// K^(-1/2), the contact's duration): at least 5 times per factor 100.
+TEST(Compliant, KelvinVoigtApproachesTheRigidReferenceAsTheStiffnessGrows) {
+  for (Scene scene : {Scene::wall, Scene::pair}) {
+    const Case c = make_case(scene, PulseShape::sine, 0.5, 0.5, 0.5);
+    const Result rigid = event_driven::solve(make_system(c), Settings{});
+    ASSERT_EQ(rigid.status, Status::ok);
+    ASSERT_GT(rigid.impacts, 0);
+    double last = 1.0;
+    for (double K : {1e3, 1e5, 1e7}) {
+      const Result r = solve(c, "kelvin-voigt", K);
+      ASSERT_EQ(r.status, Status::ok) << r.message;
+      const double e = rel(r.pi1, rigid.pi1);
+      RecordProperty(std::string(name(scene)) + "_error_K" + sci(K), sci(e));
+      EXPECT_LT(e, last / 5.0) << name(scene) << " K " << K;
+      last = e;
+    }
+  }
+}
+
+// Pi1 depends on the Pi terms alone, the stiffness K included (linear and Hertz family).
+TEST(Compliant, Pi1IsSelfSimilarWithTheStiffnessAsAPiTerm) {
+  for (const char* variant : {"kelvin-voigt", "hunt-crossley", "jankowski"}) {
+    Case c = make_case(Scene::pair, PulseShape::cosine, 0.7, 0.5, 0.5);
+    const Result unit = solve(c, variant, 1e5);
+    c.a_p = 9.81;
+    c.w_p = 5.0;
+    const Result scaled = solve(c, variant, 1e5);
+    ASSERT_EQ(unit.status, Status::ok) << unit.message;
+    ASSERT_EQ(scaled.status, Status::ok) << scaled.message;
+    EXPECT_LT(rel(scaled.pi1, unit.pi1), 1e-6) << variant;  // CVODE's tolerance, 1e-8, and its step choices
+  }
+}
+
+// Newmark approaches CVODE's answer for the same element as the step shrinks, once the step
+// resolves the contact (K = 1e3: the contact lasts ~T0 / 30).
+TEST(Compliant, NewmarkConvergesToCvodeOnTheSameModel) {
+  const Case c = make_case(Scene::wall, PulseShape::sine, 0.5, 1.0, 0.5);
+  Settings tight;
+  tight.stiffness = 1e3;
+  tight.rtol = 1e-11;
+  const Result exact = compliant::solve(make_system(c), tight);
+  ASSERT_EQ(exact.status, Status::ok) << exact.message;
+  double last = 1.0;
+  for (int n : {256, 1024, 4096}) {
+    const Result r = solve(c, "kelvin-voigt", 1e3, "newmark", n);
+    ASSERT_EQ(r.status, Status::ok) << r.message;
+    const double e = rel(r.pi1, exact.pi1);
+    RecordProperty("newmark_error_N" + std::to_string(n), sci(e));
+    EXPECT_LT(e, last / 3.0) << "N " << n;
+    last = e;
+  }
+}
+
+TEST(Compliant, BdfAndAdamsAgreeToTheirTolerance) {
+  const System s = make_system(make_case(Scene::row3, PulseShape::sine, 0.5, 0.5, 0.5));
+  Settings bdf, adams;
+  adams.method = "adams";
+  const Result a = compliant::solve(s, bdf), b = compliant::solve(s, adams);
+  ASSERT_EQ(a.status, Status::ok) << a.message;
+  ASSERT_EQ(b.status, Status::ok) << b.message;
+  EXPECT_LT(rel(a.pi1, b.pi1), 1e-6);
+  EXPECT_EQ(a.impacts, b.impacts);
+}
+
+// A step far too large for a stiff element: Newton's iteration may not converge, and that is
+// a status with its reason, never a crash or an ok with a wrong answer flagged nowhere.
+TEST(Compliant, NewmarkThatCannotConvergeEndsFailedSayingWhere) {
+  const Result r = solve(make_case(Scene::pair, PulseShape::sine, 0.3, 0.5, 0.5), "kelvin-voigt", 1e8, "newmark", 8);
+  if (r.status != Status::ok) {
+    EXPECT_EQ(r.status, Status::failed);
+    EXPECT_NE(r.message.find("Newton"), std::string::npos) << r.message;
+    EXPECT_TRUE(std::isnan(r.pi1));
+  }
+}
+
+TEST(Compliant, CheckNamesTheBadSetting) {
+  Settings st;
+  st.integrator = "rk4";
+  EXPECT_EQ(compliant::check(st).rfind("integrator:", 0), 0u);
+  st = {};
+  st.method = "radau";
+  EXPECT_EQ(compliant::check(st).rfind("method:", 0), 0u);
+  st = {};
+  st.stiffness = -1;
+  EXPECT_EQ(compliant::check(st).rfind("stiffness:", 0), 0u);
+  st = {};
+  st.integrator = "newmark";
+  st.rtol = 1e-6;
+  EXPECT_EQ(compliant::check(st).rfind("rtol:", 0), 0u);
+  st = {};
+  st.steps = 64;
+  EXPECT_EQ(compliant::check(st).rfind("steps:", 0), 0u);
+}
+
+}  // namespace
+}  // namespace pb
