@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "solvers/solver.hpp"
@@ -596,6 +598,104 @@ TEST_F(Cli, CompareChecksAnotherSolversRowsAgainstTheStoredReference) {
   o = run("baseline --check mine.csv");
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_EQ(o.err.rfind("poundbench: mine.csv:1: header: not a poundbench baseline", 0), 0u) << o.err;
+}
+
+// The first line a shell command prints ("" if none).
+std::string first_line(const std::string& command) {
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return "";
+  char buffer[256] = {};
+  const bool got = std::fgets(buffer, sizeof buffer, pipe) != nullptr;
+  ::pclose(pipe);
+  std::string line = got ? buffer : "";
+  if (!line.empty() && line.back() == '\n') line.pop_back();
+  return line;
+}
+
+TEST_F(Cli, VersionSaysTheProjectVersionAndTheCommitItWasBuiltFrom) {
+  const Outcome o = run("--version");
+  EXPECT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_EQ(o.out.rfind("poundbench 0.", 0), 0u) << o.out;  // CMakeLists.txt: project(VERSION 0.1)
+  ASSERT_NE(o.out.find(", commit "), std::string::npos) << o.out;
+  const std::string commit = o.out.substr(o.out.find(", commit ") + 9);
+  const std::string head = first_line("git -C '" POUNDBENCH_SOURCE_DIR "' rev-parse --short HEAD 2>/dev/null");
+  if (head.empty())
+    EXPECT_EQ(commit, "unknown\n");  // not a git checkout
+  else
+    EXPECT_EQ(commit.rfind(head, 0), 0u) << commit << " vs " << head;
+}
+
+TEST_F(Cli, AWordThatIsNoSubcommandIsNamedAndTheSubcommandsListed) {
+  const std::string list =
+      "the subcommands are: run, spectrum, workprecision, stress, baseline, compare, solvers (`poundbench help` "
+      "says what each does)\n";
+  Outcome o = run("bogus --out x.csv");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.err, "poundbench: unknown subcommand 'bogus'; " + list);
+  o = run("");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.err, "poundbench: no subcommand; " + list);
+  o = run("help spectrumm");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.err, "poundbench: unknown subcommand 'spectrumm'; " + list);
+  o = run("help");
+  EXPECT_EQ(o.exit_code, 0);
+  EXPECT_EQ(o.out, run("--help").out);
+  EXPECT_NE(o.out.find("Usage: poundbench"), std::string::npos) << o.out;
+  for (const char* name : {"run", "spectrum", "workprecision", "stress", "baseline", "compare", "solvers"})
+    EXPECT_NE(o.out.find(std::string("  ") + name + " "), std::string::npos) << name;
+  o = run("help stress");
+  EXPECT_EQ(o.exit_code, 0);
+  EXPECT_NE(o.out.find("Usage: poundbench stress"), std::string::npos) << o.out;
+}
+
+// `solvers` lists every variant the registry has, the default first, with what it is and
+// the settings it uses; `run --variant` takes each one it lists.
+TEST_F(Cli, SolversListsEveryVariantAndRunAcceptsEachOne) {
+  const Outcome text = run("solvers");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  const Outcome json = run("solvers --json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const nlohmann::json listed = nlohmann::json::parse(json.out).at("solvers");
+  ASSERT_EQ(listed.size(), solvers().size());
+  for (std::size_t k = 0; k < solvers().size(); ++k) {
+    const SolverInfo& solver = solvers()[k];
+    SCOPED_TRACE(std::string(solver.name));
+    EXPECT_EQ(listed[k].at("name"), solver.name);
+    ASSERT_NE(solver.variants, nullptr);
+    const std::vector<VariantInfo> variants = solver.variants();
+    ASSERT_FALSE(variants.empty());
+    ASSERT_EQ(listed[k].at("variants").size(), variants.size());
+    // The first is what the empty name runs.
+    Settings first;
+    first.variant = variants.front().name;
+    EXPECT_EQ(solver.describe(first), solver.describe(Settings{}));
+    std::set<std::string> summaries;
+    for (std::size_t v = 0; v < variants.size(); ++v) {
+      const std::string name(variants[v].name);
+      const nlohmann::json& entry = listed[k].at("variants")[v];
+      EXPECT_EQ(entry.at("name"), name);
+      EXPECT_EQ(entry.at("default"), v == 0);
+      EXPECT_TRUE(summaries.insert(variants[v].summary).second) << "two variants alike: " << variants[v].summary;
+      EXPECT_NE(text.out.find("      " + (name.empty() ? "(default)" : name) + (v == 0 && !name.empty() ? " (default)" : "") +
+                              "  "),
+                std::string::npos)
+          << name;
+      if (name.empty()) continue;  // no option takes an empty value
+      const Outcome o = run(std::string("run ") + kPairCase + " --solver " + std::string(solver.name) + " --variant " +
+                            name + " --json");
+      EXPECT_NE(o.exit_code, 2) << name << ": " << o.err;
+      if (!o.out.empty()) {
+        EXPECT_EQ(nlohmann::json::parse(o.out).at("variant"), name);
+      }
+    }
+  }
+  // What each uses, as the settings column of its rows shows it.
+  EXPECT_NE(text.out.find("    settings: --steps --wh --theta --gamma\n"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("    settings: --tol-scale\n"), std::string::npos) << text.out;
+  EXPECT_EQ(settings_used(*find_solver("moreau-jean"), "end-samples"),
+            (std::vector<std::string_view>{"steps", "wh", "theta", "gamma"}));
+  EXPECT_EQ(settings_used(reference_solver(), ""), std::vector<std::string_view>{"tol_scale"});
 }
 
 TEST_F(Cli, HelpExitsZeroOnEverySubcommand) {
