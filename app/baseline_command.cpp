@@ -108,11 +108,10 @@ Source load_source(const fs::path& cases, const fs::path& settings) {
   return s;
 }
 
-// Runs a baseline's sweeps with a progress bar; nullopt when interrupted.
+// Runs a baseline's sweeps, showing progress; nullopt when interrupted.
 std::optional<std::vector<Row>> run(const Source& s, unsigned threads) {
   const std::size_t total = s.set.cases.size() * ((s.list ? s.list->runs.size() : 0) + 1);
-  SweepWatch watch(total, 0, ::isatty(STDERR_FILENO) == 1 ? Progress::bar : Progress::none,
-                   [] { std::_Exit(kInterrupted); });
+  SweepWatch watch("baseline", "runs", total, 0, progress_on_stderr(true), [] { std::_Exit(kInterrupted); });
   SweepOptions options;
   options.threads = threads;
   options.cancel = &watch.cancel();
@@ -128,6 +127,7 @@ void store(const fs::path& file, const BaselineHeader& header, const std::vector
     for (const std::string& line : header_lines(header)) out << '#' << line << '\n';
     write_csv(out, rows);
   });
+  report_written(rows.size(), file.string());
 }
 
 RowFile read_rows(const std::string& path) {
@@ -172,7 +172,6 @@ int baseline_command(const CLI::App& command, const BaselineFlags& flags) {
                           flags.settings.empty() ? "" : relative_to_file(flags.settings, flags.out).string(),
                           provenance(flags.out)};
     store(flags.out, header, *rows);
-    std::cout << flags.out << ": " << rows->size() << " rows\n";
     return 0;
   }
 

@@ -547,7 +547,8 @@ TEST_F(CliStudy, StressWritesASummaryPerFamilyAndSettingAndEveryRunWithItsPi1Err
 TEST_F(CliStudy, BaselineCheckCatchesAChangedPi1AndUpdateStoresItAgain) {
   const Outcome made = run("baseline tiny.toml --settings list.toml --out base.csv");
   ASSERT_EQ(made.exit_code, 0) << made.err;
-  EXPECT_EQ(made.out, "base.csv: 24 rows\n");
+  EXPECT_EQ(made.out, "");
+  EXPECT_EQ(made.err.rfind("poundbench: wrote 24 rows to base.csv in ", 0), 0u) << made.err;
   const std::string stored = read_text(file("base.csv"));
   EXPECT_EQ(stored.rfind("# poundbench baseline\n# cases: tiny.toml\n# settings: list.toml\n# commit: ", 0), 0u);
 
@@ -696,6 +697,32 @@ TEST_F(Cli, SolversListsEveryVariantAndRunAcceptsEachOne) {
   EXPECT_EQ(settings_used(*find_solver("moreau-jean"), "end-samples"),
             (std::vector<std::string_view>{"steps", "wh", "theta", "gamma"}));
   EXPECT_EQ(settings_used(reference_solver(), ""), std::vector<std::string_view>{"tol_scale"});
+}
+
+// Every sweep command ends with a line per file it wrote, whatever stderr is (here a file).
+TEST_F(CliStudy, EverySweepCommandSaysWhatItWroteInItsLastLines) {
+  const auto wrote = [](const std::string& err, std::size_t rows, const std::string& to) {
+    const std::string head = "poundbench: wrote " + std::to_string(rows) + " rows to " + to + " in ";
+    const std::size_t at = err.find(head);
+    if (at == std::string::npos) return false;
+    const std::string seconds = err.substr(at + head.size(), err.find('\n', at) - at - head.size());
+    return seconds.size() >= 5 && seconds.ends_with(" s") && seconds[seconds.size() - 4] == '.';
+  };
+  Outcome o = run("spectrum tiny.toml --out out.csv");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(wrote(o.err, 6, "out.csv")) << o.err;
+  EXPECT_EQ(line_count(o.err), 1u) << o.err;
+  o = run("workprecision tiny.toml --settings list.toml --out sum.csv --points runs.csv");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(wrote(o.err, 24, "runs.csv")) << o.err;  // the truth and 3 settings on 6 points
+  EXPECT_TRUE(wrote(o.err, line_count(read_text(file("sum.csv"))) - 1, "sum.csv")) << o.err;
+  EXPECT_EQ(line_count(o.err), 2u) << o.err;
+  o = run("stress tiny.toml --settings list.toml");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(wrote(o.err, 4, "stdout")) << o.err;
+  o = run("baseline tiny.toml --out base.csv");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(wrote(o.err, 6, "base.csv")) << o.err;
 }
 
 TEST_F(Cli, HelpExitsZeroOnEverySubcommand) {
