@@ -601,6 +601,51 @@ TEST_F(Cli, CompareChecksAnotherSolversRowsAgainstTheStoredReference) {
   EXPECT_EQ(o.err.rfind("poundbench: mine.csv:1: header: not a poundbench baseline", 0), 0u) << o.err;
 }
 
+// A minimal file: the case columns of the row key and pi1, nothing else (another
+// program's output), here the tiny set's sine rows of the baseline with Pi1 moved by 1e-3.
+TEST_F(Cli, CompareReadsRowsWithOnlyTheMinimalColumns) {
+  write("tiny.toml", kTinySet);
+  ASSERT_EQ(run("baseline tiny.toml --out base.csv").exit_code, 0);
+  const std::string base = read_text(file("base.csv"));
+  CsvTable stored(base.substr(base.find("family,")));
+  std::vector<std::pair<std::string, double>> sine;  // pi2, pi1
+  for (std::size_t row = 0; row < stored.rows.size(); ++row)
+    if (stored.at(row, "pulse") == "sine")
+      sine.emplace_back(stored.at(row, "pi2"), std::strtod(stored.at(row, "pi1").c_str(), nullptr) * (1.0 + 1e-3));
+  ASSERT_EQ(sine.size(), 3u);
+  // The file, with or without the pi6 column.
+  const auto minimal = [&](bool pi6) {
+    std::ostringstream text;
+    text.precision(17);
+    text << "scene,pulse,directivity,pi2,pi3,eps,pi5," << (pi6 ? "pi6," : "") << "pi1\n";
+    for (const auto& [pi2, pi1] : sine) text << "pair,sine,normal," << pi2 << ",0.5,0.5,0.75," << (pi6 ? "1," : "") << pi1 << "\n";
+    return text.str();
+  };
+  write("minimal.csv", minimal(true));
+
+  Outcome o = run("compare minimal.csv --baseline base.csv --tolerance 2e-3");
+  EXPECT_EQ(o.exit_code, 0) << o.out << o.err;
+  EXPECT_NE(o.out.find("max rel |dPi1|"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("       3       0         0        0        1.00e-03      2e-03  pass"), std::string::npos)
+      << o.out;
+  o = run("compare minimal.csv --baseline base.csv --tolerance 5e-4");
+  EXPECT_EQ(o.exit_code, 1) << o.out << o.err;
+  EXPECT_EQ(o.err, "");
+
+  // A column the rows' scene needs, and pi1, cannot be left out; those it does not can.
+  write("no-pi6.csv", minimal(false));
+  o = run("compare no-pi6.csv --baseline base.csv --tolerance 1");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.err, "poundbench: no-pi6.csv:2: pi6: missing column (scene pair uses it)\n");
+  write("wall.csv", "scene,pulse,directivity,pi2,pi3,eps,status,pi1\nwall,sine,normal,1,0.5,0.5,failed,\n");
+  o = run("compare wall.csv --baseline base.csv --tolerance 1");
+  EXPECT_EQ(o.exit_code, 1) << o.err;  // read, and no stored row of that case
+  EXPECT_NE(o.out.find("FAIL"), std::string::npos) << o.out;
+  write("no-pi1.csv", "scene,pulse,directivity,pi2,pi3,eps\nwall,sine,normal,1,0.5,0.5\n");
+  o = run("compare no-pi1.csv --baseline base.csv --tolerance 1");
+  EXPECT_EQ(o.err, "poundbench: no-pi1.csv:1: pi1: missing column\n");
+}
+
 // The first line a shell command prints ("" if none).
 std::string first_line(const std::string& command) {
   std::FILE* pipe = ::popen(command.c_str(), "r");
