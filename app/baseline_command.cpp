@@ -21,6 +21,7 @@
 #include "app/sweep_watch.hpp"
 #include "cases/case_set.hpp"
 #include "studies/baseline.hpp"
+#include "rows/minimal_rows.hpp"
 #include "rows/row_read.hpp"
 
 extern char** environ;
@@ -108,11 +109,10 @@ Source load_source(const fs::path& cases, const fs::path& settings) {
   return s;
 }
 
-// Runs a baseline's sweeps with a progress bar; nullopt when interrupted.
+// Runs a baseline's sweeps, showing progress; nullopt when interrupted.
 std::optional<std::vector<Row>> run(const Source& s, unsigned threads) {
   const std::size_t total = s.set.cases.size() * ((s.list ? s.list->runs.size() : 0) + 1);
-  SweepWatch watch(total, 0, ::isatty(STDERR_FILENO) == 1 ? Progress::bar : Progress::none,
-                   [] { std::_Exit(kInterrupted); });
+  SweepWatch watch("baseline", "runs", total, 0, progress_on_stderr(true), [] { std::_Exit(kInterrupted); });
   SweepOptions options;
   options.threads = threads;
   options.cancel = &watch.cancel();
@@ -128,6 +128,7 @@ void store(const fs::path& file, const BaselineHeader& header, const std::vector
     for (const std::string& line : header_lines(header)) out << '#' << line << '\n';
     write_csv(out, rows);
   });
+  report_written(rows.size(), file.string());
 }
 
 RowFile read_rows(const std::string& path) {
@@ -172,7 +173,6 @@ int baseline_command(const CLI::App& command, const BaselineFlags& flags) {
                           flags.settings.empty() ? "" : relative_to_file(flags.settings, flags.out).string(),
                           provenance(flags.out)};
     store(flags.out, header, *rows);
-    std::cout << flags.out << ": " << rows->size() << " rows\n";
     return 0;
   }
 
@@ -207,8 +207,15 @@ int baseline_command(const CLI::App& command, const BaselineFlags& flags) {
 
 CLI::App* add_compare_command(CLI::App& app, CompareFlags& flags) {
   CLI::App* command = app.add_subcommand(
-      "compare", "Compare result rows (spectrum columns) with a baseline's reference rows of the same cases");
-  command->add_option("ROWS", flags.rows, "CSV rows to check (the columns of `poundbench spectrum`)")->required();
+      "compare", "Compare result rows (another program's, or spectrum's) with a baseline's rows of the same cases");
+  std::string columns;
+  for (std::string_view column : minimal_columns()) columns += (columns.empty() ? "" : ", ") + std::string(column);
+  command
+      ->add_option("ROWS", flags.rows,
+                   "CSV rows to check, with a header naming at least the columns " + columns +
+                       " (of pi5 to bodies, those the row's scene uses); any other column of `poundbench spectrum` "
+                       "may be there (docs/cli.md)")
+      ->required();
   command->add_option("--baseline", flags.baseline, "Baseline file (tests/baselines/)")->required();
   command->add_option("--tolerance", flags.tolerance, "Largest relative Pi1 difference let through");
   command->add_flag("--same-setting", flags.same_setting,
@@ -221,7 +228,12 @@ int compare_command(const CLI::App& command, const CompareFlags& flags) {
   if (!flags.same_setting && !given) throw BadInput("--tolerance: required (or --same-setting)");
   if (given && !(flags.tolerance >= 0.0 && std::isfinite(flags.tolerance)))
     throw BadInput("--tolerance: must be finite and >= 0");
-  const RowFile rows = read_rows(flags.rows);
+  RowFile rows;
+  try {
+    rows = read_minimal_csv_file(flags.rows);
+  } catch (const RowReadError& e) {
+    throw BadInput(e.what());
+  }
   const RowFile stored = read_rows(flags.baseline);
   if (rows.rows.empty()) throw BadInput(flags.rows + ": no rows");
   const Match match = flags.same_setting ? Match::same_setting : Match::reference;

@@ -8,8 +8,9 @@
 //                                                   compare, each solver within its tolerance
 //   baseline --update FILE...                       rerun and store again (a deliberate
 //                                                   re-baseline)
-//   compare ROWS --baseline FILE --tolerance X      another program's rows (spectrum
-//                                                   columns) against the stored reference
+//   compare ROWS --baseline FILE --tolerance X      another program's rows (at least the
+//                                                   columns of rows/minimal_rows.hpp)
+//                                                   against the stored reference
 //
 // Exit codes: 0 all within tolerance (or written), 1 a check failed, 2 bad input, 130
 // interrupted (nothing written).

@@ -7,6 +7,7 @@
 #include <exception>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -15,11 +16,12 @@
 #include "app/baseline_command.hpp"
 #include "app/errors.hpp"
 #include "app/run_command.hpp"
+#include "app/solvers_command.hpp"
 #include "app/spectrum_command.hpp"
 #include "app/stress_command.hpp"
+#include "app/version.hpp"
 #include "app/workprecision_command.hpp"
 #include "cases/case_set.hpp"
-#include "solvers/solver.hpp"
 #include "sweep/processes.hpp"
 
 namespace {
@@ -63,12 +65,43 @@ void refuse_empty_values(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands({})) refuse_empty_values(*sub);
 }
 
-int list_solvers() {
-  std::size_t width = 0;
-  for (const pb::SolverInfo& s : pb::solvers()) width = std::max(width, s.name.size());
-  for (const pb::SolverInfo& s : pb::solvers())
-    std::cout << s.name << std::string(width + 2 - s.name.size(), ' ') << s.summary << '\n';
-  return 0;
+// "the subcommands are: run, ..., solvers (...)", for the lines that refuse a command line
+// for its subcommand.
+std::string subcommand_list(const CLI::App& app) {
+  std::string names;
+  for (const CLI::App* sub : app.get_subcommands(nullptr)) names += (names.empty() ? "" : ", ") + sub->get_name();
+  return "the subcommands are: " + names + " (`poundbench help` says what each does)";
+}
+
+const CLI::App* find_subcommand(const CLI::App& app, std::string_view name) {
+  for (const CLI::App* sub : app.get_subcommands(nullptr))
+    if (sub->get_name() == name) return sub;
+  return nullptr;
+}
+
+// The first word that is not an option names the subcommand (the top level's options,
+// --help and --version, take no value). CLI11 would answer a word that is not one with
+// "A subcommand is required"; this names the word and lists them. `help [SUBCOMMAND]` is
+// read as --help. Returns the exit code when the command line ends here.
+std::optional<int> check_subcommand_word(const CLI::App& app, int argc, char** argv, bool leader) {
+  const auto unknown = [&](std::string_view word) {
+    const std::string line = "unknown subcommand '" + pb::clip(word) + "'; " + subcommand_list(app);
+    return leader ? fail(line, kBadInput) : kBadInput;
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view word = argv[i];
+    if (word.starts_with('-')) continue;
+    if (word != "help") return find_subcommand(app, word) ? std::nullopt : std::optional<int>(unknown(word));
+    if (i + 1 == argc) {
+      if (leader) std::cout << app.help();
+      return 0;
+    }
+    const CLI::App* about = find_subcommand(app, argv[i + 1]);
+    if (!about) return unknown(argv[i + 1]);
+    if (leader) std::cout << about->help(app.get_name());
+    return 0;
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -82,8 +115,11 @@ int main(int argc, char** argv) {
   }
   const bool leader = processes->leader();
 
-  CLI::App app{"poundbench: time-stepping solvers with impacts on the pounding case set"};
-  app.require_subcommand(1);
+  CLI::App app{"poundbench: time-stepping solvers with impacts on the pounding case set", "poundbench"};
+  app.require_subcommand(0, 1);  // none: the message below lists them
+  app.set_version_flag("--version", std::string("poundbench ") + pb::app::kVersion + ", commit " + pb::app::kCommit,
+                       "Print the version and the commit it was built from");
+  app.footer("`poundbench help SUBCOMMAND` is `poundbench SUBCOMMAND --help`.");
   pb::app::RunFlags run_flags;
   pb::app::SpectrumFlags spectrum_flags;
   CLI::App* run = pb::app::add_run_command(app, run_flags);
@@ -96,15 +132,21 @@ int main(int argc, char** argv) {
   CLI::App* baseline = pb::app::add_baseline_command(app, baseline_flags);
   pb::app::CompareFlags compare_flags;
   CLI::App* compare = pb::app::add_compare_command(app, compare_flags);
-  CLI::App* solvers = app.add_subcommand("solvers", "List the solvers and what each one is");
+  pb::app::SolversFlags solvers_flags;
+  CLI::App* solvers = pb::app::add_solvers_command(app, solvers_flags);
   refuse_empty_values(app);
 
+  // Every rank parses the same words, so every rank ends here alike.
+  if (const std::optional<int> code = check_subcommand_word(app, argc, argv, leader)) return *code;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // Every rank parses the same words, so every rank ends here alike.
-    if (e.get_exit_code() == 0) return leader ? app.exit(e) : 0;  // --help
+    if (e.get_exit_code() == 0) return leader ? app.exit(e) : 0;  // --help, --version
     return leader ? fail(e.what(), kBadInput) : kBadInput;
+  }
+  if (app.get_subcommands().empty()) {
+    const std::string line = "no subcommand; " + subcommand_list(app);
+    return leader ? fail(line, kBadInput) : kBadInput;
   }
 
   // A failure of this process alone: the other ranks of a job must not wait for it.
@@ -122,7 +164,7 @@ int main(int argc, char** argv) {
     if (*run) return pb::app::run_command(*run, run_flags);
     if (*baseline) return pb::app::baseline_command(*baseline, baseline_flags);
     if (*compare) return pb::app::compare_command(*compare, compare_flags);
-    if (*solvers) return list_solvers();
+    if (*solvers) return pb::app::solvers_command(solvers_flags);
   } catch (const pb::SharedFailure& e) {
     return leader ? fail(e.what(), e.code) : e.code;
   } catch (const std::exception& e) {

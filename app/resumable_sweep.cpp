@@ -1,7 +1,5 @@
 #include "app/resumable_sweep.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -16,18 +14,6 @@
 #include "sweep/partial_rows.hpp"
 
 namespace pb::app {
-
-namespace {
-
-// A bar on a terminal; in a job, rank 0's stderr is a pipe that mpirun forwards to the
-// user, so plain lines there.
-Progress progress_for(const Processes& processes) {
-  if (!processes.leader()) return Progress::none;
-  if (::isatty(STDERR_FILENO) == 1) return Progress::bar;
-  return processes.count() > 1 ? Progress::lines : Progress::none;
-}
-
-}  // namespace
 
 std::string partial_file_name(const std::string& out, std::string_view command) {
   return out.empty() ? "poundbench-" + std::string(command) + ".partial.csv" : out + ".partial";
@@ -54,9 +40,10 @@ std::vector<Row> read_earlier_rows(const std::string& partial, std::span<const C
   }
 }
 
-std::optional<std::vector<Row>> run_resumable(const Processes& processes, std::span<const Case> cases,
-                                              std::span<const SweepRun> runs, const std::string& partial,
-                                              OutputLock& lock, std::vector<Row> earlier, unsigned threads) {
+std::optional<std::vector<Row>> run_resumable(std::string_view command, const Processes& processes,
+                                              std::span<const Case> cases, std::span<const SweepRun> runs,
+                                              const std::string& partial, OutputLock& lock, std::vector<Row> earlier,
+                                              unsigned threads) {
   const std::size_t total = cases.size() * runs.size();
   const bool with_run = runs.size() > 1;
   std::vector<std::size_t> todo;
@@ -71,7 +58,8 @@ std::optional<std::vector<Row>> run_resumable(const Processes& processes, std::s
   }
 
   std::mutex file_mutex;  // held while a row is written, so an abandon never cuts a line
-  const Progress progress = progress_for(processes);
+  const Progress progress = progress_on_stderr(processes.leader());
+  const char* unit = runs.size() == 1 ? "points" : "runs";
   const auto abandon = [&] {
     file_mutex.lock();
     // Erases the bar; on a file or a pipe the escape sequence would be garbage in the log.
@@ -82,7 +70,7 @@ std::optional<std::vector<Row>> run_resumable(const Processes& processes, std::s
     lock.release();  // _Exit runs no destructor
     std::_Exit(kInterrupted);
   };
-  SweepWatch watch(total, earlier.size(), progress, abandon);
+  SweepWatch watch(std::string(command), unit, total, earlier.size(), progress, abandon);
 
   SweepOptions options;
   options.threads = threads ? threads : processes.default_threads();
@@ -111,7 +99,7 @@ std::optional<std::vector<Row>> run_resumable(const Processes& processes, std::s
   std::sort(rows.begin(), rows.end(), task_order);
   if (rows.size() < total) {
     std::fprintf(stderr, "poundbench: interrupted after %zu of %zu %s; the finished rows are in %s\n", rows.size(),
-                 total, runs.size() == 1 ? "points" : "runs", partial.c_str());
+                 total, unit, partial.c_str());
     return std::nullopt;
   }
   return rows;

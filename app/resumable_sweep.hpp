@@ -41,15 +41,17 @@ std::vector<Row> read_earlier_rows(const std::string& partial, std::span<const C
                                    std::span<const SweepRun> runs);
 
 // Runs the tasks that `earlier` (the leader's) lacks, on `threads` threads per process
-// (0: Processes::default_threads), with progress and interrupts as SweepWatch has them.
+// (0: Processes::default_threads), with progress and interrupts as SweepWatch has them
+// (`command` names the sweep in the progress lines).
 // `lock` is the leader's lock of the output (app/output_lock.hpp; empty elsewhere),
 // released before a second signal ends the process at once.
 // On the leader, returns every row (earlier and new, sorted by run then point), or nullopt
 // when interrupted: then one line on stderr says how many tasks are done and where. The
 // other processes return an empty list.
-std::optional<std::vector<Row>> run_resumable(const Processes& processes, std::span<const Case> cases,
-                                              std::span<const SweepRun> runs, const std::string& partial,
-                                              OutputLock& lock, std::vector<Row> earlier, unsigned threads);
+std::optional<std::vector<Row>> run_resumable(std::string_view command, const Processes& processes,
+                                              std::span<const Case> cases, std::span<const SweepRun> runs,
+                                              const std::string& partial, OutputLock& lock, std::vector<Row> earlier,
+                                              unsigned threads);
 
 // Runs `write` (the command's outputs), then removes the partial file, which is no longer
 // needed. A failure to write keeps it, and the error says so: its rows are the result.

@@ -6,6 +6,7 @@
 #include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/resumable_sweep.hpp"
+#include "app/sweep_watch.hpp"
 #include "cases/case_set.hpp"
 #include "sweep/sweep.hpp"
 
@@ -57,10 +58,12 @@ int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const 
     earlier = read_earlier_rows(partial, set.cases, runs);
   }, exit_code_of);
 
-  const auto rows = run_resumable(processes, set.cases, runs, partial, lock, std::move(earlier), flags.threads);
+  const auto rows =
+      run_resumable("spectrum", processes, set.cases, runs, partial, lock, std::move(earlier), flags.threads);
   if (!rows) return kInterrupted;
   if (!processes.leader()) return 0;
   write_outputs(partial, [&] { write_final(flags, *rows); });
+  report_written(rows->size(), flags.out);
   return 0;
 }
 

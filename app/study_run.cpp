@@ -1,11 +1,53 @@
 #include "app/study_run.hpp"
 
+#include <streambuf>
+
 #include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/resumable_sweep.hpp"
+#include "app/sweep_watch.hpp"
 #include "studies/workprecision.hpp"
 
 namespace pb::app {
+
+namespace {
+
+// Passes what is written on to another stream buffer, counting the CSV records: the line
+// ends outside quoted fields (a doubled quote toggles twice, as the reader reads it).
+class RecordCount : public std::streambuf {
+ public:
+  explicit RecordCount(std::streambuf* to) : to_(to) {}
+  std::size_t records() const { return records_; }
+
+ protected:
+  int_type overflow(int_type ch) override {
+    if (traits_type::eq_int_type(ch, traits_type::eof())) return traits_type::not_eof(ch);
+    const char c = traits_type::to_char_type(ch);
+    if (c == '"') quoted_ = !quoted_;
+    if (c == '\n' && !quoted_) ++records_;
+    return to_->sputc(c);
+  }
+  int sync() override { return to_->pubsync(); }
+
+ private:
+  std::streambuf* to_;
+  std::size_t records_ = 0;
+  bool quoted_ = false;
+};
+
+// `write`, which writes a header and rows, with the rows it wrote counted into `rows`.
+std::function<void(std::ostream&)> counted(const std::function<void(std::ostream&)>& write, std::size_t& rows) {
+  return [&write, &rows](std::ostream& out) {
+    RecordCount count(out.rdbuf());
+    std::ostream counting(&count);
+    write(counting);
+    counting.flush();
+    if (!counting) out.setstate(std::ios::badbit);
+    rows = count.records() > 0 ? count.records() - 1 : 0;
+  };
+}
+
+}  // namespace
 
 CLI::App* add_study_command(CLI::App& app, StudyFlags& flags, std::string_view name, std::string_view summary,
                             std::string_view points_help) {
@@ -39,20 +81,23 @@ Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_vi
     study.lock = take_output_lock(flags.out, name, study.partial);
     earlier = read_earlier_rows(study.partial, study.set.cases, runs);
   }, exit_code_of);
-  study.rows =
-      run_resumable(processes, study.set.cases, runs, study.partial, study.lock, std::move(earlier), flags.threads);
+  study.rows = run_resumable(name, processes, study.set.cases, runs, study.partial, study.lock, std::move(earlier),
+                             flags.threads);
   return study;
 }
 
 void write_study(const StudyFlags& flags, const Study& study, const std::function<void(std::ostream&)>& points,
                  const std::function<void(std::ostream&)>& table) {
+  std::size_t point_rows = 0, table_rows = 0;
   write_outputs(study.partial, [&] {
-    if (!flags.points.empty()) write_atomically(flags.points, points);
+    if (!flags.points.empty()) write_atomically(flags.points, counted(points, point_rows));
     if (flags.out.empty())
-      write_to_stdout(table);
+      write_to_stdout(counted(table, table_rows));
     else
-      write_atomically(flags.out, table);
+      write_atomically(flags.out, counted(table, table_rows));
   });
+  if (!flags.points.empty()) report_written(point_rows, flags.points);
+  report_written(table_rows, flags.out);
 }
 
 }  // namespace pb::app

@@ -2,6 +2,8 @@
 
 #include <signal.h>
 
+#include <unistd.h>
+
 #include <csignal>
 #include <cstdio>
 #include <string>
@@ -14,6 +16,8 @@ using Clock = std::chrono::steady_clock;
 constexpr auto kTick = std::chrono::milliseconds(100);  // at most ten redraws a second
 constexpr auto kQuietStart = std::chrono::seconds(1);   // short sweeps show no bar
 constexpr auto kLineEvery = std::chrono::seconds(10);  // Progress::lines
+// Static initialisation, before main: what report_written counts from.
+const Clock::time_point kProcessStart = Clock::now();
 
 // SIGINT and SIGTERM, but not one that this process was started with ignored: a shell
 // does that to a background job so that a Ctrl-C meant for the foreground leaves it alone.
@@ -45,8 +49,23 @@ std::string duration_text(double seconds) {
 
 }  // namespace
 
-SweepWatch::SweepWatch(std::size_t total, std::size_t resumed, Progress progress, std::function<void()> abandon)
-    : total_(total),
+Progress progress_on_stderr(bool leader) {
+  if (!leader) return Progress::none;
+  return ::isatty(STDERR_FILENO) == 1 ? Progress::bar : Progress::lines;
+}
+
+void report_written(std::size_t rows, const std::string& file) {
+  const double seconds = std::chrono::duration<double>(Clock::now() - kProcessStart).count();
+  std::fprintf(stderr, "poundbench: wrote %zu rows to %s in %.1f s\n", rows, file.empty() ? "stdout" : file.c_str(),
+               seconds);
+  std::fflush(stderr);
+}
+
+SweepWatch::SweepWatch(std::string command, std::string unit, std::size_t total, std::size_t resumed,
+                       Progress progress, std::function<void()> abandon)
+    : command_(std::move(command)),
+      unit_(std::move(unit)),
+      total_(total),
       resumed_(resumed),
       progress_(progress),
       abandon_(std::move(abandon)),
@@ -100,6 +119,12 @@ void SweepWatch::watch() {
 void SweepWatch::draw(bool stopping) {
   const std::size_t done = done_;
   const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+  if (progress_ == Progress::lines) {
+    const std::string line = progress_line(command_, unit_, done, total_, resumed_, elapsed, stopping);
+    std::fprintf(stderr, "poundbench: %s\n", line.c_str());
+    std::fflush(stderr);
+    return;
+  }
   const double rate = static_cast<double>(done - resumed_) / elapsed;
   const double fraction = total_ ? static_cast<double>(done) / static_cast<double>(total_) : 1.0;
   constexpr int kWidth = 24;
@@ -109,12 +134,10 @@ void SweepWatch::draw(bool stopping) {
   const std::string eta =
       stopping ? "stopping (Ctrl-C again to abandon running points)"
                : done > resumed_ ? "ETA " + duration_text(static_cast<double>(total_ - done) / rate) : "ETA --:--";
-  const bool in_place = progress_ == Progress::bar;
-  std::fprintf(stderr, "%s[%s] %zu/%zu  %.*f points/s  %s  elapsed %s%s", in_place ? "\r\033[K" : "poundbench: ",
-               bar.c_str(), done, total_, rate < 10 ? 2 : 0, rate, eta.c_str(), duration_text(elapsed).c_str(),
-               in_place ? "" : "\n");
+  std::fprintf(stderr, "\r\033[K[%s] %zu/%zu  %.*f %s/s  %s  elapsed %s", bar.c_str(), done, total_, rate < 10 ? 2 : 0,
+               rate, unit_.c_str(), eta.c_str(), duration_text(elapsed).c_str());
   std::fflush(stderr);
-  drawn_ = in_place;
+  drawn_ = true;
 }
 
 }  // namespace pb::app

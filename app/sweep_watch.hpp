@@ -1,9 +1,10 @@
 #pragma once
 // Watches a running sweep from a thread of its own: shows its progress on stderr (when the
 // sweep lasts more than a second) and turns SIGINT/SIGTERM into the sweep's cancel flag.
-// Progress is a bar redrawn in place on a terminal, or a plain line every ten seconds
-// where stderr is a pipe that a person may still watch (an MPI job's rank 0, whose stderr
-// mpirun forwards, or a batch job's log).
+// Progress is a bar redrawn in place on a terminal, or a plain line (progress_line) every
+// ten seconds where stderr is a file or a pipe (a batch job's log, an MPI job's rank 0,
+// whose stderr mpirun forwards). Once its outputs are written, a sweep command says so in
+// a last line per file (report_written).
 //
 // Signals are blocked in the constructing thread, so every thread started after it (the
 // sweep's workers) inherits the block and only the watcher, waiting in sigtimedwait,
@@ -20,17 +21,57 @@
 #include <atomic>
 #include <chrono>
 #include <cstddef>
+#include <cstdio>
 #include <functional>
+#include <string>
+#include <string_view>
 #include <thread>
 
 namespace pb::app {
 
 enum class Progress { none, bar, lines };
 
+// A bar on a terminal, plain lines elsewhere; none on the processes of a job but its leader.
+Progress progress_on_stderr(bool leader);
+
+// A duration as people say it: "12 s", "3 min", "1.5 h".
+inline std::string rough_duration(double seconds) {
+  char text[32];
+  if (seconds < 90)
+    std::snprintf(text, sizeof text, "%.0f s", seconds);
+  else if (seconds < 5400)
+    std::snprintf(text, sizeof text, "%.0f min", seconds / 60);
+  else
+    std::snprintf(text, sizeof text, "%.1f h", seconds / 3600);
+  return text;
+}
+
+// The plain progress line, without its "poundbench: " and line end:
+// "spectrum: 1234/23820 points, 12 s, about 3 min left". The time left is extrapolated
+// from the rate of this run (the `resumed` tasks an earlier run did are not in it), and
+// missing until a task is done. Inline: the tests, which do not link the command line, check it.
+inline std::string progress_line(std::string_view command, std::string_view unit, std::size_t done,
+                                 std::size_t total, std::size_t resumed, double elapsed, bool stopping) {
+  std::string line = std::string(command) + ": " + std::to_string(done) + "/" + std::to_string(total) + " " +
+                     std::string(unit) + ", " + rough_duration(elapsed);
+  if (stopping) return line + ", stopping (a second Ctrl-C abandons the running ones)";
+  if (done > resumed && done < total)
+    line += ", about " +
+            rough_duration(static_cast<double>(total - done) * elapsed / static_cast<double>(done - resumed)) +
+            " left";
+  return line;
+}
+
+// The last line of a sweep command, on stderr, once per output file it wrote:
+// "poundbench: wrote N rows to FILE in T s" ("" is stdout), T from the start of the process.
+void report_written(std::size_t rows, const std::string& file);
+
 class SweepWatch {
  public:
-  // resumed: of the total, the points an earlier run finished (not counted in the rate).
-  SweepWatch(std::size_t total, std::size_t resumed, Progress progress, std::function<void()> abandon);
+  // command, unit: for progress_line ("spectrum", "points"). resumed: of the total, the
+  // tasks an earlier run finished (not counted in the rate).
+  SweepWatch(std::string command, std::string unit, std::size_t total, std::size_t resumed, Progress progress,
+             std::function<void()> abandon);
   ~SweepWatch();
   SweepWatch(const SweepWatch&) = delete;
   SweepWatch& operator=(const SweepWatch&) = delete;
@@ -45,6 +86,8 @@ class SweepWatch {
   void watch();
   void draw(bool stopping);
 
+  std::string command_;
+  std::string unit_;
   std::size_t total_;
   std::size_t resumed_;
   Progress progress_;

@@ -4,6 +4,7 @@
 
 #include "solvers/event_driven/event_driven.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
+#include "solvers/settings_fields.hpp"
 #include "solvers/solver.hpp"
 #ifdef POUNDBENCH_HAVE_ODE
 #include "solvers/ode/ode_solver.hpp"
@@ -79,31 +80,31 @@ const std::array kSolvers = {
     // libm, where round-off differs. The reference finds event times to an ulp and is exact
     // between them, so round-off stays round-off: 1e-9 (issue 7's figure), thousands of ulps.
     SolverInfo{"event-driven", "exact between events, Poisson impacts (the reference)", &event_driven::solve,
-               &event_driven::describe, &check_all<&event_driven::check>, 1e-9, true},
+               &event_driven::describe, &check_all<&event_driven::check>, &event_driven::variant_list, 1e-9, true},
     // A time-stepper's round-off can flip an activation test that sits at its threshold and
     // move Pi1 by a step's worth; 1e-12 lets round-off through and catches any such flip.
     SolverInfo{"moreau-jean", "theta-method time-stepper, Newton impacts on predicted contacts (fixed step)",
-               &moreau_jean::solve, &moreau_jean::describe, &check_all<&moreau_jean::check>, 1e-12},
+               &moreau_jean::solve, &moreau_jean::describe, &check_all<&moreau_jean::check>, &moreau_jean::variant_list, 1e-12},
 #ifdef POUNDBENCH_HAVE_ODE
     SolverInfo{"ode", "Open Dynamics Engine: its LCP contact solver with restitution (see --variant)", &ode::solve,
-               &ode::describe, &check_all<&ode::check>, 1e-12},
+               &ode::describe, &check_all<&ode::check>, &ode::variant_list, 1e-12},
 #endif
 #ifdef POUNDBENCH_HAVE_BULLET
     // Debian's Bullet computes in single precision: the same margin at float round-off.
     SolverInfo{"bullet", "Bullet Physics (single precision): its constraint solvers with restitution (see --variant)",
-               &bullet::solve, &bullet::describe, &check_all<&bullet::check>, 1e-6},
+               &bullet::solve, &bullet::describe, &check_all<&bullet::check>, &bullet::variant_list, 1e-6},
 #endif
 #ifdef POUNDBENCH_HAVE_SICONOS
     // Its LSODAR variant chooses its own steps, and round-off can move a step choice and Pi1
     // with it within its tolerances (1e-10 and below): as the reference.
     SolverInfo{"siconos", "Siconos: its MoreauJeanOSI (Lemke or enumeration) or event-driven LSODAR (see --variant)",
-               &siconos::solve, &siconos::describe, &check_all<&siconos::check>, 1e-9},
+               &siconos::solve, &siconos::describe, &check_all<&siconos::check>, &siconos::variant_list, 1e-9},
 #endif
 #ifdef POUNDBENCH_HAVE_SUNDIALS
     // CVODE chooses its steps, and round-off can move a step choice and Pi1 with it within
     // its tolerance (1e-8 by default): 1e-7 lets that through.
     SolverInfo{"compliant", "compliant contact elements (see --variant), integrated by CVODE or Newmark",
-               &compliant::solve, &compliant::describe, &check_all<&compliant::check>, 1e-7},
+               &compliant::solve, &compliant::describe, &check_all<&compliant::check>, &compliant::variant_list, 1e-7},
 #endif
 };
 
@@ -119,6 +120,21 @@ const SolverInfo& reference_solver() {
 
 double no_contact_pi1(const System& system, const Settings& limits) {
   return event_driven::no_contact_pi1(system, limits);
+}
+
+std::vector<std::string_view> settings_used(const SolverInfo& solver, std::string_view variant) {
+  Settings given;
+  given.variant = variant;
+  const std::string described = solver.describe(given);
+  std::vector<std::string_view> used;
+  for (const SettingField& field : kSettingFields) {
+    Settings other = given;  // any other value: describe() does not check it
+    if (field.number) other.*field.number += 1.0;
+    if (field.integer) other.*field.integer += 1;
+    if (field.count) other.*field.count += 1;
+    if (solver.describe(other) != described) used.push_back(field.name);
+  }
+  return used;
 }
 
 const SolverInfo* find_solver(std::string_view solver_name) {

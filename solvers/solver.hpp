@@ -111,6 +111,14 @@ std::string check_limits(const Settings& settings);
 
 using SolveFn = Result (*)(const System&, const Settings&);
 
+// A variant of a solver (Settings::variant) and one line on what it is. Each solver lists
+// the names its solve() knows, its default first: the one the empty name runs (the
+// reference's default has no other name).
+struct VariantInfo {
+  std::string_view name;
+  std::string summary;
+};
+
 struct SolverInfo {
   std::string_view name;     // as given to --solver
   std::string_view summary;  // one line for --help
@@ -119,6 +127,9 @@ struct SolverInfo {
   std::string (*describe)(const Settings&);
   // Checks settings before a run; returns "field: reason" or an empty string.
   std::string (*check)(const Settings&);
+  // Its variants, the default first (`poundbench solvers`); every registered solver has
+  // them (null only in a test's stand-in solver).
+  std::vector<VariantInfo> (*variants)() = nullptr;
   // How far a rerun's Pi1 may move from its stored baseline (relative): round-off only,
   // on another compiler or libm. The registry says why per solver.
   double baseline_tolerance = 1e-9;
@@ -129,6 +140,10 @@ struct SolverInfo {
 std::span<const SolverInfo> solvers();
 const SolverInfo* find_solver(std::string_view name);
 const SolverInfo& reference_solver();
+// The fields of solvers/settings_fields.hpp that a variant of the solver uses: those whose
+// value changes what its describe() says (the settings column of its rows), in the table's
+// order. The limits (step_cap, time_limit) are every solver's and in no describe().
+std::vector<std::string_view> settings_used(const SolverInfo& solver, std::string_view variant);
 // Pi1 of body 0 with every contact removed, by the reference; only the time limit and stop
 // flag of `limits` are used.
 double no_contact_pi1(const System& system, const Settings& limits);

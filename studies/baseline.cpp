@@ -145,7 +145,7 @@ std::string comparison_table(std::span<const Comparison> table, Match match) {
   std::ostringstream out;
   out << std::left << std::setw(22) << "family" << std::setw(40) << "solver setting" << std::right << std::setw(9)
       << "compared" << std::setw(8) << "failed" << std::setw(10) << "unmatched" << std::setw(9) << "missing"
-      << std::setw(14) << "max |dPi1|" << std::setw(11) << "tolerance" << "  verdict\n";
+      << std::setw(16) << "max rel |dPi1|" << std::setw(11) << "tolerance" << "  verdict\n";
   for (const Comparison& c : table) {
     std::string setting = c.solver + (c.variant.empty() ? "" : " " + c.variant);
     if (!c.settings.empty()) setting += " " + c.settings;
@@ -156,7 +156,7 @@ std::string comparison_table(std::span<const Comparison> table, Match match) {
     tol << std::setprecision(0) << std::scientific << c.tolerance;
     out << std::left << std::setw(22) << c.family << std::setw(40) << setting << std::right << std::setw(9)
         << c.compared << std::setw(8) << c.failed << std::setw(10) << c.unmatched << std::setw(9) << c.missing
-        << std::setw(14) << worst.str() << std::setw(11) << tol.str() << "  "
+        << std::setw(16) << worst.str() << std::setw(11) << tol.str() << "  "
         << (c.passed(match) ? "pass" : "FAIL") << '\n';
   }
   return out.str();

@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "solvers/solver.hpp"
@@ -545,7 +547,8 @@ TEST_F(CliStudy, StressWritesASummaryPerFamilyAndSettingAndEveryRunWithItsPi1Err
 TEST_F(CliStudy, BaselineCheckCatchesAChangedPi1AndUpdateStoresItAgain) {
   const Outcome made = run("baseline tiny.toml --settings list.toml --out base.csv");
   ASSERT_EQ(made.exit_code, 0) << made.err;
-  EXPECT_EQ(made.out, "base.csv: 24 rows\n");
+  EXPECT_EQ(made.out, "");
+  EXPECT_EQ(made.err.rfind("poundbench: wrote 24 rows to base.csv in ", 0), 0u) << made.err;
   const std::string stored = read_text(file("base.csv"));
   EXPECT_EQ(stored.rfind("# poundbench baseline\n# cases: tiny.toml\n# settings: list.toml\n# commit: ", 0), 0u);
 
@@ -596,6 +599,175 @@ TEST_F(Cli, CompareChecksAnotherSolversRowsAgainstTheStoredReference) {
   o = run("baseline --check mine.csv");
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_EQ(o.err.rfind("poundbench: mine.csv:1: header: not a poundbench baseline", 0), 0u) << o.err;
+}
+
+// A minimal file: the case columns of the row key and pi1, nothing else (another
+// program's output), here the tiny set's sine rows of the baseline with Pi1 moved by 1e-3.
+TEST_F(Cli, CompareReadsRowsWithOnlyTheMinimalColumns) {
+  write("tiny.toml", kTinySet);
+  ASSERT_EQ(run("baseline tiny.toml --out base.csv").exit_code, 0);
+  const std::string base = read_text(file("base.csv"));
+  CsvTable stored(base.substr(base.find("family,")));
+  std::vector<std::pair<std::string, double>> sine;  // pi2, pi1
+  for (std::size_t row = 0; row < stored.rows.size(); ++row)
+    if (stored.at(row, "pulse") == "sine")
+      sine.emplace_back(stored.at(row, "pi2"), std::strtod(stored.at(row, "pi1").c_str(), nullptr) * (1.0 + 1e-3));
+  ASSERT_EQ(sine.size(), 3u);
+  // The file, with or without the pi6 column.
+  const auto minimal = [&](bool pi6) {
+    std::ostringstream text;
+    text.precision(17);
+    text << "scene,pulse,directivity,pi2,pi3,eps,pi5," << (pi6 ? "pi6," : "") << "pi1\n";
+    for (const auto& [pi2, pi1] : sine) text << "pair,sine,normal," << pi2 << ",0.5,0.5,0.75," << (pi6 ? "1," : "") << pi1 << "\n";
+    return text.str();
+  };
+  write("minimal.csv", minimal(true));
+
+  Outcome o = run("compare minimal.csv --baseline base.csv --tolerance 2e-3");
+  EXPECT_EQ(o.exit_code, 0) << o.out << o.err;
+  EXPECT_NE(o.out.find("max rel |dPi1|"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("       3       0         0        0        1.00e-03      2e-03  pass"), std::string::npos)
+      << o.out;
+  o = run("compare minimal.csv --baseline base.csv --tolerance 5e-4");
+  EXPECT_EQ(o.exit_code, 1) << o.out << o.err;
+  EXPECT_EQ(o.err, "");
+
+  // A column the rows' scene needs, and pi1, cannot be left out; those it does not can.
+  write("no-pi6.csv", minimal(false));
+  o = run("compare no-pi6.csv --baseline base.csv --tolerance 1");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.err, "poundbench: no-pi6.csv:2: pi6: missing column (scene pair uses it)\n");
+  write("wall.csv", "scene,pulse,directivity,pi2,pi3,eps,status,pi1\nwall,sine,normal,1,0.5,0.5,failed,\n");
+  o = run("compare wall.csv --baseline base.csv --tolerance 1");
+  EXPECT_EQ(o.exit_code, 1) << o.err;  // read, and no stored row of that case
+  EXPECT_NE(o.out.find("FAIL"), std::string::npos) << o.out;
+  write("no-pi1.csv", "scene,pulse,directivity,pi2,pi3,eps\nwall,sine,normal,1,0.5,0.5\n");
+  o = run("compare no-pi1.csv --baseline base.csv --tolerance 1");
+  EXPECT_EQ(o.err, "poundbench: no-pi1.csv:1: pi1: missing column\n");
+}
+
+// The first line a shell command prints ("" if none).
+std::string first_line(const std::string& command) {
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return "";
+  char buffer[256] = {};
+  const bool got = std::fgets(buffer, sizeof buffer, pipe) != nullptr;
+  ::pclose(pipe);
+  std::string line = got ? buffer : "";
+  if (!line.empty() && line.back() == '\n') line.pop_back();
+  return line;
+}
+
+TEST_F(Cli, VersionSaysTheProjectVersionAndTheCommitItWasBuiltFrom) {
+  const Outcome o = run("--version");
+  EXPECT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_EQ(o.out.rfind("poundbench 0.", 0), 0u) << o.out;  // CMakeLists.txt: project(VERSION 0.1)
+  ASSERT_NE(o.out.find(", commit "), std::string::npos) << o.out;
+  const std::string commit = o.out.substr(o.out.find(", commit ") + 9);
+  const std::string head = first_line("git -C '" POUNDBENCH_SOURCE_DIR "' rev-parse --short HEAD 2>/dev/null");
+  if (head.empty())
+    EXPECT_EQ(commit, "unknown\n");  // not a git checkout
+  else
+    EXPECT_EQ(commit.rfind(head, 0), 0u) << commit << " vs " << head;
+}
+
+TEST_F(Cli, AWordThatIsNoSubcommandIsNamedAndTheSubcommandsListed) {
+  const std::string list =
+      "the subcommands are: run, spectrum, workprecision, stress, baseline, compare, solvers (`poundbench help` "
+      "says what each does)\n";
+  Outcome o = run("bogus --out x.csv");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.err, "poundbench: unknown subcommand 'bogus'; " + list);
+  o = run("");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.err, "poundbench: no subcommand; " + list);
+  o = run("help spectrumm");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.err, "poundbench: unknown subcommand 'spectrumm'; " + list);
+  o = run("help");
+  EXPECT_EQ(o.exit_code, 0);
+  EXPECT_EQ(o.out, run("--help").out);
+  EXPECT_NE(o.out.find("Usage: poundbench"), std::string::npos) << o.out;
+  for (const char* name : {"run", "spectrum", "workprecision", "stress", "baseline", "compare", "solvers"})
+    EXPECT_NE(o.out.find(std::string("  ") + name + " "), std::string::npos) << name;
+  o = run("help stress");
+  EXPECT_EQ(o.exit_code, 0);
+  EXPECT_NE(o.out.find("Usage: poundbench stress"), std::string::npos) << o.out;
+}
+
+// `solvers` lists every variant the registry has, the default first, with what it is and
+// the settings it uses; `run --variant` takes each one it lists.
+TEST_F(Cli, SolversListsEveryVariantAndRunAcceptsEachOne) {
+  const Outcome text = run("solvers");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  const Outcome json = run("solvers --json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const nlohmann::json listed = nlohmann::json::parse(json.out).at("solvers");
+  ASSERT_EQ(listed.size(), solvers().size());
+  for (std::size_t k = 0; k < solvers().size(); ++k) {
+    const SolverInfo& solver = solvers()[k];
+    SCOPED_TRACE(std::string(solver.name));
+    EXPECT_EQ(listed[k].at("name"), solver.name);
+    ASSERT_NE(solver.variants, nullptr);
+    const std::vector<VariantInfo> variants = solver.variants();
+    ASSERT_FALSE(variants.empty());
+    ASSERT_EQ(listed[k].at("variants").size(), variants.size());
+    // The first is what the empty name runs.
+    Settings first;
+    first.variant = variants.front().name;
+    EXPECT_EQ(solver.describe(first), solver.describe(Settings{}));
+    std::set<std::string> summaries;
+    for (std::size_t v = 0; v < variants.size(); ++v) {
+      const std::string name(variants[v].name);
+      const nlohmann::json& entry = listed[k].at("variants")[v];
+      EXPECT_EQ(entry.at("name"), name);
+      EXPECT_EQ(entry.at("default"), v == 0);
+      EXPECT_TRUE(summaries.insert(variants[v].summary).second) << "two variants alike: " << variants[v].summary;
+      EXPECT_NE(text.out.find("      " + (name.empty() ? "(default)" : name) + (v == 0 && !name.empty() ? " (default)" : "") +
+                              "  "),
+                std::string::npos)
+          << name;
+      if (name.empty()) continue;  // no option takes an empty value
+      const Outcome o = run(std::string("run ") + kPairCase + " --solver " + std::string(solver.name) + " --variant " +
+                            name + " --json");
+      EXPECT_NE(o.exit_code, 2) << name << ": " << o.err;
+      if (!o.out.empty()) {
+        EXPECT_EQ(nlohmann::json::parse(o.out).at("variant"), name);
+      }
+    }
+  }
+  // What each uses, as the settings column of its rows shows it.
+  EXPECT_NE(text.out.find("    settings: --steps --wh --theta --gamma\n"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("    settings: --tol-scale\n"), std::string::npos) << text.out;
+  EXPECT_EQ(settings_used(*find_solver("moreau-jean"), "end-samples"),
+            (std::vector<std::string_view>{"steps", "wh", "theta", "gamma"}));
+  EXPECT_EQ(settings_used(reference_solver(), ""), std::vector<std::string_view>{"tol_scale"});
+}
+
+// Every sweep command ends with a line per file it wrote, whatever stderr is (here a file).
+TEST_F(CliStudy, EverySweepCommandSaysWhatItWroteInItsLastLines) {
+  const auto wrote = [](const std::string& err, std::size_t rows, const std::string& to) {
+    const std::string head = "poundbench: wrote " + std::to_string(rows) + " rows to " + to + " in ";
+    const std::size_t at = err.find(head);
+    if (at == std::string::npos) return false;
+    const std::string seconds = err.substr(at + head.size(), err.find('\n', at) - at - head.size());
+    return seconds.size() >= 5 && seconds.ends_with(" s") && seconds[seconds.size() - 4] == '.';
+  };
+  Outcome o = run("spectrum tiny.toml --out out.csv");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(wrote(o.err, 6, "out.csv")) << o.err;
+  EXPECT_EQ(line_count(o.err), 1u) << o.err;
+  o = run("workprecision tiny.toml --settings list.toml --out sum.csv --points runs.csv");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(wrote(o.err, 24, "runs.csv")) << o.err;  // the truth and 3 settings on 6 points
+  EXPECT_TRUE(wrote(o.err, line_count(read_text(file("sum.csv"))) - 1, "sum.csv")) << o.err;
+  EXPECT_EQ(line_count(o.err), 2u) << o.err;
+  o = run("stress tiny.toml --settings list.toml");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(wrote(o.err, 4, "stdout")) << o.err;
+  o = run("baseline tiny.toml --out base.csv");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(wrote(o.err, 6, "base.csv")) << o.err;
 }
 
 TEST_F(Cli, HelpExitsZeroOnEverySubcommand) {

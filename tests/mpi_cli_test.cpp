@@ -51,7 +51,8 @@ TEST_F(Mpi, TwoRanksWriteTheRowsOfOneProcess) {
   const Outcome o = run("spectrum '" + kSmoke + "' --out two.csv --threads 1", kTwoRanks);
   ASSERT_EQ(o.exit_code, 0) << o.err;
   EXPECT_EQ(o.out, "");
-  EXPECT_EQ(o.err, "");
+  EXPECT_EQ(o.err.rfind("poundbench: wrote 40 rows to two.csv in ", 0), 0u) << o.err;  // and nothing else
+  EXPECT_EQ(line_count(o.err), 1u) << o.err;
   EXPECT_EQ(files(), (std::set<std::string>{"one.csv", "two.csv"}));
   const CsvTable one(read_text(file("one.csv"))), two(read_text(file("two.csv")));
   ASSERT_EQ(one.rows.size(), 40u);

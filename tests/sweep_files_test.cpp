@@ -1,7 +1,8 @@
 // What the sweep commands do with their files and messages when something is off: a
 // second sweep on one output, an output that is not a regular file, a final write that
 // fails, an interrupt whose line goes to a file, and paths that a shell would read as
-// commands. Run as a separate process, as tests/cli_test.cpp does.
+// commands; and their plain lines where stderr is a pipe. Run as a separate process, as
+// tests/cli_test.cpp does.
 
 #include <gtest/gtest.h>
 #include <fcntl.h>
@@ -13,12 +14,14 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <set>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "app/sweep_watch.hpp"
 #include "tests/cli_fixture.hpp"
 
 extern char** environ;
@@ -196,6 +199,37 @@ TEST_F(SweepFiles, ABaselinePathIsNeverRunAsAShellCommand) {
   EXPECT_FALSE(fs::exists(file("INJECTED")));
   EXPECT_FALSE(fs::exists(file(odd) / "INJECTED"));
   EXPECT_NE(read_text(file(odd) / "b.csv").find("\n# commit: "), std::string::npos);
+}
+
+// On a pipe (a batch job's log, mpirun's forwarding) a sweep writes plain lines: progress
+// every ten seconds (none in a sweep this short) and what it wrote, last.
+TEST_F(SweepFiles, OnAPipeTheLastLineSaysHowManyRowsWentWhereInHowLong) {
+  write("tiny.toml", kTinySet);
+  const std::string command = "cd '" + dir_.string() + "' && '" POUNDBENCH_EXE "' spectrum tiny.toml --out out.csv 2>&1";
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string err;
+  char buffer[512];
+  while (std::fgets(buffer, sizeof buffer, pipe)) err += buffer;
+  EXPECT_EQ(::pclose(pipe), 0) << err;
+  ASSERT_EQ(line_count(err), 1u) << err;
+  EXPECT_EQ(err.rfind("poundbench: wrote 6 rows to out.csv in ", 0), 0u) << err;
+  EXPECT_TRUE(err.ends_with(" s\n")) << err;
+  EXPECT_EQ(err.find('\033'), std::string::npos);
+}
+
+// The plain progress line: done of total, time so far and, from this run's rate (not the
+// tasks a resumed run found done), about how long is left.
+TEST(ProgressLine, SaysDoneOfTotalTheTimeSoFarAndAboutHowLongIsLeft) {
+  EXPECT_EQ(app::progress_line("spectrum", "points", 1234, 23820, 0, 12.0, false),
+            "spectrum: 1234/23820 points, 12 s, about 4 min left");  // 22586 left at 102.8/s: 220 s
+  EXPECT_EQ(app::progress_line("stress", "runs", 2000, 3000, 1000, 50.0, false),
+            "stress: 2000/3000 runs, 50 s, about 50 s left");
+  EXPECT_EQ(app::progress_line("spectrum", "points", 10, 100000, 0, 4000.0, false),
+            "spectrum: 10/100000 points, 67 min, about 11110.0 h left");
+  EXPECT_EQ(app::progress_line("spectrum", "points", 500, 1000, 500, 30.0, false), "spectrum: 500/1000 points, 30 s");
+  EXPECT_EQ(app::progress_line("spectrum", "points", 7, 10, 0, 15.0, true),
+            "spectrum: 7/10 points, 15 s, stopping (a second Ctrl-C abandons the running ones)");
 }
 
 }  // namespace

@@ -57,4 +57,22 @@ void add_config(NamedValues& out, const Config& config) {
   out.add("restitution", config.faithful ? "eps" : "product").add("contact", "overlap").add("precision", "single");
 }
 
+std::vector<VariantInfo> variant_list() {
+  std::vector<VariantInfo> out;
+  for (const Config& c : kVariants) {
+    std::string line;
+    switch (c.engine) {
+      case Engine::si:
+        line = "btSequentialImpulseConstraintSolver, " + std::to_string(solver_info(c, 1.0).m_numIterations) + " sweeps";
+        break;
+      case Engine::mlcp_dantzig: line = "btMLCPSolver with btDantzigSolver"; break;
+      case Engine::mlcp_lemke: line = "btMLCPSolver with btLemkeSolver"; break;
+    }
+    line += c.faithful ? "; restitution eps alone (no push-out, threshold or warm start)"
+                       : "; Bullet's btContactSolverInfo defaults, restitution the bodies' product";
+    out.push_back({c.name, line});
+  }
+  return out;
+}
+
 }  // namespace pb::bullet

@@ -10,8 +10,10 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "solvers/named_values.hpp"
+#include "solvers/solver.hpp"
 
 namespace pb::bullet {
 
@@ -46,5 +48,8 @@ std::string variant_names();
 // Every setting that shapes an impact (solver, iterations, ...), read back from the
 // solver info a run uses, for describe() after the variant and the step.
 void add_config(NamedValues& out, const Config& config);
+
+// The named variants with one line each, made from their settings (`poundbench solvers`).
+std::vector<VariantInfo> variant_list();
 
 }  // namespace pb::bullet

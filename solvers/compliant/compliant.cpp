@@ -25,9 +25,18 @@ Result failed(std::string message) {
 
 }  // namespace
 
+std::vector<VariantInfo> variant_list() {
+  std::vector<VariantInfo> out;
+  for (Model m : kModels) out.push_back({name(m), std::string(summary(m))});
+  return out;
+}
+
 std::string check(const Settings& settings) {
-  if (!parse_model(settings.variant))
-    return "variant: unknown '" + settings.variant + "' (known: kelvin-voigt, hertz, hunt-crossley, jankowski)";
+  if (!parse_model(settings.variant)) {
+    std::string known;
+    for (Model m : kModels) known += (known.empty() ? "" : ", ") + std::string(name(m));
+    return "variant: unknown '" + settings.variant + "' (known: " + known + ")";
+  }
   if (!(settings.stiffness >= 0.0) || !std::isfinite(settings.stiffness))
     return "stiffness: must be finite and > 0 (0: the default " + format_number(kDefaultStiffness) + ")";
   if (!settings.integrator.empty() && settings.integrator != "cvode" && settings.integrator != "newmark")

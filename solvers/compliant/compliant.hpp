@@ -28,6 +28,7 @@
 // lowers the balance, never raises it).
 
 #include <string>
+#include <vector>
 
 #include "solvers/solver.hpp"
 
@@ -39,5 +40,6 @@ inline constexpr long kDefaultCvodeStepCap = 10'000'000;
 Result solve(const System& system, const Settings& settings);
 std::string describe(const Settings& settings);
 std::string check(const Settings& settings);
+std::vector<VariantInfo> variant_list();
 
 }  // namespace pb::compliant

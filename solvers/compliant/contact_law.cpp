@@ -17,9 +17,19 @@ std::string_view name(Model m) {
   return "?";
 }
 
+std::string_view summary(Model m) {
+  switch (m) {
+    case Model::kelvin_voigt: return "linear spring and dashpot while the gap is closed, damping exact for eps";
+    case Model::hertz: return "Hertz spring k p^(3/2), elastic (eps = 1 only)";
+    case Model::hunt_crossley: return "Hertz spring with Hunt-Crossley damping, chi calibrated to eps";
+    case Model::jankowski: return "Hertz spring with Jankowski's damping during approach, his zeta(eps)";
+  }
+  return "?";
+}
+
 std::optional<Model> parse_model(std::string_view text) {
   if (text.empty()) return Model::kelvin_voigt;
-  for (Model m : {Model::kelvin_voigt, Model::hertz, Model::hunt_crossley, Model::jankowski})
+  for (Model m : kModels)
     if (name(m) == text) return m;
   return std::nullopt;
 }

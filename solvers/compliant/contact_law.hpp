@@ -36,14 +36,17 @@
 // closed forms, Lankarani-Nikravesh 3 (1 - eps^2) / 4 and Flores 8 (1 - eps) / (5 eps), are
 // kept for the report, with the restitution each actually gives (hunt_crossley_restitution).
 
+#include <array>
 #include <optional>
 #include <string_view>
 
 namespace pb::compliant {
 
 enum class Model { kelvin_voigt, hertz, hunt_crossley, jankowski };
+inline constexpr std::array kModels = {Model::kelvin_voigt, Model::hertz, Model::hunt_crossley, Model::jankowski};
 
 std::string_view name(Model m);
+std::string_view summary(Model m);  // one line, for `poundbench solvers`
 std::optional<Model> parse_model(std::string_view text);  // "" is kelvin-voigt
 
 // Why a model cannot restitute eps ("" when it can).

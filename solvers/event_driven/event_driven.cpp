@@ -46,9 +46,6 @@ Tolerances tolerances(const System& s, double scale) {
 // Runs of closed contacts up to this length are decided by enumerating their 2^n active
 // sets; longer ones take Lemke's proposal (DERIVATION.md §4).
 constexpr int kEnumerateLimit = 8;
-// Settings::variant that solves long runs of both LCPs by Lemke's method first: slower,
-// and there to check the default's fast paths against it.
-constexpr std::string_view kLemkeVariant = "lemke";
 bool known_variant(std::string_view v) { return v.empty() || v == kLemkeVariant; }
 
 // True when the first coefficient that is not negligible is positive.
@@ -556,6 +553,11 @@ void check_result(const System& s, double tol_scale, Result& r) {
 
 std::string describe(const Settings& settings) {
   return NamedValues().add("tol_scale", settings.tol_scale).json();
+}
+
+std::vector<VariantInfo> variant_list() {
+  return {{"", "a long run of closed contacts: all active, else grown contact by contact, else Lemke's proposal"},
+          {kLemkeVariant, "a long run of closed contacts: Lemke's proposal first (slower; checks the default)"}};
 }
 
 std::string check(const Settings& settings) {

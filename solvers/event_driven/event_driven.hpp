@@ -3,14 +3,21 @@
 // contact and detachment. The derivation is in solvers/event_driven/DERIVATION.md.
 
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "solvers/solver.hpp"
 
 namespace pb::event_driven {
 
+// Settings::variant that solves long runs of both LCPs by Lemke's method first: slower,
+// and there to check the default's (the empty name's) fast paths against it.
+inline constexpr std::string_view kLemkeVariant = "lemke";
+
 Result solve(const System& system, const Settings& settings);
 std::string describe(const Settings& settings);
 std::string check(const Settings& settings);
+std::vector<VariantInfo> variant_list();  // the default (no name), then kLemkeVariant
 
 // Pi1 of body 0 with every contact removed: a damped oscillator under the pulse, exact.
 // Only the time limit and stop flag of `limits` are used.

@@ -169,6 +169,11 @@ std::string describe(const Settings& settings) {
   return out.json();
 }
 
+std::vector<VariantInfo> variant_list() {
+  return {{kStepMean, "a step's load is the exact mean of a_g over the step"},
+          {kEndSamples, "a step's load is (1 - theta) a_g(t_k) + theta a_g(t_k+1), as Siconos takes it"}};
+}
+
 std::string check(const Settings& settings) {
   if (!known_variant(settings.variant))
     return "variant: unknown '" + settings.variant + "' (known: " + std::string(kStepMean) + " (default), " +

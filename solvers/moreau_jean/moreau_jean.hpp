@@ -7,20 +7,21 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "solvers/fixed_step.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb::moreau_jean {
 
-// Variants: how a step's ground load is formed (README, "Ground load").
-inline constexpr std::string_view kStepMean = "step-mean";      // the exact step mean of a_g (default)
-inline constexpr std::string_view kEndSamples = "end-samples";  // (1 - theta) a_g(t_k) + theta a_g(t_k+1)
-
+// Variants: how a step's ground load is formed (README, "Ground load"); variant_list says how.
+inline constexpr std::string_view kStepMean = "step-mean";  // the default
+inline constexpr std::string_view kEndSamples = "end-samples";
 
 Result solve(const System& system, const Settings& settings);
 std::string describe(const Settings& settings);
 std::string check(const Settings& settings);
+std::vector<VariantInfo> variant_list();
 
 // The any-size path forced on a system that solve() would give to a fixed-size one, so that
 // tests and benchmarks can compare the two paths on the same runs.

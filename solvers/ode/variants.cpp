@@ -2,6 +2,7 @@
 
 #include <array>
 #include <limits>
+#include <sstream>
 
 namespace pb::ode {
 
@@ -41,6 +42,21 @@ void add_config(NamedValues& out, const Config& config) {
   out.add("erp", config.erp).add("cfm", config.cfm).add("bounce_vel", config.bounce_vel);
   out.add("surface_layer", config.surface_layer).add("max_vel", config.max_vel);
   out.add("contacts", config.detection == Detection::predicted ? "predicted" : "overlap");
+}
+
+std::vector<VariantInfo> variant_list() {
+  std::vector<VariantInfo> out;
+  for (const Config& c : kVariants) {
+    std::ostringstream line;
+    if (c.stepper == Stepper::dantzig)
+      line << "dWorldStep (Dantzig's LCP)";
+    else
+      line << "dWorldQuickStep (" << c.iterations << " Gauss-Seidel sweeps, SOR " << c.sor << ")";
+    line << "; ERP " << c.erp << ", CFM " << c.cfm << "; contacts "
+         << (c.detection == Detection::predicted ? "made before the gap closes" : "made once the bodies overlap");
+    out.push_back({c.name, line.str()});
+  }
+  return out;
 }
 
 }  // namespace pb::ode

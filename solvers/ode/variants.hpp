@@ -8,8 +8,10 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "solvers/named_values.hpp"
+#include "solvers/solver.hpp"
 
 namespace pb::ode {
 
@@ -43,5 +45,8 @@ std::optional<Config> find_variant(std::string_view name);
 // Every setting of the configuration (stepper, ...), for describe() after the variant
 // and the step.
 void add_config(NamedValues& out, const Config& config);
+
+// The named variants with one line each, made from their settings (`poundbench solvers`).
+std::vector<VariantInfo> variant_list();
 
 }  // namespace pb::ode

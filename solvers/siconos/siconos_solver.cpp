@@ -16,12 +16,14 @@ struct Variant {
   std::string_view name;
   Scheme scheme;
   bool enumeration;  // time-stepping: the LCP by enumeration instead of Lemke
+  std::string_view summary;
 };
 
 constexpr std::array kVariants = {
-    Variant{"moreau-jean-lemke", Scheme::time_stepping, false},
-    Variant{"moreau-jean-enum", Scheme::time_stepping, true},
-    Variant{"event-driven-lsodar", Scheme::event_driven, false},
+    Variant{"moreau-jean-lemke", Scheme::time_stepping, false, "TimeStepping with MoreauJeanOSI, its LCP by Lemke"},
+    Variant{"moreau-jean-enum", Scheme::time_stepping, true, "TimeStepping with MoreauJeanOSI, its LCP by enumeration"},
+    Variant{"event-driven-lsodar", Scheme::event_driven, false,
+            "EventDriven with LsodarOSI; fails where contact persists"},
 };
 
 const Variant* find_variant(std::string_view name) {
@@ -77,6 +79,12 @@ std::string describe(const Settings& settings) {
   add_step(out, settings, kDefaultSteps);
   out.add("theta", settings.theta).add("gamma", settings.gamma).add("lcp", variant->enumeration ? "enum" : "lemke");
   return out.json();
+}
+
+std::vector<VariantInfo> variant_list() {
+  std::vector<VariantInfo> out;
+  for (const Variant& v : kVariants) out.push_back({v.name, std::string(v.summary)});
+  return out;
 }
 
 std::string check(const Settings& settings) {

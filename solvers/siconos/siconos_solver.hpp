@@ -18,6 +18,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "solvers/fixed_step.hpp"
 #include "solvers/solver.hpp"
@@ -38,6 +39,7 @@ inline constexpr int kOutputSteps = 256;
 Result solve(const System& system, const Settings& settings);
 std::string describe(const Settings& settings);
 std::string check(const Settings& settings);
+std::vector<VariantInfo> variant_list();  // kDefaultVariant first
 
 // Which path Siconos' dense LCP driver took on the steps of a time-stepping run. The driver
 // is called on every step with a contact in the index set; it returns z = 0 without a solver
