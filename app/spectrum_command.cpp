@@ -7,6 +7,7 @@
 #include "app/output_files.hpp"
 #include "app/resumable_sweep.hpp"
 #include "app/sweep_watch.hpp"
+#include "app/study_run.hpp"
 #include "cases/case_set.hpp"
 #include "sweep/sweep.hpp"
 
@@ -37,6 +38,7 @@ CLI::App* add_spectrum_command(CLI::App& app, SpectrumFlags& flags) {
   add_solver_flags(*command, flags.solver_flags);
   command->add_option("--out", flags.out, "Write the CSV to this file (default: stdout)");
   command->add_option("--threads", flags.threads, "Worker threads (default: all cores)");
+  add_repetitions_flag(*command, flags.repetitions);
   return command;
 }
 
@@ -50,7 +52,7 @@ int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const 
   processes.agree([&] {
     set = load_case_set(flags.case_set);
     validate_cases(set, flags.case_set);
-    runs[0] = {&checked_solver(flags.solver_flags), flags.solver_flags.settings};
+    runs[0] = {&checked_solver(flags.solver_flags), flags.solver_flags.settings, flags.repetitions};
     if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
     if (!processes.leader()) return;
     if (!flags.out.empty()) check_sweep_output(flags.out, "--out");

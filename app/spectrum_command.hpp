@@ -21,6 +21,7 @@ struct SpectrumFlags {
   std::string case_set;
   std::string out;  // empty: stdout
   unsigned threads = 0;
+  int repetitions = 1;  // timed solves per point, at most (sweep/sweep.hpp)
   SolverFlags solver_flags;
 };
 

@@ -22,19 +22,28 @@ void write_points(std::ostream& out, const Stress& st) {
   out << stress_points_header() << '\n';
   const double none = std::numeric_limits<double>::quiet_NaN();
   for (const Row& row : st.runs.reference) out << stress_points_line(row, none) << '\n';
-  for (const Row& row : st.runs.points) out << stress_points_line(row, pi1_error(row, st.truth[row.point])) << '\n';
+  for (const Row& row : st.runs.points) out << stress_points_line(row, pi1_error(row, st.truth[row.point].pi1)) << '\n';
+}
+
+// --check: every row that failed a check, with the checks it failed.
+std::vector<std::string> failures(const Stress& st) {
+  std::vector<std::string> out;
+  for (const StressRow& row : st.table)
+    if (!row.passed()) out.push_back(row_label(row) + ": failed " + row.failed_checks());
+  return out;
 }
 
 }  // namespace
 
 CLI::App* add_stress_command(CLI::App& app, StressFlags& flags) {
-  return add_study_command(app, flags, "stress",
-                           "Stability checks (finite, energy, gap, restitution) per family and solver setting",
-                           "Also write every run's row (spectrum columns, pi1_error)");
+  return add_study_command(
+      app, flags, "stress", "Checks (finite, energy, gap, restitution, accuracy) per family and solver setting",
+      "Also write every run's row (spectrum columns, pi1_error)",
+      "Exit 1 when any check of any row fails (after writing the outputs), naming each failing row on stderr");
 }
 
 int stress_command(const CLI::App& command, const StressFlags& flags, const Processes& processes) {
-  Study study = run_study(command, flags, "stress", processes);
+  Study study = run_study(command, flags, "stress", true, processes);
   if (!study.rows) return kInterrupted;
   if (!processes.leader()) return 0;
   const Stress st =
@@ -42,7 +51,7 @@ int stress_command(const CLI::App& command, const StressFlags& flags, const Proc
 
   write_study(
       flags, study, [&](std::ostream& out) { write_points(out, st); }, [&](std::ostream& out) { write_table(out, st); });
-  return 0;
+  return flags.check ? report_check("stress", failures(st), st.table.size()) : 0;
 }
 
 }  // namespace pb::app

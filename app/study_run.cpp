@@ -1,5 +1,6 @@
 #include "app/study_run.hpp"
 
+#include <iostream>
 #include <streambuf>
 
 #include "app/errors.hpp"
@@ -49,18 +50,30 @@ std::function<void(std::ostream&)> counted(const std::function<void(std::ostream
 
 }  // namespace
 
+void add_repetitions_flag(CLI::App& command, int& repetitions) {
+  command
+      .add_option("--repetitions", repetitions,
+                  "Timed solves per point, at most: the row has their median, fastest and slowest (a point stops "
+                  "repeating once its solves have spent 10 ms of CPU time)")
+      ->check(CLI::Range(1, kMaxRepetitions))
+      ->capture_default_str();
+}
+
 CLI::App* add_study_command(CLI::App& app, StudyFlags& flags, std::string_view name, std::string_view summary,
-                            std::string_view points_help) {
+                            std::string_view points_help, std::string_view check_help) {
   CLI::App* command = app.add_subcommand(std::string(name), std::string(summary));
   command->add_option("CASESET", flags.case_set, "Case-set file (TOML, see cases/README.md)")->required();
   command->add_option("--settings", flags.settings, "Settings-list file (TOML, see cases/settings/)")->required();
   command->add_option("--out", flags.out, "Write the summary CSV to this file (default: stdout)");
   command->add_option("--points", flags.points, std::string(points_help));
   command->add_option("--threads", flags.threads, "Worker threads (default: all cores)");
+  add_repetitions_flag(*command, flags.repetitions);
+  command->add_flag("--check", flags.check, std::string(check_help));
   return command;
 }
 
-Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_view name, const Processes& processes) {
+Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_view name, bool monitor,
+                const Processes& processes) {
   Study study;
   std::vector<SweepRun> runs;
   std::vector<Row> earlier;
@@ -74,7 +87,7 @@ Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_vi
       throw BadInput(e.what());
     }
     if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
-    runs = study_runs(study.list);
+    runs = study_runs(study.list, {flags.repetitions, monitor});
     if (!processes.leader()) return;
     if (!flags.out.empty()) check_sweep_output(flags.out, "--out");
     if (!flags.points.empty()) check_sweep_output(flags.points, "--points");
@@ -98,6 +111,13 @@ void write_study(const StudyFlags& flags, const Study& study, const std::functio
   });
   if (!flags.points.empty()) report_written(point_rows, flags.points);
   report_written(table_rows, flags.out);
+}
+
+int report_check(std::string_view name, const std::vector<std::string>& failures, std::size_t rows) {
+  const std::string prefix = "poundbench: " + std::string(name) + " --check: ";
+  for (const std::string& failure : failures) std::cerr << prefix << failure << '\n';
+  std::cerr << prefix << failures.size() << " of " << rows << " rows failed\n";
+  return failures.empty() ? 0 : 1;
 }
 
 }  // namespace pb::app

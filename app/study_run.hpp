@@ -17,6 +17,7 @@
 #include "cases/case_set.hpp"
 #include "rows/row.hpp"
 #include "studies/settings_list.hpp"
+#include "studies/workprecision.hpp"
 
 namespace pb::app {
 
@@ -26,11 +27,17 @@ struct StudyFlags {
   std::string out;     // empty: stdout
   std::string points;  // empty: not written
   unsigned threads = 0;
+  int repetitions = kStudyRepetitions;
+  bool check = false;  // exit 1 when a row fails (after writing the outputs)
 };
 
-// CASESET, --settings, --out, --points, --threads.
+// --repetitions R: timed solves per point, at most (sweep/sweep.hpp), from 1 to
+// kMaxRepetitions; `spectrum` has it too.
+void add_repetitions_flag(CLI::App& command, int& repetitions);
+
+// CASESET, --settings, --out, --points, --threads, --repetitions, and --check with `check_help`.
 CLI::App* add_study_command(CLI::App& app, StudyFlags& flags, std::string_view name, std::string_view summary,
-                            std::string_view points_help);
+                            std::string_view points_help, std::string_view check_help);
 
 struct Study {
   CaseSet set;
@@ -40,13 +47,26 @@ struct Study {
   std::optional<std::vector<Row>> rows;   // on the leader, every row; nullopt: interrupted
 };
 
-// `name` names the partial file when the output is stdout.
-Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_view name, const Processes& processes);
+// `name` names the partial file when the output is stdout; `monitor` is StudyOptions::monitor
+// (the study judges the monitor's measurements).
+Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_view name, bool monitor,
+                const Processes& processes);
 
 // Writes a finished study's outputs, whole or not at all: the rows of every run to
 // --points when asked, then the summary table to --out or stdout; the partial file goes
 // once both are written.
 void write_study(const StudyFlags& flags, const Study& study, const std::function<void(std::ostream&)>& points,
                  const std::function<void(std::ostream&)>& table);
+
+// A summary row as --check names it: family, solver, variant (when given) and settings.
+template <typename SummaryRow>
+std::string row_label(const SummaryRow& row) {
+  return row.family + " " + row.solver + (row.variant.empty() ? "" : " " + row.variant) + " " + row.settings;
+}
+
+// --check's verdict, once the outputs are written: one line on stderr per failure
+// ("poundbench: <name> --check: <failure>"), then one that counts them; returns the exit
+// code, 1 when any row failed and 0 otherwise.
+int report_check(std::string_view name, const std::vector<std::string>& failures, std::size_t rows);
 
 }  // namespace pb::app

@@ -6,6 +6,8 @@
 // writes every run's row (the columns of `spectrum`), reference first. Finished runs go to
 // a partial file, from which a rerun resumes (app/resumable_sweep.hpp).
 
+#include <limits>
+
 #include <CLI/CLI.hpp>
 
 #include "sweep/processes.hpp"
@@ -13,10 +15,14 @@
 
 namespace pb::app {
 
-using WorkPrecisionFlags = StudyFlags;
+struct WorkPrecisionFlags : StudyFlags {
+  double max_error = std::numeric_limits<double>::quiet_NaN();  // --max-error: NaN when not given
+};
 
 CLI::App* add_workprecision_command(CLI::App& app, WorkPrecisionFlags& flags);
-// Exit code: 0 done, 130 interrupted (partial file kept).
+// Exit code: 0 done, 1 with --check when a run did not finish ok or a setting's err_median
+// is above --max-error (the outputs are written all the same), 130 interrupted (partial
+// file kept).
 int workprecision_command(const CLI::App& command, const WorkPrecisionFlags& flags, const Processes& processes);
 
 }  // namespace pb::app

@@ -10,6 +10,11 @@
 
 namespace pb {
 
+void clear_timing(Row& row) {
+  row.seconds = row.cpu_seconds = row.cpu_seconds_low = row.cpu_seconds_high = std::numeric_limits<double>::quiet_NaN();
+  row.repetitions = 1;
+}
+
 double min_gap_ratio(const Row& row) { return row.result.min_gap / row.length_scale; }
 
 // Through min_gap_ratio, the value the CSV carries, so that a row read back from its CSV
@@ -41,9 +46,11 @@ std::string row_problem(const Row& row) {
   for (const auto& [count, column] : {std::pair{r.impacts, "impacts"}, {r.contact_phases, "contact_phases"},
                                       {r.steps, "steps"}, {r.isolated_impacts, "isolated_impacts"}})
     if (count < 0) return std::string(column) + ": must be >= 0 (it is " + std::to_string(count) + ")";
-  for (const auto& [t, column] : {std::pair{row.seconds, "seconds"}, {row.cpu_seconds, "cpu_seconds"}})
+  for (const auto& [t, column] : {std::pair{row.seconds, "seconds"}, {row.cpu_seconds, "cpu_seconds"},
+                                  {row.cpu_seconds_low, "cpu_seconds_low"}, {row.cpu_seconds_high, "cpu_seconds_high"}})
     if (!std::isnan(t) && !(std::isfinite(t) && t >= 0.0))
       return std::string(column) + ": must be a finite number >= 0, or empty (it is " + shown(t) + ")";
+  if (row.repetitions < 1) return "repetitions: must be >= 1 (it is " + std::to_string(row.repetitions) + ")";
   return {};
 }
 
@@ -78,7 +85,8 @@ constexpr std::array kMiddleColumns = {"solver",         "variant", "settings", 
                                        "pi1_no_contact", "impacts", "contact_phases", "steps",  "min_gap",
                                        "seconds",        "cpu_seconds", "message"};
 constexpr std::array kTailColumns = {"wh",          "energy_excess",   "penetration",     "isolated_impacts",
-                                     "restitution_low", "restitution_high", "penetration_steps"};
+                                     "restitution_low", "restitution_high", "penetration_steps",
+                                     "cpu_seconds_low", "cpu_seconds_high", "repetitions"};
 
 bool chain_field(const CaseField& f) { return f.use == FieldUse::chain; }
 
@@ -161,6 +169,9 @@ std::string csv_line(const Row& row) {
   line.number(r.restitution_low);
   line.number(r.restitution_high);
   line.number(row.penetration_steps);
+  line.number(row.cpu_seconds_low);
+  line.number(row.cpu_seconds_high);
+  line.count(row.repetitions);
   return line.take();
 }
 

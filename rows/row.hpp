@@ -8,13 +8,21 @@
 //   n_free, a_p, w_p, solver, variant, settings, status, pi1, pi1_no_contact, impacts,
 //   contact_phases, steps, min_gap, seconds, cpu_seconds, message, bodies, kick, wh,
 //   energy_excess, penetration, isolated_impacts, restitution_low, restitution_high,
-//   penetration_steps
+//   penetration_steps, cpu_seconds_low, cpu_seconds_high, repetitions
 // pi5/pi6 are empty for the wall scene and pi7/pi8 for every scene but row3; bodies and
 // kick are empty except for chain; min_gap is divided by the pulse's length scale
 // a_p / w_p^2 and empty when no contact ever closed (infinite); a NaN is written as an
 // empty field. The columns after message came later; they are appended so that scripts
 // reading columns by position keep working.
+//
+// Timing: the solve alone, with the monitor off, repeated (sweep/sweep.hpp: up to the
+// run's repetitions, fewer once a point's solves have spent kRepetitionBudget = 10 ms of
+// CPU time, at least one). seconds and cpu_seconds are the medians over the repetitions,
+// cpu_seconds_low and cpu_seconds_high the fastest and the slowest, repetitions how many
+// there were. A file from before repetitions lacks the last three: read back, low and high
+// are NaN and repetitions 1.
 
+#include <array>
 #include <cstddef>
 #include <limits>
 #include <ostream>
@@ -40,9 +48,18 @@ struct Row {
   double length_scale = std::numeric_limits<double>::quiet_NaN();  // System::length_scale()
   double wh = std::numeric_limits<double>::quiet_NaN();  // w_max h of a time-stepper's step
   double penetration_steps = std::numeric_limits<double>::quiet_NaN();  // of the result (a column)
-  double seconds = 0.0;      // wall time of the solve alone
-  double cpu_seconds = 0.0;  // CPU time of the solve alone, on its thread (robust to load)
+  double seconds = 0.0;      // wall time of the solve alone (the median repetition)
+  double cpu_seconds = 0.0;  // CPU time of the solve alone, on its thread (robust to load; the median)
+  double cpu_seconds_low = std::numeric_limits<double>::quiet_NaN();   // the fastest repetition's
+  double cpu_seconds_high = std::numeric_limits<double>::quiet_NaN();  // the slowest repetition's
+  int repetitions = 1;  // timed solves
 };
+
+// The columns of the timing: the only ones that differ between two runs of one sweep.
+inline constexpr std::array<std::string_view, 5> kTimingColumns = {"seconds", "cpu_seconds", "cpu_seconds_low",
+                                                                   "cpu_seconds_high", "repetitions"};
+// Empties them: NaN times and one repetition (a baseline's rows, two sweeps compared).
+void clear_timing(Row& row);
 
 // Result::min_gap over the length scale: dimensionless like Pi3 (infinite if no contact).
 double min_gap_ratio(const Row& row);

@@ -191,6 +191,9 @@ Row parse_row(const Columns& columns, const std::vector<std::string>& fields) {
   r.restitution_low = f.number("restitution_low");
   r.restitution_high = f.number("restitution_high");
   row.penetration_steps = f.number("penetration_steps");
+  row.cpu_seconds_low = f.number("cpu_seconds_low");
+  row.cpu_seconds_high = f.number("cpu_seconds_high");
+  row.repetitions = f.count<int>("repetitions", 1);  // a file from before repetitions: one timing
   if (const std::string bad = row_problem(row); !bad.empty()) throw RowReadError(bad);
   return row;  // penetration is not read: it is made from min_gap and pi3
 }

@@ -16,11 +16,13 @@
 //   wh = [0.5, 2, 10, 100]            # the step as w_max h instead of steps (not both)
 //   time_limit = 10                   # seconds of wall time per run
 //
-// Keys of [[run]]: solver (required), variant, monitor (true/false: the time-steppers'
-// energy and restitution measurement, on by default), and every number of a solver's
-// Settings as solvers/settings_fields.hpp declares it (steps or wh, theta, gamma, tol_scale,
-// step_cap, time_limit in seconds per run): a list, or one value; step_cap and time_limit
-// take one value.
+// Keys of [[run]]: solver (required), variant, monitor (true/false, true by default: the
+// stress study gives the run one more, untimed solve per point with the time-steppers'
+// monitor on, for its energy, gap and restitution checks; no solve is timed with it on, and
+// the work-precision study has no such solve: StudyOptions::monitor), and every number of a
+// solver's Settings as solvers/settings_fields.hpp declares it (steps or wh, theta, gamma,
+// tol_scale, step_cap, time_limit in seconds per run): a list, or one value; step_cap and
+// time_limit take one value.
 // Limits: steps from 1 to 1e9; at most 10,000 settings in the whole list (settings_list.cpp
 // says why), counted before expansion.
 // The shipped lists are in cases/settings/.

@@ -15,13 +15,30 @@ double percentile(std::vector<double> sample, double p) {
   return sample[lo] + (rank - static_cast<double>(lo)) * (sample[hi] - sample[lo]);
 }
 
+CpuCost cpu_cost(std::span<const Row* const> rows) {
+  CpuCost c;
+  if (rows.empty()) return c;
+  std::vector<double> median, low, high;
+  c.repetitions = rows.front()->repetitions;
+  for (const Row* row : rows) {
+    median.push_back(row->cpu_seconds);
+    low.push_back(std::isnan(row->cpu_seconds_low) ? row->cpu_seconds : row->cpu_seconds_low);
+    high.push_back(std::isnan(row->cpu_seconds_high) ? row->cpu_seconds : row->cpu_seconds_high);
+    c.repetitions = std::min(c.repetitions, row->repetitions);
+  }
+  c.median = percentile(median, 50.0);
+  c.mean = std::accumulate(median.begin(), median.end(), 0.0) / static_cast<double>(median.size());
+  c.median_low = percentile(low, 50.0);
+  c.median_high = percentile(high, 50.0);
+  return c;
+}
+
 Summary summarize(std::span<const Row* const> rows, std::span<const double> reference) {
   Summary s;
   s.points = rows.size();
-  std::vector<double> errors, cpu;
+  std::vector<double> errors;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& row = *rows[i];
-    cpu.push_back(row.cpu_seconds);
     if (row.result.status != Status::ok || !std::isfinite(row.result.pi1)) {
       ++s.failed;
       continue;
@@ -33,10 +50,7 @@ Summary summarize(std::span<const Row* const> rows, std::span<const double> refe
     s.err_p95 = percentile(errors, 95.0);
     s.err_max = *std::max_element(errors.begin(), errors.end());
   }
-  if (!cpu.empty()) {
-    s.cpu_median = percentile(cpu, 50.0);
-    s.cpu_mean = std::accumulate(cpu.begin(), cpu.end(), 0.0) / static_cast<double>(cpu.size());
-  }
+  s.cpu = cpu_cost(rows);
   return s;
 }
 

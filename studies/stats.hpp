@@ -14,6 +14,23 @@ namespace pb {
 // (numpy's default); NaN for an empty sample.
 double percentile(std::vector<double> sample, double p);
 
+// What a setting's runs cost: CPU seconds per run, the solve alone (rows/row.hpp), over
+// every run, failed or not.
+struct CpuCost {
+  double median = std::numeric_limits<double>::quiet_NaN();  // of the runs' cpu_seconds (each a median)
+  double mean = std::numeric_limits<double>::quiet_NaN();
+  // The spread of the median: the median over the runs of each one's fastest repetition,
+  // and of each one's slowest. With a run's repetitions ranked from fastest to slowest,
+  // these are the least and the largest, over ranks j, of the median over runs of the j-th:
+  // the range of medians the study could have reported from one timing per run. A run
+  // read from a file without the spread columns counts its one timing at both ends.
+  double median_low = std::numeric_limits<double>::quiet_NaN();
+  double median_high = std::numeric_limits<double>::quiet_NaN();
+  int repetitions = 0;  // the fewest timed repetitions of a run (0: no runs)
+};
+
+CpuCost cpu_cost(std::span<const Row* const> rows);
+
 struct Summary {
   std::size_t points = 0;  // rows summarised
   std::size_t failed = 0;  // status other than ok, or a Pi1 that is not finite
@@ -21,9 +38,7 @@ struct Summary {
   double err_median = std::numeric_limits<double>::quiet_NaN();
   double err_p95 = std::numeric_limits<double>::quiet_NaN();
   double err_max = std::numeric_limits<double>::quiet_NaN();
-  // CPU seconds per run (the solve alone), over every run.
-  double cpu_median = std::numeric_limits<double>::quiet_NaN();
-  double cpu_mean = std::numeric_limits<double>::quiet_NaN();
+  CpuCost cpu;
 };
 
 // rows[i] is compared with reference[i] (same point); both spans have the same length.

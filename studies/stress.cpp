@@ -31,17 +31,17 @@ std::vector<std::string> families_in_order(std::span<const Case> cases) {
 }
 
 // One summary per family over a run's rows (one row per case, in point order).
-void summarize_run(std::span<const Row> rows, std::span<const double> reference,
+void summarize_run(std::span<const Row> rows, std::span<const TruthPoint> truth,
                    const std::vector<std::string>& families, std::vector<StressRow>& table) {
   for (const std::string& family : families) {
     std::vector<const Row*> mine;
-    std::vector<double> ref;
+    std::vector<TruthPoint> theirs;
     for (const Row& r : rows) {
       if (r.input.family != family) continue;
       mine.push_back(&r);
-      ref.push_back(reference[r.point]);
+      theirs.push_back(truth[r.point]);
     }
-    table.push_back(summarize_stress(mine, ref));
+    table.push_back(summarize_stress(mine, theirs));
   }
 }
 
@@ -56,11 +56,15 @@ std::string_view name(Verdict v) {
   return "";
 }
 
-bool StressRow::passed() const {
-  for (Verdict v : {finite, energy, gap, restitution})
-    if (v == Verdict::fail) return false;
-  return true;
+std::string StressRow::failed_checks() const {
+  std::string out;
+  for (const auto& [v, check] : {std::pair{finite, "finite"}, {energy, "energy"}, {gap, "gap"},
+                                 {restitution, "restitution"}, {accuracy, "accuracy"}})
+    if (v == Verdict::fail) out += (out.empty() ? "" : ", ") + std::string(check);
+  return out;
 }
+
+bool StressRow::passed() const { return failed_checks().empty(); }
 
 double pi1_error(const Row& row, double reference) {
   if (!finished(row) || !std::isfinite(reference)) return std::numeric_limits<double>::quiet_NaN();
@@ -76,7 +80,7 @@ double restitution_error(const Row& row) {
   return worst;
 }
 
-StressRow summarize_stress(std::span<const Row* const> rows, std::span<const double> reference) {
+StressRow summarize_stress(std::span<const Row* const> rows, std::span<const TruthPoint> truth) {
   StressRow s;
   if (!rows.empty()) {
     s.family = rows.front()->input.family;
@@ -85,11 +89,10 @@ StressRow summarize_stress(std::span<const Row* const> rows, std::span<const dou
     s.settings = rows.front()->settings;
   }
   s.runs = rows.size();
-  std::vector<double> errors, cpu;
+  std::vector<double> errors;
   bool any_finished = false, stepped = false;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& row = *rows[i];
-    cpu.push_back(row.cpu_seconds);
     if (!finished(row)) continue;
     ++s.ok;
     any_finished = true;
@@ -99,13 +102,20 @@ StressRow summarize_stress(std::span<const Row* const> rows, std::span<const dou
     stepped = stepped || !std::isnan(row.wh);
     s.isolated_impacts += row.result.isolated_impacts;
     keep_max(s.restitution_error_max, restitution_error(row));
-    if (const double e = pi1_error(row, reference[i]); !std::isnan(e)) errors.push_back(e);
+    const double e = pi1_error(row, truth[i].pi1);
+    if (std::isnan(e)) continue;  // not compared
+    errors.push_back(e);
+    s.impacts += row.result.impacts;
+    s.truth_impacts += truth[i].impacts;
+    if (truth[i].impacts > 0 && row.result.impacts == 0) ++s.missed_impact_points;
   }
   if (!errors.empty()) {
     s.pi1_err_median = percentile(errors, 50.0);
+    s.pi1_err_p95 = percentile(errors, 95.0);
     s.pi1_err_max = *std::max_element(errors.begin(), errors.end());
+    s.accuracy = s.pi1_err_p95 <= kAccuracyTolerance && s.missed_impact_points == 0 ? Verdict::pass : Verdict::fail;
   }
-  s.cpu_median = percentile(cpu, 50.0);
+  s.cpu = cpu_cost(rows);
   if (!rows.empty()) s.finite = s.ok == s.runs ? Verdict::pass : Verdict::fail;
   if (any_finished) {
     s.energy = within(s.energy_excess_max, kEnergyTolerance);
@@ -121,13 +131,13 @@ Stress stress_of(std::span<const Case> cases, const SettingsList& list, WorkPrec
   st.runs = std::move(runs);
   if (!st.runs.complete) return st;
 
-  st.truth.assign(cases.size(), std::numeric_limits<double>::quiet_NaN());
+  st.truth.assign(cases.size(), TruthPoint{});
   for (const Row& r : st.runs.reference)
-    if (finished(r)) st.truth[r.point] = r.result.pi1;
+    if (finished(r)) st.truth[r.point] = {r.result.pi1, r.result.impacts};
 
   const std::vector<std::string> families = families_in_order(cases);
-  const std::vector<double> no_reference(cases.size(), std::numeric_limits<double>::quiet_NaN());
-  summarize_run(st.runs.reference, no_reference, families, st.table);
+  const std::vector<TruthPoint> no_truth(cases.size());
+  summarize_run(st.runs.reference, no_truth, families, st.table);
   const std::size_t n = cases.size();
   for (std::size_t k = 0; k < list.runs.size(); ++k)
     summarize_run(std::span<const Row>(st.runs.points).subspan(k * n, n), st.truth, families, st.table);
@@ -140,14 +150,18 @@ Stress stress_of(std::span<const Case> cases, const SettingsList& list, WorkPrec
   return st;
 }
 
-Stress run_stress(std::span<const Case> cases, const SettingsList& list, const SweepOptions& options) {
-  return stress_of(cases, list, run_work_precision(cases, list, options));
+Stress run_stress(std::span<const Case> cases, const SettingsList& list, const SweepOptions& options,
+                  int repetitions) {
+  return stress_of(cases, list, run_work_precision(cases, list, options, {repetitions, true}));
 }
 
+// The columns after `restitution` came later: appended, so that scripts reading columns by
+// position keep working, with `accuracy` last.
 std::string stability_csv_header() {
   return "family,solver,variant,settings,runs,ok,energy_excess_max,penetration_max,penetration_steps_max,"
          "isolated_impacts,"
-         "restitution_error_max,pi1_err_median,pi1_err_max,cpu_median_s,finite,energy,gap,restitution";
+         "restitution_error_max,pi1_err_median,pi1_err_max,cpu_median_s,finite,energy,gap,restitution,"
+         "pi1_err_p95,impacts,truth_impacts,missed_impact_points,cpu_median_low_s,cpu_median_high_s,accuracy";
 }
 
 std::string stability_csv_line(const StressRow& row) {
@@ -157,9 +171,12 @@ std::string stability_csv_line(const StressRow& row) {
   for (double x : {row.energy_excess_max, row.penetration_max, row.penetration_steps_max})
     line << ',' << format_number(x);
   line << ',' << row.isolated_impacts;
-  for (double x : {row.restitution_error_max, row.pi1_err_median, row.pi1_err_max, row.cpu_median})
+  for (double x : {row.restitution_error_max, row.pi1_err_median, row.pi1_err_max, row.cpu.median})
     line << ',' << format_number(x);
   for (Verdict v : {row.finite, row.energy, row.gap, row.restitution}) line << ',' << name(v);
+  line << ',' << format_number(row.pi1_err_p95) << ',' << row.impacts << ',' << row.truth_impacts << ','
+       << row.missed_impact_points << ',' << format_number(row.cpu.median_low) << ','
+       << format_number(row.cpu.median_high) << ',' << name(row.accuracy);
   return line.str();
 }
 

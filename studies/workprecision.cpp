@@ -1,6 +1,7 @@
 #include "studies/workprecision.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace pb {
@@ -16,13 +17,16 @@ std::vector<std::string> families_in_order(std::span<const Case> cases) {
 
 }  // namespace
 
-std::vector<SweepRun> study_runs(const SettingsList& list) {
+std::vector<SweepRun> study_runs(const SettingsList& list, const StudyOptions& study) {
   std::vector<SweepRun> runs;
-  SweepRun truth{&reference_solver(), {}};
+  SweepRun truth{&reference_solver(), {}, study.repetitions};
   truth.settings.tol_scale = list.reference_tol_scale;
   truth.settings.time_limit = list.reference_time_limit;
   runs.push_back(truth);
-  for (const RunSpec& run : list.runs) runs.push_back({find_solver(run.solver), run.settings});
+  for (const RunSpec& run : list.runs) {
+    runs.push_back({find_solver(run.solver), run.settings, study.repetitions});
+    runs.back().settings.monitor = study.monitor && run.settings.monitor;
+  }
   return runs;
 }
 
@@ -59,12 +63,14 @@ WorkPrecision work_precision_of(std::span<const Case> cases, const SettingsList&
   return wp;
 }
 
-WorkPrecision run_work_precision(std::span<const Case> cases, const SettingsList& list, const SweepOptions& options) {
-  return work_precision_of(cases, list, run_sweep(cases, study_runs(list), options));
+WorkPrecision run_work_precision(std::span<const Case> cases, const SettingsList& list, const SweepOptions& options,
+                                 const StudyOptions& study) {
+  return work_precision_of(cases, list, run_sweep(cases, study_runs(list, study), options));
 }
 
 std::string work_precision_csv_header() {
-  return "family,solver,variant,settings,points,failed,err_median,err_p95,err_max,cpu_median_s,cpu_mean_s";
+  return "family,solver,variant,settings,points,failed,err_median,err_p95,err_max,cpu_median_s,cpu_mean_s,"
+         "cpu_median_low_s,cpu_median_high_s,repetitions";
 }
 
 std::string work_precision_csv_line(const WorkPrecisionRow& row) {
@@ -72,8 +78,22 @@ std::string work_precision_csv_line(const WorkPrecisionRow& row) {
   std::ostringstream line;
   line << csv_field(row.family) << ',' << csv_field(row.solver) << ',' << csv_field(row.variant) << ','
        << csv_field(row.settings) << ',' << s.points << ',' << s.failed;
-  for (double x : {s.err_median, s.err_p95, s.err_max, s.cpu_median, s.cpu_mean}) line << ',' << format_number(x);
+  for (double x : {s.err_median, s.err_p95, s.err_max, s.cpu.median, s.cpu.mean, s.cpu.median_low, s.cpu.median_high})
+    line << ',' << format_number(x);
+  line << ',' << s.cpu.repetitions;
   return line.str();
+}
+
+std::string work_precision_problem(const WorkPrecisionRow& row, double max_error) {
+  const Summary& s = row.summary;
+  std::string problem;
+  if (s.failed > 0)
+    problem = std::to_string(s.failed) + " of " + std::to_string(s.points) + " runs did not finish ok";
+  if (!std::isnan(max_error) && !(s.err_median <= max_error))
+    problem += (problem.empty() ? "" : "; ") + std::string("err_median ") +
+               (std::isnan(s.err_median) ? "empty (no run finished)" : format_number(s.err_median)) +
+               " above " + format_number(max_error);
+  return problem;
 }
 
 }  // namespace pb

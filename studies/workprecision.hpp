@@ -34,18 +34,35 @@ struct WorkPrecision {
   bool complete = false;                // false: cancelled before the end
 };
 
+// The timed repetitions per point of a study's runs, at most (sweep/sweep.hpp's rule).
+inline constexpr int kStudyRepetitions = 5;
+
+// What a study asks of its runs beyond the list's settings.
+struct StudyOptions {
+  int repetitions = kStudyRepetitions;  // timed solves per point, at most (run_point)
+  // true: each run's Settings::monitor is the list's `monitor` (on unless switched off), so
+  // its rows carry the monitor's measurements, from one untimed pass more (the stress
+  // checks judge them). false: off for every run: a work-precision study judges none of them.
+  bool monitor = false;
+};
+
 // The study's runs: the truth (the reference at the list's tolerance scale and time
 // limit), then the list's runs in their order.
-std::vector<SweepRun> study_runs(const SettingsList& list);
+std::vector<SweepRun> study_runs(const SettingsList& list, const StudyOptions& study = {});
 
 // The study from its rows: one per task, sorted by run then point, as run_sweep returns
 // them over study_runs(list). Fewer rows than tasks: not complete, no table.
 WorkPrecision work_precision_of(std::span<const Case> cases, const SettingsList& list, std::vector<Row> rows);
 
-// run_sweep over study_runs(list), then work_precision_of.
-WorkPrecision run_work_precision(std::span<const Case> cases, const SettingsList& list, const SweepOptions& options);
+// run_sweep over study_runs(list, study), then work_precision_of.
+WorkPrecision run_work_precision(std::span<const Case> cases, const SettingsList& list, const SweepOptions& options,
+                                 const StudyOptions& study = {});
 
 std::string work_precision_csv_header();
 std::string work_precision_csv_line(const WorkPrecisionRow& row);
+
+// What `workprecision --check` fails a row for, "" when nothing: a run that did not finish
+// ok (a failed count), or, when max_error is not NaN, an err_median above it.
+std::string work_precision_problem(const WorkPrecisionRow& row, double max_error);
 
 }  // namespace pb

@@ -1,7 +1,10 @@
 #include "sweep/sweep.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <ctime>
 #include <exception>
 #include <memory>
@@ -37,15 +40,117 @@ std::string describe_exception(std::exception_ptr error) {
   }
 }
 
+// One timed solve: the result, or the exception's message as a failed one.
+struct Timed {
+  Result result;
+  double seconds = 0.0;
+  double cpu_seconds = 0.0;
+};
+
+Timed timed_solve(const SolverInfo& solver, const System& system, const Settings& settings) {
+  Timed t;
+  const Clock::time_point start = Clock::now();
+  const double cpu_start = thread_cpu_seconds();
+  try {
+    t.result = solver.solve(system, settings);
+  } catch (...) {
+    t.result = Result{};
+    t.result.status = Status::failed;
+    t.result.message = describe_exception(std::current_exception());
+  }
+  t.seconds = seconds_since(start);
+  t.cpu_seconds = thread_cpu_seconds() - cpu_start;
+  return t;
+}
+
+std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
+
+std::string status_and_pi1(const Result& r) {
+  return std::string(name(r.status)) + " with Pi1 " + (std::isnan(r.pi1) ? "nan" : format_number(r.pi1));
+}
+
+// The same status and Pi1, bit for bit.
+bool same(const Result& a, const Result& b) { return a.status == b.status && bits(a.pi1) == bits(b.pi1); }
+
+// The row's result replaced by a failure saying why (none of its values can be trusted).
+void fail(Row& row, const std::string& why) {
+  row.result = Result{};
+  row.result.status = Status::failed;
+  row.result.message = why;
+}
+
+double median(std::vector<double> x) {
+  std::sort(x.begin(), x.end());
+  const std::size_t n = x.size();
+  return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
+}
+
+// The timed solves of run_point (sweep.hpp says how): row.result is the first's, the
+// timing columns the repetitions'.
+void time_solves(Row& row, const SolverInfo& solver, const System& system, Settings settings, int repetitions) {
+  settings.monitor = false;
+  std::vector<double> wall, cpu;
+  double spent = 0.0;
+  for (int j = 0; j < repetitions && (j == 0 || spent < kRepetitionBudget); ++j) {
+    Timed t = timed_solve(solver, system, settings);
+    if (j == 0) {
+      row.result = std::move(t.result);
+    } else if (t.result.status == Status::time_limit && row.result.status != Status::time_limit) {
+      break;  // cut short: not a timing of the same run
+    } else if (!same(row.result, t.result)) {
+      fail(row, "repetition " + std::to_string(j + 1) + " gave " + status_and_pi1(t.result) + " and the first " +
+                    status_and_pi1(row.result) + ": the solver is not deterministic");
+      break;
+    }
+    wall.push_back(t.seconds);
+    cpu.push_back(t.cpu_seconds);
+    spent += t.cpu_seconds;
+  }
+  row.seconds = median(wall);
+  row.cpu_seconds = median(cpu);
+  row.cpu_seconds_low = *std::min_element(cpu.begin(), cpu.end());
+  row.cpu_seconds_high = *std::max_element(cpu.begin(), cpu.end());
+  row.repetitions = static_cast<int>(cpu.size());
+}
+
+// The monitored pass of run_point: the monitor's measurements copied into the row.
+void add_monitor(Row& row, const SolverInfo& solver, const System& system, Settings settings) {
+  settings.monitor = true;
+  const Result monitored = timed_solve(solver, system, settings).result;
+  if (monitored.status == Status::time_limit && row.result.status != Status::time_limit) {
+    // Cut short (the machine busier than when it was timed): the answer stands, unmeasured.
+    row.result.message += std::string(row.result.message.empty() ? "" : "; ") +
+                          "the monitored solve passed the time limit: no energy, gap or restitution measurement";
+    return;
+  }
+  if (!same(row.result, monitored)) {
+    fail(row, "the monitored run gave " + status_and_pi1(monitored) + " and the timed runs " +
+                  status_and_pi1(row.result) + ": the monitor must not change the result");
+    return;
+  }
+  Result& r = row.result;
+  r.energy_excess = monitored.energy_excess;
+  r.isolated_impacts = monitored.isolated_impacts;
+  r.restitution_low = monitored.restitution_low;
+  r.restitution_high = monitored.restitution_high;
+  r.gap_rate_max = monitored.gap_rate_max;
+}
+
 }  // namespace
 
-Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const Settings& settings) {
+Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const Settings& settings,
+              int repetitions) {
   Row row;
   row.input = c;
   row.point = point;
   row.solver = std::string(solver.name);
   row.variant = settings.variant;
   row.result.status = Status::failed;
+  if (repetitions < 1 || repetitions > kMaxRepetitions) {
+    row.result.message = "repetitions: must be from 1 to " + std::to_string(kMaxRepetitions) + " (it is " +
+                         std::to_string(repetitions) + ")";
+    return row;
+  }
   try {
     row.settings = solver.describe(settings);
   } catch (...) {
@@ -66,19 +171,9 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
   }
   row.length_scale = system.length_scale();
 
-  const Clock::time_point start = Clock::now();
-  const double cpu_start = thread_cpu_seconds();
-  try {
-    row.result = solver.solve(system, settings);
-    row.seconds = seconds_since(start);
-    row.cpu_seconds = thread_cpu_seconds() - cpu_start;
-  } catch (...) {
-    row.seconds = seconds_since(start);
-    row.cpu_seconds = thread_cpu_seconds() - cpu_start;
-    row.result = Result{};
-    row.result.status = Status::failed;
-    row.result.message = describe_exception(std::current_exception());
-  }
+  time_solves(row, solver, system, settings, repetitions);
+  if (settings.monitor && !solver.reference && row.result.status != Status::time_limit)
+    add_monitor(row, solver, system, settings);
 
   row.wh = 2.0 * std::numbers::pi * row.result.step / system.t_min;
   row.penetration_steps = penetration_steps(row.result);
@@ -94,9 +189,7 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
   // on resume; it is a solver's failure, so the row says so.
   if (std::string bad = row_problem(row); !bad.empty()) {
     const std::string message = row.result.message;
-    row.result = Result{};  // none of its values can be trusted
-    row.result.status = Status::failed;
-    row.result.message = "the solver returned an inconsistent result: " + bad + (message.empty() ? "" : "; " + message);
+    fail(row, "the solver returned an inconsistent result: " + bad + (message.empty() ? "" : "; " + message));
   }
   return row;
 }
@@ -145,7 +238,7 @@ std::vector<Row> run_sweep(std::span<const Case> cases, std::span<const SweepRun
       const std::optional<std::size_t> task = next_task();
       if (!task || *task >= total) return;
       const std::size_t r = *task / n;
-      Row row = run_point(cases[*task % n], *task % n, *runs[r].solver, settings[r]);
+      Row row = run_point(cases[*task % n], *task % n, *runs[r].solver, settings[r], runs[r].repetitions);
       row.run = r;
       if (cancelled()) return;  // the run may have been cut short by the stop: not a result
 

@@ -28,15 +28,41 @@
 
 namespace pb {
 
-// Solves one case: builds the System, times solver.solve alone, adds the no-contact Pi1.
-// Never throws for a bad case or a throwing solver: the row then has Status::failed and
-// the reason in its message.
-Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const Settings& settings);
+// How a run is timed. Every solver the same way: solver.solve alone, on the thread's CPU
+// clock, with Settings::monitor off (the monitor's bookkeeping is not the scheme's cost: it
+// made Moreau-Jean 2.4 times slower), repeated up to `repetitions` times. A point stops
+// repeating once its timed solves have spent kRepetitionBudget CPU seconds together (it is
+// solved at least once): on the main job's work-precision study, five repetitions of every
+// run would cost 5 times one timing, and this rule keeps it to 1.6 times (measured:
+// docs/cli.md), while every run faster than 2 ms, most of them, gets its 5. The row holds
+// the median, the fastest and the slowest (rows/row.hpp).
+//
+// The monitor's measurements (energy_excess, the restitution range, gap_rate_max, which the
+// stress checks judge) come from one more solve, untimed, with the monitor on, when the
+// run's Settings::monitor asks for them; the reference keeps its own checks whatever the
+// monitor says, so it has no such pass, and neither has a timed solve cut short by its
+// time limit (it would cost as much again). The monitor must not change the result: a
+// monitored solve whose status or Pi1 differs, bit for bit, from the timed ones fails the
+// row, and so does a timed repetition that differs from the first (a solver that is not
+// deterministic). A later repetition cut short by the time limit or the stop flag is not
+// a timing of the same run: the repetitions end there without it; a monitored solve cut
+// short leaves the row unmeasured, its message saying so.
+inline constexpr int kMaxRepetitions = 1000;
+inline constexpr double kRepetitionBudget = 0.01;  // CPU seconds per point, over its repetitions
 
-// One solver with its settings, run over every case of a sweep.
+// Solves one case: builds the System, times solver.solve alone (as above, 1 <= repetitions
+// <= kMaxRepetitions), adds the monitor's measurements when settings.monitor asks and the
+// no-contact Pi1. Never throws for a bad case or a throwing solver: the row then has
+// Status::failed and the reason in its message.
+Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const Settings& settings,
+              int repetitions = 1);
+
+// One solver with its settings, run over every case of a sweep. settings.monitor: the rows
+// carry the monitor's measurements, from one untimed pass more (run_point).
 struct SweepRun {
   const SolverInfo* solver = nullptr;
   Settings settings;
+  int repetitions = 1;  // timed solves per point, at most (run_point)
 };
 
 // Hands out the task a thread solves next; nullopt when there is none left. It is called

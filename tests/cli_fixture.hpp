@@ -61,8 +61,10 @@ struct CsvTable {
     return static_cast<std::size_t>(it - columns.begin());
   }
   std::string& at(std::size_t row, std::string_view name) { return rows.at(row).at(column(name)); }
-  // The table with these columns emptied: what two runs of one sweep have in common.
-  CsvTable without(std::initializer_list<std::string_view> names) const {
+  // The table with these columns emptied: what two runs of one sweep have in common
+  // (without(kTimingColumns), rows/row.hpp).
+  template <typename Names = std::initializer_list<std::string_view>>
+  CsvTable without(const Names& names) const {
     CsvTable out = *this;
     for (std::string_view name : names)
       for (auto& row : out.rows) row.at(column(name)).clear();

@@ -201,6 +201,13 @@ TEST_F(CliStudy, EveryBadInputExitsTwoWithOneLineAndNoOutputFile) {
       {"stress tiny.toml --settings list.toml --out out.csv --points no-such-dir/p.csv", "--points"},
       {"stress semantic.toml --settings list.toml --out out.csv", "semantic.toml"},
       {"stress tiny.toml --out out.csv", "--settings"},
+      {"stress tiny.toml --settings list.toml --out out.csv --repetitions 0", "--repetitions"},
+      {"workprecision tiny.toml --settings list.toml --out out.csv --repetitions 1001", "--repetitions"},
+      {"spectrum tiny.toml --out out.csv --repetitions 0", "--repetitions"},
+      {"spectrum tiny.toml --out out.csv --repetitions 2.5", "--repetitions"},
+      {"workprecision tiny.toml --settings list.toml --out out.csv --check --max-error -1", "--max-error"},
+      {"workprecision tiny.toml --settings list.toml --out out.csv --check --max-error inf", "--max-error"},
+      {"workprecision tiny.toml --settings list.toml --out out.csv --max-error 0.1", "--max-error"},
   };
   const std::set<std::string> inputs = files();
   for (const BadInput& bad : cases) {
@@ -455,7 +462,7 @@ TEST_F(Cli, SpectrumResumesFromItsPartialFileRunningOnlyTheMissingPoints) {
   ASSERT_EQ(o.exit_code, 0) << o.err;
   EXPECT_EQ(files(), (std::set<std::string>{"tiny.toml", "full.csv", "out.csv"}));
   CsvTable out(read_text(file("out.csv")));
-  EXPECT_EQ(out.without({"seconds", "cpu_seconds"}).rows, full.without({"seconds", "cpu_seconds"}).rows);
+  EXPECT_EQ(out.without(kTimingColumns).rows, full.without(kTimingColumns).rows);
   for (std::size_t point = 0; point < 6; ++point)
     EXPECT_EQ(out.at(point, "seconds") == "12345", point == 1 || point == 4) << point;
 }
@@ -492,10 +499,11 @@ TEST_F(CliStudy, AStudyResumesFromItsPartialFileToTheSameSummaryAndRuns) {
   ASSERT_EQ(o.exit_code, 0) << o.err;
   EXPECT_FALSE(fs::exists(file("sum2.csv.partial")));
   const CsvTable resumed(read_text(file("runs2.csv")));
-  EXPECT_EQ(resumed.without({"seconds", "cpu_seconds"}).rows, runs.without({"seconds", "cpu_seconds"}).rows);
+  EXPECT_EQ(resumed.without(kTimingColumns).rows, runs.without(kTimingColumns).rows);
   for (std::size_t row = 0; row < 24; ++row)
     EXPECT_EQ(resumed.rows[row][runs.column("seconds")] == "12345", row == 2 || row == 7 || row == 20) << row;
-  const std::initializer_list<std::string_view> cpu = {"cpu_median_s", "cpu_mean_s"};
+  const std::initializer_list<std::string_view> cpu = {"cpu_median_s", "cpu_mean_s", "cpu_median_low_s",
+                                                        "cpu_median_high_s", "repetitions"};
   EXPECT_EQ(CsvTable(read_text(file("sum2.csv"))).without(cpu).rows,
             CsvTable(read_text(file("sum.csv"))).without(cpu).rows);
 }
@@ -540,6 +548,65 @@ TEST_F(CliStudy, StressWritesASummaryPerFamilyAndSettingAndEveryRunWithItsPi1Err
   const Outcome to_stdout = run("stress tiny.toml --settings list.toml");
   ASSERT_EQ(to_stdout.exit_code, 0) << to_stdout.err;
   EXPECT_EQ(line_count(to_stdout.out), 5u);
+}
+
+// --check: the outputs are written whatever the verdict; the exit code says whether a row
+// failed, and stderr names each one and then counts them. Moreau-Jean at w_max h = 100
+// passes every stability check and fails accuracy; at N = 64 it passes them all.
+TEST_F(CliStudy, CheckExitsOneWhenARowFailsAfterWritingTheOutputs) {
+  Outcome o = run("stress tiny.toml --settings list.toml --out sum.csv --check");
+  EXPECT_EQ(o.exit_code, 1) << o.err;
+  EXPECT_TRUE(fs::exists(file("sum.csv")));
+  const std::string wh100 = R"(poundbench: stress --check: pair moreau-jean {"wh":100,"theta":0.5,"gamma":0.5}: )";
+  EXPECT_NE(o.err.find(wh100 + "failed accuracy\n"), std::string::npos) << o.err;
+  EXPECT_EQ(o.err.find("event-driven"), std::string::npos) << o.err;  // the truth passes
+  const std::string last = o.err.substr(o.err.rfind('\n', o.err.size() - 2) + 1);
+  EXPECT_EQ(last.rfind("poundbench: stress --check: ", 0), 0u) << o.err;
+  EXPECT_NE(last.find(" of 4 rows failed\n"), std::string::npos) << last;
+  // The wrote line, one line per failed row, the count.
+  EXPECT_EQ(line_count(o.err), 2u + std::stoul(last.substr(28))) << o.err;
+  EXPECT_EQ(o.err.rfind("poundbench: wrote 4 rows to sum.csv in ", 0), 0u) << o.err;
+
+  write("n64.toml", "name = \"n64\"\n[[run]]\nsolver = \"moreau-jean\"\nsteps = 64\n");
+  o = run("stress tiny.toml --settings n64.toml --out sum64.csv --check");
+  EXPECT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_NE(o.err.find("\npoundbench: stress --check: 0 of 2 rows failed\n"), std::string::npos) << o.err;
+  EXPECT_EQ(line_count(o.err), 2u) << o.err;
+  EXPECT_EQ(run("stress tiny.toml --settings list.toml --out plain.csv").exit_code, 0);  // no --check: 0
+
+  // workprecision: every run finished, so 0; an err_median above --max-error fails its row.
+  o = run("workprecision tiny.toml --settings list.toml --out wp.csv --check");
+  EXPECT_EQ(o.exit_code, 0) << o.err;
+  o = run("workprecision tiny.toml --settings list.toml --out wp.csv --check --max-error 0.05");
+  EXPECT_EQ(o.exit_code, 1) << o.err;
+  EXPECT_NE(o.err.find(R"(poundbench: workprecision --check: pair moreau-jean {"wh":100,"theta":0.5,"gamma":0.5}: )"
+                       "err_median "),
+            std::string::npos)
+      << o.err;
+  EXPECT_EQ(o.err.find("steps"), std::string::npos) << "N = 64 is within 5 %: " << o.err;
+  EXPECT_TRUE(fs::exists(file("wp.csv")));
+}
+
+// --repetitions: each row says how many timed solves it had (at most R; a point stops once
+// its solves have spent 10 ms), and its CPU time is their median, within their range.
+TEST_F(CliStudy, RepetitionsAreRecordedInEveryRow) {
+  ASSERT_EQ(run("spectrum tiny.toml --solver moreau-jean --out r3.csv --repetitions 3").exit_code, 0);
+  ASSERT_EQ(run("spectrum tiny.toml --solver moreau-jean --out r1.csv").exit_code, 0);
+  const CsvTable r3(read_text(file("r3.csv"))), r1(read_text(file("r1.csv")));
+  ASSERT_EQ(r3.rows.size(), 6u);
+  for (std::size_t i = 0; i < r3.rows.size(); ++i) {
+    const auto number = [&](const CsvTable& t, std::string_view column) {
+      return std::strtod(t.rows[i][t.column(column)].c_str(), nullptr);
+    };
+    EXPECT_EQ(r3.rows[i][r3.column("repetitions")], "3") << "µs solves: all three";
+    EXPECT_EQ(r1.rows[i][r1.column("repetitions")], "1") << "spectrum's default";
+    EXPECT_LE(number(r3, "cpu_seconds_low"), number(r3, "cpu_seconds"));
+    EXPECT_LE(number(r3, "cpu_seconds"), number(r3, "cpu_seconds_high"));
+    EXPECT_EQ(number(r1, "cpu_seconds_low"), number(r1, "cpu_seconds"));
+    // Timed without the monitor, its measurements from a pass of their own all the same.
+    EXPECT_NE(r3.rows[i][r3.column("energy_excess")], "");
+  }
+  EXPECT_EQ(r3.without(kTimingColumns).rows, r1.without(kTimingColumns).rows);
 }
 
 // A baseline stored, checked unchanged (exit 0), checked after one stored Pi1 was nudged

@@ -15,6 +15,7 @@
 #include "solvers/solver.hpp"
 #include "sweep/partial_rows.hpp"
 #include "rows/row_read.hpp"
+#include "studies/stats.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb {
@@ -80,10 +81,34 @@ TEST(RowRead, EveryRowOfASweepPrintsTheSameLineAndTheSameDerivedValues) {
     EXPECT_EQ(penetration(back), penetration(row)) << line;
     EXPECT_EQ(back.result.status, row.result.status);
     EXPECT_EQ(back.cpu_seconds, row.cpu_seconds);
+    EXPECT_EQ(back.cpu_seconds_low, row.cpu_seconds_low);
+    EXPECT_EQ(back.cpu_seconds_high, row.cpu_seconds_high);
+    EXPECT_EQ(back.repetitions, row.repetitions);
     EXPECT_EQ(back.result.energy_excess, row.result.energy_excess) << line;
     if (penetration(row) > 0.0) ++penetrating;
   }
   EXPECT_GT(penetrating, 0u);  // the stepper's rows do overlap, so penetration was compared
+}
+
+// A file from before repetitions (no cpu_seconds_low, cpu_seconds_high, repetitions columns)
+// reads back with the spread missing and one repetition, and its summary counts the one
+// timing at both ends of the spread.
+TEST(RowRead, AFileWithoutTheRepetitionColumnsReadsAsOneTiming) {
+  Row row = run_point(smoke_cases()[2], 2, *find_solver("moreau-jean"), Settings{}, 3);
+  ASSERT_EQ(row.repetitions, 3);
+  std::vector<std::string> header = split_csv(csv_header()), fields = split_csv(csv_line(row));
+  header.resize(header.size() - 3);
+  fields.resize(fields.size() - 3);
+  const Row back = parse_row(Columns(header), fields);
+  EXPECT_EQ(back.cpu_seconds, row.cpu_seconds);
+  EXPECT_TRUE(std::isnan(back.cpu_seconds_low));
+  EXPECT_TRUE(std::isnan(back.cpu_seconds_high));
+  EXPECT_EQ(back.repetitions, 1);
+  const Row* one[] = {&back};
+  const CpuCost cost = cpu_cost(one);
+  EXPECT_EQ(cost.median_low, row.cpu_seconds);
+  EXPECT_EQ(cost.median_high, row.cpu_seconds);
+  EXPECT_EQ(cost.repetitions, 1);
 }
 
 TEST(RowRead, ABadFieldIsRefusedNamingItsColumn) {
@@ -189,7 +214,7 @@ TEST(PartialRows, ADamagedRowOrASecondRowOfOnePointIsRefusedNamingTheLine) {
 
   const std::vector<std::pair<std::string, std::string>> damaged = {
       {"pi1", "nan"}, {"pi1", ""}, {"pi1", "inf"}, {"pi1", "-1"}, {"impacts", "-5"}, {"steps", "-1"},
-      {"cpu_seconds", "-inf"}};
+      {"cpu_seconds", "-inf"}, {"cpu_seconds_high", "-1"}, {"repetitions", "0"}};
   for (const auto& [column, value] : damaged) {
     const std::string why = refusal(head + edited(csv_line(good), column, value) + "\n", cases, reference);
     EXPECT_EQ(why.rfind("p.csv:3: not a row: " + column + ": must be", 0), 0u) << column << "=" << value << ": " << why;

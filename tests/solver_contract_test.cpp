@@ -6,6 +6,7 @@
 //   statuses     a step cap, a non-finite body, a runaway, a stop flag and a time limit each
 //                end the run with the status that names them
 //   threads      the smoke set gives the same rows, bit for bit, on 1 and 2 threads
+//   monitor      a solve with Settings::monitor and one without give the same answer, bit for bit
 //   smoke        every smoke point ends ok with a finite Pi1 (a time-stepper at coarse and
 //                default steps), but for the failures a solver documents
 //   restitution  isolated wall impacts restitute eps within the solver's stated tolerance
@@ -363,6 +364,17 @@ TEST_P(SolverContract, SmokeSetEndsOkWithFinitePi1ButForDocumentedFailures) {
 
 std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
 
+// b is a's answer, bit for bit: status, Pi1 and its time, counts and the deepest gap.
+void expect_same_answer(const Result& a, const Result& b, const std::string& what) {
+  EXPECT_EQ(b.status, a.status) << what;
+  EXPECT_EQ(bits(b.pi1), bits(a.pi1)) << what << ": " << a.pi1 << " vs " << b.pi1;
+  EXPECT_EQ(bits(b.t_max), bits(a.t_max)) << what;
+  EXPECT_EQ(b.impacts, a.impacts) << what;
+  EXPECT_EQ(b.contact_phases, a.contact_phases) << what;
+  EXPECT_EQ(b.steps, a.steps) << what;
+  EXPECT_EQ(bits(b.min_gap), bits(a.min_gap)) << what;
+}
+
 // Two threads at once give the rows of one, bit for bit: no solver shares mutable state
 // between runs (sweep/sweep.hpp's requirement of every registry solver).
 TEST_P(SolverContract, OneAndTwoThreadsGiveTheSameRowsBitForBit) {
@@ -380,19 +392,42 @@ TEST_P(SolverContract, OneAndTwoThreadsGiveTheSameRowsBitForBit) {
     const std::string what = cases[i].family + " point " + std::to_string(i);
     finite += std::isfinite(a.pi1) ? 1 : 0;
     EXPECT_EQ(parallel[i].point, serial[i].point);
-    EXPECT_EQ(b.status, a.status) << what;
-    EXPECT_EQ(bits(b.pi1), bits(a.pi1)) << what << ": " << a.pi1 << " vs " << b.pi1;
-    EXPECT_EQ(bits(b.t_max), bits(a.t_max)) << what;
-    EXPECT_EQ(b.impacts, a.impacts) << what;
-    EXPECT_EQ(b.contact_phases, a.contact_phases) << what;
-    EXPECT_EQ(b.steps, a.steps) << what;
-    EXPECT_EQ(bits(b.min_gap), bits(a.min_gap)) << what;
+    expect_same_answer(a, b, what);
     EXPECT_EQ(bits(b.energy_excess), bits(a.energy_excess)) << what;
     EXPECT_EQ(b.isolated_impacts, a.isolated_impacts) << what;
     EXPECT_EQ(bits(b.restitution_low), bits(a.restitution_low)) << what;
     EXPECT_EQ(bits(b.restitution_high), bits(a.restitution_high)) << what;
   }
   EXPECT_GT(finite, static_cast<int>(cases.size()) / 2) << "rows to compare, not failures";
+}
+
+// The monitor only watches: a solve with it and one without give the same answer, bit for
+// bit. Sweeps rely on it (sweep/sweep.hpp): they time the solve with the monitor off and take
+// its measurements from one more solve with it on, and fail a row where the two differ. Over
+// the smoke points and the monitor's cases, and for a time-stepper also at w_max h = 10 on a
+// stiff pair, where an explicit scheme diverges (the monitor measures the runaway).
+TEST_P(SolverContract, TheMonitorChangesNoResult) {
+  std::vector<System> systems = test::monitor_systems();
+  for (const Case& c : smoke_points(facts())) systems.push_back(make_system(c));
+  std::vector<Settings> variants = {settings()};
+  if (facts().time_stepper) {
+    variants.push_back(settings());
+    variants.back().wh = 10.0;
+    systems.push_back(make_system(make_case(Scene::pair, PulseShape::sine, 1.0, 0.01, 0.5)));
+  }
+  int compared = 0;
+  for (Settings off : variants) {
+    off.monitor = false;
+    Settings on = off;
+    on.monitor = true;
+    for (std::size_t i = 0; i < systems.size(); ++i) {
+      const Result a = solve(systems[i], off), b = solve(systems[i], on);
+      const std::string what = "system " + std::to_string(i) + " wh=" + std::to_string(off.wh);
+      expect_same_answer(a, b, what);
+      compared += std::isfinite(a.pi1) ? 1 : 0;
+    }
+  }
+  EXPECT_GT(compared, static_cast<int>(systems.size()) / 2) << "answers to compare, not failures";
 }
 
 // Body 0 against the wall under both pulses, plastic, partly and fully elastic: every

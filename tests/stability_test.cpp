@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cases/case_set.hpp"
+#include "rows/row_read.hpp"
 
 namespace pb {
 namespace {
@@ -40,11 +41,11 @@ Row good_row(double pi1 = 1.0) {
   return r;
 }
 
-StressRow summary_of(const std::vector<Row>& rows, std::vector<double> reference = {}) {
+StressRow summary_of(const std::vector<Row>& rows, std::vector<TruthPoint> truth = {}) {
   std::vector<const Row*> ptrs;
   for (const Row& r : rows) ptrs.push_back(&r);
-  if (reference.empty()) reference.assign(rows.size(), kNaN);
-  return summarize_stress(ptrs, reference);
+  if (truth.empty()) truth.assign(rows.size(), TruthPoint{});
+  return summarize_stress(ptrs, truth);
 }
 
 TEST(StabilitySummary, CleanRunsPassEveryCheck) {
@@ -120,7 +121,7 @@ TEST(StabilitySummary, AFailedRunFailsFiniteOnlyAndItsStateIsNotJudged) {
   EXPECT_EQ(s.energy, Verdict::pass);
   EXPECT_EQ(s.gap, Verdict::pass);
   EXPECT_EQ(s.isolated_impacts, 2);
-  EXPECT_DOUBLE_EQ(s.cpu_median, 1.0);  // every run costs
+  EXPECT_DOUBLE_EQ(s.cpu.median, 1.0);  // every run costs
 }
 
 TEST(StabilitySummary, UnmeasuredChecksAreNeitherPassNorFail) {
@@ -145,12 +146,59 @@ TEST(StabilitySummary, UnmeasuredChecksAreNeitherPassNorFail) {
 TEST(StabilitySummary, Pi1ErrorIsRelativeAndOnlyWhereBothRunsFinished) {
   std::vector<Row> rows = {good_row(1.1), good_row(2.4), good_row(3.0), good_row(9.0)};
   rows[3].result.status = Status::nan;
-  const StressRow s = summary_of(rows, {1.0, 2.0, kNaN, 1.0});  // errors 0.1 and 0.2 only
+  const StressRow s = summary_of(rows, {{1.0}, {2.0}, {kNaN}, {1.0}});  // errors 0.1 and 0.2 only
   EXPECT_NEAR(s.pi1_err_median, 0.15, 1e-15);
   EXPECT_NEAR(s.pi1_err_max, 0.2, 1e-15);
   EXPECT_TRUE(std::isnan(pi1_error(rows[2], kNaN)));
   EXPECT_TRUE(std::isnan(pi1_error(rows[3], 1.0)));
   EXPECT_NEAR(pi1_error(rows[1], 2.0), 0.2, 1e-15);
+}
+
+// Accuracy judges the runs compared with the truth: the 95th percentile of their Pi1 error
+// against kAccuracyTolerance, and any point where the truth has an impact and the run none.
+TEST(StabilitySummary, AccuracyFailsAboveItsToleranceOrOnAMissedImpact) {
+  // 20 runs: the 95th percentile interpolates between the 19th and 20th smallest errors.
+  std::vector<Row> rows(20, good_row(1.0));
+  std::vector<TruthPoint> truth(20, TruthPoint{1.0, 3});
+  for (Row& r : rows) r.result.impacts = 3;
+  rows[19].result.pi1 = 1.0 + kAccuracyTolerance;  // the largest error alone is at the tolerance
+  StressRow s = summary_of(rows, truth);
+  EXPECT_NEAR(s.pi1_err_p95, 0.05 * kAccuracyTolerance, 1e-15);
+  EXPECT_EQ(s.accuracy, Verdict::pass);
+  EXPECT_EQ(s.impacts, 60);
+  EXPECT_EQ(s.truth_impacts, 60);
+  EXPECT_EQ(s.missed_impact_points, 0u);
+
+  rows[18].result.pi1 = rows[19].result.pi1 = 1.0 + 1.1 * kAccuracyTolerance;  // two far off: p95 above
+  s = summary_of(rows, truth);
+  EXPECT_GT(s.pi1_err_p95, kAccuracyTolerance);
+  EXPECT_EQ(s.accuracy, Verdict::fail);
+  EXPECT_EQ(s.failed_checks(), "accuracy");
+
+  // Pi1 right, but one point's impacts all missed; a point where the truth has none is not.
+  rows.assign(20, good_row(1.0));
+  truth[3].impacts = 0;
+  for (Row& r : rows) r.result.impacts = 3;
+  rows[3].result.impacts = 0;
+  EXPECT_EQ(summary_of(rows, truth).accuracy, Verdict::pass);
+  rows[4].result.impacts = 0;
+  s = summary_of(rows, truth);
+  EXPECT_EQ(s.missed_impact_points, 1u);
+  EXPECT_EQ(s.accuracy, Verdict::fail);
+  EXPECT_EQ(s.impacts, 54);
+  EXPECT_EQ(s.truth_impacts, 57);
+
+  // Only compared runs count: not a failed run, nor one whose truth did not finish.
+  rows[4].result.status = Status::diverged;
+  truth[5].pi1 = kNaN;
+  rows[5].result.impacts = 0;
+  s = summary_of(rows, truth);
+  EXPECT_EQ(s.missed_impact_points, 0u);
+  EXPECT_EQ(s.truth_impacts, 51);
+  EXPECT_EQ(s.accuracy, Verdict::pass);
+  EXPECT_EQ(s.failed_checks(), "finite");
+  // Nothing compared (the truth's own rows): none.
+  EXPECT_EQ(summary_of(rows).accuracy, Verdict::none);
 }
 
 TEST(StabilitySummary, CsvLineHasAFieldPerColumnAndSpellsTheVerdicts) {
@@ -159,9 +207,18 @@ TEST(StabilitySummary, CsvLineHasAFieldPerColumnAndSpellsTheVerdicts) {
   const std::string line = stability_csv_line(summary_of(rows));
   const std::string header = stability_csv_header();
   EXPECT_EQ(std::count(line.begin(), line.end(), ','), std::count(header.begin(), header.end(), ','));
-  EXPECT_EQ(line.substr(line.size() - std::string(",pass,fail,pass,pass").size()), ",pass,fail,pass,pass");
-  EXPECT_EQ(header.substr(header.size() - std::string("finite,energy,gap,restitution").size()),
-            "finite,energy,gap,restitution");
+  const std::vector<std::string> columns = split_csv(header), fields = split_csv(line);
+  const auto field = [&](std::string_view column) {
+    return fields.at(static_cast<std::size_t>(std::find(columns.begin(), columns.end(), column) - columns.begin()));
+  };
+  EXPECT_EQ(field("finite"), "pass");
+  EXPECT_EQ(field("energy"), "fail");
+  EXPECT_EQ(field("gap"), "pass");
+  EXPECT_EQ(field("restitution"), "pass");
+  EXPECT_EQ(field("accuracy"), "");  // not compared with a truth
+  // Appended columns keep the earlier ones where they were, the verdicts first and last.
+  EXPECT_EQ(columns[17], "restitution");
+  EXPECT_EQ(columns.back(), "accuracy");
 }
 
 TEST(StressStudy, SummarisesTheTruthAndEverySettingPerFamily) {
@@ -215,7 +272,18 @@ wh = [0.5, 100]
   // Measured at N = 64: 3.7 % (pair, Pi2 = 0.5) and 0.18 % (row3) at most.
   EXPECT_LT(st.table[1].pi1_err_max, 0.05);
   EXPECT_LT(st.table[5].pi1_err_max, 0.005);
-  for (std::size_t p = 0; p < set.cases.size(); ++p) EXPECT_TRUE(std::isfinite(st.truth[p])) << p;
+  // Stable but wrong shows: at w_max h = 100 the stepper passes every stability check and
+  // fails accuracy; at 0.5 it passes it.
+  for (std::size_t family : {0u, 4u}) {
+    const StressRow &fine = st.table[family + 2], &coarse = st.table[family + 3];
+    ASSERT_EQ(fine.settings.substr(0, 10), R"({"wh":0.5,)");
+    ASSERT_EQ(coarse.settings.substr(0, 10), R"({"wh":100,)");
+    EXPECT_EQ(fine.accuracy, Verdict::pass) << fine.family << ": " << fine.pi1_err_p95;
+    EXPECT_EQ(coarse.accuracy, Verdict::fail) << coarse.family << ": " << coarse.pi1_err_p95;
+    EXPECT_EQ(coarse.failed_checks(), "accuracy") << coarse.family;
+    EXPECT_EQ(st.table[family].accuracy, Verdict::none);  // the truth
+  }
+  for (std::size_t p = 0; p < set.cases.size(); ++p) EXPECT_TRUE(std::isfinite(st.truth[p].pi1)) << p;
 }
 
 }  // namespace

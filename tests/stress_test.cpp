@@ -51,13 +51,14 @@ bool passes(Verdict v) { return v != Verdict::fail; }
 std::string what(const StressRow& row) { return row.family + " " + row.solver + " " + row.settings; }
 
 // Every family of the stress set, the stepper from a resolved step (w_max h = 0.5) to a step
-// a hundred radians long. The reference passes every check. Moreau-Jean at theta = 1/2 stays
-// finite, within one step of travel of the gap (its proven bound) and restitutes eps on
-// every isolated impact at every step; its energy balance stays at round-off except where
-// the README says it cannot: a contact that still overlaps while it separates, under a
-// plastic law, takes an impulse that stops it, and the step gains P g'/2 > 0.
+// a hundred radians long. The reference passes every check (its accuracy is none: it is the
+// truth). Moreau-Jean at theta = 1/2 stays finite, within one step of travel of the gap (its
+// proven bound) and restitutes eps on every isolated impact at every step; its energy
+// balance stays at round-off except where the README says it cannot: a contact that still
+// overlaps while it separates, under a plastic law, takes an impulse that stops it, and the
+// step gains P g'/2 > 0. Its accuracy is what the step makes it.
 TEST(Stress, ReferenceAndMoreauJeanPassTheChecksTheirTheoryPromises) {
-  const Stress st = run_stress(stress_set().cases, moreau_jean_at(0.5, {0.5, 2, 10, 100}), {});
+  const Stress st = run_stress(stress_set().cases, moreau_jean_at(0.5, {0.5, 2, 10, 100}), {}, 1);  // one timing
   ASSERT_TRUE(st.complete);
   ASSERT_EQ(st.table.size(), 8u * 5u);  // 8 families x (the reference + 4 steps)
   for (const StressRow& row : st.table) {
@@ -68,7 +69,27 @@ TEST(Stress, ReferenceAndMoreauJeanPassTheChecksTheirTheoryPromises) {
                                       row.settings.starts_with(R"({"wh":100,)");
     if (theory_bounds_energy) {
       EXPECT_EQ(row.energy, Verdict::pass) << what(row) << ": " << row.energy_excess_max;
-      EXPECT_TRUE(row.passed()) << what(row);
+    }
+    // Stable is not right: a step a hundred radians long passes the four checks above and
+    // misses the response in every family (95th percentile of the Pi1 error 1 but in
+    // contrast-row3, 2.3; impacts missed at every point but the cradle's).
+    if (row.settings.starts_with(R"({"wh":100,)")) {
+      EXPECT_EQ(row.accuracy, Verdict::fail) << what(row) << ": " << row.pi1_err_p95;
+      EXPECT_GT(row.pi1_err_p95, 0.9) << what(row);
+    }
+    // At w_max h = 0.5 the 95th percentile is 3.9 % (contrast-pair) to 16 % (cradle): half
+    // the families pass (studies/stress.hpp says why the cradle never does).
+    if (row.settings.starts_with(R"({"wh":0.5,)")) {
+      EXPECT_LT(row.pi1_err_p95, 0.2) << what(row);
+      EXPECT_EQ(row.missed_impact_points, 0u) << what(row);
+      for (const char* family : {"contrast-pair", "contrast-row3", "scale", "chain-alternating"}) {
+        if (row.family == family) {
+          EXPECT_EQ(row.accuracy, Verdict::pass) << what(row) << ": " << row.pi1_err_p95;
+        }
+      }
+    }
+    if (row.solver == "event-driven") {
+      EXPECT_EQ(row.accuracy, Verdict::none) << "the truth is not compared with itself";
     }
   }
   double plastic_worst = 0.0;

@@ -1,6 +1,7 @@
 // The sweep runner (sweep/sweep.hpp) and its CSV rows (rows/row.hpp).
 
 #include <gtest/gtest.h>
+#include <time.h>
 
 #include <algorithm>
 #include <atomic>
@@ -33,8 +34,7 @@ const SolverInfo& reference_solver() {
 }
 
 std::string line_without_time(Row row) {
-  row.seconds = 0.0;
-  row.cpu_seconds = 0.0;
+  clear_timing(row);
   return csv_line(row);
 }
 
@@ -197,6 +197,165 @@ TEST(RunPoint, TurnsAnInvalidCaseIntoAFailedRow) {
   EXPECT_EQ(row.result.message.rfind("eps:", 0), 0u) << row.result.message;
 }
 
+// ---------------------------------------------------------------- timing
+
+double thread_cpu() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// Spends `seconds` of this thread's CPU time.
+void burn(double seconds) {
+  const double end = thread_cpu() + seconds;
+  while (thread_cpu() < end) {
+  }
+}
+
+// What the local solvers below saw: the calls, by whether the monitor was on. Tests run
+// one at a time, and run_point calls a solver on its caller's thread.
+int g_monitored = 0, g_unmonitored = 0;
+std::vector<double> g_costs;  // CPU seconds the k-th unmonitored call spends (the last repeats)
+
+Result costly_solve(const System&, const Settings& settings) {
+  Result r;
+  r.pi1 = 1.5;
+  if (settings.monitor) {
+    ++g_monitored;
+    r.energy_excess = -0.25;  // what only the monitor measures
+    r.isolated_impacts = 2;
+    r.restitution_low = r.restitution_high = 0.5;
+    return r;
+  }
+  burn(g_costs[std::min<std::size_t>(static_cast<std::size_t>(g_unmonitored), g_costs.size() - 1)]);
+  ++g_unmonitored;
+  return r;
+}
+
+const SolverInfo kCostly{"costly", "spends a given CPU time", &costly_solve, &no_settings, &accept};
+
+Row timed_row(std::vector<double> costs, int repetitions, bool monitor = false) {
+  g_monitored = g_unmonitored = 0;
+  g_costs = std::move(costs);
+  Settings settings;
+  settings.monitor = monitor;
+  return run_point(smoke_cases().front(), 0, kCostly, settings, repetitions);
+}
+
+// Five repetitions costing 0.4, 0.1, 0.3, 0.2 and 0.5 ms (each a little more: the clock is
+// read after the work): the row's CPU time is the median, with the fastest and slowest.
+TEST(RunPoint, TimesTheSolveRepeatedlyAndKeepsTheMedianAndTheRange) {
+  const Row row = timed_row({4e-4, 1e-4, 3e-4, 2e-4, 5e-4}, 5);
+  ASSERT_EQ(row.result.status, Status::ok) << row.result.message;
+  EXPECT_EQ(row.repetitions, 5);
+  EXPECT_EQ(g_unmonitored, 5);
+  EXPECT_EQ(g_monitored, 0);
+  EXPECT_GE(row.cpu_seconds, 3e-4);
+  EXPECT_LT(row.cpu_seconds, 4e-4);
+  EXPECT_GE(row.cpu_seconds_low, 1e-4);
+  EXPECT_LT(row.cpu_seconds_low, 2e-4);
+  EXPECT_GE(row.cpu_seconds_high, 5e-4);
+  EXPECT_LT(row.cpu_seconds_high, 1e-3);
+  EXPECT_GE(row.seconds, row.cpu_seconds * 0.99);  // wall time: the median too, never less than CPU
+  EXPECT_EQ(row.result.pi1, 1.5);
+
+  const Row once = timed_row({2e-4}, 1);
+  EXPECT_EQ(once.repetitions, 1);
+  EXPECT_EQ(once.cpu_seconds_low, once.cpu_seconds);
+  EXPECT_EQ(once.cpu_seconds_high, once.cpu_seconds);
+}
+
+// A point stops repeating once its solves have spent kRepetitionBudget together: 6 ms solves
+// are timed twice (6 ms is under the 10 ms budget, 12 ms is over), never fewer than once.
+TEST(RunPoint, StopsRepeatingOnceThePointsBudgetIsSpent) {
+  ASSERT_EQ(kRepetitionBudget, 0.01);
+  EXPECT_EQ(timed_row({6e-3}, 5).repetitions, 2);
+  EXPECT_EQ(timed_row({0.02}, 5).repetitions, 1);
+  EXPECT_EQ(timed_row({1e-4}, 3).repetitions, 3);
+}
+
+// The timed solves run with the monitor off; what the monitor measures comes from one more,
+// untimed solve with it on, when the run asks for it (and only then).
+TEST(RunPoint, TimesTheSolveWithoutTheMonitorAndTakesItsMeasurementsFromOneMorePass) {
+  const Row row = timed_row({1e-4}, 3, true);
+  ASSERT_EQ(row.result.status, Status::ok) << row.result.message;
+  EXPECT_EQ(g_unmonitored, 3);
+  EXPECT_EQ(g_monitored, 1);
+  EXPECT_EQ(row.result.energy_excess, -0.25);
+  EXPECT_EQ(row.result.isolated_impacts, 2);
+  EXPECT_EQ(row.result.restitution_high, 0.5);
+  EXPECT_LT(row.cpu_seconds_high, 2e-3);  // the monitored pass is not timed
+
+  const Row without = timed_row({1e-4}, 3, false);
+  EXPECT_EQ(g_monitored, 0);
+  EXPECT_TRUE(std::isnan(without.result.energy_excess));
+}
+
+std::atomic<int> g_calls{0};
+
+Result monitor_moves_pi1(const System&, const Settings& settings) {
+  Result r;
+  r.pi1 = settings.monitor ? std::nextafter(1.0, 2.0) : 1.0;
+  return r;
+}
+
+Result monitor_runs_out_of_time(const System&, const Settings& settings) {
+  Result r;
+  r.pi1 = 1.0;
+  if (settings.monitor) {
+    r.status = Status::time_limit;
+    r.pi1 = std::numeric_limits<double>::quiet_NaN();
+  }
+  return r;
+}
+
+Result drifts(const System&, const Settings&) {
+  Result r;
+  r.pi1 = g_calls++ == 0 ? 1.0 : std::nextafter(1.0, 2.0);  // one ulp from the second call on
+  return r;
+}
+
+// The monitor must not change the result, nor may a repetition: a row whose monitored pass
+// or second repetition differs by one ulp fails, saying so, and holds none of its values.
+TEST(RunPoint, FailsARowWhoseMonitorOrRepetitionChangesPi1) {
+  Settings monitored;
+  const SolverInfo moved{"moved", "the monitor moves Pi1", &monitor_moves_pi1, &no_settings, &accept};
+  Row row = run_point(smoke_cases().front(), 0, moved, monitored, 2);
+  EXPECT_EQ(row.result.status, Status::failed);
+  EXPECT_NE(row.result.message.find("the monitor must not change the result"), std::string::npos)
+      << row.result.message;
+  EXPECT_TRUE(std::isnan(row.result.pi1));
+
+  // A monitored solve cut short by its time limit (a busier machine) changed nothing: the
+  // timed answer stands, without the monitor's measurements, and says why.
+  const SolverInfo slow{"slow", "its monitored solve runs out of time", &monitor_runs_out_of_time, &no_settings,
+                        &accept};
+  row = run_point(smoke_cases().front(), 0, slow, monitored, 2);
+  EXPECT_EQ(row.result.status, Status::ok) << row.result.message;
+  EXPECT_EQ(row.result.pi1, 1.0);
+  EXPECT_NE(row.result.message.find("the monitored solve passed the time limit"), std::string::npos);
+
+  Settings plain;
+  plain.monitor = false;
+  const SolverInfo drifting{"drifting", "not deterministic", &drifts, &no_settings, &accept};
+  g_calls = 0;
+  row = run_point(smoke_cases().front(), 0, drifting, plain, 3);
+  EXPECT_EQ(row.result.status, Status::failed);
+  const std::string says = "repetition 2 gave ok with Pi1 1.0000000000000002 and the first ok with Pi1 1:";
+  EXPECT_EQ(row.result.message.rfind(says, 0), 0u) << row.result.message;
+  // One repetition has nothing to differ from.
+  g_calls = 0;
+  EXPECT_EQ(run_point(smoke_cases().front(), 0, drifting, plain, 1).result.status, Status::ok);
+}
+
+TEST(RunPoint, RefusesRepetitionsOutsideOneToTheLimit) {
+  for (int r : {0, -1, kMaxRepetitions + 1}) {
+    const Row row = run_point(smoke_cases().front(), 0, reference_solver(), Settings{}, r);
+    EXPECT_EQ(row.result.status, Status::failed);
+    EXPECT_EQ(row.result.message.rfind("repetitions: must be from 1 to 1000", 0), 0u) << row.result.message;
+  }
+}
+
 TEST(Csv, QuotesOnlyFieldsThatNeedIt) {
   EXPECT_EQ(csv_field("pair-stiff"), "pair-stiff");
   EXPECT_EQ(csv_field("tol_scale=1;steps=4"), "tol_scale=1;steps=4");
@@ -219,10 +378,11 @@ TEST(Csv, NumbersReadBackToTheSameDouble) {
 
 TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   const std::vector<std::string> header = split_csv(csv_header());
-  ASSERT_EQ(header.size(), 38u);
+  ASSERT_EQ(header.size(), 41u);
   EXPECT_EQ(header.front(), "family");
   EXPECT_EQ(header[28], "message");  // the columns after it were appended later
-  EXPECT_EQ(header.back(), "penetration_steps");
+  EXPECT_EQ(header[37], "penetration_steps");
+  EXPECT_EQ(header.back(), "repetitions");
 
   Row row;
   row.input.family = "odd, \"name\"";

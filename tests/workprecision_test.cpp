@@ -43,8 +43,34 @@ TEST(Summary, ErrorsAreRelativeAndFailedRunsAreCountedNotAveraged) {
   EXPECT_NEAR(s.err_median, 0.2, 1e-15);
   EXPECT_NEAR(s.err_p95, 0.29, 1e-15);
   EXPECT_NEAR(s.err_max, 0.3, 1e-15);
-  EXPECT_DOUBLE_EQ(s.cpu_median, 2.5);  // every run costs, failed or not
-  EXPECT_DOUBLE_EQ(s.cpu_mean, 3.0);
+  EXPECT_DOUBLE_EQ(s.cpu.median, 2.5);  // every run costs, failed or not
+  EXPECT_DOUBLE_EQ(s.cpu.mean, 3.0);
+}
+
+Row timed(double median, double low, double high, int repetitions) {
+  Row r = synthetic(1.0, median);
+  r.cpu_seconds_low = low;
+  r.cpu_seconds_high = high;
+  r.repetitions = repetitions;
+  return r;
+}
+
+// The spread of a setting's median cost: the median over its runs of each one's fastest
+// repetition, and of each one's slowest. A row from a file without those columns counts its
+// one timing at both ends.
+TEST(CpuCost, TheMediansSpreadIsTheMedianOfTheFastestAndOfTheSlowestRepetitions) {
+  const std::vector<Row> rows = {timed(2.0, 1.0, 9.0, 5), timed(4.0, 3.0, 5.0, 5), timed(3.0, 2.5, 3.5, 2),
+                                 synthetic(10.0, 6.0)};
+  std::vector<const Row*> ptrs;
+  for (const Row& r : rows) ptrs.push_back(&r);
+  const CpuCost c = cpu_cost(ptrs);
+  EXPECT_DOUBLE_EQ(c.median, 3.5);       // of 2, 4, 3, 6
+  EXPECT_DOUBLE_EQ(c.mean, 3.75);
+  EXPECT_DOUBLE_EQ(c.median_low, 2.75);  // of 1, 3, 2.5, 6
+  EXPECT_DOUBLE_EQ(c.median_high, 5.5);  // of 9, 5, 3.5, 6
+  EXPECT_EQ(c.repetitions, 1);           // the fewest: the row from an old file
+  EXPECT_TRUE(std::isnan(cpu_cost({}).median));
+  EXPECT_EQ(cpu_cost({}).repetitions, 0);
 }
 
 TEST(SettingsList, ExpandsListsAndDoublingRanges) {
@@ -184,7 +210,23 @@ TEST(WorkPrecision, SmokeStudyHasARowPerFamilyAndSettingAndTheReferenceMatchesIt
     if (row.solver == "moreau-jean") {
       EXPECT_LT(row.summary.err_max, 0.2) << row.family << " " << row.settings;
     }
+    const CpuCost& cpu = row.summary.cpu;
+    EXPECT_LE(cpu.median_low, cpu.median) << row.family << " " << row.settings;
+    EXPECT_LE(cpu.median, cpu.median_high) << row.family << " " << row.settings;
+    EXPECT_GE(cpu.repetitions, 1);
+    EXPECT_LE(cpu.repetitions, kStudyRepetitions);
   }
+  // Every run timed the same way, repeated (µs solves: all five repetitions), and the
+  // stepper's without the monitor, which a work-precision study does not need: no pass
+  // measured its energy (the reference's own check always does).
+  for (const Row& r : wp.points) {
+    EXPECT_LE(r.cpu_seconds_low, r.cpu_seconds);
+    EXPECT_LE(r.cpu_seconds, r.cpu_seconds_high);
+    if (r.solver == "moreau-jean") {
+      EXPECT_TRUE(std::isnan(r.result.energy_excess)) << r.settings;
+    }
+  }
+  EXPECT_EQ(wp.points.front().repetitions, kStudyRepetitions);
 }
 
 }  // namespace
