@@ -92,6 +92,15 @@ void add_step(NamedValues& out, const Settings& set, int default_steps) {
     out.add("steps", set.steps > 0 ? set.steps : default_steps);
 }
 
+void add_activation(NamedValues& out, std::string_view key, Activation rule, const Settings& set) {
+  out.add(key, rule == Activation::predicted ? "predicted" : "overlap");
+  if (rule == Activation::predicted) out.add("gamma", set.gamma);
+}
+
+std::string check_activation(Activation rule, const Settings& set) {
+  return rule == Activation::predicted ? check_gamma(set) : std::string();
+}
+
 const char* runaway(const System& sys, const double* u, const double* v) {
   const double bound = 1e6 * sys.length_scale();
   for (int i = 0; i < sys.n_bodies(); ++i)

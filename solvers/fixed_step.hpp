@@ -18,6 +18,7 @@
 // virtual call per step is free, and the shell then lives in one .cpp file.
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cases/system.hpp"
@@ -31,6 +32,33 @@ namespace pb {
 // step cap when Settings::step_cap is 0 (1e8 steps: seconds to minutes of any engine).
 inline constexpr int kDefaultSteps = 64;
 inline constexpr long kDefaultStepCap = 100'000'000;
+
+// Which contacts take part in the step from t_k, from each contact's gap g and gap rate g'
+// at t_k (System::gap, gap_rate):
+//   predicted  g + gamma h g' <= 0: the gap predicted gamma h ahead at the rate of t_k is
+//              closed (gamma = Settings::gamma, default 1/2: the gap at mid-step). The
+//              Moreau-Jean rule, and so that of every faithful time-stepper: moreau-jean
+//              (in its own fixed-size loop, stepper.hpp and dynamic.cpp, the same arithmetic),
+//              Siconos' MoreauJeanOSI (which applies it itself), and the faithful variants of
+//              ODE and Bullet, which call active(). One rule, so that a work-precision study
+//              compares the solvers and not when their contacts start.
+//   overlap    g <= 0: the bodies touch or overlap, which is when an engine's collision
+//              detection reports a contact (the engines' default variants, bullet si-overlap).
+// A contact made ahead of time (g > 0) is a velocity-level constraint only: each engine is
+// given a depth of zero for it, so that nothing pulls the bodies across the gap or pushes
+// them apart beyond Newton's law (solvers/ode/README.md, solvers/bullet/README.md).
+enum class Activation { predicted, overlap };
+
+// gamma_h = Settings::gamma times h, formed once per run as moreau-jean forms it.
+inline bool active(Activation rule, double g, double rate, double gamma_h) {
+  return rule == Activation::predicted ? g + gamma_h * rate <= 0.0 : g <= 0.0;
+}
+
+// The rule's name, and gamma where the rule uses it, for describe().
+void add_activation(NamedValues& out, std::string_view key, Activation rule, const Settings& set);
+
+// Checks Settings::gamma where the rule uses it; "" when it is fine.
+std::string check_activation(Activation rule, const Settings& set);
 
 // The step of a run and how many steps reach t_end.
 struct StepPlan {

@@ -51,6 +51,10 @@ std::string check_step(const Settings& settings, int default_steps) {
 
 std::string check_theta_method(const Settings& settings) {
   if (!(settings.theta >= 0.5 && settings.theta <= 1.0)) return "theta: must be in [0.5, 1]";
+  return check_gamma(settings);
+}
+
+std::string check_gamma(const Settings& settings) {
   if (!(settings.gamma >= 0.0 && settings.gamma <= 1.0)) return "gamma: must be in [0, 1]";
   return {};
 }

@@ -37,7 +37,7 @@ struct Settings {
   int steps = 0;         // time-steppers: steps per shortest period N (h = t_min / N); 0 = default
   double wh = 0;         // time-steppers: the step as w_max h (w_max = 2 pi / t_min); > 0 replaces steps
   double theta = 0.5;    // Moreau-Jean theta
-  double gamma = 0.5;    // Moreau-Jean activation look-ahead
+  double gamma = 0.5;    // activation look-ahead of the faithful time-steppers (fixed_step.hpp, Activation)
   double tol_scale = 1;  // event-driven: multiplies every internal tolerance
   double stiffness = 0;  // compliant: contact stiffness as the Pi term K (cases/README.md); 0 = default
   double rtol = 0;       // compliant with cvode: relative tolerance; 0 = default
@@ -106,6 +106,8 @@ inline double time_step(const System& s, const Settings& settings, int default_s
 std::string check_step(const Settings& settings, int default_steps);
 // Checks Settings::theta and gamma of a theta-method (moreau-jean, Siconos' MoreauJeanOSI).
 std::string check_theta_method(const Settings& settings);
+// Checks Settings::gamma, the look-ahead of a time-stepper that predicts its contacts.
+std::string check_gamma(const Settings& settings);
 // Checks Settings::step_cap and time_limit.
 std::string check_limits(const Settings& settings);
 

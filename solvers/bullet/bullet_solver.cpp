@@ -18,8 +18,8 @@ std::size_t ix(int i) { return static_cast<std::size_t>(i); }
 // Bullet behind the shared step loop (solvers/fixed_step.hpp).
 class Engine : public StepEngine {
  public:
-  Engine(const System& sys, const Config& config, double h)
-      : StepEngine(sys), sys_(sys), h_(h), world_(sys, config, h, out_.u, out_.v) {}
+  Engine(const System& sys, const Config& config, double h, double gamma)
+      : StepEngine(sys), sys_(sys), h_(h), world_(sys, config, h, gamma, out_.u, out_.v) {}
 
   StepOutcome step(long k, Result&) override {
     world_.step(static_cast<double>(k) * h_);
@@ -51,7 +51,7 @@ class Engine : public StepEngine {
 Result run(const System& sys, const Settings& set, const Config& config) {
   StepPlan plan;
   if (Result r = plan_steps(sys, set, kDefaultSteps, kDefaultStepCap, plan); r.status != Status::ok) return r;
-  Engine engine(sys, config, plan.h);
+  Engine engine(sys, config, plan.h, set.gamma);
   return run_steps(sys, set, plan, engine);
 }
 
@@ -85,14 +85,15 @@ std::string describe(const Settings& settings) {
   out.add("variant", config ? config->name : settings.variant);
   if (!config) return out.add("unknown", true).json();
   add_step(out, settings, kDefaultSteps);
-  add_config(out, *config);
+  add_config(out, *config, settings);
   return out.json();
 }
 
 std::string check(const Settings& settings) {
-  if (!find_variant(settings.variant))
-    return "variant: unknown bullet variant '" + settings.variant + "' (one of " + variant_names() + ")";
+  const std::optional<Config> config = find_variant(settings.variant);
+  if (!config) return "variant: unknown bullet variant '" + settings.variant + "' (one of " + variant_names() + ")";
   if (std::string bad = check_step(settings, kDefaultSteps); !bad.empty()) return bad;
+  if (std::string bad = check_activation(config->activation, settings); !bad.empty()) return bad;
   return check_limits(settings);
 }
 

@@ -2,7 +2,7 @@
 // Bullet Physics (libbullet 3.24, single precision, as Debian ships it) as a pounding
 // solver: contacts and restitution are left to Bullet's own constraint solvers; this code
 // only builds the bodies, applies the building forces and fills one manifold point per
-// closed contact in each step.
+// active contact in each step.
 //
 //   bodies    one btRigidBody per building, moving along x only (linear factor (1,0,0),
 //             angular factor 0), no gravity, no damping, never deactivated; position u
@@ -12,8 +12,10 @@
 //             (applyCentralForce); Bullet's step is semi-implicit Euler:
 //             v_k+1 = v_k + h F_k / m + (contact impulse) / m, u_k+1 = u_k + h v_k+1:
 //             explicit springs, stable only for w h below ~1.9 (README, large steps).
-//   contacts  no collision detection: while g_j <= 0 at the start of a step, contact j has
-//             one btManifoldPoint (normal +x, distance g_j, no friction acting) in its
+//   contacts  no collision detection: while the variant's activation rule takes contact j
+//             at the start of a step (solvers/fixed_step.hpp: faithful g + gamma h g' <= 0,
+//             si-overlap and default g <= 0), it has one btManifoldPoint (normal +x,
+//             distance min(g_j, 0), no friction acting) in its
 //             btPersistentManifold, and the manifolds go to the variant's solveGroup
 //             (btSequentialImpulseConstraintSolver or btMLCPSolver), which applies Bullet's
 //             restitution: target separation speed = restitution x approach speed at the

@@ -6,6 +6,8 @@
 #include <BulletDynamics/MLCPSolvers/btLemkeSolver.h>
 #include <BulletDynamics/MLCPSolvers/btMLCPSolver.h>
 
+#include <algorithm>
+
 namespace pb::bullet {
 
 btContactSolverInfo solver_info(const Config& config, double h) {
@@ -56,9 +58,14 @@ std::unique_ptr<btRigidBody> make_body(btCollisionShape* shape, double mass, dou
 
 }  // namespace
 
-World::World(const System& system, const Config& config, double h, const std::vector<double>& u0,
+World::World(const System& system, const Config& config, double h, double gamma, const std::vector<double>& u0,
              const std::vector<double>& v0)
-    : system_(system), info_(solver_info(config, h)) {
+    : system_(system),
+      info_(solver_info(config, h)),
+      activation_(config.activation),
+      gamma_h_(gamma * h),
+      u_(u0.size()),
+      v_(v0.size()) {
   const int nb = system.n_bodies(), nc = system.n_contacts();
   shape_ = std::make_unique<btEmptyShape>();  // no geometry: contacts come from the gaps
   for (int i = 0; i < nb; ++i) {
@@ -75,7 +82,7 @@ World::World(const System& system, const Config& config, double h, const std::ve
     const int left = system.left(j);
     const btCollisionObject* a = bodies_[ix(system.right(j))].get();
     const btCollisionObject* b = left == kWall ? wall_.get() : bodies_[ix(left)].get();
-    // Thresholds: a point exists only while g <= 0 (step 1 in engine.hpp), so Bullet's
+    // Thresholds: a point's distance is never positive (step 1 in engine.hpp), so Bullet's
     // breaking threshold never removes one and the processing threshold (Bullet's default,
     // BT_LARGE_FLOAT) lets every point into the solver.
     manifolds_.push_back(std::make_unique<btPersistentManifold>(a, b, 0, gContactBreakingThreshold, BT_LARGE_FLOAT));
@@ -108,11 +115,6 @@ World::~World() {
   for (auto& m : manifolds_) m->clearManifold();
 }
 
-double World::gap(int j) const {
-  const int left = system_.left(j);
-  return system_.delta + u(system_.right(j)) - (left == kWall ? 0.0 : u(left));
-}
-
 double World::impulse(int j) const {
   const btPersistentManifold& m = *manifolds_[ix(j)];
   return m.getNumContacts() > 0 ? m.getContactPoint(0).m_appliedImpulse : 0.0;
@@ -121,13 +123,19 @@ double World::impulse(int j) const {
 int World::fallbacks() const { return is_mlcp_ ? static_cast<btMLCPSolver*>(solver_.get())->getNumFallbacks() : 0; }
 
 void World::step(double t) {
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    u_[i] = u(static_cast<int>(i));
+    v_[i] = v(static_cast<int>(i));
+  }
   int touching = 0;
   for (std::size_t j = 0; j < manifolds_.size(); ++j) {
     btPersistentManifold& m = *manifolds_[j];
-    const double g = gap(static_cast<int>(j));
+    const int jj = static_cast<int>(j);
+    const double g = system_.gap(jj, u_.data());
     added_[j] = 0;
-    if (g <= 0.0) {
-      btManifoldPoint p(btVector3(0, 0, 0), btVector3(0, 0, 0), btVector3(1, 0, 0), static_cast<btScalar>(g));
+    if (active(activation_, g, system_.gap_rate(jj, v_.data()), gamma_h_)) {
+      const auto distance = static_cast<btScalar>(std::min(g, 0.0));
+      btManifoldPoint p(btVector3(0, 0, 0), btVector3(0, 0, 0), btVector3(1, 0, 0), distance);
       // The point is each body's own origin, so rel_pos is exactly zero (no lever arm).
       p.m_positionWorldOnA = m.getBody0()->getWorldTransform().getOrigin();
       p.m_positionWorldOnB = m.getBody1()->getWorldTransform().getOrigin();

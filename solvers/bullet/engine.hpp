@@ -3,13 +3,17 @@
 //
 // A step is btDiscreteDynamicsWorld::internalSingleStepSimulation with the collision
 // detection replaced by the scene's known gaps:
-//   1. contacts   for each contact j with g_j <= 0 at the start of the step, its
+//   1. contacts   for each contact j that the variant's activation rule takes at the start
+//                 of the step (solvers/fixed_step.hpp), its
 //                 btPersistentManifold holds one btManifoldPoint: normal +x on the left
-//                 body (B) towards the right one (A), distance g_j, restitution and
+//                 body (B) towards the right one (A), distance min(g_j, 0), restitution and
 //                 friction as the variant sets them (friction never acts: see below). A point that persists from the last
 //                 step is refreshed with replaceContactPoint (which keeps its applied
 //                 impulse for warm starting, as Bullet's narrowphase does); a contact
-//                 whose gap has opened is cleared.
+//                 that the rule no longer takes is cleared. The distance of a point made
+//                 ahead of time (g_j > 0) is 0: Bullet reads a positive distance as a
+//                 speculative contact and lowers the row's target by distance / h, which
+//                 would mix a position-level look-ahead into Newton's law (README).
 //   2. forces     -k u - c v - m a_g(t_k) from the state at the start of the step
 //                 (applyCentralForce).
 //   3. solve      solveGroup(bodies, manifolds with a point) of the variant's solver: it
@@ -45,7 +49,7 @@ btContactSolverInfo solver_info(const Config& config, double h);
 class World {
  public:
   // u0, v0: one value per body, left to right.
-  World(const System& system, const Config& config, double h, const std::vector<double>& u0,
+  World(const System& system, const Config& config, double h, double gamma, const std::vector<double>& u0,
         const std::vector<double>& v0);
   ~World();
   World(const World&) = delete;
@@ -56,7 +60,6 @@ class World {
 
   double u(int i) const { return bodies_[ix(i)]->getWorldTransform().getOrigin().x(); }
   double v(int i) const { return bodies_[ix(i)]->getLinearVelocity().x(); }
-  double gap(int j) const;
   // Whether contact j had a manifold point in the last step, and whether it was new then.
   bool in_contact(int j) const { return manifolds_[ix(j)]->getNumContacts() > 0; }
   bool added(int j) const { return added_[ix(j)] != 0; }
@@ -70,6 +73,9 @@ class World {
 
   const System& system_;
   btContactSolverInfo info_;
+  Activation activation_;
+  double gamma_h_;                 // Settings::gamma h, for the predicted rule
+  std::vector<double> u_, v_;      // the state at the start of a step, per body
   std::vector<double> k_, c_, m_;  // per body
   std::unique_ptr<btCollisionShape> shape_;
   std::unique_ptr<btRigidBody> wall_;

@@ -1,10 +1,13 @@
 #pragma once
-// The six ways this project runs Bullet: a constraint solver (sequential impulse, or the
+// The seven ways this project runs Bullet: a constraint solver (sequential impulse, or the
 // MLCP solver with Dantzig's or Lemke's algorithm) times a configuration (faithful:
-// nothing but restitution shapes an impact; default: Bullet's own btContactSolverInfo
-// with only the restitution set, as a new user gets). Every value and the reason for it
-// are in solvers/bullet/README.md; the values themselves are set in one place,
-// solver_info() in engine.cpp, and describe() prints what that function returns.
+// nothing but restitution shapes an impact, contacts by the Moreau-Jean rule every faithful
+// time-stepper shares; default: Bullet's own btContactSolverInfo with only the restitution
+// set, contacts at overlap, as a new user gets), and si-overlap: sequential impulse,
+// faithful but for its contacts, made at overlap as Bullet's collision detection makes
+// them. Every value and the reason for it are in solvers/bullet/README.md; the solver
+// settings are set in one place, solver_info() in engine.cpp, and describe() prints what
+// that function returns.
 
 #include <optional>
 #include <span>
@@ -12,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "solvers/fixed_step.hpp"
 #include "solvers/named_values.hpp"
 #include "solvers/solver.hpp"
 
@@ -27,6 +31,8 @@ struct Config {
   std::string_view name;
   Engine engine = Engine::si;
   bool faithful = true;  // false: Bullet's btContactSolverInfo defaults, restitution per body
+  // When contact j has a manifold point in a step (solvers/fixed_step.hpp).
+  Activation activation = Activation::predicted;
 };
 
 // Sequential-impulse sweeps per step in the faithful configuration. A double contact of
@@ -37,7 +43,7 @@ inline constexpr int kFaithfulIterations = 100;
 
 inline constexpr std::string_view kDefaultVariant = "si-faithful";
 
-// si-faithful, si-default, mlcp-dantzig-faithful, mlcp-dantzig-default,
+// si-faithful, si-overlap, si-default, mlcp-dantzig-faithful, mlcp-dantzig-default,
 // mlcp-lemke-faithful, mlcp-lemke-default.
 std::span<const Config> variants();
 // The variant of that name; the empty name is kDefaultVariant.
@@ -45,9 +51,10 @@ std::optional<Config> find_variant(std::string_view name);
 // "a, b, c" for messages.
 std::string variant_names();
 
-// Every setting that shapes an impact (solver, iterations, ...), read back from the
-// solver info a run uses, for describe() after the variant and the step.
-void add_config(NamedValues& out, const Config& config);
+// Every setting that shapes an impact (solver, iterations, ..., the activation rule and the
+// gamma of settings where it uses one), read back from the solver info a run uses, for
+// describe() after the variant and the step.
+void add_config(NamedValues& out, const Config& config, const Settings& settings);
 
 // The named variants with one line each, made from their settings (`poundbench solvers`).
 std::vector<VariantInfo> variant_list();

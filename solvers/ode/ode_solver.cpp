@@ -35,12 +35,12 @@ Result fail(Status status, std::string message) {
 }
 
 // ODE behind the shared step loop (solvers/fixed_step.hpp): each step applies the springs,
-// dashpots and ground load of its start, makes the contact joints its detection rule asks
-// for from the gaps there, and lets ODE step.
+// dashpots and ground load of its start, makes the contact joints its activation rule asks
+// for from the gaps and rates there, and lets ODE step.
 class Engine : public StepEngine {
  public:
-  Engine(const System& sys, const Config& config, double h)
-      : StepEngine(sys), sys_(sys), config_(config), h_(h), joint_(ix(sys.n_contacts()), 0),
+  Engine(const System& sys, const Config& config, double h, double gamma)
+      : StepEngine(sys), sys_(sys), config_(config), h_(h), gamma_h_(gamma * h), joint_(ix(sys.n_contacts()), 0),
         feedback_(ix(sys.n_contacts()), dJointFeedback{}) {}
 
   // False when ODE could not make the world.
@@ -148,7 +148,7 @@ class Engine : public StepEngine {
     for (int j = 0; j < sys_.n_contacts(); ++j) {
       const auto jj = ix(j);
       const double g = sys_.gap(j, out_.u.data()), rate = sys_.gap_rate(j, out_.v.data());
-      const bool make = config_.detection == Detection::predicted ? g + h_ * rate <= 0.0 : g <= 0.0;
+      const bool make = active(config_.activation, g, rate, gamma_h_);
       out_.entered[jj] = make && !joint_[jj] ? 1 : 0;
       joint_[jj] = make ? 1 : 0;
       if (!make) continue;
@@ -164,6 +164,8 @@ class Engine : public StepEngine {
       // the x axis, so the angular rows of the Jacobian are exactly zero.
       c.geom.pos[0] = out_.u[ix(sys_.right(j))];
       c.geom.normal[0] = 1.0;
+      // A joint made ahead of time (g > 0) has depth 0: ODE's push-out term is then zero and
+      // the row is the bounce alone, lambda >= 0 (never a pull across the gap).
       c.geom.depth = std::max(0.0, -g);
       const dJointID joint = dJointCreateContact(world_.id(), world_.contacts(), &c);
       dJointAttach(joint, right, left == kWall ? nullptr : bodies_[ix(left)]);
@@ -189,6 +191,7 @@ class Engine : public StepEngine {
   const System& sys_;
   const Config& config_;
   double h_;
+  double gamma_h_;  // Settings::gamma h, for the predicted rule
   World world_;
   std::vector<dBodyID> bodies_;
   std::vector<char> joint_;                // a contact joint was made for the last step
@@ -203,7 +206,7 @@ Result run(const System& sys, const Settings& set, const Config& config) {
   StepPlan plan;
   if (Result r = plan_steps(sys, set, kDefaultSteps, kDefaultStepCap, plan); r.status != Status::ok) return r;
   if (!prepare_thread()) return fail(Status::failed, "ODE could not be initialised on this thread");
-  Engine engine(sys, config, plan.h);
+  Engine engine(sys, config, plan.h, set.gamma);
   if (!engine.start()) return fail(Status::failed, "ODE could not create a world");
   return run_steps(sys, set, plan, engine);
 }
@@ -234,17 +237,19 @@ std::string describe(const Settings& settings) {
   out.add("variant", config ? config->name : settings.variant);
   if (!config) return out.json();
   add_step(out, settings, kDefaultSteps);
-  add_config(out, *config);
+  add_config(out, *config, settings);
   return out.json();
 }
 
 std::string check(const Settings& settings) {
-  if (!find_variant(settings.variant)) {
+  const std::optional<Config> config = find_variant(settings.variant);
+  if (!config) {
     std::string known;
     for (const Config& c : variants()) known += (known.empty() ? "" : ", ") + std::string(c.name);
     return "variant: unknown '" + settings.variant + "' (known: " + known + ")";
   }
   if (std::string bad = check_step(settings, kDefaultSteps); !bad.empty()) return bad;
+  if (std::string bad = check_activation(config->activation, settings); !bad.empty()) return bad;
   return check_limits(settings);
 }
 

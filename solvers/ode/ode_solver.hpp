@@ -10,8 +10,9 @@
 //   forces    -k u - c v - m a_g(t) at the start of each step (dBodyAddForce); ODE then
 //             steps v += h/m (F + contact force), u += h v_new (semi-implicit Euler):
 //             explicit springs, stable only for w h below ~1.9 (README, large steps).
-//   contacts  no collision detection: for each contact of the scene whose gap passes the
-//             variant's test (variants.hpp) a dContactJoint with normal +x on the right
+//   contacts  no collision detection: for each contact of the scene that the variant's
+//             activation rule takes (solvers/fixed_step.hpp: faithful g + gamma h g' <= 0,
+//             default g <= 0) a dContactJoint with normal +x on the right
 //             body (the wall is the static environment), depth max(0, -g), mu 0, and
 //             dContactBounce with bounce = eps: ODE's Newton-type law, target separation
 //             speed eps times the approach speed at the start of the step.

@@ -11,7 +11,8 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // faithful: no push-out (ERP 0, and a zero cap on what push-out there could be), rigid
-// rows (CFM 0), bounce at every approach speed, contacts made before the gap closes.
+// rows (CFM 0), bounce at every approach speed, contacts made by the Moreau-Jean rule
+// (g + gamma h g' <= 0, the one every faithful time-stepper shares).
 // quickstep-faithful keeps ODE's SOR 1.3 and takes 50 sweeps: enough to converge the
 // two coupled contacts of row3 to round-off (see README).
 // default: ODE 0.16's world defaults in double precision (ERP 0.2, CFM 1e-10, no surface
@@ -19,10 +20,10 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // zero-initialised), and contacts only where the bodies overlap, as collision detection
 // would report them.
 constexpr std::array kVariants = {
-    Config{"dantzig-faithful", Stepper::dantzig, 20, 1.3, 0.0, 0.0, 0.0, 0.0, 0.0, Detection::predicted},
-    Config{"dantzig-default", Stepper::dantzig, 20, 1.3, 0.2, 1e-10, 0.0, 0.0, kInf, Detection::overlap},
-    Config{"quickstep-faithful", Stepper::quickstep, 50, 1.3, 0.0, 0.0, 0.0, 0.0, 0.0, Detection::predicted},
-    Config{"quickstep-default", Stepper::quickstep, 20, 1.3, 0.2, 1e-10, 0.0, 0.0, kInf, Detection::overlap},
+    Config{"dantzig-faithful", Stepper::dantzig, 20, 1.3, 0.0, 0.0, 0.0, 0.0, 0.0, Activation::predicted},
+    Config{"dantzig-default", Stepper::dantzig, 20, 1.3, 0.2, 1e-10, 0.0, 0.0, kInf, Activation::overlap},
+    Config{"quickstep-faithful", Stepper::quickstep, 50, 1.3, 0.0, 0.0, 0.0, 0.0, 0.0, Activation::predicted},
+    Config{"quickstep-default", Stepper::quickstep, 20, 1.3, 0.2, 1e-10, 0.0, 0.0, kInf, Activation::overlap},
 };
 
 }  // namespace
@@ -36,12 +37,12 @@ std::optional<Config> find_variant(std::string_view name) {
   return std::nullopt;
 }
 
-void add_config(NamedValues& out, const Config& config) {
+void add_config(NamedValues& out, const Config& config, const Settings& settings) {
   out.add("stepper", config.stepper == Stepper::dantzig ? "dantzig" : "quickstep");
   if (config.stepper == Stepper::quickstep) out.add("iterations", config.iterations).add("sor", config.sor);
   out.add("erp", config.erp).add("cfm", config.cfm).add("bounce_vel", config.bounce_vel);
   out.add("surface_layer", config.surface_layer).add("max_vel", config.max_vel);
-  out.add("contacts", config.detection == Detection::predicted ? "predicted" : "overlap");
+  add_activation(out, "contacts", config.activation, settings);
 }
 
 std::vector<VariantInfo> variant_list() {

@@ -10,17 +10,13 @@
 #include <string_view>
 #include <vector>
 
+#include "solvers/fixed_step.hpp"
 #include "solvers/named_values.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb::ode {
 
 enum class Stepper { dantzig, quickstep };
-
-// When a contact joint is made for a step, from the gap g and gap rate g' at its start.
-//   predicted: g + h g' <= 0, the gap would close within the step at the current rate
-//   overlap:   g <= 0, the bodies touch or overlap (what ODE's collision functions report)
-enum class Detection { predicted, overlap };
 
 struct Config {
   std::string_view name;
@@ -32,7 +28,9 @@ struct Config {
   double bounce_vel = 0.0;     // dSurfaceParameters::bounce_vel: no bounce at or below it
   double surface_layer = 0.0;  // dWorldSetContactSurfaceLayer: depth left uncorrected
   double max_vel = 0.0;        // dWorldSetContactMaxCorrectingVel: cap of the push-out
-  Detection detection = Detection::predicted;
+  // When a contact joint is made for a step (solvers/fixed_step.hpp): faithful, the
+  // Moreau-Jean rule g + gamma h g' <= 0; default, at overlap, as collision detection would.
+  Activation activation = Activation::predicted;
 };
 
 inline constexpr std::string_view kDefaultVariant = "dantzig-faithful";
@@ -42,9 +40,9 @@ std::span<const Config> variants();
 // The variant of that name; the empty name is kDefaultVariant.
 std::optional<Config> find_variant(std::string_view name);
 
-// Every setting of the configuration (stepper, ...), for describe() after the variant
-// and the step.
-void add_config(NamedValues& out, const Config& config);
+// Every setting of the configuration (stepper, ..., the activation rule and the gamma of
+// settings where it uses one), for describe() after the variant and the step.
+void add_config(NamedValues& out, const Config& config, const Settings& settings);
 
 // The named variants with one line each, made from their settings (`poundbench solvers`).
 std::vector<VariantInfo> variant_list();
