@@ -79,6 +79,8 @@ std::vector<VariantInfo> variant_list() {
     }
     line += c.faithful ? "; restitution eps alone (no push-out, threshold or warm start)"
                        : "; Bullet's btContactSolverInfo defaults, restitution the bodies' product";
+    line += c.activation == Activation::predicted ? "; contacts made before the gap closes (g + gamma h g' <= 0)"
+                                                  : "; contacts made once the bodies overlap";
     out.push_back({c.name, line});
   }
   return out;

@@ -54,7 +54,7 @@ std::vector<VariantInfo> variant_list() {
     else
       line << "dWorldQuickStep (" << c.iterations << " Gauss-Seidel sweeps, SOR " << c.sor << ")";
     line << "; ERP " << c.erp << ", CFM " << c.cfm << "; contacts "
-         << (c.detection == Detection::predicted ? "made before the gap closes" : "made once the bodies overlap");
+         << (c.activation == Activation::predicted ? "made before the gap closes (g + gamma h g' <= 0)" : "made once the bodies overlap");
     out.push_back({c.name, line.str()});
   }
   return out;
