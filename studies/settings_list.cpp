@@ -214,7 +214,7 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
     std::vector<std::size_t> at(axes.size(), 0);
     for (const std::string& variant : variants)
       for (std::size_t n = 0; n < product / variants.size(); ++n) {
-        RunSpec spec{solver, {}};
+        SweepRun spec{info, {}};
         spec.settings.variant = variant;
         spec.settings.monitor = monitor;
         for (std::size_t a = 0; a < axes.size(); ++a) {

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "solvers/solver.hpp"
+#include "sweep/sweep.hpp"
 
 namespace pb {
 
@@ -42,17 +43,13 @@ struct SettingsListError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-struct RunSpec {
-  std::string solver;
-  Settings settings;
-};
 
 struct SettingsList {
   std::string name;
   std::string description;
   double reference_tol_scale = 0.01;
   double reference_time_limit = 0;  // seconds of wall time per truth run; 0 = none
-  std::vector<RunSpec> runs;
+  std::vector<SweepRun> runs;  // each with one timed solve; a study sets its repetitions
 };
 
 SettingsList parse_settings_list(std::string_view toml_text, std::string_view source_name);

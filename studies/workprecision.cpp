@@ -23,8 +23,8 @@ std::vector<SweepRun> study_runs(const SettingsList& list, const StudyOptions& s
   truth.settings.tol_scale = list.reference_tol_scale;
   truth.settings.time_limit = list.reference_time_limit;
   runs.push_back(truth);
-  for (const RunSpec& run : list.runs) {
-    runs.push_back({find_solver(run.solver), run.settings, study.repetitions});
+  for (const SweepRun& run : list.runs) {
+    runs.push_back({run.solver, run.settings, study.repetitions});
     runs.back().settings.monitor = study.monitor && run.settings.monitor;
   }
   return runs;
@@ -41,7 +41,7 @@ WorkPrecision work_precision_of(std::span<const Case> cases, const SettingsList&
 
   const std::vector<std::string> families = families_in_order(cases);
   for (std::size_t k = 0; k < list.runs.size(); ++k) {
-    const RunSpec& run = list.runs[k];
+    const SweepRun& run = list.runs[k];
     const std::span<const Row> run_rows = std::span<const Row>(wp.points).subspan(k * n, n);
     for (const std::string& family : families) {
       std::vector<const Row*> mine;
@@ -51,8 +51,8 @@ WorkPrecision work_precision_of(std::span<const Case> cases, const SettingsList&
         mine.push_back(&r);
         ref.push_back(reference[r.point]);
       }
-      wp.table.push_back({family, run.solver, run.settings.variant,
-                          find_solver(run.solver)->describe(run.settings), summarize(mine, ref)});
+      wp.table.push_back({family, std::string(run.solver->name), run.settings.variant,
+                          run.solver->describe(run.settings), summarize(mine, ref)});
     }
   }
   // Table rows grouped by family, settings in list order within each.

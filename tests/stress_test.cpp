@@ -38,7 +38,7 @@ SettingsList moreau_jean_at(double theta, std::initializer_list<double> whs) {
   SettingsList list;
   list.reference_tol_scale = 1.0;  // the reference as users run it is what is checked here
   for (double wh : whs) {
-    RunSpec run{"moreau-jean", {}};
+    SweepRun run{find_solver("moreau-jean"), {}};
     run.settings.theta = theta;
     run.settings.wh = wh;
     list.runs.push_back(run);
