@@ -45,7 +45,7 @@ class NewmarkEngine final : public StepEngine {
     f_.assign(nb, 0.0);
     vm_.assign(ix(nc_), 0.0);
     closed_.assign(ix(nc_), 0);
-    for (int j = 0; j < nc_; ++j) closed_[ix(j)] = el_.closed(j) ? 1 : 0;
+    onset_rates();
     // The start's acceleration from the equation of motion itself.
     forces(out_.u, out_.v);
     const double ag = sys.pulse.accel(0.0);
@@ -60,7 +60,7 @@ class NewmarkEngine final : public StepEngine {
     std::vector<double>& v = out_.v;
     un_ = u;
     vn_ = v;
-    for (int j = 0; j < nc_; ++j) vm_[ix(j)] = el_.closed(j) ? el_.v_minus(j) : el_.onset_rate(el_.q(j, vn_.data()));
+    onset_rates();
     const double t1 = static_cast<double>(k + 1) * h_;
     const double ag = sys_.pulse.sample(t1, h_);
     const double c_a = 4.0 / (h_ * h_), c_v = 2.0 / h_;
@@ -130,6 +130,13 @@ class NewmarkEngine final : public StepEngine {
   }
 
  private:
+  // The approach rate each contact's element takes: its own if closed, else the rate at the
+  // step's start (out_.v), should it close in the step.
+  void onset_rates() {
+    for (int j = 0; j < nc_; ++j)
+      vm_[ix(j)] = el_.closed(j) ? el_.v_minus(j) : el_.onset_rate(el_.q(j, out_.v.data()));
+  }
+
   // The element forces on the bodies at (u, v), closing the elements whose penetration is
   // positive there.
   void forces(const std::vector<double>& u, const std::vector<double>& v) {
