@@ -78,6 +78,14 @@ struct Facts {
   double time_limit_bound;
   // Fails (status failed, the message naming eps) where its model has no element for eps.
   bool refuses_plastic = false;
+  // Settings::integrator and stiffness, for a solver that has them ("", 0: its defaults).
+  std::string_view integrator = "";
+  double stiffness = 0.0;
+  // A failure the solver documents wherever it happens: a substring of its message.
+  std::string_view documented_failure = "";
+  // Its Pi1 converges to its own model's, not to the rigid reference's: the same solver
+  // with these settings and `integrator`, at a tight tolerance, is its reference.
+  std::string_view own_reference_integrator = "";
 };
 
 // Measured restitution errors are on the wall cases of the restitution test (eps 0, 0.5, 1,
@@ -137,6 +145,15 @@ const std::vector<Facts>& facts_table() {
       // Hunt-Crossley's and Jankowski's damping grows without bound as eps -> 0: both refuse eps = 0.
       {"compliant", "hunt-crossley", false, 0.15, 0.0, false, failed, diverged, false, 1, 0.5, true},
       {"compliant", "jankowski", false, 0.15, 0.0, false, failed, diverged, false, 1, 0.5, true},
+      // Kelvin-Voigt through Newmark at K = 10 (a contact of ~T0 / 3: resolved from about
+      // N = 16). Its error is against CVODE on the same element (rigid impacts are another
+      // model): drops 29, 1.5 (the step-granular onset holds it near first order). So long a
+      // contact lets the bodies' springs act during it: |e - eps| measured up to 0.36.
+      // Newton's iteration may not converge where a step does not resolve a contact (48 of
+      // the 160 smoke runs at N = 4..64): a documented failure, saying where
+      // (solvers/compliant/README.md).
+      {"compliant", "kelvin-voigt", true, 0.4, 1.3, false, failed, diverged, false, 1, 0.5, false, "newmark", 10.0,
+       "Newton's iteration", "cvode"},
   };
   return table;
 }
@@ -168,13 +185,15 @@ std::vector<Subject> subjects(bool time_steppers_only) {
 std::string subject_name(const testing::TestParamInfo<Subject>& info) {
   std::string n = std::string(info.param.solver->name);
   if (!info.param.facts->variant.empty()) n += "_" + std::string(info.param.facts->variant);
+  if (!info.param.facts->integrator.empty()) n += "_" + std::string(info.param.facts->integrator);
   for (char& ch : n)
     if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
   return n;
 }
 
 void PrintTo(const Subject& s, std::ostream* out) {
-  *out << s.solver->name << (s.facts->variant.empty() ? "" : " --variant ") << s.facts->variant;
+  *out << s.solver->name << (s.facts->variant.empty() ? "" : " --variant ") << s.facts->variant
+       << (s.facts->integrator.empty() ? "" : " --integrator ") << s.facts->integrator;
 }
 
 class Contract : public testing::TestWithParam<Subject> {
@@ -186,6 +205,8 @@ class Contract : public testing::TestWithParam<Subject> {
   Settings settings() const {
     Settings st;
     st.variant = GetParam().variant();
+    st.integrator = facts().integrator;
+    st.stiffness = facts().stiffness;
     return st;
   }
   Result solve(const System& s, const Settings& st) const { return solver().solve(s, st); }
@@ -328,9 +349,10 @@ Result reference(const System& s) {
   return ref ? ref->solve(s, Settings{}) : Result{};
 }
 
-// Whether the solver documents a failure on this case: where contact persists, or a model
-// without a plastic element at eps = 0.
-bool may_fail(const Facts& f, const Case& c) {
+// Whether the solver documents this failure on this case: where contact persists, a model
+// without a plastic element at eps = 0, or a failure it documents wherever it happens.
+bool may_fail(const Facts& f, const Case& c, const std::string& message) {
+  if (!f.documented_failure.empty() && message.find(f.documented_failure) != std::string::npos) return true;
   if (f.refuses_plastic && c.eps == 0.0) return true;
   return f.fails_where_contact_persists && reference(make_system(c)).contact_phases > 0;
 }
@@ -353,7 +375,7 @@ TEST_P(SolverContract, SmokeSetEndsOkWithFinitePi1ButForDocumentedFailures) {
     for (const Row& row : rows) {
       const Case& c = cases[row.point];
       const std::string what = c.family + " pi2=" + std::to_string(c.pi2) + " N=" + std::to_string(n);
-      if (row.result.status == Status::failed && may_fail(facts(), c)) {
+      if (row.result.status == Status::failed && may_fail(facts(), c, row.result.message)) {
         EXPECT_FALSE(row.result.message.empty()) << what;
         ++documented;
         continue;
@@ -444,7 +466,7 @@ TEST_P(SolverContract, IsolatedWallImpactsRestituteEpsWithinTheStatedTolerance) 
     for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
       const Case c = make_case(Scene::wall, p, 1.0, 1.0, eps);
       const Result r = solve(make_system(c));
-      if (r.status == Status::failed && may_fail(facts(), c)) continue;
+      if (r.status == Status::failed && may_fail(facts(), c, r.message)) continue;
       ASSERT_EQ(r.status, Status::ok) << r.message;
       isolated += r.isolated_impacts;
       if (r.isolated_impacts == 0) continue;
@@ -509,26 +531,42 @@ TEST_P(SolverContract, SweepGoesOnPastADivergingPoint) {
 
 // Mean relative Pi1 error over wall and pair cases with impacts, N = 16, 64, 256: it must
 // fall at each quadrupling of N (a first-order scheme divides it by ~4; where impacts fall
-// in their steps moves one case's error, so the mean over cases is what is compared).
+// in their steps moves one case's error, so the mean over cases is what is compared). The
+// error is against the rigid reference, or against the solver's own model where the facts
+// name one; a case where the solver ends with a failure it documents is left out.
 TEST_P(TimeStepperContract, Pi1ErrorAgainstTheReferenceFallsAsNGrows) {
   const std::vector<int> ns = {16, 64, 256};
   std::vector<double> mean(ns.size(), 0.0);
   int cases = 0;
   for (Scene scene : {Scene::wall, Scene::pair})
     for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
-      const System s = make_system(make_case(scene, p, 1.0, 0.5, 0.5));
-      const Result ref = reference(s);
+      const Case c = make_case(scene, p, 1.0, 0.5, 0.5);
+      const System s = make_system(c);
+      Result ref = reference(s);
       ASSERT_EQ(ref.status, Status::ok) << ref.message;
       ASSERT_GT(ref.impacts, 0);
-      ++cases;
-      for (std::size_t i = 0; i < ns.size(); ++i) {
-        Settings st = settings();
-        st.steps = ns[i];
-        const Result r = solve(s, st);
-        ASSERT_EQ(r.status, Status::ok) << r.message;
-        mean[i] += std::abs(r.pi1 - ref.pi1) / ref.pi1;
+      if (!facts().own_reference_integrator.empty()) {
+        Settings own = settings();
+        own.integrator = facts().own_reference_integrator;
+        own.rtol = 1e-11;
+        ref = solve(s, own);
+        ASSERT_EQ(ref.status, Status::ok) << ref.message;
       }
+      std::vector<double> errors;
+      for (int n : ns) {
+        Settings st = settings();
+        st.steps = n;
+        const Result r = solve(s, st);
+        if (r.status == Status::failed && may_fail(facts(), c, r.message)) break;
+        ASSERT_EQ(r.status, Status::ok) << r.message;
+        errors.push_back(std::abs(r.pi1 - ref.pi1) / ref.pi1);
+      }
+      if (errors.size() < ns.size()) continue;
+      ++cases;
+      for (std::size_t i = 0; i < ns.size(); ++i) mean[i] += errors[i];
     }
+  RecordProperty("cases", std::to_string(cases));
+  ASSERT_GE(cases, 3) << "a documented failure left too few cases to compare";
   for (double& m : mean) m /= cases;
   for (std::size_t i = 0; i < ns.size(); ++i) RecordProperty("mean_error_N" + std::to_string(ns[i]), sci(mean[i]));
   for (std::size_t i = 1; i < ns.size(); ++i)
@@ -541,7 +579,8 @@ TEST_P(TimeStepperContract, Pi1ErrorAgainstTheReferenceFallsAsNGrows) {
 // with every count so far; an implicit scheme runs to the end. Below the limit (w h = 0.5)
 // every scheme runs to the end.
 TEST_P(TimeStepperContract, StepsPastTheStabilityLimitDivergeWithAStatusOrRunToTheEnd) {
-  const System s = make_system(make_case(Scene::pair, PulseShape::sine, 1.0, 0.01, 0.5));
+  const Case c = make_case(Scene::pair, PulseShape::sine, 1.0, 0.01, 0.5);
+  const System s = make_system(c);
   for (double wh : {10.0, 100.0}) {
     Settings st = settings();
     st.wh = wh;
@@ -555,7 +594,7 @@ TEST_P(TimeStepperContract, StepsPastTheStabilityLimitDivergeWithAStatusOrRunToT
       EXPECT_TRUE(std::isfinite(r.energy_excess)) << "wh=" << wh;
       EXPECT_GT(r.energy_excess, 1e3) << "a runaway makes energy";
       EXPECT_TRUE(std::isnan(r.pi1));
-    } else {
+    } else if (!(r.status == Status::failed && may_fail(facts(), c, r.message))) {
       EXPECT_EQ(r.status, Status::ok) << "wh=" << wh << ": " << r.message;
       EXPECT_TRUE(std::isfinite(r.pi1));
     }
