@@ -136,6 +136,7 @@ std::vector<std::string_view> settings_used(const SolverInfo& solver, std::strin
     if (field.number) other.*field.number += 1.0;
     if (field.integer) other.*field.integer += 1;
     if (field.count) other.*field.count += 1;
+    if (field.text) other.*field.text += "?";
     if (solver.describe(other) != described) used.push_back(field.name);
   }
   return used;

@@ -79,8 +79,9 @@ std::string describe(const Settings& settings) {
     out.add("integrator", "newmark");
     add_step(out, settings, kDefaultSteps);
   } else {
-    out.add("integrator", "cvode");
-    out.add("method", is_adams(settings) ? "adams" : "bdf");
+    // The names as given (a row records what was asked, as for an unknown variant).
+    out.add("integrator", settings.integrator.empty() ? "cvode" : std::string_view(settings.integrator));
+    out.add("method", settings.method.empty() ? "bdf" : std::string_view(settings.method));
     out.add("rtol", settings.rtol > 0.0 ? settings.rtol : kDefaultRtol);
   }
   return out.json();
