@@ -50,7 +50,8 @@ std::string check(const Settings& settings) {
   }
   if (!(settings.rtol >= 0.0 && settings.rtol < 1.0)) return "rtol: must be in (0, 1) (0: the default 1e-8)";
   if (settings.rtol > 0.0 && settings.rtol < 1e-14) return "rtol: below 1e-14 is below double precision's round-off";
-  if (settings.steps != 0 || settings.wh != 0.0) return "steps: the cvode integrator chooses its own steps (--rtol)";
+  if (settings.steps != 0) return "steps: the cvode integrator chooses its own steps (--rtol)";
+  if (settings.wh != 0.0) return "wh: the cvode integrator chooses its own steps (--rtol)";
   return {};
 }
 

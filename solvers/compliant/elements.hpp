@@ -32,10 +32,6 @@ class Elements {
     if (!closed(j)) return 0.0;
     return laws_[ix(j)].force(p(j, u), q(j, v), v_minus_[ix(j)]);
   }
-  void slopes(int j, const double* u, const double* v, double& dp, double& dq) const {
-    dp = dq = 0.0;
-    if (closed(j)) laws_[ix(j)].slopes(p(j, u), q(j, v), v_minus_[ix(j)], dp, dq);
-  }
   // The element of contact j, and the approach rate its contact began with.
   const Law& law(int j) const { return laws_[ix(j)]; }
   double v_minus(int j) const { return v_minus_[ix(j)]; }
