@@ -36,7 +36,7 @@ struct SettingField {
   }
 };
 
-inline constexpr std::array<SettingField, 11> kSettingFields = {{
+inline constexpr std::array<SettingField, 12> kSettingFields = {{
     {"steps", nullptr, &Settings::steps, nullptr,
      "Time-steppers: steps per shortest period N, h = T_min/N (0: default)"},
     {"wh", &Settings::wh, nullptr, nullptr,
@@ -53,6 +53,10 @@ inline constexpr std::array<SettingField, 11> kSettingFields = {{
     {"rtol", &Settings::rtol, nullptr, nullptr, "Compliant with cvode: relative tolerance (0: default)"},
     {"integrator", nullptr, nullptr, nullptr, "Compliant: cvode or newmark (default: cvode)", &Settings::integrator},
     {"method", nullptr, nullptr, nullptr, "Compliant with cvode: bdf or adams (default: bdf)", &Settings::method},
+    {"contact", nullptr, nullptr, nullptr,
+     "Event-driven: rigid (default) or kelvin-voigt, the compliant solver's Kelvin-Voigt model solved exactly "
+     "(with --stiffness)",
+     &Settings::contact},
 }};
 
 // The index of a field in kSettingFields by its name, if there is one.

@@ -14,6 +14,8 @@
 
 #include "solvers/event_driven/frame.hpp"
 #include "solvers/event_driven/impact.hpp"
+#include "solvers/compliant/contact_law.hpp"
+#include "solvers/event_driven/kelvin_voigt.hpp"
 #include "solvers/event_driven/search.hpp"
 #include "solvers/lcp/lemke.hpp"
 #include "solvers/named_values.hpp"
@@ -47,6 +49,7 @@ Tolerances tolerances(const System& s, double scale) {
 // sets; longer ones take Lemke's proposal (DERIVATION.md §4).
 constexpr int kEnumerateLimit = 8;
 bool known_variant(std::string_view v) { return v.empty() || v == kLemkeVariant; }
+bool kelvin_voigt(const Settings& s) { return s.contact == kKelvinVoigtContact; }
 
 // True when the first coefficient that is not negligible is positive.
 bool lex_nonnegative(const double* c, int n, double scale, double rate, double tol) {
@@ -521,6 +524,7 @@ Result solve(const System& system, const Settings& settings) {
     r.message = "variant: unknown '" + clip(settings.variant) + "'";
     return r;
   }
+  if (kelvin_voigt(settings)) return solve_kelvin_voigt(system, settings);
   try {
     return Solver(system, settings).run();
   } catch (const std::exception& e) {
@@ -552,7 +556,12 @@ void check_result(const System& s, double tol_scale, Result& r) {
 }
 
 std::string describe(const Settings& settings) {
-  return NamedValues().add("tol_scale", settings.tol_scale).json();
+  NamedValues out;
+  out.add("tol_scale", settings.tol_scale);
+  if (kelvin_voigt(settings))
+    out.add("contact", settings.contact)
+        .add("stiffness", settings.stiffness > 0.0 ? settings.stiffness : compliant::kDefaultStiffness);
+  return out.json();
 }
 
 std::vector<VariantInfo> variant_list() {
@@ -572,6 +581,14 @@ std::string check(const Settings& settings) {
   if (settings.wh != 0.0) return "wh: the event-driven solver takes no step";
   if (!known_variant(settings.variant))
     return "variant: the event-driven solver has the default (empty) and \"lemke\"";
+  if (!settings.contact.empty() && settings.contact != "rigid" && !kelvin_voigt(settings))
+    return "contact: unknown '" + clip(settings.contact) + "' (known: rigid, kelvin-voigt)";
+  if (!(settings.stiffness >= 0.0) || !std::isfinite(settings.stiffness))
+    return "stiffness: must be finite and > 0 (0: the default)";
+  if (!kelvin_voigt(settings) && settings.stiffness != 0.0)
+    return "stiffness: only with --contact kelvin-voigt (rigid contact has none)";
+  if (kelvin_voigt(settings) && !settings.variant.empty())
+    return "variant: the Kelvin-Voigt reference has none (its contacts need no LCP)";
   return {};
 }
 

@@ -1,0 +1,619 @@
+#include "solvers/event_driven/kelvin_voigt.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <exception>
+#include <limits>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "solvers/compliant/contact_law.hpp"
+#include "solvers/compliant/elements.hpp"
+#include "solvers/fixed_step.hpp"
+#include "solvers/monitor.hpp"
+
+namespace pb::event_driven {
+
+namespace {
+
+using Eigen::MatrixXcd;
+using Eigen::MatrixXd;
+using Eigen::VectorXcd;
+using Eigen::VectorXd;
+
+std::size_t ix(int i) { return static_cast<std::size_t>(i); }
+
+// Stretches per period of a mode's fastest motion at the start of a mode; then each stretch
+// proven with room to spare doubles the next, and each one halved halves it. Measured on the
+// work-precision set at K = 1e2 and 1e6: 8, 16 and 32 cost the same CPU to within 4% (32
+// takes 6% fewer stretches than 16, each dearer where a mode is new).
+constexpr int kStretchesPerPeriod = 16;
+// Stretch lengths are the mode's base length times 2^-level, level in [kMinLevel, kMaxLevel];
+// the floor (1e-13 T_min) stops the halving first.
+constexpr int kMinLevel = -30;
+constexpr int kMaxLevel = 70;
+// Settings::step_cap counts stretches; without one, 1e8 (about a minute; the runs of the
+// shipped sets take 1e3 to 2e4).
+constexpr long kDefaultStretchCap = 100'000'000;
+// A level's matrix is computed once it has been used this often; before, and only for a
+// stretch with |D a D^-1| h <= kTaylorNorm, its increment is summed on the vector (at most
+// kMaxTaylorTerms terms: 0.5^18 / 18! is below an ulp).
+constexpr int kCacheAfter = 4;
+constexpr double kTaylorNorm = 0.5;
+constexpr int kMaxTaylorTerms = 24;
+// The modal bound rests on the computed eigenvectors: beyond this condition number their
+// round-off could eat its margin (kBoundMargin), and the plain bound is used instead.
+constexpr double kMaxModalCondition = 1e6;
+// Every fourth-derivative bound is doubled: the modal one is computed in floating point.
+constexpr double kBoundMargin = 2.0;
+// The round-off of a tracked function's value, in ulps of the sum of its terms' sizes.
+constexpr double kNoise = 64 * std::numeric_limits<double>::epsilon();
+// A stretch proven with this factor of room in every check (as its bound would be at twice
+// the length, 2^4) lets the next one double.
+constexpr double kEasyRoom = 16.0;
+
+// The least and largest value on [0, h] of the cubic Hermite interpolant through (f0, d0)
+// at 0 and (f1, d1) at h, plus bend s^2 (0: the interpolant itself), and where they are.
+struct Range {
+  double lo, hi;
+  double t_lo, t_hi;
+};
+
+Range hermite_range(double f0, double d0, double f1, double d1, double h, double bend = 0.0) {
+  // In tau = s / h: f0 + b tau + c tau^2 + d tau^3, whose rate is b + 2 c tau + 3 d tau^2.
+  const double b = h * d0, c = 3.0 * (f1 - f0) - h * (2.0 * d0 + d1) + bend * h * h, d = 2.0 * (f0 - f1) + h * (d0 + d1);
+  const double end = f1 + bend * h * h;
+  Range r{std::min(f0, end), std::max(f0, end), f0 <= end ? 0.0 : h, f0 >= end ? 0.0 : h};
+  const auto visit = [&](double tau) {
+    if (!(tau > 0.0 && tau < 1.0)) return;
+    const double v = f0 + tau * (b + tau * (c + tau * d));
+    if (v < r.lo) r.lo = v, r.t_lo = tau * h;
+    if (v > r.hi) r.hi = v, r.t_hi = tau * h;
+  };
+  const double qa = 3.0 * d, qb = 2.0 * c, qc = b;
+  if (qa == 0.0) {
+    if (qb != 0.0) visit(-qc / qb);
+    return r;
+  }
+  const double disc = qb * qb - 4.0 * qa * qc;
+  if (disc < 0.0) return r;
+  const double q = -0.5 * (qb + std::copysign(std::sqrt(disc), qb));
+  visit(q / qa);
+  if (q != 0.0) visit(qc / q);
+  return r;
+}
+
+// The motion with one set of closed elements. The state is y = (x, x', l): the positions x
+// are the gaps, and body 0's displacement where no wall fixes the row; l = (1, sin w_p t,
+// cos w_p t) are the load's states, with l' = L l, so that a_g(t) is a fixed combination of
+// l and y' = A y holds between contact changes. The gaps are states, not differences of
+// displacements, and a stretch adds its increment (exp(A h) - I) y: so a gap is resolved to
+// the round-off of its own size, not of the displacements it is made of. Without this a gap
+// that drifts at 2e-6 a_p / w_p past the hysteresis threshold moved by less than an ulp of u
+// per stretch, and the search for its crossing halved without end (K = 1e6, pair).
+struct Mode {
+  MatrixXd rows;      // [W; W a]: the tracked functions' values and rates from y
+  VectorXd scale;     // D: lengths over L, speeds over L w (w the mode's fastest frequency)
+  MatrixXd balanced;  // D a D^-1, whose exponential loses no digits to mixed scales
+  double base = 0;    // the stretch length at level 0
+  // Fourth derivatives, modal bound: with D a D^-1 = V diag(lambda) V^-1 and c = V^-1 D y,
+  // |f_j''''(s)| <= sum_k |g_jk| |lambda_k|^4 |c_k| e^(growth s) (= modal_bound |c| e^(growth s)),
+  // g = W D^-1 V, growth the largest real part if positive (a body on a negative spring; 0
+  // for every physical case, whose modes decay or keep their amplitude). Each mode is charged
+  // at its own frequency, so the bodies' slow motion is not charged at a stiff element's.
+  bool modal = false;
+  double growth = 0;
+  MatrixXcd v_inv;
+  MatrixXd modal_bound;
+  // Near-defective pairs of modes (close eigenvalues: a critically damped element, eps = 0)
+  // have large coefficients of opposite signs; for them the sum and the divided difference,
+  //   g1 c1 l1^4 e^(l1 s) + g2 c2 l2^4 e^(l2 s) = (g1 c1 + g2 c2) l1^4 e^(l1 s)
+  //                                              + g2 c2 (l2^4 e^(l2 s) - l1^4 e^(l1 s)),
+  // |l2^4 e^(l2 s) - l1^4 e^(l1 s)| <= |l2 - l1| (4 M^3 + M^4 s e^(-sigma s)), bound what the
+  // modes do together (M the larger modulus, -sigma the larger real part, times e^(growth s)
+  // as above), where the modal bound alone charges each huge coefficient in full. The
+  // smaller of the two is used.
+  struct Pair {
+    int k1, k2;
+    double m, gap, reach;  // M, |l2 - l1|, max of s e^(-sigma s) over s >= 0 (1 / (e sigma))
+  };
+  std::vector<Pair> pairs;
+  MatrixXcd g;  // W D^-1 V
+  // The plain bound, |f_j''''(s)| <= plain(j) exp(norm s) |D y|_inf: where modal is false;
+  // norm = |D a D^-1|_inf.
+  VectorXd plain;
+  double norm = 0;
+  // Per level: exp(a h 2^-level) - I, computed directly (not by squaring, so that each level is
+  // as exact as the first) once the level has been used kCacheAfter times; how often it was.
+  std::vector<MatrixXd> levels;
+  std::vector<int> uses;
+};
+
+class KelvinVoigt {
+ public:
+  KelvinVoigt(const System& s, const Settings& set, double K)
+      : s_(s),
+        n_(s.n_bodies()),
+        nc_(s.n_contacts()),
+        nf_(s.n_contacts() + 1),
+        m_(2 * s.n_bodies() + kLoadStates),
+        elements_(s, compliant::Model::kelvin_voigt, K),
+        L_(s.length_scale()),
+        slack_(1e-13 * set.tol_scale * L_),
+        floor_(std::max(1e-13 * set.tol_scale * s.t_min, 8.0 * std::numeric_limits<double>::epsilon() * s.t_end)),
+        cap_(set.step_cap > 0 ? set.step_cap : kDefaultStretchCap),
+        deadline_(set),
+        samples_(std::max(set.history_samples, 0)),
+        y_(VectorXd::Zero(m_)),
+        fa_(2 * nf_),
+        fb_(2 * nf_),
+        b4_(nf_),
+        noise_(nf_),
+        size_(m_),
+        abs_y_(m_),
+        bodies_(m_),
+        term_(m_),
+        sum_(m_),
+        scratch_(m_),
+        yc_(m_),
+        c_(m_),
+        range_(ix(nf_)),
+        error_(ix(nf_)) {
+    VectorXd start = VectorXd::Zero(m_);
+    for (int i = 0; i < n_; ++i) {
+      start(i) = s.u_start.size() == ix(n_) ? s.u_start[ix(i)] : 0.0;
+      start(n_ + i) = s.v_start.size() == ix(n_) ? s.v_start[ix(i)] : 0.0;
+    }
+    start(2 * n_) = 1.0;      // the constant
+    start(2 * n_ + 2) = 1.0;  // cos(w_p t) at t = 0 (sin is 0)
+    // The change of coordinates: gap j = delta + u_right - u_left (and its rate), then u of
+    // body 0 where there is no wall (n positions either way); the load's states as they are.
+    to_gaps_ = MatrixXd::Identity(m_, m_);
+    for (int half : {0, n_}) {
+      to_gaps_.block(half, 0, n_, n_).setZero();
+      for (int j = 0; j < nc_; ++j) {
+        to_gaps_(half + j, half + s.right(j)) = 1.0;
+        if (s.left(j) != kWall) to_gaps_(half + j, half + s.left(j)) = -1.0;
+      }
+      if (!s.wall) to_gaps_(half + nc_, half + s.ref) = 1.0;
+    }
+    for (int j = 0; j < nc_; ++j) to_gaps_(j, 2 * n_) = s.delta;
+    to_bodies_ = to_gaps_.inverse();
+    y_ = to_gaps_ * start;
+    for (int k = 0; k <= kMaxLevel - kMinLevel; ++k) buf_.emplace_back(m_);
+    // The tracked functions: the gaps, then u of body 0. W y is their value.
+    w_ = MatrixXd::Zero(nf_, m_);
+    for (int j = 0; j < nc_; ++j) w_(j, j) = 1.0;
+    w_.row(nc_) = to_bodies_.row(s.ref);
+    w_abs_ = w_.cwiseAbs();
+    best_u_ = std::abs(w_.row(nc_).dot(y_));
+    if (samples_ > 0) {
+      result_.history.n_bodies = n_;
+      result_.history.n_contacts = nc_;
+    }
+  }
+
+  Result run() {
+    const double t_pulse = s_.pulse.duration();
+    Mode* mode = &mode_for_closed();
+    record_samples(0.0, y_, *mode);
+    while (t_ < s_.t_end) {
+      const double stop = t_ < t_pulse && t_pulse < s_.t_end ? t_pulse : s_.t_end;
+      const double t0 = t_;
+      top_ = y_;
+      int changed;
+      if (t_ + length(*mode, level_) < stop) {
+        changed = stretch(*mode, level_, 0, nullptr);
+        level_ = std::clamp(level_ + (halved_ ? 1 : easy_ ? -1 : 0), kMinLevel, kMaxLevel);
+      } else {  // the last stretch before the pulse's end or t_end: exactly that long
+        Clip clip{stop - t_, {}, {}};
+        changed = stretch(*mode, 0, 0, &clip);
+        if (changed < 0) t_ = stop;  // exactly, whatever the halves summed to
+      }
+      record_samples(t0, top_, *mode);
+      if (changed >= 0) {
+        const double q = -y_(n_ + changed);
+        if (elements_.closed(changed)) elements_.open(changed, q);
+        else elements_.close(changed, q);
+        mode = &mode_for_closed();
+        level_ = 0;
+        ++events_;
+      } else if (t_ == t_pulse) {
+        y_(2 * n_ + 1) = y_(2 * n_ + 2) = 0.0;  // no load after the pulse
+      }
+      if (!y_.allFinite()) return stopped(Status::nan, "non-finite state at t = " + std::to_string(t_));
+      bodies_.noalias() = to_bodies_ * y_;
+      if (const char* why = runaway(s_, bodies_.data(), bodies_.data() + n_))
+        return stopped(Status::diverged, std::string(why) + " at t = " + std::to_string(t_));
+      if (deadline_.tick()) return stopped(Status::time_limit, deadline_.reason() + " at t = " + std::to_string(t_));
+    }
+    finish();
+    result_.pi1 = s_.pi1(best_u_);
+    result_.t_max = t_max_;
+    return std::move(result_);
+  }
+
+ private:
+  static constexpr int kLoadStates = 3;
+
+  // A stretch cut to end exactly at the pulse's end or t_end: its own exponentials.
+  struct Clip {
+    double h;
+    std::vector<MatrixXd> levels;
+    std::vector<int> uses;
+  };
+
+  static double length(const Mode& md, int level) { return std::ldexp(md.base, -level); }
+
+  // exp(a h) - I, each entry to the round-off of its own size: from exp([[M, I], [0, 0]]) =
+  // [[exp(M), phi1(M)], [0, I]] with M = D a D^-1 h, as M phi1(M), unbalanced.
+  static MatrixXd increment(const Mode& md, double h) {
+    const Eigen::Index m = md.balanced.rows();
+    MatrixXd big = MatrixXd::Zero(2 * m, 2 * m);
+    big.topLeftCorner(m, m) = md.balanced * h;
+    big.topRightCorner(m, m).setIdentity();
+    const MatrixXd e = big.exp();
+    return md.scale.cwiseInverse().asDiagonal() * (big.topLeftCorner(m, m) * e.topRightCorner(m, m)) *
+           md.scale.asDiagonal();
+  }
+
+  // The increment over a stretch of level k, (exp(a h) - I) y_, into out: by the level's matrix
+  // once it is used often, else, for a short stretch, by the Taylor series of the exponential
+  // on the vector (a few products with D a D^-1, where the matrix would cost an exponential
+  // of twice the size: a search for a contact change visits some 45 levels once each).
+  void advance(const Mode& md, std::vector<MatrixXd>& levels, std::vector<int>& uses, int k, double h,
+               VectorXd& out) {
+    if (levels[ix(k)].size() == 0 && (++uses[ix(k)] < kCacheAfter && md.norm * h <= kTaylorNorm)) {
+      term_ = md.scale.cwiseProduct(y_);
+      sum_.setZero();
+      for (int i = 1; i <= kMaxTaylorTerms; ++i) {
+        scratch_.noalias() = md.balanced * term_;
+        term_ = scratch_ * (h / i);
+        sum_ += term_;
+        if (term_.cwiseAbs().maxCoeff() <= std::numeric_limits<double>::epsilon() * sum_.cwiseAbs().maxCoeff()) break;
+      }
+      out = md.scale.cwiseInverse().cwiseProduct(sum_);
+      return;
+    }
+    if (levels[ix(k)].size() == 0) levels[ix(k)] = increment(md, h);
+    out.noalias() = levels[ix(k)] * y_;
+  }
+
+  // The mode of the elements closed now, built the first time it is needed.
+  Mode& mode_for_closed() {
+    key_.assign(ix(nc_), '0');
+    for (int j = 0; j < nc_; ++j)
+      if (elements_.closed(j)) key_[ix(j)] = '1';
+    auto [it, fresh] = modes_.try_emplace(key_);
+    if (fresh) build(it->second);
+    return it->second;
+  }
+
+  void build(Mode& md) const {
+    const int n = n_, c0 = 2 * n_, sn = c0 + 1, cs = c0 + 2;
+    MatrixXd a = MatrixXd::Zero(m_, m_);  // in the bodies' coordinates, then the gaps'
+
+    for (int i = 0; i < n; ++i) {
+      const Body& b = s_.bodies[ix(i)];
+      a(i, n + i) = 1.0;
+      a(n + i, i) = -b.k / b.m;
+      a(n + i, n + i) = -b.c / b.m;
+      a(n + i, s_.pulse.shape == PulseShape::sine ? sn : cs) = -s_.pulse.amplitude;  // -a_g(t)
+    }
+    a(sn, cs) = s_.pulse.w;
+    a(cs, sn) = -s_.pulse.w;
+    // A closed element pushes its right body by F = -k g - c g' and its left one by -F.
+    for (int j = 0; j < nc_; ++j) {
+      if (!elements_.closed(j)) continue;
+      const compliant::Law& law = elements_.law(j);
+      const int l = s_.left(j), r = s_.right(j);
+      for (int body : {r, l}) {
+        if (body == kWall) continue;
+        const double sign = (body == r ? 1.0 : -1.0) / s_.bodies[ix(body)].m;
+        a(n + body, r) -= sign * law.k;
+        a(n + body, n + r) -= sign * law.c;
+        a(n + body, c0) -= sign * law.k * s_.delta;
+        if (l != kWall) {
+          a(n + body, l) += sign * law.k;
+          a(n + body, n + l) += sign * law.c;
+        }
+      }
+    }
+    // The scaling D from a Gershgorin bound on the stiffness block's frequencies.
+    double w2 = 0.0;
+    for (int i = 0; i < n; ++i) w2 = std::max(w2, a.block(n + i, 0, 1, n).cwiseAbs().sum());
+    const double w_scale = std::max(s_.pulse.w, std::sqrt(w2));
+    a = to_gaps_ * a * to_bodies_;
+    VectorXd& d = md.scale;
+    d = VectorXd::Ones(m_);
+    d.head(n).setConstant(1.0 / L_);
+    d.segment(n, n).setConstant(1.0 / (L_ * w_scale));
+    md.balanced = d.asDiagonal() * a * d.cwiseInverse().asDiagonal();
+    md.rows.resize(2 * nf_, m_);
+    md.rows << w_, w_ * a;
+    const MatrixXd wb = w_ * d.cwiseInverse().asDiagonal();  // W D^-1: functions of D y
+
+    // The plain bound, for where the modal one cannot be trusted.
+    const MatrixXd b2 = md.balanced * md.balanced;
+    md.plain = (wb * (b2 * b2)).cwiseAbs().rowwise().sum() * kBoundMargin;
+    md.norm = md.balanced.cwiseAbs().rowwise().sum().maxCoeff();
+
+    // The modal bound: the eigenvectors of the whole motion, the load's states included (their
+    // modes are the constant, 0, and the pulse, +-i w_p; at resonance a body's coincide with the
+    // pulse's and the pair is defective: the condition number sends it to the plain bound).
+    Eigen::EigenSolver<MatrixXd> eigen(md.balanced);
+    double fastest = w_scale;
+    if (eigen.info() == Eigen::Success) {
+      const MatrixXcd v = eigen.eigenvectors();
+      md.v_inv = v.inverse();
+      const double condition = v.cwiseAbs().rowwise().sum().maxCoeff() * md.v_inv.cwiseAbs().rowwise().sum().maxCoeff();
+      if (std::isfinite(condition) && condition < kMaxModalCondition) {
+        md.modal = true;
+        const VectorXcd lambda = eigen.eigenvalues();
+        md.g = wb.cast<std::complex<double>>() * v;
+        md.modal_bound = md.g.cwiseAbs() * lambda.cwiseAbs2().cwiseAbs2().asDiagonal();  // |g| |lambda|^4
+        md.modal_bound *= kBoundMargin;
+        pair_close_modes(lambda, md);
+        fastest = lambda.cwiseAbs().maxCoeff();
+      }
+    }
+    md.base = 2.0 * std::numbers::pi / std::max(fastest, s_.pulse.w) / kStretchesPerPeriod;
+    md.levels.assign(ix(kMaxLevel - kMinLevel + 1), MatrixXd());
+    md.uses.assign(ix(kMaxLevel - kMinLevel + 1), 0);
+  }
+
+  // Pairs each mode with its nearest unpaired neighbour when they lie within half the larger
+  // modulus of each other (Mode::Pair; the bound takes the smaller of alone and together).
+  static void pair_close_modes(const VectorXcd& lambda, Mode& md) {
+    const int m = static_cast<int>(lambda.size());
+    std::vector<char> paired(ix(m), 0);
+    for (int k = 0; k < m; ++k) {
+      if (paired[ix(k)]) continue;
+      int best = -1;
+      for (int q = k + 1; q < m; ++q)
+        if (!paired[ix(q)] && (best < 0 || std::abs(lambda(q) - lambda(k)) < std::abs(lambda(best) - lambda(k))))
+          best = q;
+      if (best < 0) continue;
+      const double big = std::max(std::abs(lambda(k)), std::abs(lambda(best)));
+      const double gap = std::abs(lambda(best) - lambda(k));
+      if (gap > 0.5 * big) continue;
+      const double sigma = -std::max(lambda(k).real(), lambda(best).real());
+      paired[ix(k)] = paired[ix(best)] = 1;
+      md.pairs.push_back({k, best, big, gap,
+                          sigma > 0.0 ? 1.0 / (std::numbers::e * sigma) : std::numeric_limits<double>::infinity()});
+    }
+    md.growth = std::max(0.0, lambda.real().maxCoeff());
+  }
+
+  // The fourth-derivative bounds of the tracked functions over [t_, t_ + h], into b4_.
+  void fourth_bounds(const Mode& md, double h) {
+    if (md.modal) {
+      yc_ = md.scale.cwiseProduct(y_).cast<std::complex<double>>();
+      c_.noalias() = md.v_inv * yc_;
+      size_ = c_.cwiseAbs();
+      b4_.noalias() = md.modal_bound * size_;
+      for (const Mode::Pair& pr : md.pairs) {
+        const double m3 = pr.m * pr.m * pr.m, tail = pr.gap * (4.0 * m3 + m3 * pr.m * std::min(h, pr.reach));
+        for (int j = 0; j < nf_; ++j) {
+          const std::complex<double> one = md.g(j, pr.k1) * c_(pr.k1), two = md.g(j, pr.k2) * c_(pr.k2);
+          const double alone = md.modal_bound(j, pr.k1) * size_(pr.k1) + md.modal_bound(j, pr.k2) * size_(pr.k2);
+          const double together = kBoundMargin * (std::abs(one + two) * m3 * pr.m + std::abs(two) * tail);
+          if (together < alone) b4_(j) += together - alone;
+        }
+      }
+      if (md.growth > 0.0) b4_ *= std::exp(md.growth * h);
+    } else {
+      b4_ = md.plain * (std::exp(md.norm * h) * md.scale.cwiseProduct(y_).cwiseAbs().maxCoeff());
+    }
+  }
+
+  // Whether contact j's element should change at state y: its gap has crossed zero. Each
+  // element acts exactly while its gap is negative: a band of hysteresis of width tol would
+  // let the dashpot push or pull c tol too long at every change (6.5e-11 of Pi1 measured at
+  // K = 1e6 with tol = 1e-12 a_p / w_p^2).
+  int first_change(const VectorXd& y) const {
+    for (int j = 0; j < nc_; ++j)
+      if (elements_.closed(j) ? y(j) > 0.0 : y(j) < 0.0) return j;
+    return -1;
+  }
+
+  enum class Verdict { unproven, proven, proven_with_room };
+
+  // Judges [t_, t_ + h] from y_ to yb: proven when no element changes in it, and |u0| and
+  // every penetration are either below what was seen or known to within the slack there.
+  // A gap's sign is proven by the uniform bound |f - H| <= b4 h^4 / 384, or, for a gap that
+  // starts at zero (just after its element changed), by the pointwise one b4 s^2 (h - s)^2 / 24
+  // <= (b4 h^2 / 24) s^2, which vanishes at the start. Each test allows for the round-off of
+  // the function's own evaluation, else a function that hovers at its threshold to within it
+  // would be halved down to the floor over its whole length.
+  Verdict judge(const Mode& md, double h, const VectorXd& yb) {
+    fa_.noalias() = md.rows * y_;
+    fb_.noalias() = md.rows * yb;
+    fourth_bounds(md, h);
+    abs_y_ = y_.cwiseAbs();
+    noise_.noalias() = w_abs_ * abs_y_;
+    const double h4 = h * h * h * h / 384.0;
+    bool room = true;
+    for (int j = 0; j < nf_; ++j) {
+      const Range r = hermite_range(fa_(j), fa_(nf_ + j), fb_(j), fb_(nf_ + j), h);
+      const double e = b4_(j) * h4, noise = kNoise * noise_(j);
+      range_[ix(j)] = r;
+      error_[ix(j)] = e;
+      if (!(e < std::numeric_limits<double>::infinity())) return Verdict::unproven;
+      const double bend = b4_(j) * h * h / 24.0;
+      if (j == nc_) {  // u0
+        const double top = std::max(r.hi, -r.lo), slack = std::max(slack_, noise);
+        if (e > slack && top + e > best_u_ + slack) return Verdict::unproven;
+        room = room && (kEasyRoom * e <= slack || top + kEasyRoom * e <= best_u_ + slack);
+      } else if (!elements_.closed(j)) {
+        if (r.lo - e + noise <= 0.0 &&
+            hermite_range(fa_(j), fa_(nf_ + j), fb_(j), fb_(nf_ + j), h, -bend).lo + noise <= 0.0)
+          return Verdict::unproven;
+        room = room && r.lo - kEasyRoom * e > 0.0;
+      } else {
+        if (r.hi + e - noise >= 0.0 &&
+            hermite_range(fa_(j), fa_(nf_ + j), fb_(j), fb_(nf_ + j), h, bend).hi - noise >= 0.0)
+          return Verdict::unproven;
+        const double slack = std::max({slack_, 1e-9 * -min_gap_, noise});
+        if (e > slack && r.lo - e < min_gap_ - slack) return Verdict::unproven;
+        room = room && r.hi + kEasyRoom * e < 0.0 && (kEasyRoom * e <= slack || r.lo - kEasyRoom * e >= min_gap_ - slack);
+      }
+    }
+    return room ? Verdict::proven_with_room : Verdict::proven;
+  }
+
+  // The stretch from t_ to t_ + h is taken: its extremes are those of the Hermite ranges
+  // where judged (within the slack), else its end's.
+  void take(const VectorXd& yb, double h, bool judged) {
+    if (judged) {
+      const Range& u = range_[ix(nc_)];
+      if (error_[ix(nc_)] <= std::max(slack_, kNoise * noise_(nc_))) {
+        if (u.hi > best_u_) best_u_ = u.hi, t_max_ = t_ + u.t_hi;
+        if (-u.lo > best_u_) best_u_ = -u.lo, t_max_ = t_ + u.t_lo;
+      }
+      for (int j = 0; j < nc_; ++j)
+        if (elements_.closed(j) && error_[ix(j)] <= std::max({slack_, 1e-9 * -min_gap_, kNoise * noise_(j)}))
+          min_gap_ = std::min(min_gap_, range_[ix(j)].lo);
+    }
+    const double u = std::abs(w_.row(nc_).dot(yb));
+    if (u > best_u_) best_u_ = u, t_max_ = t_ + h;
+    for (int j = 0; j < nc_; ++j)
+      if (elements_.closed(j)) min_gap_ = std::min(min_gap_, w_.row(j).dot(yb));
+    y_ = yb;
+    t_ += h;
+  }
+
+  // Advances y_, t_ over the stretch of `level` from t_ and returns -1, or stops at the first
+  // element change and returns its contact. A stretch that is not proven is halved; at the
+  // floor, a change at its end is located, and a stretch without one is a graze.
+  int stretch(Mode& md, int level, int depth, Clip* clip) {
+    if (deadline_.tick()) throw OutOfTime{};
+    const double h = clip ? std::ldexp(clip->h, -level) : length(md, level);
+    VectorXd& yb = buf_[ix(depth)];
+    if (clip) {
+      if (clip->levels.size() <= ix(level)) clip->levels.resize(ix(level) + 1), clip->uses.resize(ix(level) + 1);
+      advance(md, clip->levels, clip->uses, level, h, yb);
+    } else {
+      advance(md, md.levels, md.uses, level - kMinLevel, h, yb);
+    }
+    yb += y_;
+    if (++stretches_ > cap_) throw OutOfSteps{};
+    const int change = first_change(yb);
+    const Verdict verdict = change < 0 ? judge(md, h, yb) : Verdict::unproven;
+    if (verdict != Verdict::unproven || h <= floor_ || level >= kMaxLevel || ix(depth + 1) >= buf_.size()) {
+      take(yb, h, verdict != Verdict::unproven);
+      if (depth == 0) halved_ = false, easy_ = verdict == Verdict::proven_with_room;
+      return change;
+    }
+    if (depth == 0) halved_ = true, easy_ = false;
+    const int first = stretch(md, level + 1, depth + 1, clip);
+    return first >= 0 ? first : stretch(md, level + 1, depth + 1, clip);
+  }
+
+  // History rows at the sample times in (t0, t_] (and t = 0), from the state y0 at t0.
+  void record_samples(double t0, const VectorXd& y0, const Mode& md) {
+    auto& rows = result_.history.data;
+    while (next_sample_ < samples_) {
+      const double ts = samples_ > 1 ? s_.t_end * next_sample_ / (samples_ - 1) : 0.0;
+      if (ts > t_) break;
+      ++next_sample_;
+      const VectorXd y = y0 + increment(md, ts - t0) * y0;
+      const VectorXd bodies = to_bodies_ * y;
+      rows.push_back(ts);
+      for (int i = 0; i < 2 * n_; ++i) rows.push_back(bodies(i));
+      for (int j = 0; j < nc_; ++j) rows.push_back(y(j));
+      for (int j = 0; j < nc_; ++j) rows.push_back(elements_.force(j, bodies.data(), bodies.data() + n_));
+    }
+  }
+
+  // steps counts the stretches (the work, as CVODE's steps count its own); the message, the
+  // contact changes (the rigid reference's events).
+  void finish() {
+    result_.steps = stretches_;
+    result_.impacts = elements_.impacts();
+    result_.min_gap = min_gap_ < 0.0 ? min_gap_ : std::numeric_limits<double>::infinity();
+    elements_.finish(result_);
+    result_.message = std::to_string(events_) + " contact changes";
+  }
+
+  Result stopped(Status status, std::string message) {
+    finish();
+    result_.status = status;
+    result_.message = std::move(message);
+    return std::move(result_);
+  }
+
+ public:
+  struct OutOfTime {};
+  struct OutOfSteps {};
+  Result out_of_time() { return stopped(Status::time_limit, deadline_.reason() + " at t = " + std::to_string(t_)); }
+  Result out_of_steps() {
+    return stopped(Status::step_cap, "more than " + std::to_string(cap_) + " stretches at t = " + std::to_string(t_));
+  }
+
+ private:
+  const System& s_;
+  const int n_, nc_, nf_, m_;
+  compliant::Elements elements_;
+  const double L_, slack_, floor_;
+  const long cap_;
+  Deadline deadline_;
+  const int samples_;
+  int next_sample_ = 0;
+  VectorXd y_, top_;
+  MatrixXd to_gaps_, to_bodies_;  // bodies' coordinates to the gaps', and back
+  MatrixXd w_, w_abs_;
+  // Scratch, sized once: judging a stretch allocates nothing.
+  VectorXd fa_, fb_, b4_, noise_, size_, abs_y_, bodies_, term_, sum_, scratch_;
+  VectorXcd yc_, c_;
+  std::vector<Range> range_;
+  std::vector<double> error_;
+  std::vector<VectorXd> buf_;
+  std::map<std::string, Mode> modes_;
+  std::string key_;
+  int level_ = 0;
+  bool halved_ = false, easy_ = false;
+  double t_ = 0.0, t_max_ = 0.0, best_u_ = 0.0, min_gap_ = 0.0;
+  long events_ = 0, stretches_ = 0;
+  Result result_;
+};
+
+}  // namespace
+
+Result solve_kelvin_voigt(const System& system, const Settings& settings) {
+  Result r;
+  r.status = Status::failed;
+  for (const Body& b : system.bodies)
+    if (!(b.m > 0.0 && std::isfinite(b.m) && std::isfinite(b.k) && std::isfinite(b.c))) {
+      r.message = "every body needs a finite positive mass and a finite spring and dashpot";
+      return r;
+    }
+  if (system.n_bodies() > kMaxKelvinVoigtBodies) {
+    r.message = "the Kelvin-Voigt reference holds the whole state in one matrix: at most " +
+                std::to_string(kMaxKelvinVoigtBodies) + " bodies, not " + std::to_string(system.n_bodies());
+    return r;
+  }
+  try {
+    const double K = settings.stiffness > 0.0 ? settings.stiffness : compliant::kDefaultStiffness;
+    KelvinVoigt solver(system, settings, K);
+    try {
+      return solver.run();
+    } catch (const KelvinVoigt::OutOfTime&) {
+      return solver.out_of_time();
+    } catch (const KelvinVoigt::OutOfSteps&) {
+      return solver.out_of_steps();
+    }
+  } catch (const std::exception& e) {
+    r.message = e.what();
+    return r;
+  }
+}
+
+}  // namespace pb::event_driven
