@@ -36,7 +36,7 @@ struct SettingField {
   }
 };
 
-inline constexpr std::array<SettingField, 11> kSettingFields = {{
+inline constexpr std::array<SettingField, 12> kSettingFields = {{
     {"steps", nullptr, &Settings::steps, nullptr,
      "Time-steppers: steps per shortest period N, h = T_min/N (0: default)"},
     {"wh", &Settings::wh, nullptr, nullptr,
@@ -53,6 +53,8 @@ inline constexpr std::array<SettingField, 11> kSettingFields = {{
     {"rtol", &Settings::rtol, nullptr, nullptr, "Compliant with cvode: relative tolerance (0: default)"},
     {"integrator", nullptr, nullptr, nullptr, "Compliant: cvode or newmark (default: cvode)", &Settings::integrator},
     {"method", nullptr, nullptr, nullptr, "Compliant with cvode: bdf or adams (default: bdf)", &Settings::method},
+    {"contact_steps", &Settings::contact_steps, nullptr, nullptr,
+     "MuJoCo faithful: the contact time constant 1/w_c in steps, w_c h = 1/M (0: default 2)"},
 }};
 
 // The index of a field in kSettingFields by its name, if there is one.
