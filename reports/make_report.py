@@ -246,10 +246,15 @@ def report(args):
              "MoreauJeanOSI (the in-house scheme, but with the load of a step sampled at its ends: "
              "`solvers/siconos/README.md`), `event-driven-lsodar` its event-driven LSODAR scheme with Newton's "
              "law, which fails where impacts accumulate (counted as failed runs).",
+             "* **MuJoCo.** `mujoco` has soft contacts (spring-dampers, no restitution law): its faithful "
+             "variants calibrate each contact to eps (the clamped oscillator's damping ratio, a time constant "
+             "of `--contact-steps` steps), so an isolated impact restitutes eps only up to a scatter with the "
+             "phase of the step and the bodies overlap during a contact; it fails the gap and restitution "
+             "checks by design (`solvers/mujoco/README.md`).",
              "* **Faithful and default.** A *faithful* engine variant is set so that restitution is exactly eps "
              "and nothing else touches an impact; a *default* one is the engine's own defaults with only the "
              "restitution set. Every setting is named in the `settings` column of `workprecision.csv` and in "
-             "`solvers/ode/README.md`, `solvers/bullet/README.md`.",
+             "`solvers/ode/README.md`, `solvers/bullet/README.md`, `solvers/mujoco/README.md`.",
              "* **Precision.** Bullet from Debian (`libbullet-dev`, pkg-config `bullet`) is single precision: "
              "its Pi1 carries float round-off of about 1e-7 to 1e-6 of the peak, which is its floor. All other "
              "solvers are double precision.",

@@ -23,6 +23,7 @@ QUOTED = [
     (r"BM_Ode/\w+/N:64", ("x_moreau_jean",)),
     (r"BM_Bullet/[\w-]+/\w+/N:64", ("vs_moreau_jean",)),
     (r"BM_Siconos/\w+/N:64", ("x_moreau_jean",)),
+    (r"BM_Mujoco/\w+/N:64", ("x_moreau_jean",)),
     (r"BM_SiconosEventDriven/\w+", ("x_event_driven",)),
     (r"BM_SweepFig4Reference/threads:\d(/real_time)?", ("points_per_s",)),
 ]
@@ -169,7 +170,9 @@ def table(measured, workprecision, stability, provenance):
                                     "row3; N = 64)", r"BM_Ode/.*", "x_moreau_jean"),
                                    ("Bullet, same", r"BM_Bullet/.*", "vs_moreau_jean"),
                                    ("Siconos' `MoreauJeanOSI`, same (Lemke and enumeration)", r"BM_Siconos/.*",
-                                    "x_moreau_jean")):
+                                    "x_moreau_jean"),
+                                   ("MuJoCo, same (Euler, implicit, RK4 and default; a run's model compilation "
+                                    "included)", r"BM_Mujoco/.*", "x_moreau_jean")):
         values = m.matching(pattern, measure)
         if values:
             add(what, f"{span(values)}x")

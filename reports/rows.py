@@ -49,6 +49,8 @@ def config_label(row):
         label += f" theta={fields['theta']}"
     if "tol_scale" in fields:  # the reference, and siconos' event-driven variant
         label += f" tol_scale={fields['tol_scale']}"
+    if "contact_steps" in fields:  # mujoco's faithful variants: the contact time constant in steps
+        label += f" M={fields['contact_steps']}"
     return label
 
 

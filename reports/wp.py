@@ -14,11 +14,13 @@ from rows import config_label, num, settings_fields, steps_of
 
 ERROR_FLOOR = 1e-13  # errors below this are round-off: drawn in a band under it, one row per setting
 FLOOR_ROW = 10 ** -0.6  # the factor between two rows of that band
-STYLE = {"moreau-jean": "-", "ode": "--", "bullet": ":", "siconos": "-.", "event-driven": "-"}
+STYLE = {"moreau-jean": "-", "ode": "--", "bullet": ":", "siconos": "-.", "mujoco": (0, (5, 1, 1, 1)),
+         "event-driven": "-"}
 # The panels of a diagram: one per solver family, the in-house stepper with the reference.
 PANELS = {"moreau-jean": "in-house: Moreau–Jean, reference",
           "event-driven": "in-house: Moreau–Jean, reference",
-          "ode": "ODE (libode)", "bullet": "Bullet (libbullet, single precision)", "siconos": "Siconos"}
+          "ode": "ODE (libode)", "bullet": "Bullet (libbullet, single precision)", "siconos": "Siconos",
+          "mujoco": "MuJoCo (libmujoco, soft contacts)"}
 ERRORS = (("err_median", "median"), ("err_p95", "95th percentile"))
 
 

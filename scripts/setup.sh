@@ -23,6 +23,7 @@ packages=(
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   libode-dev libbullet-dev libsiconos-kernel-dev libsundials-dev
+  libmujoco-dev libgl-dev libglx-dev libopengl-dev libqhull-dev
   libopenmpi-dev openmpi-bin
   python3 python3-matplotlib python3-numpy
 )

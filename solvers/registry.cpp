@@ -18,6 +18,9 @@
 #ifdef POUNDBENCH_HAVE_SUNDIALS
 #include "solvers/compliant/compliant.hpp"
 #endif
+#ifdef POUNDBENCH_HAVE_MUJOCO
+#include "solvers/mujoco/mujoco_solver.hpp"
+#endif
 
 namespace pb {
 
@@ -109,6 +112,11 @@ const std::array kSolvers = {
     // its tolerance (1e-8 by default): 1e-7 lets that through.
     SolverInfo{"compliant", "compliant contact elements (see --variant), integrated by CVODE or Newmark",
                &compliant::solve, &compliant::describe, &check_all<&compliant::check>, &compliant::variant_list, 1e-7},
+#endif
+#ifdef POUNDBENCH_HAVE_MUJOCO
+    // A fixed-step engine in double precision, as ODE: round-off only, 1e-12.
+    SolverInfo{"mujoco", "MuJoCo: soft contacts calibrated to eps, Euler, implicit or RK4 (see --variant)",
+               &mujoco::solve, &mujoco::describe, &check_all<&mujoco::check>, &mujoco::variant_list, 1e-12},
 #endif
 };
 

@@ -36,7 +36,7 @@ struct SettingField {
   }
 };
 
-inline constexpr std::array<SettingField, 12> kSettingFields = {{
+inline constexpr std::array<SettingField, 13> kSettingFields = {{
     {"steps", nullptr, &Settings::steps, nullptr,
      "Time-steppers: steps per shortest period N, h = T_min/N (0: default)"},
     {"wh", &Settings::wh, nullptr, nullptr,
@@ -57,6 +57,8 @@ inline constexpr std::array<SettingField, 12> kSettingFields = {{
      "Event-driven: rigid (default) or kelvin-voigt, the compliant solver's Kelvin-Voigt model solved exactly "
      "(with --stiffness)",
      &Settings::contact},
+    {"contact_steps", &Settings::contact_steps, nullptr, nullptr,
+     "MuJoCo faithful: the contact time constant 1/w_c in steps, w_c h = 1/M (0: default 2)"},
 }};
 
 // The index of a field in kSettingFields by its name, if there is one.

@@ -44,6 +44,7 @@ struct Settings {
   std::string integrator;  // compliant: cvode or newmark; empty = the solver's default
   std::string method;      // compliant with cvode: bdf or adams; empty = the solver's default
   std::string contact;     // event-driven: rigid (empty) or kelvin-voigt, the compliant model solved exactly
+  double contact_steps = 0;  // mujoco: the contact time constant 1/w_c in steps h; 0 = default
   long step_cap = 0;     // 0 = the solver's own cap
   double time_limit = 0;  // seconds of wall time per run; 0 = none
   // Set by a sweep that is being stopped: a run in progress ends as time_limit at its

@@ -1,0 +1,78 @@
+#include "solvers/mujoco/variants.hpp"
+
+#include <array>
+
+#include "solvers/mujoco/contact.hpp"
+
+namespace pb::mujoco {
+
+namespace {
+
+constexpr std::array kVariants = {
+    Config{"euler-faithful", Integrator::euler, true},
+    Config{"implicit-faithful", Integrator::implicit, true},
+    Config{"rk4-faithful", Integrator::rk4, true},
+    Config{"default", Integrator::euler, false},
+};
+
+}  // namespace
+
+std::span<const Config> variants() { return kVariants; }
+
+std::optional<Config> find_variant(std::string_view name) {
+  if (name.empty()) name = kDefaultVariant;
+  for (const Config& c : kVariants)
+    if (c.name == name) return c;
+  return std::nullopt;
+}
+
+std::string variant_names() {
+  std::string out;
+  for (const Config& c : kVariants) {
+    if (!out.empty()) out += ", ";
+    out += c.name;
+  }
+  return out;
+}
+
+double contact_steps(const Settings& settings) {
+  return settings.contact_steps > 0.0 ? settings.contact_steps : kDefaultContactSteps;
+}
+
+std::string_view integrator_name(Integrator i) {
+  switch (i) {
+    case Integrator::euler: return "euler";
+    case Integrator::implicit: return "implicit";
+    case Integrator::rk4: return "rk4";
+  }
+  return "?";
+}
+
+void add_config(NamedValues& out, const Config& config, const Settings& settings) {
+  out.add("integrator", integrator_name(config.integrator));
+  if (config.calibrated) {
+    out.add("contact_steps", contact_steps(settings));
+    out.add("solref", "direct, calibrated to eps").add("solimp", kImpedance);
+    out.add("units", "pulse").add("tolerance", 1e-12);
+  } else {
+    const ContactParameters p = default_contact();
+    out.add("solref", "0.02 1").add("solimp", "0.9 0.95 0.001 0.5 2").add("margin", p.margin);
+    out.add("units", "case").add("tolerance", 1e-8);
+  }
+  out.add("contacts", "overlap");
+}
+
+std::vector<VariantInfo> variant_list() {
+  std::vector<VariantInfo> out;
+  for (const Config& c : kVariants) {
+    std::string line = c.integrator == Integrator::euler      ? "semi-implicit Euler (damping implicit)"
+                       : c.integrator == Integrator::implicit ? "Euler implicit in velocity"
+                                                              : "4th-order Runge-Kutta";
+    line += c.calibrated ? "; contacts spring-dampers calibrated to eps, time constant --contact-steps steps"
+                         : "; MuJoCo's default contacts (solref 0.02 1, solimp 0.9 0.95), eps not used";
+    out.push_back({c.name, line});
+  }
+  return out;
+}
+
+}  // namespace pb::mujoco
