@@ -36,7 +36,7 @@ struct SettingField {
   }
 };
 
-inline constexpr std::array<SettingField, 11> kSettingFields = {{
+inline constexpr std::array<SettingField, 12> kSettingFields = {{
     {"steps", nullptr, &Settings::steps, nullptr,
      "Time-steppers: steps per shortest period N, h = T_min/N (0: default)"},
     {"wh", &Settings::wh, nullptr, nullptr,
@@ -53,6 +53,9 @@ inline constexpr std::array<SettingField, 11> kSettingFields = {{
     {"rtol", &Settings::rtol, nullptr, nullptr, "Compliant with cvode: relative tolerance (0: default)"},
     {"integrator", nullptr, nullptr, nullptr, "Compliant: cvode or newmark (default: cvode)", &Settings::integrator},
     {"method", nullptr, nullptr, nullptr, "Compliant with cvode: bdf or adams (default: bdf)", &Settings::method},
+    {"command", nullptr, nullptr, nullptr,
+     "External: the program run per point and its arguments, as words, no shell (docs/external.md)",
+     &Settings::command},
 }};
 
 // The index of a field in kSettingFields by its name, if there is one.
