@@ -13,6 +13,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/adapter_command.hpp"
 #include "app/baseline_command.hpp"
 #include "app/errors.hpp"
 #include "app/run_command.hpp"
@@ -134,6 +135,8 @@ int main(int argc, char** argv) {
   CLI::App* compare = pb::app::add_compare_command(app, compare_flags);
   pb::app::SolversFlags solvers_flags;
   CLI::App* solvers = pb::app::add_solvers_command(app, solvers_flags);
+  pb::app::AdapterFlags adapter_flags;
+  CLI::App* adapter = pb::app::add_adapter_command(app, adapter_flags);
   refuse_empty_values(app);
 
   // Every rank parses the same words, so every rank ends here alike.
@@ -165,6 +168,7 @@ int main(int argc, char** argv) {
     if (*baseline) return pb::app::baseline_command(*baseline, baseline_flags);
     if (*compare) return pb::app::compare_command(*compare, compare_flags);
     if (*solvers) return pb::app::solvers_command(solvers_flags);
+    if (*adapter) return pb::app::adapter_command(*adapter, adapter_flags);
   } catch (const pb::SharedFailure& e) {
     return leader ? fail(e.what(), e.code) : e.code;
   } catch (const std::exception& e) {
