@@ -30,27 +30,8 @@ namespace {
 constexpr int kRuntimeFailure = 1;
 constexpr int kBadInput = 2;
 
-// A message echoes what the user wrote (a key, a value, a file name), and not every
-// source clips it (pb::clip): each ": "-separated part, and then the line, is bounded here
-// so that the field and the reason survive a 10 MB key.
-constexpr std::size_t kMaxMessagePart = 200;
-constexpr std::size_t kMaxMessage = 1000;
-
-std::string bounded(const std::string& message) {
-  std::string line;
-  for (std::size_t start = 0; start <= message.size();) {
-    const std::size_t end = std::min(message.find(": ", start), message.size());
-    if (start > 0) line += ": ";
-    line += pb::clip(std::string_view(message).substr(start, end - start), kMaxMessagePart);
-    start = end + 2;
-  }
-  return pb::clip(line, kMaxMessage);
-}
-
 int fail(const std::string& message, int code) {
-  std::string line = bounded(message);
-  std::replace(line.begin(), line.end(), '\n', ' ');  // one line, whatever the source
-  std::cerr << "poundbench: " << line << '\n';
+  std::cerr << "poundbench: " << pb::app::one_line(message) << '\n';
   return code;
 }
 
