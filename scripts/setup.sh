@@ -25,6 +25,7 @@ packages=(
   libode-dev libbullet-dev libsiconos-kernel-dev libsundials-dev
   libopenmpi-dev openmpi-bin
   python3 python3-matplotlib python3-numpy
+  python3-scipy python3-dev pybind11-dev
 )
 missing=()
 for p in "${packages[@]}"; do
