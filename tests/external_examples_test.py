@@ -12,6 +12,7 @@
 """
 import csv
 import io
+import json
 import os
 import subprocess
 import sys
@@ -146,6 +147,29 @@ class ExternalExamples(unittest.TestCase):
         self.assertEqual(float(table[0]["u0"]), 0.0)
         self.assertEqual(table[0]["u1"], "")  # version 1 carries u0 alone
         self.assertGreater(max(abs(float(r["u0"])) for r in table), 1.0)
+
+    def test_documents_have_the_keys_of_their_json_schemas(self):
+        schemas = {}
+        for name in ("case", "answer"):
+            with open(f"{SOURCE}/docs/external/{name}.schema.json") as f:
+                schemas[name] = json.load(f)
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "case.json")
+            # tee keeps the case (and its echo is refused as an answer: the run fails, exit 1)
+            subprocess.run([POUNDBENCH, "run", "--scene", "wall", "--pulse", "sine", "--directivity", "normal",
+                            "--pi2", "1", "--pi3", "1", "--eps", "0.5", "--solver", "external", "--steps", "16",
+                            "--command", f"tee {path}"], capture_output=True, check=False)
+            with open(path) as f:
+                text = f.read()
+        case = json.loads(text)
+        self.assertEqual(set(case), set(schemas["case"]["required"]))
+        self.assertEqual(set(case), set(schemas["case"]["properties"]))
+        body = schemas["case"]["properties"]["bodies"]["items"]
+        self.assertEqual(set(case["bodies"][0]), set(body["required"]))
+        self.assertEqual(set(case["load"]), set(schemas["case"]["properties"]["load"]["oneOf"][0]["required"]))
+        answer = json.loads(poundbench("adapter", "--solver", "moreau-jean", stdin=text))
+        self.assertEqual(answer["status"], "ok")
+        self.assertLessEqual(set(answer), set(schemas["answer"]["properties"]))
 
 
 if __name__ == "__main__":
