@@ -11,8 +11,10 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cmath>
 #include <chrono>
+#include <cmath>
+#include <mutex>
+#include <set>
 #include <system_error>
 #include <utility>
 
@@ -35,6 +37,12 @@ constexpr double kFirstNap = 50e-6;
 // program itself has exited (a script's background child): then the group is ended.
 constexpr double kDrainAfterExit = 0.2;
 constexpr std::size_t kChunk = 1 << 16;
+
+// The process groups of the programs running now (end_running_programs). A group leaves
+// the set before its leader is reaped, under the lock, so that a pid the system has reused
+// is never signalled.
+std::mutex running_mutex;
+std::set<pid_t> running;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -118,7 +126,10 @@ class SigpipeBlock {
 // The child, until it is reaped: killed with its group and waited for on any way out.
 class Child {
  public:
-  explicit Child(pid_t pid) : pid_(pid) {}
+  explicit Child(pid_t pid) : pid_(pid) {
+    const std::lock_guard lock(running_mutex);
+    running.insert(pid_);
+  }
   Child(const Child&) = delete;
   Child& operator=(const Child&) = delete;
   ~Child() {
@@ -133,13 +144,22 @@ class Child {
     killpg(pid_, SIGKILL);
     if (!reaped_) kill(pid_, SIGKILL);  // in case it left the group
   }
-  // waitpid with `options` (0 or WNOHANG); true once reaped.
+  // waitpid with `options` (0 or WNOHANG); true once reaped. A blocking wait follows a
+  // SIGKILL (its pid stays the child's until it is reaped), so the group leaves the set first.
   bool wait(int options) {
     if (reaped_) return true;
     int status = 0;
     rusage usage{};
     pid_t got;
-    while ((got = wait4(pid_, &status, options, &usage)) < 0 && errno == EINTR) {
+    {
+      std::unique_lock lock(running_mutex);
+      if (options == 0) {
+        running.erase(pid_);
+        lock.unlock();
+      }
+      while ((got = wait4(pid_, &status, options, &usage)) < 0 && errno == EINTR) {
+      }
+      if (got == pid_ && lock.owns_lock()) running.erase(pid_);
     }
     if (got != pid_) return false;
     reaped_ = true;
@@ -218,6 +238,11 @@ std::string last_lines(std::string_view text, int lines) {
   std::string out;
   for (auto line = kept.rbegin(); line != kept.rend(); ++line) out += (out.empty() ? "" : " | ") + std::string(*line);
   return out;
+}
+
+void end_running_programs() {
+  const std::lock_guard lock(running_mutex);
+  for (pid_t group : running) killpg(group, SIGKILL);
 }
 
 ProgramRun run_program(const std::vector<std::string>& argv, std::string_view input, const ProgramLimits& limits) {

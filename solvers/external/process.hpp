@@ -50,6 +50,11 @@ inline constexpr std::size_t kErrTail = 4096;
 
 ProgramRun run_program(const std::vector<std::string>& argv, std::string_view input, const ProgramLimits& limits);
 
+// Ends every program run_program is running now, with its group: for a process about to
+// _Exit (a sweep abandoned by a second Ctrl-C), whose programs, in groups of their own, the
+// terminal's signal does not reach and no destructor will end.
+void end_running_programs();
+
 // The last `lines` lines of text (without a trailing line end), each line end as " | ", for
 // a one-line message.
 std::string last_lines(std::string_view text, int lines);
