@@ -282,8 +282,9 @@ PYBIND11_MODULE(poundbench, m) {
       "the solver and settings, the case). Keywords are the command line's flags with '_' for '-':\n"
       "scene, pulse, directivity (or case_file and point), solver, variant, and\n" +
       python::keyword_lines(kCaseFields) + python::keyword_lines(kSettingFields) +
-      "    history: True for the time history (2000 samples), or samples=N: result['history'] is a dict\n"
-      "      of NumPy arrays, one per column of `run --history` (t, u1, u0, ..., lambda1).\n"
+      "    history: True for the time history, or samples=N (default 2000; a time-stepper records every\n"
+      "      step): result['history'] is a dict of NumPy arrays, one per column of `run --history`\n"
+      "      (t, u1, u0, ..., lambda1).\n"
       "A bad keyword value raises ValueError with the command line's message.";
   m.def("run", &python::run, run_doc.c_str());
   const std::string spectrum_doc =
