@@ -13,8 +13,6 @@ namespace pb::app {
 
 namespace {
 
-bool given(const CLI::App& command, std::string_view flag) { return command.count(std::string(flag)) > 0; }
-
 template <class T>
 T parsed(std::string_view flag, const std::string& text, std::optional<T> value, std::string_view choices) {
   if (!value)
@@ -22,17 +20,17 @@ T parsed(std::string_view flag, const std::string& text, std::optional<T> value,
   return *value;
 }
 
-ChosenCase case_from_file(const CLI::App& command, const CaseFlags& flags) {
+ChosenCase case_from_file(const GivenFlag& given, const CaseFlags& flags) {
   for (std::string_view flag : {"--scene", "--pulse", "--directivity"})
-    if (given(command, flag)) throw BadInput(std::string(flag) + ": cannot be combined with --case-file");
+    if (given(flag)) throw BadInput(std::string(flag) + ": cannot be combined with --case-file");
   for (const CaseField& field : kCaseFields)
-    if (given(command, flag_of(field))) throw BadInput(flag_of(field) + ": cannot be combined with --case-file");
+    if (given(flag_of(field))) throw BadInput(flag_of(field) + ": cannot be combined with --case-file");
   const CaseSet set = load_case_set(flags.case_file);
   const std::size_t n = set.cases.size();
   const std::string file = flags.case_file;
   if (n == 0) throw BadInput(file + ": no cases");
   std::size_t point = 0;
-  if (given(command, "--point")) {
+  if (given("--point")) {
     if (flags.point < 0 || static_cast<std::size_t>(flags.point) >= n)
       throw BadInput("--point: " + std::to_string(flags.point) + " is out of range (" + file + " has points 0.." +
                      std::to_string(n - 1) + ")");
@@ -46,10 +44,10 @@ ChosenCase case_from_file(const CLI::App& command, const CaseFlags& flags) {
   return {c, point, file};
 }
 
-ChosenCase case_from_flags(const CLI::App& command, const CaseFlags& flags) {
-  if (given(command, "--point")) throw BadInput("--point: only used with --case-file");
+ChosenCase case_from_flags(const GivenFlag& given, const CaseFlags& flags) {
+  if (given("--point")) throw BadInput("--point: only used with --case-file");
   for (std::string_view flag : {"--scene", "--pulse", "--directivity"})
-    if (!given(command, flag)) throw BadInput(std::string(flag) + ": required (or give --case-file)");
+    if (!given(flag)) throw BadInput(std::string(flag) + ": required (or give --case-file)");
 
   Case c;
   c.scene = parsed("--scene", flags.scene, parse_scene(flags.scene), "wall, pair, row3, chain");
@@ -62,10 +60,10 @@ ChosenCase case_from_flags(const CLI::App& command, const CaseFlags& flags) {
   for (const CaseField& field : kCaseFields) {
     const std::string flag = flag_of(field);
     const bool used = used_by(field, c.scene);
-    if (used && field.required && !given(command, flag))
+    if (used && field.required && !given(flag))
       throw BadInput(flag + (field.use == FieldUse::every ? ": required (or give --case-file)"
                                                           : ": required by scene " + scene));
-    if (!used && given(command, flag)) throw BadInput(flag + ": not used by scene " + scene);
+    if (!used && given(flag)) throw BadInput(flag + ": not used by scene " + scene);
     if (!used) continue;
     if (field.number)
       c.*field.number = flags.numbers.*field.number;
@@ -92,8 +90,18 @@ void add_case_flags(CLI::App& command, CaseFlags& f) {
   command.add_option("--point", f.point, "Which case of --case-file (0-based; needed when it has several)");
 }
 
+ChosenCase chosen_case(const GivenFlag& given, const CaseFlags& flags) {
+  return given("--case-file") ? case_from_file(given, flags) : case_from_flags(given, flags);
+}
+
 ChosenCase chosen_case(const CLI::App& command, const CaseFlags& flags) {
-  return given(command, "--case-file") ? case_from_file(command, flags) : case_from_flags(command, flags);
+  return chosen_case([&](std::string_view flag) { return command.count(std::string(flag)) > 0; }, flags);
+}
+
+void validate_case_set(const CaseSet& set, const std::string& file) {
+  if (set.cases.empty()) throw BadInput(file + ": no cases");
+  for (std::size_t i = 0; i < set.cases.size(); ++i)
+    if (auto bad = validate(set.cases[i])) throw BadInput(file + ": point " + std::to_string(i) + ": " + *bad);
 }
 
 std::string case_flag_message(const std::string& field_reason) {

@@ -3,11 +3,14 @@
 // case-set file (--case-file FILE --point K).
 
 #include <cstddef>
+#include <functional>
 #include <string>
+#include <string_view>
 
 #include <CLI/CLI.hpp>
 
 #include "cases/case.hpp"
+#include "cases/case_set.hpp"
 
 namespace pb::app {
 
@@ -28,6 +31,13 @@ struct ChosenCase {
 
 // The case the flags describe, validated; throws BadInput or CaseSetError.
 ChosenCase chosen_case(const CLI::App& command, const CaseFlags& flags);
+// The same, with `given(flag)` saying which flags ("--pi3") were given: the Python module's
+// keywords take this path, so that they are checked with the command line's messages.
+using GivenFlag = std::function<bool(std::string_view flag)>;
+ChosenCase chosen_case(const GivenFlag& given, const CaseFlags& flags);
+
+// Every case of a case-set file validated ("FILE: point K: field: reason"); throws BadInput.
+void validate_case_set(const CaseSet& set, const std::string& file);
 
 // "field: reason" from pb::validate with the field turned into its flag ("--n-free: ...").
 std::string case_flag_message(const std::string& field_reason);

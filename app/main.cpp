@@ -13,6 +13,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/adapter_command.hpp"
 #include "app/baseline_command.hpp"
 #include "app/errors.hpp"
 #include "app/run_command.hpp"
@@ -29,27 +30,8 @@ namespace {
 constexpr int kRuntimeFailure = 1;
 constexpr int kBadInput = 2;
 
-// A message echoes what the user wrote (a key, a value, a file name), and not every
-// source clips it (pb::clip): each ": "-separated part, and then the line, is bounded here
-// so that the field and the reason survive a 10 MB key.
-constexpr std::size_t kMaxMessagePart = 200;
-constexpr std::size_t kMaxMessage = 1000;
-
-std::string bounded(const std::string& message) {
-  std::string line;
-  for (std::size_t start = 0; start <= message.size();) {
-    const std::size_t end = std::min(message.find(": ", start), message.size());
-    if (start > 0) line += ": ";
-    line += pb::clip(std::string_view(message).substr(start, end - start), kMaxMessagePart);
-    start = end + 2;
-  }
-  return pb::clip(line, kMaxMessage);
-}
-
 int fail(const std::string& message, int code) {
-  std::string line = bounded(message);
-  std::replace(line.begin(), line.end(), '\n', ' ');  // one line, whatever the source
-  std::cerr << "poundbench: " << line << '\n';
+  std::cerr << "poundbench: " << pb::app::one_line(message) << '\n';
   return code;
 }
 
@@ -134,6 +116,8 @@ int main(int argc, char** argv) {
   CLI::App* compare = pb::app::add_compare_command(app, compare_flags);
   pb::app::SolversFlags solvers_flags;
   CLI::App* solvers = pb::app::add_solvers_command(app, solvers_flags);
+  pb::app::AdapterFlags adapter_flags;
+  CLI::App* adapter = pb::app::add_adapter_command(app, adapter_flags);
   refuse_empty_values(app);
 
   // Every rank parses the same words, so every rank ends here alike.
@@ -165,6 +149,7 @@ int main(int argc, char** argv) {
     if (*baseline) return pb::app::baseline_command(*baseline, baseline_flags);
     if (*compare) return pb::app::compare_command(*compare, compare_flags);
     if (*solvers) return pb::app::solvers_command(solvers_flags);
+    if (*adapter) return pb::app::adapter_command(*adapter, adapter_flags);
   } catch (const pb::SharedFailure& e) {
     return leader ? fail(e.what(), e.code) : e.code;
   } catch (const std::exception& e) {

@@ -11,6 +11,7 @@
 #include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/sweep_watch.hpp"
+#include "solvers/external/process.hpp"
 #include "sweep/partial_rows.hpp"
 
 namespace pb::app {
@@ -68,6 +69,7 @@ std::optional<std::vector<Row>> run_resumable(std::string_view command, const Pr
       std::fprintf(stderr, "%spoundbench: interrupted; the finished rows are in %s\n", erase, partial.c_str());
     std::fflush(stderr);
     lock.release();  // _Exit runs no destructor
+    external::end_running_programs();  // the external solver's, in process groups of their own
     std::_Exit(kInterrupted);
   };
   SweepWatch watch(std::string(command), unit, total, earlier.size(), progress, abandon);

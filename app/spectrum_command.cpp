@@ -3,6 +3,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "app/case_flags.hpp"
 #include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/resumable_sweep.hpp"
@@ -14,12 +15,6 @@
 namespace pb::app {
 
 namespace {
-
-void validate_cases(const CaseSet& set, const std::string& file) {
-  if (set.cases.empty()) throw BadInput(file + ": no cases");
-  for (std::size_t i = 0; i < set.cases.size(); ++i)
-    if (auto bad = validate(set.cases[i])) throw BadInput(file + ": point " + std::to_string(i) + ": " + *bad);
-}
 
 void write_final(const SpectrumFlags& flags, const std::vector<Row>& rows) {
   const auto csv = [&](std::ostream& out) { write_csv(out, rows); };
@@ -51,7 +46,7 @@ int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const 
   OutputLock lock;  // held until the output is written and the partial file removed
   processes.agree([&] {
     set = load_case_set(flags.case_set);
-    validate_cases(set, flags.case_set);
+    validate_case_set(set, flags.case_set);
     runs[0] = {&checked_solver(flags.solver_flags), flags.solver_flags.settings, flags.repetitions};
     if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
     if (!processes.leader()) return;

@@ -49,7 +49,8 @@ struct Row {
   double wh = std::numeric_limits<double>::quiet_NaN();  // w_max h of a time-stepper's step
   double penetration_steps = std::numeric_limits<double>::quiet_NaN();  // of the result (a column)
   double seconds = 0.0;      // wall time of the solve alone (the median repetition)
-  double cpu_seconds = 0.0;  // CPU time of the solve alone, on its thread (robust to load; the median)
+  double cpu_seconds = 0.0;  // CPU time of the solve alone, on its thread and in the processes it ran (the
+                             // external solver's program; Result::child_cpu_seconds): robust to load; the median
   double cpu_seconds_low = std::numeric_limits<double>::quiet_NaN();   // the fastest repetition's
   double cpu_seconds_high = std::numeric_limits<double>::quiet_NaN();  // the slowest repetition's
   int repetitions = 1;  // timed solves

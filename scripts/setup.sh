@@ -26,6 +26,7 @@ packages=(
   libmujoco-dev libgl-dev libglx-dev libopengl-dev libqhull-dev
   libopenmpi-dev openmpi-bin
   python3 python3-matplotlib python3-numpy
+  python3-scipy python3-dev pybind11-dev
 )
 missing=()
 for p in "${packages[@]}"; do

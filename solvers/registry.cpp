@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "solvers/event_driven/event_driven.hpp"
+#include "solvers/external/external.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
 #include "solvers/settings_fields.hpp"
 #include "solvers/solver.hpp"
@@ -118,6 +119,11 @@ const std::array kSolvers = {
     SolverInfo{"mujoco", "MuJoCo: soft contacts calibrated to eps, Euler, implicit or RK4 (see --variant)",
                &mujoco::solve, &mujoco::describe, &check_all<&mujoco::check>, &mujoco::variant_list, 1e-12},
 #endif
+    // Another program, run once per point (docs/external.md): what it computes is its own; a
+    // deterministic program gives its Pi1 again bit for bit, and 1e-9 lets another build of it
+    // round differently, as the reference's.
+    SolverInfo{"external", "another program, run per point: the case as JSON on its stdin, its answer on stdout (--command)",
+               &external::solve, &external::describe, &check_all<&external::check>, &external::variant_list, 1e-9},
 };
 
 }  // namespace

@@ -36,7 +36,7 @@ struct SettingField {
   }
 };
 
-inline constexpr std::array<SettingField, 13> kSettingFields = {{
+inline constexpr std::array<SettingField, 14> kSettingFields = {{
     {"steps", nullptr, &Settings::steps, nullptr,
      "Time-steppers: steps per shortest period N, h = T_min/N (0: default)"},
     {"wh", &Settings::wh, nullptr, nullptr,
@@ -59,6 +59,9 @@ inline constexpr std::array<SettingField, 13> kSettingFields = {{
      &Settings::contact},
     {"contact_steps", &Settings::contact_steps, nullptr, nullptr,
      "MuJoCo faithful: the contact time constant 1/w_c in steps, w_c h = 1/M (0: default 2)"},
+    {"command", nullptr, nullptr, nullptr,
+     "External: the program run per point and its arguments, as words, no shell (docs/external.md)",
+     &Settings::command},
 }};
 
 // The index of a field in kSettingFields by its name, if there is one.

@@ -45,6 +45,7 @@ struct Settings {
   std::string method;      // compliant with cvode: bdf or adams; empty = the solver's default
   std::string contact;     // event-driven: rigid (empty) or kelvin-voigt, the compliant model solved exactly
   double contact_steps = 0;  // mujoco: the contact time constant 1/w_c in steps h; 0 = default
+  std::string command;     // external: the program to run per point, as words (docs/external.md)
   long step_cap = 0;     // 0 = the solver's own cap
   double time_limit = 0;  // seconds of wall time per run; 0 = none
   // Set by a sweep that is being stopped: a run in progress ends as time_limit at its
@@ -90,6 +91,9 @@ struct Result {
   // of travel at the fastest gap rate, what a velocity-level scheme may overlap (stress
   // check `gap`). NaN: not measured (the reference, or monitor off).
   double gap_rate_max = std::numeric_limits<double>::quiet_NaN();
+  // CPU seconds of the processes the solver ran (the external solver's program), which the
+  // thread's own CPU clock does not see: a sweep adds them to the solve's CPU time.
+  double child_cpu_seconds = 0.0;
   History history;
 };
 

@@ -59,7 +59,7 @@ Timed timed_solve(const SolverInfo& solver, const System& system, const Settings
     t.result.message = describe_exception(std::current_exception());
   }
   t.seconds = seconds_since(start);
-  t.cpu_seconds = thread_cpu_seconds() - cpu_start;
+  t.cpu_seconds = thread_cpu_seconds() - cpu_start + t.result.child_cpu_seconds;
   return t;
 }
 

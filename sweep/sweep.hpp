@@ -29,7 +29,7 @@
 namespace pb {
 
 // How a run is timed. Every solver the same way: solver.solve alone, on the thread's CPU
-// clock, with Settings::monitor off (the monitor's bookkeeping is not the scheme's cost: it
+// clock (plus Result::child_cpu_seconds, the CPU of a program the solver ran), with Settings::monitor off (the monitor's bookkeeping is not the scheme's cost: it
 // made Moreau-Jean 2.4 times slower), repeated up to `repetitions` times. A point stops
 // repeating once its timed solves have spent kRepetitionBudget CPU seconds together (it is
 // solved at least once): on the main job's work-precision study, five repetitions of every

@@ -740,7 +740,7 @@ TEST_F(Cli, VersionSaysTheProjectVersionAndTheCommitItWasBuiltFrom) {
 
 TEST_F(Cli, AWordThatIsNoSubcommandIsNamedAndTheSubcommandsListed) {
   const std::string list =
-      "the subcommands are: run, spectrum, workprecision, stress, baseline, compare, solvers (`poundbench help` "
+      "the subcommands are: run, spectrum, workprecision, stress, baseline, compare, solvers, adapter (`poundbench help` "
       "says what each does)\n";
   Outcome o = run("bogus --out x.csv");
   EXPECT_EQ(o.exit_code, 2);
@@ -795,8 +795,11 @@ TEST_F(Cli, SolversListsEveryVariantAndRunAcceptsEachOne) {
                 std::string::npos)
           << name;
       if (name.empty()) continue;  // no option takes an empty value
+      // The external solver needs its program: poundbench itself.
+      const std::string command =
+          solver.name == "external" ? " --command '" POUNDBENCH_EXE " adapter --solver moreau-jean'" : "";
       const Outcome o = run(std::string("run ") + kPairCase + " --solver " + std::string(solver.name) + " --variant " +
-                            name + " --json");
+                            name + command + " --json");
       EXPECT_NE(o.exit_code, 2) << name << ": " << o.err;
       if (!o.out.empty()) {
         EXPECT_EQ(nlohmann::json::parse(o.out).at("variant"), name);

@@ -91,6 +91,8 @@ struct Facts {
   std::string_view contact = "";
   // The longest chain it solves (0: any); the time-limit test's chain is cut to it.
   int max_bodies = 0;
+  // Settings::command, for the external solver: the program it runs.
+  std::string_view command = "";
 };
 
 // Measured restitution errors are on the wall cases of the restitution test (eps 0, 0.5, 1,
@@ -179,6 +181,19 @@ const std::vector<Facts>& facts_table() {
       // MuJoCo's default contact (solref 0.02 1) knows no eps: measured |e - eps| up to 0.94.
       // Drops 2.5, 1.3: the time constant stops shrinking with h once 2h < 0.02.
       {"mujoco", "default", true, 1.0, 1.1, true, failed, diverged, false, 1, 0.5},
+      // The external solver running poundbench itself (`poundbench adapter --solver moreau-jean`,
+      // docs/external.md): the documents carry the system, the step, the limits and the answer
+      // exactly, so its facts are moreau-jean's (restitution 2.2e-16, drops 2.2, 3.3), and the
+      // statuses are the wrapped solver's, passed through the answer (the step cap and the time
+      // limit go to the program, which honours them). Apart from them: a non-finite body is
+      // refused before the program starts (JSON has no NaN), and the stop flag ends the program
+      // (it cannot see the flag). A point costs ~13 ms, the program's start (bench/external_bench.cpp):
+      // every 2nd smoke point. The Python adapter is the other example, not run here: its
+      // interpreter's start (~0.3 s a point) would make this suite minutes long
+      // (tests/external_examples_test.py runs it). A time limit of 0.05 s: the program's start
+      // and its own 0.05 s; 1 s allows the sanitizer's slower start.
+      {"external", "", true, 1e-12, 1.8, false, failed, diverged, false, 2, 1.0, false, "", 0.0, "", "", "", 0,
+       POUNDBENCH_EXE " adapter --solver moreau-jean"},
   };
   return table;
 }
@@ -235,6 +250,7 @@ class Contract : public testing::TestWithParam<Subject> {
     st.integrator = facts().integrator;
     st.stiffness = facts().stiffness;
     st.contact = facts().contact;
+    st.command = facts().command;
     return st;
   }
   Result solve(const System& s, const Settings& st) const { return solver().solve(s, st); }

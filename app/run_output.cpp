@@ -1,0 +1,110 @@
+#include "app/run_output.hpp"
+
+#include <cmath>
+
+#include "app/errors.hpp"
+#include "cases/fields.hpp"
+
+namespace pb::app {
+
+namespace {
+
+// The paper's labels of the bodies, left to right (body 0 is the reported one).
+// A chain's bodies are numbered from its left end.
+std::vector<std::string> body_labels(const Case& c) {
+  switch (c.scene) {
+    case Scene::wall: return {"0"};
+    case Scene::pair: return {"1", "0"};
+    case Scene::row3: return {"1", "0", "2"};
+    case Scene::chain: {
+      std::vector<std::string> labels;
+      for (int i = 0; i < c.bodies; ++i) labels.push_back(std::to_string(i));
+      return labels;
+    }
+  }
+  return {};
+}
+
+nlohmann::ordered_json case_json(const Case& c) {
+  nlohmann::ordered_json j;
+  j["family"] = c.family;
+  j["scene"] = name(c.scene);
+  j["pulse"] = name(c.pulse);
+  j["directivity"] = name(c.directivity);
+  for (const CaseField& field : kCaseFields) {
+    if (!used_by(field, c.scene)) continue;
+    if (field.integer)
+      j[std::string(field.name)] = c.*field.integer;
+    else
+      j[std::string(field.name)] = c.*field.number;
+  }
+  return j;
+}
+
+// NaN and infinity have no JSON spelling; null says "no value".
+nlohmann::ordered_json number_or_null(double x) {
+  return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr);
+}
+
+// A history is held in memory, then written as CSV (about 20 bytes a value), so its size
+// is bounded before the run: 1e6 samples resolve a run of the longest allowed length
+// (1e6 shortest periods, cases/case.hpp) to one sample a period, finer than any plot
+// or check needs; and 2e7 values (160 MB held, about 400 MB written) bound the history
+// of a long chain, whose rows have 4 N - 1 values. --samples 1e8 of a pair asked for 5.6 GB.
+constexpr long long kMaxHistorySamples = 1'000'000;
+constexpr long long kMaxHistoryValues = 20'000'000;
+
+}  // namespace
+
+nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {
+  const Result& r = row.result;
+  nlohmann::ordered_json j;
+  j["status"] = name(r.status);
+  j["message"] = r.message;
+  j["pi1"] = number_or_null(r.pi1);
+  j["pi1_no_contact"] = number_or_null(row.pi1_no_contact);
+  j["t_max"] = number_or_null(r.t_max);
+  j["impacts"] = r.impacts;
+  j["contact_phases"] = r.contact_phases;
+  j["steps"] = r.steps;
+  j["min_gap"] = number_or_null(min_gap_ratio(row));
+  j["seconds"] = row.seconds;
+  j["wh"] = number_or_null(row.wh);
+  j["energy_excess"] = number_or_null(r.energy_excess);
+  j["penetration"] = number_or_null(penetration(row));
+  j["isolated_impacts"] = r.isolated_impacts;
+  j["restitution_low"] = number_or_null(r.restitution_low);
+  j["restitution_high"] = number_or_null(r.restitution_high);
+  j["solver"] = row.solver;
+  j["variant"] = row.variant;
+  j["settings"] = nlohmann::json::parse(row.settings);
+  if (!chosen.case_file.empty()) {
+    j["case_file"] = chosen.case_file;
+    j["point"] = chosen.point;
+  }
+  j.update(case_json(row.input));
+  return j;
+}
+
+std::vector<std::string> history_columns(const Case& c) {
+  const std::vector<std::string> bodies = body_labels(c);
+  std::vector<std::string> columns = {"t"};
+  for (const char* quantity : {"u", "v"})
+    for (const std::string& body : bodies) columns.push_back(quantity + body);
+  for (const char* quantity : {"g", "lambda"})
+    for (int j = 1; j <= contact_count(c); ++j) columns.push_back(quantity + std::to_string(j));
+  return columns;
+}
+
+void check_samples(int samples, const Case& c) {
+  if (samples < 2) throw BadInput("--samples: must be >= 2");
+  if (samples > kMaxHistorySamples)
+    throw BadInput("--samples: must be <= " + std::to_string(kMaxHistorySamples));
+  const long long row = 1 + 2LL * body_count(c) + 2LL * contact_count(c);
+  if (samples * row > kMaxHistoryValues)
+    throw BadInput("--samples: at most " + std::to_string(kMaxHistoryValues / row) + " for this scene (" +
+                   std::to_string(row) + " values a sample, " + std::to_string(kMaxHistoryValues) +
+                   " values of history at most)");
+}
+
+}  // namespace pb::app

@@ -1,0 +1,344 @@
+#!/usr/bin/env python3
+"""An external solver for poundbench, written with SciPy: an event-located integrator.
+
+    poundbench run --solver external --command "python3 examples/external/scipy_adapter.py" \\
+        --scene pair --pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 0.5 --pi5 0.5 --pi6 1
+
+It reads one case document on stdin and writes one answer document on stdout
+(docs/external.md). Between events, scipy.integrate.solve_ivp (DOP853) integrates
+
+    m_i u_i'' = -c_i u_i' - k_i u_i - m_i a_g(t) + sum_j W_ij lambda_j
+
+with the contacts in persistent contact held closed by their forces lambda (found from
+g'' = 0 on them); its events locate a gap closing, a contact force falling to zero (the
+contact opens) and the pulse's end. At a closing gap, Newton's impact law: the gap's rate
+after the impact is -eps times the rate before (several closed contacts at once: the
+impulses that keep every closed contact from approaching, by a small velocity-level LCP).
+An approach slower than 1e-7 a_p/w_p is taken as plastic, so that an accumulation of
+impacts ends in persistent contact; whether a closed contact carries force is decided by
+the acceleration-level LCP, looking at the load a moment ahead (so that touching bodies at
+rest under a vanishing load, Pi3 = 0, are decided by where the load goes next).
+
+Pi1 is the largest |u0| at the extrema of u0 (located as events of its velocity), at every
+event and at the ends. Its own settings are its arguments: --rtol (default 1e-10), --method.
+It ignores the step (it is not a time-stepper); it honours step_cap (integrator steps and
+events together), time_limit and history_samples.
+"""
+import argparse
+import json
+import math
+import sys
+import time
+
+START = time.monotonic()
+
+
+def answer(doc):
+    doc.setdefault("version", 1)
+    json.dump(doc, sys.stdout, allow_nan=False)
+    sys.stdout.write("\n")
+    sys.exit(0)
+
+
+def refuse(message):
+    answer({"status": "failed", "message": message})
+
+
+try:
+    import numpy as np
+    from scipy.integrate import solve_ivp
+except ImportError as e:  # the answer says why, rather than a traceback
+    refuse(f"scipy_adapter.py needs NumPy and SciPy (Debian: python3-numpy python3-scipy): {e}")
+
+
+class Stop(Exception):
+    def __init__(self, status, message):
+        super().__init__(message)
+        self.status = status
+
+
+class Model:
+    def __init__(self, case):
+        bodies = case["bodies"]
+        self.n = len(bodies)
+        self.m = np.array([b["m"] for b in bodies], dtype=float)
+        self.k = np.array([b["k"] for b in bodies], dtype=float)
+        self.c = np.array([b["c"] for b in bodies], dtype=float)
+        self.u_start = np.array([b["u"] for b in bodies], dtype=float)
+        self.v_start = np.array([b["v"] for b in bodies], dtype=float)
+        self.ref = case["reference"]
+        self.eps = case["eps"]
+        self.contacts = case["contacts"]
+        self.nc = len(self.contacts)
+        # W[i, j]: how contact j's force acts on body i (+1 pushes the right body to +x).
+        self.W = np.zeros((self.n, self.nc))
+        self.gap0 = np.zeros(self.nc)
+        for j, contact in enumerate(self.contacts):
+            self.W[contact["right"], j] = 1.0
+            if contact["left"] is not None:
+                self.W[contact["left"], j] = -1.0
+            self.gap0[j] = contact["gap"]
+        self.minv = 1.0 / self.m
+        load = case["load"]
+        self.shape = math.sin if load["shape"] == "sine" else math.cos
+        self.amplitude = load["amplitude"]
+        self.w_p = load["w"]
+        self.t_p = load["duration"]
+        self.length = case["length_scale"]
+        self.speed = self.length * self.w_p  # a_p / w_p
+        self.t_end = case["t_end"]
+
+    def accel_ground(self, t):
+        return self.amplitude * self.shape(self.w_p * t) if 0.0 <= t <= self.t_p else 0.0
+
+    def gaps(self, u):
+        return self.gap0 + self.W.T @ u
+
+    def rates(self, v):
+        return self.W.T @ v
+
+    def free_force(self, t, u, v):
+        return -self.c * v - self.k * u - self.m * self.accel_ground(t)
+
+    def contact_forces(self, active, f):
+        """The forces that keep the active contacts closed (g'' = 0) under the force f."""
+        if not active:
+            return np.zeros(0)
+        wa = self.W[:, active]
+        s = wa.T @ (self.minv[:, None] * wa)
+        return np.linalg.solve(s, -wa.T @ (self.minv * f))
+
+    def rhs(self, active):
+        def f(t, y):
+            u, v = y[: self.n], y[self.n:]
+            force = self.free_force(t, u, v)
+            if active:
+                force = force + self.W[:, active] @ self.contact_forces(active, force)
+            return np.concatenate((v, self.minv * force))
+        return f
+
+
+def lcp_by_active_set(matrix_of, rhs_of, candidates):
+    """x >= 0 on the candidates with matrix x = rhs where x > 0: drop the most negative until none is."""
+    kept = list(candidates)
+    while kept:
+        x = np.linalg.solve(matrix_of(kept), rhs_of(kept))
+        worst = int(np.argmin(x))
+        if x[worst] >= 0.0:
+            return kept, x
+        kept.pop(worst)
+    return [], np.zeros(0)
+
+
+class Run:
+    def __init__(self, model, args, case):
+        self.model = model
+        self.args = args
+        self.tol_gap = 1e-9 * model.length
+        self.tol_rate = 1e-9 * model.speed
+        self.plastic_below = 1e-7 * model.speed
+        self.impacts = 0
+        self.phases = 0
+        self.steps = 0
+        self.cap = case.get("step_cap") or 0
+        self.time_limit = case.get("time_limit") or 0.0
+        self.u_peak = 0.0
+        self.t_peak = 0.0
+        self.min_gap = math.inf
+        self.force_scale = float(np.max(model.m)) * model.length * model.w_p ** 2  # m a_p
+        self.pieces = []  # (t0, t1, dense solution or None) for the history
+
+    def watch(self, t, u):
+        a = abs(u[self.model.ref])
+        if a > self.u_peak:
+            self.u_peak, self.t_peak = a, t
+        if self.model.nc:
+            self.min_gap = min(self.min_gap, float(np.min(self.model.gaps(u))))
+
+    def closed(self, u, active):
+        g = self.model.gaps(u)
+        return [j for j in range(self.model.nc) if j not in active and g[j] <= self.tol_gap]
+
+    def impact(self, u, v, active):
+        """Newton's law on the closed contacts that approach; the active ones stay closed."""
+        m = self.model
+        for _ in range(100):
+            rate = m.rates(v)
+            hitting = [j for j in self.closed(u, active) if rate[j] < -self.tol_rate]
+            if not hitting:
+                return v
+            self.impacts += len(hitting)
+            target = {j: (-m.eps * rate[j] if -rate[j] > self.plastic_below else 0.0) for j in hitting}
+            candidates = sorted(set(hitting) | set(active))
+
+            def matrix_of(kept):
+                wk = m.W[:, kept]
+                return wk.T @ (m.minv[:, None] * wk)
+
+            def rhs_of(kept):
+                return np.array([target.get(j, 0.0) for j in kept]) - rate[kept]
+
+            kept, impulse = lcp_by_active_set(matrix_of, rhs_of, candidates)
+            if kept:
+                v = v + m.minv * (m.W[:, kept] @ impulse)
+        raise Stop("failed", "impacts did not settle in 100 rounds at one instant")
+
+    def contact_set(self, t, u, v, active, opened):
+        """The closed, resting contacts that carry force, by the acceleration LCP; those that just
+        opened (their force fell to zero, an event) stay open. A force within round-off of zero is
+        judged a moment ahead, along the motion with the contact held closed."""
+        m = self.model
+        rate = m.rates(v)
+        g = m.gaps(u)
+        resting = [j for j in range(m.nc) if j not in opened and (j in active or (
+                   g[j] <= self.tol_gap and abs(rate[j]) <= max(self.tol_rate, self.plastic_below)))]
+        if not resting:
+            return [], v
+        wk = m.W[:, resting]
+        s = wk.T @ (m.minv[:, None] * wk)
+        v = v - m.minv * (wk @ np.linalg.solve(s, wk.T @ v))  # resting contacts neither open nor close
+
+        def matrix_of(kept):
+            wk = m.W[:, kept]
+            return wk.T @ (m.minv[:, None] * wk)
+
+        def lcp_at(t_at, u_at, v_at):
+            f = m.free_force(t_at, u_at, v_at)
+            return lcp_by_active_set(matrix_of, lambda kept: -m.W[:, kept].T @ (m.minv * f), resting)
+
+        kept, force = lcp_at(t, u, v)
+        if len(force) and np.min(force) <= 1e-9 * self.force_scale:
+            tau = 1e-6 * m.t_p
+            a = m.rhs(kept)(t, np.concatenate((u, v)))[m.n:]
+            kept, force = lcp_at(t + tau, u + tau * v + 0.5 * tau * tau * a, v + tau * a)
+            kept = [j for j, x in zip(kept, force) if x > 0.0]
+        self.phases += len([j for j in kept if j not in active])
+        return sorted(kept), v
+
+    def rebound_flight(self, t, u, v, active):
+        """The shortest time until a contact that just rebounded closes again, if its motion goes on
+        as it starts (a parabola): an integrator step longer than that would step over the closing,
+        and a root search from the gap's zero at the start would find the start again."""
+        m = self.model
+        g, rate = m.gaps(u), m.rates(v)
+        accel = m.W.T @ m.rhs(active)(t, np.concatenate((u, v)))[m.n:]
+        flights = [2.0 * rate[j] / -accel[j] for j in range(m.nc)
+                   if j not in active and g[j] <= self.tol_gap and rate[j] > 0.0 and accel[j] < 0.0]
+        return min(flights, default=math.inf)
+
+    def segment(self, t0, t1, u, v, active, max_step=math.inf):
+        m = self.model
+        n = m.n
+        events, kinds = [], []
+        for j in range(m.nc):
+            if j in active:
+                k = active.index(j)
+
+                def opens(t, y, k=k):
+                    f = m.free_force(t, y[:n], y[n:])
+                    return m.contact_forces(active, f)[k]
+                opens.terminal, opens.direction = True, -1
+                events.append(opens)
+                kinds.append(("opens", j))
+            else:
+                def closes(t, y, j=j):
+                    return m.gap0[j] + m.W[:, j] @ y[:n]
+                closes.terminal, closes.direction = True, -1
+                events.append(closes)
+                kinds.append(("closes", j))
+
+        def extremum(t, y):
+            return y[n + m.ref]
+        events.append(extremum)
+        scale = np.concatenate((np.full(n, m.length), np.full(n, m.speed)))
+        sol = solve_ivp(m.rhs(active), (t0, t1), np.concatenate((u, v)), method=self.args.method,
+                        rtol=self.args.rtol, atol=1e-3 * self.args.rtol * scale, events=events,
+                        dense_output=True, max_step=max_step)
+        if sol.status < 0:
+            raise Stop("failed", f"solve_ivp: {sol.message}")
+        self.steps += len(sol.t) - 1
+        for ts, ys in zip(sol.t_events[-1], sol.y_events[-1]):
+            self.watch(ts, ys[:n])
+        for k in range(sol.y.shape[1]):
+            self.watch(sol.t[k], sol.y[:n, k])
+        self.pieces.append((t0, sol.t[-1], sol.sol))
+        y = sol.y[:, -1]
+        opened = [j for (kind, j), times in zip(kinds, sol.t_events) if kind == "opens" and len(times)]
+        return sol.t[-1], y[:n].copy(), y[n:].copy(), opened
+
+    def solve(self):
+        m = self.model
+        t, u, v = 0.0, m.u_start.copy(), m.v_start.copy()
+        self.watch(t, u)
+        v = self.impact(u, v, [])
+        active, v = self.contact_set(t, u, v, [], [])
+        stalls = 0
+        while t < m.t_end:
+            if self.cap and self.steps > self.cap:
+                raise Stop("step_cap", f"more than {self.cap} integrator steps and events")
+            if self.time_limit and time.monotonic() - START > self.time_limit:
+                raise Stop("time-limit", f"more than {self.time_limit} s of wall time at t = {t}")
+            t_stop = m.t_p if t < m.t_p else m.t_end
+            flight = self.rebound_flight(t, u, v, active)
+            if flight < t_stop - t:
+                # To the top of the rebound's arc in steps of an eighth of its flight: from there the
+                # closing is a sign change like any other.
+                t_new, u, v, opened = self.segment(t, t + 0.5 * flight, u, v, active, 0.125 * flight)
+            else:
+                t_new, u, v, opened = self.segment(t, t_stop, u, v, active)
+            stalls = stalls + 1 if t_new - t <= 1e-12 * m.t_end else 0
+            if stalls > 50:
+                raise Stop("failed", f"events do not advance at t = {t}")
+            t = t_new
+            self.steps += 1
+            active = [j for j in active if j not in opened]
+            v = self.impact(u, v, active)
+            active, v = self.contact_set(t, u, v, active, opened)
+        return self.u_peak / m.length, self.t_peak
+
+    def history(self, samples):
+        times = np.linspace(0.0, self.model.t_end, samples)
+        u0 = np.empty(samples)
+        piece = 0
+        for i, t in enumerate(times):
+            while piece + 1 < len(self.pieces) and t > self.pieces[piece][1]:
+                piece += 1
+            u0[i] = self.pieces[piece][2](t)[self.model.ref]
+        return {"t": times.tolist(), "u0": u0.tolist()}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--rtol", type=float, default=1e-10, help="solve_ivp's relative tolerance")
+    parser.add_argument("--method", default="DOP853", help="solve_ivp's method (an explicit one: RK45, DOP853)")
+    args = parser.parse_args()
+    try:
+        case = json.load(sys.stdin)
+    except ValueError as e:
+        refuse(f"stdin: not JSON: {e}")
+    if case.get("version") != 1:
+        refuse(f"version: this program speaks version 1, not {case.get('version')!r}")
+    kind = case.get("load", {}).get("kind")
+    if kind != "pulse":
+        refuse(f"load.kind: {kind!r} is not a kind this program knows (it knows 'pulse')")
+    model = Model(case)
+    if model.eps < 0 or model.eps > 1:
+        refuse("eps: must be in [0, 1]")
+    run = Run(model, args, case)
+    try:
+        pi1, t_max = run.solve()
+    except Stop as stop:
+        answer({"status": stop.status, "message": str(stop), "impacts": run.impacts,
+                "contact_phases": run.phases, "steps": run.steps})
+    doc = {"status": "ok", "pi1": pi1, "t_max": t_max, "impacts": run.impacts,
+           "contact_phases": run.phases, "steps": run.steps,
+           "message": f"scipy {args.method} rtol {args.rtol:g}"}
+    if math.isfinite(run.min_gap):
+        doc["min_gap"] = run.min_gap
+    if case.get("history_samples"):
+        doc["history"] = run.history(case["history_samples"])
+    answer(doc)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,306 @@
+// The Python module: `import poundbench`.
+//
+//   poundbench.run(scene="pair", pulse="cosine", directivity="normal", pi2=0.8, pi3=0.5,
+//                  eps=0.5, pi5=0.5, pi6=1.0, solver="moreau-jean", steps=64)
+//   poundbench.spectrum("cases/sets/smoke.toml", solver="moreau-jean", steps=64)
+//
+// Its keywords are the command line's flags, with '_' for '-' (n_free for --n-free), made
+// from the same tables (cases/fields.hpp, solvers/settings_fields.hpp), and they are checked
+// by the same code as the flags (app/case_flags.cpp, app/solver_flags.cpp): a bad keyword is a
+// ValueError with the command line's message ("--pi3: required (or give --case-file)").
+// run() returns the object `run --json` prints, as a dict, with the history as NumPy arrays
+// when asked; spectrum() a list of such dicts, one per point in point order (a list rather
+// than columns: each row keeps its types, and pandas.DataFrame(rows) makes the table).
+//
+// A solve runs with the GIL released, in a thread of its own, while the calling thread looks
+// at Python's signals every 50 ms: Ctrl-C stops the sweep (its stop flag) and raises
+// KeyboardInterrupt.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <atomic>
+#include <chrono>
+#include <climits>
+#include <future>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/case_flags.hpp"
+#include "app/errors.hpp"
+#include "app/run_output.hpp"
+#include "app/solver_flags.hpp"
+#include "cases/case_set.hpp"
+#include "cases/fields.hpp"
+#include "solvers/settings_fields.hpp"
+#include "sweep/sweep.hpp"
+
+namespace py = pybind11;
+
+namespace pb::python {
+
+namespace {
+
+// ---------------------------------------------------------------- keywords
+
+// Where a keyword goes: the case, the solver, or the call itself.
+struct Keywords {
+  app::CaseFlags case_flags;
+  app::SolverFlags solver_flags;
+  std::vector<std::string> given;  // the flags the keywords stand for ("--pi3")
+  bool history = false;
+  std::optional<long long> samples, threads;
+
+  bool has(std::string_view flag) const {
+    for (const std::string& g : given)
+      if (g == flag) return true;
+    return false;
+  }
+};
+
+[[noreturn]] void type_error(const std::string& function, const std::string& key, const std::string& why) {
+  throw py::type_error(function + "() keyword " + key + ": " + why);
+}
+
+std::string text(const std::string& function, const std::string& key, const py::handle& value) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::hasattr(value, "__fspath__")) return py::str(py::module_::import("os").attr("fspath")(value));
+  type_error(function, key, "must be a str");
+}
+
+long long whole(const std::string& function, const std::string& key, const py::handle& value) {
+  if (py::isinstance<py::bool_>(value) || !py::isinstance<py::int_>(value)) type_error(function, key, "must be an int");
+  return value.cast<long long>();
+}
+
+double number(const std::string& function, const std::string& key, const py::handle& value) {
+  if (py::isinstance<py::bool_>(value) || !(py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)))
+    type_error(function, key, "must be a number");
+  return value.cast<double>();
+}
+
+int as_int(const std::string& key, long long value) {
+  if (value < INT_MIN || value > INT_MAX) throw app::BadInput(flag_of(key) + ": " + std::to_string(value) + " is out of range");
+  return static_cast<int>(value);
+}
+
+// The keywords of `function` ("run" or "spectrum"); a None value counts as not given.
+Keywords read_keywords(const std::string& function, const py::kwargs& kwargs) {
+  Keywords k;
+  Settings& settings = k.solver_flags.settings;
+  for (const auto& [key_object, value] : kwargs) {
+    const std::string key = key_object.cast<std::string>();
+    if (value.is_none()) continue;
+    const std::string flag = flag_of(key);
+    const auto case_field = std::find_if(kCaseFields.begin(), kCaseFields.end(),
+                                         [&](const CaseField& f) { return f.name == key; });
+    const std::optional<std::size_t> setting = setting_field_index(key);
+    const bool for_run = function == "run";
+    if (for_run && (key == "scene" || key == "pulse" || key == "directivity")) {
+      (key == "scene" ? k.case_flags.scene : key == "pulse" ? k.case_flags.pulse : k.case_flags.directivity) =
+          text(function, key, value);
+    } else if (for_run && case_field != kCaseFields.end()) {
+      if (case_field->number)
+        k.case_flags.numbers.*case_field->number = number(function, key, value);
+      else
+        k.case_flags.numbers.*case_field->integer = as_int(key, whole(function, key, value));
+    } else if (for_run && key == "case_file") {
+      k.case_flags.case_file = text(function, key, value);
+    } else if (for_run && key == "point") {
+      k.case_flags.point = whole(function, key, value);
+    } else if (for_run && key == "history") {
+      if (!py::isinstance<py::bool_>(value)) type_error(function, key, "must be True or False");
+      k.history = value.cast<bool>();
+      continue;
+    } else if (for_run && key == "samples") {
+      k.samples = whole(function, key, value);
+      continue;
+    } else if (!for_run && key == "threads") {
+      k.threads = whole(function, key, value);
+      continue;
+    } else if (key == "solver") {
+      k.solver_flags.solver = text(function, key, value);
+    } else if (key == "variant") {
+      settings.variant = text(function, key, value);
+    } else if (setting) {
+      const SettingField& f = kSettingFields[*setting];
+      if (f.text)
+        settings.*f.text = text(function, key, value);
+      else if (f.number)
+        settings.*f.number = number(function, key, value);
+      else if (f.integer)
+        settings.*f.integer = as_int(key, whole(function, key, value));
+      else
+        settings.*f.count = static_cast<long>(whole(function, key, value));
+    } else {
+      throw py::type_error(function + "() got an unexpected keyword argument '" + key + "'");
+    }
+    k.given.push_back(flag);
+  }
+  return k;
+}
+
+// ---------------------------------------------------------------- results
+
+py::object to_python(const nlohmann::ordered_json& j) {
+  switch (j.type()) {
+    case nlohmann::ordered_json::value_t::null: return py::none();
+    case nlohmann::ordered_json::value_t::boolean: return py::bool_(j.get<bool>());
+    case nlohmann::ordered_json::value_t::number_integer: return py::int_(j.get<long long>());
+    case nlohmann::ordered_json::value_t::number_unsigned: return py::int_(j.get<unsigned long long>());
+    case nlohmann::ordered_json::value_t::number_float: return py::float_(j.get<double>());
+    case nlohmann::ordered_json::value_t::string: return py::str(j.get<std::string>());
+    case nlohmann::ordered_json::value_t::array: {
+      py::list list;
+      for (const auto& item : j) list.append(to_python(item));
+      return list;
+    }
+    case nlohmann::ordered_json::value_t::object: {
+      py::dict dict;
+      for (const auto& [key, item] : j.items()) dict[py::str(key)] = to_python(item);
+      return dict;
+    }
+    default: return py::none();
+  }
+}
+
+// The history as one NumPy array per column, named as `run --history`'s CSV columns.
+py::dict history_arrays(const Row& row) {
+  const std::vector<std::string> columns = app::history_columns(row.input);
+  const History& h = row.result.history;
+  const std::size_t rows = h.rows(), width = static_cast<std::size_t>(h.row_size());
+  py::dict out;
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    py::array_t<double> column(static_cast<py::ssize_t>(rows));
+    auto values = column.mutable_unchecked<1>();
+    for (std::size_t r = 0; r < rows; ++r) values(static_cast<py::ssize_t>(r)) = k < width ? h.data[r * width + k] : 0.0;
+    out[py::str(columns[k])] = column;
+  }
+  return out;
+}
+
+// Runs `work` in a thread of its own with the GIL released; every 50 ms the calling thread
+// takes the GIL back to let Python handle its signals, and on Ctrl-C sets `stop`, waits for
+// the work to end (its solvers see the flag within milliseconds) and raises.
+template <class Work>
+void run_interruptibly(std::atomic<bool>& stop, Work&& work) {
+  bool interrupted = false;
+  {
+    py::gil_scoped_release release;
+    std::future<void> done = std::async(std::launch::async, std::forward<Work>(work));
+    while (done.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
+      py::gil_scoped_acquire acquire;
+      if (!interrupted && PyErr_CheckSignals() != 0) {
+        interrupted = true;
+        stop = true;
+      }
+    }
+    done.get();  // rethrows what the work threw
+  }
+  if (interrupted) throw py::error_already_set();
+}
+
+// The checks of the command line, raised as ValueError with its message.
+template <class Check>
+auto checked(Check&& check) {
+  try {
+    return check();
+  } catch (const app::BadInput& e) {
+    throw py::value_error(app::one_line(e.what()));
+  } catch (const CaseSetError& e) {
+    throw py::value_error(app::one_line(e.what()));
+  }
+}
+
+// ---------------------------------------------------------------- the functions
+
+py::dict run(const py::kwargs& kwargs) {
+  Keywords k = read_keywords("run", kwargs);
+  const bool history = k.history || k.samples.has_value();
+  const int samples = k.samples ? static_cast<int>(std::clamp<long long>(*k.samples, INT_MIN, INT_MAX)) : 2000;
+  const auto [chosen, solver] = checked([&] {
+    const app::ChosenCase c = app::chosen_case([&](std::string_view flag) { return k.has(flag); }, k.case_flags);
+    if (history) {
+      app::check_samples(samples, c.input);
+      k.solver_flags.settings.history_samples = samples;
+    }
+    return std::pair<app::ChosenCase, const SolverInfo*>(c, &app::checked_solver(k.solver_flags));
+  });
+  std::atomic<bool> stop{false};
+  Settings settings = k.solver_flags.settings;
+  settings.stop = &stop;
+  Row row;
+  run_interruptibly(stop, [&] { row = run_point(chosen.input, chosen.point, *solver, settings); });
+  py::dict out = to_python(app::row_json(row, chosen));
+  if (history) out["history"] = history_arrays(row);
+  return out;
+}
+
+py::list spectrum(const py::object& case_set, const py::kwargs& kwargs) {
+  const std::string file = text("spectrum", "case_set", case_set);
+  Keywords k = read_keywords("spectrum", kwargs);
+  const auto [set, solver] = checked([&] {
+    CaseSet s = load_case_set(file);
+    app::validate_case_set(s, file);
+    const SolverInfo* info = &app::checked_solver(k.solver_flags);
+    if (k.threads && *k.threads <= 0) throw app::BadInput("--threads: must be >= 1");
+    return std::pair<CaseSet, const SolverInfo*>(std::move(s), info);
+  });
+  std::atomic<bool> stop{false};
+  SweepOptions options;
+  options.threads = k.threads ? static_cast<unsigned>(std::min<long long>(*k.threads, 4096)) : 0;
+  options.cancel = &stop;
+  std::vector<Row> rows;
+  run_interruptibly(stop, [&] { rows = run_sweep(set.cases, *solver, k.solver_flags.settings, options); });
+  py::list out;
+  for (const Row& row : rows) out.append(to_python(app::row_json(row, {row.input, row.point, file})));
+  return out;
+}
+
+// "name: help" lines of a field table, for the docstrings.
+template <class Table>
+std::string keyword_lines(const Table& table) {
+  std::string lines;
+  for (const auto& f : table) lines += "    " + std::string(f.name) + ": " + std::string(f.help) + "\n";
+  return lines;
+}
+
+}  // namespace
+
+}  // namespace pb::python
+
+PYBIND11_MODULE(poundbench, m) {
+  using namespace pb;
+  m.doc() = "poundbench: solve pounding cases with the project's solvers (README.md, docs/cli.md).";
+  const std::string run_doc =
+      "run(**keywords) -> dict\n\n"
+      "Solves one case, as `poundbench run --json`: returns its object (status, message, pi1, the counts,\n"
+      "the solver and settings, the case). Keywords are the command line's flags with '_' for '-':\n"
+      "scene, pulse, directivity (or case_file and point), solver, variant, and\n" +
+      python::keyword_lines(kCaseFields) + python::keyword_lines(kSettingFields) +
+      "    history: True for the time history, or samples=N (default 2000; a time-stepper records every\n"
+      "      step): result['history'] is a dict of NumPy arrays, one per column of `run --history`\n"
+      "      (t, u1, u0, ..., lambda1).\n"
+      "A bad keyword value raises ValueError with the command line's message.";
+  m.def("run", &python::run, run_doc.c_str());
+  const std::string spectrum_doc =
+      "spectrum(case_set, **keywords) -> list of dict\n\n"
+      "Solves every point of a case-set file (TOML, cases/README.md) with one solver, as `poundbench\n"
+      "spectrum`: one dict per point, in point order, with the keys of run()'s result (and case_file,\n"
+      "point); pandas.DataFrame(rows) makes the table. Keywords: solver, variant, threads (default: every\n"
+      "core), and\n" +
+      python::keyword_lines(kSettingFields);
+  m.def("spectrum", &python::spectrum, py::arg("case_set"), spectrum_doc.c_str());
+  m.def(
+      "solvers",
+      [] {
+        py::list names;
+        for (const SolverInfo& s : solvers()) names.append(py::str(std::string(s.name)));
+        return names;
+      },
+      "The names of the solvers this build has (`poundbench solvers` describes them).");
+}

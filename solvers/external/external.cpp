@@ -1,0 +1,140 @@
+#include "solvers/external/external.hpp"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <signal.h>
+#include <string.h>
+
+#include "solvers/external/command_words.hpp"
+#include "solvers/external/process.hpp"
+#include "solvers/external/protocol.hpp"
+#include "solvers/named_values.hpp"
+
+namespace pb::external {
+
+namespace {
+
+bool known_variant(std::string_view v) { return v.empty() || v == kPerPoint; }
+
+std::string seconds_text(double s) {
+  std::ostringstream out;
+  out << s;
+  return out.str();
+}
+
+// "; stderr: line | line" with the last lines the program wrote there, or "".
+std::string stderr_note(const ProgramRun& run) {
+  const std::string tail = last_lines(run.err_tail, kStderrLines);
+  return tail.empty() ? std::string() : "; stderr: " + clip(tail, 1000);
+}
+
+std::string signal_text(int sig) {
+#if defined(__GLIBC__) && (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 32))
+  if (const char* abbrev = sigabbrev_np(sig)) return std::to_string(sig) + " (SIG" + abbrev + ")";
+#endif
+  return std::to_string(sig);
+}
+
+// What the program's run says, when it is not an answer to read: "" when it is one.
+Status outcome(const ProgramRun& run, const Settings& settings, std::string& why) {
+  if (!run.spawn_error.empty()) {
+    why = "command: cannot start " + run.spawn_error;
+    return Status::failed;
+  }
+  if (run.stopped) {
+    why = "stopped (the sweep was interrupted): the program was ended";
+    return Status::time_limit;
+  }
+  if (run.timed_out) {
+    why = "more than " + seconds_text(settings.time_limit) + " s of wall time: the program had not answered " +
+          seconds_text(kGraceSeconds) + " s after it and was ended" + stderr_note(run);
+    return Status::time_limit;
+  }
+  if (run.output_cut) {
+    why = "the program wrote more than " + std::to_string(kMaxAnswerBytes >> 20) + " MB to stdout and was ended";
+    return Status::failed;
+  }
+  if (!run.exited) {
+    why = "the program was ended by signal " + signal_text(run.signal) + stderr_note(run);
+    return Status::failed;
+  }
+  if (run.exit_code != 0) {
+    why = "the program exited with code " + std::to_string(run.exit_code) + stderr_note(run);
+    return Status::failed;
+  }
+  return Status::ok;
+}
+
+}  // namespace
+
+Result solve(const System& system, const Settings& settings) {
+  Result r;
+  const auto finish = [&](Status status, std::string message) {
+    r.status = status;
+    r.message = std::move(message);
+    r.pi1 = r.t_max = std::numeric_limits<double>::quiet_NaN();
+    return r;
+  };
+  if (!known_variant(settings.variant))
+    return finish(Status::failed, "variant: unknown '" + clip(settings.variant) + "' (known: " +
+                                      std::string(kPerPoint) + " (default))");
+  const CommandWords command = split_command(settings.command);
+  if (!command.error.empty()) return finish(Status::failed, command.error);
+  if (settings.stop && settings.stop->load(std::memory_order_relaxed))
+    return finish(Status::time_limit, "stopped (the sweep was interrupted) before the program started");
+  const CaseDocument document = case_document(system, settings);
+  if (!document.error.empty()) return finish(Status::failed, document.error);
+  if (settings.steps > 0 || settings.wh > 0.0) r.step = time_step(system, settings, 1);
+
+  ProgramLimits limits;
+  limits.kill_after = settings.time_limit > 0.0 ? settings.time_limit + kGraceSeconds : 0.0;
+  limits.stop = settings.stop;
+  limits.max_output = kMaxAnswerBytes;
+  const ProgramRun run = run_program(command.words, document.text, limits);
+  const double cpu = run.cpu_seconds;
+  std::string why;
+  if (const Status status = outcome(run, settings, why); !why.empty()) {
+    finish(status, why);
+  } else if (std::string bad = read_answer(run.out, system, settings, r); !bad.empty()) {
+    finish(Status::failed, bad + stderr_note(run));
+  }
+  r.child_cpu_seconds = cpu;
+  return r;
+}
+
+std::string describe(const Settings& settings) {
+  NamedValues out;
+  out.add("command", settings.command);
+  if (settings.wh > 0.0)
+    out.add("wh", settings.wh);
+  else if (settings.steps > 0)
+    out.add("steps", settings.steps);
+  return out.json();
+}
+
+std::string check(const Settings& settings) {
+  if (!known_variant(settings.variant))
+    return "variant: unknown '" + settings.variant + "' (known: " + std::string(kPerPoint) + " (default))";
+  if (settings.command.empty())
+    return "command: required by solver external (the program and its arguments, e.g. \"python3 adapter.py\")";
+  const CommandWords command = split_command(settings.command);
+  if (!command.error.empty()) return command.error;
+  const std::string& program = command.words.front();
+  if (find_program(program).empty())
+    return "command: " + (program.find('/') == std::string::npos
+                              ? "program '" + clip(program) + "' not found in PATH"
+                              : "'" + clip(program) + "' is not an executable file");
+  if (settings.steps < 0) return "steps: must be >= 1 (0: the program's own step)";
+  if (!(settings.wh >= 0.0) || !std::isfinite(settings.wh)) return "wh: must be finite and > 0 (0: use steps)";
+  if (settings.wh > 0.0 && settings.steps > 0) return "wh: give steps or wh, not both";
+  return {};
+}
+
+std::vector<VariantInfo> variant_list() {
+  return {{kPerPoint, "a process per point: the case as JSON on its stdin, the answer as JSON on its stdout "
+                      "(docs/external.md)"}};
+}
+
+}  // namespace pb::external

@@ -1,0 +1,45 @@
+#pragma once
+// The external solver: another program, run once per point (`--solver external --command
+// "PROGRAM ARGS"`). It gets the case as one JSON document on its stdin and answers with
+// one on its stdout (solvers/external/protocol.hpp, docs/external.md), so that a solver
+// enters poundbench without being linked into it: an OpenSees model, a Python script.
+//
+// Why a process per point, and not a long-lived server speaking the same documents: a
+// process that crashes, hangs or leaks takes one point with it and nothing else, a sweep's
+// threads need no locking between them, and the program stays a plain filter that a user
+// tries by hand (`program < case.json`). Its cost, measured by wrapping poundbench itself
+// (`poundbench adapter`, docs/external.md), is a few milliseconds per point: for the
+// compiled solvers it dominates (they take microseconds), for the programs this is for
+// (a Python integrator, an FE model) it does not.
+//
+// Everything that can go wrong with a program is a row, never a stopped sweep: it cannot
+// be started (failed), it exits with a code other than 0 or is ended by a signal (failed,
+// with its stderr's last lines), its answer is not one (failed, naming the field), it
+// passes the time limit (time-limit: it is ended), the sweep is stopped (time-limit:
+// "stopped", it is ended).
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "solvers/solver.hpp"
+
+namespace pb::external {
+
+// The one variant: a process per point.
+inline constexpr std::string_view kPerPoint = "per-point";
+
+// A program asked to stop at Settings::time_limit gets this much longer to write its
+// answer before it is ended (a Python program's start alone takes 0.1 to 0.3 s of it).
+inline constexpr double kGraceSeconds = 0.5;
+// Its stdout, at most: the history of u0 at run's largest --samples (1e6) is ~40 MB.
+inline constexpr std::size_t kMaxAnswerBytes = std::size_t{256} << 20;
+// The lines of stderr a failure's message quotes.
+inline constexpr int kStderrLines = 5;
+
+Result solve(const System& system, const Settings& settings);
+std::string describe(const Settings& settings);
+std::string check(const Settings& settings);
+std::vector<VariantInfo> variant_list();
+
+}  // namespace pb::external

@@ -1,0 +1,351 @@
+#include "solvers/external/process.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <pthread.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <set>
+#include <system_error>
+#include <utility>
+
+extern char** environ;
+
+namespace pb::external {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// How often the stop flag and the deadline are looked at while the program runs: a sweep
+// stopped by Ctrl-C ends its programs within this. A wake-up costs a few microseconds.
+constexpr double kPollSeconds = 0.01;
+// Once the program has closed its stdout and stderr it is about to exit, and is waited for
+// in naps from this, doubling up to kPollSeconds: a plain 10 ms nap there measured 10 ms of
+// the 10.6 ms a point cost with a program that only answers.
+constexpr double kFirstNap = 50e-6;
+// How long a process the program left behind may hold its stdout or stderr open once the
+// program itself has exited (a script's background child): then the group is ended.
+constexpr double kDrainAfterExit = 0.2;
+constexpr std::size_t kChunk = 1 << 16;
+
+// The process groups of the programs running now (end_running_programs). A group leaves
+// the set before its leader is reaped, under the lock, so that a pid the system has reused
+// is never signalled.
+std::mutex running_mutex;
+std::set<pid_t> running;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+class Fd {
+ public:
+  Fd() = default;
+  explicit Fd(int fd) : fd_(fd) {}
+  Fd(const Fd&) = delete;
+  Fd& operator=(const Fd&) = delete;
+  Fd(Fd&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
+  Fd& operator=(Fd&& other) noexcept {
+    reset();
+    fd_ = std::exchange(other.fd_, -1);
+    return *this;
+  }
+  ~Fd() { reset(); }
+  int get() const { return fd_; }
+  bool open() const { return fd_ >= 0; }
+  void reset() {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+  }
+
+ private:
+  int fd_ = -1;
+};
+
+// A pipe whose ends are close-on-exec from the start and numbered above 2: with a standard
+// stream of poundbench closed, pipe2 may return 0, 1 or 2, and a dup2 of a descriptor onto
+// its own number would leave it close-on-exec, so that the program would start without it.
+bool make_pipe(Fd& read_end, Fd& write_end) {
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0) return false;
+  for (int& fd : fds) {
+    if (fd > 2) continue;
+    const int moved = fcntl(fd, F_DUPFD_CLOEXEC, 3);
+    ::close(fd);
+    fd = moved;
+  }
+  read_end = Fd(fds[0]);
+  write_end = Fd(fds[1]);
+  return read_end.open() && write_end.open();
+}
+
+bool set_nonblocking(const Fd& fd) {
+  const int flags = fcntl(fd.get(), F_GETFL);
+  return flags >= 0 && fcntl(fd.get(), F_SETFL, flags | O_NONBLOCK) == 0;
+}
+
+// SIGPIPE blocked in this thread while it lives; a SIGPIPE that a write raised here is
+// taken back before the old mask returns (one that was pending before is left alone).
+class SigpipeBlock {
+ public:
+  SigpipeBlock() {
+    sigemptyset(&pipe_);
+    sigaddset(&pipe_, SIGPIPE);
+    sigset_t pending;
+    sigemptyset(&pending);
+    was_pending_ = sigpending(&pending) == 0 && sigismember(&pending, SIGPIPE) == 1;
+    pthread_sigmask(SIG_BLOCK, &pipe_, &old_);
+  }
+  SigpipeBlock(const SigpipeBlock&) = delete;
+  SigpipeBlock& operator=(const SigpipeBlock&) = delete;
+  ~SigpipeBlock() {
+    if (raised_ && !was_pending_) {
+      const timespec zero{};
+      while (sigtimedwait(&pipe_, nullptr, &zero) < 0 && errno == EINTR) {
+      }
+    }
+    pthread_sigmask(SIG_SETMASK, &old_, nullptr);
+  }
+  void raised() { raised_ = true; }
+
+ private:
+  sigset_t pipe_{}, old_{};
+  bool was_pending_ = false, raised_ = false;
+};
+
+// The child, until it is reaped: killed with its group and waited for on any way out.
+class Child {
+ public:
+  explicit Child(pid_t pid) : pid_(pid) {
+    const std::lock_guard lock(running_mutex);
+    running.insert(pid_);
+  }
+  Child(const Child&) = delete;
+  Child& operator=(const Child&) = delete;
+  ~Child() {
+    if (!reaped()) {
+      end_group();
+      wait(0);
+    }
+  }
+  bool reaped() const { return reaped_; }
+  // Ends the program and every process of its group.
+  void end_group() const {
+    killpg(pid_, SIGKILL);
+    if (!reaped_) kill(pid_, SIGKILL);  // in case it left the group
+  }
+  // waitpid with `options` (0 or WNOHANG); true once reaped. A blocking wait follows a
+  // SIGKILL (its pid stays the child's until it is reaped), so the group leaves the set first.
+  bool wait(int options) {
+    if (reaped_) return true;
+    int status = 0;
+    rusage usage{};
+    pid_t got;
+    {
+      std::unique_lock lock(running_mutex);
+      if (options == 0) {
+        running.erase(pid_);
+        lock.unlock();
+      }
+      while ((got = wait4(pid_, &status, options, &usage)) < 0 && errno == EINTR) {
+      }
+      if (got == pid_ && lock.owns_lock()) running.erase(pid_);
+    }
+    if (got != pid_) return false;
+    reaped_ = true;
+    status_ = status;
+    cpu_ = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+           1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+    return true;
+  }
+  int status() const { return status_; }
+  double cpu_seconds() const { return cpu_; }
+
+ private:
+  pid_t pid_;
+  bool reaped_ = false;
+  int status_ = 0;
+  double cpu_ = 0.0;
+};
+
+std::string error_text(int error) { return std::generic_category().message(error); }
+
+// Starts argv with `in` as its stdin, `out` as stdout, `err` as stderr, in a process group of
+// its own, with the signal mask and the dispositions a program expects (poundbench's own may
+// block or ignore signals); returns the pid, or -1 with `error` set.
+pid_t spawn(const std::vector<std::string>& argv, const Fd& in, const Fd& out, const Fd& err, int& error) {
+  posix_spawn_file_actions_t actions;
+  posix_spawnattr_t attr;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawnattr_init(&attr);
+  posix_spawn_file_actions_adddup2(&actions, in.get(), 0);
+  posix_spawn_file_actions_adddup2(&actions, out.get(), 1);
+  posix_spawn_file_actions_adddup2(&actions, err.get(), 2);
+#if defined(__GLIBC__) && (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 34))
+  posix_spawn_file_actions_addclosefrom_np(&actions, 3);
+#endif
+  sigset_t none, defaults;
+  sigemptyset(&none);
+  sigemptyset(&defaults);
+  for (int sig : {SIGPIPE, SIGINT, SIGTERM, SIGQUIT, SIGHUP}) sigaddset(&defaults, sig);
+  posix_spawnattr_setsigmask(&attr, &none);
+  posix_spawnattr_setsigdefault(&attr, &defaults);
+  posix_spawnattr_setpgroup(&attr, 0);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETPGROUP);
+
+  std::vector<char*> args;
+  for (const std::string& word : argv) args.push_back(const_cast<char*>(word.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = -1;
+  error = posix_spawnp(&pid, args[0], &actions, &attr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attr);
+  return error == 0 ? pid : -1;
+}
+
+// Reads what is there; false at end of file or on an error.
+bool read_some(const Fd& fd, std::string& into) {
+  char buffer[kChunk];
+  const ssize_t n = ::read(fd.get(), buffer, sizeof buffer);
+  if (n > 0) {
+    into.append(buffer, static_cast<std::size_t>(n));
+    return true;
+  }
+  return n < 0 && (errno == EAGAIN || errno == EINTR);
+}
+
+}  // namespace
+
+std::string last_lines(std::string_view text, int lines) {
+  std::vector<std::string_view> kept;  // from the end
+  while (!text.empty() && static_cast<int>(kept.size()) < lines) {
+    const std::size_t cut = text.rfind('\n');
+    std::string_view line = cut == std::string_view::npos ? text : text.substr(cut + 1);
+    text = cut == std::string_view::npos ? std::string_view() : text.substr(0, cut);
+    while (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (!line.empty()) kept.push_back(line);
+  }
+  std::string out;
+  for (auto line = kept.rbegin(); line != kept.rend(); ++line) out += (out.empty() ? "" : " | ") + std::string(*line);
+  return out;
+}
+
+void end_running_programs() {
+  const std::lock_guard lock(running_mutex);
+  for (pid_t group : running) killpg(group, SIGKILL);
+}
+
+ProgramRun run_program(const std::vector<std::string>& argv, std::string_view input, const ProgramLimits& limits) {
+  ProgramRun run;
+  if (argv.empty()) {
+    run.spawn_error = "no program";
+    return run;
+  }
+  Fd in_read, in_write, out_read, out_write, err_read, err_write;
+  if (!make_pipe(in_read, in_write) || !make_pipe(out_read, out_write) || !make_pipe(err_read, err_write)) {
+    run.spawn_error = "cannot make a pipe: " + error_text(errno);
+    return run;
+  }
+  SigpipeBlock sigpipe;  // before the first write; the child gets an empty mask
+  const Clock::time_point start = Clock::now();
+  int error = 0;
+  const pid_t pid = spawn(argv, in_read, out_write, err_write, error);
+  if (pid < 0) {
+    run.spawn_error = argv[0] + ": " + error_text(error);
+    return run;
+  }
+  Child child(pid);
+  in_read.reset();  // the child's ends: EOF comes once the program's side closes
+  out_write.reset();
+  err_write.reset();
+  set_nonblocking(in_write);
+  set_nonblocking(out_read);
+  set_nonblocking(err_read);
+
+  std::string err;
+  std::size_t written = 0;
+  if (input.empty()) in_write.reset();
+  Clock::time_point exited_at{};
+  double nap = kFirstNap;
+  const auto end = [&](bool& why) {
+    why = true;
+    child.end_group();
+  };
+  for (;;) {
+    if (limits.stop && limits.stop->load(std::memory_order_relaxed)) {
+      end(run.stopped);
+      break;
+    }
+    const double elapsed = seconds_since(start);
+    if (limits.kill_after > 0.0 && elapsed > limits.kill_after) {
+      end(run.timed_out);
+      break;
+    }
+    if (!child.reaped() && child.wait(WNOHANG)) exited_at = Clock::now();
+    if (child.reaped() && !out_read.open() && !err_read.open()) break;
+    if (child.reaped() && seconds_since(exited_at) > kDrainAfterExit) {
+      child.end_group();  // what it left behind holds the pipes
+      break;
+    }
+
+    pollfd fds[3];
+    nfds_t n = 0;
+    if (in_write.open()) fds[n++] = {in_write.get(), POLLOUT, 0};
+    if (out_read.open()) fds[n++] = {out_read.get(), POLLIN, 0};
+    if (err_read.open()) fds[n++] = {err_read.get(), POLLIN, 0};
+    double wait = n ? kPollSeconds : std::exchange(nap, std::min(2.0 * nap, kPollSeconds));
+    if (limits.kill_after > 0.0) wait = std::clamp(limits.kill_after - elapsed + 1e-4, 1e-4, wait);
+    const timespec timeout{static_cast<time_t>(wait), static_cast<long>((wait - std::floor(wait)) * 1e9)};
+    if (ppoll(n ? fds : nullptr, n, &timeout, nullptr) < 0) {
+      if (errno == EINTR) continue;
+      end(run.stopped);  // cannot wait for it: treated as a stop, which the caller reports
+      break;
+    }
+    for (nfds_t k = 0; k < n; ++k) {
+      if (!fds[k].revents) continue;
+      if (fds[k].fd == in_write.get()) {
+        const std::size_t size = std::min(kChunk, input.size() - written);
+        const ssize_t w = ::write(in_write.get(), input.data() + written, size);
+        if (w > 0) written += static_cast<std::size_t>(w);
+        if (w < 0 && errno == EPIPE) {
+          sigpipe.raised();
+          run.input_refused = true;
+        }
+        if (written == input.size() || (w < 0 && errno != EAGAIN && errno != EINTR)) in_write.reset();
+      } else if (fds[k].fd == out_read.get()) {
+        if (!read_some(out_read, run.out)) out_read.reset();
+      } else if (fds[k].fd == err_read.get()) {
+        if (!read_some(err_read, err)) err_read.reset();
+        if (err.size() > 2 * kErrTail) err.erase(0, err.size() - kErrTail);
+      }
+    }
+    if (limits.max_output > 0 && run.out.size() > limits.max_output) {
+      end(run.output_cut);
+      break;
+    }
+  }
+  child.wait(0);
+  run.seconds = seconds_since(start);
+  run.cpu_seconds = child.cpu_seconds();
+  if (WIFEXITED(child.status())) {
+    run.exited = true;
+    run.exit_code = WEXITSTATUS(child.status());
+  } else if (WIFSIGNALED(child.status())) {
+    run.signal = WTERMSIG(child.status());
+  }
+  if (err.size() > kErrTail) err.erase(0, err.size() - kErrTail);
+  run.err_tail = std::move(err);
+  return run;
+}
+
+}  // namespace pb::external

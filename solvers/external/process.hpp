@@ -1,0 +1,62 @@
+#pragma once
+// One run of another program: its input written to its stdin, its stdout and the end of
+// its stderr read back, the program ended at a deadline or when a stop flag is set, and
+// reaped. The only code of solvers/ that starts a process: the external solver's whole
+// point is to run a program poundbench does not link (docs/external.md).
+//
+// What a sweep needs of it, with several threads calling at once:
+//   - no descriptor leaks: every pipe is close-on-exec from its creation (pipe2), so a
+//     program another thread starts at the same moment inherits none of this one's pipes,
+//     and the child closes every descriptor above 2 before exec (closefrom), so it also
+//     inherits none that other code opened without close-on-exec;
+//   - no SIGPIPE: a program that exits without reading its input must not kill poundbench,
+//     so the writing thread blocks SIGPIPE while it writes and takes back the one a write
+//     raised (a thread-directed signal, so other threads are untouched);
+//   - no zombie: the child is always waited for, on every path out (an exception too);
+//   - a deadline and a stop flag: the program runs in a process group of its own, and the
+//     whole group (a script and what it started) gets SIGKILL.
+
+#include <atomic>
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace pb::external {
+
+struct ProgramLimits {
+  double kill_after = 0.0;  // wall seconds from the start; 0: none
+  const std::atomic<bool>* stop = nullptr;  // ends the program once set
+  std::size_t max_output = 0;               // stdout bytes; beyond, the program is ended
+};
+
+struct ProgramRun {
+  std::string spawn_error;  // it could not be started (then nothing below holds)
+  bool exited = false;      // ended by itself: exit_code holds; else by the signal
+  int exit_code = -1;
+  int signal = 0;
+  bool timed_out = false;     // ended at kill_after
+  bool stopped = false;       // ended because the stop flag was set
+  bool output_cut = false;    // ended for writing more than max_output
+  bool input_refused = false; // it closed its stdin before reading all of the input
+  std::string out;            // its stdout
+  std::string err_tail;       // the last lines of its stderr (at most kErrTail bytes)
+  double seconds = 0.0;       // wall time from the start to its end
+  double cpu_seconds = 0.0;   // its CPU time, user and system, with its waited-for children
+};
+
+// What is kept of stderr: its end, enough for a traceback's last lines.
+inline constexpr std::size_t kErrTail = 4096;
+
+ProgramRun run_program(const std::vector<std::string>& argv, std::string_view input, const ProgramLimits& limits);
+
+// Ends every program run_program is running now, with its group: for a process about to
+// _Exit (a sweep abandoned by a second Ctrl-C), whose programs, in groups of their own, the
+// terminal's signal does not reach and no destructor will end.
+void end_running_programs();
+
+// The last `lines` lines of text (without a trailing line end), each line end as " | ", for
+// a one-line message.
+std::string last_lines(std::string_view text, int lines);
+
+}  // namespace pb::external

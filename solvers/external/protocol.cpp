@@ -1,0 +1,400 @@
+#include "solvers/external/protocol.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace pb::external {
+
+namespace {
+
+using Json = nlohmann::json;
+using Ordered = nlohmann::ordered_json;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// NaN and infinity have no JSON spelling: null says "no value".
+Ordered number_or_null(double x) { return std::isfinite(x) ? Ordered(x) : Ordered(nullptr); }
+
+// The first number of the system that is not finite, by its field name; "" when none is.
+std::string non_finite_field(const System& s) {
+  const std::array<std::pair<double, const char*>, 8> numbers = {{{s.delta, "contacts.gap"},
+                                                                  {s.eps, "eps"},
+                                                                  {s.xi, "xi"},
+                                                                  {s.a_p, "a_p"},
+                                                                  {s.pulse.amplitude, "load.amplitude"},
+                                                                  {s.pulse.w, "load.w"},
+                                                                  {s.t_end, "t_end"},
+                                                                  {s.t_min, "t_min"}}};
+  for (const auto& [x, field] : numbers)
+    if (!std::isfinite(x)) return field;
+  for (const std::vector<double>* start : {&s.u_start, &s.v_start})
+    for (double x : *start)
+      if (!std::isfinite(x)) return start == &s.u_start ? "bodies.u" : "bodies.v";
+  return {};
+}
+
+// ---------------------------------------------------------------- reading, with field names
+
+[[noreturn]] void bad(const std::string& field, const std::string& why) { throw std::invalid_argument(field + ": " + why); }
+
+const Json& member(const Json& object, const std::string& key, const std::string& field) {
+  const auto it = object.find(key);
+  if (it == object.end()) bad(field, "missing");
+  return *it;
+}
+
+double number(const Json& j, const std::string& field) {
+  if (!j.is_number()) bad(field, "must be a number");
+  const double x = j.get<double>();
+  if (!std::isfinite(x)) bad(field, "must be finite");
+  return x;
+}
+
+long whole(const Json& j, const std::string& field) {
+  if (!j.is_number_integer() || j.get<long long>() < 0) bad(field, "must be a whole number >= 0");
+  return static_cast<long>(j.get<long long>());
+}
+
+// An optional number: absent or null is nullopt.
+std::optional<double> maybe_number(const Json& object, const std::string& key) {
+  const auto it = object.find(key);
+  if (it == object.end() || it->is_null()) return std::nullopt;
+  return number(*it, key);
+}
+
+void check_version(const Json& doc) {
+  if (const auto it = doc.find("protocol"); it != doc.end() && *it != kProtocol)
+    bad("protocol", "must be \"" + std::string(kProtocol) + "\"");
+  const Json& version = member(doc, "version", "version");
+  if (!version.is_number_integer() || version.get<long long>() != kVersion)
+    bad("version", "must be " + std::to_string(kVersion) + " (it is " + clip(version.dump()) + ")");
+}
+
+Json parse_object(std::string_view text, const char* what) {
+  if (text.find_first_not_of(" \t\r\n") == std::string_view::npos)
+    bad(what, "empty (one JSON document is expected)");
+  Json doc;
+  try {
+    doc = Json::parse(text);
+  } catch (const Json::exception& e) {
+    bad(what, "not one JSON document (" + clip(e.what(), kMaxEchoedReason) + ")");
+  }
+  if (!doc.is_object()) bad(what, "must be a JSON object");
+  return doc;
+}
+
+// ---------------------------------------------------------------- the answer
+
+// Every key of an answer: anything else is a typo that would go unseen (a "pi_1").
+constexpr std::array kAnswerKeys = {"protocol",         "version",         "status",           "message",
+                                    "pi1",              "t_max",           "history",          "impacts",
+                                    "contact_phases",   "steps",           "isolated_impacts", "min_gap",
+                                    "step",             "energy_excess",   "restitution_low",  "restitution_high",
+                                    "gap_rate_max"};
+
+struct U0History {
+  std::vector<double> t, u0;
+};
+
+U0History read_history(const Json& h) {
+  if (!h.is_object()) bad("history", "must be an object with arrays t and u0");
+  for (const auto& [key, value] : h.items())
+    if (key != "t" && key != "u0") bad("history." + clip(key), "unknown key (version 1 has t and u0)");
+  U0History out;
+  for (const char* key : {"t", "u0"}) {
+    const std::string field = std::string("history.") + key;
+    const Json& values = member(h, key, field);
+    if (!values.is_array()) bad(field, "must be an array of numbers");
+    const bool u0 = std::string_view(key) == "u0";
+    auto& into = u0 ? out.u0 : out.t;
+    into.reserve(values.size());
+    // A null u0: a value the program does not have (a NaN); Pi1 is never taken from one.
+    for (const Json& x : values) into.push_back(u0 && x.is_null() ? kNaN : number(x, field));
+  }
+  if (out.t.size() != out.u0.size())
+    bad("history", "t and u0 must have the same length (" + std::to_string(out.t.size()) + " and " +
+                       std::to_string(out.u0.size()) + ")");
+  return out;
+}
+
+void fill_answer(const Json& doc, const System& s, const Settings& settings, Result& r) {
+  for (const auto& [key, value] : doc.items())
+    if (std::find(kAnswerKeys.begin(), kAnswerKeys.end(), key) == kAnswerKeys.end())
+      bad(clip(key), "unknown key (docs/external.md lists an answer's keys)");
+  check_version(doc);
+  const Json& status = member(doc, "status", "status");
+  const std::optional<Status> parsed = status.is_string() ? parse_status(status.get<std::string>()) : std::nullopt;
+  if (!parsed || *parsed == Status::penetration || *parsed == Status::energy)
+    bad("status", "must be one of ok, diverged, nan, step_cap, time-limit, failed (it is " + clip(status.dump()) + ")");
+  r.status = *parsed;
+  if (const auto it = doc.find("message"); it != doc.end() && !it->is_null()) {
+    if (!it->is_string()) bad("message", "must be a string");
+    r.message = it->get<std::string>();
+  }
+  for (auto [key, count] : {std::pair{"impacts", &r.impacts}, {"contact_phases", &r.contact_phases},
+                            {"steps", &r.steps}, {"isolated_impacts", &r.isolated_impacts}})
+    if (const auto it = doc.find(key); it != doc.end() && !it->is_null()) *count = whole(*it, key);
+  for (auto [key, value] : {std::pair{"energy_excess", &r.energy_excess}, {"restitution_low", &r.restitution_low},
+                            {"restitution_high", &r.restitution_high}, {"gap_rate_max", &r.gap_rate_max}})
+    *value = maybe_number(doc, key).value_or(kNaN);
+  r.min_gap = maybe_number(doc, "min_gap").value_or(std::numeric_limits<double>::infinity());
+  if (const auto step = maybe_number(doc, "step")) r.step = *step;
+
+  U0History history;
+  if (const auto it = doc.find("history"); it != doc.end() && !it->is_null()) history = read_history(*it);
+  r.pi1 = maybe_number(doc, "pi1").value_or(kNaN);
+  r.t_max = maybe_number(doc, "t_max").value_or(kNaN);
+  if (std::isnan(r.pi1) && !history.u0.empty() && r.status == Status::ok) {
+    if (std::any_of(history.u0.begin(), history.u0.end(), [](double u) { return !std::isfinite(u); }))
+      bad("history.u0", "status ok needs a finite u0 at every time to take pi1 from");
+    const auto peak = std::max_element(history.u0.begin(), history.u0.end(),
+                                       [](double a, double b) { return std::abs(a) < std::abs(b); });
+    r.pi1 = s.pi1(std::abs(*peak));
+    r.t_max = history.t[static_cast<std::size_t>(peak - history.u0.begin())];
+  }
+  if (r.status == Status::ok && !(r.pi1 >= 0.0))
+    bad("pi1", "status ok needs pi1 >= 0, or a history of u0 to take it from");
+  // A run that did not end ok has no Pi1, whatever the program says (as every solver).
+  if (r.status != Status::ok) r.pi1 = r.t_max = kNaN;
+
+  if (settings.history_samples > 0 && !history.t.empty()) {
+    // Version 1 carries u0 alone: the other columns of the history are unknown (NaN).
+    History& h = r.history;
+    h.n_bodies = s.n_bodies();
+    h.n_contacts = s.n_contacts();
+    const auto width = static_cast<std::size_t>(h.row_size());
+    h.data.assign(history.t.size() * width, kNaN);
+    for (std::size_t i = 0; i < history.t.size(); ++i) {
+      h.data[i * width] = history.t[i];
+      h.data[i * width + 1 + static_cast<std::size_t>(s.ref)] = history.u0[i];
+    }
+  }
+}
+
+// ---------------------------------------------------------------- the case, read back
+
+std::optional<PulseShape> shape_of(const Json& j) {
+  return j.is_string() ? parse_pulse(j.get<std::string>()) : std::nullopt;
+}
+
+void read_bodies(const Json& doc, System& s) {
+  const Json& bodies = member(doc, "bodies", "bodies");
+  if (!bodies.is_array() || bodies.empty()) bad("bodies", "must be a non-empty array");
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const std::string field = "bodies[" + std::to_string(i) + "]";
+    const Json& b = bodies[i];
+    if (!b.is_object()) bad(field, "must be an object");
+    Body body{};
+    body.m = number(member(b, "m", field + ".m"), field + ".m");
+    body.k = number(member(b, "k", field + ".k"), field + ".k");
+    body.c = number(member(b, "c", field + ".c"), field + ".c");
+    body.w = number(member(b, "w", field + ".w"), field + ".w");
+    if (!(body.m > 0.0)) bad(field + ".m", "must be > 0");
+    s.bodies.push_back(body);
+    s.u_start.push_back(number(member(b, "u", field + ".u"), field + ".u"));
+    s.v_start.push_back(number(member(b, "v", field + ".v"), field + ".v"));
+  }
+  const Json& ref = member(doc, "reference", "reference");
+  if (!ref.is_number_integer() || ref.get<long long>() < 0 ||
+      ref.get<long long>() >= static_cast<long long>(bodies.size()))
+    bad("reference", "must be the index of a body");
+  s.ref = ref.get<int>();
+}
+
+// The contacts of a System: a wall's first (left null), then each body with its right
+// neighbour, all with one gap. A program may take any list; poundbench writes these.
+void read_contacts(const Json& doc, System& s) {
+  const Json& contacts = member(doc, "contacts", "contacts");
+  if (!contacts.is_array()) bad("contacts", "must be an array");
+  s.wall = !contacts.empty() && contacts[0].is_object() && contacts[0].contains("left") && contacts[0]["left"].is_null();
+  if (static_cast<int>(contacts.size()) != s.n_contacts())
+    bad("contacts", "poundbench's systems join each body to its right neighbour (and body 0 of a wall scene to "
+                    "the wall): " + std::to_string(s.n_contacts()) + " contacts here");
+  for (int j = 0; j < s.n_contacts(); ++j) {
+    const std::string field = "contacts[" + std::to_string(j) + "]";
+    const Json& c = contacts[static_cast<std::size_t>(j)];
+    if (!c.is_object()) bad(field, "must be an object");
+    const Json& left = member(c, "left", field + ".left");
+    const Json& right = member(c, "right", field + ".right");
+    const bool left_ok = s.left(j) == kWall ? left.is_null() : left == s.left(j);
+    if (!left_ok || right != s.right(j))
+      bad(field, "must join bodies " + (s.left(j) == kWall ? std::string("null (the wall)") : std::to_string(s.left(j))) +
+                     " and " + std::to_string(s.right(j)));
+    const double gap = number(member(c, "gap", field + ".gap"), field + ".gap");
+    if (j > 0 && gap != s.delta) bad(field + ".gap", "every contact of a poundbench system has the same gap");
+    s.delta = gap;
+  }
+}
+
+void read_load(const Json& doc, System& s) {
+  const Json& load = member(doc, "load", "load");
+  if (!load.is_object()) bad("load", "must be an object");
+  const Json& kind = member(load, "kind", "load.kind");
+  if (kind != "pulse")
+    bad("load.kind", clip(kind.dump()) + " is not a kind this program knows (it knows \"pulse\")");
+  const std::optional<PulseShape> shape = shape_of(member(load, "shape", "load.shape"));
+  if (!shape) bad("load.shape", "must be \"sine\" or \"cosine\"");
+  s.pulse.shape = *shape;
+  s.pulse.amplitude = number(member(load, "amplitude", "load.amplitude"), "load.amplitude");
+  s.pulse.w = number(member(load, "w", "load.w"), "load.w");
+  if (!(s.pulse.w > 0.0)) bad("load.w", "must be > 0");
+}
+
+}  // namespace
+
+CaseDocument case_document(const System& s, const Settings& settings) {
+  CaseDocument doc;
+  for (const Body& b : s.bodies)
+    if (!(b.m > 0.0 && std::isfinite(b.m)) || !std::isfinite(b.k) || !std::isfinite(b.c) || !std::isfinite(b.w)) {
+      doc.error = "every body needs a finite positive mass and a finite stiffness and damping (JSON has no NaN or "
+                  "infinity)";
+      return doc;
+    }
+  if (const std::string field = non_finite_field(s); !field.empty()) {
+    doc.error = field + ": must be finite (JSON has no NaN or infinity)";
+    return doc;
+  }
+  const auto nb = static_cast<std::size_t>(s.n_bodies());
+  if ((!s.u_start.empty() && s.u_start.size() != nb) || (!s.v_start.empty() && s.v_start.size() != nb)) {
+    doc.error = "start state: needs one u and one v per body (or none: rest)";
+    return doc;
+  }
+  Ordered j;
+  j["protocol"] = kProtocol;
+  j["version"] = kVersion;
+  Ordered bodies = Ordered::array();
+  for (std::size_t i = 0; i < nb; ++i) {
+    const Body& b = s.bodies[i];
+    bodies.push_back({{"m", b.m},
+                      {"k", b.k},
+                      {"c", b.c},
+                      {"w", b.w},
+                      {"u", s.u_start.empty() ? 0.0 : s.u_start[i]},
+                      {"v", s.v_start.empty() ? 0.0 : s.v_start[i]}});
+  }
+  j["bodies"] = std::move(bodies);
+  j["reference"] = s.ref;
+  Ordered contacts = Ordered::array();
+  for (int c = 0; c < s.n_contacts(); ++c)
+    contacts.push_back({{"left", s.left(c) == kWall ? Ordered(nullptr) : Ordered(s.left(c))},
+                        {"right", s.right(c)},
+                        {"gap", s.delta}});
+  j["contacts"] = std::move(contacts);
+  j["eps"] = s.eps;
+  j["xi"] = s.xi;
+  j["load"] = {{"kind", "pulse"},
+               {"shape", name(s.pulse.shape)},
+               {"amplitude", s.pulse.amplitude},
+               {"w", s.pulse.w},
+               {"duration", s.pulse.duration()}};
+  j["a_p"] = s.a_p;
+  j["length_scale"] = s.length_scale();
+  j["t_end"] = s.t_end;
+  j["t_min"] = s.t_min;
+  const bool stepped = settings.steps > 0 || settings.wh > 0.0;
+  j["step"] = stepped ? Ordered(time_step(s, settings, 1)) : Ordered(nullptr);
+  j["steps_per_period"] = settings.steps > 0 ? Ordered(settings.steps) : Ordered(nullptr);
+  j["step_cap"] = settings.step_cap;
+  j["time_limit"] = settings.time_limit;
+  j["history_samples"] = settings.history_samples;
+  j["monitor"] = settings.monitor;
+  doc.text = j.dump() + '\n';
+  return doc;
+}
+
+std::string read_answer(std::string_view text, const System& system, const Settings& settings, Result& result) {
+  Result r;
+  r.step = result.step;  // the step sent, unless the answer says otherwise
+  try {
+    fill_answer(parse_object(text, "stdout"), system, settings, r);
+  } catch (const std::invalid_argument& e) {
+    return std::string("answer: ") + e.what();
+  } catch (const Json::exception& e) {  // a type the reader did not foresee
+    return "answer: " + clip(e.what(), kMaxEchoedReason);
+  }
+  result = std::move(r);
+  return {};
+}
+
+CaseRead read_case(std::string_view text) {
+  const Json doc = parse_object(text, "stdin");
+  check_version(doc);
+  CaseRead out;
+  System& s = out.system;
+  read_bodies(doc, s);
+  read_contacts(doc, s);
+  read_load(doc, s);
+  s.eps = number(member(doc, "eps", "eps"), "eps");
+  s.xi = number(member(doc, "xi", "xi"), "xi");
+  s.a_p = number(member(doc, "a_p", "a_p"), "a_p");
+  s.t_end = number(member(doc, "t_end", "t_end"), "t_end");
+  s.t_min = number(member(doc, "t_min", "t_min"), "t_min");
+  if (!(s.t_end > 0.0)) bad("t_end", "must be > 0");
+  if (!(s.t_min > 0.0)) bad("t_min", "must be > 0");
+
+  Settings& set = out.settings;
+  if (const auto n = doc.find("steps_per_period"); n != doc.end() && !n->is_null()) {
+    if (!n->is_number_integer() || n->get<long long>() < 1 || n->get<long long>() > 1'000'000'000)
+      bad("steps_per_period", "must be a whole number from 1 to 1e9, or null");
+    set.steps = n->get<int>();
+  } else if (const auto h = maybe_number(doc, "step")) {
+    if (!(*h > 0.0)) bad("step", "must be > 0, or null");
+    set.wh = *h * 2.0 * std::numbers::pi / s.t_min;
+  }
+  if (const auto cap = doc.find("step_cap"); cap != doc.end()) set.step_cap = whole(*cap, "step_cap");
+  if (const auto limit = maybe_number(doc, "time_limit")) {
+    if (!(*limit >= 0.0)) bad("time_limit", "must be >= 0 (0: none)");
+    set.time_limit = *limit;
+  }
+  if (const auto samples = doc.find("history_samples"); samples != doc.end()) {
+    const long n = whole(*samples, "history_samples");
+    if (n > 1'000'000) bad("history_samples", "must be <= 1e6");
+    set.history_samples = static_cast<int>(n);
+  }
+  if (const auto monitor = doc.find("monitor"); monitor != doc.end()) {
+    if (!monitor->is_boolean()) bad("monitor", "must be true or false");
+    set.monitor = monitor->get<bool>();
+  }
+  return out;
+}
+
+std::string answer_document(const Result& r, const System& s) {
+  Ordered j;
+  j["protocol"] = kProtocol;
+  j["version"] = kVersion;
+  j["status"] = name(r.status);
+  j["message"] = r.message;
+  j["pi1"] = number_or_null(r.pi1);
+  j["t_max"] = number_or_null(r.t_max);
+  j["impacts"] = r.impacts;
+  j["contact_phases"] = r.contact_phases;
+  j["steps"] = r.steps;
+  j["isolated_impacts"] = r.isolated_impacts;
+  j["min_gap"] = number_or_null(r.min_gap);
+  j["step"] = number_or_null(r.step);
+  j["energy_excess"] = number_or_null(r.energy_excess);
+  j["restitution_low"] = number_or_null(r.restitution_low);
+  j["restitution_high"] = number_or_null(r.restitution_high);
+  j["gap_rate_max"] = number_or_null(r.gap_rate_max);
+  const History& h = r.history;
+  if (h.rows() > 0 && h.n_bodies == s.n_bodies()) {
+    Ordered t = Ordered::array(), u0 = Ordered::array();
+    const auto width = static_cast<std::size_t>(h.row_size());
+    for (std::size_t i = 0; i < h.rows(); ++i) {
+      t.push_back(h.data[i * width]);
+      u0.push_back(number_or_null(h.data[i * width + 1 + static_cast<std::size_t>(s.ref)]));
+    }
+    j["history"] = {{"t", std::move(t)}, {"u0", std::move(u0)}};
+  }
+  return j.dump() + '\n';
+}
+
+}  // namespace pb::external

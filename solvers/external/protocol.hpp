@@ -1,0 +1,56 @@
+#pragma once
+// The two JSON documents of the external solver's protocol (docs/external.md; their JSON
+// Schemas are docs/external/case.schema.json and answer.schema.json): the case poundbench
+// writes to the program's stdin, and the answer the program writes to its stdout. Both
+// directions are here, so that one file owns the format: poundbench's side (case_document,
+// read_answer) and a program's side (read_case, answer_document), which `poundbench
+// adapter` uses to answer as an external program itself.
+//
+// The case is the System every solver gets (cases/system.hpp), in physical units: bodies
+// with their mass, stiffness and damping, the contacts with their gaps, eps, the ground
+// load as a function, t_end, the step a time-stepper should take and the limits of the run.
+// Numbers are written so that they read back to the same double (nlohmann's shortest
+// round-trip form), so a program that reads them loses nothing: `poundbench adapter`
+// reproduces the in-process Pi1 bit for bit.
+
+#include <string>
+#include <string_view>
+
+#include "cases/system.hpp"
+#include "solvers/solver.hpp"
+
+namespace pb::external {
+
+inline constexpr std::string_view kProtocol = "poundbench-external";
+// Raised when a document changes in a way an existing program or reader would misread.
+// Adding a load kind (issue 21's recorded accelerograms: "record") is not such a change:
+// a program refuses a kind it does not know, by its answer (docs/external.md).
+inline constexpr int kVersion = 1;
+
+// The case for `system` solved with `settings`: "" and the text, or an error ("field:
+// why") for a system JSON cannot carry (a NaN or infinite number).
+struct CaseDocument {
+  std::string text;
+  std::string error;
+};
+CaseDocument case_document(const System& system, const Settings& settings);
+
+// The answer read into `result`: status, message, Pi1 (from the history of u0 when only that
+// is given), counts and measurements; a history is kept when settings.history_samples > 0.
+// Returns "" or "answer: field: why" (the answer is then not used).
+std::string read_answer(std::string_view text, const System& system, const Settings& settings, Result& result);
+
+// A program's side: the system and the settings a case document carries (the step as
+// steps_per_period, or as wh from step, step_cap, time_limit, history_samples, monitor).
+// Throws std::invalid_argument("field: why").
+struct CaseRead {
+  System system;
+  Settings settings;
+};
+CaseRead read_case(std::string_view text);
+
+// A Result as an answer document (one line): every count and measurement the Result has,
+// and the history of u0 when it has one.
+std::string answer_document(const Result& result, const System& system);
+
+}  // namespace pb::external

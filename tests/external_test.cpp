@@ -1,0 +1,345 @@
+// The external solver (solvers/external/, docs/external.md): the command's quoting rules,
+// the protocol carrying a case and an answer without loss, and every way a program can go
+// wrong turned into a row: it cannot start, it exits non-zero or on a signal, its answer is
+// not one, it passes the time limit, it is stopped, it does not read its input. The shared
+// checks (statuses, threads, monitor, smoke set) are the solver contract's, with
+// `poundbench adapter --solver moreau-jean` as the program (solver_contract_test.cpp).
+
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cases/case_set.hpp"
+#include "cases/system.hpp"
+#include "solvers/external/command_words.hpp"
+#include "solvers/external/external.hpp"
+#include "solvers/external/protocol.hpp"
+#include "solvers/moreau_jean/moreau_jean.hpp"
+#include "sweep/sweep.hpp"
+#include "tests/cli_fixture.hpp"
+#include "tests/support.hpp"
+
+namespace pb {
+namespace {
+
+using test::make_case;
+
+constexpr const char* kAdapter = POUNDBENCH_EXE " adapter --solver moreau-jean";
+
+System pair_case() { return make_system(make_case(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5)); }
+
+Settings with_command(const std::string& command) {
+  Settings s;
+  s.command = command;
+  return s;
+}
+
+// A program that answers `answer` (one line of JSON, no single quotes) whatever it is asked.
+std::string answering(const std::string& answer) { return "sh -c 'cat > /dev/null; echo \"$0\"' '" + answer + "'"; }
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// ---------------------------------------------------------------- the command
+
+TEST(ExternalCommand, WordsFollowTheQuotingRules) {
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"python3 adapter.py", {"python3", "adapter.py"}},
+      {"  a \t b\nc  ", {"a", "b", "c"}},
+      {"prog 'two words' \"and \\\"quoted\\\"\"", {"prog", "two words", "and \"quoted\""}},
+      {"prog 'it''s' a'b c'\"d\"", {"prog", "its", "ab cd"}},
+      {"prog '' \"\"", {"prog", "", ""}},
+      {"prog a\\ b \\'c", {"prog", "a b", "'c"}},
+      {"prog \"back\\\\slash \\n\"", {"prog", "back\\slash \\n"}},
+      {"prog $HOME *.py | wc > out ; rm", {"prog", "$HOME", "*.py", "|", "wc", ">", "out", ";", "rm"}},
+  };
+  for (const auto& [text, words] : cases) {
+    const external::CommandWords split = external::split_command(text);
+    EXPECT_EQ(split.error, "") << text;
+    EXPECT_EQ(split.words, words) << text;
+  }
+  for (const auto& [text, error] : std::vector<std::pair<std::string, std::string>>{
+           {"prog 'open", "command: a single quote (') is not closed"},
+           {"prog \"open", "command: a double quote (\") is not closed"},
+           {"prog end\\", "command: ends in a backslash (\\ escapes the next character)"},
+           {"   ", "command: no program (give the program and its arguments, e.g. \"python3 adapter.py\")"},
+           {"'' arg", "command: the program's name is empty"}}) {
+    const external::CommandWords split = external::split_command(text);
+    EXPECT_EQ(split.error, error) << text;
+    EXPECT_TRUE(split.words.empty()) << text;
+  }
+}
+
+TEST(ExternalCommand, CheckRefusesAMissingOrUnknownProgramAndBadQuoting) {
+  EXPECT_EQ(external::check(Settings{}).rfind("command: required by solver external", 0), 0u);
+  EXPECT_EQ(external::check(with_command("no-such-program-xyz --flag")),
+            "command: program 'no-such-program-xyz' not found in PATH");
+  EXPECT_EQ(external::check(with_command("/no/such/file")), "command: '/no/such/file' is not an executable file");
+  EXPECT_EQ(external::check(with_command("sh -c 'x")), "command: a single quote (') is not closed");
+  EXPECT_EQ(external::check(with_command(kAdapter)), "");
+  Settings both = with_command(kAdapter);
+  both.steps = 8;
+  both.wh = 1.0;
+  EXPECT_EQ(external::check(both), "wh: give steps or wh, not both");
+}
+
+// ---------------------------------------------------------------- the protocol
+
+// poundbench answering as an external program gives the in-process answer bit for bit: the
+// documents carry every number exactly (the smoke set through moreau-jean at N = 64, and the
+// reference on its wall cases).
+TEST(ExternalProtocol, AdapterGivesTheInProcessAnswerBitForBit) {
+  const CaseSet set = load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/smoke.toml");
+  Settings st = with_command(kAdapter);
+  st.steps = 64;
+  Settings direct;
+  direct.steps = 64;
+  int compared = 0;
+  for (std::size_t i = 0; i < set.cases.size(); i += 4) {
+    const System s = make_system(set.cases[i]);
+    const Result a = moreau_jean::solve(s, direct), b = external::solve(s, st);
+    ASSERT_EQ(b.status, a.status) << i << ": " << b.message;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(b.pi1), std::bit_cast<std::uint64_t>(a.pi1)) << i;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(b.t_max), std::bit_cast<std::uint64_t>(a.t_max)) << i;
+    EXPECT_EQ(b.impacts, a.impacts) << i;
+    EXPECT_EQ(b.contact_phases, a.contact_phases) << i;
+    EXPECT_EQ(b.steps, a.steps) << i;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(b.min_gap), std::bit_cast<std::uint64_t>(a.min_gap)) << i;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(b.step), std::bit_cast<std::uint64_t>(a.step)) << i;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(b.energy_excess), std::bit_cast<std::uint64_t>(a.energy_excess)) << i;
+    ++compared;
+  }
+  EXPECT_EQ(compared, 10);
+}
+
+TEST(ExternalProtocol, CaseDocumentReadsBackToTheSameSystem) {
+  Case c = make_case(Scene::chain, PulseShape::cosine, 0.7, 1.3, 0.25);
+  c.bodies = 5;
+  c.kick = 0.5;
+  c.directivity = Directivity::reverse;
+  const System s = make_system(c);
+  Settings st;
+  st.steps = 32;
+  st.step_cap = 1000;
+  st.time_limit = 2.5;
+  st.history_samples = 10;
+  const external::CaseRead back = external::read_case(external::case_document(s, st).text);
+  EXPECT_EQ(case_key(case_of(back.system)), case_key(case_of(s)));
+  EXPECT_EQ(back.system.u_start, s.u_start);
+  EXPECT_EQ(back.system.v_start, s.v_start);
+  EXPECT_EQ(back.system.t_end, s.t_end);
+  EXPECT_EQ(back.system.t_min, s.t_min);
+  EXPECT_EQ(back.settings.steps, 32);
+  EXPECT_EQ(back.settings.step_cap, 1000);
+  EXPECT_EQ(back.settings.time_limit, 2.5);
+  EXPECT_EQ(back.settings.history_samples, 10);
+}
+
+// A program may answer with the history of u0 alone: Pi1 and its time are taken from it
+// (Pi1 = max |u0| over a_p / w_p^2; here a_p = 1, w_p = 1), and `run --history` gets its u0.
+TEST(ExternalProtocol, Pi1IsTakenFromAHistoryOfU0) {
+  Settings st = with_command(answering(R"({"version":1,"status":"ok","history":{"t":[0,1,2,3],"u0":[0,0.5,-1.25,0.75]}})"));
+  st.history_samples = 4;
+  const System s = pair_case();
+  const Result r = external::solve(s, st);
+  ASSERT_EQ(r.status, Status::ok) << r.message;
+  EXPECT_DOUBLE_EQ(r.pi1, 1.25);
+  EXPECT_DOUBLE_EQ(r.t_max, 2.0);
+  ASSERT_EQ(r.history.rows(), 4u);
+  EXPECT_EQ(r.history.data[static_cast<std::size_t>(2 * r.history.row_size() + 1 + s.ref)], -1.25);
+  EXPECT_TRUE(std::isnan(r.history.data[static_cast<std::size_t>(2 * r.history.row_size() + 1 + 1 - s.ref)]))
+      << "u of the other body: not in a version 1 answer";
+}
+
+// ---------------------------------------------------------------- a program gone wrong
+
+TEST(ExternalFailures, BadAnswersAreFailedRowsNamingTheField) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"", "answer: stdout: empty (one JSON document is expected)"},
+      {"not json", "answer: stdout: not one JSON document"},
+      {"[1, 2]", "answer: stdout: must be a JSON object"},
+      {R"({"status":"ok","pi1":1})", "answer: version: missing"},
+      {R"({"version":2,"status":"ok","pi1":1})", "answer: version: must be 1 (it is 2)"},
+      {R"({"version":1,"pi1":1})", "answer: status: missing"},
+      {R"({"version":1,"status":"great"})", "answer: status: must be one of ok, diverged, nan, step_cap, time-limit, failed"},
+      {R"({"version":1,"status":"ok"})", "answer: pi1: status ok needs pi1 >= 0, or a history of u0 to take it from"},
+      {R"({"version":1,"status":"ok","pi1":-1})", "answer: pi1: status ok needs pi1 >= 0"},
+      {R"({"version":1,"status":"ok","pi1":"2"})", "answer: pi1: must be a number"},
+      {R"({"version":1,"status":"ok","pi1":1,"impacts":2.5})", "answer: impacts: must be a whole number >= 0"},
+      {R"({"version":1,"status":"ok","pi_1":1})", "answer: pi_1: unknown key"},
+      {R"({"version":1,"status":"ok","history":{"t":[0,1],"u0":[1]}})", "answer: history: t and u0 must have the same length"},
+  };
+  for (const auto& [answer, message] : cases) {
+    const Result r = external::solve(pair_case(), with_command(answering(answer)));
+    EXPECT_EQ(r.status, Status::failed) << answer;
+    EXPECT_EQ(r.message.rfind(message, 0), 0u) << answer << " gave: " << r.message;
+    EXPECT_TRUE(std::isnan(r.pi1)) << answer;
+  }
+}
+
+TEST(ExternalFailures, NonZeroExitIsAFailedRowWithStderrsLastLines) {
+  const Result r = external::solve(
+      pair_case(), with_command("sh -c 'cat > /dev/null; for i in 1 2 3 4 5 6 7; do echo line $i >&2; done; exit 3'"));
+  EXPECT_EQ(r.status, Status::failed);
+  EXPECT_EQ(r.message, "the program exited with code 3; stderr: line 3 | line 4 | line 5 | line 6 | line 7");
+}
+
+TEST(ExternalFailures, ASignalIsAFailedRowNamingIt) {
+  const Result r = external::solve(pair_case(), with_command("sh -c 'echo dying >&2; kill -SEGV $$'"));
+  EXPECT_EQ(r.status, Status::failed);
+  EXPECT_EQ(r.message, "the program was ended by signal 11 (SIGSEGV); stderr: dying");
+}
+
+TEST(ExternalFailures, AProgramThatCannotStartIsAFailedRow) {
+  const Result r = external::solve(pair_case(), with_command("/no/such/program"));
+  EXPECT_EQ(r.status, Status::failed);
+  EXPECT_EQ(r.message, "command: cannot start /no/such/program: No such file or directory");
+}
+
+// Ended at the time limit plus its grace (kGraceSeconds), whatever the program does: one
+// that sleeps, and a script whose child sleeps with the pipes open (its group is ended).
+TEST(ExternalFailures, APastTheTimeLimitProgramIsEndedWithItsGroup) {
+  for (const char* command : {"sleep 30", "sh -c 'sleep 30 & sleep 40'"}) {
+    Settings st = with_command(command);
+    st.time_limit = 0.1;
+    const auto start = std::chrono::steady_clock::now();
+    const Result r = external::solve(pair_case(), st);
+    const double elapsed = seconds_since(start);
+    EXPECT_EQ(r.status, Status::time_limit) << command;
+    EXPECT_EQ(r.message.rfind("more than 0.1 s of wall time: the program had not answered 0.5 s after it", 0), 0u)
+        << r.message;
+    EXPECT_GT(elapsed, 0.6) << command;
+    EXPECT_LT(elapsed, 2.0) << command;  // 0.6 s and a loaded machine's scheduling
+  }
+}
+
+TEST(ExternalFailures, StopFlagEndsAProgramWithinMilliseconds) {
+  std::atomic<bool> stop{false};
+  Settings st = with_command("sleep 30");
+  st.stop = &stop;
+  std::jthread stopper([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    stop = true;
+  });
+  const auto start = std::chrono::steady_clock::now();
+  const Result r = external::solve(pair_case(), st);
+  const double elapsed = seconds_since(start);
+  EXPECT_EQ(r.status, Status::time_limit);
+  EXPECT_NE(r.message.find("stopped"), std::string::npos) << r.message;
+  EXPECT_LT(elapsed, 1.0);  // the flag is looked at every 10 ms
+}
+
+// A program that closes its stdin unread while poundbench is still writing (a 1000-body
+// chain's case is 85 kB, more than a pipe holds): the write fails with EPIPE and no
+// SIGPIPE reaches poundbench; the program's answer stands.
+TEST(ExternalFailures, AProgramThatDoesNotReadItsInputDoesNotKillPoundbench) {
+  Case c = make_case(Scene::chain, PulseShape::sine, 1.0, 1.0, 0.5);
+  c.bodies = 1000;
+  const System s = make_system(c);
+  ASSERT_GT(external::case_document(s, Settings{}).text.size(), 65'536u);  // Linux's pipe buffer
+  const Result r = external::solve(s, with_command("sh -c 'exec 0<&-; echo \"{\\\"version\\\":1,\\\"status\\\":\\\"ok\\\",\\\"pi1\\\":2}\"'"));
+  EXPECT_EQ(r.status, Status::ok) << r.message;
+  EXPECT_EQ(r.pi1, 2.0);
+}
+
+// ---------------------------------------------------------------- processes and descriptors
+
+int open_descriptors() {
+  int n = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator("/proc/self/fd")) ++n;
+  return n;
+}
+
+// The program starts with its three standard streams and nothing else, even a descriptor
+// this process opened without close-on-exec; after a sweep of 16 runs on 4 threads, this
+// process holds the descriptors it held before and has no child left, zombie or not.
+TEST(ExternalProcesses, NoDescriptorLeaksAndNoZombies) {
+  const int null = ::open("/dev/null", O_RDONLY);
+  const int leaky = ::fcntl(null, F_DUPFD, 200);  // not close-on-exec
+  ::close(null);
+  ASSERT_GE(leaky, 200);
+  const Result listed = external::solve(pair_case(), with_command("sh -c 'exec ls /proc/self/fd >&2'"));
+  ::close(leaky);
+  // 3 is ls's own, the directory it lists.
+  EXPECT_EQ(listed.message.rfind("answer: stdout: empty (one JSON document is expected); stderr: 0 | 1 | 2 | 3", 0), 0u)
+      << listed.message;
+
+  const int before = open_descriptors();
+  std::vector<Case> cases;
+  for (double pi2 : {0.5, 0.75, 1.0, 1.5}) {
+    cases.push_back(make_case(Scene::pair, PulseShape::sine, pi2, 0.5, 0.5));
+    cases.push_back(make_case(Scene::wall, PulseShape::cosine, pi2, 1.0, 0.5));
+  }
+  Settings st = with_command(kAdapter);
+  st.steps = 32;
+  SweepOptions options;
+  options.threads = 4;
+  const std::vector<Row> rows = run_sweep(cases, *find_solver("external"), st, options);
+  ASSERT_EQ(rows.size(), cases.size());
+  for (const Row& row : rows) EXPECT_EQ(row.result.status, Status::ok) << row.result.message;
+  EXPECT_EQ(open_descriptors(), before);
+  errno = 0;
+  EXPECT_EQ(::waitpid(-1, nullptr, WNOHANG), -1);
+  EXPECT_EQ(errno, ECHILD) << "a child is left";
+}
+
+// A sweep's CPU time of an external point is the program's (the thread's own clock sees
+// only the pipes): a program that spins for ~0.2 s of CPU is a row of at least 0.1 s.
+TEST(ExternalProcesses, RowCpuSecondsIncludeTheProgramsCpu) {
+  Settings st = with_command(
+      "sh -c 'i=0; while [ $i -lt 100000 ]; do i=$((i+1)); done; echo \"{\\\"version\\\":1,\\\"status\\\":\\\"ok\\\",\\\"pi1\\\":1}\"'");
+  st.monitor = false;
+  const Row row = run_point(make_case(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5), 0, *find_solver("external"), st);
+  ASSERT_EQ(row.result.status, Status::ok) << row.result.message;
+  RecordProperty("cpu_seconds", test::sci(row.cpu_seconds));
+  EXPECT_GT(row.cpu_seconds, 0.05);
+  EXPECT_LE(row.cpu_seconds, row.seconds * 1.1 + 0.01);
+}
+
+// ---------------------------------------------------------------- the command line
+
+TEST_F(Cli, ExternalWithoutACommandIsABadInput) {
+  const Outcome o = run("run --scene wall --pulse sine --directivity normal --pi2 1 --pi3 1 --eps 0.5 --solver external");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.err, "poundbench: --command: required by solver external (the program and its arguments, e.g. "
+                   "\"python3 adapter.py\")\n");
+}
+
+TEST_F(Cli, ExternalRowsNameTheCommandAndAFailingProgramIsARowNotAStop) {
+  write("set.toml", kTinySet);
+  const Outcome o = run("spectrum set.toml --threads 2 --solver external --command \"sh -c 'exit 4'\"");
+  EXPECT_EQ(o.exit_code, 0) << o.err;
+  CsvTable table(o.out);
+  ASSERT_EQ(table.rows.size(), 6u);
+  for (std::size_t i = 0; i < table.rows.size(); ++i) {
+    EXPECT_EQ(table.at(i, "status"), "failed");
+    EXPECT_EQ(table.at(i, "message"), "the program exited with code 4");
+    EXPECT_EQ(table.at(i, "settings"), R"({"command":"sh -c 'exit 4'"})");
+  }
+}
+
+TEST_F(Cli, AdapterRefusesABadCaseDocumentAsABadInput) {
+  write("case.json", R"({"protocol":"poundbench-external","version":1,"bodies":[]})");
+  const Outcome o = run("adapter --solver moreau-jean < case.json");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.err, "poundbench: stdin: bodies: must be a non-empty array\n");
+  const Outcome steps = run("adapter --solver moreau-jean --steps 8 < case.json");
+  EXPECT_EQ(steps.exit_code, 2);
+  EXPECT_EQ(steps.err, "poundbench: --steps: the case document gives it (run the sweep with it instead)\n");
+}
+
+}  // namespace
+}  // namespace pb

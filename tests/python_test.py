@@ -1,0 +1,116 @@
+"""The Python module (python/poundbench_module.cpp): `import poundbench`.
+
+    PYTHONPATH=build/python python3 tests/python_test.py POUNDBENCH SOURCE_DIR
+
+Its keywords are the command line's flags, its answers those of `run --json` and `spectrum`
+(the same numbers, bit for bit), its errors the command line's messages.
+"""
+import csv
+import io
+import json
+import subprocess
+import sys
+import unittest
+
+POUNDBENCH, SOURCE = sys.argv[1], sys.argv[2]
+import numpy as np  # noqa: E402
+import poundbench  # noqa: E402
+
+CASE = dict(scene="pair", pulse="cosine", directivity="normal", pi2=0.8, pi3=0.5, eps=0.5, pi5=0.5, pi6=1.0)
+FLAGS = ["--scene", "pair", "--pulse", "cosine", "--directivity", "normal", "--pi2", "0.8", "--pi3", "0.5",
+         "--eps", "0.5", "--pi5", "0.5", "--pi6", "1"]
+
+
+def cli(*args):
+    """poundbench's exit code, stdout and stderr."""
+    done = subprocess.run([POUNDBENCH, *args], capture_output=True, text=True)
+    return done.returncode, done.stdout, done.stderr
+
+
+class Run(unittest.TestCase):
+    def test_run_gives_the_command_lines_answer_bit_for_bit(self):
+        result = poundbench.run(**CASE, solver="moreau-jean", steps=64)
+        code, out, _ = cli("run", *FLAGS, "--solver", "moreau-jean", "--steps", "64", "--json")
+        self.assertEqual(code, 0)
+        expected = json.loads(out)
+        for key in expected:
+            if key != "seconds":
+                self.assertEqual(result[key], expected[key], key)
+        self.assertNotIn("history", result)
+
+    def test_history_is_one_numpy_array_per_column_of_run_history(self):
+        result = poundbench.run(**CASE, samples=101)
+        history = result["history"]
+        self.assertEqual(list(history), ["t", "u1", "u0", "v1", "v0", "g1", "lambda1"])
+        for column in history.values():
+            self.assertIsInstance(column, np.ndarray)
+            self.assertEqual(column.shape, (101,))
+        # Pi1 is the largest |u0| over the run (a_p = w_p = 1): the 101 samples see at most it,
+        # and at least 90 % of it (a sample every 1/100 of the run).
+        peak = np.max(np.abs(history["u0"]))
+        self.assertLessEqual(peak, result["pi1"] * (1 + 1e-12))
+        self.assertGreater(peak, 0.9 * result["pi1"])
+        self.assertEqual(len(poundbench.run(**CASE, history=True)["history"]["t"]), 2000)
+
+    def test_errors_carry_the_command_lines_messages(self):
+        cases = [
+            (dict(scene="pair", pulse="cosine", directivity="normal", pi2=0.8), []),
+            (dict(CASE, scene="wall"), []),
+            (dict(CASE, eps=1.5), []),
+            (dict(CASE, solver="no-such-solver"), ["--solver", "no-such-solver"]),
+            (dict(CASE, solver="event-driven", steps=8), ["--solver", "event-driven", "--steps", "8"]),
+            (dict(CASE, solver="external"), ["--solver", "external"]),
+            (dict(CASE, samples=1), ["--history", "h.csv", "--samples", "1"]),
+        ]
+        for keywords, extra in cases:
+            flags = []
+            for key, value in keywords.items():
+                flags += ["--" + key.replace("_", "-"), str(value)]
+            if extra:
+                flags = [f for f in FLAGS] + extra
+            code, _, err = cli("run", *flags)
+            self.assertEqual(code, 2, err)
+            with self.assertRaises(ValueError) as raised:
+                poundbench.run(**keywords)
+            self.assertEqual("poundbench: " + str(raised.exception) + "\n", err, keywords)
+
+    def test_unknown_keywords_and_wrong_types_are_type_errors(self):
+        with self.assertRaisesRegex(TypeError, "unexpected keyword argument 'pi9'"):
+            poundbench.run(**CASE, pi9=1)
+        with self.assertRaisesRegex(TypeError, "steps: must be an int"):
+            poundbench.run(**CASE, solver="moreau-jean", steps=6.4)
+        with self.assertRaisesRegex(TypeError, "unexpected keyword argument 'pi2'"):
+            poundbench.spectrum(f"{SOURCE}/cases/sets/smoke.toml", pi2=1)
+
+    def test_keywords_are_the_flags_of_the_field_tables(self):
+        for name in ("n_free", "a_p", "w_p", "tol_scale", "step_cap", "time_limit", "command"):
+            self.assertIn(f"    {name}: ", poundbench.run.__doc__)
+
+
+class Spectrum(unittest.TestCase):
+    def test_spectrum_gives_the_rows_of_the_command_line(self):
+        smoke = f"{SOURCE}/cases/sets/smoke.toml"
+        rows = poundbench.spectrum(smoke, solver="moreau-jean", steps=32, threads=2)
+        code, out, _ = cli("spectrum", smoke, "--solver", "moreau-jean", "--steps", "32", "--threads", "2")
+        self.assertEqual(code, 0)
+        expected = list(csv.DictReader(io.StringIO(out)))
+        self.assertEqual(len(rows), len(expected))
+        for row, line in zip(rows, expected):
+            self.assertEqual(row["point"], int(line["point"]))
+            self.assertEqual(row["case_file"], smoke)
+            self.assertEqual(row["pi1"], float(line["pi1"]))  # the CSV's text reads back to the same double
+            self.assertEqual(row["status"], line["status"])
+            self.assertEqual(row["impacts"], int(line["impacts"]))
+
+    def test_a_bad_case_set_is_the_command_lines_value_error(self):
+        code, _, err = cli("spectrum", "no-such-file.toml")
+        self.assertEqual(code, 2)
+        with self.assertRaises(ValueError) as raised:
+            poundbench.spectrum("no-such-file.toml")
+        self.assertEqual("poundbench: " + str(raised.exception) + "\n", err)
+        with self.assertRaisesRegex(ValueError, "^--threads: must be >= 1$"):
+            poundbench.spectrum(f"{SOURCE}/cases/sets/smoke.toml", threads=0)
+
+
+if __name__ == "__main__":
+    unittest.main(argv=sys.argv[:1], verbosity=2)
