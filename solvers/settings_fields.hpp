@@ -36,7 +36,7 @@ struct SettingField {
   }
 };
 
-inline constexpr std::array<SettingField, 11> kSettingFields = {{
+inline constexpr std::array<SettingField, 13> kSettingFields = {{
     {"steps", nullptr, &Settings::steps, nullptr,
      "Time-steppers: steps per shortest period N, h = T_min/N (0: default)"},
     {"wh", &Settings::wh, nullptr, nullptr,
@@ -53,6 +53,10 @@ inline constexpr std::array<SettingField, 11> kSettingFields = {{
     {"rtol", &Settings::rtol, nullptr, nullptr, "Compliant with cvode: relative tolerance (0: default)"},
     {"integrator", nullptr, nullptr, nullptr, "Compliant: cvode or newmark (default: cvode)", &Settings::integrator},
     {"method", nullptr, nullptr, nullptr, "Compliant with cvode: bdf or adams (default: bdf)", &Settings::method},
+    {"lcp", nullptr, nullptr, nullptr,
+     "Siconos, a scheme whose variant does not name its LCP solver: lemke or enum (default: lemke)", &Settings::lcp},
+    {"projection_tol", &Settings::projection_tol, nullptr, nullptr,
+     "Siconos projections: tolerance on a violated gap, over a_p/w_p^2 (0: default 1e-10)"},
 }};
 
 // The index of a field in kSettingFields by its name, if there is one.

@@ -43,6 +43,8 @@ struct Settings {
   double rtol = 0;       // compliant with cvode: relative tolerance; 0 = default
   std::string integrator;  // compliant: cvode or newmark; empty = the solver's default
   std::string method;      // compliant with cvode: bdf or adams; empty = the solver's default
+  std::string lcp;         // siconos: the LCP solver of a scheme that does not name it, lemke or enum; empty = lemke
+  double projection_tol = 0;  // siconos projections: tolerance on a violated gap over a_p/w_p^2; 0 = default
   long step_cap = 0;     // 0 = the solver's own cap
   double time_limit = 0;  // seconds of wall time per run; 0 = none
   // Set by a sweep that is being stopped: a run in progress ends as time_limit at its
