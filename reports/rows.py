@@ -49,6 +49,10 @@ def config_label(row):
         label += f" theta={fields['theta']}"
     if "tol_scale" in fields:  # the reference, and siconos' event-driven variant
         label += f" tol_scale={fields['tol_scale']}"
+    if fields.get("lcp") == "enum" and not row.get("variant", "").endswith("-enum"):  # siconos, Settings::lcp
+        label += " lcp=enum"
+    if fields.get("projection_tol", 1e-10) != 1e-10:  # siconos' projections, away from their default
+        label += f" projection_tol={fields['projection_tol']}"
     return label
 
 
