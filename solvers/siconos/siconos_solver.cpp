@@ -40,9 +40,9 @@ constexpr std::array kVariants = {
     Variant{"direct-projection", Scheme::time_stepping, Integrator::direct_projection, Lcp::setting,
             "TimeSteppingDirectProjection: MoreauJeanOSI's step, then a direct projection of the positions (MLCP)"},
     Variant{"bilbao", Scheme::time_stepping, Integrator::bilbao, Lcp::setting,
-            "MoreauJeanBilbaoOSI (exact for linear oscillators); fails: its free state leaves out the ground load"},
+            "MoreauJeanBilbaoOSI (Bilbao's scheme for linear oscillators); fails: its free state leaves out the ground load"},
     Variant{"newmark-alpha", Scheme::newmark_alpha, Integrator::moreau_jean, Lcp::lemke,
-            "EventDriven with NewMarkAlphaOSI; fails: its Newton loop never converges (K and C negated in place)"},
+            "EventDriven with NewMarkAlphaOSI; fails: its computeW negates the system's K and C in place"},
 };
 
 const Variant* find_variant(std::string_view name) {
