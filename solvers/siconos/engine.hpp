@@ -1,7 +1,8 @@
 #pragma once
-// The one place that touches Siconos: a run's model and simulation behind two small classes,
-// one per integration, each hiding its Siconos objects (engine.cpp). The step loops, the
-// counts and the Result are the callers' (time_stepping.cpp, event_driven.cpp).
+// The one place that touches Siconos: a run's model and simulation behind three small
+// classes, one per kind of integration, each hiding its Siconos objects (engine.cpp). The
+// step loops, the counts and the Result are the callers' (time_stepping.cpp,
+// event_driven.cpp, newmark_alpha.cpp).
 //
 // Why a separate layer: Siconos 4.4's headers need Boost 1.74's uBLAS, which does not compile
 // as C++20 (it calls std::allocator::construct), so engine.cpp is compiled as C++17 and this
@@ -13,8 +14,8 @@
 // DynamicalSystem, Interaction and Event constructor; for LSODAR, ODEPACK's COMMON blocks and
 // the one LsodarOSI that its Fortran callbacks reach. A TimeStepper is made (model,
 // simulation, initialisation, which makes its events) and destroyed under a process-wide
-// lock and steps without it; an EventDrivenRun holds the lock from construction to
-// destruction (README, thread safety).
+// lock and steps without it; an EventDrivenRun and a NewmarkAlphaRun hold the lock from
+// construction to destruction (README, thread safety).
 
 #include <memory>
 #include <vector>
