@@ -4,7 +4,7 @@ study that meets it, per scene and over every family. Read off the study's summa
 
 from collections import defaultdict
 
-from rows import num, setting_label, settings_fields, steps_of
+from rows import config_label, num, setting_label, settings_fields, steps_of
 
 MIDDLE_N = 64  # the step count of the cost table and of the spectra drawn against the reference
 TARGETS = [1e-1, 1e-2, 1e-3, 1e-4]
@@ -109,6 +109,68 @@ def rule(summary):
             (" (in brackets, the lowest and highest of the timing repetitions)" if spread else "") +
             ". The reference is a setting like any other: it is exact up to its tolerances, so it wins where it "
             "is cheapest. `none`: no setting of the study meets the target.")
+
+
+IN_HOUSE = "moreau-jean"
+
+
+def beats_table(summary, key="err_median"):
+    """Markdown: per family and target, the in-house Moreau-Jean's cheapest setting that meets
+    the target (error `key`, no failed run), and every other time-stepper configuration that
+    meets it either at less CPU per run or with fewer steps per shortest period N than the
+    in-house one's least N. The step counts compare the schemes apart from what their code
+    costs a step (Siconos' steps cost ~300 times the in-house one's). Where no other
+    configuration beats it, the row says so."""
+    lines = ["| family | target | in-house Moreau-Jean: cheapest | its least N | beats it in CPU per run | "
+             "beats it in steps (least N) |", "|---|---:|---|---:|---|---|"]
+    for family in dict.fromkeys(r["family"] for r in summary):
+        rows = [r for r in summary if r["family"] == family and not is_event_driven(r) and steps_of(r) is not None]
+        configs = defaultdict(list)
+        for r in rows:
+            configs[(r["solver"], config_label(r))].append(r)
+        for target in TARGETS:
+            def meets(r):
+                return int(r["failed"]) == 0 and num(r, key) <= target
+            mine = [r for r in rows if r["solver"] == IN_HOUSE and meets(r)]
+            if not mine:
+                lines.append(f"| {family} | {target:g} | none | | | |")
+                continue
+            best = min(mine, key=lambda r: num(r, "cpu_median_s"))
+            least_n = min(steps_of(r) for r in mine)
+            by_cpu, by_steps = [], []
+            for (solver, label), crows in configs.items():
+                ok = [r for r in crows if meets(r)]
+                if solver == IN_HOUSE or not ok:
+                    continue
+                cheap = min(ok, key=lambda r: num(r, "cpu_median_s"))
+                if num(cheap, "cpu_median_s") < num(best, "cpu_median_s"):
+                    by_cpu.append(f"{label}, N = {steps_of(cheap)} ({us(num(cheap, 'cpu_median_s'))} us)")
+                n = min(steps_of(r) for r in ok)
+                if n < least_n:
+                    by_steps.append(f"{label} (N = {n})")
+            lines.append(f"| {family} | {target:g} | {setting_label(best)} ({us(num(best, 'cpu_median_s'))} us) | "
+                         f"{least_n} | {'; '.join(by_cpu) or 'none'} | {'; '.join(by_steps) or 'none'} |")
+    return lines
+
+
+def failure_table(points):
+    """Markdown: every setting with runs that did not end ok, per family: how many, their
+    statuses, and the message of the first (the cause a solver names)."""
+    failed = defaultdict(list)
+    total = defaultdict(int)
+    for r in points:
+        key = (r["solver"], r["variant"], r["settings"], r["family"])
+        total[key] += 1
+        if r["status"] != "ok":
+            failed[key].append(r)
+    lines = ["| setting | family | failed | statuses | the first one's message |", "|---|---|---:|---|---|"]
+    for key, frows in failed.items():
+        statuses = ", ".join(sorted({r["status"] for r in frows}))
+        message = frows[0]["message"].replace("|", "/")
+        message = message if len(message) <= 240 else message[:237] + "..."
+        lines.append(f"| {setting_label(frows[0])} | {key[3]} | {len(frows)} of {total[key]} | {statuses} | "
+                     f"{message} |")
+    return lines if failed else []
 
 
 def cost_table(summary):

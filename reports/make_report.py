@@ -38,6 +38,25 @@ def answer_section(summary, scenes):
             *answer.overall_table(summary, time_steppers_only=True), ""]
 
 
+def beats_section(summary, points):
+    """Where another time-stepper beats the in-house Moreau-Jean, and the settings whose runs
+    failed, with the cause each solver gives."""
+    lines = ["## Where another scheme beats the in-house Moreau–Jean", "",
+             "Per family and target (the median of the relative Pi1 error, no failed run), the in-house "
+             "`moreau-jean`'s cheapest setting that meets it and its least step count N, against every other "
+             "time-stepper configuration of the study: those that meet the target at less CPU per run, and those "
+             "that meet it with fewer steps per shortest period. The step counts compare the schemes apart from "
+             "what their code costs a step (the libraries' steps cost 10 to 300 times the in-house one's: "
+             "*Cost per run* below).", "", *answer.beats_table(summary), ""]
+    failures = answer.failure_table(points)
+    if failures:
+        lines += ["### Settings with failed runs", "",
+                  "Every setting of the study with runs that did not end ok, and the message of the first: the "
+                  "cause its solver names (`solvers/*/README.md` say more). A setting that failed on every point "
+                  "has no line in the diagrams.", "", *failures, ""]
+    return lines
+
+
 def workprecision_section(summary, out_dir):
     import wp
 
@@ -245,7 +264,10 @@ def report(args):
              "* **Siconos.** `siconos` runs the same cases through Siconos itself: `moreau-jean-*` is its "
              "MoreauJeanOSI (the in-house scheme, but with the load of a step sampled at its ends: "
              "`solvers/siconos/README.md`), `event-driven-lsodar` its event-driven LSODAR scheme with Newton's "
-             "law, which fails where impacts accumulate (counted as failed runs).",
+             "law, which fails where impacts accumulate (counted as failed runs); `schatzman-paoli`, "
+             "`d1-minus-linear`, `combined-projection` and `direct-projection` its other one-step integrators, "
+             "and `bilbao` and `newmark-alpha` two that fail on every run in Siconos 4.4, each naming why "
+             "(*Settings with failed runs*).",
              "* **MuJoCo.** `mujoco` has soft contacts (spring-dampers, no restitution law): its faithful "
              "variants calibrate each contact to eps (the clamped oscillator's damping ratio, a time constant "
              "of `--contact-steps` steps), so an isolated impact restitutes eps only up to a scatter with the "
@@ -263,6 +285,7 @@ def report(args):
         points = load([args.points])
         write_families(points, os.path.join(args.out, readme.FAMILIES))
         text += answer_section(summary, {r["family"]: r["scene"] for r in points})
+        text += beats_section(summary, points)
         text += workprecision_section(summary, args.out)
         text += spectra_section(points, args.out)
     if stress:

@@ -24,11 +24,13 @@ QUOTED = [
     (r"BM_Bullet/[\w-]+/\w+/N:64", ("vs_moreau_jean",)),
     (r"BM_Siconos/\w+/N:64", ("x_moreau_jean",)),
     (r"BM_Mujoco/\w+/N:64", ("x_moreau_jean",)),
+    (r"BM_SiconosScheme/\w+/N:64", ("x_moreau_jean", "x_siconos_moreau_jean")),
     (r"BM_SiconosEventDriven/\w+", ("x_event_driven",)),
     (r"BM_SweepFig4Reference/threads:\d(/real_time)?", ("points_per_s",)),
 ]
 UNITS = {"cpu_time": "s", "time_per_step": "s", "median_us": "us", "points_per_s": "1/s",
-         "x_moreau_jean": "ratio", "vs_moreau_jean": "ratio", "x_event_driven": "ratio"}
+         "x_moreau_jean": "ratio", "vs_moreau_jean": "ratio", "x_event_driven": "ratio",
+         "x_siconos_moreau_jean": "ratio"}
 TO_SECONDS = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
 
 
@@ -176,6 +178,11 @@ def table(measured, workprecision, stability, provenance):
         values = m.matching(pattern, measure)
         if values:
             add(what, f"{span(values)}x")
+    schemes = m.matching(r"BM_SiconosScheme/.*", "x_moreau_jean")
+    over_osi = m.matching(r"BM_SiconosScheme/.*", "x_siconos_moreau_jean")
+    if schemes and over_osi:
+        add("Siconos' other integrators (Schatzman–Paoli, D1MinusLinear, combined and direct projection), same; "
+            "and over its `MoreauJeanOSI` (Lemke)", f"{span(schemes)}x; {span(over_osi)}x")
     lsodar = m.matching(r"BM_SiconosEventDriven/.*", "x_event_driven")
     if lsodar:
         wp = [r for r in workprecision

@@ -51,6 +51,10 @@ def config_label(row):
         label += f" tol_scale={fields['tol_scale']}"
     if "contact_steps" in fields:  # mujoco's faithful variants: the contact time constant in steps
         label += f" M={fields['contact_steps']}"
+    if fields.get("lcp") == "enum" and not row.get("variant", "").endswith("-enum"):  # siconos, Settings::lcp
+        label += " lcp=enum"
+    if fields.get("projection_tol", 1e-10) != 1e-10:  # siconos' projections, away from their default
+        label += f" projection_tol={fields['projection_tol']}"
     return label
 
 

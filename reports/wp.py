@@ -16,11 +16,23 @@ ERROR_FLOOR = 1e-13  # errors below this are round-off: drawn in a band under it
 FLOOR_ROW = 10 ** -0.6  # the factor between two rows of that band
 STYLE = {"moreau-jean": "-", "ode": "--", "bullet": ":", "siconos": "-.", "mujoco": (0, (5, 1, 1, 1)),
          "event-driven": "-"}
-# The panels of a diagram: one per solver family, the in-house stepper with the reference.
+# The panels of a diagram: one per solver family, the in-house stepper with the reference;
+# Siconos in two, its Moreau–Jean integrators apart from its other ones, so that no panel
+# carries more lines than can be told apart.
 PANELS = {"moreau-jean": "in-house: Moreau–Jean, reference",
           "event-driven": "in-house: Moreau–Jean, reference",
-          "ode": "ODE (libode)", "bullet": "Bullet (libbullet, single precision)", "siconos": "Siconos",
+          "ode": "ODE (libode)", "bullet": "Bullet (libbullet, single precision)",
+          "siconos": "Siconos: Moreau–Jean and its projections",
+          "siconos-other": "Siconos: its other integrators",
           "mujoco": "MuJoCo (libmujoco, soft contacts)"}
+SICONOS_MOREAU_JEAN = ("moreau-jean-lemke", "moreau-jean-enum", "combined-projection", "direct-projection")
+
+
+def panel_of(row):
+    """The panel of a row's configuration (PANELS)."""
+    if row["solver"] == "siconos" and row["variant"] not in SICONOS_MOREAU_JEAN:
+        return PANELS["siconos-other"]
+    return PANELS.get(row["solver"], row["solver"])
 ERRORS = (("err_median", "median"), ("err_p95", "95th percentile"))
 
 
@@ -65,7 +77,9 @@ def wp_diagram(family, rows, out_dir):
         lrows.sort(key=lambda r: num(r, "cpu_median_s"))
     panels = defaultdict(list)
     for label in sorted(lines):
-        panels[PANELS.get(lines[label][0]["solver"], lines[label][0]["solver"])].append(label)
+        if all(int(r["failed"]) == int(r["points"]) for r in lines[label]):
+            continue  # nothing to draw: the report's table of failures names it
+        panels[panel_of(lines[label][0])].append(label)
     panels = dict(sorted(panels.items(), key=lambda p: list(dict.fromkeys(PANELS.values())).index(p[0])
                          if p[0] in PANELS.values() else len(PANELS)))
     # the rows of the floor band: one per configuration of a panel that has a point under the floor

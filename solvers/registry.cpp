@@ -105,7 +105,7 @@ const std::array kSolvers = {
 #ifdef POUNDBENCH_HAVE_SICONOS
     // Its LSODAR variant chooses its own steps, and round-off can move a step choice and Pi1
     // with it within its tolerances (1e-10 and below): as the reference.
-    SolverInfo{"siconos", "Siconos: its MoreauJeanOSI (Lemke or enumeration) or event-driven LSODAR (see --variant)",
+    SolverInfo{"siconos", "Siconos: its MoreauJeanOSI, event-driven LSODAR and other nonsmooth integrators (see --variant)",
                &siconos::solve, &siconos::describe, &check_all<&siconos::check>, &siconos::variant_list, 1e-9},
 #endif
 #ifdef POUNDBENCH_HAVE_SUNDIALS

@@ -36,7 +36,7 @@ struct SettingField {
   }
 };
 
-inline constexpr std::array<SettingField, 14> kSettingFields = {{
+inline constexpr std::array<SettingField, 16> kSettingFields = {{
     {"steps", nullptr, &Settings::steps, nullptr,
      "Time-steppers: steps per shortest period N, h = T_min/N (0: default)"},
     {"wh", &Settings::wh, nullptr, nullptr,
@@ -62,6 +62,10 @@ inline constexpr std::array<SettingField, 14> kSettingFields = {{
     {"command", nullptr, nullptr, nullptr,
      "External: the program run per point and its arguments, as words, no shell (docs/external.md)",
      &Settings::command},
+    {"lcp", nullptr, nullptr, nullptr,
+     "Siconos, a scheme whose variant does not name its LCP solver: lemke or enum (default: lemke)", &Settings::lcp},
+    {"projection_tol", &Settings::projection_tol, nullptr, nullptr,
+     "Siconos projections: tolerance on a violated gap, over a_p/w_p^2 (0: default 1e-10)"},
 }};
 
 // The index of a field in kSettingFields by its name, if there is one.

@@ -46,6 +46,8 @@ struct Settings {
   std::string contact;     // event-driven: rigid (empty) or kelvin-voigt, the compliant model solved exactly
   double contact_steps = 0;  // mujoco: the contact time constant 1/w_c in steps h; 0 = default
   std::string command;     // external: the program to run per point, as words (docs/external.md)
+  std::string lcp;         // siconos: the LCP solver of a scheme that does not name it, lemke or enum; empty = lemke
+  double projection_tol = 0;  // siconos projections: tolerance on a violated gap over a_p/w_p^2; 0 = default
   long step_cap = 0;     // 0 = the solver's own cap
   double time_limit = 0;  // seconds of wall time per run; 0 = none
   // Set by a sweep that is being stopped: a run in progress ends as time_limit at its

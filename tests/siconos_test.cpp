@@ -1,8 +1,10 @@
 // Siconos (solvers/siconos/) as a peer: its MoreauJeanOSI against the in-house Moreau-Jean
 // stepper at equal theta, gamma and h (with the load sampled the way Siconos samples it), its
 // event-driven LSODAR scheme against the event-driven reference, what its LCP driver and its
-// integrators actually do with the settings given. Thread safety and statuses: the contract
-// of every solver (solver_contract_test.cpp).
+// integrators actually do with the settings given, and the library's other integrators: the
+// combined projection's gaps, and the causes of the two that fail (Bilbao's left-out load,
+// NewMarkAlpha's negated stiffness), measured on the linked library. Thread safety, statuses,
+// restitution and convergence: the contract of every solver (solver_contract_test.cpp).
 // Built only when CMake finds Siconos (tests/CMakeLists.txt).
 
 #include <gtest/gtest.h>
@@ -253,6 +255,99 @@ TEST(Siconos, KickedChainStartsFromTheSystemsStartState) {
   EXPECT_LT(worst, 1e-11);
 }
 
+// MoreauJeanBilbaoOSI integrates a linear oscillator well, but its free state leaves the
+// external force out (Siconos 4.4, MoreauJeanBilbaoOSI::computeFreeState: the stiffness, the
+// damping and the state only). Both halves, measured: without a ground load, a kicked undamped
+// body (the wall out of reach) follows the closed form of its free vibration at the step ends,
+// to second order; with the load, every state equals that of the same run unloaded, and the
+// run fails by name.
+TEST(Siconos, BilbaoConvergesWithoutALoadAndLeavesTheGroundLoadOut) {
+  System s = make_system(make_case(Scene::wall, PulseShape::sine, 0.8, 0.5, 0.5));
+  s.delta = 1e3 * s.length_scale();  // no contact
+  s.bodies[0].c = 0.0;
+  s.u_start = {0.0};
+  s.v_start = {0.5 * s.length_scale() * s.pulse.w};
+  const double w = std::sqrt(s.bodies[0].k / s.bodies[0].m);
+  s.pulse.amplitude = 0.0;
+  Settings st = variant("bilbao");
+  st.history_samples = 1;
+  std::vector<double> worst;
+  for (int n : {64, 512}) {
+    st.steps = n;
+    const Result r = siconos::solve(s, st);
+    ASSERT_EQ(r.status, Status::ok) << r.message;
+    ASSERT_GT(r.history.rows(), 100u);
+    double e = 0.0;
+    for (std::size_t k = 0; k < r.history.rows(); ++k) {
+      const test::HistoryRow row(r.history, k);
+      e = std::max(e, std::abs(row.u(0) - s.v_start[0] / w * std::sin(w * row.t())) / s.length_scale());
+    }
+    worst.push_back(e);
+    RecordProperty("displacement_error_unloaded_N" + std::to_string(n), sci(e));
+  }
+  // Second order: 8 times the steps, 64 times less error (measured 6.4e-4 -> 1.0e-5 a_p/w_p^2;
+  // 4.1e-2 at N = 8). 1e-4 and a drop of 30: the margins of that order.
+  EXPECT_LT(worst[1], 1e-4);
+  EXPECT_GT(worst[0] / worst[1], 30.0);
+  s.pulse.amplitude = 1.0;  // loaded again
+  st.history_samples = 0;
+  const Result loaded = siconos::solve(s, st);
+  EXPECT_EQ(loaded.status, Status::failed);
+  EXPECT_NE(loaded.message.find("left the ground load out"), std::string::npos) << loaded.message;
+  EXPECT_GT(loaded.steps, 100) << "the whole run is compared with its unloaded twin";
+}
+
+// NewMarkAlphaOSI::computeW of Siconos 4.4 negates a LagrangianLinearTIDS's K and C in place on
+// every call, once per Newton iteration. The run reports it from the linked library: the K and C
+// a converged step left (the sine pulse, whose first step converges in one iteration), or how
+// many iterations of a step that does not converge flipped body 0's K (the cosine pulse, from
+// t = 0); never a Pi1.
+TEST(Siconos, NewmarkAlphaFailsNamingTheStiffnessItNegated) {
+  const System sine = make_system(make_case(Scene::wall, PulseShape::sine, 0.8, 0.5, 0.5));
+  const Result changed = siconos::solve(sine, variant("newmark-alpha"));
+  EXPECT_EQ(changed.status, Status::failed);
+  EXPECT_NE(changed.message.find("after 1 events (t = 0.0981748), Newton converged on a changed system: body 0 "
+                                 "holds K = -0.64, C = -0.08 instead of 0.64, 0.08"),
+            std::string::npos)
+      << changed.message;
+  EXPECT_TRUE(std::isnan(changed.pi1));
+  const System cosine = make_system(make_case(Scene::wall, PulseShape::cosine, 0.8, 0.5, 0.5));
+  const Result looped = siconos::solve(cosine, variant("newmark-alpha"));
+  EXPECT_EQ(looped.status, Status::failed);
+  // kNewtonOverrun (10) times EventDriven's own limit (50), every one of them flipping K.
+  EXPECT_NE(looped.message.find("newtonSolve does not converge: 500 Newton iterations in the step from t = 0 (its "
+                                "own limit is 50"),
+            std::string::npos)
+      << looped.message;
+  EXPECT_NE(looped.message.find("K in 500 of them"), std::string::npos) << looped.message;
+  EXPECT_EQ(looped.steps, 0);
+}
+
+// TimeSteppingCombinedProjection projects the positions at the end of each step: no gap is
+// left below minus its tolerance (1e-10 a_p / w_p^2). TimeSteppingDirectProjection projects at
+// the start of the next step, so the state at a step's end still overlaps by up to a step of
+// travel, as Moreau-Jean's does.
+TEST(Siconos, CombinedProjectionLeavesNoGapBelowItsTolerance) {
+  double deepest = 0.0, direct_deepest = 0.0;
+  for (Scene scene : {Scene::wall, Scene::pair, Scene::row3})
+    for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
+      const System s = make_system(make_case(scene, p, 0.8, 0.5, 0.5));
+      const Result r = siconos::solve(s, variant("combined-projection"));
+      const Result d = siconos::solve(s, variant("direct-projection"));
+      ASSERT_EQ(r.status, Status::ok) << r.message;
+      ASSERT_EQ(d.status, Status::ok) << d.message;
+      EXPECT_GT(r.impacts, 0);
+      if (std::isfinite(r.min_gap)) deepest = std::min(deepest, r.min_gap / s.length_scale());
+      if (std::isfinite(d.min_gap)) direct_deepest = std::min(direct_deepest, d.min_gap / s.length_scale());
+      EXPECT_NE(r.message.find("projection: "), std::string::npos) << r.message;
+    }
+  RecordProperty("deepest_gap_combined", sci(deepest));
+  RecordProperty("deepest_gap_direct", sci(direct_deepest));
+  EXPECT_GE(deepest, -siconos::kProjectionTol);
+  // Up to a step of travel at N = 64: measured -6.9e-2 a_p / w_p^2 (combined: -1.1e-16).
+  EXPECT_LT(direct_deepest, -1e-3);
+}
+
 // The statuses every solver reports are the contract's (solver_contract_test.cpp: step cap,
 // a refused non-finite body, runaway, stop flag, time limit); Siconos' own: an unknown
 // variant fails the run (the check refuses it before a sweep).
@@ -270,6 +365,9 @@ TEST(Siconos, CheckAndDescribeNameEverySetting) {
   st.theta = 0.5;
   st.gamma = 2.0;
   EXPECT_EQ(siconos::check(st).rfind("gamma:", 0), 0u);
+  st.gamma = 0.5;
+  st.lcp = "lemke";
+  EXPECT_EQ(siconos::check(st).rfind("lcp:", 0), 0u) << "moreau-jean-enum names its solver";
   st = variant("event-driven-lsodar");
   EXPECT_EQ(siconos::check(st), "");
   EXPECT_EQ(siconos::describe(st), R"({"tol_scale":1,"rtol":1e-10,"atol":1e-10,"output":"T_min/256"})");
@@ -283,6 +381,30 @@ TEST(Siconos, CheckAndDescribeNameEverySetting) {
   st = {};
   st.step_cap = -1;
   EXPECT_EQ(siconos::check(st).rfind("step_cap:", 0), 0u);
+  // Siconos' other integrators: each names the settings it uses, its LCP solver among them.
+  st = variant("schatzman-paoli");
+  EXPECT_EQ(siconos::describe(st), R"({"steps":64,"theta":0.5,"lcp":"lemke"})");
+  st = variant("d1-minus-linear");
+  st.lcp = "enum";
+  EXPECT_EQ(siconos::check(st), "");
+  EXPECT_EQ(siconos::describe(st), R"({"steps":64,"lcp":"enum"})");
+  st.lcp = "pgs";
+  EXPECT_EQ(siconos::check(st).rfind("lcp:", 0), 0u);
+  st = variant("combined-projection");
+  EXPECT_EQ(siconos::describe(st), R"({"steps":64,"theta":0.5,"lcp":"lemke","mlcp":"enum",)"
+                                   R"("projection_tol":1e-10,"projection_iterations":20})");
+  st = variant("direct-projection");
+  st.projection_tol = 1e-8;
+  EXPECT_EQ(siconos::check(st), "");
+  EXPECT_EQ(siconos::describe(st), R"({"steps":64,"theta":0.5,"gamma":0.5,"lcp":"lemke","mlcp":"enum",)"
+                                   R"("projection_tol":1e-08,"projection_iterations":20})");
+  st.projection_tol = -1.0;
+  EXPECT_EQ(siconos::check(st).rfind("projection_tol:", 0), 0u);
+  st = variant("schatzman-paoli");
+  st.projection_tol = 1e-8;
+  EXPECT_EQ(siconos::check(st).rfind("projection_tol:", 0), 0u) << "only the projections project";
+  EXPECT_EQ(siconos::describe(variant("bilbao")), R"({"steps":64,"lcp":"lemke"})");
+  EXPECT_EQ(siconos::describe(variant("newmark-alpha")), R"({"steps":64,"rho_infty":0.7,"lcp":"lemke"})");
   ASSERT_NE(find_solver("siconos"), nullptr);
   EXPECT_EQ(find_solver("siconos")->solve, &siconos::solve);
 }

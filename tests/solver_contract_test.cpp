@@ -87,6 +87,12 @@ struct Facts {
   // that model exactly with Settings::contact = own_reference_contact (the Kelvin-Voigt
   // element), at the same stiffness.
   std::string_view own_reference_contact = "";
+  // Kept to show a library's failure: every run under a ground load ends failed, with
+  // documented_failure in its message; the checks that need finished runs check that instead.
+  bool fails_everywhere = false;
+  // Where only the longer steps diverge: the least w_max h of the stability check that ends
+  // diverged or nan (0: as diverges_at_large_steps says).
+  double diverges_from_wh = 0.0;
   // Settings::contact, for the reference solving a compliant model ("": rigid).
   std::string_view contact = "";
   // The longest chain it solves (0: any); the time-limit test's chain is cut to it.
@@ -140,6 +146,39 @@ const std::vector<Facts>& facts_table() {
       {"siconos", "moreau-jean-lemke", true, 1e-12, 1.8, false, failed, diverged, false, 1, 0.5},
       {"siconos", "moreau-jean-enum", true, 1e-12, 1.8, false, failed, diverged, false, 1, 0.5},
       {"siconos", "event-driven-lsodar", false, 1e-12, 0.0, false, failed, diverged, true, 2, 0.5},
+      // Siconos' other integrators (issue 20), through the same model. SchatzmanPaoliOSI
+      // (theta 1/2): its velocity is the central difference (q_k+1 - q_k-1) / 2h, which spans
+      // the impact over two steps, so the one-step restitution the monitor measures is that
+      // of the impact's middle: e from -0.90 to -0.10 (|e - eps| up to 1.83). Drops 2.3, 3.6.
+      // Its stiffness enters the free state explicitly (Siconos 4.4 implements only the first
+      // residual, M (q_k-1 - q_k) + h^2 K q_k): diverged at w_max h = 10 and 100.
+      {"siconos", "schatzman-paoli", true, 2.0, 1.8, true, failed, diverged, false, 2, 0.5},
+      // D1MinusLinearOSI: the impact falls inside a step whose smooth forces are half-explicit,
+      // so the one-step restitution moves by them: |e - eps| up to 0.18. Drops 1.4, 3.0 (its
+      // error at N = 16 is already 1.4e-2: the impact's position in the step dominates).
+      // Explicit in the springs: diverged at w_max h = 10 and 100.
+      {"siconos", "d1-minus-linear", true, 0.25, 1.2, true, failed, diverged, false, 2, 0.5},
+      // MoreauJeanCombinedProjectionOSI: MoreauJeanOSI's impact law, |e - eps| 3.3e-16. Drops
+      // 6.4, 2.5. Runs to the end at w_max h = 10, diverges at 100: the projection moves the
+      // positions onto the gaps without touching the velocities, and the springs' energy it
+      // adds grows at so long a step. Its MLCP by enumeration refuses more than 12 contacts
+      // (the 100-body chain: siconos_solver.hpp).
+      {"siconos", "combined-projection", true, 1e-12, 1.8, false, failed, diverged, false, 2, 0.5, false, "", 0.0,
+       "by enumeration tries up to 2^n active sets", "", false, 100.0},
+      // MoreauJeanDirectProjectionOSI: |e - eps| 4.4e-16. Drops 2.6, 3.7. Runs to the end at
+      // w_max h = 10 and 100. Enumeration as combined-projection.
+      {"siconos", "direct-projection", true, 1e-12, 1.8, false, failed, diverged, false, 2, 0.5, false, "", 0.0,
+       "by enumeration tries up to 2^n active sets"},
+      // MoreauJeanBilbaoOSI leaves the ground load out (its computeFreeState): every run under
+      // a load fails, found by an unloaded twin run equal to it bit for bit; the lone body on a
+      // negative spring stays at rest too, so it fails the same way instead of diverging.
+      {"siconos", "bilbao", true, 1e-12, 1.8, false, failed, failed, false, 2, 0.5, false, "", 0.0,
+       "left the ground load out", "", true},
+      // NewMarkAlphaOSI with EventDriven: computeW negates K and C in place on every Newton
+      // iteration, so Newton's loop never converges, or converges on the changed system; both
+      // are stopped and fail by name, within 2 ms a run on the smoke set.
+      {"siconos", "newmark-alpha", true, 1e-12, 1.8, false, failed, failed, false, 1, 0.5, false, "", 0.0,
+       "NewMarkAlphaOSI with EventDriven fails", "", true},
       // Compliant contact through CVODE at the default stiffness K = 1e4: an isolated wall
       // impact restitutes eps only up to what the body's spring, its dashpot and the pulse do
       // during the contact (measured |e - eps| up to 5.8e-3 for Kelvin-Voigt; it falls as K
@@ -167,7 +206,7 @@ const std::vector<Facts>& facts_table() {
       // during the contact, as CVODE's on the same element (measured up to 5.8e-3). It refuses
       // a non-finite body, runs a negative spring until it runs away, and holds the whole
       // state in one matrix: chains of at most 24 bodies.
-      {"event-driven", "", false, 0.02, 0.0, false, failed, diverged, false, 1, 0.5, false, "", 1e4, "", "",
+      {"event-driven", "", false, 0.02, 0.0, false, failed, diverged, false, 1, 0.5, false, "", 1e4, "", "", false, 0.0,
        "kelvin-voigt", 24},
       // MuJoCo, soft contacts calibrated to eps (contact time constant 2 h): restitution is
       // over whole contacts, so the body's spring and the pulse act during each (Euler:
@@ -192,7 +231,7 @@ const std::vector<Facts>& facts_table() {
       // interpreter's start (~0.3 s a point) would make this suite minutes long
       // (tests/external_examples_test.py runs it). A time limit of 0.05 s: the program's start
       // and its own 0.05 s; 1 s allows the sanitizer's slower start.
-      {"external", "", true, 1e-12, 1.8, false, failed, diverged, false, 2, 1.0, false, "", 0.0, "", "", "", 0,
+      {"external", "", true, 1e-12, 1.8, false, failed, diverged, false, 2, 1.0, false, "", 0.0, "", "", false, 0.0, "", 0,
        POUNDBENCH_EXE " adapter --solver moreau-jean"},
   };
   return table;
@@ -266,6 +305,15 @@ System pair_case() { return make_system(make_case(Scene::pair, PulseShape::sine,
 const CaseSet& smoke_set() {
   static const CaseSet set = load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/smoke.toml");
   return set;
+}
+
+bool may_fail(const Facts& f, const Case& c, const std::string& message);
+
+// A variant that fails everywhere (Facts::fails_everywhere) ends this run failed, saying why.
+void expect_documented_failure(const Facts& f, const Result& r, const std::string& what) {
+  EXPECT_EQ(r.status, Status::failed) << what << ": " << r.message;
+  EXPECT_NE(r.message.find(f.documented_failure), std::string::npos) << what << ": " << r.message;
+  EXPECT_TRUE(std::isnan(r.pi1)) << what;
 }
 
 // ---------------------------------------------------------------- every solver
@@ -374,10 +422,18 @@ TEST_P(SolverContract, TimeLimitStopsAHundredBodyChainSoon) {
   const Result r = solve(s, st);
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   RecordProperty("elapsed_s", sci(elapsed));
-  EXPECT_EQ(r.status, Status::time_limit) << r.message;
-  EXPECT_GT(r.steps, 0);
   expect_no_pi1(r);
   EXPECT_LT(elapsed, facts().time_limit_bound);
+  // A failure the solver documents may come before the limit; a variant that fails
+  // everywhere may meet the limit inside its first step (NewMarkAlphaOSI's Newton loop).
+  if (r.status == Status::failed && may_fail(facts(), c, r.message)) {
+    EXPECT_FALSE(r.message.empty());
+    return;
+  }
+  EXPECT_EQ(r.status, Status::time_limit) << r.message;
+  if (!facts().fails_everywhere) {
+    EXPECT_GT(r.steps, 0);
+  }
 }
 
 std::vector<Case> smoke_points(const Facts& f) {
@@ -468,6 +524,10 @@ TEST_P(SolverContract, OneAndTwoThreadsGiveTheSameRowsBitForBit) {
     EXPECT_EQ(bits(b.restitution_low), bits(a.restitution_low)) << what;
     EXPECT_EQ(bits(b.restitution_high), bits(a.restitution_high)) << what;
   }
+  if (facts().fails_everywhere) {
+    for (std::size_t i = 0; i < cases.size(); ++i) expect_documented_failure(facts(), serial[i].result, cases[i].family);
+    return;
+  }
   EXPECT_GT(finite, static_cast<int>(cases.size()) / 2) << "rows to compare, not failures";
 }
 
@@ -497,6 +557,10 @@ TEST_P(SolverContract, TheMonitorChangesNoResult) {
       compared += std::isfinite(a.pi1) ? 1 : 0;
     }
   }
+  if (facts().fails_everywhere) {
+    EXPECT_EQ(compared, 0) << "a variant that fails everywhere has no answer to compare";
+    return;
+  }
   EXPECT_GT(compared, static_cast<int>(systems.size()) / 2) << "answers to compare, not failures";
 }
 
@@ -510,6 +574,10 @@ TEST_P(SolverContract, IsolatedWallImpactsRestituteEpsWithinTheStatedTolerance) 
     for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
       const Case c = make_case(Scene::wall, p, 1.0, 1.0, eps);
       const Result r = solve(make_system(c));
+      if (facts().fails_everywhere) {
+        expect_documented_failure(facts(), r, std::string(name(p)));
+        continue;
+      }
       if (r.status == Status::failed && may_fail(facts(), c, r.message)) continue;
       ASSERT_EQ(r.status, Status::ok) << r.message;
       isolated += r.isolated_impacts;
@@ -522,7 +590,9 @@ TEST_P(SolverContract, IsolatedWallImpactsRestituteEpsWithinTheStatedTolerance) 
   }
   RecordProperty("isolated", std::to_string(isolated));
   RecordProperty("worst_restitution_error", sci(worst));
-  EXPECT_GE(isolated, 3) << "a wall case with impacts for each eps";
+  if (!facts().fails_everywhere) {
+    EXPECT_GE(isolated, 3) << "a wall case with impacts for each eps";
+  }
 }
 
 // The SolverInfo under test, for sweeps through runaway_at_stiff_pairs (run_sweep takes a
@@ -562,6 +632,8 @@ TEST_P(SolverContract, SweepGoesOnPastADivergingPoint) {
     if (i == 2) {
       EXPECT_EQ(r.status, facts().runaway) << r.message;
       EXPECT_FALSE(r.message.empty());
+    } else if (facts().fails_everywhere) {
+      expect_documented_failure(facts(), r, std::to_string(i));
     } else {
       EXPECT_EQ(r.status, Status::ok) << i << ": " << r.message;
       EXPECT_TRUE(std::isfinite(r.pi1));
@@ -601,6 +673,7 @@ TEST_P(TimeStepperContract, Pi1ErrorAgainstTheReferenceFallsAsNGrows) {
         Settings st = settings();
         st.steps = n;
         const Result r = solve(s, st);
+        if (facts().fails_everywhere) expect_documented_failure(facts(), r, c.family + " N=" + std::to_string(n));
         if (r.status == Status::failed && may_fail(facts(), c, r.message)) break;
         ASSERT_EQ(r.status, Status::ok) << r.message;
         errors.push_back(std::abs(r.pi1 - ref.pi1) / ref.pi1);
@@ -610,6 +683,7 @@ TEST_P(TimeStepperContract, Pi1ErrorAgainstTheReferenceFallsAsNGrows) {
       for (std::size_t i = 0; i < ns.size(); ++i) mean[i] += errors[i];
     }
   RecordProperty("cases", std::to_string(cases));
+  if (facts().fails_everywhere) return;
   ASSERT_GE(cases, 3) << "a documented failure left too few cases to compare";
   for (double& m : mean) m /= cases;
   for (std::size_t i = 0; i < ns.size(); ++i) RecordProperty("mean_error_N" + std::to_string(ns[i]), sci(mean[i]));
@@ -630,8 +704,9 @@ TEST_P(TimeStepperContract, StepsPastTheStabilityLimitDivergeWithAStatusOrRunToT
     st.wh = wh;
     const Result r = solve(s, st);
     EXPECT_DOUBLE_EQ(r.step, wh * s.t_min / (2.0 * std::numbers::pi));
-    EXPECT_GE(r.steps, 1);
-    if (facts().diverges_at_large_steps) {
+    EXPECT_GE(r.steps, facts().fails_everywhere ? 0 : 1);
+    const double from = facts().diverges_from_wh;
+    if (facts().diverges_at_large_steps || (from > 0.0 && wh >= from)) {
       EXPECT_TRUE(r.status == Status::diverged || r.status == Status::nan) << name(r.status) << " wh=" << wh;
       EXPECT_NE(r.message.find("w_max h"), std::string::npos) << r.message;
       EXPECT_LT(static_cast<double>(r.steps), s.t_end / r.step) << "stopped early";
@@ -646,7 +721,10 @@ TEST_P(TimeStepperContract, StepsPastTheStabilityLimitDivergeWithAStatusOrRunToT
   Settings st = settings();
   st.wh = 0.5;
   const Result ok = solve(s, st);
-  EXPECT_EQ(ok.status, Status::ok) << ok.message;
+  if (facts().fails_everywhere)
+    expect_documented_failure(facts(), ok, "wh=0.5");
+  else
+    EXPECT_EQ(ok.status, Status::ok) << ok.message;
   EXPECT_DOUBLE_EQ(ok.step, 0.5 * s.t_min / (2.0 * std::numbers::pi));
 }
 

@@ -2,22 +2,34 @@
 
 #include "solvers/siconos/engine.hpp"
 
+#include <D1MinusLinearOSI.hpp>
 #include <EventDriven.hpp>
 #include <Interaction.hpp>
 #include <LCP.hpp>
+#include <LagrangianLinearDiagonalDS.hpp>
 #include <LagrangianLinearTIDS.hpp>
 #include <LagrangianLinearTIR.hpp>
 #include <LsodarOSI.hpp>
+#include <MLCPProjectOnConstraints.hpp>
+#include <MoreauJeanBilbaoOSI.hpp>
+#include <MoreauJeanCombinedProjectionOSI.hpp>
+#include <MoreauJeanDirectProjectionOSI.hpp>
 #include <MoreauJeanOSI.hpp>
+#include <NewMarkAlphaOSI.hpp>
 #include <NewtonImpactNSL.hpp>
 #include <NonSmoothDynamicalSystem.hpp>
+#include <SchatzmanPaoliOSI.hpp>
 #include <SiconosVector.hpp>
 #include <SimpleMatrix.hpp>
 #include <SolverOptions.h>
 #include <TimeDiscretisation.hpp>
 #include <TimeStepping.hpp>
+#include <TimeSteppingCombinedProjection.hpp>
+#include <TimeSteppingD1Minus.hpp>
+#include <TimeSteppingDirectProjection.hpp>
 #include <Topology.hpp>
 #include <lcp_cst.h>
+#include <mlcp_cst.h>
 
 #include <cstdlib>
 #include <iostream>
@@ -95,20 +107,26 @@ SP::SiconosVector scalar_vector(double x) {
   return v;
 }
 
-// One LagrangianLinearTIDS per body, one Interaction (LagrangianLinearTIR, NewtonImpactNSL)
-// per contact. Call under siconos_lock().
+// One LagrangianLinearTIDS per body (a LagrangianLinearDiagonalDS, with the same diagonal
+// M, K, C, where `diagonal`: MoreauJeanBilbaoOSI takes nothing else), one Interaction
+// (LagrangianLinearTIR, NewtonImpactNSL) per contact. Call under siconos_lock().
 struct Model {
   SP::NonSmoothDynamicalSystem nsds;
-  std::vector<SP::LagrangianLinearTIDS> bodies;
+  std::vector<SP::LagrangianDS> bodies;
   std::vector<SP::Interaction> contacts;
 };
 
-Model make_model(const ModelSpec& spec) {
+Model make_model(const ModelSpec& spec, bool diagonal = false) {
   Model m;
   m.nsds = std::make_shared<NonSmoothDynamicalSystem>(0.0, spec.t_end);
   for (const BodySpec& b : spec.bodies) {
-    auto body = std::make_shared<LagrangianLinearTIDS>(scalar_vector(b.u0), scalar_vector(b.v0), scalar_matrix(b.m),
-                                                       scalar_matrix(b.k), scalar_matrix(b.c));
+    SP::LagrangianDS body;
+    if (diagonal)
+      body = std::make_shared<LagrangianLinearDiagonalDS>(scalar_vector(b.u0), scalar_vector(b.v0), scalar_vector(b.k),
+                                                          scalar_vector(b.c), scalar_vector(b.m));
+    else
+      body = std::make_shared<LagrangianLinearTIDS>(scalar_vector(b.u0), scalar_vector(b.v0), scalar_matrix(b.m),
+                                                    scalar_matrix(b.k), scalar_matrix(b.c));
     auto z = std::make_shared<SiconosVector>(kLoadParameters);
     (*z)(kMass) = b.m;
     (*z)(kCosine) = spec.cosine ? 1.0 : 0.0;
@@ -167,6 +185,25 @@ SP::LCP make_lcp(int solver) {
   }));
 }
 
+// The projections' MLCP. Siconos 4.4's MLCP::solve calls mlcp_driver_init before every solve,
+// and for enumeration it callocs the options' iWork and dWork anew without freeing the last
+// ones (a static function of libsiconos_numerics; found by LeakSanitizer: ~20 bytes a solve,
+// 1288 blocks over the contract's 40 combined-projection runs). The arrays of the last solve
+// are dead by the next one: this frees them first.
+class ProjectionMlcp : public MLCPProjectOnConstraints {
+ public:
+  using MLCPProjectOnConstraints::MLCPProjectOnConstraints;
+  int compute(double time) override {
+    SolverOptions& o = *numericsSolverOptions();
+    std::free(o.iWork);
+    std::free(o.dWork);
+    o.iWork = nullptr;
+    o.dWork = nullptr;
+    o.iWorkSize = o.dWorkSize = 0;
+    return MLCPProjectOnConstraints::compute(time);
+  }
+};
+
 bool in_index_set(const Model& m, unsigned int level, int j) {
   return m.nsds->topology()->indexSet(level)->is_vertex(m.contacts[static_cast<std::size_t>(j)]);
 }
@@ -182,32 +219,112 @@ void keep_lcp_info(int info, Simulation*) { t_lcp_info = info; }
 
 struct TimeStepper::Impl {
   Model model;
-  SP::MoreauJeanOSI osi;
-  SP::LCP lcp;
-  SP::TimeStepping sim;
+  StepperOptions options;
+  double h = 0.0;
+  SP::OneStepIntegrator osi;
+  SP::MoreauJeanOSI moreau_jean;  // for the moreau_jean integrator's test hooks
+  SP::LCP lcp;                    // the velocity (impact; position for Schatzman-Paoli) LCP
+  SP::LCP force_lcp;              // D1MinusLinear's
+  SP::Simulation sim;
+  SP::TimeStepping time_stepping;  // sim, unless D1MinusLinear's TimeSteppingD1Minus
+  SP::TimeSteppingCombinedProjection combined;
+  SP::TimeSteppingDirectProjection direct;
+  int level = 1;                 // the index set of lcp; -1: none (every contact)
   int counter = 0;               // the iparam entry only a solver call writes (see step())
   std::vector<double> impulses;  // of the last step, read before Siconos zeroes them
   LcpCall last;
+  long projections = 0;
+  double violation = 0.0;
+  void build(const ModelSpec& spec);
   ~Impl() { cut_cycles(sim); }
 };
 
-TimeStepper::TimeStepper(const ModelSpec& spec, double h, double theta, double gamma, bool enumeration) {
+// The simulation of `options` around `model`, not yet initialised. Call under siconos_lock().
+void TimeStepper::Impl::build(const ModelSpec& spec) {
+  Impl& s = *this;
+  const StepperOptions& o = s.options;
+  const int lcp_solver = o.enumeration ? SICONOS_LCP_ENUM : SICONOS_LCP_LEMKE;
+  const auto td = std::make_shared<TimeDiscretisation>(0.0, s.h);
+  s.model = make_model(spec, o.integrator == Integrator::bilbao);
+  s.lcp = make_lcp(lcp_solver);
+  // The projections' MLCP by enumeration, as Siconos' own examples of both schemes set it:
+  // of Siconos 4.4's MLCP solvers, PGS refuses this storage (printing "Wrong Storage") and
+  // SICONOS_MLCP_LCP_LEMKE aborts (lcp_lexicolemke: assertion dim > 0). Enumeration tries up to
+  // 2^n active sets: siconos_solver.cpp keeps it to kMaxEnumerationContacts contacts.
+  const int mlcp_solver = SICONOS_MLCP_ENUM;
+  const auto projection = [&] {
+    auto mlcp = SP::SolverOptions(solver_options_create(mlcp_solver), [](SolverOptions* p) {
+      solver_options_delete(p);
+      std::free(p);
+    });
+    return std::make_shared<ProjectionMlcp>(mlcp);
+  };
+  switch (o.integrator) {
+    case Integrator::moreau_jean:
+      s.moreau_jean = std::make_shared<MoreauJeanOSI>(o.theta, o.gamma);
+      s.osi = s.moreau_jean;
+      s.sim = std::make_shared<TimeStepping>(s.model.nsds, td, s.osi, s.lcp);
+      break;
+    case Integrator::schatzman_paoli:
+      s.osi = std::make_shared<SchatzmanPaoliOSI>(o.theta);
+      s.sim = std::make_shared<TimeStepping>(s.model.nsds, td, s.osi, s.lcp);
+      s.level = -1;
+      break;
+    case Integrator::d1_minus_linear: {
+      s.level = -1;
+      s.osi = std::make_shared<D1MinusLinearOSI>();
+      s.force_lcp = make_lcp(lcp_solver);
+      auto d1 = std::make_shared<TimeSteppingD1Minus>(s.model.nsds, td, 2);
+      d1->insertIntegrator(s.osi);
+      d1->insertNonSmoothProblem(s.lcp, SICONOS_OSNSP_TS_VELOCITY);
+      d1->insertNonSmoothProblem(s.force_lcp, SICONOS_OSNSP_TS_VELOCITY + 1);
+      s.sim = d1;
+      break;
+    }
+    case Integrator::combined_projection: {
+      s.level = -1;
+      s.osi = std::make_shared<MoreauJeanCombinedProjectionOSI>(o.theta);
+      s.combined = std::make_shared<TimeSteppingCombinedProjection>(s.model.nsds, td, s.osi, s.lcp, projection());
+      s.combined->setProjectionMaxIteration(static_cast<unsigned int>(o.projection_iterations));
+      s.combined->setConstraintTolUnilateral(o.projection_tol);
+      s.combined->setConstraintTol(o.projection_tol);
+      s.sim = s.combined;
+      break;
+    }
+    case Integrator::direct_projection: {
+      s.osi = std::make_shared<MoreauJeanDirectProjectionOSI>(o.theta, o.gamma);
+      s.direct = std::make_shared<TimeSteppingDirectProjection>(s.model.nsds, td, s.osi, s.lcp, projection());
+      s.direct->setProjectionMaxIteration(static_cast<unsigned int>(o.projection_iterations));
+      s.direct->setConstraintTolUnilateral(o.projection_tol);
+      s.direct->setConstraintTol(o.projection_tol);
+      s.sim = s.direct;
+      break;
+    }
+    case Integrator::bilbao:
+      s.osi = std::make_shared<MoreauJeanBilbaoOSI>();
+      s.sim = std::make_shared<TimeStepping>(s.model.nsds, td, s.osi, s.lcp);
+      break;
+  }
+}
+
+TimeStepper::TimeStepper(const ModelSpec& spec, double h, const StepperOptions& options) {
   const Guard guard(siconos_lock());
   try {
     translated([&] {
       impl_ = std::make_unique<Impl>();
-      impl_->model = make_model(spec);
-      impl_->osi = std::make_shared<MoreauJeanOSI>(theta, gamma);
-      impl_->lcp = make_lcp(enumeration ? SICONOS_LCP_ENUM : SICONOS_LCP_LEMKE);
-      impl_->sim = std::make_shared<TimeStepping>(impl_->model.nsds, std::make_shared<TimeDiscretisation>(0.0, h),
-                                                  impl_->osi, impl_->lcp);
-      static std::once_flag hook;
-      std::call_once(hook, [&] { impl_->sim->setCheckSolverFunction(&keep_lcp_info); });
+      impl_->options = options;
+      impl_->h = h;
+      impl_->build(spec);
+      impl_->time_stepping = std::dynamic_pointer_cast<TimeStepping>(impl_->sim);
+      if (impl_->time_stepping) {
+        static std::once_flag hook;
+        std::call_once(hook, [&] { impl_->time_stepping->setCheckSolverFunction(&keep_lcp_info); });
+      }
       impl_->sim->initialize();
       // Lemke writes its pivot count, enumeration the number of the case it is at; the
       // driver's shortcuts write neither.
-      impl_->counter = enumeration ? static_cast<int>(SICONOS_LCP_IPARAM_ENUM_CURRENT_ENUM)
-                                   : static_cast<int>(SICONOS_IPARAM_ITER_DONE);
+      impl_->counter = options.enumeration ? static_cast<int>(SICONOS_LCP_IPARAM_ENUM_CURRENT_ENUM)
+                                           : static_cast<int>(SICONOS_IPARAM_ITER_DONE);
       if (impl_->counter >= impl_->lcp->numericsSolverOptions()->iSize)
         throw std::runtime_error("the LCP solver's options have no iparam entry " + std::to_string(impl_->counter));
       impl_->impulses.assign(spec.contacts.size(), 0.0);
@@ -226,16 +343,22 @@ TimeStepper::~TimeStepper() {
 bool TimeStepper::step() {
   Impl& s = *impl_;
   if (!s.sim->hasNextEvent()) return false;
+  const auto nc = s.model.contacts.size();
   int active = 0;
-  for (std::size_t j = 0; j < s.model.contacts.size(); ++j)
-    active += in_index_set(s.model, 1, static_cast<int>(j)) ? 1 : 0;
+  if (s.level >= 0)
+    for (std::size_t j = 0; j < nc; ++j) active += in_index_set(s.model, 1, static_cast<int>(j)) ? 1 : 0;
   SolverOptions& options = *s.lcp->numericsSolverOptions();
   options.iparam[s.counter] = -1;
   t_lcp_info = 0;
-  translated([&] { s.sim->computeOneStep(); });
+  translated([&] {
+    if (s.time_stepping)
+      s.time_stepping->computeOneStep();
+    else
+      s.sim->advanceToEvent();
+  });
   s.last = LcpCall{};
   s.last.info = t_lcp_info;
-  if (active > 0) {
+  if (active > 0 && s.options.integrator == Integrator::moreau_jean) {
     const SiconosVector& q = *s.lcp->q();
     s.last.called = true;
     s.last.rows = static_cast<int>(q.size());
@@ -244,19 +367,45 @@ bool TimeStepper::step() {
     s.last.counter_written = options.iparam[s.counter] != -1;
   }
   // Before nextStep(): it zeroes the impulse of a contact that leaves the index set.
-  for (std::size_t j = 0; j < s.impulses.size(); ++j) s.impulses[j] = s.model.contacts[j]->lambda(1)->getValue(0);
-  translated([&] { s.sim->nextStep(); });
+  for (std::size_t j = 0; j < nc; ++j) {
+    const Interaction& c = *s.model.contacts[j];
+    switch (s.options.integrator) {
+      case Integrator::schatzman_paoli: s.impulses[j] = c.lambda(0)->getValue(0) / s.h; break;
+      case Integrator::d1_minus_linear:
+        s.impulses[j] = c.lambda(1)->getValue(0) + s.h * c.lambda(2)->getValue(0);
+        break;
+      default: s.impulses[j] = c.lambda(1)->getValue(0); break;
+    }
+  }
+  if (s.combined) {
+    s.projections += s.combined->nbCumulatedProjectionIteration();
+    s.violation = std::max(s.violation, s.combined->maxViolationUnilateral());
+  } else if (s.direct) {
+    s.projections += s.direct->nbProjectionIteration();
+    s.violation = std::max(s.violation, s.direct->maxViolationUnilateral());
+  }
+  translated([&] {
+    if (s.time_stepping)
+      s.time_stepping->nextStep();
+    else
+      s.sim->processEvents();
+  });
   return true;
 }
 
 void TimeStepper::state(double* u, double* v) const { read_state(impl_->model, u, v); }
-bool TimeStepper::active(int j) const { return in_index_set(impl_->model, 1, j); }
+bool TimeStepper::active(int j) const { return impl_->level >= 0 && in_index_set(impl_->model, 1, j); }
+bool TimeStepper::has_index_set() const { return impl_->level >= 0; }
 double TimeStepper::impulse(int j) const { return impl_->impulses[static_cast<std::size_t>(j)]; }
 const LcpCall& TimeStepper::last_lcp() const { return impl_->last; }
-double TimeStepper::theta() const { return impl_->osi->theta(); }
-double TimeStepper::gamma() const { return impl_->osi->gamma(); }
-bool TimeStepper::uses_gamma() const { return impl_->osi->useGamma(); }
-double TimeStepper::activation_threshold() const { return impl_->osi->constraintActivationThreshold(); }
+long TimeStepper::projection_iterations() const { return impl_->projections; }
+double TimeStepper::max_violation() const { return impl_->violation; }
+double TimeStepper::theta() const { return impl_->moreau_jean ? impl_->moreau_jean->theta() : impl_->options.theta; }
+double TimeStepper::gamma() const { return impl_->moreau_jean ? impl_->moreau_jean->gamma() : impl_->options.gamma; }
+bool TimeStepper::uses_gamma() const { return impl_->moreau_jean && impl_->moreau_jean->useGamma(); }
+double TimeStepper::activation_threshold() const {
+  return impl_->moreau_jean ? impl_->moreau_jean->constraintActivationThreshold() : 0.0;
+}
 
 // ---- EventDrivenRun ----
 
@@ -330,5 +479,119 @@ long EventDrivenRun::itask() const { return static_cast<long>(impl_->osi->intDat
 double EventDrivenRun::event_tolerance() const { return impl_->sim->toleranceED(); }
 long EventDrivenRun::lsodar_steps() const { return LsodarOSI::count_steps() - impl_->steps0; }
 long EventDrivenRun::lsodar_rhs_calls() const { return LsodarOSI::count_rhs_call() - impl_->rhs0; }
+
+// ---- NewmarkAlphaRun ----
+
+namespace {
+
+// NewMarkAlphaOSI with a count of its Newton iterations: EventDriven::newtonSolve calls
+// prepareNewtonIteration once per iteration, and has no other exit than convergence.
+class WatchedNewMarkAlpha : public NewMarkAlphaOSI {
+ public:
+  WatchedNewMarkAlpha(double rho_infty, bool (*stop)(void*), void* stop_data)
+      : NewMarkAlphaOSI(rho_infty, false), stop_(stop), stop_data_(stop_data) {}
+
+  void prepareNewtonIteration(double time) override {
+    ++in_advance_;
+    ++total_;
+    const bool stopped = stop_ && stop_(stop_data_);
+    if (in_advance_ > limit_ || stopped) {
+      NewmarkAlphaRun::NewtonLoop loop;
+      loop.iterations = in_advance_ - 1;
+      loop.k_sign_flips = flips_;
+      loop.stopped = stopped;
+      throw loop;
+    }
+    // Whether this call changes the sign of the first body's stiffness (computeW negating
+    // a LagrangianLinearTIDS's K in place): read before and after.
+    const double before = first_k();
+    NewMarkAlphaOSI::prepareNewtonIteration(time);
+    if ((before > 0.0) != (first_k() > 0.0)) ++flips_;
+  }
+
+  void new_advance() { in_advance_ = flips_ = 0; }
+  void set_limit(long limit) { limit_ = limit; }
+  long total() const { return total_; }
+  void watch(SP::LagrangianLinearTIDS body) { first_ = std::move(body); }
+
+ private:
+  double first_k() const { return first_ && first_->K() ? first_->K()->getValue(0, 0) : 0.0; }
+
+  long limit_ = 0;
+  bool (*stop_)(void*);
+  void* stop_data_;
+  long in_advance_ = 0, total_ = 0, flips_ = 0;
+  SP::LagrangianLinearTIDS first_;
+};
+
+}  // namespace
+
+struct NewmarkAlphaRun::Impl {
+  Guard guard{siconos_lock()};  // first member: held until the last Siconos object is gone
+  CoutCapture printed;           // EventDriven::newtonSolve's warnings
+  Model model;
+  std::vector<BodySpec> made;  // the bodies' K and C as made
+  std::shared_ptr<WatchedNewMarkAlpha> osi;
+  SP::EventDriven sim;
+  ~Impl() { cut_cycles(sim); }
+};
+
+NewmarkAlphaRun::NewmarkAlphaRun(const ModelSpec& spec, double h, double rho_infty, long overrun,
+                                 bool (*stop)(void*), void* stop_data)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& s = *impl_;
+  translated([&] {
+    s.model = make_model(spec);
+    s.made = spec.bodies;
+    s.osi = std::make_shared<WatchedNewMarkAlpha>(rho_infty, stop, stop_data);
+    s.osi->watch(std::dynamic_pointer_cast<LagrangianLinearTIDS>(s.model.bodies.front()));
+    s.sim = std::make_shared<EventDriven>(s.model.nsds, std::make_shared<TimeDiscretisation>(0.0, h));
+    s.sim->insertIntegrator(s.osi);
+    s.sim->insertNonSmoothProblem(make_lcp(SICONOS_LCP_LEMKE), SICONOS_OSNSP_ED_IMPACT);
+    s.sim->insertNonSmoothProblem(make_lcp(SICONOS_LCP_LEMKE), SICONOS_OSNSP_ED_SMOOTH_ACC);
+    s.sim->insertNonSmoothProblem(make_lcp(SICONOS_LCP_LEMKE), SICONOS_OSNSP_ED_SMOOTH_POS);
+    s.osi->set_limit(overrun * static_cast<long>(s.sim->newtonMaxIteration()));
+    s.sim->initialize();
+  });
+}
+
+NewmarkAlphaRun::~NewmarkAlphaRun() = default;
+
+bool NewmarkAlphaRun::has_next() const { return impl_->sim->hasNextEvent(); }
+
+void NewmarkAlphaRun::advance() {
+  Impl& s = *impl_;
+  s.osi->new_advance();
+  try {
+    translated([&] {
+      s.sim->advanceToEvent();
+      s.sim->processEvents();
+    });
+  } catch (NewtonLoop& loop) {
+    loop.siconos_limit = static_cast<long>(s.sim->newtonMaxIteration());
+    loop.time = s.sim->startingTime();
+    throw;
+  }
+}
+
+double NewmarkAlphaRun::time() const { return impl_->sim->startingTime(); }
+void NewmarkAlphaRun::state(double* u, double* v) const { read_state(impl_->model, u, v); }
+double NewmarkAlphaRun::impulse(int j) const {
+  return impl_->model.contacts[static_cast<std::size_t>(j)]->lambda(1)->getValue(0);
+}
+double NewmarkAlphaRun::force(int j) const {
+  return impl_->model.contacts[static_cast<std::size_t>(j)]->lambda(2)->getValue(0);
+}
+long NewmarkAlphaRun::newton_iterations() const { return impl_->osi->total(); }
+int NewmarkAlphaRun::changed_body(double& k, double& c) const {
+  const Impl& s = *impl_;
+  for (std::size_t i = 0; i < s.model.bodies.size(); ++i) {
+    const auto& body = static_cast<const LagrangianLinearTIDS&>(*s.model.bodies[i]);
+    k = body.K() ? body.K()->getValue(0, 0) : 0.0;
+    c = body.C() ? body.C()->getValue(0, 0) : 0.0;
+    if (k != s.made[i].k || c != s.made[i].c) return static_cast<int>(i);
+  }
+  return -1;
+}
 
 }  // namespace pb::siconos::engine

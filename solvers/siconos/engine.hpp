@@ -1,7 +1,8 @@
 #pragma once
-// The one place that touches Siconos: a run's model and simulation behind two small classes,
-// one per integration, each hiding its Siconos objects (engine.cpp). The step loops, the
-// counts and the Result are the callers' (time_stepping.cpp, event_driven.cpp).
+// The one place that touches Siconos: a run's model and simulation behind three small
+// classes, one per kind of integration, each hiding its Siconos objects (engine.cpp). The
+// step loops, the counts and the Result are the callers' (time_stepping.cpp,
+// event_driven.cpp, newmark_alpha.cpp).
 //
 // Why a separate layer: Siconos 4.4's headers need Boost 1.74's uBLAS, which does not compile
 // as C++20 (it calls std::allocator::construct), so engine.cpp is compiled as C++17 and this
@@ -13,8 +14,8 @@
 // DynamicalSystem, Interaction and Event constructor; for LSODAR, ODEPACK's COMMON blocks and
 // the one LsodarOSI that its Fortran callbacks reach. A TimeStepper is made (model,
 // simulation, initialisation, which makes its events) and destroyed under a process-wide
-// lock and steps without it; an EventDrivenRun holds the lock from construction to
-// destruction (README, thread safety).
+// lock and steps without it; an EventDrivenRun and a NewmarkAlphaRun hold the lock from
+// construction to destruction (README, thread safety).
 
 #include <memory>
 #include <vector>
@@ -44,6 +45,27 @@ struct ModelSpec {
 // model.cpp): what the load plugin gives Siconos.
 double ground_sample(bool cosine, double amplitude, double t, double step);
 
+// The one-step integrators of Siconos' time-stepping simulations that a TimeStepper runs, each
+// with the simulation class Siconos pairs it with:
+//   moreau_jean          MoreauJeanOSI(theta, gamma) + TimeStepping, velocity-level LCP
+//   schatzman_paoli      SchatzmanPaoliOSI(theta) + TimeStepping, position-level LCP on every
+//                        contact (index set 0)
+//   d1_minus_linear      D1MinusLinearOSI (half-explicit, acceleration level) +
+//                        TimeSteppingD1Minus, an impact LCP and a force LCP
+//   combined_projection  MoreauJeanCombinedProjectionOSI(theta) + TimeSteppingCombinedProjection,
+//                        the velocity LCP then a position projection (MLCPProjectOnConstraints)
+//   direct_projection    MoreauJeanDirectProjectionOSI(theta, gamma) + TimeSteppingDirectProjection
+//   bilbao               MoreauJeanBilbaoOSI + TimeStepping, bodies as LagrangianLinearDiagonalDS
+enum class Integrator { moreau_jean, schatzman_paoli, d1_minus_linear, combined_projection, direct_projection, bilbao };
+
+struct StepperOptions {
+  Integrator integrator = Integrator::moreau_jean;
+  double theta = 0.5, gamma = 0.5;
+  bool enumeration = false;        // every LCP by enumeration (SICONOS_LCP_ENUM), else Lemke
+  double projection_tol = 1e-10;   // projections: the tolerance on a violated gap, pulse units
+  int projection_iterations = 0;   // projections: most projection iterations per step
+};
+
 // What the dense LCP driver met on a step: its q's sign and size, and whether the solver's
 // iteration counter was written (only a call of Lemke or enumeration writes it).
 struct LcpCall {
@@ -54,11 +76,10 @@ struct LcpCall {
   int info = 0;  // the solver's return (0: solved)
 };
 
-// Siconos' TimeStepping with MoreauJeanOSI(theta, gamma) and an LCP solved by Lemke or by
-// enumeration (SICONOS_LCP_LEMKE, SICONOS_LCP_ENUM), fixed step h.
+// A Siconos time-stepping simulation with one of the integrators above, fixed step h.
 class TimeStepper {
  public:
-  TimeStepper(const ModelSpec& spec, double h, double theta, double gamma, bool enumeration);
+  TimeStepper(const ModelSpec& spec, double h, const StepperOptions& options);
   ~TimeStepper();
   TimeStepper(const TimeStepper&) = delete;
   TimeStepper& operator=(const TimeStepper&) = delete;
@@ -67,15 +88,63 @@ class TimeStepper {
   bool step();
   // The bodies' displacements and velocities (one each per body).
   void state(double* u, double* v) const;
-  // Contact j: in the index set of the coming step; its impulse in the last step.
+  // Contact j: in the index set that the coming step's velocity (or impact) LCP is built on
+  // (always false for Schatzman-Paoli, whose LCP takes every contact); its impulse in the
+  // last step: lambda(1) of the velocity-level schemes, lambda(1) + h lambda(2) of
+  // D1MinusLinear (impact and force), lambda(0) / h of Schatzman-Paoli's position-level LCP.
   bool active(int j) const;
   double impulse(int j) const;
+  // Whether active() follows an index set (false: Schatzman-Paoli).
+  bool has_index_set() const;
   const LcpCall& last_lcp() const;
+  // The projections' work so far: projection iterations summed over the steps, and the
+  // largest violation of a gap left after a step's projection (pulse units).
+  long projection_iterations() const;
+  double max_violation() const;
   // What MoreauJeanOSI holds: theta, gamma, whether gamma is used, the activation threshold.
   double theta() const;
   double gamma() const;
   bool uses_gamma() const;
   double activation_threshold() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Siconos' EventDriven simulation with NewMarkAlphaOSI(rho_infty) (the nonsmooth
+// generalized-alpha scheme of Chen, Acary, Virlez and Bruls), its three LCPs by Lemke, time
+// step h. Siconos' EventDriven::newtonSolve has no way out but convergence (past its
+// iteration limit it prints a warning and goes on); this run counts the scheme's Newton
+// iterations itself (NewMarkAlphaOSI::prepareNewtonIteration, one call per iteration) and
+// throws NewtonLoop once an advance has made `overrun` times EventDriven's own limit of them,
+// or when `stop` (called once per iteration) says so.
+class NewmarkAlphaRun {
+ public:
+  struct NewtonLoop {
+    long iterations = 0;      // in the advance that was stopped
+    long siconos_limit = 0;   // EventDriven's own newtonMaxIteration
+    long k_sign_flips = 0;    // calls after which the first body's K had changed sign
+    double time = 0.0;        // the advance's start (pulse units)
+    bool stopped = false;     // ended by `stop`, not by the iteration limit
+  };
+  NewmarkAlphaRun(const ModelSpec& spec, double h, double rho_infty, long overrun, bool (*stop)(void*), void* stop_data);
+  ~NewmarkAlphaRun();
+  NewmarkAlphaRun(const NewmarkAlphaRun&) = delete;
+  NewmarkAlphaRun& operator=(const NewmarkAlphaRun&) = delete;
+
+  bool has_next() const;
+  // To the next event and through it; throws NewtonLoop (see above), or std::runtime_error
+  // with Siconos' message.
+  void advance();
+  double time() const;
+  void state(double* u, double* v) const;
+  double impulse(int j) const;
+  double force(int j) const;
+  long newton_iterations() const;  // over the run
+  // The first body whose LagrangianLinearTIDS no longer holds the K and C it was made with
+  // (-1: none), and what it holds now.
+  int changed_body(double& k, double& c) const;
 
  private:
   struct Impl;

@@ -1,7 +1,7 @@
 #pragma once
-// Internal to solvers/siconos/: the two integrations that siconos_solver.cpp dispatches to
-// (time_stepping.cpp, event_driven.cpp), and what they share on this side of engine.hpp: the
-// case in Siconos' units, and the bookkeeping common to both.
+// Internal to solvers/siconos/: the integrations that siconos_solver.cpp dispatches to
+// (time_stepping.cpp, event_driven.cpp, newmark_alpha.cpp), and what they share on this side
+// of engine.hpp: the case in Siconos' units, and the bookkeeping common to them.
 //
 // Units. Siconos is given the case in the pulse's units: lengths over L = a_p / w_p^2, times
 // over 1 / w_p, masses as they are (m0 = 1). Pi1 does not depend on a_p and w_p, and Siconos'
@@ -18,8 +18,13 @@
 
 namespace pb::siconos {
 
-// TimeStepping with MoreauJeanOSI; the LCP by Lemke, or by enumeration. paths may be null.
-Result run_time_stepping(const System& system, const Settings& settings, bool enumeration, LcpPaths* paths);
+// A time-stepping simulation with the integrator of `options`. paths (counted for
+// MoreauJeanOSI only) may be null.
+Result run_time_stepping(const System& system, const Settings& settings, const engine::StepperOptions& options,
+                         LcpPaths* paths);
+
+// EventDriven with NewMarkAlphaOSI.
+Result run_newmark_alpha(const System& system, const Settings& settings);
 
 // EventDriven with LsodarOSI.
 Result run_event_driven(const System& system, const Settings& settings);

@@ -11,7 +11,13 @@
 //   variants  moreau-jean-lemke (default) and moreau-jean-enum: TimeStepping with
 //             MoreauJeanOSI(Settings::theta, Settings::gamma) and an LCP solved by Lemke or by
 //             enumeration, h = time_step(system, settings, 64); event-driven-lsodar:
-//             EventDriven with LsodarOSI at stated tolerances (times Settings::tol_scale).
+//             EventDriven with LsodarOSI at stated tolerances (times Settings::tol_scale);
+//             Siconos' other nonsmooth integrators, each with its own simulation class and
+//             its LCPs by Settings::lcp: schatzman-paoli, d1-minus-linear,
+//             combined-projection, direct-projection (Settings::projection_tol), and two that
+//             fail in Siconos 4.4 with a status naming the cause: bilbao (its free state
+//             leaves out the external force) and newmark-alpha (EventDriven's Newton loop
+//             never converges: NewMarkAlphaOSI negates the system's K and C in place).
 //
 // Every Siconos object stays in solvers/siconos/*.cpp; what each variant sets, what the runs
 // measure, the LCP paths and the thread safety are in solvers/siconos/README.md.
@@ -36,6 +42,24 @@ inline constexpr double kRtol = 1e-10;
 inline constexpr double kAtol = 1e-10;
 inline constexpr int kOutputSteps = 256;
 
+// The projections (combined-projection, direct-projection): the tolerance on a violated gap
+// when Settings::projection_tol is 0 (pulse units: the prototype value), and the most
+// projection iterations per step. Their MLCP is solved by enumeration (engine.cpp says why).
+//
+// Enumeration (a projection's MLCP, or an LCP's with Settings::lcp = enum) tries up to 2^n
+// active sets of n contacts, each a dense solve: such a run refuses a system of more than
+// kMaxEnumerationContacts contacts (2^12 = 4096 solves of 12 x 12 at worst), instead of
+// hanging a sweep (measured: a stress sweep stuck in mlcp_enum on a 100-body chain). Time
+// limits cannot reach inside one solve.
+inline constexpr double kProjectionTol = 1e-10;  // check() names it: keep them equal
+inline constexpr int kProjectionIterations = 20;
+inline constexpr int kMaxEnumerationContacts = 12;
+
+// newmark-alpha: NewMarkAlphaOSI's spectral radius at infinity, and when the run stops
+// Siconos' Newton loop: after kNewtonOverrun times EventDriven's own iteration limit in one
+// advance (past its limit Siconos only warns and iterates on, without end).
+inline constexpr double kRhoInfinity = 0.7;
+inline constexpr long kNewtonOverrun = 10;
 Result solve(const System& system, const Settings& settings);
 std::string describe(const Settings& settings);
 std::string check(const Settings& settings);
@@ -52,7 +76,7 @@ struct LcpPaths {
   long written = 0;   // calls after which the solver's iteration counter had been written
 };
 
-// solve() for a time-stepping variant, also counting the LCP paths (for tests).
+// solve() for a MoreauJeanOSI variant, also counting the LCP paths (for tests).
 Result solve_counting(const System& system, const Settings& settings, LcpPaths& paths);
 
 // What the event-driven variant's integrators hold once its simulation is initialised, read
