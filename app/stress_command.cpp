@@ -43,7 +43,7 @@ CLI::App* add_stress_command(CLI::App& app, StressFlags& flags) {
 }
 
 int stress_command(const CLI::App& command, const StressFlags& flags, const Processes& processes) {
-  Study study = run_study(command, flags, "stress", true, processes);
+  Study study = run_study(command, flags, "stress", {.monitor = true}, processes);
   if (!study.rows) return kInterrupted;
   if (!processes.leader()) return 0;
   const Stress st =

@@ -72,8 +72,9 @@ CLI::App* add_study_command(CLI::App& app, StudyFlags& flags, std::string_view n
   return command;
 }
 
-Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_view name, bool monitor,
+Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_view name, StudyOptions options,
                 const Processes& processes) {
+  options.repetitions = flags.repetitions;
   Study study;
   std::vector<SweepRun> runs;
   std::vector<Row> earlier;
@@ -87,7 +88,7 @@ Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_vi
       throw BadInput(e.what());
     }
     if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
-    runs = study_runs(study.list, {flags.repetitions, monitor});
+    runs = study_runs(study.list, options);
     if (!processes.leader()) return;
     if (!flags.out.empty()) check_sweep_output(flags.out, "--out");
     if (!flags.points.empty()) check_sweep_output(flags.points, "--points");

@@ -47,9 +47,9 @@ struct Study {
   std::optional<std::vector<Row>> rows;   // on the leader, every row; nullopt: interrupted
 };
 
-// `name` names the partial file when the output is stdout; `monitor` is StudyOptions::monitor
-// (the study judges the monitor's measurements).
-Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_view name, bool monitor,
+// `name` names the partial file when the output is stdout; `options` says what the study
+// asks of its runs (StudyOptions; its repetitions come from the flags).
+Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_view name, StudyOptions options,
                 const Processes& processes);
 
 // Writes a finished study's outputs, whole or not at all: the rows of every run to

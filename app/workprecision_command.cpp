@@ -47,10 +47,10 @@ int workprecision_command(const CLI::App& command, const WorkPrecisionFlags& fla
       throw BadInput("--max-error: must be a finite number >= 0");
     if (!flags.check) throw BadInput("--max-error: needs --check");
   }, exit_code_of);
-  Study study = run_study(command, flags, "workprecision", false, processes);
+  Study study = run_study(command, flags, "workprecision", {.model_references = true}, processes);
   if (!study.rows) return kInterrupted;
   if (!processes.leader()) return 0;
-  const WorkPrecision wp = work_precision_of(study.set.cases, study.list, std::move(*study.rows));
+  const WorkPrecision wp = work_precision_of(study.set.cases, study.list, std::move(*study.rows), true);
 
   write_study(
       flags, study,

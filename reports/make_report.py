@@ -19,6 +19,7 @@ import sys
 from collections import defaultdict
 
 import answer
+import compliant
 import measured
 import provenance
 import readme
@@ -224,7 +225,8 @@ def commit_results(args):
     with open(target(readme.PROVENANCE), "w") as f:
         json.dump(measured_on, f, indent=2)
         f.write("\n")
-    for source, name in ((args.workprecision, readme.WORKPRECISION), (args.stress, readme.STABILITY)):
+    for source, name in ((args.workprecision, readme.WORKPRECISION), (args.stress, readme.STABILITY),
+                         (args.compliant, readme.COMPLIANT)):
         if source and os.path.abspath(source) != os.path.abspath(target(name)):
             shutil.copyfile(source, target(name))
     return measured_on
@@ -288,6 +290,8 @@ def report(args):
         text += beats_section(summary, points)
         text += workprecision_section(summary, args.out)
         text += spectra_section(points, args.out)
+    if args.compliant:
+        text += compliant.section(load([args.compliant]), load([args.compliant_points]), args.out)
     if stress:
         text += stability_section(stress, load([args.stress_points]) if args.stress_points else [], args.out)
     if args.bench:
@@ -308,6 +312,9 @@ def main():
     parser.add_argument("--provenance", help="where the results were measured (reports/provenance.py's JSON); "
                         "default: this machine now")
     parser.add_argument("--stress", help="summary CSV from `poundbench stress --out`")
+    parser.add_argument("--compliant", help="summary CSV of the compliant-contact study (`poundbench workprecision "
+                        "cases/sets/compliant.toml --settings cases/settings/compliant.toml`; needs --compliant-points)")
+    parser.add_argument("--compliant-points", help="its per-run CSV (--points)")
     parser.add_argument("--stress-points", help="per-run CSV from `poundbench stress --points`")
     parser.add_argument("--out", default=here, help="folder for README.md, figures/ and the committed result files")
     parser.add_argument("--readme", help="also write the generated blocks of this README (scripts/main.sh: README.md)")
@@ -327,6 +334,8 @@ def main():
         parser.error("the paper case set's result CSVs are needed (or --check / --blocks-only)")
     if args.workprecision and not args.points:
         parser.error("--workprecision needs --points (the scene of each family)")
+    if args.compliant and not args.compliant_points:
+        parser.error("--compliant needs --compliant-points (restitution and penetration per run)")
     report(args)
     if args.readme:
         readme.write(args.readme, args.out)

@@ -16,6 +16,7 @@ import os
 import sys
 
 import answer
+import compliant
 import measured
 import provenance as prov
 from rows import load
@@ -27,6 +28,7 @@ END = "<!-- end generated -->"
 WORKPRECISION = "workprecision.csv"
 FAMILIES = "workprecision-families.csv"  # family -> scene of the work-precision study
 STABILITY = "stability.csv"
+COMPLIANT = "compliant.csv"  # the compliant-contact study's summary
 MEASURED = "measured.csv"
 PROVENANCE = "provenance.json"
 
@@ -42,9 +44,12 @@ def committed(folder):
 
     with open(path(PROVENANCE)) as f:
         measured_on = json.load(f)
+    # The compliant study needs SUNDIALS' solver, which a build may leave out.
+    has_compliant = os.path.exists(os.path.join(folder, COMPLIANT))
     return dict(workprecision=load([path(WORKPRECISION)]),
                 scenes={r["family"]: r["scene"] for r in load([path(FAMILIES)])},
-                stability=load([path(STABILITY)]), measured=load([path(MEASURED)]), provenance=measured_on)
+                stability=load([path(STABILITY)]), measured=load([path(MEASURED)]),
+                compliant=load([path(COMPLIANT)]) if has_compliant else None, provenance=measured_on)
 
 
 def source_line(inputs, files):
@@ -68,6 +73,10 @@ def blocks(folder):
             *answer.overall_table(summary, time_steppers_only=True), "",
             source_line(inputs, [WORKPRECISION, FAMILIES, PROVENANCE]),
         ],
+        "compliant": [
+            *compliant.answer_lines(inputs["compliant"]), "",
+            source_line(inputs, [COMPLIANT, PROVENANCE]),
+        ] if inputs["compliant"] else ["Not measured: this build left the compliant solver out (SUNDIALS missing)."],
         "measured": [
             *measured.table(inputs["measured"], summary, inputs["stability"], inputs["provenance"]), "",
             source_line(inputs, [MEASURED, WORKPRECISION, STABILITY, PROVENANCE]),

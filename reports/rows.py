@@ -49,6 +49,14 @@ def config_label(row):
         label += f" theta={fields['theta']}"
     if "tol_scale" in fields:  # the reference, and siconos' event-driven variant
         label += f" tol_scale={fields['tol_scale']}"
+    if "contact" in fields:  # the reference solving a compliant model exactly
+        label += f" {fields['contact']}"
+    if "integrator" in fields:  # compliant: cvode (its method and rtol) or newmark
+        label += f" {fields['integrator']}"
+        if fields["integrator"] == "cvode":
+            label += f" {fields.get('method', 'bdf')} rtol={fields.get('rtol', 1e-8):g}"
+    if "stiffness" in fields:  # compliant elements: the stiffness Pi term
+        label += f" K={fields['stiffness']:g}"
     if "contact_steps" in fields:  # mujoco's faithful variants: the contact time constant in steps
         label += f" M={fields['contact_steps']}"
     if fields.get("lcp") == "enum" and not row.get("variant", "").endswith("-enum"):  # siconos, Settings::lcp

@@ -112,7 +112,8 @@ const std::array kSolvers = {
     // CVODE chooses its steps, and round-off can move a step choice and Pi1 with it within
     // its tolerance (1e-8 by default): 1e-7 lets that through.
     SolverInfo{"compliant", "compliant contact elements (see --variant), integrated by CVODE or Newmark",
-               &compliant::solve, &compliant::describe, &check_all<&compliant::check>, &compliant::variant_list, 1e-7},
+               &compliant::solve, &compliant::describe, &check_all<&compliant::check>, &compliant::variant_list, 1e-7,
+               false, &compliant::model_reference},
 #endif
 #ifdef POUNDBENCH_HAVE_MUJOCO
     // A fixed-step engine in double precision, as ODE: round-off only, 1e-12.

@@ -129,6 +129,15 @@ struct VariantInfo {
   std::string summary;
 };
 
+// The reference of a setting's own model, where that model is not rigid contact (a compliant
+// element): the same model solved exactly or far tighter, by the solver named here with these
+// settings, so that a study can tell the setting's integration error from its model's error
+// against the rigid reference.
+struct ModelReference {
+  std::string_view solver;
+  Settings settings;
+};
+
 struct SolverInfo {
   std::string_view name;     // as given to --solver
   std::string_view summary;  // one line for --help
@@ -145,6 +154,9 @@ struct SolverInfo {
   double baseline_tolerance = 1e-9;
   // The solver every error is measured against (exactly one).
   bool reference = false;
+  // The reference of a setting's own model (nullopt: the rigid reference is its model's, or
+  // the setting is its model's reference itself); null: nullopt for every setting.
+  std::optional<ModelReference> (*model_reference)(const Settings&) = nullptr;
 };
 
 std::span<const SolverInfo> solvers();

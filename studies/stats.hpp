@@ -34,7 +34,8 @@ CpuCost cpu_cost(std::span<const Row* const> rows);
 struct Summary {
   std::size_t points = 0;  // rows summarised
   std::size_t failed = 0;  // status other than ok, or a Pi1 that is not finite
-  // Relative Pi1 error |Pi1 - Pi1_ref| / Pi1_ref over the runs that did not fail.
+  // Relative Pi1 error |Pi1 - Pi1_ref| / Pi1_ref over the runs that did not fail, where the
+  // reference has a Pi1.
   double err_median = std::numeric_limits<double>::quiet_NaN();
   double err_p95 = std::numeric_limits<double>::quiet_NaN();
   double err_max = std::numeric_limits<double>::quiet_NaN();

@@ -17,6 +17,53 @@ std::vector<std::string> families_in_order(std::span<const Case> cases) {
 
 }  // namespace
 
+namespace {
+
+std::string run_key(const SweepRun& run) {
+  return std::string(run.solver->name) + " " + run.solver->describe(run.settings);
+}
+
+// Where each list run's model reference is among list.runs followed by `extra`
+// (model_reference_runs): its index, or -1.
+std::vector<int> model_reference_index(const SettingsList& list, const std::vector<SweepRun>& extra) {
+  std::vector<std::string> keys;
+  for (const SweepRun& run : list.runs) keys.push_back(run_key(run));
+  for (const SweepRun& run : extra) keys.push_back(run_key(run));
+  std::vector<int> index;
+  for (const SweepRun& run : list.runs) {
+    index.push_back(-1);
+    if (!run.solver->model_reference) continue;
+    const std::optional<ModelReference> ref = run.solver->model_reference(run.settings);
+    if (!ref) continue;
+    const SweepRun own{find_solver(ref->solver), ref->settings, 1};
+    if (!own.solver) continue;
+    const auto at = std::find(keys.begin(), keys.end(), run_key(own));
+    if (at != keys.end()) index.back() = static_cast<int>(at - keys.begin());
+  }
+  return index;
+}
+
+}  // namespace
+
+std::vector<SweepRun> model_reference_runs(const SettingsList& list) {
+  std::vector<std::string> keys;
+  for (const SweepRun& run : list.runs) keys.push_back(run_key(run));
+  std::vector<SweepRun> out;
+  for (const SweepRun& run : list.runs) {
+    if (!run.solver->model_reference) continue;
+    const std::optional<ModelReference> ref = run.solver->model_reference(run.settings);
+    if (!ref) continue;
+    SweepRun own{find_solver(ref->solver), ref->settings, 1};
+    if (!own.solver) continue;  // a reference left out of this build
+    own.settings.time_limit = list.reference_time_limit;
+    const std::string key = run_key(own);
+    if (std::find(keys.begin(), keys.end(), key) != keys.end()) continue;
+    keys.push_back(key);
+    out.push_back(own);
+  }
+  return out;
+}
+
 std::vector<SweepRun> study_runs(const SettingsList& list, const StudyOptions& study) {
   std::vector<SweepRun> runs;
   SweepRun truth{&reference_solver(), {}, study.repetitions};
@@ -27,32 +74,51 @@ std::vector<SweepRun> study_runs(const SettingsList& list, const StudyOptions& s
     runs.push_back({run.solver, run.settings, study.repetitions});
     runs.back().settings.monitor = study.monitor && run.settings.monitor;
   }
+  if (study.model_references)
+    for (SweepRun run : model_reference_runs(list)) {
+      run.repetitions = study.repetitions;
+      run.settings.monitor = false;
+      runs.push_back(run);
+    }
   return runs;
 }
 
-WorkPrecision work_precision_of(std::span<const Case> cases, const SettingsList& list, std::vector<Row> rows) {
+WorkPrecision work_precision_of(std::span<const Case> cases, const SettingsList& list, std::vector<Row> rows,
+                                bool model_references) {
   WorkPrecision wp;
   const std::size_t n = cases.size();
-  if (rows.size() != n * (list.runs.size() + 1)) return wp;
+  const std::vector<SweepRun> extra = model_references ? model_reference_runs(list) : std::vector<SweepRun>{};
+  std::vector<SweepRun> all = list.runs;
+  all.insert(all.end(), extra.begin(), extra.end());
+  if (rows.size() != n * (all.size() + 1)) return wp;
   wp.reference.assign(std::make_move_iterator(rows.begin()), std::make_move_iterator(rows.begin() + n));
   wp.points.assign(std::make_move_iterator(rows.begin() + n), std::make_move_iterator(rows.end()));
   std::vector<double> reference(n);
   for (const Row& r : wp.reference) reference[r.point] = r.result.pi1;
+  std::vector<int> own = model_references ? model_reference_index(list, extra) : std::vector<int>{};
+  own.resize(all.size(), -1);
 
   const std::vector<std::string> families = families_in_order(cases);
-  for (std::size_t k = 0; k < list.runs.size(); ++k) {
-    const SweepRun& run = list.runs[k];
-    const std::span<const Row> run_rows = std::span<const Row>(wp.points).subspan(k * n, n);
+  const auto rows_of = [&](std::size_t k) { return std::span<const Row>(wp.points).subspan(k * n, n); };
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    const SweepRun& run = all[k];
     for (const std::string& family : families) {
       std::vector<const Row*> mine;
-      std::vector<double> ref;
-      for (const Row& r : run_rows) {
+      std::vector<double> ref, model;
+      for (const Row& r : rows_of(k)) {
         if (r.input.family != family) continue;
         mine.push_back(&r);
         ref.push_back(reference[r.point]);
+        if (own[k] >= 0) model.push_back(rows_of(static_cast<std::size_t>(own[k]))[r.point].result.pi1);
       }
-      wp.table.push_back({family, std::string(run.solver->name), run.settings.variant,
-                          run.solver->describe(run.settings), summarize(mine, ref)});
+      WorkPrecisionRow row{family, std::string(run.solver->name), run.settings.variant,
+                           run.solver->describe(run.settings), summarize(mine, ref), {}, {}};
+      if (own[k] >= 0) {
+        const SweepRun& m = all[static_cast<std::size_t>(own[k])];
+        row.model_reference = std::string(m.solver->name) + " " + m.solver->describe(m.settings);
+        row.integration = summarize(mine, model);
+      }
+      wp.table.push_back(std::move(row));
     }
   }
   // Table rows grouped by family, settings in list order within each.
@@ -65,12 +131,12 @@ WorkPrecision work_precision_of(std::span<const Case> cases, const SettingsList&
 
 WorkPrecision run_work_precision(std::span<const Case> cases, const SettingsList& list, const SweepOptions& options,
                                  const StudyOptions& study) {
-  return work_precision_of(cases, list, run_sweep(cases, study_runs(list, study), options));
+  return work_precision_of(cases, list, run_sweep(cases, study_runs(list, study), options), study.model_references);
 }
 
 std::string work_precision_csv_header() {
   return "family,solver,variant,settings,points,failed,err_median,err_p95,err_max,cpu_median_s,cpu_mean_s,"
-         "cpu_median_low_s,cpu_median_high_s,repetitions";
+         "cpu_median_low_s,cpu_median_high_s,repetitions,model_reference,int_err_median,int_err_p95,int_err_max";
 }
 
 std::string work_precision_csv_line(const WorkPrecisionRow& row) {
@@ -80,7 +146,9 @@ std::string work_precision_csv_line(const WorkPrecisionRow& row) {
        << csv_field(row.settings) << ',' << s.points << ',' << s.failed;
   for (double x : {s.err_median, s.err_p95, s.err_max, s.cpu.median, s.cpu.mean, s.cpu.median_low, s.cpu.median_high})
     line << ',' << format_number(x);
-  line << ',' << s.cpu.repetitions;
+  line << ',' << s.cpu.repetitions << ',' << csv_field(row.model_reference);
+  for (double x : {row.integration.err_median, row.integration.err_p95, row.integration.err_max})
+    line << ',' << format_number(x);
   return line.str();
 }
 

@@ -24,6 +24,11 @@ struct WorkPrecisionRow {
   std::string variant;
   std::string settings;  // SolverInfo::describe
   Summary summary;
+  // Against the reference of the setting's own model (SolverInfo::model_reference), where it
+  // has one: its integration error alone (summary's error is the model's and the integration's
+  // together, against the rigid reference). Empty model_reference: none.
+  std::string model_reference;  // "solver settings" of that reference
+  Summary integration;
 };
 
 struct WorkPrecision {
@@ -44,15 +49,25 @@ struct StudyOptions {
   // its rows carry the monitor's measurements, from one untimed pass more (the stress
   // checks judge them). false: off for every run: a work-precision study judges none of them.
   bool monitor = false;
+  // true: the list's runs are followed by the references of their own models
+  // (model_reference_runs), and the table measures each run against its model's too.
+  bool model_references = false;
 };
 
+// The references of the list's runs' own models (SolverInfo::model_reference) that the list
+// does not hold, each once, in the order of the runs that ask for them.
+std::vector<SweepRun> model_reference_runs(const SettingsList& list);
+
 // The study's runs: the truth (the reference at the list's tolerance scale and time
-// limit), then the list's runs in their order.
+// limit), then the list's runs in their order, then (StudyOptions::model_references) the
+// references of their models.
 std::vector<SweepRun> study_runs(const SettingsList& list, const StudyOptions& study = {});
 
 // The study from its rows: one per task, sorted by run then point, as run_sweep returns
-// them over study_runs(list). Fewer rows than tasks: not complete, no table.
-WorkPrecision work_precision_of(std::span<const Case> cases, const SettingsList& list, std::vector<Row> rows);
+// them over study_runs(list, study) with the same model_references. Fewer rows than tasks:
+// not complete, no table.
+WorkPrecision work_precision_of(std::span<const Case> cases, const SettingsList& list, std::vector<Row> rows,
+                                bool model_references = false);
 
 // run_sweep over study_runs(list, study), then work_precision_of.
 WorkPrecision run_work_precision(std::span<const Case> cases, const SettingsList& list, const SweepOptions& options,

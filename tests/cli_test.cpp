@@ -808,10 +808,10 @@ TEST_F(Cli, SolversListsEveryVariantAndRunAcceptsEachOne) {
   }
   // What each uses, as the settings column of its rows shows it.
   EXPECT_NE(text.out.find("    settings: --steps --wh --theta --gamma\n"), std::string::npos) << text.out;
-  EXPECT_NE(text.out.find("    settings: --tol-scale\n"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("    settings: --tol-scale --contact\n"), std::string::npos) << text.out;
   EXPECT_EQ(settings_used(*find_solver("moreau-jean"), "end-samples"),
             (std::vector<std::string_view>{"steps", "wh", "theta", "gamma"}));
-  EXPECT_EQ(settings_used(reference_solver(), ""), std::vector<std::string_view>{"tol_scale"});
+  EXPECT_EQ(settings_used(reference_solver(), ""), (std::vector<std::string_view>{"tol_scale", "contact"}));
 }
 
 // Every sweep command ends with a line per file it wrote, whatever stderr is (here a file).

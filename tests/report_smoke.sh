@@ -13,12 +13,25 @@ trap 'rm -rf "$out"' EXIT
   --out "$out/stability.csv" --points "$out/stability-points.csv"
 "$bench" --benchmark_filter='BM_Solve|BM_SweepFig4' --benchmark_min_time=0.001 \
   --benchmark_out="$out/bench.json" --benchmark_out_format=json > /dev/null
+# The compliant study where its solver is built (SUNDIALS), on the smoke set's wall families.
+compliant=()
+if "$pb" solvers | grep -q '^compliant '; then
+  "$pb" workprecision "$src/cases/sets/smoke.toml" --settings "$src/cases/settings/compliant-smoke.toml" \
+    --repetitions 1 --out "$out/compliant.csv" --points "$out/compliant-points.csv"
+  compliant=(--compliant "$out/compliant.csv" --compliant-points "$out/compliant-points.csv")
+fi
 /usr/bin/python3 "$src/reports/provenance.py" --build-dir "$(dirname "$pb")" > "$out/provenance.json"
 cp "$src/README.md" "$out/README.md"
 /usr/bin/python3 "$src/reports/make_report.py" "$out/smoke.csv" --workprecision "$out/wp.csv" \
   --points "$out/points.csv" --bench "$out/bench.json" --provenance "$out/provenance.json" \
-  --stress "$out/stability.csv" --stress-points "$out/stability-points.csv" --out "$out/report" \
+  --stress "$out/stability.csv" --stress-points "$out/stability-points.csv" "${compliant[@]}" --out "$out/report" \
   --readme "$out/README.md" > /dev/null
+if [ ${#compliant[@]} -gt 0 ]; then
+  for ext in png svg; do
+    [ -s "$out/report/figures/compliant.$ext" ] || { echo "missing figure compliant.$ext"; exit 1; }
+  done
+  grep -q '| kelvin-voigt | cvode |' "$out/README.md" || { echo "README's compliant block has no Kelvin-Voigt row"; exit 1; }
+fi
 families=$(tail -n +2 "$out/smoke.csv" | cut -d, -f1 | sort -u)
 missing=0
 for f in $families; do

@@ -229,5 +229,65 @@ TEST(WorkPrecision, SmokeStudyHasARowPerFamilyAndSettingAndTheReferenceMatchesIt
   EXPECT_EQ(wp.points.front().repetitions, kStudyRepetitions);
 }
 
+// A compliant setting is measured twice: against the rigid reference (its model's error and
+// its integration's together) and against its own model's reference, run once for every
+// setting that shares it (Kelvin-Voigt: the exact reference at the same stiffness; the Hertz
+// family: CVODE at rtol 1e-12), whose own row then shows the model's error alone.
+TEST(WorkPrecision, ACompliantSettingIsAlsoMeasuredAgainstItsOwnModelsReference) {
+  if (!find_solver("compliant")) GTEST_SKIP() << "compliant not built (SUNDIALS missing)";
+  CaseSet set = load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/smoke.toml");
+  set.cases.resize(10);  // wall-sine and wall-touching
+  const SettingsList list = parse_settings_list(R"(
+name = "compliant"
+description = "two Kelvin-Voigt integrators sharing a reference, and Hunt-Crossley"
+[[run]]
+solver = "compliant"
+variant = ["kelvin-voigt", "hunt-crossley"]
+stiffness = 1e3
+[[run]]
+solver = "compliant"
+variant = "kelvin-voigt"
+integrator = "newmark"
+stiffness = 1e3
+steps = 256
+)", "compliant.toml");
+  const std::vector<SweepRun> refs = model_reference_runs(list);
+  ASSERT_EQ(refs.size(), 2u);
+  EXPECT_EQ(refs[0].solver->name, "event-driven");
+  EXPECT_EQ(refs[0].settings.contact, "kelvin-voigt");
+  EXPECT_EQ(refs[1].solver->name, "compliant");
+  EXPECT_EQ(refs[1].settings.rtol, 1e-12);
+  StudyOptions options;
+  options.repetitions = 1;
+  options.model_references = true;
+  const WorkPrecision wp = run_work_precision(set.cases, list, {}, options);
+  ASSERT_TRUE(wp.complete);
+  ASSERT_EQ(wp.points.size(), set.cases.size() * 5);
+  ASSERT_EQ(wp.table.size(), 2u * 5);
+  for (const WorkPrecisionRow& row : wp.table) {
+    const bool is_reference = row.solver == "event-driven" || row.settings.find("1e-12") != std::string::npos;
+    EXPECT_EQ(row.model_reference.empty(), is_reference) << row.settings;
+    if (is_reference) continue;
+    EXPECT_EQ(row.integration.points, row.summary.points);
+    // CVODE at its default rtol 1e-8 is within 1e-5 of its model (measured ~1e-7); at K = 1e3
+    // the model's own error against rigid contact is ~1e-2, so the two errors differ.
+    if (row.settings.find("cvode") != std::string::npos) {
+      EXPECT_LT(row.integration.err_max, 1e-5) << row.family << " " << row.settings;
+      EXPECT_GT(row.summary.err_max, 100 * row.integration.err_max) << row.family << " " << row.settings;
+    }
+  }
+  // By hand, for one point: the Newmark run against the exact Kelvin-Voigt run.
+  const std::size_t n = set.cases.size();
+  const Row& newmark = wp.points[2 * n + 3];
+  const Row& exact = wp.points[3 * n + 3];
+  ASSERT_EQ(newmark.solver, "compliant");
+  ASSERT_EQ(exact.solver, "event-driven");
+  for (const WorkPrecisionRow& row : wp.table) {
+    if (row.family == newmark.input.family && row.settings.find("newmark") != std::string::npos) {
+      EXPECT_LE(std::abs(newmark.result.pi1 - exact.result.pi1) / exact.result.pi1, row.integration.err_max);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace pb

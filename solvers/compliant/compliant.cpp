@@ -71,6 +71,24 @@ Result solve(const System& system, const Settings& settings) {
   }
 }
 
+std::optional<ModelReference> model_reference(const Settings& settings) {
+  const auto model = parse_model(settings.variant);
+  if (!model) return std::nullopt;
+  ModelReference ref{"", {}};
+  ref.settings.stiffness = stiffness(settings);
+  ref.settings.time_limit = settings.time_limit;
+  if (*model == Model::kelvin_voigt) {
+    ref.solver = "event-driven";
+    ref.settings.contact = "kelvin-voigt";
+    return ref;
+  }
+  if (!is_newmark(settings) && !is_adams(settings) && settings.rtol == kModelReferenceRtol) return std::nullopt;
+  ref.solver = "compliant";
+  ref.settings.variant = name(*model);
+  ref.settings.rtol = kModelReferenceRtol;
+  return ref;
+}
+
 std::string describe(const Settings& settings) {
   NamedValues out;
   const auto model = parse_model(settings.variant);

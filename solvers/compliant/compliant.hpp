@@ -27,6 +27,7 @@
 // shell's monitor, which counts no energy stored in the elements (so a contact in progress
 // lowers the balance, never raises it).
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,5 +42,12 @@ Result solve(const System& system, const Settings& settings);
 std::string describe(const Settings& settings);
 std::string check(const Settings& settings);
 std::vector<VariantInfo> variant_list();
+// The reference of a setting's model: for Kelvin-Voigt the exact one (event-driven --contact
+// kelvin-voigt at the same stiffness); for the Hertz family, CVODE at rtol kModelReferenceRtol
+// (BDF), which no other setting of it is (nullopt for that one itself).
+std::optional<ModelReference> model_reference(const Settings& settings);
+// CVODE's tolerance as the Hertz family's reference: measured on the Kelvin-Voigt element
+// against its exact solution, within 1.7e-9 over the smoke set (compliant_test.cpp).
+inline constexpr double kModelReferenceRtol = 1e-12;
 
 }  // namespace pb::compliant

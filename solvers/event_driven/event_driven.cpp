@@ -558,9 +558,10 @@ void check_result(const System& s, double tol_scale, Result& r) {
 std::string describe(const Settings& settings) {
   NamedValues out;
   out.add("tol_scale", settings.tol_scale);
+  // Rigid contact, the default, by either name keeps the rows' settings as they were.
+  if (!settings.contact.empty() && settings.contact != "rigid") out.add("contact", settings.contact);
   if (kelvin_voigt(settings))
-    out.add("contact", settings.contact)
-        .add("stiffness", settings.stiffness > 0.0 ? settings.stiffness : compliant::kDefaultStiffness);
+    out.add("stiffness", settings.stiffness > 0.0 ? settings.stiffness : compliant::kDefaultStiffness);
   return out.json();
 }
 
