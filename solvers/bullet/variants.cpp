@@ -3,6 +3,7 @@
 #include <array>
 
 #include "solvers/bullet/engine.hpp"
+#include "solvers/variant_table.hpp"
 
 namespace pb::bullet {
 
@@ -38,20 +39,10 @@ std::string_view solver_name(Engine e) {
 std::span<const Config> variants() { return kVariants; }
 
 std::optional<Config> find_variant(std::string_view name) {
-  if (name.empty()) name = kDefaultVariant;
-  for (const Config& c : kVariants)
-    if (c.name == name) return c;
-  return std::nullopt;
+  return find_named(std::span<const Config>(kVariants), name, kDefaultVariant);
 }
 
-std::string variant_names() {
-  std::string out;
-  for (const Config& c : kVariants) {
-    if (!out.empty()) out += ", ";
-    out += c.name;
-  }
-  return out;
-}
+std::string variant_names() { return names_of(std::span<const Config>(kVariants)); }
 
 void add_config(NamedValues& out, const Config& config, const Settings& settings) {
   // The step does not change any of these settings; 1 stands for it.

@@ -3,6 +3,7 @@
 #include <array>
 
 #include "solvers/mujoco/contact.hpp"
+#include "solvers/variant_table.hpp"
 
 namespace pb::mujoco {
 
@@ -20,20 +21,10 @@ constexpr std::array kVariants = {
 std::span<const Config> variants() { return kVariants; }
 
 std::optional<Config> find_variant(std::string_view name) {
-  if (name.empty()) name = kDefaultVariant;
-  for (const Config& c : kVariants)
-    if (c.name == name) return c;
-  return std::nullopt;
+  return find_named(std::span<const Config>(kVariants), name, kDefaultVariant);
 }
 
-std::string variant_names() {
-  std::string out;
-  for (const Config& c : kVariants) {
-    if (!out.empty()) out += ", ";
-    out += c.name;
-  }
-  return out;
-}
+std::string variant_names() { return names_of(std::span<const Config>(kVariants)); }
 
 double contact_steps(const Settings& settings) {
   return settings.contact_steps > 0.0 ? settings.contact_steps : kDefaultContactSteps;

@@ -4,6 +4,8 @@
 #include <limits>
 #include <sstream>
 
+#include "solvers/variant_table.hpp"
+
 namespace pb::ode {
 
 namespace {
@@ -31,10 +33,7 @@ constexpr std::array kVariants = {
 std::span<const Config> variants() { return kVariants; }
 
 std::optional<Config> find_variant(std::string_view name) {
-  if (name.empty()) name = kDefaultVariant;
-  for (const Config& c : kVariants)
-    if (c.name == name) return c;
-  return std::nullopt;
+  return find_named(std::span<const Config>(kVariants), name, kDefaultVariant);
 }
 
 void add_config(NamedValues& out, const Config& config, const Settings& settings) {
