@@ -37,6 +37,16 @@ echo "main: stability on the stress case set"
 timed stress $pb stress cases/sets/stress.toml --settings cases/settings/stress.toml \
   --out results/stability.csv --points results/stability-points.csv
 
+echo "main: the example records and pulse models through the reference and the time-steppers"
+records() {  # the solvers of this build among those the report's records section compares
+  local s
+  for s in event-driven moreau-jean ode bullet siconos mujoco; do
+    $pb solvers | grep -q "^$s " || continue
+    $pb spectrum cases/sets/records.toml --solver "$s" --out "results/records-$s.csv"
+  done
+}
+timed records records
+
 echo "main: benchmarks"
 timed benchmarks build/bench/poundbench_bench --benchmark_repetitions=5 --benchmark_display_aggregates_only=true \
   --benchmark_min_time=0.05 --benchmark_out=results/bench.json --benchmark_out_format=json > /dev/null
@@ -46,7 +56,7 @@ timed benchmarks build/bench/poundbench_bench --benchmark_repetitions=5 --benchm
 /usr/bin/python3 reports/make_report.py results/paper-*.csv --workprecision results/workprecision.csv \
   --points results/workprecision-points.csv --bench results/bench.json --timings results/timings.csv \
   --provenance results/provenance.json --stress results/stability.csv --stress-points results/stability-points.csv \
-  --out reports --readme README.md
+  --records results/records-*.csv --out reports --readme README.md
 
 echo "main: the paper report (reports/paper/)"
 scripts/paper.sh
