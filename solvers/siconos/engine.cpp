@@ -122,10 +122,13 @@ struct Model {
   SP::NonSmoothDynamicalSystem nsds;
   std::vector<SP::LagrangianDS> bodies;
   std::vector<SP::Interaction> contacts;
+  // The load plugin's sampler, kept as long as the model: a run's ModelSpec may be a temporary.
+  std::shared_ptr<GroundSampler> sampler;
 };
 
 Model make_model(const ModelSpec& spec, bool diagonal = false) {
   Model m;
+  m.sampler = spec.sampler;
   m.nsds = std::make_shared<NonSmoothDynamicalSystem>(0.0, spec.t_end);
   for (const BodySpec& b : spec.bodies) {
     SP::LagrangianDS body;
