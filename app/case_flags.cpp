@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <optional>
 #include <string_view>
 
 #include "app/errors.hpp"
 #include "cases/case_set.hpp"
 #include "cases/fields.hpp"
+#include "cases/record.hpp"
 
 namespace pb::app {
 
@@ -25,6 +27,8 @@ ChosenCase case_from_file(const GivenFlag& given, const CaseFlags& flags) {
     if (given(flag)) throw BadInput(std::string(flag) + ": cannot be combined with --case-file");
   for (const CaseField& field : kCaseFields)
     if (given(flag_of(field))) throw BadInput(flag_of(field) + ": cannot be combined with --case-file");
+  for (const CaseAlias& alias : kCaseAliases)
+    if (given(flag_of(alias.name))) throw BadInput(flag_of(alias.name) + ": cannot be combined with --case-file");
   const CaseSet set = load_case_set(flags.case_file);
   const std::size_t n = set.cases.size();
   const std::string file = flags.case_file;
@@ -51,24 +55,50 @@ ChosenCase case_from_flags(const GivenFlag& given, const CaseFlags& flags) {
 
   Case c;
   c.scene = parsed("--scene", flags.scene, parse_scene(flags.scene), "wall, pair, row3, chain");
-  c.pulse = parsed("--pulse", flags.pulse, parse_pulse(flags.pulse), "sine, cosine");
+  c.pulse = parsed("--pulse", flags.pulse, parse_pulse(flags.pulse),
+                   "sine, cosine, makris-a, makris-b, makris-c, mp, record");
   c.directivity =
       parsed("--directivity", flags.directivity, parse_directivity(flags.directivity), "normal, reverse");
   const std::string scene(name(c.scene));
-  // A field the scene uses is taken from its flag (a required one must be given); one it
-  // does not use must not be given, and keeps Case's default.
+  // A field the scene and pulse use is taken from its flag (a required one must be given);
+  // one they do not use must not be given, and keeps Case's default.
   for (const CaseField& field : kCaseFields) {
     const std::string flag = flag_of(field);
-    const bool used = used_by(field, c.scene);
+    const bool used = used_by(field, c);
+    const std::string user = pulse_use(field.use) ? "pulse " + std::string(name(c.pulse)) : "scene " + scene;
     if (used && field.required && !given(flag))
-      throw BadInput(flag + (field.use == FieldUse::every ? ": required (or give --case-file)"
-                                                          : ": required by scene " + scene));
-    if (!used && given(flag)) throw BadInput(flag + ": not used by scene " + scene);
+      throw BadInput(flag + (field.use == FieldUse::every ? ": required (or give --case-file)" : ": required by " + user));
+    if (!used && given(flag)) throw BadInput(flag + ": not used by " + user);
     if (!used) continue;
     if (field.number)
       c.*field.number = flags.numbers.*field.number;
-    else
+    else if (field.integer)
       c.*field.integer = flags.numbers.*field.integer;
+    else
+      c.*field.text = flags.numbers.*field.text;
+  }
+  // An alias gives its field (--tp gives --w-p), never beside it.
+  for (std::size_t a = 0; a < kCaseAliases.size(); ++a) {
+    const CaseAlias& alias = kCaseAliases[a];
+    const std::string flag = flag_of(alias.name), target = flag_of(alias.field);
+    if (!given(flag)) continue;
+    if (given(target)) throw BadInput(flag + ": not with " + target + " (give one of them)");
+    const double x = flags.aliases[a];
+    if (!(std::isfinite(x) && x > 0.0)) throw BadInput(flag + ": must be finite and > 0");
+    for (const CaseField& field : kCaseFields)
+      if (field.name == alias.field) c.*field.number = alias.convert(x);
+  }
+  if (c.pulse == PulseShape::record) {
+    // A record's Pi terms: w_p is the user's (a pulse period read from the record), a_p its
+    // peak unless given. The record is read here, once.
+    if (!given("--w-p") && !given("--tp"))
+      throw BadInput("--w-p: required by pulse record (or --tp, the period of the record's pulse: w_p = 2 pi / tp)");
+    try {
+      c.samples = read_record(c.record);
+    } catch (const RecordError& e) {
+      throw BadInput("--record: " + std::string(e.what()));
+    }
+    if (!given("--a-p")) c.a_p = c.samples->peak;
   }
   if (auto bad = validate(c)) throw BadInput(case_flag_message(*bad));
   return {c, 0, {}};
@@ -78,14 +108,17 @@ ChosenCase case_from_flags(const GivenFlag& given, const CaseFlags& flags) {
 
 void add_case_flags(CLI::App& command, CaseFlags& f) {
   command.add_option("--scene", f.scene, "Scene: wall, pair, row3 or chain");
-  command.add_option("--pulse", f.pulse, "Pulse: sine or cosine");
+  command.add_option("--pulse", f.pulse, "Pulse: sine, cosine, makris-a, makris-b, makris-c, mp or record");
   command.add_option("--directivity", f.directivity, "Directivity: normal or reverse");
   for (const CaseField& field : kCaseFields) {
     const std::string flag = flag_of(field), help(field.help);
-    CLI::Option* option = field.number ? command.add_option(flag, f.numbers.*field.number, help)
-                                       : command.add_option(flag, f.numbers.*field.integer, help);
+    CLI::Option* option = field.number    ? command.add_option(flag, f.numbers.*field.number, help)
+                          : field.integer ? command.add_option(flag, f.numbers.*field.integer, help)
+                                          : command.add_option(flag, f.numbers.*field.text, help);
     if (!field.required) option->capture_default_str();
   }
+  for (std::size_t a = 0; a < kCaseAliases.size(); ++a)
+    command.add_option(flag_of(kCaseAliases[a].name), f.aliases[a], std::string(kCaseAliases[a].help));
   command.add_option("--case-file", f.case_file, "Take the case from a case-set file instead of the flags above");
   command.add_option("--point", f.point, "Which case of --case-file (0-based; needed when it has several)");
 }

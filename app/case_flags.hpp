@@ -2,6 +2,7 @@
 // How `run` gets its one case: from flags (--scene ... --eps ...), or as one point of a
 // case-set file (--case-file FILE --point K).
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -11,12 +12,14 @@
 
 #include "cases/case.hpp"
 #include "cases/case_set.hpp"
+#include "cases/fields.hpp"
 
 namespace pb::app {
 
 struct CaseFlags {
   std::string scene, pulse, directivity;
   Case numbers;  // the flags of cases/fields.hpp write into their members; defaults are Case's
+  std::array<double, kCaseAliases.size()> aliases{};  // the flags of kCaseAliases (--tp), in its order
   std::string case_file;
   long long point = 0;
 };

@@ -50,7 +50,9 @@ void print_summary(std::ostream& out, const Row& row) {
   out << ' ' << name(c.pulse) << ' ' << name(c.directivity) << ' ';
   // The scene's numbers: those it requires, and the others where they are not the default.
   for (const CaseField& f : kCaseFields)
-    if (used_by(f, c.scene) && f.use != FieldUse::chain && (f.required || f.get(c) != f.get(Case{})))
+    if (f.text && used_by(f, c))
+      out << ' ' << f.name << '=' << c.*f.text;
+    else if (used_by(f, c) && f.use != FieldUse::chain && (f.required || f.get(c) != f.get(Case{})))
       out << ' ' << f.name << '=' << brief(f.get(c));
   out << '\n';
   out << "solver   " << row.solver << "  (";

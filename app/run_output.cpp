@@ -32,8 +32,10 @@ nlohmann::ordered_json case_json(const Case& c) {
   j["pulse"] = name(c.pulse);
   j["directivity"] = name(c.directivity);
   for (const CaseField& field : kCaseFields) {
-    if (!used_by(field, c.scene)) continue;
-    if (field.integer)
+    if (!used_by(field, c)) continue;
+    if (field.text)
+      j[std::string(field.name)] = c.*field.text;
+    else if (field.integer)
       j[std::string(field.name)] = c.*field.integer;
     else
       j[std::string(field.name)] = c.*field.number;

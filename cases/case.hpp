@@ -5,6 +5,7 @@
 // the same physical scene for the same Case.
 
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -17,8 +18,15 @@ namespace pb {
 //          odd-numbered ones take Pi5 and Pi6 (Pi5 = Pi6 = 1: a uniform chain)
 enum class Scene { wall, pair, row3, chain };
 
-// Ground acceleration on 0 <= t <= T_p: s a_p sin(w_p t) or s a_p cos(w_p t); zero after.
-enum class PulseShape { sine, cosine };
+// The ground acceleration (cases/README.md, "Pulses" and "Records"):
+//   sine, cosine   the paper's: s a_p sin(w_p t) or s a_p cos(w_p t) on 0 <= t <= T_p, zero after
+//   makris-a, -b   Makris' type-A and type-B pulses: the same accelerations as sine and cosine,
+//                  solved through the general load (cases/load.hpp) rather than the paper's path
+//   makris-c       Makris and Chang's type-Cn pulse, `cycles` = n: s a_p cos(w_p t + phi_n) on
+//                  0 <= t <= (n + 1/2 - phi_n / pi) T_p
+//   mp             Mavroeidis and Papageorgiou's (2003) pulse, `mp_gamma`, `mp_nu`
+//   record         a recorded accelerogram (`record`), linear between its samples
+enum class PulseShape { sine, cosine, makris_a, makris_b, makris_c, mp, record };
 
 // The sign s of the pulse: +1 (normal) loads body 0 towards its left neighbour first.
 enum class Directivity { normal, reverse };
@@ -29,6 +37,8 @@ std::string_view name(Directivity d);
 std::optional<Scene> parse_scene(std::string_view s);
 std::optional<PulseShape> parse_pulse(std::string_view s);
 std::optional<Directivity> parse_directivity(std::string_view s);
+
+struct Record;
 
 // Whether Pi5/Pi6 (body 1, or the odd bodies of a chain) and Pi7/Pi8 (body 2) describe a
 // body of the scene.
@@ -61,6 +71,15 @@ struct Case {
   // so that tests and the Fig. 3 family can check exactly that.
   double a_p = 1.0;
   double w_p = 1.0;
+  // The loads beyond the paper's (cases/README.md): Makris-Chang Cn's number of cycles n;
+  // the Mavroeidis-Papageorgiou pulse's gamma (> 1) and nu (degrees); a record's file, as
+  // named (relative to the working directory), and its samples, read once by cases/ and
+  // shared by every copy of the case (null for a case read back from a row).
+  int cycles = 0;
+  double mp_gamma = 0.0;
+  double mp_nu = 0.0;
+  std::string record;
+  std::shared_ptr<const Record> samples;
 };
 
 // Number of bodies (wall excluded) and of contacts of the case's scene.
@@ -78,6 +97,16 @@ inline constexpr double kMaxPi3 = 1e6;
 inline constexpr double kMaxKick = 1e6;  // |kick|
 inline constexpr double kMinAp = 1e-12, kMaxAp = 1e12;
 inline constexpr double kMinWp = 1e-6, kMaxWp = 1e6;
+inline constexpr int kMaxCycles = 100;        // makris-c
+inline constexpr double kMaxMpGamma = 100;    // mp: gamma in (1, 100]
+inline constexpr double kMaxMpNu = 360;       // mp: |nu| <= 360 degrees
+
+// Whether a pulse is the paper's own (sine, cosine), whose closed forms and step loads
+// keep their own code, bit for bit as the stored baselines have them.
+inline bool paper_pulse(PulseShape p) { return p == PulseShape::sine || p == PulseShape::cosine; }
+
+// How long the load lasts, in periods T_p = 2 pi / w_p (an upper bound for makris-c).
+double load_periods(const Case& c);
 
 // Checks every value the case uses, alone and in the contrasts and durations they imply.
 // Returns "field: reason" for the first bad one; the reason names the bound.

@@ -13,6 +13,7 @@
 #include "cases/case_set.hpp"
 
 #include "cases/fields.hpp"
+#include "cases/record.hpp"
 #include "cases/toml_input.hpp"
 
 #include <toml++/toml.h>
@@ -21,6 +22,9 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <utility>
@@ -29,13 +33,15 @@ namespace pb {
 namespace {
 
 // Every key a family or [defaults] may hold: the scene, pulse and directivity (names), every
-// number of a Case as cases/fields.hpp declares it (in its order), and two keys of the file's
-// own, symmetric and name. A number added to the table is a key here with nothing more.
+// field of a Case as cases/fields.hpp declares it (in its order: numbers, and the record's
+// file as text), two keys of the file's own, symmetric and name, and the aliases of fields
+// (tp for w_p). A field added to the table is a key here with nothing more.
 using Key = int;
 constexpr Key kScene = 0, kPulse = 1, kDirectivity = 2, kFirstNumber = 3;
 constexpr Key kSymmetric = kFirstNumber + static_cast<Key>(kCaseFields.size());
 constexpr Key kName = kSymmetric + 1;
-constexpr int kKeyCount = kName + 1;
+constexpr Key kFirstAlias = kName + 1;
+constexpr int kKeyCount = kFirstAlias + static_cast<Key>(kCaseAliases.size());
 
 // Limits that keep a typo (points = 2000000) from exhausting memory.
 constexpr std::int64_t kMaxGridPoints = 100'000;
@@ -48,8 +54,13 @@ constexpr const CaseField* number_field(Key k) {
   return k >= kFirstNumber && k < kSymmetric ? &kCaseFields[index(k - kFirstNumber)] : nullptr;
 }
 
+constexpr const CaseAlias* alias_of(Key k) {
+  return k >= kFirstAlias && k < kKeyCount ? &kCaseAliases[index(k - kFirstAlias)] : nullptr;
+}
+
 constexpr std::string_view key_name(Key k) {
   if (const CaseField* f = number_field(k)) return f->name;
+  if (const CaseAlias* a = alias_of(k)) return a->name;
   switch (k) {
     case kScene: return "scene";
     case kPulse: return "pulse";
@@ -68,7 +79,8 @@ std::optional<Key> parse_key(std::string_view s) {
 Key key_of(std::string_view s) { return *parse_key(s); }
 
 bool is_choice(Key k) { return k < kFirstNumber; }
-bool is_number(Key k) { return number_field(k) != nullptr; }
+bool is_text(Key k) { return number_field(k) != nullptr && number_field(k)->text != nullptr; }
+bool is_number(Key k) { return (number_field(k) != nullptr && !is_text(k)) || alias_of(k) != nullptr; }
 // Which scenes use a key: symmetric speaks of body 2, as pi7 and pi8 do.
 FieldUse use_of(Key k) {
   if (const CaseField* f = number_field(k)) return f->use;
@@ -77,14 +89,21 @@ FieldUse use_of(Key k) {
 bool is_body1(Key k) { return use_of(k) == FieldUse::body1; }
 bool is_body2(Key k) { return use_of(k) == FieldUse::body2; }
 bool is_chain(Key k) { return use_of(k) == FieldUse::chain; }
+bool is_pulse_key(Key k) { return pulse_use(use_of(k)); }
+bool pulse_uses(FieldUse use, PulseShape p) {
+  return (use == FieldUse::makris_c && p == PulseShape::makris_c) || (use == FieldUse::mp && p == PulseShape::mp) ||
+         (use == FieldUse::record && p == PulseShape::record);
+}
 bool has_chain(Scene s) { return s == Scene::chain; }
 
 // The order in which a family's lists expand: scene outermost (not listed: it is the outer
 // loop), pi2 innermost, so the points of one spectrum are contiguous. A number not listed
 // here expands just outside pi2. Changing this order renumbers the points of every case set.
-constexpr std::array<std::string_view, 15> kExpansionOrder = {
-    "bodies", "kick", "pulse", "directivity", "eps", "pi3", "pi5", "pi6", "pi7", "pi8", "xi", "n_free", "a_p", "w_p",
-    "pi2"};
+// The keys of one pulse (record, cycles, mp_gamma, mp_nu) are axes only in families of that
+// pulse, so placing them after it renumbers no existing set.
+constexpr std::array<std::string_view, 19> kExpansionOrder = {
+    "bodies", "kick", "pulse", "record", "cycles", "mp_gamma", "mp_nu", "directivity", "eps", "pi3", "pi5", "pi6",
+    "pi7", "pi8", "xi", "n_free", "a_p", "w_p", "pi2"};
 
 const std::vector<Key>& expansion_order() {
   static const std::vector<Key> order = [] {
@@ -126,11 +145,13 @@ struct Entry {
   enum class Shape { scalar, list, grid } shape = Shape::scalar;
   std::vector<double> values;
   std::vector<int> choices;
-  std::vector<std::uint32_t> value_lines;  // parallel to values or choices
+  std::vector<std::uint32_t> value_lines;  // parallel to values, choices or texts
+  std::vector<std::string> texts;          // a text field's values (the record's file)
   bool flag = false;
+  bool builtin = false;  // the built-in default, not given by the file
   std::string text;
 
-  std::size_t size() const { return choices.empty() ? values.size() : choices.size(); }
+  std::size_t size() const { return !texts.empty() ? texts.size() : choices.empty() ? values.size() : choices.size(); }
 };
 using Entries = std::array<Entry, kKeyCount>;
 
@@ -288,6 +309,8 @@ class Reader {
 
  private:
   std::string file_;
+  // The records the file names, by their path (relative to the working directory), read once.
+  mutable std::map<std::string, std::shared_ptr<const Record>> records_;
 
   Entries read_settings(const toml::table& t, const std::string& prefix, bool is_defaults) const {
     Entries out;
@@ -297,7 +320,8 @@ class Reader {
       if (!k || (is_defaults && *k == kName)) {
         if (k) fail(line_of(key), field, "not allowed in [defaults] (each family names itself)");
         std::vector<std::string_view> allowed;
-        for (Key a = 0; a < (is_defaults ? kName : kKeyCount); ++a) allowed.push_back(key_name(a));
+        for (Key a = 0; a < kKeyCount; ++a)
+          if (!(is_defaults && a == kName)) allowed.push_back(key_name(a));
         fail(line_of(key), field, unknown_key_reason(key.str(), allowed));
       }
       Entry& s = out[index(*k)];
@@ -305,9 +329,11 @@ class Reader {
       s.field = field;
       s.line = line_of(key);
       if (is_choice(*k)) read_choices(*k, node, s);
+      else if (is_text(*k)) read_records(node, s);
       else if (is_number(*k)) {
         read_numbers(node, s);
-        if (number_field(*k)->integer) require_whole_numbers(s);
+        if (number_field(*k) && number_field(*k)->integer) require_whole_numbers(s);
+        if (const CaseAlias* alias = alias_of(*k)) convert_alias(*alias, s);
       }
       else if (*k == kSymmetric) {
         const auto* b = node.as_boolean();
@@ -318,6 +344,48 @@ class Reader {
       }
     }
     return out;
+  }
+
+  // A record's file, or a list of them: each path is taken relative to the case-set file's
+  // folder and read here, once per file however many families and points use it.
+  void read_records(const toml::node& node, Entry& s) const {
+    auto one = [&](const toml::node& n, const std::string& field) {
+      const auto* str = n.as_string();
+      if (str == nullptr) fail(line_of(n), field, "must be a string (a file), got " + std::string(type_phrase(n)));
+      if (str->get().empty()) fail(line_of(n), field, "must not be empty (the record's file)");
+      const std::filesystem::path path =
+          (std::filesystem::path(file_).parent_path() / std::filesystem::path(str->get())).lexically_normal();
+      const std::string key = path.string();
+      if (!records_.contains(key)) {
+        try {
+          records_.emplace(key, read_record(path));
+        } catch (const RecordError& e) {
+          fail(line_of(n), field, e.what());
+        }
+      }
+      s.texts.push_back(key);
+      s.value_lines.push_back(line_of(n));
+    };
+    if (const auto* arr = node.as_array()) {
+      s.shape = Entry::Shape::list;
+      if (arr->empty()) fail(s.line, s.field, "empty list: give at least one file");
+      for (std::size_t i = 0; i < arr->size(); ++i) one(*arr->get(i), s.field + "[" + std::to_string(i) + "]");
+    } else {
+      one(node, s.field);
+    }
+  }
+
+  // An alias's values become its field's (tp: w_p = 2 pi / tp); each must be finite and > 0.
+  void convert_alias(const CaseAlias& alias, Entry& s) const {
+    for (std::size_t i = 0; i < s.values.size(); ++i) {
+      if (!(std::isfinite(s.values[i]) && s.values[i] > 0.0)) {
+        std::string field = s.field;
+        if (s.shape == Entry::Shape::list) field += "[" + std::to_string(i) + "]";
+        fail(s.value_lines[i], field, "must be finite and > 0 (got " + brief(s.values[i]) + ")");
+      }
+      s.values[i] = alias.convert(s.values[i]);
+    }
+    s.text = std::string(alias.field);
   }
 
   void read_family_name(const toml::node& node, Entry& s) const {
@@ -345,7 +413,7 @@ class Reader {
         expected = "wall, pair, row3 or chain";
       } else if (k == kPulse) {
         if (auto x = parse_pulse(v)) parsed = static_cast<int>(*x);
-        expected = "sine or cosine";
+        expected = "sine, cosine, makris-a, makris-b, makris-c, mp or record";
       } else {
         if (auto x = parse_directivity(v)) parsed = static_cast<int>(*x);
         expected = "normal or reverse";
@@ -465,6 +533,7 @@ class Reader {
     auto builtin = [&](Key k, double v) {
       Entry s;
       s.given = true;
+      s.builtin = true;
       s.field = prefix + "." + std::string(key_name(k));
       s.line = line;
       s.values = {v};
@@ -478,6 +547,19 @@ class Reader {
       const auto u = static_cast<std::size_t>(i);
       if (own[u].given) eff[u] = own[u];
       else if (defaults[u].given) eff[u] = defaults[u];
+    }
+    // An alias gives its field: the family's own (either way) before [defaults]'s, and never
+    // both in one table. It is no axis itself.
+    for (Key a = kFirstAlias; a < kKeyCount; ++a) {
+      const Key f = key_of(alias_of(a)->field);
+      for (const Entries* table : {&own, &defaults})
+        if ((*table)[index(a)].given && (*table)[index(f)].given)
+          fail((*table)[index(a)].line, (*table)[index(a)].field,
+               "not with " + std::string(key_name(f)) + " (line " + std::to_string((*table)[index(f)].line) +
+                   "): give one of them");
+      if (own[index(a)].given) eff[index(f)] = own[index(a)];
+      else if (!own[index(f)].given && defaults[index(a)].given) eff[index(f)] = defaults[index(a)];
+      eff[index(a)] = Entry{};
     }
 
     for (Key k = 0; k < kSymmetric; ++k) {
@@ -501,7 +583,7 @@ class Reader {
     // A family's own key for a body its scenes lack is a mistake; a default for it is
     // merely not needed here, since [defaults] serves families of every scene.
     for (Key k = kFirstNumber; k < kName; ++k) {
-      if (use_of(k) == FieldUse::every) continue;
+      if (use_of(k) == FieldUse::every || is_pulse_key(k)) continue;
       const bool used = is_body1(k) ? body1 : is_chain(k) ? chain : body2;
       if (used) continue;
       const Entry& o = own[index(k)];
@@ -517,6 +599,8 @@ class Reader {
       if (chain && is_chain(k) && number_field(k)->required && !eff[index(k)].given)
         fail(line, prefix + "." + std::string(key_name(k)), "required by scene chain (" +
                                                                 std::string(number_field(k)->help) + ")");
+
+    resolve_pulse_keys(own, eff, prefix, line);
 
     const Entry& sym = eff[index(kSymmetric)];
     if (sym.given && sym.flag) {
@@ -545,6 +629,41 @@ class Reader {
     return eff;
   }
 
+  // The keys of one pulse (record, cycles, mp_gamma, mp_nu): a family's pulses all use each
+  // of them or none (else a pulse that does not would repeat its cases for each value); one
+  // that a family's pulses need is required; a default that they do not use is left out. A
+  // record needs w_p (or tp) from the file: its Pi terms are the user's choice.
+  void resolve_pulse_keys(const Entries& own, Entries& eff, const std::string& prefix, std::uint32_t line) const {
+    const std::vector<int>& pulses = eff[index(kPulse)].choices;
+    auto list = [](const std::vector<PulseShape>& ps) {
+      std::string out;
+      for (PulseShape p : ps) out += (out.empty() ? "" : ", ") + std::string(name(p));
+      return out;
+    };
+    for (Key k = kFirstNumber; k < kSymmetric; ++k) {
+      if (!is_pulse_key(k)) continue;
+      std::vector<PulseShape> users, others;
+      for (int p : pulses) (pulse_uses(use_of(k), static_cast<PulseShape>(p)) ? users : others).push_back(static_cast<PulseShape>(p));
+      const std::string field = prefix + "." + std::string(key_name(k));
+      const Entry& o = own[index(k)];
+      if (users.empty()) {
+        if (o.given) fail(o.line, o.field, "not used by pulse " + list(others));
+        eff[index(k)] = Entry{};
+        continue;
+      }
+      if (!others.empty() && eff[index(k)].given)
+        fail(o.given ? o.line : line, o.given ? o.field : field,
+             "used by pulse " + list(users) + " but not by " + list(others) + ": give each its own family");
+      if (!eff[index(k)].given && number_field(k)->required)
+        fail(line, field, "required by pulse " + list(users) + " (" + std::string(number_field(k)->help) + ")");
+    }
+    const bool record = std::any_of(pulses.begin(), pulses.end(),
+                                    [](int p) { return static_cast<PulseShape>(p) == PulseShape::record; });
+    if (record && eff[index(key_of("w_p"))].builtin)
+      fail(line, prefix + ".w_p",
+           "required by pulse record (give w_p, or tp: the period of the record's pulse, w_p = 2 pi / tp)");
+  }
+
   // The cartesian product, in Key order (scene outermost, pi2 innermost). Keys a scene
   // does not use are left out of its product, so mixing scenes in one family does not
   // repeat cases.
@@ -557,6 +676,7 @@ class Reader {
         if (is_chain(k) && !has_chain(scene)) continue;
         if (is_body1(k) && !uses_body1(scene)) continue;
         if (is_body2(k) && (!uses_body2(scene) || symmetric)) continue;
+        if (is_pulse_key(k) && !eff[index(k)].given) continue;
         axes.push_back(k);
       }
       std::size_t count = 1;
@@ -576,6 +696,8 @@ class Reader {
         if (symmetric && uses_body2(scene))
           for (Key k = kFirstNumber; k < kSymmetric; ++k)
             if (is_body2(k)) c.*(number_field(k)->number) = c.*(number_field(body1_twin(k))->number);
+        // A record's a_p defaults to its peak (cases/README.md, "Records").
+        if (c.pulse == PulseShape::record && c.samples && eff[index(key_of("a_p"))].builtin) c.a_p = c.samples->peak;
         if (auto bad = validate(c)) report_invalid(*bad, eff, axes, at, symmetric);
         out.push_back(c);
         for (std::size_t a = axes.size(); a-- > 0;) {  // odometer: the last axis turns fastest
@@ -586,8 +708,12 @@ class Reader {
     }
   }
 
-  static void set(Case& c, Key k, const Entry& s, std::size_t i) {
+  void set(Case& c, Key k, const Entry& s, std::size_t i) const {
     if (k == kPulse) c.pulse = static_cast<PulseShape>(s.choices[i]);
+    else if (is_text(k)) {
+      c.*(number_field(k)->text) = s.texts[i];
+      c.samples = records_.at(s.texts[i]);
+    }
     else if (k == kDirectivity) c.directivity = static_cast<Directivity>(s.choices[i]);
     else if (const CaseField* f = number_field(k)) {
       // Clamped so that a huge count stays an int; validate() then rejects it by its value.
@@ -611,7 +737,7 @@ class Reader {
     if (s.shape == Entry::Shape::list) field += "[" + std::to_string(i) + "]";
     const std::size_t start = reason.find_first_not_of(' ');
     std::string text = start == std::string::npos ? reason : reason.substr(start);
-    text += " (got " + brief(s.values[i]) + ")";
+    text += " (got " + (s.texts.empty() ? brief(s.values[i]) : "\"" + clip(s.texts[i]) + "\"") + ")";
     fail(s.value_lines[i], field, text);
   }
 };

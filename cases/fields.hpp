@@ -9,9 +9,15 @@
 // expands just outside pi2, cases/README.md).
 //
 // The scene, pulse and directivity are names, not numbers, and the family a label: each
-// has one spelling everywhere already (name()/parse_*() in case.hpp).
+// has one spelling everywhere already (name()/parse_*() in case.hpp). A record's file is
+// text, a field of the table like the numbers. Fields that only some pulses use (the pulse
+// models' shapes, the record) are columns at the end of a row, after those older files have.
+//
+// An alias (kCaseAliases) is a second way to give a field: `tp` gives w_p as a period. It is
+// a flag and a case-set key, not a column.
 
 #include <array>
+#include <limits>
 #include <string>
 #include <string_view>
 
@@ -19,22 +25,31 @@
 
 namespace pb {
 
-// Which scenes use a field: every scene, those with a body 1 (pair, row3, and a chain's odd
-// bodies), row3's body 2, the chain alone.
-enum class FieldUse { every, body1, body2, chain };
+// Which cases use a field: every one; by scene, those with a body 1 (pair, row3, and a
+// chain's odd bodies), row3's body 2, the chain alone; by pulse, makris-c, mp, record.
+enum class FieldUse { every, body1, body2, chain, makris_c, mp, record };
+
+// Whether a use is a pulse's (the field's column comes at the end of a row).
+constexpr bool pulse_use(FieldUse use) {
+  return use == FieldUse::makris_c || use == FieldUse::mp || use == FieldUse::record;
+}
 
 struct CaseField {
   std::string_view name;  // case-set key, CSV column, JSON key
-  double Case::* number;  // one of these two is set
+  double Case::* number;  // one of these three is set
   int Case::* integer;
   FieldUse use;
   bool required;          // no default: a case given by flags must state it
   std::string_view help;  // with its unit, for --help
+  std::string Case::* text = nullptr;
 
-  double get(const Case& c) const { return number ? c.*number : static_cast<double>(c.*integer); }
+  // A number's value; NaN for text (which case_key and the rows take as text).
+  double get(const Case& c) const {
+    return number ? c.*number : integer ? static_cast<double>(c.*integer) : std::numeric_limits<double>::quiet_NaN();
+  }
 };
 
-inline constexpr std::array<CaseField, 13> kCaseFields = {{
+inline constexpr std::array<CaseField, 17> kCaseFields = {{
     {"pi2", &Case::pi2, nullptr, FieldUse::every, true, "Pi2 = w0 / w_p"},
     {"pi3", &Case::pi3, nullptr, FieldUse::every, true, "Pi3 = delta w_p^2 / a_p (gap)"},
     {"eps", &Case::eps, nullptr, FieldUse::every, true, "Coefficient of restitution, in [0, 1]"},
@@ -44,15 +59,37 @@ inline constexpr std::array<CaseField, 13> kCaseFields = {{
     {"pi8", &Case::pi8, nullptr, FieldUse::body2, true, "Pi8 = m0 / m2 (row3)"},
     {"xi", &Case::xi, nullptr, FieldUse::every, false, "Damping ratio of every body"},
     {"n_free", &Case::n_free, nullptr, FieldUse::every, false, "Free-vibration periods T_max after the pulse"},
-    {"a_p", &Case::a_p, nullptr, FieldUse::every, false, "Pulse amplitude a_p (Pi1 does not depend on it)"},
-    {"w_p", &Case::w_p, nullptr, FieldUse::every, false, "Pulse circular frequency w_p (Pi1 does not depend on it)"},
+    {"a_p", &Case::a_p, nullptr, FieldUse::every, false,
+     "Pulse amplitude a_p (Pi1 does not depend on it); a record: the a_p of its Pi terms, default its peak"},
+    {"w_p", &Case::w_p, nullptr, FieldUse::every, false,
+     "Pulse circular frequency w_p (Pi1 does not depend on it); a record: required (or --tp)"},
     {"bodies", nullptr, &Case::bodies, FieldUse::chain, true, "Chain: number of bodies N, 2 to 1000"},
     {"kick", &Case::kick, nullptr, FieldUse::chain, false,
      "Chain: start velocity of body 0 (the left end) towards +x, times w_p / a_p"},
+    {"cycles", nullptr, &Case::cycles, FieldUse::makris_c, true, "makris-c: the pulse's cycles n, 1 to 100"},
+    {"mp_gamma", &Case::mp_gamma, nullptr, FieldUse::mp, true,
+     "mp: gamma, the pulse's oscillatory character, > 1 (it lasts gamma T_p)"},
+    {"mp_nu", &Case::mp_nu, nullptr, FieldUse::mp, true, "mp: nu, the phase of its velocity, in degrees"},
+    {"record", nullptr, nullptr, FieldUse::record, true,
+     "record: the accelerogram, a two-column CSV (t, a_g) or a PEER NGA .AT2 file (values in g)", &Case::record},
 }};
 
-// Whether a scene has the bodies (or the start) a field describes.
-bool used_by(const CaseField& field, Scene scene);
+// Whether a case of this scene and pulse has the bodies (or start, or load) a field describes.
+bool used_by(const CaseField& field, Scene scene, PulseShape pulse);
+inline bool used_by(const CaseField& field, const Case& c) { return used_by(field, c.scene, c.pulse); }
+
+// A second name for a field, with its value converted: `tp` (a pulse period) gives
+// w_p = 2 pi / tp. A flag and a case-set key; giving both it and its field is an error.
+struct CaseAlias {
+  std::string_view name;
+  std::string_view field;     // the field it gives
+  double (*convert)(double);  // its value to the field's
+  std::string_view help;
+};
+double period_to_frequency(double tp);
+inline constexpr std::array<CaseAlias, 1> kCaseAliases = {{
+    {"tp", "w_p", &period_to_frequency, "Pulse period T_p: sets w_p = 2 pi / tp (a record's identified pulse)"},
+}};
 
 // The command-line flag of a field (of a Case, or of solver Settings): "--n-free" for n_free.
 std::string flag_of(std::string_view name);

@@ -39,7 +39,7 @@ System make_system(const Case& c) {
   s.eps = c.eps;
   s.xi = c.xi;
   s.a_p = c.a_p;
-  s.pulse = {c.pulse, c.directivity == Directivity::normal ? c.a_p : -c.a_p, c.w_p};
+  s.pulse = make_pulse(c);
 
   double w_min = s.bodies.front().w, w_max = w_min;
   for (const Body& b : s.bodies) {
@@ -47,28 +47,13 @@ System make_system(const Case& c) {
     w_max = std::max(w_max, b.w);
   }
   const double two_pi = 2.0 * std::numbers::pi;
-  const double t_p = s.pulse.duration();
-  s.t_end = t_p + c.n_free * two_pi / w_min;
+  const double t_p = two_pi / c.w_p;
+  s.t_end = s.pulse.duration() + c.n_free * two_pi / w_min;
   s.t_min = std::min(t_p, two_pi / w_max);
   s.u_start.assign(s.bodies.size(), 0.0);
   s.v_start.assign(s.bodies.size(), 0.0);
   if (c.scene == Scene::chain) s.v_start[0] = c.kick * c.a_p / c.w_p;
   return s;
-}
-
-double Pulse::mean(double t0, double t1) const {
-  const double a = std::clamp(t0, 0.0, duration()), b = std::clamp(t1, 0.0, duration());
-  if (b <= a) return 0.0;
-  // Integral of sin(w t) over [a, b] is (cos wa - cos wb) / w = 2 sin(w (a + b) / 2) sin(w (b - a) / 2) / w;
-  // of cos(w t), 2 cos(w (a + b) / 2) sin(w (b - a) / 2) / w: no cancellation for short steps.
-  const double mid = 0.5 * w * (a + b), half = std::sin(0.5 * w * (b - a));
-  const double integral = 2.0 * half * (shape == PulseShape::sine ? std::sin(mid) : std::cos(mid)) / w;
-  return amplitude * integral / (t1 - t0);
-}
-
-double Pulse::sample(double t, double h) const {
-  const double t_p = duration();
-  return accel(std::abs(t - t_p) <= 1e-9 * std::max(h, t_p) ? t_p : t);
 }
 
 double System::energy(const double* u, const double* v) const {
@@ -91,6 +76,11 @@ Case case_of(const System& s) {
   // Only a chain has its reference body at the left end without a wall.
   c.scene = s.wall ? Scene::wall : s.ref == 0 ? Scene::chain : s.n_bodies() == 2 ? Scene::pair : Scene::row3;
   c.pulse = s.pulse.shape;
+  c.cycles = s.pulse.cycles;
+  c.mp_gamma = s.pulse.mp_gamma;
+  c.mp_nu = s.pulse.mp_nu;
+  c.samples = s.pulse.record;
+  if (s.pulse.record) c.record = s.pulse.record->source;
   c.directivity = s.pulse.amplitude >= 0.0 ? Directivity::normal : Directivity::reverse;
   c.a_p = s.a_p;
   c.w_p = s.pulse.w;

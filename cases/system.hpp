@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cases/case.hpp"
+#include "cases/load.hpp"
 
 namespace pb {
 
@@ -24,26 +25,6 @@ struct Body {
   double w;  // natural circular frequency
   double k;  // m w^2
   double c;  // 2 xi m w
-};
-
-struct Pulse {
-  PulseShape shape = PulseShape::sine;
-  double amplitude = 1.0;  // s a_p, signed by the directivity
-  double w = 1.0;          // w_p
-
-  double duration() const { return 2.0 * std::numbers::pi / w; }
-  // Ground acceleration a_g(t): zero outside [0, T_p].
-  double accel(double t) const {
-    if (t < 0.0 || t > duration()) return 0.0;
-    return shape == PulseShape::sine ? amplitude * std::sin(w * t) : amplitude * std::cos(w * t);
-  }
-  // The exact mean of a_g over [t0, t1] (t0 < t1): the ground's impulse per unit mass over
-  // a step, divided by the step.
-  double mean(double t0, double t1) const;
-  // a_g at the step boundary t of a run with step h, for a scheme that samples the load at
-  // step ends: a boundary within 1e-9 max(h, T_p) of T_p counts as T_p itself, inside the
-  // pulse (so that T_p = N h ends the pulse on a boundary however N h rounds).
-  double sample(double t, double h) const;
 };
 
 inline constexpr int kWall = -1;
@@ -55,9 +36,9 @@ struct System {
   double delta = 0.0;        // gap of every contact at rest
   double eps = 0.0;          // coefficient of restitution
   double xi = 0.05;          // damping ratio of every body
-  double a_p = 1.0;          // pulse amplitude (unsigned)
-  Pulse pulse;
-  double t_end = 0.0;  // T_p + n_free T_max
+  double a_p = 1.0;          // pulse amplitude (unsigned); a record: the a_p of its Pi terms
+  Pulse pulse;               // the ground acceleration (cases/load.hpp)
+  double t_end = 0.0;  // the load's duration (T_p, a record's length) + n_free T_max
   double t_min = 0.0;  // min(T_p, shortest natural period): fixed steps are t_min / N
   std::vector<double> u_start, v_start;  // state at t = 0, one value per body
 

@@ -106,8 +106,14 @@ Keywords read_keywords(const std::string& function, const py::kwargs& kwargs) {
     } else if (for_run && case_field != kCaseFields.end()) {
       if (case_field->number)
         k.case_flags.numbers.*case_field->number = number(function, key, value);
+      else if (case_field->text)
+        k.case_flags.numbers.*case_field->text = text(function, key, value);
       else
         k.case_flags.numbers.*case_field->integer = as_int(key, whole(function, key, value));
+    } else if (const auto alias = std::find_if(kCaseAliases.begin(), kCaseAliases.end(),
+                                               [&](const CaseAlias& x) { return x.name == key; });
+               for_run && alias != kCaseAliases.end()) {
+      k.case_flags.aliases[static_cast<std::size_t>(alias - kCaseAliases.begin())] = number(function, key, value);
     } else if (for_run && key == "case_file") {
       k.case_flags.case_file = text(function, key, value);
     } else if (for_run && key == "point") {
@@ -281,7 +287,7 @@ PYBIND11_MODULE(poundbench, m) {
       "Solves one case, as `poundbench run --json`: returns its object (status, message, pi1, the counts,\n"
       "the solver and settings, the case). Keywords are the command line's flags with '_' for '-':\n"
       "scene, pulse, directivity (or case_file and point), solver, variant, and\n" +
-      python::keyword_lines(kCaseFields) + python::keyword_lines(kSettingFields) +
+      python::keyword_lines(kCaseFields) + python::keyword_lines(kCaseAliases) + python::keyword_lines(kSettingFields) +
       "    history: True for the time history, or samples=N (default 2000; a time-stepper records every\n"
       "      step): result['history'] is a dict of NumPy arrays, one per column of `run --history`\n"
       "      (t, u1, u0, ..., lambda1).\n"

@@ -296,6 +296,9 @@ def report(args):
         text += stability_section(stress, load([args.stress_points]) if args.stress_points else [], args.out)
     if args.bench:
         text += bench_section(args.bench, quoted, summary, stress, measured_on)
+    if args.records:
+        import records
+        text += records.section(load(args.records), args.out)
     text += paper_set_section(rows, args.out)
     text += ["## Where this ran", "", footer(measured_on), ""]
     write_page(args.out, text, "make_report.py")
@@ -316,6 +319,8 @@ def main():
                         "cases/sets/compliant.toml --settings cases/settings/compliant.toml`; needs --compliant-points)")
     parser.add_argument("--compliant-points", help="its per-run CSV (--points)")
     parser.add_argument("--stress-points", help="per-run CSV from `poundbench stress --points`")
+    parser.add_argument("--records", nargs="+", help="rows of `poundbench spectrum cases/sets/records.toml` through "
+                        "the reference and the time-steppers (scripts/main.sh: results/records-*.csv)")
     parser.add_argument("--out", default=here, help="folder for README.md, figures/ and the committed result files")
     parser.add_argument("--readme", help="also write the generated blocks of this README (scripts/main.sh: README.md)")
     parser.add_argument("--check", action="store_true", help="write nothing: exit 1, with the diff, when README's "

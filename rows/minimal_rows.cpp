@@ -78,9 +78,17 @@ RowFile read_minimal_csv(std::istream& in, std::string_view source) {
       const std::vector<std::string> fields = split_csv(record);
       const auto scene_at = static_cast<std::size_t>(std::find(header.begin(), header.end(), "scene") - header.begin());
       const std::optional<Scene> scene = scene_at < fields.size() ? parse_scene(fields[scene_at]) : std::nullopt;
-      for (const CaseField& field : kCaseFields)
-        if (scene && field.required && used_by(field, *scene) && !has(field.name))
-          throw fail(field.name, "missing column (scene " + std::string(name(*scene)) + " uses it)");
+      const auto pulse_at = static_cast<std::size_t>(std::find(header.begin(), header.end(), "pulse") - header.begin());
+      const std::optional<PulseShape> pulse = pulse_at < fields.size() ? parse_pulse(fields[pulse_at]) : std::nullopt;
+      if (scene && pulse) {
+        const Scene sc = *scene;
+        const PulseShape pu = *pulse;
+        for (const CaseField& field : kCaseFields) {
+          if (!field.required || !used_by(field, sc, pu) || has(field.name)) continue;
+          const std::string user = pulse_use(field.use) ? "pulse " + std::string(name(pu)) : "scene " + std::string(name(sc));
+          throw fail(field.name, "missing column (" + user + " uses it)");
+        }
+      }
       for (const auto& [column, field] : added)
         record += "," + (column == "point" ? std::to_string(rows) : csv_field(field));
       ++rows;

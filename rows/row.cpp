@@ -61,7 +61,7 @@ std::string case_key(const Case& c) {
   key += ';';
   key += name(c.directivity);
   for (const CaseField& field : kCaseFields)
-    if (used_by(field, c.scene)) key += ';' + format_number(field.get(c));
+    if (used_by(field, c)) key += ';' + (field.text ? c.*field.text : format_number(field.get(c)));
   return key;
 }
 
@@ -88,7 +88,12 @@ constexpr std::array kTailColumns = {"wh",          "energy_excess",   "penetrat
                                      "restitution_low", "restitution_high", "penetration_steps",
                                      "cpu_seconds_low", "cpu_seconds_high", "repetitions"};
 
-bool chain_field(const CaseField& f) { return f.use == FieldUse::chain; }
+// Where a field's column is: after the directivity (those of every scene's bodies), after
+// the message (the chain's, where they were added) or at the end (the pulses', added last).
+enum class Group { body, chain, pulse };
+Group group_of(const CaseField& f) {
+  return f.use == FieldUse::chain ? Group::chain : pulse_use(f.use) ? Group::pulse : Group::body;
+}
 
 // Written as an empty field: a body the scene does not have, a gap that never closed.
 constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
@@ -110,12 +115,14 @@ class LineBuilder {
   bool first_ = true;
 };
 
-// A case's numbers, those of the chain or the others: empty where the scene does not use them.
-void case_numbers(LineBuilder& line, const Case& c, bool chain) {
+// A case's fields of one group: empty where the scene and pulse do not use them.
+void case_numbers(LineBuilder& line, const Case& c, Group group) {
   for (const CaseField& f : kCaseFields) {
-    if (chain_field(f) != chain) continue;
-    if (!used_by(f, c.scene))
+    if (group_of(f) != group) continue;
+    if (!used_by(f, c))
       line.text("");
+    else if (f.text)
+      line.text(c.*f.text);
     else if (f.integer)
       line.count(c.*f.integer);
     else
@@ -129,11 +136,13 @@ std::string csv_header() {
   LineBuilder line;
   for (const char* column : kLeadColumns) line.text(column);
   for (const CaseField& f : kCaseFields)
-    if (!chain_field(f)) line.text(f.name);
+    if (group_of(f) == Group::body) line.text(f.name);
   for (const char* column : kMiddleColumns) line.text(column);
   for (const CaseField& f : kCaseFields)
-    if (chain_field(f)) line.text(f.name);
+    if (group_of(f) == Group::chain) line.text(f.name);
   for (const char* column : kTailColumns) line.text(column);
+  for (const CaseField& f : kCaseFields)
+    if (group_of(f) == Group::pulse) line.text(f.name);
   return line.take();
 }
 
@@ -146,7 +155,7 @@ std::string csv_line(const Row& row) {
   line.text(name(c.scene));
   line.text(name(c.pulse));
   line.text(name(c.directivity));
-  case_numbers(line, c, false);
+  case_numbers(line, c, Group::body);
   line.text(row.solver);
   line.text(row.variant);
   line.text(row.settings);
@@ -161,7 +170,7 @@ std::string csv_line(const Row& row) {
   line.number(row.seconds);
   line.number(row.cpu_seconds);
   line.text(r.message);
-  case_numbers(line, c, true);
+  case_numbers(line, c, Group::chain);
   line.number(row.wh);
   line.number(r.energy_excess);
   line.number(penetration(row));
@@ -172,6 +181,7 @@ std::string csv_line(const Row& row) {
   line.number(row.cpu_seconds_low);
   line.number(row.cpu_seconds_high);
   line.count(row.repetitions);
+  case_numbers(line, c, Group::pulse);
   return line.take();
 }
 

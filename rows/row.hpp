@@ -8,9 +8,11 @@
 //   n_free, a_p, w_p, solver, variant, settings, status, pi1, pi1_no_contact, impacts,
 //   contact_phases, steps, min_gap, seconds, cpu_seconds, message, bodies, kick, wh,
 //   energy_excess, penetration, isolated_impacts, restitution_low, restitution_high,
-//   penetration_steps, cpu_seconds_low, cpu_seconds_high, repetitions
+//   penetration_steps, cpu_seconds_low, cpu_seconds_high, repetitions, cycles, mp_gamma,
+//   mp_nu, record
 // pi5/pi6 are empty for the wall scene and pi7/pi8 for every scene but row3; bodies and
-// kick are empty except for chain; min_gap is divided by the pulse's length scale
+// kick are empty except for chain; cycles, mp_gamma, mp_nu and record except for the pulse
+// that uses them (makris-c, mp, record: the record's file as the case named it); min_gap is divided by the pulse's length scale
 // a_p / w_p^2 and empty when no contact ever closed (infinite); a NaN is written as an
 // empty field. The columns after message came later; they are appended so that scripts
 // reading columns by position keep working.

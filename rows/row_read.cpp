@@ -68,13 +68,13 @@ class FieldReader {
 };
 
 // Every record of a text with the line it starts on; a quoted field may span lines.
-struct Record {
+struct CsvRecord {
   std::string text;
   std::size_t line;
 };
 
-std::vector<Record> records(std::istream& in) {
-  std::vector<Record> out;
+std::vector<CsvRecord> records(std::istream& in) {
+  std::vector<CsvRecord> out;
   std::size_t line = 1;
   std::string record, piece;
   bool quoted = false;
@@ -166,6 +166,8 @@ Row parse_row(const Columns& columns, const std::vector<std::string>& fields) {
     const std::string column(field.name);
     if (field.use == FieldUse::every)
       c.*field.number = f.number(column);
+    else if (field.text)
+      c.*field.text = f.text(column);
     else if (field.number)
       c.*field.number = f.number(column, c.*field.number);
     else
@@ -204,7 +206,7 @@ Row parse_row(const std::vector<std::string>& fields) {
 }
 
 RowFile read_csv(std::istream& in, std::string_view source) {
-  const std::vector<Record> lines = records(in);
+  const std::vector<CsvRecord> lines = records(in);
   const auto fail = [&](std::size_t line, const std::string& why) {
     std::ostringstream out;
     out << source << ':' << line << ": " << why;

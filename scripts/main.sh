@@ -57,6 +57,22 @@ for study, extra in (("stability", "stability-compliant"), ("stability-points", 
         csv.DictWriter(f, header, extrasaction="ignore").writerows(rows)
 PY
 fi
+# The stress study's recorded ground motion, a set of its own (cases/sets/stress-records.toml),
+# its rows added to the stress set's (the same columns): one table and one section in the report.
+timed stress-records $pb stress cases/sets/stress-records.toml --settings cases/settings/stress.toml \
+  --out results/stability-records.csv --points results/stability-records-points.csv
+tail -n +2 results/stability-records.csv >> results/stability.csv
+tail -n +2 results/stability-records-points.csv >> results/stability-points.csv
+
+echo "main: the example records and pulse models through the reference and the time-steppers"
+records() {  # the solvers of this build among those the report's records section compares
+  local s
+  for s in event-driven moreau-jean ode bullet siconos mujoco; do
+    $pb solvers | grep -q "^$s " || continue
+    $pb spectrum cases/sets/records.toml --solver "$s" --out "results/records-$s.csv"
+  done
+}
+timed records records
 
 echo "main: benchmarks"
 timed benchmarks build/bench/poundbench_bench --benchmark_repetitions=5 --benchmark_display_aggregates_only=true \
@@ -68,7 +84,7 @@ timed benchmarks build/bench/poundbench_bench --benchmark_repetitions=5 --benchm
   --points results/workprecision-points.csv --bench results/bench.json --timings results/timings.csv \
   --provenance results/provenance.json --stress results/stability.csv --stress-points results/stability-points.csv \
   --compliant results/compliant.csv --compliant-points results/compliant-points.csv \
-  --out reports --readme README.md
+  --records results/records-*.csv --out reports --readme README.md
 
 echo "main: the paper report (reports/paper/)"
 scripts/paper.sh

@@ -13,7 +13,8 @@ namespace {
 // The columns that say which task a row is: its case and its solver's settings.
 constexpr std::array kTaskColumns = {"family", "scene", "pulse", "directivity", "pi2",  "pi3",     "eps",
                                      "pi5",    "pi6",   "pi7",   "pi8",         "xi",   "n_free",  "a_p",
-                                     "w_p",    "solver", "variant", "settings", "bodies", "kick"};
+                                     "w_p",    "solver", "variant", "settings", "bodies", "kick",
+                                     "cycles", "mp_gamma", "mp_nu", "record"};
 
 // The run column taken off the front of a record's fields.
 std::size_t take_run(std::vector<std::string>& fields) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cases/fields.hpp"
@@ -15,14 +16,17 @@
 namespace pb {
 namespace {
 
-// A case of `scene` with every number set to a value of its own (none of them a default).
-Case distinctive(Scene scene) {
+// A case of `scene` and `pulse` with every field set to a value of its own (none of them a default).
+Case distinctive(Scene scene, PulseShape pulse = PulseShape::sine) {
   Case c;
   c.scene = scene;
+  c.pulse = pulse;
   c.bodies = scene == Scene::chain ? 7 : 0;
+  c.cycles = pulse == PulseShape::makris_c ? 3 : 0;
+  if (pulse == PulseShape::record) c.record = "records/a, \"b\".csv";  // quoted in CSV
   double x = 0.125;
   for (const CaseField& f : kCaseFields) {
-    if (!used_by(f, scene) || f.integer) continue;
+    if (!used_by(f, scene, pulse) || !f.number) continue;
     c.*f.number = x;
     x += 0.0625;
   }
@@ -30,18 +34,27 @@ Case distinctive(Scene scene) {
 }
 
 TEST(CaseFields, EveryFieldRoundTripsThroughACsvRowInEveryScene) {
-  for (Scene scene : {Scene::wall, Scene::pair, Scene::row3, Scene::chain}) {
+  const std::vector<std::pair<Scene, PulseShape>> cases = {
+      {Scene::wall, PulseShape::sine},     {Scene::pair, PulseShape::cosine}, {Scene::row3, PulseShape::sine},
+      {Scene::chain, PulseShape::sine},    {Scene::pair, PulseShape::makris_c}, {Scene::row3, PulseShape::mp},
+      {Scene::wall, PulseShape::record}};
+  for (const auto& [scene, pulse] : cases) {
     Row row;
-    row.input = distinctive(scene);
+    row.input = distinctive(scene, pulse);
     row.solver = "event-driven";
     row.result.pi1 = 1.0;
     const Row back = parse_row(split_csv(csv_line(row)));
     for (const CaseField& f : kCaseFields) {
-      // A field the scene does not use is written empty and read back as the Case default.
-      const double expected = used_by(f, scene) ? f.get(row.input) : f.get(Case{});
-      EXPECT_EQ(f.get(back.input), expected) << f.name << " in " << name(scene);
+      // A field the case does not use is written empty and read back as the Case default.
+      const bool used = used_by(f, scene, pulse);
+      if (f.text) {
+        EXPECT_EQ(back.input.*f.text, used ? row.input.*f.text : std::string()) << f.name;
+        continue;
+      }
+      const double expected = used ? f.get(row.input) : f.get(Case{});
+      EXPECT_EQ(f.get(back.input), expected) << f.name << " in " << name(scene) << " " << name(pulse);
     }
-    EXPECT_EQ(case_key(back.input), case_key(row.input)) << name(scene);
+    EXPECT_EQ(case_key(back.input), case_key(row.input)) << name(scene) << " " << name(pulse);
   }
 }
 
@@ -58,7 +71,7 @@ TEST(CaseFields, EveryFieldIsAColumnAndAFlagOfItsOwnName) {
 TEST(CaseFields, TheRowKeyTellsApartCasesThatDifferInAnyUsedField) {
   const Case base = distinctive(Scene::chain);
   for (const CaseField& f : kCaseFields) {
-    if (!used_by(f, Scene::chain)) continue;
+    if (!used_by(f, Scene::chain, PulseShape::sine)) continue;
     Case other = base;
     if (f.integer)
       other.*f.integer += 1;

@@ -10,6 +10,7 @@ import io
 import json
 import subprocess
 import sys
+import os
 import unittest
 
 POUNDBENCH, SOURCE = sys.argv[1], sys.argv[2]
@@ -83,8 +84,23 @@ class Run(unittest.TestCase):
             poundbench.spectrum(f"{SOURCE}/cases/sets/smoke.toml", pi2=1)
 
     def test_keywords_are_the_flags_of_the_field_tables(self):
-        for name in ("n_free", "a_p", "w_p", "tol_scale", "step_cap", "time_limit", "command"):
+        for name in ("n_free", "a_p", "w_p", "tol_scale", "step_cap", "time_limit", "command", "record", "tp",
+                     "cycles", "mp_gamma", "mp_nu"):
             self.assertIn(f"    {name}: ", poundbench.run.__doc__)
+
+    def test_a_record_and_a_pulse_model_give_the_command_lines_answers(self):
+        record = os.path.join(SOURCE, "cases", "records", "mp-noise-20s.at2")
+        loads = [(dict(pulse="record", record=record, tp=2), ["--pulse", "record", "--record", record, "--tp", "2"]),
+                 (dict(pulse="mp", mp_gamma=2.5, mp_nu=30), ["--pulse", "mp", "--mp-gamma", "2.5", "--mp-nu", "30"])]
+        base = {k: v for k, v in CASE.items() if k != "pulse"}
+        flags = [f for i, f in enumerate(FLAGS) if FLAGS[i - 1] != "--pulse" and f != "--pulse"]
+        for keywords, load_flags in loads:
+            result = poundbench.run(**base, **keywords)
+            code, out, _ = cli("run", *flags, *load_flags, "--json")
+            self.assertEqual(code, 0)
+            self.assertEqual(result["pi1"], json.loads(out)["pi1"])
+        with self.assertRaisesRegex(ValueError, "--w-p: required by pulse record"):
+            poundbench.run(**base, pulse="record", record=record)
 
 
 class Spectrum(unittest.TestCase):

@@ -61,6 +61,7 @@ std::unique_ptr<btRigidBody> make_body(btCollisionShape* shape, double mass, dou
 World::World(const System& system, const Config& config, double h, double gamma, const std::vector<double>& u0,
              const std::vector<double>& v0)
     : system_(system),
+      load_(system.pulse),
       info_(solver_info(config, h)),
       activation_(config.activation),
       gamma_h_(gamma * h),
@@ -153,7 +154,7 @@ void World::step(double t) {
     }
   }
 
-  const double ag = system_.pulse.accel(t);
+  const double ag = load_.accel(t);
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     btRigidBody& b = *bodies_[i];
     const double u_i = b.getWorldTransform().getOrigin().x(), v_i = b.getLinearVelocity().x();

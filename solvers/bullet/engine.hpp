@@ -72,6 +72,7 @@ class World {
   static std::size_t ix(int i) { return static_cast<std::size_t>(i); }
 
   const System& system_;
+  LoadCursor load_;  // a_g(t) of each step, O(1) on a record
   btContactSolverInfo info_;
   Activation activation_;
   double gamma_h_;                 // Settings::gamma h, for the predicted rule

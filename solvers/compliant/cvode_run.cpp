@@ -1,8 +1,9 @@
 // The cvode integrator of the compliant solver (compliant.hpp): SUNDIALS CVODE over the
 // state y = (u0, v0, u1, v1, ...) interleaved, so that a contact couples entries at most
 // three apart and the Jacobian is banded (CVODE's band solver, its difference-quotient
-// Jacobian). The run is cut at the pulse's end (the cosine pulse's load jumps there) and
-// restarted (CVodeReInit) wherever a contact closes or opens.
+// Jacobian). The run is cut at the pulse's end (the cosine pulse's load jumps there), at
+// every breakpoint of any other load (a record's samples, where its slope jumps), and
+// restarted (CVodeReInit) there and wherever a contact closes or opens.
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
@@ -29,6 +30,7 @@ std::size_t ix(int i) { return static_cast<std::size_t>(i); }
 struct Problem {
   const System& sys;
   Elements& elements;
+  LoadCursor load;  // a_g(t) of each evaluation: CVODE's times move back and forth by a step
   std::vector<double> u, v, f;  // scratch, one per body
   std::string library_message;  // the last error CVODE reported
 };
@@ -47,7 +49,7 @@ int rhs(double t, N_Vector y, N_Vector ydot, void* data) {
   unpack(yy, pr.u, pr.v);
   std::fill(pr.f.begin(), pr.f.end(), 0.0);
   pr.elements.add_forces(pr.u.data(), pr.v.data(), pr.f.data());
-  const double ag = pr.sys.pulse.accel(t);
+  const double ag = pr.load.accel(t);
   for (std::size_t i = 0; i < pr.u.size(); ++i) {
     const Body& b = pr.sys.bodies[i];
     dy[2 * i] = pr.v[i];
@@ -115,7 +117,7 @@ Result run_cvode(const System& sys, const Settings& set, Model model, double K, 
   const long cap = set.step_cap > 0 ? set.step_cap : kDefaultCvodeStepCap;
 
   Elements elements(sys, model, K);
-  Problem pr{sys, elements, start_u(sys), start_v(sys), std::vector<double>(ix(n), 0.0), {}};
+  Problem pr{sys, elements, LoadCursor(sys.pulse), start_u(sys), start_v(sys), std::vector<double>(ix(n), 0.0), {}};
   Cvode cv;
   if (SUNContext_Create(nullptr, &cv.context) != 0) return failure(Status::failed, "SUNDIALS: no context");
   cv.y = N_VNew_Serial(neq, cv.context);
@@ -193,7 +195,10 @@ Result run_cvode(const System& sys, const Settings& set, Model model, double K, 
   };
   double t = 0.0;
   const double t_pulse = std::min(sys.pulse.duration(), sys.t_end);
-  double stop = t_pulse > 0.0 ? t_pulse : sys.t_end;
+  // Any other load than the paper's pulses is cut at each of its breakpoints (a record's
+  // samples, where its slope jumps; a pulse model's end), so that no step straddles one.
+  const auto next_stop = [&](double from) { return std::min(sys.pulse.next_break(from), sys.t_end); };
+  double stop = !sys.pulse.paper() ? next_stop(0.0) : t_pulse > 0.0 ? t_pulse : sys.t_end;
   CVodeSetStopTime(cv.mem, stop);
   const auto restart = [&](double at_t) {
     done = total_steps();
@@ -235,7 +240,7 @@ Result run_cvode(const System& sys, const Settings& set, Model model, double K, 
     }
     contacts_changed = reconcile() || contacts_changed;
     if (flag == CV_TSTOP_RETURN && t < sys.t_end) {
-      stop = sys.t_end;
+      stop = sys.pulse.paper() ? sys.t_end : next_stop(t);
       contacts_changed = true;  // the load may jump at the pulse's end
     }
     if (contacts_changed && t < sys.t_end) restart(t);

@@ -137,8 +137,12 @@ class Solver {
   void events() {
     if (!start()) return;
     const double t_p = s_.pulse.duration();
+    const bool paper = s_.pulse.paper();
     while (st_.t < s_.t_end) {
-      const double seg_end = st_.t < t_p ? std::min(t_p, s_.t_end) : s_.t_end;
+      // The segment ends where the load's closed form does: the paper's pulse at T_p, any
+      // other load at its next breakpoint (a record's next sample), each an event.
+      const double seg_end = paper ? (st_.t < t_p ? std::min(t_p, s_.t_end) : s_.t_end)
+                                   : std::min(s_.pulse.next_break(st_.t), s_.t_end);
       double b = seg_end;
       int which = -1;
       for (int j = 0; j < s_.n_contacts(); ++j) {
@@ -165,7 +169,7 @@ class Solver {
         st_.g[ix(which)] = 0.0;
         ok = impact();
       } else {
-        ok = detach();  // a force reached zero, or the pulse ended (the load may jump)
+        ok = detach();  // a force reached zero, or the load reached a breakpoint (it may jump)
       }
       if (!ok) break;
       account(e_before);

@@ -8,16 +8,42 @@ namespace {
 
 bool pulse_on(const System& s, double t) { return t < s.pulse.duration(); }
 
-// Ground acceleration over the segment starting at t, as a wave.
-Wave ground(const System& s, double t) {
+// Ground acceleration over the load's piece from t (DERIVATION.md §1), as a wave: the
+// paper's pulse as it always was; any other load from its piece, a polynomial of degree 1
+// plus sinusoids.
+Wave ground(const System& s, double t, const LoadPiece& piece) {
   Wave a = constant(t, 0.0);
-  if (pulse_on(s, t)) {
-    a.f0 = s.pulse.accel(t);
-    a.w = s.pulse.w;
-    (s.pulse.shape == PulseShape::sine ? a.ps : a.pc) = s.pulse.amplitude;
+  if (s.pulse.paper()) {
+    if (pulse_on(s, t)) {
+      a.f0 = s.pulse.accel(t);
+      a.n_sines = 1;
+      a.sine[0].w = s.pulse.w;
+      (s.pulse.shape == PulseShape::sine ? a.sine[0].ps : a.sine[0].pc) = s.pulse.amplitude;
+    }
+  } else {
+    a.f0 = piece.accel(t);
+    a.lin = piece.slope;
+    a.horizon = piece.end;
+    a.n_sines = piece.n_waves;
+    for (std::size_t j = 0; j < static_cast<std::size_t>(piece.n_waves); ++j)
+      a.sine[j] = {piece.waves[j].w, piece.waves[j].s, piece.waves[j].c};
   }
   a.prepare();
   return a;
+}
+
+// The load on a cluster of mass m (-m a_g) plus f_const, from t over the piece.
+Forcing cluster_load(double t, double m, double f_const, const LoadPiece& piece) {
+  Forcing f;
+  f.f0 = f_const - m * (piece.value + piece.slope * (t - piece.start));
+  f.f1 = -m * piece.slope;
+  f.n = piece.n_waves;
+  for (std::size_t j = 0; j < static_cast<std::size_t>(piece.n_waves); ++j) {
+    f.w[j] = piece.waves[j].w;
+    f.fs[j] = -m * piece.waves[j].s;
+    f.fc[j] = -m * piece.waves[j].c;
+  }
+  return f;
 }
 
 // Calls f(first, last, fixed) for each run of bodies from..to joined by the contacts flagged
@@ -41,7 +67,8 @@ double offset(const System& s, int first, int i) { return -(i - first) * s.delta
 // A cluster's coordinate x is the displacement of its leftmost body; the others sit at
 // fixed offsets (closed gaps).
 void build_frame(const System& s, const State& st, int from, int to, Frame& fr) {
-  const Wave ag = ground(s, st.t);
+  const LoadPiece piece = s.pulse.paper() ? LoadPiece{} : s.pulse.piece(st.t);
+  const Wave ag = ground(s, st.t, piece);
   const int wall_shift = s.wall ? 1 : 0;
   for_each_cluster(s, st.active, from, to, [&](int first, int last, bool fixed) {
     double m = 0.0, c = 0.0, k = 0.0, f_const = 0.0, mx = 0.0, mv = 0.0;
@@ -57,6 +84,8 @@ void build_frame(const System& s, const State& st, int from, int to, Frame& fr) 
     Wave x;
     if (fixed) {
       x = constant(st.t, -s.delta);
+    } else if (!s.pulse.paper()) {
+      x = oscillator(st.t, mx / m, mv / m, m, c, k, cluster_load(st.t, m, f_const, piece), piece.end);
     } else {
       const bool on = pulse_on(s, st.t);
       const double load = on ? -m * s.pulse.amplitude : 0.0;

@@ -171,8 +171,14 @@ class KelvinVoigt {
       start(i) = s.u_start.size() == ix(n_) ? s.u_start[ix(i)] : 0.0;
       start(n_ + i) = s.v_start.size() == ix(n_) ? s.v_start[ix(i)] : 0.0;
     }
-    start(2 * n_) = 1.0;      // the constant
-    start(2 * n_ + 2) = 1.0;  // cos(w_p t) at t = 0 (sin is 0)
+    start(2 * n_) = 1.0;  // the constant
+    if (s.pulse.record) {  // a record's a_g and its slope (the load's states p, q: p' = q)
+      const LoadPiece piece = s.pulse.piece(0.0);
+      start(2 * n_ + 1) = piece.accel(0.0);
+      start(2 * n_ + 2) = piece.slope;
+    } else {
+      start(2 * n_ + 2) = 1.0;  // cos(w_p t) at t = 0 (sin is 0)
+    }
     // The change of coordinates: gap j = delta + u_right - u_left (and its rate), then u of
     // body 0 where there is no wall (n positions either way); the load's states as they are.
     to_gaps_ = MatrixXd::Identity(m_, m_);
@@ -205,7 +211,10 @@ class KelvinVoigt {
     Mode* mode = &mode_for_closed();
     record_samples(0.0, y_, *mode);
     while (t_ < s_.t_end) {
-      const double stop = t_ < t_pulse && t_pulse < s_.t_end ? t_pulse : s_.t_end;
+      // Stretches end at the load's breakpoints: the pulse's end, a record's every sample.
+      const double stop = s_.pulse.record ? std::min(s_.pulse.next_break(t_), s_.t_end)
+                          : t_ < t_pulse && t_pulse < s_.t_end ? t_pulse
+                                                               : s_.t_end;
       const double t0 = t_;
       top_ = y_;
       int changed;
@@ -225,6 +234,12 @@ class KelvinVoigt {
         mode = &mode_for_closed();
         level_ = 0;
         ++events_;
+      } else if (s_.pulse.record && t_ == stop) {
+        // The next piece of the record: p = a_g (continuous, set to its sample exactly), q its
+        // slope; both zero after the last sample.
+        const LoadPiece piece = s_.pulse.piece(t_);
+        y_(2 * n_ + 1) = piece.accel(t_);
+        y_(2 * n_ + 2) = piece.slope;
       } else if (t_ == t_pulse) {
         y_(2 * n_ + 1) = y_(2 * n_ + 2) = 0.0;  // no load after the pulse
       }
@@ -305,10 +320,21 @@ class KelvinVoigt {
       a(i, n + i) = 1.0;
       a(n + i, i) = -b.k / b.m;
       a(n + i, n + i) = -b.c / b.m;
-      a(n + i, s_.pulse.shape == PulseShape::sine ? sn : cs) = -s_.pulse.amplitude;  // -a_g(t)
+      if (s_.pulse.paper()) {
+        a(n + i, s_.pulse.shape == PulseShape::sine ? sn : cs) = -s_.pulse.amplitude;  // -a_g(t)
+      } else if (s_.pulse.record) {
+        a(n + i, sn) = -1.0;  // -p
+      } else {  // makris-a, -b, -c: one sinusoid s sin + c cos at w_p
+        a(n + i, sn) = -s_.pulse.waves[0].s;
+        a(n + i, cs) = -s_.pulse.waves[0].c;
+      }
     }
-    a(sn, cs) = s_.pulse.w;
-    a(cs, sn) = -s_.pulse.w;
+    if (s_.pulse.record) {
+      a(sn, cs) = 1.0;  // p' = q, q' = 0: the same matrix for every piece, only the states change
+    } else {
+      a(sn, cs) = s_.pulse.w;
+      a(cs, sn) = -s_.pulse.w;
+    }
     // A closed element pushes its right body by F = -k g - c g' and its left one by -F.
     for (int j = 0; j < nc_; ++j) {
       if (!elements_.closed(j)) continue;
@@ -595,6 +621,11 @@ Result solve_kelvin_voigt(const System& system, const Settings& settings) {
       r.message = "every body needs a finite positive mass and a finite spring and dashpot";
       return r;
     }
+  if (system.pulse.shape == PulseShape::mp) {
+    r.message = "the Kelvin-Voigt reference takes the paper's pulses, makris-a, -b, -c and records; the mp pulse's "
+                "three frequencies would need seven load states (not built): use the compliant solver's cvode";
+    return r;
+  }
   if (system.n_bodies() > kMaxKelvinVoigtBodies) {
     r.message = "the Kelvin-Voigt reference holds the whole state in one matrix: at most " +
                 std::to_string(kMaxKelvinVoigtBodies) + " bodies, not " + std::to_string(system.n_bodies());

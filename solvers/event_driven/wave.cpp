@@ -28,7 +28,10 @@ void sin_cos(double w, double t0, double& s, double& c) {
 
 using Complex = std::complex<double>;
 
-bool resonant(const Mode& md) { return md.rr != 0.0 || md.ri != 0.0; }
+bool resonant(const Mode& md, int j) {
+  const auto k = static_cast<std::size_t>(j);
+  return md.rr[k] != 0.0 || md.ri[k] != 0.0;
+}
 
 // E(s) = (exp(d s) - 1) / d, d = sigma + i delta (= i w - z), without the cancellation of
 // exp(d s) - 1 for small |d s|: exp(x) - 1 = expm1(xr) cos(xi) - 2 sin^2(xi / 2) + i exp(xr) sin(xi).
@@ -61,9 +64,17 @@ void Wave::prepare() {
     md.envelope[0] = std::hypot(md.a, md.b);
     for (std::size_t d = 1; d <= kMaxDerivative; ++d) md.envelope[d] = md.envelope[d - 1] * rate;
   }
-  sin_cos(w, t0, s0, c0);
-  pulse_envelope[0] = std::hypot(ps, pc);
-  for (std::size_t d = 1; d <= kMaxDerivative; ++d) pulse_envelope[d] = pulse_envelope[d - 1] * w;
+  pulse_envelope.fill(0.0);
+  for (int j = 0; j < n_sines; ++j) {
+    Sine& p = sine[static_cast<std::size_t>(j)];
+    sin_cos(p.w, t0, p.s0, p.c0);
+    double e = std::hypot(p.ps, p.pc);
+    pulse_envelope[0] += e;
+    for (std::size_t d = 1; d <= kMaxDerivative; ++d) {
+      e *= p.w;
+      pulse_envelope[d] += e;
+    }
+  }
 }
 
 void Wave::eval(double t, double* out, int nd) const {
@@ -73,7 +84,14 @@ void Wave::eval(double t, double* out, int nd) const {
   const bool start = tau == 0.0;
   for (int d = 0; d < nd; ++d) out[d] = 0.0;
   out[0] = f0;
-  if (ps != 0.0 || pc != 0.0) {
+  if (lin != 0.0) {
+    out[0] += lin * tau;
+    if (nd > 1) out[1] += lin;
+  }
+  for (int j = 0; j < n_sines; ++j) {
+    const Sine& p = sine[static_cast<std::size_t>(j)];
+    const double w = p.w, ps = p.ps, pc = p.pc, s0 = p.s0, c0 = p.c0;
+    if (ps == 0.0 && pc == 0.0) continue;
     // sin(w t) - sin(w t0) and cos(w t) - cos(w t0) from the half angle of w (t - t0),
     // free of cancellation near t0.
     double sh = 0.0, ch = 1.0;
@@ -117,12 +135,14 @@ void Wave::eval(double t, double* out, int nd) const {
       const auto k = static_cast<std::size_t>(d);
       out[d] += e * (md.re[k] * cs - md.im[k] * sn);
     }
-    if (resonant(md)) {
+    for (int j = 0; j < n_sines; ++j) {
+      if (!resonant(md, j)) continue;
+      const double w = sine[static_cast<std::size_t>(j)].w;
       // G^(d)(s) = exp(z s) [(i w)^d E(s) + S_d], S_d = sum_{j<d} (i w)^j z^(d-1-j): the
       // difference quotient of (i w)^d exp(i w s) and z^d exp(z s), free of 1 / |i w - z|.
       const Complex ez(e * cs, e * sn), iw(0.0, w), z(-md.sigma, md.omega);
       const Complex grown = start ? Complex(0.0) : grow(md.sigma, w - md.omega, tau);
-      Complex a(md.rr, md.ri), sum(0.0);  // r (i w)^d, r S_d
+      Complex a(md.rr[static_cast<std::size_t>(j)], md.ri[static_cast<std::size_t>(j)]), sum(0.0);  // r (i w)^d, r S_d
       for (int d = 0; d < nd; ++d) {
         out[d] += (ez * (a * grown + sum)).real();
         sum = sum * z + a;
@@ -140,7 +160,9 @@ double Wave::bound(double t, int d) const {
     const Mode& md = mode[static_cast<std::size_t>(m)];
     const double decay = tau == 0.0 ? 1.0 : std::exp(-md.sigma * tau);
     b += md.envelope[k] * decay;
-    if (resonant(md)) {
+    for (int q = 0; q < n_sines; ++q) {
+      if (!resonant(md, q)) continue;
+      const double w = sine[static_cast<std::size_t>(q)].w;
       // |exp(z s) E(s)| = |exp(i w s) - exp(z s)| / |d| <= 2 / |d|, and <= s (sigma >= 0).
       const double d_abs = std::hypot(md.sigma, w - md.omega), z_abs = std::hypot(md.sigma, md.omega);
       const double reach = std::min(horizon - t0, d_abs > 0.0 ? 2.0 / d_abs : horizon - t0);
@@ -149,26 +171,49 @@ double Wave::bound(double t, int d) const {
         sum = sum * z_abs + wd;
         wd *= w;
       }
-      b += std::hypot(md.rr, md.ri) * (wd * reach + sum * decay);
+      b += std::hypot(md.rr[static_cast<std::size_t>(q)], md.ri[static_cast<std::size_t>(q)]) * (wd * reach + sum * decay);
     }
+  }
+  if (lin != 0.0) {
+    // lin (s - t0) for t0 <= s <= horizon (finite: a linear load ends at its next sample):
+    // its value halfway, mean(), plus at most half its rise; slope lin; nothing higher.
+    if (d == 0) b += 0.5 * std::abs(lin) * (horizon - t0);
+    if (d == 1) b += std::abs(lin);
   }
   return b;
 }
 
 double Wave::mean() const {
-  double m = f0 - ps * s0 - pc * c0;
+  double m = f0;
+  for (int j = 0; j < n_sines; ++j) {
+    const Sine& p = sine[static_cast<std::size_t>(j)];
+    m = m - p.ps * p.s0 - p.pc * p.c0;
+  }
   for (int k = 0; k < n_modes; ++k) m -= mode[static_cast<std::size_t>(k)].a;
+  if (lin != 0.0) m += 0.5 * lin * (horizon - t0);
   return m;
 }
 
 void add_scaled(Wave& acc, const Wave& x, double s) {
   assert(acc.t0 == x.t0);
   acc.f0 += s * x.f0;
-  if (x.w != 0.0) {
-    assert(acc.w == 0.0 || acc.w == x.w);
-    acc.w = x.w;
-    acc.ps += s * x.ps;
-    acc.pc += s * x.pc;
+  if (x.lin != 0.0) acc.lin += s * x.lin;
+  // Sinusoid j of x is sinusoid at[j] of acc (the same frequency; appended if acc has none).
+  std::array<std::size_t, kMaxSines> at{};
+  for (int j = 0; j < x.n_sines; ++j) {
+    const Sine& xs = x.sine[static_cast<std::size_t>(j)];
+    int k = 0;
+    while (k < acc.n_sines && acc.sine[static_cast<std::size_t>(k)].w != xs.w) ++k;
+    assert(k < kMaxSines);
+    Sine& as = acc.sine[static_cast<std::size_t>(k)];
+    if (k == acc.n_sines) {
+      as = Sine{};
+      as.w = xs.w;
+      ++acc.n_sines;
+    }
+    as.ps += s * xs.ps;
+    as.pc += s * xs.pc;
+    at[static_cast<std::size_t>(j)] = static_cast<std::size_t>(k);
   }
   acc.horizon = std::min(acc.horizon, x.horizon);
   for (int m = 0; m < x.n_modes; ++m) {
@@ -187,8 +232,11 @@ void add_scaled(Wave& acc, const Wave& x, double s) {
     }
     am.a += s * xm.a;
     am.b += s * xm.b;
-    am.rr += s * xm.rr;
-    am.ri += s * xm.ri;
+    for (int j = 0; j < x.n_sines; ++j) {
+      const auto jj = static_cast<std::size_t>(j);
+      am.rr[at[jj]] += s * xm.rr[jj];
+      am.ri[at[jj]] += s * xm.ri[jj];
+    }
   }
 }
 
@@ -198,9 +246,14 @@ Wave derivative(const Wave& x) {
   double v[2];
   x.eval(x.t0, v, 2);
   d.f0 = v[1];
-  d.w = x.w;
-  d.ps = -x.w * x.pc;
-  d.pc = x.w * x.ps;
+  d.n_sines = x.n_sines;
+  for (int j = 0; j < x.n_sines; ++j) {
+    const Sine& xs = x.sine[static_cast<std::size_t>(j)];
+    Sine& ds = d.sine[static_cast<std::size_t>(j)];
+    ds.w = xs.w;
+    ds.ps = -xs.w * xs.pc;
+    ds.pc = xs.w * xs.ps;
+  }
   d.horizon = x.horizon;
   d.n_modes = x.n_modes;
   for (int m = 0; m < x.n_modes; ++m) {
@@ -209,10 +262,18 @@ Wave derivative(const Wave& x) {
     dm.sigma = xm.sigma;
     dm.omega = xm.omega;
     // (r G)' = (i w r) G + r exp(z s): the damped term gains r, the resonant one i w r.
-    dm.a = xm.re[1] + xm.rr;
-    dm.b = -(xm.im[1] + xm.ri);
-    dm.rr = -x.w * xm.ri;
-    dm.ri = x.w * xm.rr;
+    double a = xm.re[1] + xm.rr[0], b = xm.im[1] + xm.ri[0];
+    for (std::size_t j = 1; j < static_cast<std::size_t>(x.n_sines); ++j) {
+      a += xm.rr[j];
+      b += xm.ri[j];
+    }
+    dm.a = a;
+    dm.b = -b;
+    for (std::size_t j = 0; j < static_cast<std::size_t>(x.n_sines); ++j) {
+      const double w = x.sine[j].w;
+      dm.rr[j] = -w * xm.ri[j];
+      dm.ri[j] = w * xm.rr[j];
+    }
   }
   d.prepare();
   return d;
@@ -239,12 +300,13 @@ Wave oscillator(double t0, double x0, double v0, double m, double c, double k, d
     // conj(z) (F' = F exp(i w t0)), which is (G(s) - exp(-sigma s) sin(omega s) / omega) /
     // (i w - conj z): the near-resonant term with r = F' / (m (i w - conj z)), and a sine.
     // The free motion from (x0 - F0 / K, v0) adds the usual damped term.
-    x.w = w;
+    x.n_sines = 1;
+    x.sine[0].w = w;
     const Complex r = Complex(fc, -fs) * std::polar(1.0, w * t0) / (m * Complex(sigma, w + omega));
     md.a = x0 - f_const / k;
     md.b = (v0 + sigma * md.a - r.real()) / omega;
-    md.rr = r.real();
-    md.ri = r.imag();
+    md.rr[0] = r.real();
+    md.ri[0] = r.imag();
     x.prepare();
     return x;
   }
@@ -255,16 +317,62 @@ Wave oscillator(double t0, double x0, double v0, double m, double c, double k, d
     const double det = a * a + b * b;
     p = (a * fs / m + b * fc / m) / det;
     q = (a * fc / m - b * fs / m) / det;
-    x.w = w;
-    x.ps = p;
-    x.pc = q;
+    x.n_sines = 1;
+    x.sine[0] = {w, p, q};
   }
   double sn, cs;
-  sin_cos(x.w, t0, sn, cs);
+  sin_cos(forced ? w : 0.0, t0, sn, cs);
   const double xp = f_const / k + p * sn + q * cs;
   const double vp = w * (p * cs - q * sn);
   md.a = x0 - xp;
   md.b = (v0 - vp + sigma * md.a) / omega;
+  x.prepare();
+  return x;
+}
+
+Wave oscillator(double t0, double x0, double v0, double m, double c, double k, const Forcing& load, double horizon) {
+  Wave x;
+  x.t0 = t0;
+  x.f0 = x0;
+  x.horizon = horizon;
+  const double wn2 = k / m;
+  const double two_zeta_wn = c / m;
+  const double sigma = 0.5 * two_zeta_wn;
+  const double omega = std::sqrt(wn2 - sigma * sigma);
+  Mode& md = x.mode[0];
+  md.sigma = sigma;
+  md.omega = omega;
+  x.n_modes = 1;
+  // The polynomial's particular solution alpha + beta (t - t0); then each sinusoid's, whose
+  // value and rate at t0 the free motion makes up for. A near-resonant sinusoid's R_mj starts
+  // from rest with rate Re(r_j), which the sine term of the free motion takes back.
+  const double beta = load.f1 / k, alpha = (load.f0 - c * beta) / k;
+  x.lin = beta;
+  double xp = alpha, vp = beta, resonant_rate = 0.0;
+  x.n_sines = load.n;
+  for (std::size_t j = 0; j < static_cast<std::size_t>(load.n); ++j) {
+    const double w = load.w[j], fs = load.fs[j], fc = load.fc[j];
+    x.sine[j].w = w;
+    if (fs == 0.0 && fc == 0.0) continue;
+    if (std::hypot(sigma, w - omega) < kNearResonance * w) {
+      const Complex r = Complex(fc, -fs) * std::polar(1.0, w * t0) / (m * Complex(sigma, w + omega));
+      md.rr[j] = r.real();
+      md.ri[j] = r.imag();
+      resonant_rate += r.real();
+      continue;
+    }
+    const double a = wn2 - w * w, b = two_zeta_wn * w;
+    const double det = a * a + b * b;
+    const double p = (a * fs / m + b * fc / m) / det;
+    const double q = (a * fc / m - b * fs / m) / det;
+    x.sine[j].ps = p;
+    x.sine[j].pc = q;
+    const double sn = std::sin(w * t0), cs = std::cos(w * t0);
+    xp += p * sn + q * cs;
+    vp += w * (p * cs - q * sn);
+  }
+  md.a = x0 - xp;
+  md.b = (v0 - vp + sigma * md.a - resonant_rate) / omega;
   x.prepare();
   return x;
 }

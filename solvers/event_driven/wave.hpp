@@ -2,16 +2,18 @@
 // Closed-form motion between two events.
 //
 // Between events every quantity the reference tracks (a body's displacement, a gap, a
-// contact force) is a linear combination of a constant, a sinusoid at the pulse frequency
-// and at most two damped sinusoids (one per moving cluster of bodies a gap joins):
+// contact force) is a linear combination of a constant, a linear term (a record's load is
+// linear between its samples), up to kMaxSines sinusoids at the load's frequencies (the
+// paper's pulse has one, a Mavroeidis-Papageorgiou pulse three) and at most two damped
+// sinusoids (one per moving cluster of bodies a gap joins):
 //
-//   f(t) = f0 + [P(t) - P(t0)] + sum_m [D_m(t - t0) - D_m(0)]
-//   P(t)    = ps sin(w t) + pc cos(w t)                       (absolute time)
+//   f(t) = f0 + lin (t - t0) + sum_j [P_j(t) - P_j(t0)] + sum_m [D_m(t - t0) - D_m(0)]
+//   P_j(t)  = ps_j sin(w_j t) + pc_j cos(w_j t)               (absolute time)
 //   D_m(s)  = exp(-sigma s) (a cos(omega s) + b sin(omega s))
-//   R_m(s)  = Re(r G_m(s)),  G_m(s) = (exp(i w s) - exp(z s)) / (i w - z),  z = -sigma + i omega
+//   R_mj(s) = Re(r_mj G_mj(s)),  G_mj(s) = (exp(i w_j s) - exp(z s)) / (i w_j - z),  z = -sigma + i omega
 //
-// R_m is the forced response from rest of a mode driven near its resonance (|i w - z| small
-// against w). There P and D_m, each of size 1 / |i w - z|, would cancel to leave a motion
+// R_mj is the forced response from rest of mode m driven near its resonance by sinusoid j
+// (|i w_j - z| small against w_j). There P and D_m, each of size 1 / |i w - z|, would cancel to leave a motion
 // of size s (exactly s sin, s cos at an undamped resonance): R_m keeps that difference in
 // a form that stays exact at, near and away from resonance (DERIVATION.md §1).
 //
@@ -30,31 +32,42 @@ namespace pb::event_driven {
 
 inline constexpr int kMaxDerivative = 5;
 inline constexpr int kMaxModes = 2;
+inline constexpr int kMaxSines = 3;  // cases/load.hpp's kMaxSinusoids
 
 struct Mode {
   double sigma = 0.0;  // decay rate
   double omega = 0.0;  // damped circular frequency
   double a = 0.0;      // coefficient of cos
   double b = 0.0;      // coefficient of sin
-  double rr = 0.0, ri = 0.0;  // Re and Im of r, the near-resonant term's coefficient (R_m)
+  // Re and Im of r_j, the near-resonant term's coefficient with the wave's sinusoid j (R_mj).
+  std::array<double, kMaxSines> rr{}, ri{};
   // Re/Im of (a - i b) (-sigma + i omega)^d, d = 1..kMaxDerivative, and |(a - i b)|,
   // |-sigma + i omega|: derivative coefficients and their bounds.
   std::array<double, kMaxDerivative + 1> re{}, im{};
   std::array<double, kMaxDerivative + 1> envelope{};  // |a - i b| |lambda|^d
 };
 
+// A sinusoid of the load's: ps sin(w t) + pc cos(w t) in absolute time.
+struct Sine {
+  double w = 0.0;  // circular frequency
+  double ps = 0.0, pc = 0.0;
+  double s0 = 0.0, c0 = 1.0;  // set by prepare(): sin, cos of w t0
+};
+
 struct Wave {
   double t0 = 0.0;
   double f0 = 0.0;
-  double w = 0.0;  // pulse circular frequency (0: no pulse term)
-  double ps = 0.0, pc = 0.0;
+  double lin = 0.0;  // slope of the linear term lin (t - t0)
+  // The load's frequencies, in the order of the load's sinusoids: every wave of a frame has
+  // the same list (or none), so a mode's r_j and the sinusoids match by index.
+  std::array<Sine, kMaxSines> sine{};
+  int n_sines = 0;
   std::array<Mode, kMaxModes> mode{};
   int n_modes = 0;
   // The wave holds up to here (the end of the load it was built for): a near-resonant
   // term grows like t - t0 until then, so its bounds need it.
   double horizon = std::numeric_limits<double>::infinity();
-  // Set by prepare(): sin, cos of w t0 and w^d sqrt(ps^2 + pc^2).
-  double s0 = 0.0, c0 = 0.0;
+  // Set by prepare(): sum over the sinusoids of w_j^d sqrt(ps_j^2 + pc_j^2).
   std::array<double, kMaxDerivative + 1> pulse_envelope{};
 
   // out[d] = f^(d)(t) for d = 0..nd-1 (nd <= kMaxDerivative + 1).
@@ -65,11 +78,12 @@ struct Wave {
     return v;
   }
   // An upper bound of |f^(d)(s)| over all t <= s <= horizon, for 1 <= d <= kMaxDerivative
-  // (the damped terms only decay, the pulse term keeps its amplitude, a near-resonant term
-  // grows at most like s - t0).
+  // (the damped terms only decay, the sinusoids keep their amplitudes, a near-resonant term
+  // grows at most like s - t0, the linear term has the slope lin and no higher derivative).
   double bound(double t, int d) const;
   // f(s) = mean() + oscillation with |oscillation| <= swing(t) for t <= s <= horizon: a bound
-  // that lets a whole remaining segment be skipped once the motion has decayed.
+  // that lets a whole remaining segment be skipped once the motion has decayed. A linear
+  // term counts at its value halfway to the horizon, and half its rise in the swing.
   double mean() const;
   double swing(double t) const { return bound(t, 0); }
   // Must be called after the coefficients are set and before eval/bound.
@@ -77,7 +91,7 @@ struct Wave {
 };
 
 // acc += s * x, merging damped terms of identical (sigma, omega). Both waves must share
-// t0 and pulse frequency (or have no pulse term). Call prepare() on acc afterwards.
+// t0 and the load's frequencies (or one have none). Call prepare() on acc afterwards.
 void add_scaled(Wave& acc, const Wave& x, double s);
 
 // The derivative of x as a wave (f0 becomes x'(t0)); prepared.
@@ -88,6 +102,20 @@ Wave derivative(const Wave& x);
 // `horizon`. Prepared.
 Wave oscillator(double t0, double x0, double v0, double m, double c, double k, double f_const,
                 double fs, double fc, double w, double horizon);
+
+// The load of a general oscillator: f0 + f1 (t - t0) + sum_j (fs_j sin(w_j t) + fc_j cos(w_j t)).
+struct Forcing {
+  double f0 = 0.0, f1 = 0.0;
+  std::array<double, kMaxSines> w{}, fs{}, fc{};
+  int n = 0;
+};
+
+// The same oscillator under a load that is a polynomial of degree 1 plus sinusoids (a
+// record's segment, a pulse model): the particular solution of the polynomial is one
+// (alpha + beta (t - t0), beta = f1 / K, alpha = (f0 - C beta) / K), each sinusoid's is the
+// plain one or, near its resonance, R_mj. The paper's pulses keep the function above, whose
+// arithmetic the stored baselines hold. Prepared.
+Wave oscillator(double t0, double x0, double v0, double m, double c, double k, const Forcing& load, double horizon);
 
 // Near resonance, below this |i w - z| / w, the forced response is taken as R_m: there the
 // pulse and mode terms would each be over 1 / kNearResonance times the motion they leave,

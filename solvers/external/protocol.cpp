@@ -11,6 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cases/record.hpp"
+
 namespace pb::external {
 
 namespace {
@@ -39,6 +41,29 @@ std::string non_finite_field(const System& s) {
     for (double x : *start)
       if (!std::isfinite(x)) return start == &s.u_start ? "bodies.u" : "bodies.v";
   return {};
+}
+
+// The load by its kind (docs/external.md): the paper's pulses as they always were, a pulse
+// model as its sinusoids, a record as its samples.
+Ordered load_json(const Pulse& p) {
+  if (p.paper())
+    return {{"kind", "pulse"}, {"shape", name(p.shape)}, {"amplitude", p.amplitude}, {"w", p.w}, {"duration", p.duration()}};
+  if (p.record) {
+    std::vector<double> a(p.record->a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) a[i] = p.amplitude * p.record->a[i];
+    return {{"kind", "record"}, {"source", p.record->source}, {"w", p.w}, {"t", p.record->t}, {"a", a}};
+  }
+  Ordered terms = Ordered::array();
+  for (std::size_t i = 0; i < static_cast<std::size_t>(p.n_waves); ++i)
+    terms.push_back({{"w", p.waves[i].w}, {"sin", p.waves[i].s}, {"cos", p.waves[i].c}});
+  Ordered j = {{"kind", "sinusoids"}, {"shape", name(p.shape)}, {"amplitude", p.amplitude},
+               {"w", p.w},         {"duration", p.duration()}, {"terms", terms}};
+  if (p.shape == PulseShape::makris_c) j["cycles"] = p.cycles;
+  if (p.shape == PulseShape::mp) {
+    j["mp_gamma"] = p.mp_gamma;
+    j["mp_nu"] = p.mp_nu;
+  }
+  return j;
 }
 
 // ---------------------------------------------------------------- reading, with field names
@@ -234,14 +259,70 @@ void read_contacts(const Json& doc, System& s) {
   }
 }
 
+std::vector<double> numbers(const Json& j, const std::string& field) {
+  if (!j.is_array()) bad(field, "must be an array of numbers");
+  std::vector<double> out;
+  out.reserve(j.size());
+  for (std::size_t i = 0; i < j.size(); ++i) out.push_back(number(j[i], field + "[" + std::to_string(i) + "]"));
+  return out;
+}
+
+// {"kind": "record", "t": [...], "a": [...]}: the samples, a_g signed and in the case's units.
+void read_record_load(const Json& load, System& s) {
+  s.pulse.shape = PulseShape::record;
+  s.pulse.amplitude = 1.0;
+  s.pulse.w = number(member(load, "w", "load.w"), "load.w");
+  if (!(s.pulse.w > 0.0)) bad("load.w", "must be > 0");
+  const auto source = load.find("source");
+  const std::string name = source != load.end() && source->is_string() ? source->get<std::string>() : "load";
+  try {
+    s.pulse.record = std::make_shared<const Record>(record_from_samples(
+        numbers(member(load, "t", "load.t"), "load.t"), numbers(member(load, "a", "load.a"), "load.a"), name));
+  } catch (const RecordError& e) {
+    bad("load.t", e.what());
+  }
+}
+
+// {"kind": "sinusoids", "shape": ..., "w": w_p, "duration": T, "terms": [{"w", "sin", "cos"}]}.
+void read_sinusoid_load(const Json& load, System& s) {
+  const std::optional<PulseShape> shape = shape_of(member(load, "shape", "load.shape"));
+  if (!shape || paper_pulse(*shape) || *shape == PulseShape::record)
+    bad("load.shape", "must be makris-a, makris-b, makris-c or mp");
+  s.pulse.shape = *shape;
+  s.pulse.amplitude = number(member(load, "amplitude", "load.amplitude"), "load.amplitude");
+  s.pulse.w = number(member(load, "w", "load.w"), "load.w");
+  if (!(s.pulse.w > 0.0)) bad("load.w", "must be > 0");
+  s.pulse.length = number(member(load, "duration", "load.duration"), "load.duration");
+  if (!(s.pulse.length > 0.0)) bad("load.duration", "must be > 0");
+  const Json& terms = member(load, "terms", "load.terms");
+  if (!terms.is_array() || terms.empty() || terms.size() > static_cast<std::size_t>(kMaxSinusoids))
+    bad("load.terms", "must be an array of 1 to " + std::to_string(kMaxSinusoids) + " terms");
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    const std::string field = "load.terms[" + std::to_string(i) + "]";
+    if (!terms[i].is_object()) bad(field, "must be an object");
+    Sinusoid& w = s.pulse.waves[i];
+    w.w = number(member(terms[i], "w", field + ".w"), field + ".w");
+    if (!(w.w > 0.0)) bad(field + ".w", "must be > 0");
+    w.s = number(member(terms[i], "sin", field + ".sin"), field + ".sin");
+    w.c = number(member(terms[i], "cos", field + ".cos"), field + ".cos");
+  }
+  s.pulse.n_waves = static_cast<int>(terms.size());
+  // The model's own parameters, for what the case was (the terms are the load).
+  if (load.contains("cycles") && load["cycles"].is_number_integer()) s.pulse.cycles = load["cycles"].get<int>();
+  if (load.contains("mp_gamma")) s.pulse.mp_gamma = number(load["mp_gamma"], "load.mp_gamma");
+  if (load.contains("mp_nu")) s.pulse.mp_nu = number(load["mp_nu"], "load.mp_nu");
+}
+
 void read_load(const Json& doc, System& s) {
   const Json& load = member(doc, "load", "load");
   if (!load.is_object()) bad("load", "must be an object");
   const Json& kind = member(load, "kind", "load.kind");
+  if (kind == "record") return read_record_load(load, s);
+  if (kind == "sinusoids") return read_sinusoid_load(load, s);
   if (kind != "pulse")
-    bad("load.kind", clip(kind.dump()) + " is not a kind this program knows (it knows \"pulse\")");
+    bad("load.kind", clip(kind.dump()) + " is not a kind this program knows (it knows \"pulse\", \"sinusoids\", \"record\")");
   const std::optional<PulseShape> shape = shape_of(member(load, "shape", "load.shape"));
-  if (!shape) bad("load.shape", "must be \"sine\" or \"cosine\"");
+  if (!shape || !paper_pulse(*shape)) bad("load.shape", "must be \"sine\" or \"cosine\"");
   s.pulse.shape = *shape;
   s.pulse.amplitude = number(member(load, "amplitude", "load.amplitude"), "load.amplitude");
   s.pulse.w = number(member(load, "w", "load.w"), "load.w");
@@ -290,11 +371,7 @@ CaseDocument case_document(const System& s, const Settings& settings) {
   j["contacts"] = std::move(contacts);
   j["eps"] = s.eps;
   j["xi"] = s.xi;
-  j["load"] = {{"kind", "pulse"},
-               {"shape", name(s.pulse.shape)},
-               {"amplitude", s.pulse.amplitude},
-               {"w", s.pulse.w},
-               {"duration", s.pulse.duration()}};
+  j["load"] = load_json(s.pulse);
   j["a_p"] = s.a_p;
   j["length_scale"] = s.length_scale();
   j["t_end"] = s.t_end;

@@ -27,6 +27,9 @@ enum class LoadRule { step_mean, end_samples };
 // T_p integrates only up to T_p, where cos = 1 and sin = 0 exactly.
 // With LoadRule::end_samples the loaded steps are k = 0 .. full_steps and end_mean(k) gives
 // their load (std::sin/cos at every sample: this rule is for comparisons, not for speed).
+// Any other load (a record, a pulse model: `general`) is read through a LoadCursor over the
+// full_steps steps that reach its end: the exact step mean (a record's trapezoids), or the
+// end samples, at O(1) a step.
 struct PulseLoad {
   double wh = 0.0;                                  // w_p h
   double cos_wh = 1.0, sin_wh = 0.0;                // the rotation of one step
@@ -35,6 +38,7 @@ struct PulseLoad {
   long full_steps = 0;                              // steps 0 .. full_steps-1 lie inside [0, T_p]
   bool straddle = false;                            // step full_steps contains T_p inside it
   LoadRule rule = LoadRule::step_mean;
+  bool general = false;                             // not the paper's pulse
   double theta = 0.5, h = 0.0;  // end_samples: the weight of the end sample, the step
   Pulse pulse;
 
@@ -58,6 +62,11 @@ inline PulseLoad make_pulse_load(const Pulse& pulse, double h, LoadRule rule = L
   l.theta = theta;
   l.h = h;
   l.pulse = pulse;
+  if (!pulse.paper()) {
+    l.general = true;
+    l.full_steps = static_cast<long>(std::ceil(pulse.duration() / h));
+    return l;
+  }
   l.wh = pulse.w * h;
   l.cos_wh = std::cos(l.wh);
   l.sin_wh = std::sin(l.wh);
@@ -127,7 +136,17 @@ using Tally = StepTally;
 template <typename Step>
 [[gnu::always_inline]] inline bool drive(const PulseLoad& l, const long& k, long k_end, Step&& step) {
   bool ok = true;
-  if (l.rule == LoadRule::end_samples) {
+  if (l.general) {
+    LoadCursor load(l.pulse);
+    const long loaded_end = std::min(k_end, l.full_steps + 1);  // + 1: an end sample at the load's end
+    while (ok && k < loaded_end) {
+      const double t0 = static_cast<double>(k) * l.h, t1 = static_cast<double>(k + 1) * l.h;
+      const double exact = load.mean(t0, t1);
+      ok = l.rule == LoadRule::end_samples
+               ? step((1.0 - l.theta) * load.sample(t0, l.h) + l.theta * load.sample(t1, l.h), exact)
+               : step(exact, exact);
+    }
+  } else if (l.rule == LoadRule::end_samples) {
     const long loaded_end = std::min(k_end, l.full_steps + 1);
     while (ok && k < loaded_end) ok = step(l.end_mean(k), l.exact_mean(k));
   } else {

@@ -140,6 +140,7 @@ ModelPtr compile(const std::string& xml, std::string& error) {
 
 Load::Load(const System& sys, const Units& units, const std::vector<int>& contact_of_geom, int stages)
     : sys_(sys),
+      load_(sys.pulse),
       units_(units),
       contact_of_geom_(contact_of_geom),
       stages_(stages),
@@ -179,7 +180,7 @@ void Load::evaluate(const mjModel* m, mjData* d) {
   }
   ++evaluations_;
   // The pulse at this evaluation's own time, in model units (a_g T^2 / L).
-  const double a = sys_.pulse.accel(d->time * units_.time) * units_.time * units_.time / units_.length;
+  const double a = load_.accel(d->time * units_.time) * units_.time * units_.time / units_.length;
   for (std::size_t i = 0; i < mass_.size(); ++i) d->qfrc_applied[i] = -mass_[i] * a;
 }
 

@@ -107,6 +107,7 @@ class Load {
   void collect(const mjData* d);
 
   const System& sys_;
+  LoadCursor load_;  // a_g at each evaluation (RK4's stages go back and forth within a step)
   Units units_;
   const std::vector<int>& contact_of_geom_;
   int stages_;

@@ -40,7 +40,7 @@ Result fail(Status status, std::string message) {
 class Engine : public StepEngine {
  public:
   Engine(const System& sys, const Config& config, double h, double gamma)
-      : StepEngine(sys), sys_(sys), config_(config), h_(h), gamma_h_(gamma * h), joint_(ix(sys.n_contacts()), 0),
+      : StepEngine(sys), sys_(sys), load_(sys.pulse), config_(config), h_(h), gamma_h_(gamma * h), joint_(ix(sys.n_contacts()), 0),
         feedback_(ix(sys.n_contacts()), dJointFeedback{}) {}
 
   // False when ODE could not make the world.
@@ -131,7 +131,7 @@ class Engine : public StepEngine {
   // Spring, dashpot and ground load of each body at the start of step k. Returns false
   // if a force is not finite (ODE must never see one).
   bool apply_loads(long k) {
-    const double a_g = sys_.pulse.accel(static_cast<double>(k) * h_);
+    const double a_g = load_.accel(static_cast<double>(k) * h_);
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
       const Body& b = sys_.bodies[i];
       const double f = -b.k * out_.u[i] - b.c * out_.v[i] - b.m * a_g;
@@ -189,6 +189,7 @@ class Engine : public StepEngine {
   }
 
   const System& sys_;
+  LoadCursor load_;  // a_g at each step's start, O(1) on a record
   const Config& config_;
   double h_;
   double gamma_h_;  // Settings::gamma h, for the predicted rule

@@ -3,6 +3,8 @@
 #include "solvers/siconos/engine.hpp"
 
 #include <D1MinusLinearOSI.hpp>
+
+#include <cstdint>
 #include <EventDriven.hpp>
 #include <Interaction.hpp>
 #include <LCP.hpp>
@@ -87,11 +89,17 @@ class CoutCapture {
 };
 
 // The parameters of a body's load plugin, in its DynamicalSystem's z vector.
-enum LoadParameter { kMass, kCosine, kAmplitude, kSampleStep, kLoadParameters };
+// A sampler's address is held as two whole numbers below 2^32, each exact as a double.
+enum LoadParameter { kMass, kCosine, kAmplitude, kSampleStep, kSamplerHigh, kSamplerLow, kLoadParameters };
 
 // Siconos' external force F_ext(t) = -m a_g(t) of one body. A plain function of t and z:
-// reentrant.
+// reentrant (a sampler is its run's own).
 void ground_load(double t, unsigned int, double* f, unsigned int, double* z) {
+  if (z[kSamplerHigh] != 0.0 || z[kSamplerLow] != 0.0) {
+    const auto address = (static_cast<std::uintptr_t>(z[kSamplerHigh]) << 32) | static_cast<std::uintptr_t>(z[kSamplerLow]);
+    f[0] = -z[kMass] * (*reinterpret_cast<GroundSampler*>(address))(t);
+    return;
+  }
   f[0] = -z[kMass] * ground_sample(z[kCosine] != 0.0, z[kAmplitude], t, z[kSampleStep]);
 }
 
@@ -114,10 +122,13 @@ struct Model {
   SP::NonSmoothDynamicalSystem nsds;
   std::vector<SP::LagrangianDS> bodies;
   std::vector<SP::Interaction> contacts;
+  // The load plugin's sampler, kept as long as the model: a run's ModelSpec may be a temporary.
+  std::shared_ptr<GroundSampler> sampler;
 };
 
 Model make_model(const ModelSpec& spec, bool diagonal = false) {
   Model m;
+  m.sampler = spec.sampler;
   m.nsds = std::make_shared<NonSmoothDynamicalSystem>(0.0, spec.t_end);
   for (const BodySpec& b : spec.bodies) {
     SP::LagrangianDS body;
@@ -132,6 +143,9 @@ Model make_model(const ModelSpec& spec, bool diagonal = false) {
     (*z)(kCosine) = spec.cosine ? 1.0 : 0.0;
     (*z)(kAmplitude) = spec.amplitude;
     (*z)(kSampleStep) = spec.sample_step;
+    const auto address = reinterpret_cast<std::uintptr_t>(spec.sampler.get());
+    (*z)(kSamplerHigh) = static_cast<double>(address >> 32);
+    (*z)(kSamplerLow) = static_cast<double>(address & 0xffffffffu);
     body->setzPtr(z);
     body->setComputeFExtFunction(&ground_load);
     m.nsds->insertDynamicalSystem(body);

@@ -27,6 +27,15 @@ struct BodySpec {
   double u0, v0;   // start state
 };
 
+// A ground load other than the paper's pulses (a record, a pulse model): a_g at time t, both
+// in the pulse's units, from the caller's side (model.cpp: through the one load interface,
+// cases/load.hpp). One per run: it remembers where it last looked.
+class GroundSampler {
+ public:
+  virtual ~GroundSampler() = default;
+  virtual double operator()(double t) = 0;
+};
+
 struct ContactSpec {
   int left, right;  // bodies; left = -1: the wall
 };
@@ -38,6 +47,9 @@ struct ModelSpec {
   bool cosine = false;      // a_g = amplitude cos t, else amplitude sin t, for 0 <= t <= 2 pi
   double amplitude = 1.0;   // +-1
   double sample_step = 0.0;  // the load plugin samples a_g by Pulse::sample(t, sample_step)
+  // Set: the load is the sampler's (cosine and amplitude are not used). The load plugin
+  // reaches it through the body's z vector (engine.cpp).
+  std::shared_ptr<GroundSampler> sampler;
   double t_end = 0.0;
 };
 

@@ -14,6 +14,24 @@ double ground_sample(bool cosine, double amplitude, double t, double step) {
 
 }  // namespace engine
 
+namespace {
+
+// A record or a pulse model for Siconos' load plugin: the case's own load (LoadCursor),
+// sampled at step ends as Pulse::sample does, in the pulse's units.
+class CaseLoad : public engine::GroundSampler {
+ public:
+  CaseLoad(const System& s, double sample_step)
+      : pulse_(s.pulse), cursor_(pulse_), time_(1.0 / s.pulse.w), accel_(s.a_p), step_(sample_step) {}
+  double operator()(double t) override { return cursor_.sample(t * time_, step_) / accel_; }
+
+ private:
+  Pulse pulse_;  // a copy (the record's samples shared), so the sampler outlives nothing it reads
+  LoadCursor cursor_;
+  double time_, accel_, step_;
+};
+
+}  // namespace
+
 Units units_of(const System& s) { return {s.length_scale(), 1.0 / s.pulse.w}; }
 
 engine::ModelSpec model_spec(const System& s, double sample_step, double t_end) {
@@ -32,6 +50,7 @@ engine::ModelSpec model_spec(const System& s, double sample_step, double t_end) 
   spec.cosine = s.pulse.shape == PulseShape::cosine;
   spec.amplitude = s.pulse.amplitude / s.a_p;
   spec.sample_step = sample_step / units.time;
+  if (!s.pulse.paper()) spec.sampler = std::make_shared<CaseLoad>(s, sample_step);
   spec.t_end = t_end / units.time;
   return spec;
 }

@@ -71,6 +71,7 @@ class Engine : public StepEngine {
     if (options.integrator == engine::Integrator::bilbao && spec_.amplitude != 0.0) {
       engine::ModelSpec unloaded = spec_;
       unloaded.amplitude = 0.0;
+      unloaded.sampler = nullptr;
       twin_.emplace(unloaded, plan.h / units_.time, options);
     }
     read_state();

@@ -1,0 +1,55 @@
+#pragma once
+// A recorded ground acceleration: samples (t_i, a_i), linear between them, zero before the
+// first and after the last. Read once by cases/ (case-set files, `run --record`) and shared
+// read-only by every run that uses it (System::pulse holds a shared_ptr to it), so that a
+// sweep over a record holds its samples once.
+//
+// Two formats, told apart by the file's extension (cases/README.md, "Records"):
+//   .at2 (any case)  PEER NGA: four header lines (the third names the units, which must be
+//                    g; the fourth gives NPTS and DT, as "NPTS= 3930, DT= .0100 SEC" or as
+//                    "3930 .0100 NPTS, DT"), then NPTS values in g, any number per line.
+//                    t_i = i DT (i = 0 .. NPTS-1) and a_i = value_i g, g = 9.80665 m/s^2
+//                    (the standard gravity: the NGA flatfiles' unit).
+//   anything else    CSV: one sample per line, "t, a_g" (a_g in m/s^2, or any unit the
+//                    case's a_p is given in), '#' lines are comments, blank lines are
+//                    skipped, and a first line with no number in it is a header.
+// Every sample time is finite and >= 0, and the times rise strictly; every value is finite;
+// at least two samples and at most kMaxRecordSamples, not all zero. A bad record is a
+// RecordError "<file>:<line>: <reason>".
+
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace pb {
+
+inline constexpr double kStandardGravity = 9.80665;  // m/s^2: an AT2 record's unit g
+// The reference handles every sample as an event and allows 1e6 events per run by default
+// (Settings::step_cap): 2e5 samples (over 16 minutes at 0.005 s, ten times NGA's longest
+// records) leave room for the impacts.
+inline constexpr std::size_t kMaxRecordSamples = 200'000;
+
+struct RecordError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Record {
+  std::string source;        // the file it was read from, as named
+  std::vector<double> t, a;  // sample times (rising) and accelerations
+  double peak = 0.0;         // max |a_i|: the record's peak ground acceleration
+  double length() const { return t.back(); }
+};
+
+// The record in `text` (the format by `source`'s extension); throws RecordError.
+Record parse_record(std::string_view text, std::string_view source);
+// A record from its samples (the external protocol's), checked as a file's are, a sample's
+// index (from 1) standing for its line; throws RecordError.
+Record record_from_samples(std::vector<double> t, std::vector<double> a, std::string_view source);
+// Reads and parses the file; throws RecordError ("<file>: cannot read: <why>" too).
+std::shared_ptr<const Record> read_record(const std::filesystem::path& file);
+
+}  // namespace pb
