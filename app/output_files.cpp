@@ -166,28 +166,54 @@ void write_to_stdout(const std::function<void(std::ostream&)>& write) {
   if (error != 0) throw std::runtime_error(std::string("stdout: write failed: ") + std::strerror(error));
 }
 
-FlushedFile::FlushedFile(const fs::path& file, Mode mode)
-    : path_(file), file_(std::fopen(file.c_str(), mode == Mode::append ? "a" : "w")) {
+BatchedFile::BatchedFile(const fs::path& file, Mode mode, Duration max_delay)
+    : path_(file), file_(std::fopen(file.c_str(), mode == Mode::append ? "a" : "w")), max_delay_(max_delay) {
   if (!file_) throw std::runtime_error(file.string() + ": cannot create: " + std::strerror(errno));
 }
 
-FlushedFile::~FlushedFile() {
-  if (file_) std::fclose(file_);
-}
-
-void FlushedFile::write_line(std::string_view line) {
-  if (!file_) throw std::runtime_error(path_.string() + ": write after close");
-  const bool ok = std::fwrite(line.data(), 1, line.size(), file_) == line.size() && std::fputc('\n', file_) != EOF &&
-                  std::fflush(file_) == 0;
-  if (!ok) throw std::runtime_error(path_.string() + ": write failed: " + std::strerror(errno));
-}
-
-void FlushedFile::close() {
-  if (file_ && std::fclose(file_) != 0) {
-    file_ = nullptr;
-    throw std::runtime_error(path_.string() + ": close failed: " + std::strerror(errno));
+BatchedFile::~BatchedFile() {
+  if (!file_) return;
+  try {
+    write_batch();
+  } catch (const std::exception&) {
+    // Unwinding (a sweep that failed), or a close() that was never reached: nothing to report to.
   }
+  std::fclose(file_);
+}
+
+void BatchedFile::add_line(std::string_view line) {
+  if (!error_.empty()) throw std::runtime_error(error_);
+  if (batch_.empty()) oldest_ = std::chrono::steady_clock::now();
+  batch_.append(line);
+  batch_.push_back('\n');
+  write_due();
+}
+
+void BatchedFile::write_due() {
+  if (!error_.empty()) throw std::runtime_error(error_);
+  if (batch_.empty()) return;
+  if (batch_.size() >= kMaxBatchBytes || std::chrono::steady_clock::now() - oldest_ >= max_delay_) write_batch();
+}
+
+void BatchedFile::flush() { write_batch(); }
+
+void BatchedFile::write_batch() {
+  if (!error_.empty()) throw std::runtime_error(error_);
+  if (!file_) throw std::runtime_error(path_.string() + ": write after close");
+  if (batch_.empty()) return;
+  if (std::fwrite(batch_.data(), 1, batch_.size(), file_) != batch_.size() || std::fflush(file_) != 0) {
+    error_ = path_.string() + ": write failed: " + std::strerror(errno);
+    throw std::runtime_error(error_);
+  }
+  batch_.clear();
+}
+
+void BatchedFile::close() {
+  if (!file_) return;
+  write_batch();
+  const int closed = std::fclose(file_);
   file_ = nullptr;
+  if (closed != 0) throw std::runtime_error(path_.string() + ": close failed: " + std::strerror(errno));
 }
 
 }  // namespace pb::app

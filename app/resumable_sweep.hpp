@@ -1,7 +1,8 @@
 #pragma once
 // The sweep that `spectrum`, `workprecision` and `stress` share: resumed from its partial
 // file, run on every process of the job (sweep/processes.hpp), each new row appended to the
-// partial file, flushed, as soon as it reaches the leader.
+// partial file within 0.6 s of reaching the leader (in batches: resumable_sweep.cpp says
+// why and what an interrupt loses).
 //
 // The partial file is named after the output (partial_file_name). A rerun with the same
 // output reads it (read_earlier_rows), refuses it with a BadInput if its rows are not this
@@ -47,11 +48,13 @@ std::vector<Row> read_earlier_rows(const std::string& partial, std::span<const C
 // released before a second signal ends the process at once.
 // On the leader, returns every row (earlier and new, sorted by run then point), or nullopt
 // when interrupted: then one line on stderr says how many tasks are done and where. The
-// other processes return an empty list.
+// other processes return an empty list. `lines`, when given (the leader's), receives each
+// new row's line of the partial file by task (run * cases + point), "" for the earlier rows:
+// a sweep of one run writes its output from them instead of formatting every row again.
 std::optional<std::vector<Row>> run_resumable(std::string_view command, const Processes& processes,
                                               std::span<const Case> cases, std::span<const SweepRun> runs,
                                               const std::string& partial, OutputLock& lock, std::vector<Row> earlier,
-                                              unsigned threads);
+                                              unsigned threads, std::vector<std::string>* lines = nullptr);
 
 // Runs `write` (the command's outputs), then removes the partial file, which is no longer
 // needed. A failure to write keeps it, and the error says so: its rows are the result.

@@ -16,8 +16,16 @@ namespace pb::app {
 
 namespace {
 
-void write_final(const SpectrumFlags& flags, const std::vector<Row>& rows) {
-  const auto csv = [&](std::ostream& out) { write_csv(out, rows); };
+// lines: each row's CSV line by point as the sweep wrote it to the partial file ("" for a
+// row read back from it), so that no row is formatted twice.
+void write_final(const SpectrumFlags& flags, const std::vector<Row>& rows, const std::vector<std::string>& lines) {
+  const auto csv = [&](std::ostream& out) {
+    out << csv_header() << '\n';
+    for (const Row& row : rows) {
+      const std::string& line = lines[row.point];
+      out << (line.empty() ? csv_line(row) : line) << '\n';
+    }
+  };
   if (flags.out.empty())
     write_to_stdout(csv);
   else
@@ -55,11 +63,12 @@ int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const 
     earlier = read_earlier_rows(partial, set.cases, runs);
   }, exit_code_of);
 
-  const auto rows =
-      run_resumable("spectrum", processes, set.cases, runs, partial, lock, std::move(earlier), flags.threads);
+  std::vector<std::string> lines;
+  const auto rows = run_resumable("spectrum", processes, set.cases, runs, partial, lock, std::move(earlier),
+                                  flags.threads, &lines);
   if (!rows) return kInterrupted;
   if (!processes.leader()) return 0;
-  write_outputs(partial, [&] { write_final(flags, *rows); });
+  write_outputs(partial, [&] { write_final(flags, *rows, lines); });
   report_written(rows->size(), flags.out);
   return 0;
 }

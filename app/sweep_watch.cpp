@@ -62,13 +62,14 @@ void report_written(std::size_t rows, const std::string& file) {
 }
 
 SweepWatch::SweepWatch(std::string command, std::string unit, std::size_t total, std::size_t resumed,
-                       Progress progress, std::function<void()> abandon)
+                       Progress progress, std::function<void()> abandon, std::function<void()> on_tick)
     : command_(std::move(command)),
       unit_(std::move(unit)),
       total_(total),
       resumed_(resumed),
       progress_(progress),
       abandon_(std::move(abandon)),
+      on_tick_(std::move(on_tick)),
       signals_(stop_signals()),
       done_(resumed) {
   pthread_sigmask(SIG_BLOCK, &signals_, nullptr);
@@ -83,7 +84,13 @@ SweepWatch::SweepWatch(std::string command, std::string unit, std::size_t total,
 SweepWatch::~SweepWatch() { finish(); }
 
 void SweepWatch::finish() {
-  finished_ = true;
+  {
+    // Under the mutex: the watcher tests finished_ and starts waiting with it held, so the
+    // notification cannot fall between the two.
+    const std::lock_guard lock(wake_mutex_);
+    finished_ = true;
+  }
+  wake_.notify_all();
   if (thread_.joinable()) {
     thread_.join();
     // A stopped sweep is on its way out (exit 130): its handler stays, so that a second
@@ -98,9 +105,15 @@ void SweepWatch::finish() {
 }
 
 void SweepWatch::watch() {
-  const timespec tick{0, std::chrono::nanoseconds(kTick).count()};
-  while (!finished_) {
-    const bool taken = sigtimedwait(&signals_, nullptr, &tick) > 0;
+  const timespec now{0, 0};  // sigtimedwait takes a pending signal without waiting
+  while (true) {
+    {
+      std::unique_lock lock(wake_mutex_);
+      if (wake_.wait_for(lock, kTick, [this] { return finished_.load(); })) return;
+    }
+    if (on_tick_) on_tick_();
+    bool taken = false;
+    while (sigtimedwait(&signals_, nullptr, &now) > 0) taken = true;  // signals do not queue: one or none
     if (taken || g_caught != 0) {
       g_caught = 0;
       if (cancel_) abandon_();

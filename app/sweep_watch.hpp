@@ -15,14 +15,23 @@
 // next tick. A first signal cancels (no new points start; running ones finish); a second one
 // calls `abandon`, which must not return (it ends the process without waiting for the
 // running points).
+//
+// The watcher wakes every tick (100 ms) on a condition variable, and finish() wakes it at
+// once: it used to wait in sigtimedwait for the tick's end, so that every sweep ended up to
+// 100 ms after its last point. Signals are taken at each wake-up (sigtimedwait with no
+// wait), so a Ctrl-C is acted on within one tick rather than at once; the bar never showed
+// faster than that. `on_tick`, when given, runs on the watcher's thread at every wake-up
+// but the last (a resumed sweep flushes its partial file there: app/resumable_sweep.cpp).
 
 #include <signal.h>
 
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstddef>
 #include <cstdio>
 #include <functional>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <thread>
@@ -71,7 +80,7 @@ class SweepWatch {
   // command, unit: for progress_line ("spectrum", "points"). resumed: of the total, the
   // tasks an earlier run finished (not counted in the rate).
   SweepWatch(std::string command, std::string unit, std::size_t total, std::size_t resumed, Progress progress,
-             std::function<void()> abandon);
+             std::function<void()> abandon, std::function<void()> on_tick = {});
   ~SweepWatch();
   SweepWatch(const SweepWatch&) = delete;
   SweepWatch& operator=(const SweepWatch&) = delete;
@@ -92,12 +101,15 @@ class SweepWatch {
   std::size_t resumed_;
   Progress progress_;
   std::function<void()> abandon_;
+  std::function<void()> on_tick_;
   sigset_t signals_;  // the ones the watcher takes
   struct sigaction previous_[2] = {};  // SIGINT's and SIGTERM's actions before the watcher
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   std::atomic<std::size_t> done_;
   std::atomic<bool> cancel_{false};
   std::atomic<bool> finished_{false};
+  std::mutex wake_mutex_;  // with wake_: finish() ends the watcher's wait at once
+  std::condition_variable wake_;
   bool drawn_ = false;  // a bar is on the screen
   std::chrono::steady_clock::time_point last_line_ = start_;
   std::thread thread_;

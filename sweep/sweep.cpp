@@ -139,7 +139,7 @@ void add_monitor(Row& row, const SolverInfo& solver, const System& system, Setti
 }  // namespace
 
 Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const Settings& settings,
-              int repetitions) {
+              int repetitions, NoContactCache* no_contact) {
   Row row;
   row.input = c;
   row.point = point;
@@ -179,7 +179,7 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
   row.penetration_steps = penetration_steps(row.result);
 
   try {
-    row.pi1_no_contact = no_contact_pi1(system, settings);
+    row.pi1_no_contact = no_contact ? no_contact->pi1(system, settings) : no_contact_pi1(system, settings);
   } catch (...) {
     // The solver's own result stands; only the comparison value is missing.
     if (!row.result.message.empty()) row.result.message += "; ";
@@ -216,6 +216,7 @@ std::vector<Row> run_sweep(std::span<const Case> cases, std::span<const SweepRun
     return t;
   };
   std::atomic<bool> stop{false};  // a callback threw
+  NoContactCache no_contact;      // one per sweep: every run's points share it
 
   std::mutex mutex;  // guards everything below and serialises the callbacks
   std::vector<Row> rows;
@@ -238,7 +239,8 @@ std::vector<Row> run_sweep(std::span<const Case> cases, std::span<const SweepRun
       const std::optional<std::size_t> task = next_task();
       if (!task || *task >= total) return;
       const std::size_t r = *task / n;
-      Row row = run_point(cases[*task % n], *task % n, *runs[r].solver, settings[r], runs[r].repetitions);
+      Row row =
+          run_point(cases[*task % n], *task % n, *runs[r].solver, settings[r], runs[r].repetitions, &no_contact);
       row.run = r;
       if (cancelled()) return;  // the run may have been cut short by the stop: not a result
 

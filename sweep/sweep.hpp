@@ -25,6 +25,7 @@
 #include "cases/case.hpp"
 #include "solvers/solver.hpp"
 #include "rows/row.hpp"
+#include "sweep/no_contact_cache.hpp"
 
 namespace pb {
 
@@ -52,10 +53,11 @@ inline constexpr double kRepetitionBudget = 0.01;  // CPU seconds per point, ove
 
 // Solves one case: builds the System, times solver.solve alone (as above, 1 <= repetitions
 // <= kMaxRepetitions), adds the monitor's measurements when settings.monitor asks and the
-// no-contact Pi1. Never throws for a bad case or a throwing solver: the row then has
-// Status::failed and the reason in its message.
+// no-contact Pi1 (from `no_contact` when given: a sweep's cache, sweep/no_contact_cache.hpp).
+// Never throws for a bad case or a throwing solver: the row then has Status::failed and the
+// reason in its message.
 Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const Settings& settings,
-              int repetitions = 1);
+              int repetitions = 1, NoContactCache* no_contact = nullptr);
 
 // One solver with its settings, run over every case of a sweep. settings.monitor: the rows
 // carry the monitor's measurements, from one untimed pass more (run_point).

@@ -188,6 +188,49 @@ TEST_F(SweepFiles, TheInterruptedLineHasNoTerminalControlWhenStderrIsAFile) {
   EXPECT_EQ(err.find('\r'), std::string::npos);
 }
 
+// Rows reach the partial file in batches (app/resumable_sweep.cpp), each within 0.6 s of
+// finishing: a finished row is written while the next point runs, however long that one
+// takes, and a kill (which no handler sees) leaves it in the file. Point 0, a wall at
+// n_free = 1, takes milliseconds at a million steps per period; point 1, a chain of 100
+// bodies at n_free = 100, far longer than the test.
+TEST_F(SweepFiles, AFinishedRowReachesThePartialFileWhileTheNextPointRuns) {
+  write("two.toml", R"(name = "fast then slow"
+[defaults]
+pulse = "sine"
+directivity = "normal"
+eps = 0.5
+pi3 = 0.5
+pi2 = 1
+[[family]]
+name = "fast"
+scene = "wall"
+n_free = 1
+[[family]]
+name = "slow"
+scene = "chain"
+bodies = 100
+pi5 = 0.1
+pi6 = 1
+n_free = 100
+)");
+  const auto start = std::chrono::steady_clock::now();
+  const pid_t pid = spawn({"spectrum", "two.toml", "--out", "out.csv", "--solver", "moreau-jean", "--steps", "1000000",
+                           "--step-cap", "2000000000", "--threads", "1"},
+                          file("log.txt"));
+  const fs::path partial = file("out.csv.partial");
+  while (line_count(read_text(partial)) < 2 && std::chrono::steady_clock::now() - start < std::chrono::seconds(30))
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, nullptr, 0);
+  const std::string rows = read_text(partial);
+  ASSERT_EQ(line_count(rows), 2u) << rows;
+  EXPECT_NE(rows.find("\nfast,0,wall,"), std::string::npos) << rows;
+  // The point's own time and the program's start come on top of the 0.6 s: generous
+  // bounds for a loaded machine, where the row would otherwise wait for point 1's end.
+  EXPECT_LT(seconds, 10.0);
+}
+
 // A path is never part of a shell command: the baseline's provenance (git) runs from an
 // argument vector, so a directory named like a command injection is only a directory.
 TEST_F(SweepFiles, ABaselinePathIsNeverRunAsAShellCommand) {

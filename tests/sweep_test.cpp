@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <limits>
 #include <numbers>
@@ -18,6 +20,7 @@
 #include "solvers/solver.hpp"
 #include "rows/row.hpp"
 #include "rows/row_read.hpp"
+#include "sweep/no_contact_cache.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb {
@@ -143,6 +146,97 @@ TEST(Sweep, AnExceptionFromOnRowStopsTheSweepAndIsRethrown) {
   };
   EXPECT_THROW(run_sweep(cases, reference_solver(), Settings{}, options), std::runtime_error);
   EXPECT_EQ(calls, 1u);  // later rows are not reported once a callback failed
+}
+
+// The sweep's no-contact Pi1 comes from a cache shared by its runs and threads
+// (sweep/no_contact_cache.hpp): every row still has the value of its own solve, bit for bit.
+TEST(Sweep, EveryRowHasTheNoContactPi1OfItsOwnSolveBitForBit) {
+  const std::vector<Case> cases = smoke_cases();
+  const SweepRun runs[] = {{&reference_solver(), {}}, {find_solver("moreau-jean"), {}}};
+  SweepOptions options;
+  options.threads = 2;
+  const std::vector<Row> rows = run_sweep(cases, runs, options);
+  ASSERT_EQ(rows.size(), 2 * cases.size());
+  for (const Row& row : rows) {
+    const double solved = no_contact_pi1(make_system(cases[row.point]), Settings{});
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(row.pi1_no_contact), std::bit_cast<std::uint64_t>(solved))
+        << "run " << row.run << " point " << row.point;
+  }
+}
+
+// The paper set's Fig. 10 family (820 points, of 20 no-contact problems: its points differ
+// in the contact's Pi terms): a point that shares body 0, the pulse and the durations with an
+// earlier one gets its value from the cache, and that value is the one its own solve gives.
+TEST(NoContactCache, GivesEveryPointItsOwnSolvesValueAndSolvesSharedProblemsOnce) {
+  const std::vector<Case> all = load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/paper.toml").cases;
+  NoContactCache cache;
+  std::size_t points = 0;
+  for (const Case& c : all) {
+    if (c.family != "fig10") continue;
+    ++points;
+    const System s = make_system(c);
+    const double cached = cache.pi1(s, Settings{});
+    const double solved = no_contact_pi1(s, Settings{});
+    ASSERT_EQ(std::bit_cast<std::uint64_t>(cached), std::bit_cast<std::uint64_t>(solved)) << "point " << points;
+  }
+  EXPECT_EQ(points, 820u);
+  EXPECT_EQ(cache.size(), cache.solves());
+  EXPECT_EQ(cache.solves(), 20u);
+}
+
+// The key holds every value of the one-body system the no-contact solve reads, and nothing
+// of the other bodies.
+TEST(NoContactKey, ChangesWithEveryValueOfBodyZerosProblemAndWithNoOtherBody) {
+  Case c;
+  c.scene = Scene::row3;
+  c.pulse = PulseShape::cosine;
+  c.pi2 = 0.8;
+  c.pi3 = 0.5;
+  c.pi5 = 0.5;
+  c.pi6 = 1.0;
+  c.pi7 = 2.0;
+  c.pi8 = 1.0;
+  c.eps = 0.5;
+  const System s = make_system(c);
+  const NoContactKey key = no_contact_key(s);
+  const auto changed = [&](auto&& change) {
+    System other = s;
+    change(other);
+    return !(no_contact_key(other) == key);
+  };
+  Body& (*body0)(System&) = [](System& x) -> Body& { return x.bodies[static_cast<std::size_t>(x.ref)]; };
+  EXPECT_TRUE(changed([&](System& x) { body0(x).m *= 2; }));
+  EXPECT_TRUE(changed([&](System& x) { body0(x).w *= 2; }));
+  EXPECT_TRUE(changed([&](System& x) { body0(x).k *= 2; }));
+  EXPECT_TRUE(changed([&](System& x) { body0(x).c *= 2; }));
+  EXPECT_TRUE(changed([](System& x) { x.pulse.shape = PulseShape::sine; }));
+  EXPECT_TRUE(changed([](System& x) { x.pulse.amplitude = -x.pulse.amplitude; }));
+  EXPECT_TRUE(changed([](System& x) { x.pulse.w *= 2; }));
+  EXPECT_TRUE(changed([](System& x) { x.a_p *= 2; }));
+  EXPECT_TRUE(changed([](System& x) { x.t_end *= 2; }));
+  EXPECT_TRUE(changed([](System& x) { x.t_min *= 2; }));
+  EXPECT_TRUE(changed([](System& x) { x.delta *= 2; }));
+  EXPECT_TRUE(changed([](System& x) { x.eps *= 2; }));
+  EXPECT_TRUE(changed([](System& x) { x.xi *= 2; }));
+  EXPECT_TRUE(changed([](System& x) { x.u_start.assign(3, 0.25); }));
+  EXPECT_TRUE(changed([](System& x) { x.v_start.assign(3, 0.25); }));
+  EXPECT_FALSE(changed([](System& x) { x.bodies[0].m *= 2; }));  // body 1, left of body 0
+  EXPECT_FALSE(changed([](System& x) { x.bodies[2].w *= 2; }));  // body 2
+  EXPECT_FALSE(changed([](System& x) { x.u_start.assign(3, 0.0); }));  // rest, said explicitly
+}
+
+// A solve cut short (a sweep being stopped: NaN) is not kept; the next point solves again.
+TEST(NoContactCache, KeepsNoValueOfASolveCutShort) {
+  const System s = make_system(smoke_cases().front());
+  NoContactCache cache;
+  const std::atomic<bool> stop{true};
+  Settings stopped;
+  stopped.stop = &stop;
+  EXPECT_TRUE(std::isnan(cache.pi1(s, stopped)));
+  EXPECT_EQ(cache.size(), 0u);
+  EXPECT_TRUE(std::isfinite(cache.pi1(s, Settings{})));
+  EXPECT_EQ(cache.solves(), 2u);
+  EXPECT_EQ(cache.size(), 1u);
 }
 
 Result throwing_solve(const System&, const Settings&) { throw std::runtime_error("matrix is singular"); }

@@ -1,0 +1,61 @@
+#pragma once
+// The no-contact Pi1 of a sweep's points, solved once per distinct no-contact problem.
+//
+// Every row carries Pi1 of body 0 alone (no_contact_pi1, the reference on a one-body
+// System), and most points of a spectrum share it: the paper set's 23 820 points differ in
+// the contact's Pi terms far more than in body 0's. Solved per point it cost 13 us, 22 % of
+// the reference sweep's CPU (issue 23). A sweep keeps one cache for all its runs and
+// threads; a miss solves outside the lock, so two threads may solve one key at once and
+// store the same value.
+//
+// The key is every value of the one-body System that no_contact_pi1 solves
+// (event_driven.cpp builds it: body 0, its start state, and the System's other scalars as
+// they are), compared bit for bit, so a hit returns exactly the value a solve would: rows do
+// not change. It keeps t_min, delta and eps although a body alone has no contact: t_min sets
+// the reference's search tolerances (its floor and settle time), and delta and eps cost
+// little to keep (the paper set: 8 176 distinct keys against 6 576 without them and 4 620
+// without t_min too) while a key without them would rely on the reference never reading
+// them there. NoContactKey's static_asserts fail to compile when System, Body or Pulse gain
+// a field, so that the key is extended with it.
+//
+// Only finite values are kept: a solve cut short by its time limit or the sweep's stop (NaN)
+// is solved again by the next point that needs it, as it would have been without a cache.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <mutex>
+#include <unordered_map>
+
+#include "cases/system.hpp"
+#include "solvers/solver.hpp"
+
+namespace pb {
+
+// The bits of every value the one-body no-contact System holds.
+struct NoContactKey {
+  std::array<std::uint64_t, 16> bits{};
+  bool operator==(const NoContactKey&) const = default;
+};
+
+NoContactKey no_contact_key(const System& system);
+
+class NoContactCache {
+ public:
+  // no_contact_pi1(system, limits), from the cache when an earlier point had the same key.
+  // Throws what no_contact_pi1 throws (nothing is stored then).
+  double pi1(const System& system, const Settings& limits);
+
+  std::size_t solves() const;  // misses so far (no_contact_pi1 calls)
+  std::size_t size() const;    // values kept
+
+ private:
+  struct Hash {
+    std::size_t operator()(const NoContactKey& k) const;
+  };
+  mutable std::mutex mutex_;
+  std::unordered_map<NoContactKey, double, Hash> values_;
+  std::size_t solves_ = 0;
+};
+
+}  // namespace pb
