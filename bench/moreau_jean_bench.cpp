@@ -63,7 +63,7 @@ void step_loop(benchmark::State& state, pb::Scene scene) {
     state.PauseTiming();
     auto st = start;
     tally = {};
-    pb::StepMonitor monitor(s);
+    mj::FixedStepMonitor<NB, NC> monitor(s, h);
     state.ResumeTiming();
     const bool ok = monitored ? mj::advance<NB, NC, false, true>(scheme, st, tally, steps, nullptr, &monitor)
                               : mj::advance<NB, NC, false, false>(scheme, st, tally, steps, nullptr);

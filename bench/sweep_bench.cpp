@@ -1,21 +1,65 @@
-// Throughput of whole spectra through the sweep runner, on 1 and on 2 threads, in one run
-// so that the ratio is measured under the same machine load.
+// Whole spectra through the sweep runner, and what a sweep adds to its solver's work (issue
+// 23), each measured in one run so that ratios see the same machine load:
+//
+//   SweepFig4Reference      the Fig. 4 families (3 200 points) through the reference on 1
+//                           and 2 threads (throughput, wall time)
+//   PaperSetReference       the whole paper set (23 820 points): the reference alone, one
+//                           thread (CPU per point), and the whole sweep, run_sweep on 2
+//                           threads (no-contact Pi1 and the sorted rows included; wall time)
+//   PaperSetNoContact       the no-contact Pi1 of every paper-set point, solved per point
+//                           (cache:0, as sweeps did) or through a sweep's NoContactCache
+//   PartialFileRows         a row's way to the partial file: its CSV line, then one flushed
+//                           write per row (batched:0, as sweeps did) or BatchedFile's batches
+//   SpectrumCommand         `poundbench spectrum` on the paper set, 2 threads, to a file:
+//                           the command as the main job runs it (wall time, start included)
 
 #include <benchmark/benchmark.h>
 
-#include <string>
+#include <unistd.h>
 
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "app/output_files.hpp"
 #include "cases/case_set.hpp"
+#include "solvers/event_driven/event_driven.hpp"
 #include "solvers/solver.hpp"
+#include "sweep/no_contact_cache.hpp"
+#include "sweep/partial_rows.hpp"
 #include "sweep/sweep.hpp"
 
 namespace {
 
+// CPU seconds per item of an iteration (the console prints it with an SI prefix: "32u" is
+// 32 us).
+benchmark::Counter per_item(std::size_t items) {
+  return benchmark::Counter(static_cast<double>(items),
+                            benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+const std::vector<pb::Case>& paper_cases() {
+  static const std::vector<pb::Case> cases =
+      pb::load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/paper.toml").cases;
+  return cases;
+}
+
+const std::vector<pb::System>& paper_systems() {
+  static const std::vector<pb::System> systems = [] {
+    std::vector<pb::System> out;
+    for (const pb::Case& c : paper_cases()) out.push_back(pb::make_system(c));
+    return out;
+  }();
+  return systems;
+}
+
 // The Fig. 4 families of the shipped paper set (3 200 points) through the reference.
 void BM_SweepFig4Reference(benchmark::State& state) {
-  const pb::CaseSet all = pb::load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/paper.toml");
   std::vector<pb::Case> cases;
-  for (const pb::Case& c : all.cases)
+  for (const pb::Case& c : paper_cases())
     if (c.family.rfind("fig4", 0) == 0) cases.push_back(c);
   const pb::SolverInfo& solver = *pb::find_solver("event-driven");
   pb::SweepOptions options;
@@ -25,5 +69,90 @@ void BM_SweepFig4Reference(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(cases.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_SweepFig4Reference)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The reference alone on every point of the paper set, one thread: CPU per point.
+void BM_PaperSetReferenceSolverAlone(benchmark::State& state) {
+  const std::vector<pb::System>& systems = paper_systems();
+  for (auto _ : state)
+    for (const pb::System& s : systems) benchmark::DoNotOptimize(pb::event_driven::solve(s, {}).pi1);
+  state.counters["time_per_point"] = per_item(systems.size());
+  state.counters["points"] = static_cast<double>(systems.size());
+}
+BENCHMARK(BM_PaperSetReferenceSolverAlone)->Unit(benchmark::kMillisecond);
+
+// The whole sweep of the paper set through the reference on 2 threads, in process.
+void BM_PaperSetReferenceSweep(benchmark::State& state) {
+  const std::vector<pb::Case>& cases = paper_cases();
+  const pb::SolverInfo& solver = *pb::find_solver("event-driven");
+  pb::SweepOptions options;
+  options.threads = 2;
+  for (auto _ : state) benchmark::DoNotOptimize(pb::run_sweep(cases, solver, {}, options));
+  state.counters["points"] = static_cast<double>(cases.size());
+}
+BENCHMARK(BM_PaperSetReferenceSweep)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The no-contact Pi1 of every paper-set point, one thread: per point (cache:0) or through
+// one NoContactCache, as a sweep now shares it (cache:1). Counter: solves per run.
+void BM_PaperSetNoContact(benchmark::State& state) {
+  const std::vector<pb::System>& systems = paper_systems();
+  const bool cached = state.range(0) != 0;
+  std::size_t solves = 0;
+  for (auto _ : state) {
+    pb::NoContactCache cache;
+    for (const pb::System& s : systems)
+      benchmark::DoNotOptimize(cached ? cache.pi1(s, {}) : pb::no_contact_pi1(s, {}));
+    solves = cached ? cache.solves() : systems.size();
+  }
+  state.counters["solves"] = static_cast<double>(solves);
+  state.counters["time_per_point"] = per_item(systems.size());
+}
+BENCHMARK(BM_PaperSetNoContact)->ArgName("cache")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// 23 820 rows (the smoke set's 40, over and over) to a partial file, one thread: each row's
+// CSV line, then a flushed write per row (batched:0, what sweeps did: one write(2) per row)
+// or BatchedFile's batches of 0.5 s (batched:1, what they do). Counter: CPU per row.
+void BM_PartialFileRows(benchmark::State& state) {
+  static const std::vector<pb::Row> smoke = [] {
+    const auto cases = pb::load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/smoke.toml").cases;
+    return pb::run_sweep(cases, *pb::find_solver("event-driven"), {});
+  }();
+  constexpr std::size_t kRows = 23820;
+  const bool batched = state.range(0) != 0;
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("poundbench-bench-" + std::to_string(::getpid()) + ".partial");
+  for (auto _ : state) {
+    if (batched) {
+      pb::app::BatchedFile out(file, pb::app::BatchedFile::Mode::truncate, std::chrono::milliseconds(500));
+      for (std::size_t i = 0; i < kRows; ++i) out.add_line(pb::partial_line(smoke[i % smoke.size()], false));
+      out.close();
+    } else {
+      std::FILE* out = std::fopen(file.c_str(), "w");
+      for (std::size_t i = 0; i < kRows; ++i) {
+        const std::string line = pb::partial_line(smoke[i % smoke.size()], false);
+        std::fwrite(line.data(), 1, line.size(), out);
+        std::fputc('\n', out);
+        std::fflush(out);
+      }
+      std::fclose(out);
+    }
+  }
+  std::filesystem::remove(file);
+  state.counters["time_per_row"] = per_item(kRows);
+}
+BENCHMARK(BM_PartialFileRows)->ArgName("batched")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// `poundbench spectrum cases/sets/paper.toml --solver event-driven --threads 2 --out FILE`,
+// the main job's paper-reference step: wall time from the start of the program to its end.
+void BM_SpectrumCommandPaperSet(benchmark::State& state) {
+  const std::string out =
+      (std::filesystem::temp_directory_path() / ("poundbench-bench-" + std::to_string(::getpid()) + ".csv")).string();
+  const std::string command = std::string("'") + POUNDBENCH_EXE + "' spectrum '" + POUNDBENCH_SOURCE_DIR +
+                              "/cases/sets/paper.toml' --solver event-driven --threads 2 --out '" + out +
+                              "' 2> /dev/null";
+  for (auto _ : state)
+    if (std::system(command.c_str()) != 0) state.SkipWithError("poundbench spectrum failed");
+  std::filesystem::remove(out);
+}
+BENCHMARK(BM_SpectrumCommandPaperSet)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

@@ -7,66 +7,32 @@
 
 namespace pb {
 
-namespace {
-
-// System's start, or rest when it gives none (a System made by hand).
-std::vector<double> start_or_rest(const std::vector<double>& start, const System& s) {
-  return start.size() == s.bodies.size() ? start : std::vector<double>(s.bodies.size(), 0.0);
-}
-
-}  // namespace
-
 StepMonitor::StepMonitor(const System& s)
-    : s_(s),
-      u_(start_or_rest(s.u_start, s)),
-      rate_(static_cast<std::size_t>(s.n_contacts())),
-      pushed_(static_cast<std::size_t>(s.n_contacts()), 0),
-      energy_(s.energy(u_.data(), start_or_rest(s.v_start, s).data())),
-      floor_(kRestitutionFloor * s.a_p / s.pulse.w),
+    : floor_(kRestitutionFloor * s.a_p / s.pulse.w),
+      energy_scale_(s.energy_scale()),
       e_low_(std::numeric_limits<double>::quiet_NaN()),
       e_high_(std::numeric_limits<double>::quiet_NaN()) {
-  const std::vector<double> v = start_or_rest(s.v_start, s);
+  const auto nb = static_cast<std::size_t>(s.n_bodies()), nc = static_cast<std::size_t>(s.n_contacts());
+  std::vector<double> v(nb, 0.0);
+  for (std::size_t i = 0; i < nb; ++i) {
+    m_.push_back(s.bodies[i].m);
+    c_.push_back(s.bodies[i].c);
+    k_.push_back(s.bodies[i].k);
+    u_.push_back(s.u_start.size() == nb ? s.u_start[i] : 0.0);  // rest when the System gives no start
+    v[i] = s.v_start.size() == nb ? s.v_start[i] : 0.0;
+  }
+  energy_ = s.energy(u_.data(), v.data());
   for (int j = 0; j < s.n_contacts(); ++j) {
-    rate_[static_cast<std::size_t>(j)] = rate(j, v.data());
-    fastest_ = std::max(fastest_, std::abs(rate_[static_cast<std::size_t>(j)]));
+    left_.push_back(s.left(j));
+    right_.push_back(s.right(j));
+    rate_.push_back(s.gap_rate(j, v.data()));
+    fastest_ = std::max(fastest_, std::abs(rate_.back()));
   }
-}
-
-double StepMonitor::rate(int j, const double* v) const { return s_.gap_rate(j, v); }
-
-void StepMonitor::step(double h, double abar, const double* u, const double* v, const char* pushed) {
-  double load = 0.0, damping = 0.0;
-  for (std::size_t i = 0; i < u_.size(); ++i) {
-    const double du = u[i] - u_[i];
-    load += s_.bodies[i].m * du;
-    damping += s_.bodies[i].c * du * du;
-    u_[i] = u[i];
-  }
-  const double energy = s_.energy(u, v);
-  balance_ += energy - energy_ + damping / h + abar * load;
-  energy_ = energy;
-  excess_ = std::max(excess_, balance_);
-
-  const int nc = s_.n_contacts();
-  int pushing = 0;
-  for (int j = 0; j < nc; ++j) pushing += pushed[j] ? 1 : 0;
-  for (int j = 0; j < nc; ++j) {
-    const auto jj = static_cast<std::size_t>(j);
-    const double before = rate_[jj];
-    rate_[jj] = rate(j, v);
-    fastest_ = std::max(fastest_, std::abs(rate_[jj]));
-    if (pushing == 1 && pushed[j] && !pushed_[jj] && before < -floor_) {
-      const double e = -rate_[jj] / before;
-      ++isolated_;
-      e_low_ = isolated_ == 1 ? e : std::min(e_low_, e);
-      e_high_ = isolated_ == 1 ? e : std::max(e_high_, e);
-    }
-    pushed_[jj] = pushed[j];
-  }
+  pushed_.assign(nc, 0);
 }
 
 void StepMonitor::finish(Result& r) const {
-  r.energy_excess = excess_ / s_.energy_scale();
+  r.energy_excess = excess_ / energy_scale_;
   r.isolated_impacts = isolated_;
   r.restitution_low = e_low_;
   r.restitution_high = e_high_;

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <iomanip>
 #include <limits>
@@ -23,6 +25,7 @@
 #include "solvers/lcp/lemke.hpp"
 #include "solvers/monitor.hpp"
 #include "solvers/moreau_jean/dynamic.hpp"
+#include "solvers/moreau_jean/fixed_monitor.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
 #include "solvers/moreau_jean/stepper.hpp"
 #include "solvers/moreau_jean/tridiagonal_lcp.hpp"
@@ -460,6 +463,85 @@ TEST(MoreauJean, StepLoopNeverAllocates) {
       }
     }
   }
+}
+
+// The fixed-size loop's monitor (fixed_monitor.hpp) against the general StepMonitor, fed
+// the same states (a run's history: every step's u, v and whether each contact pushed): the
+// same restitution range, isolated impacts and gap rate, bit for bit, and the same energy
+// excess within the bound fixed_monitor.hpp states, (4 NB + 4) n 2^-53 E_max (its balance
+// is summed body by body), on wall, pair and row3 with plastic, partly elastic and elastic
+// impacts, gaps and touching bodies (persistent contact). Returns the largest difference of
+// the excesses over that bound.
+template <int NB, int NC>
+double compare_monitors(const System& s, const std::string& what) {
+  Settings set;
+  set.steps = 64;
+  set.history_samples = 1;
+  const Result run = mj::solve(s, set);
+  EXPECT_EQ(run.status, Status::ok) << what << ": " << run.message;
+  const History& hist = run.history;
+  EXPECT_EQ(hist.n_bodies, NB);
+  EXPECT_EQ(hist.n_contacts, NC);
+  StepMonitor general(s);
+  mj::FixedStepMonitor<NB, NC> fixed(s, run.step);
+  using VecB = typename mj::FixedStepMonitor<NB, NC>::VecB;
+  const auto row = [&](std::size_t r) { return hist.data.data() + r * static_cast<std::size_t>(hist.row_size()); };
+  double e_max = s.energy(row(0) + 1, row(0) + 1 + NB);
+  for (std::size_t r = 1; r < hist.rows(); ++r) {
+    const double* prev = row(r - 1);
+    const double* now = row(r);
+    const double abar = s.pulse.mean(prev[0], now[0]);
+    std::vector<char> pushed(NC > 0 ? NC : 1, 0);
+    unsigned bits = 0;
+    for (int j = 0; j < NC; ++j) {
+      pushed[static_cast<std::size_t>(j)] = now[1 + 2 * NB + NC + j] > 0.0;
+      bits |= (pushed[static_cast<std::size_t>(j)] ? 1u : 0u) << j;
+    }
+    general.step(run.step, abar, now + 1, now + 1 + NB, pushed.data());
+    fixed.step(abar, Eigen::Map<const VecB>(prev + 1), Eigen::Map<const VecB>(now + 1),
+               Eigen::Map<const VecB>(now + 1 + NB), bits);
+    e_max = std::max(e_max, s.energy(now + 1, now + 1 + NB));
+  }
+  Result a, b;
+  general.finish(a);
+  fixed.finish(b);
+  const auto bits_of = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  EXPECT_EQ(bits_of(a.restitution_low), bits_of(b.restitution_low)) << what;
+  EXPECT_EQ(bits_of(a.restitution_high), bits_of(b.restitution_high)) << what;
+  EXPECT_EQ(bits_of(a.gap_rate_max), bits_of(b.gap_rate_max)) << what;
+  EXPECT_EQ(a.isolated_impacts, b.isolated_impacts) << what;
+  const double n = static_cast<double>(hist.rows() - 1);
+  const double bound = (4 * NB + 4) * n * std::ldexp(1.0, -53) * e_max / s.energy_scale();
+  EXPECT_LE(std::abs(a.energy_excess - b.energy_excess), bound) << what << ": " << a.energy_excess << " and "
+                                                                 << b.energy_excess;
+  // And the solver's own monitored run reports what the fixed monitor measures.
+  EXPECT_EQ(bits_of(run.gap_rate_max), bits_of(b.gap_rate_max)) << what;
+  EXPECT_EQ(run.isolated_impacts, b.isolated_impacts) << what;
+  return std::abs(a.energy_excess - b.energy_excess) / bound;
+}
+
+TEST(MoreauJean, FixedSizeMonitorReportsTheGeneralMonitorsNumbersToTheStatedRoundOff) {
+  long isolated = 0;
+  double worst = 0.0;  // of the bound
+  for (PulseShape p : {PulseShape::sine, PulseShape::cosine}) {
+    for (double eps : {0.0, 0.5, 1.0}) {
+      for (double pi3 : {0.0, 0.5}) {
+        for (Scene scene : {Scene::wall, Scene::pair, Scene::row3}) {
+          Case c = make_case(scene, p, 1.3, 0.5, eps);
+          c.pi3 = pi3;
+          const System s = make_system(c);
+          const std::string what = std::string(name(scene)) + " " + std::string(name(p)) +
+                                   " eps=" + std::to_string(eps) + " pi3=" + std::to_string(pi3);
+          if (scene == Scene::wall) worst = std::max(worst, compare_monitors<1, 1>(s, what));
+          if (scene == Scene::pair) worst = std::max(worst, compare_monitors<2, 1>(s, what));
+          if (scene == Scene::row3) worst = std::max(worst, compare_monitors<3, 2>(s, what));
+          isolated += mj::solve(s, {}).isolated_impacts;
+        }
+      }
+    }
+  }
+  EXPECT_GT(isolated, 0);
+  RecordProperty("worst_excess_difference_over_bound", std::to_string(worst));
 }
 
 // The any-size loop itself, on a chain with impacts, runs of 3 or more contacts, a

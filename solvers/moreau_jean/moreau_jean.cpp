@@ -50,8 +50,9 @@ bool run_chunks(const long& k, long n, long chunk, double h, const Settings& set
 
 // Counts, status and Pi1 once the loop has stopped at step k; `finite`: the loop's own
 // divergence test passed; `state_finite`: no NaN or inf in the state.
+template <class Monitor>
 void finish(const System& sys, const Tally& tally, long k, double h, bool finite, bool state_finite,
-            const std::optional<StepMonitor>& monitor, Result& res) {
+            const std::optional<Monitor>& monitor, Result& res) {
   if (monitor) monitor->finish(res);
   if (!finite) res.status = state_finite ? Status::diverged : Status::nan;
   finish_steps(sys, tally, k, h, nullptr, res);
@@ -79,9 +80,9 @@ Result run_fixed(const System& sys, const Settings& set, double h, long n, Resul
     rows->reserve(static_cast<std::size_t>(n + 1) * static_cast<std::size_t>(res.history.row_size()));
     record(sc, st, VecC::Zero().eval(), *rows);
   }
-  std::optional<StepMonitor> monitor;
-  if (set.monitor) monitor.emplace(sys);
-  StepMonitor* m = monitor ? &*monitor : nullptr;
+  std::optional<FixedStepMonitor<NB, NC>> monitor;
+  if (set.monitor) monitor.emplace(sys, h);
+  FixedStepMonitor<NB, NC>* m = monitor ? &*monitor : nullptr;
 
   const bool finite = run_chunks(st.k, n, kChunk, h, set, res, [&](long end) {
     if (recording)

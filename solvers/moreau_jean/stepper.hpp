@@ -19,7 +19,8 @@
 // Layout follows "constant apart from changing": Scheme holds what a run never changes
 // (built once, before the loop), State what a step changes, Tally what the result needs.
 // What a step records (history) and whether a StepMonitor sees it are template flags, so
-// the plain loop carries no test for either.
+// the plain loop carries no test for either; the monitor is the fixed-size one
+// (fixed_monitor.hpp), inlined into the step.
 //
 // Rejected alternatives: dynamic-size Eigen types for these scenes (heap temporaries, and
 // size bookkeeping that outweighs arithmetic on 1 to 3 numbers: measured 2-5x slower, see
@@ -36,7 +37,7 @@
 #include "cases/system.hpp"
 #include "solvers/lcp/small.hpp"
 #include "solvers/moreau_jean/loop_common.hpp"
-#include "solvers/monitor.hpp"
+#include "solvers/moreau_jean/fixed_monitor.hpp"
 
 namespace pb::moreau_jean {
 
@@ -171,7 +172,8 @@ PB_MJ_INLINE Eigen::Matrix<double, NC, 1> contact_impulse(const Eigen::Matrix<do
 // Returns false when the state is no longer finite or |u| passed the divergence bound.
 template <int NB, int NC, bool kRecord, bool kMonitor>
 PB_MJ_INLINE bool step(const Scheme<NB, NC>& sc, State<NB, NC>& st, Tally& t, double abar, double work,
-                       std::vector<double>* history, StepMonitor* monitor) {
+                       std::vector<double>* history, const FixedStepMonitor<NB, NC>* monitor,
+                       typename FixedStepMonitor<NB, NC>::Running* running) {
   using VecC = typename Scheme<NB, NC>::VecC;
   typename Scheme<NB, NC>::VecB v_new = sc.fv.cwiseProduct(st.v) + sc.fq.cwiseProduct(st.q) + sc.fa * abar;
   typename Scheme<NB, NC>::VecB q_new = sc.qv.cwiseProduct(st.v) + sc.qq.cwiseProduct(st.q) + sc.qa * abar;
@@ -201,6 +203,7 @@ PB_MJ_INLINE bool step(const Scheme<NB, NC>& sc, State<NB, NC>& st, Tally& t, do
     }
     st.active = mask;
   }
+  [[maybe_unused]] const typename Scheme<NB, NC>::VecB q_old = st.q;  // the monitor's du
   st.q = q_new;
   st.v = v_new;
   ++st.k;
@@ -209,11 +212,7 @@ PB_MJ_INLINE bool step(const Scheme<NB, NC>& sc, State<NB, NC>& st, Tally& t, do
     st.rate = sc.wt * st.v;
   }
   // Before the divergence test: a diverging run's energy excess shows the growth.
-  if constexpr (kMonitor) {
-    std::array<char, (NC > 0 ? NC : 1)> pushed{};
-    for (int j = 0; j < NC; ++j) pushed[static_cast<std::size_t>(j)] = static_cast<char>((st.pushed >> j) & 1u);
-    monitor->step(sc.h, work, st.q.data(), st.v.data(), pushed.data());
-  }
+  if constexpr (kMonitor) monitor->step(*running, work, q_old, st.q, st.v, st.pushed);
   if (!(st.q.array().abs() <= sc.bound).all()) return false;
   tally_state(sc, st, t);
   if constexpr (kRecord) record(sc, st, impulse, *history);
@@ -225,16 +224,20 @@ PB_MJ_INLINE bool step(const Scheme<NB, NC>& sc, State<NB, NC>& st, Tally& t, do
 // allocates.
 template <int NB, int NC, bool kRecord, bool kMonitor = false>
 bool advance(const Scheme<NB, NC>& sc, State<NB, NC>& state, Tally& tally, long k_end, std::vector<double>* history,
-             StepMonitor* monitor = nullptr) {
+             FixedStepMonitor<NB, NC>* monitor = nullptr) {
   // Work on local copies: the compiler must assume that a store through one reference may
   // change a double behind another, and would reload the state from memory every step.
+  // The monitor's running values too (FixedStepMonitor::Running).
   State<NB, NC> st = state;
   Tally t = tally;
+  typename FixedStepMonitor<NB, NC>::Running running;
+  if constexpr (kMonitor) running = monitor->running();
   const bool ok = drive(sc.load, st.k, k_end, [&](double abar, double work) __attribute__((always_inline)) {
-    return step<NB, NC, kRecord, kMonitor>(sc, st, t, abar, work, history, monitor);
+    return step<NB, NC, kRecord, kMonitor>(sc, st, t, abar, work, history, monitor, &running);
   });
   state = st;
   tally = t;
+  if constexpr (kMonitor) monitor->running() = running;
   return ok;
 }
 
