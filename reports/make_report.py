@@ -102,7 +102,7 @@ def stability_section(summary, points, out_dir):
              "Every case of the stress set (`cases/sets/stress.toml`: stiffness and mass contrasts of 1e-2 and "
              "1e2, bodies touching at rest, eps = 0 and 1, pulse scales 1e-3 to 1e3, 100 free periods, chains "
              "of up to 100 bodies, a Newton's cradle) through every setting of `cases/settings/stress.toml`, "
-             "the time-steppers at w_max h = 0.5, 2, 10 and 100. "
+             f"the time-steppers at w_max h from resolved to a hundred radians ({stability.steps_sentence(summary)}). "
              f"{len(checks)} checks per family and setting (tolerances in `studies/stress.hpp`):", "",
              "* **finite**: every run ends with status ok and a finite Pi1;",
              "* **energy**: the mechanical energy never exceeds the start's energy plus the work of the ground "

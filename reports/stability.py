@@ -35,6 +35,22 @@ def step_label(row):
     return ""
 
 
+def steps_sentence(summary):
+    """Which w_max h each solver ran at, from the summary's settings: "moreau-jean at 0.5, 2,
+    10 and 100; ode at 2, 10 and 100", solvers in the order they first appear."""
+    by_solver = {}
+    for r in summary:
+        wh = settings_fields(r).get("wh")
+        if wh is not None:
+            by_solver.setdefault(r["solver"], set()).add(float(wh))
+
+    def listed(values):
+        text = [f"{v:g}" for v in sorted(values)]
+        return text[0] if len(text) == 1 else ", ".join(text[:-1]) + " and " + text[-1]
+
+    return "; ".join(f"{solver} at {listed(values)}" for solver, values in by_solver.items())
+
+
 def large_step_figure(points, out_dir):
     """Over the runs given with a w_max h: the share that finished, the worst energy excess
     and the worst penetration, against w_max h, one line per solver configuration."""
@@ -77,7 +93,7 @@ def large_step_figure(points, out_dir):
     return save(fig, out_dir, "stability-large-steps")
 
 
-def chain_cost_figure(points, out_dir, wh=0.5):
+def chain_cost_figure(points, out_dir, wh=2.0):
     """Median CPU time per run and per step against the chain's body count N: the reference,
     and every time-stepper configuration at one w_max h."""
     runs = [r for r in points if r["scene"] == "chain" and r["status"] == "ok" and r.get("bodies")

@@ -18,7 +18,8 @@
 // them there. NoContactKey's static_asserts fail to compile when System, Body or Pulse gain
 // a field, so that the key is extended with it.
 //
-// Only finite values are kept: a solve cut short by its time limit or the sweep's stop (NaN)
+// Only the paper's pulses are cached: a record's samples and a pulse model's waves are not in
+// the key, and their sweeps are short. Only finite values are kept: a solve cut short by its time limit or the sweep's stop (NaN)
 // is solved again by the next point that needs it, as it would have been without a cache.
 
 #include <array>

@@ -90,7 +90,10 @@ pi2 = 1
 
 
 def poundbench(*args, stdin=None):
-    done = subprocess.run([POUNDBENCH, *args], capture_output=True, text=True, input=stdin)
+    # In a directory of its own: a sweep to stdout keeps its partial file and lock in the
+    # working directory, which other tests running at the same time share.
+    with tempfile.TemporaryDirectory() as cwd:
+        done = subprocess.run([POUNDBENCH, *args], capture_output=True, text=True, input=stdin, cwd=cwd)
     if done.returncode != 0:
         raise AssertionError(f"poundbench {' '.join(args)}: exit {done.returncode}: {done.stderr}")
     return done.stdout

@@ -11,6 +11,7 @@ import json
 import subprocess
 import sys
 import os
+import tempfile
 import unittest
 
 POUNDBENCH, SOURCE = sys.argv[1], sys.argv[2]
@@ -23,8 +24,11 @@ FLAGS = ["--scene", "pair", "--pulse", "cosine", "--directivity", "normal", "--p
 
 
 def cli(*args):
-    """poundbench's exit code, stdout and stderr."""
-    done = subprocess.run([POUNDBENCH, *args], capture_output=True, text=True)
+    """poundbench's exit code, stdout and stderr, run in a directory of its own: a sweep to
+    stdout keeps its partial file and lock in the working directory, which other tests
+    running at the same time share."""
+    with tempfile.TemporaryDirectory() as cwd:
+        done = subprocess.run([POUNDBENCH, *args], capture_output=True, text=True, cwd=cwd)
     return done.returncode, done.stdout, done.stderr
 
 

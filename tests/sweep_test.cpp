@@ -239,6 +239,23 @@ TEST(NoContactCache, KeepsNoValueOfASolveCutShort) {
   EXPECT_EQ(cache.size(), 1u);
 }
 
+// A pulse model's waves are not in the key: two Mavroeidis-Papageorgiou pulses that differ
+// only in their phase have the same key, and each gets its own solve's value.
+TEST(NoContactCache, SolvesEveryPointOfAPulseModel) {
+  NoContactCache cache;
+  for (double nu : {0.0, 90.0}) {
+    Case c = smoke_cases().front();
+    c.pulse = PulseShape::mp;
+    c.mp_gamma = 2.5;
+    c.mp_nu = nu;
+    const System s = make_system(c);
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(cache.pi1(s, Settings{})),
+              std::bit_cast<std::uint64_t>(no_contact_pi1(s, Settings{})))
+        << "nu " << nu;
+  }
+  EXPECT_EQ(cache.size(), 0u);
+}
+
 Result throwing_solve(const System&, const Settings&) { throw std::runtime_error("matrix is singular"); }
 std::string no_settings(const Settings&) { return R"({"x":1})"; }
 std::string accept(const Settings&) { return {}; }
