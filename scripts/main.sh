@@ -2,7 +2,7 @@
 # The main job: set up, build, run the case sets through every solver, benchmark, report;
 # then the paper report (scripts/paper.sh, reports/paper/).
 #   scripts/main.sh          the default study (a few minutes on 2 cores, build included)
-#   scripts/main.sh --full   the same study on 4x denser spectra (longer)
+#   scripts/main.sh --full   the same study on 8x denser spectra, and the stress study's costly cells (longer)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
