@@ -152,13 +152,24 @@ void Wave::eval(double t, double* out, int nd) const {
   }
 }
 
+void Wave::decays(double t, double* decay) const {
+  const double tau = std::max(t - t0, 0.0);
+  for (int m = 0; m < n_modes; ++m)
+    decay[m] = tau == 0.0 ? 1.0 : std::exp(-mode[static_cast<std::size_t>(m)].sigma * tau);
+}
+
 double Wave::bound(double t, int d) const {
+  double decay[kMaxModes];
+  decays(t, decay);
+  return bound_at(decay, d);
+}
+
+double Wave::bound_at(const double* decay_of, int d) const {
   const auto k = static_cast<std::size_t>(d);
   double b = pulse_envelope[k];
-  const double tau = std::max(t - t0, 0.0);
   for (int m = 0; m < n_modes; ++m) {
     const Mode& md = mode[static_cast<std::size_t>(m)];
-    const double decay = tau == 0.0 ? 1.0 : std::exp(-md.sigma * tau);
+    const double decay = decay_of[m];
     b += md.envelope[k] * decay;
     for (int q = 0; q < n_sines; ++q) {
       if (!resonant(md, q)) continue;
