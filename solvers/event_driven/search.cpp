@@ -12,12 +12,21 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 struct Point {
   double t, f, df;
+  double ddf = std::numeric_limits<double>::quiet_NaN();  // f'', where the caller needs it
 };
 
 Point at(const Wave& w, double t) {
   double v[2];
   w.eval(t, v, 2);
   return {t, v[0], v[1]};
+}
+
+// With f'' too: the peak search needs it wherever f' changes sign, and it costs a few
+// products more than f and f' (their values are the same as at()'s).
+Point at3(const Wave& w, double t) {
+  double v[3];
+  w.eval(t, v, 3);
+  return {t, v[0], v[1], v[2]};
 }
 
 // A wave's bounds with the decay of its modes kept for the last t asked: the searches ask
@@ -180,24 +189,25 @@ double window(Bounds& bound, double t, double f, double rest) {
 
 // A wave whose value or bounds are not finite certifies nothing (and would make every
 // exclusion test false, halving windows down to the floor everywhere).
-void check_finite(const Wave& f, const Point& p) {
-  if (!std::isfinite(p.f) || !std::isfinite(p.df) || !std::isfinite(f.bound(p.t, 4))) throw NonFinite{};
+void check_finite(Bounds& bound, const Point& p) {
+  if (!std::isfinite(p.f) || !std::isfinite(p.df) || !std::isfinite(bound(p.t, 4))) throw NonFinite{};
 }
 
-double crossing(const Wave& f, Point p, double b, double floor, Deadline& dl);
-double first_crossing(const Wave& f, const Point& p, double b, double floor, Deadline& dl);
+double crossing(const Wave& f, Bounds& bound, Point p, double b, double floor, Deadline& dl);
+double first_crossing(const Wave& f, Bounds& bound, const Point& p, double b, double floor, Deadline& dl);
 
 }  // namespace
 
 double first_root(const Wave& f, double a, double b, double floor, double settle, double noise, Deadline& dl) {
   Point p = at(f, a);
-  check_finite(f, p);
-  if (p.f > 0.0) return first_crossing(f, p, b, floor, dl);
+  Bounds bound(f);
+  check_finite(bound, p);
+  if (p.f > 0.0) return first_crossing(f, bound, p, b, floor, dl);
   if (p.f < -noise) return a;
   for (double step = floor;; step *= 2.0) {
     const double t = std::min(a + step, b);
     p = at(f, t);
-    if (p.f > 0.0) return first_crossing(f, p, b, floor, dl);
+    if (p.f > 0.0) return first_crossing(f, bound, p, b, floor, dl);
     if (step > settle || t == b) break;
   }
   // Neutral: the event is where f first falls below -noise. Shifted once: if that leaves
@@ -208,26 +218,26 @@ double first_root(const Wave& f, double a, double b, double floor, double settle
   shifted.prepare();
   p = at(shifted, a);
   if (!(p.f > 0.0)) return a;
-  return first_crossing(shifted, p, b, floor, dl);
+  Bounds shifted_bound(shifted);
+  return first_crossing(shifted, shifted_bound, p, b, floor, dl);
 }
 
 namespace {
 
-double first_crossing(const Wave& f, const Point& p, double b, double floor, Deadline& dl) {
+double first_crossing(const Wave& f, Bounds& bound, const Point& p, double b, double floor, Deadline& dl) {
   // Far from a root the whole search is skipped: f >= f(a) + f'(a) s - max|f''| s^2 / 2,
   // and when that stays clear of f's rounding (relative to its terms) up to b, no
   // evaluation on (a, b] can come out <= 0. Every contact is searched at every event, and
   // most are far from closing or detaching.
   const double h = b - p.t;
-  const double low = p.f + std::min(0.0, p.df * h) - 0.5 * f.bound(p.t, 2) * h * h;
-  if (low > 1e-10 * (std::abs(f.f0) + 2.0 * f.bound(f.t0, 0))) return kNaN;
-  return crossing(f, p, b, floor, dl);
+  const double low = p.f + std::min(0.0, p.df * h) - 0.5 * bound(p.t, 2) * h * h;
+  if (low > 1e-10 * (std::abs(f.f0) + 2.0 * bound(f.t0, 0))) return kNaN;
+  return crossing(f, bound, p, b, floor, dl);
 }
 
 // The first crossing after p, where f(p) > 0.
-double crossing(const Wave& f, Point p, double b, double floor, Deadline& dl) {
+double crossing(const Wave& f, Bounds& bound, Point p, double b, double floor, Deadline& dl) {
   const double mean = f.mean();
-  Bounds bound(f);
   while (p.t < b) {
     tick(dl);
     if (mean - bound(p.t, 0) > 0.0) return kNaN;
@@ -245,7 +255,7 @@ double crossing(const Wave& f, Point p, double b, double floor, Deadline& dl) {
 
 namespace {
 
-// Zero of f' between a and b where f' changes sign and f'' has one sign (dda = f''(a)): the
+// Zero of f' between a and b where f' changes sign and f'' has one sign: the
 // root polish above on s f' (s making it positive at a), each step one evaluation of f, f',
 // f''. Of the last bracket's two ends, the one of smaller |f'|, as before.
 //
@@ -258,16 +268,15 @@ struct Slope {
   double value;     // f(t)
 };
 
-Point stationary(const Wave& f, const Point& a, double dda, const Point& b) {
+Point stationary(const Wave& f, const Point& a, const Point& b) {
   const double s = a.df > 0.0 ? 1.0 : -1.0;
-  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
   const Bracket<Slope> end = polish(
       [&](double t) {
         double v[3];
         f.eval(t, v, 3);
         return Slope{t, s * v[1], s * v[2], v[0]};
       },
-      Slope{a.t, s * a.df, s * dda, a.f}, Slope{b.t, s * b.df, kUnknown, b.f});
+      Slope{a.t, s * a.df, s * a.ddf, a.f}, Slope{b.t, s * b.df, s * b.ddf, b.f});
   const Slope& best = std::abs(end.lo.f) < std::abs(end.hi.f) ? end.lo : end.hi;
   return {best.t, best.value, s * best.f};
 }
@@ -289,16 +298,12 @@ void peak_search(const Wave& f, Bounds& bound, const Point& a, const Point& b, d
   if (h <= floor) return;
   // f monotone: the ends, already considered, hold the max.
   if (std::abs(a.df) > bound(a.t, 2) * h) return;
-  if ((a.df > 0.0) != (b.df > 0.0)) {
-    double v[3];
-    f.eval(a.t, v, 3);
-    // f'' of one sign on the window: exactly one stationary point inside.
-    if (std::abs(v[2]) > bound(a.t, 3) * h) {
-      consider(stationary(f, a, v[2], b), peak);
-      return;
-    }
+  // f'' of one sign on the window: exactly one stationary point inside.
+  if ((a.df > 0.0) != (b.df > 0.0) && std::abs(a.ddf) > bound(a.t, 3) * h) {
+    consider(stationary(f, a, b), peak);
+    return;
   }
-  const Point m = at(f, 0.5 * (a.t + b.t));
+  const Point m = at3(f, 0.5 * (a.t + b.t));
   consider(m, peak);
   peak_search(f, bound, a, m, floor, peak, dl);
   peak_search(f, bound, m, b, floor, peak, dl);
@@ -307,17 +312,17 @@ void peak_search(const Wave& f, Bounds& bound, const Point& a, const Point& b, d
 }  // namespace
 
 void max_abs(const Wave& f, double a, double b, double floor, Peak& peak, Deadline& dl) {
-  Point p = at(f, a);
-  check_finite(f, p);
+  Point p = at3(f, a);
+  Bounds bound(f);
+  check_finite(bound, p);
   consider(p, peak);
   const double mean = std::abs(f.mean());
-  Bounds bound(f);
   while (p.t < b) {
     tick(dl);
     if (mean + bound(p.t, 0) <= peak.value) return;
     const double ref = std::max(peak.value, std::abs(p.f));
     const double h = std::max(window(bound, p.t, ref, b - p.t), std::min(floor, b - p.t));
-    const Point q = at(f, h >= b - p.t ? b : p.t + h);
+    const Point q = at3(f, h >= b - p.t ? b : p.t + h);
     consider(q, peak);
     peak_search(f, bound, p, q, floor, peak, dl);
     p = q;
@@ -329,9 +334,7 @@ namespace detail {
 double polish_root(const Wave& f, double lo, double hi) { return refine_root(f, at(f, lo), at(f, hi)); }
 
 Peak polish_stationary(const Wave& f, double a, double b) {
-  double v[3];
-  f.eval(a, v, 3);
-  const Point p = stationary(f, Point{a, v[0], v[1]}, v[2], at(f, b));
+  const Point p = stationary(f, at3(f, a), at3(f, b));
   return {std::abs(p.f), p.t};
 }
 

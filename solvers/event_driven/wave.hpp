@@ -69,6 +69,8 @@ struct Wave {
   double horizon = std::numeric_limits<double>::infinity();
   // Set by prepare(): sum over the sinusoids of w_j^d sqrt(ps_j^2 + pc_j^2).
   std::array<double, kMaxDerivative + 1> pulse_envelope{};
+  // Set by prepare(): whether any mode has a near-resonant term (bound() skips their loop).
+  bool any_resonant = false;
 
   // out[d] = f^(d)(t) for d = 0..nd-1 (nd <= kMaxDerivative + 1).
   void eval(double t, double* out, int nd) const;
