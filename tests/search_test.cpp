@@ -183,5 +183,79 @@ TEST(SearchPolish, PolishedPeaksHaveTheOldPeaksValueToTheWavesRounding) {
   ::testing::Test::RecordProperty("bit_for_bit", std::to_string(same));
 }
 
+// The whole first-root search (windows, their one-sign tests from both ends, the Taylor
+// reach that skips a just-opened gap's first windows) against a scan of 1/100 s: it never
+// ends after the scan's first crossing, and what it returns is a crossing.
+TEST(SearchFirstRoot, NeverLaterThanADenseScanOnRandomGapsIncludingJustOpenedOnes) {
+  std::mt19937_64 rng(7);
+  Deadline never{Settings{}};
+  int compared = 0, found = 0;
+  for (int n = 0; n < 1500; ++n) {
+    const int kind = n % 3;
+    Wave g = random_gap(rng, 0.0, kind);
+    if (n % 2) {
+      // Just opened: zero gap, opening.
+      g.f0 = 0.0;
+      if (at(g, 0.0).df < 0.0) {
+        Wave flipped = constant(0.0, 0.0);
+        add_scaled(flipped, g, -1.0);
+        flipped.prepare();
+        g = flipped;
+      }
+    }
+    const double end = 20.0, floor = 1e-13, settle = 1e-4, noise = 1e-12;
+    const double r = first_root(g, 0.0, end, floor, settle, noise, never);
+    double scan = std::numeric_limits<double>::quiet_NaN();
+    for (double t = 0.01; t <= end; t += 0.01)
+      if (g.value(t) <= 0.0) {
+        scan = t;
+        break;
+      }
+    if (!std::isnan(r)) {
+      ++found;
+      EXPECT_LE(g.value(r), 0.0) << n;
+      if (r > 0.0) {
+        EXPECT_GT(g.value(std::nextafter(r, 0.0)), 0.0) << n;
+      }
+    }
+    if (!std::isnan(scan)) {
+      ++compared;
+      ASSERT_FALSE(std::isnan(r)) << n << ": the scan crosses at " << scan;
+      EXPECT_LE(r, scan) << n;
+    }
+  }
+  EXPECT_GE(compared, 500);
+  ::testing::Test::RecordProperty("compared", std::to_string(compared));
+  ::testing::Test::RecordProperty("found", std::to_string(found));
+}
+
+// A dip that reaches 1e-10 of the gap below zero is a root, whether the gap starts by
+// closing or by opening: the skips never step over a grazing approach. One that stays as
+// far above zero is none.
+TEST(SearchFirstRoot, AGrazingDipIsFoundAndANearMissIsNot) {
+  Deadline never{Settings{}};
+  const double f0 = 1e-3;
+  for (double depth : {1e-10, -1e-10}) {
+    for (double opening : {0.0, 1e-3, -1e-3}) {
+      // f = f0 + a (cos t - 1) + b sin t, whose least value is f0 - a - hypot(a, b).
+      const double least = -depth * f0, c = f0 - least, b = opening;
+      Wave g = constant(0.0, f0);
+      g.n_modes = 1;
+      g.mode[0].omega = 1.0;
+      g.mode[0].a = (c * c - b * b) / (2.0 * c);
+      g.mode[0].b = b;
+      g.prepare();
+      const double r = first_root(g, 0.0, 10.0, 1e-13, 1e-4, 1e-15, never);
+      if (depth > 0.0) {
+        ASSERT_FALSE(std::isnan(r)) << depth << " " << opening;
+        EXPECT_LE(g.value(r), 0.0);
+        EXPECT_GT(g.value(std::nextafter(r, 0.0)), 0.0) << opening << ": " << r;
+      } else {
+        EXPECT_TRUE(std::isnan(r)) << depth << " " << opening << ": " << r;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace pb::event_driven

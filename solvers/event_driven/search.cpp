@@ -123,20 +123,27 @@ Bracket<P> polish(Eval&& eval, P lo, P hi) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   P p = (std::abs(lo.f) < std::abs(hi.f) || !std::isfinite(hi.df)) ? lo : hi;
   double step = hi.t - lo.t, step_old = step;
-  for (int it = 0; it < 200 && std::nextafter(lo.t, kInf) < hi.t; ++it) {
+  int probes = 0;  // in a row
+  for (int it = 0; it < 300 && std::nextafter(lo.t, kInf) < hi.t; ++it) {
     double next = p.t - p.f / p.df;  // NaN or inf when p.df is 0 or unknown: bisection below
     const double ulp = std::nextafter(std::abs(p.t), kInf) - std::abs(p.t);
     double taken;
-    if (std::abs(next - p.t) <= ulp) {
+    const bool fixed = std::abs(next - p.t) <= ulp;
+    if (fixed && probes < 2) {
       // Newton's fixed point: probe the neighbour of p toward the bracket's other end.
       next = p.t == lo.t ? std::nextafter(lo.t, kInf) : std::nextafter(hi.t, -kInf);
       taken = ulp;
-    } else if (!(next > lo.t && next < hi.t) || std::abs(2.0 * (next - p.t)) > std::abs(step_old)) {
+      ++probes;
+    } else if (fixed || !(next > lo.t && next < hi.t) || std::abs(2.0 * (next - p.t)) > std::abs(step_old)) {
+      // Also after two probes that found no sign change: rounded values flat across many
+      // ulps (a grazing root's plateau of exact zeros), which Newton cannot see across.
+      probes = 0;
       taken = 0.5 * (hi.t - lo.t);  // out of the bracket, or slower than halving two steps
       next = lo.t + taken;
       if (!(next > lo.t && next < hi.t)) next = std::nextafter(lo.t, kInf);
     } else {
       taken = next - p.t;
+      probes = 0;
     }
     step_old = step;  // the step before last, for the next look
     step = taken;
@@ -153,6 +160,16 @@ double refine_root(const Wave& g, const Point& lo, const Point& hi) {
   return polish([&](double t) { return at(g, t); }, lo, hi).hi.t;
 }
 
+// Whether y (f' or f'') keeps one sign on a window of length h, given y at its ends and a
+// bound d on |y'| there: y >= y(a) - d (t - a) and y >= y(b) - d (b - t), whose larger is
+// at least (y(a) + y(b) - d h) / 2 (for y > 0 at both ends; alike below zero). The end a
+// alone, |y(a)| > d h, was the old test; both ends pass windows up to twice as long, each
+// one a halving and an evaluation saved.
+bool one_sign(double ya, double yb, double d, double h) {
+  if (std::abs(ya) > d * h) return true;
+  return ya != 0.0 && (ya > 0.0) == (yb > 0.0) && std::abs(ya) + std::abs(yb) > d * h;
+}
+
 // One unit of search work: ends the search once the deadline has passed.
 void tick(Deadline& deadline) {
   if (deadline.tick()) throw OutOfTime{};
@@ -164,7 +181,7 @@ double search(const Wave& g, Bounds& bound, const Point& a, const Point& b, doub
   const double h = b.t - a.t;
   if (b.f <= 0.0) {
     // A crossing is bracketed; it is the first one if g is monotone on the window.
-    if (std::abs(a.df) > bound(a.t, 2) * h || h <= floor) return refine_root(g, a, b);
+    if (one_sign(a.df, b.df, bound(a.t, 2), h) || h <= floor) return refine_root(g, a, b);
   } else {
     double lo, hi;
     Cubic(a, b).range(lo, hi);
@@ -236,12 +253,35 @@ double first_crossing(const Wave& f, Bounds& bound, const Point& p, double b, do
 }
 
 // The first crossing after p, where f(p) > 0.
+// How far past p (f(p) > 0) f stays positive by its Taylor bound alone: f(p + s) >= f(p) +
+// f'(p) s - d2 s^2 / 2 (d2 >= |f''| from p on), positive below that quadratic's root. Taken
+// at 0.9 of it, so the bound is positive by a tenth of its reach there.
+double reach(const Point& p, double d2) {
+  if (!(d2 > 0.0)) return p.df >= 0.0 ? std::numeric_limits<double>::infinity() : -0.9 * p.f / p.df;
+  const double disc = std::sqrt(p.df * p.df + 2.0 * d2 * p.f);
+  // The root (f' + disc) / d2, written without cancellation when f' < 0.
+  return 0.9 * (p.df >= 0.0 ? (p.df + disc) / d2 : 2.0 * p.f / (disc - p.df));
+}
+
 double crossing(const Wave& f, Bounds& bound, Point p, double b, double floor, Deadline& dl) {
   const double mean = f.mean();
   while (p.t < b) {
     tick(dl);
     if (mean - bound(p.t, 0) > 0.0) return kNaN;
     const double h = std::max(window(bound, p.t, p.f, b - p.t), std::min(floor, b - p.t));
+    // A gap that has just opened (f(p) tiny, f'(p) > 0) gets Hermite windows as short as its
+    // value allows, which grow only like f^(1/4): several evaluations to leave zero. The
+    // Taylor bound proves more of them root-free at once; the next window starts there.
+    const double far = reach(p, bound(p.t, 2));
+    if (far > h) {
+      if (far >= b - p.t) return kNaN;
+      const Point q = at(f, p.t + far);
+      if (q.f > 0.0) {
+        p = q;
+        continue;
+      }
+      return search(f, bound, p, q, floor, dl);  // rounding below zero where the bound is not
+    }
     const double tb = h >= b - p.t ? b : p.t + h;
     const Point q = at(f, tb);
     const double r = search(f, bound, p, q, floor, dl);
@@ -297,9 +337,9 @@ void peak_search(const Wave& f, Bounds& bound, const Point& a, const Point& b, d
   if (std::max(-lo, hi) + hermite_error(bound, a.t, h) <= peak.value) return;
   if (h <= floor) return;
   // f monotone: the ends, already considered, hold the max.
-  if (std::abs(a.df) > bound(a.t, 2) * h) return;
+  if (one_sign(a.df, b.df, bound(a.t, 2), h)) return;
   // f'' of one sign on the window: exactly one stationary point inside.
-  if ((a.df > 0.0) != (b.df > 0.0) && std::abs(a.ddf) > bound(a.t, 3) * h) {
+  if ((a.df > 0.0) != (b.df > 0.0) && one_sign(a.ddf, b.ddf, bound(a.t, 3), h)) {
     consider(stationary(f, a, b), peak);
     return;
   }
