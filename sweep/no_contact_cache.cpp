@@ -6,11 +6,11 @@
 namespace pb {
 
 // A field added to one of these changes its size (unless it fits in padding): extend
-// no_contact_key with it, then update the size here.
+// no_contact_key with it, then update the size here. The key holds a paper pulse's fields
+// only (shape, amplitude, w): the record and pulse-model fields issue 21 added (waves,
+// length, cycles, the record) are not in it, so such loads bypass the cache (pi1 below).
 static_assert(sizeof(Body) == 4 * sizeof(double), "Body has a new field: add it to no_contact_key");
-// Pulse's fields past shape, amplitude and w describe the other loads (cases/load.hpp), which
-// are not cached (NoContactCache::pi1).
-static_assert(sizeof(Pulse) == 152, "Pulse has a new field: add it to no_contact_key if a paper pulse reads it");
+static_assert(sizeof(Pulse) == 152, "Pulse has a new field: add it to no_contact_key");
 static_assert(sizeof(System) == 280, "System has a new field: add it to no_contact_key if the no-contact solve reads it");
 
 namespace {
@@ -38,8 +38,7 @@ std::size_t NoContactCache::Hash::operator()(const NoContactKey& k) const {
 }
 
 double NoContactCache::pi1(const System& system, const Settings& limits) {
-  // A record or a pulse model: its samples or waves are not in the key, and a sweep over
-  // one has few points (cases/sets/records.toml).
+  // A record or a pulse model is not described by the key: solved per point, uncached.
   if (!system.pulse.paper()) return no_contact_pi1(system, limits);
   const NoContactKey key = no_contact_key(system);
   {

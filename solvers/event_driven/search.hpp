@@ -38,4 +38,12 @@ struct Peak {
 // zero of f' to within an ulp.
 void max_abs(const Wave& f, double a, double b, double floor, Peak& peak, Deadline& deadline);
 
+namespace detail {
+// The searches' last stages, for tests: the root of f on lo < hi with f(lo) > 0 >= f(hi)
+// and f monotone there (first_root's), and the stationary point of f on a < b with f' of
+// opposite signs at the ends and f'' of one sign (max_abs's: {|f|, t} where it stops).
+double polish_root(const Wave& f, double lo, double hi);
+Peak polish_stationary(const Wave& f, double a, double b);
+}  // namespace detail
+
 }  // namespace pb::event_driven

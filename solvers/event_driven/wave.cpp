@@ -64,6 +64,9 @@ void Wave::prepare() {
     md.envelope[0] = std::hypot(md.a, md.b);
     for (std::size_t d = 1; d <= kMaxDerivative; ++d) md.envelope[d] = md.envelope[d - 1] * rate;
   }
+  any_resonant = false;
+  for (int m = 0; m < n_modes; ++m)
+    for (int j = 0; j < n_sines; ++j) any_resonant = any_resonant || resonant(mode[static_cast<std::size_t>(m)], j);
   pulse_envelope.fill(0.0);
   for (int j = 0; j < n_sines; ++j) {
     Sine& p = sine[static_cast<std::size_t>(j)];
@@ -152,14 +155,26 @@ void Wave::eval(double t, double* out, int nd) const {
   }
 }
 
+void Wave::decays(double t, double* decay) const {
+  const double tau = std::max(t - t0, 0.0);
+  for (int m = 0; m < n_modes; ++m)
+    decay[m] = tau == 0.0 ? 1.0 : std::exp(-mode[static_cast<std::size_t>(m)].sigma * tau);
+}
+
 double Wave::bound(double t, int d) const {
+  double decay[kMaxModes];
+  decays(t, decay);
+  return bound_at(decay, d);
+}
+
+double Wave::bound_at(const double* decay_of, int d) const {
   const auto k = static_cast<std::size_t>(d);
   double b = pulse_envelope[k];
-  const double tau = std::max(t - t0, 0.0);
   for (int m = 0; m < n_modes; ++m) {
     const Mode& md = mode[static_cast<std::size_t>(m)];
-    const double decay = tau == 0.0 ? 1.0 : std::exp(-md.sigma * tau);
+    const double decay = decay_of[m];
     b += md.envelope[k] * decay;
+    if (!any_resonant) continue;  // the same sum, without looking at every r_mj
     for (int q = 0; q < n_sines; ++q) {
       if (!resonant(md, q)) continue;
       const double w = sine[static_cast<std::size_t>(q)].w;
