@@ -294,20 +294,28 @@ Wave derivative(const Wave& x) {
   return d;
 }
 
-Wave oscillator(double t0, double x0, double v0, double m, double c, double k, double f_const, double fs,
-                double fc, double w, double horizon) {
+namespace {
+
+// The one mode of the oscillator (m, c, k) from t0, its amplitudes left to the caller.
+Wave one_mode(double t0, double x0, double m, double c, double k, double horizon) {
   Wave x;
   x.t0 = t0;
   x.f0 = x0;
   x.horizon = horizon;
-  const double wn2 = k / m;
-  const double two_zeta_wn = c / m;
-  const double sigma = 0.5 * two_zeta_wn;
-  const double omega = std::sqrt(wn2 - sigma * sigma);
-  Mode& md = x.mode[0];
-  md.sigma = sigma;
-  md.omega = omega;
+  const double sigma = 0.5 * (c / m);
+  x.mode[0].sigma = sigma;
+  x.mode[0].omega = std::sqrt(k / m - sigma * sigma);
   x.n_modes = 1;
+  return x;
+}
+
+}  // namespace
+
+Wave oscillator(double t0, double x0, double v0, double m, double c, double k, double f_const, double fs,
+                double fc, double w, double horizon) {
+  Wave x = one_mode(t0, x0, m, c, k, horizon);
+  Mode& md = x.mode[0];
+  const double wn2 = k / m, two_zeta_wn = c / m, sigma = md.sigma, omega = md.omega;
   const bool forced = fs != 0.0 || fc != 0.0;
   if (forced && std::hypot(sigma, w - omega) < kNearResonance * w) {
     // The load is Re(F exp(i w t)), F = fc - i fs. From rest at t0 it moves the oscillator
@@ -346,18 +354,9 @@ Wave oscillator(double t0, double x0, double v0, double m, double c, double k, d
 }
 
 Wave oscillator(double t0, double x0, double v0, double m, double c, double k, const Forcing& load, double horizon) {
-  Wave x;
-  x.t0 = t0;
-  x.f0 = x0;
-  x.horizon = horizon;
-  const double wn2 = k / m;
-  const double two_zeta_wn = c / m;
-  const double sigma = 0.5 * two_zeta_wn;
-  const double omega = std::sqrt(wn2 - sigma * sigma);
+  Wave x = one_mode(t0, x0, m, c, k, horizon);
   Mode& md = x.mode[0];
-  md.sigma = sigma;
-  md.omega = omega;
-  x.n_modes = 1;
+  const double wn2 = k / m, two_zeta_wn = c / m, sigma = md.sigma, omega = md.omega;
   // The polynomial's particular solution alpha + beta (t - t0); then each sinusoid's, whose
   // value and rate at t0 the free motion makes up for. A near-resonant sinusoid's R_mj starts
   // from rest with rate Re(r_j), which the sine term of the free motion takes back.
