@@ -175,10 +175,8 @@ void FixedStepMonitor<NB, NC>::step(Running& r, double abar, const VecB& u0, con
   // by hand: std::popcount is a call into libgcc without -mpopcnt (21 instructions a step).
   const bool starts_alone = (pushed & ~r.pushed) != 0 && (pushed & (pushed - 1)) == 0;
   VecC now;
-  for (int j = 0; j < NC; ++j) {
-    now(j) = rate(j, v);
-    r.fastest = std::max(r.fastest, std::abs(now(j)));
-  }
+  for (int j = 0; j < NC; ++j) now(j) = rate(j, v);
+  if constexpr (NC > 0) r.fastest = std::max(r.fastest, now.cwiseAbs().maxCoeff());  // one max on the carried value
   if (starts_alone) [[unlikely]] {
     for (int j = 0; j < NC; ++j) {
       const double before = r.rate(j);
