@@ -105,6 +105,8 @@ Source load_source(const fs::path& cases, const fs::path& settings) {
     } catch (const SettingsListError& e) {
       throw BadInput(e.what());
     }
+    for (const std::string& run : s.list->left_out)
+      std::cerr << "poundbench: " << settings.string() << ": " << run << " is not in this build: skipped\n";
   }
   return s;
 }

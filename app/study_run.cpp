@@ -87,6 +87,9 @@ Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_vi
     } catch (const SettingsListError& e) {
       throw BadInput(e.what());
     }
+    if (processes.leader())
+      for (const std::string& run : study.list.left_out)
+        std::cerr << "poundbench: " << flags.settings << ": " << run << " is not in this build: skipped\n";
     if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
     runs = study_runs(study.list, options);
     if (!processes.leader()) return;

@@ -163,4 +163,17 @@ const SolverInfo* find_solver(std::string_view solver_name) {
   return nullptr;
 }
 
+std::string_view left_out_needs(std::string_view solver_name) {
+  // The optional engines and their packages (CMakeLists.txt, scripts/setup.sh).
+  constexpr std::array<std::array<std::string_view, 2>, 5> kOptional{{{"ode", "libode-dev"},
+                                                                      {"bullet", "libbullet-dev"},
+                                                                      {"siconos", "libsiconos-kernel-dev"},
+                                                                      {"compliant", "libsundials-dev"},
+                                                                      {"mujoco", "libmujoco-dev"}}};
+  if (find_solver(solver_name)) return {};
+  for (const auto& [solver, package] : kOptional)
+    if (solver == solver_name) return package;
+  return {};
+}
+
 }  // namespace pb

@@ -161,6 +161,9 @@ struct SolverInfo {
 
 std::span<const SolverInfo> solvers();
 const SolverInfo* find_solver(std::string_view name);
+// For an engine this build left out (its Debian package was not found: CMakeLists.txt), the
+// package it needs, e.g. "libsiconos-kernel-dev"; "" for a solver that is built or unknown.
+std::string_view left_out_needs(std::string_view name);
 const SolverInfo& reference_solver();
 // The fields of solvers/settings_fields.hpp that a variant of the solver uses: those whose
 // value changes what its describe() says (the settings column of its rows), in the table's

@@ -190,6 +190,10 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
       if (j) given[*j] = &v;
     }
     const SolverInfo* info = find_solver(solver);
+    if (const std::string_view needs = left_out_needs(solver); !needs.empty()) {
+      list.left_out.push_back(field + ": " + solver + " (needs " + std::string(needs) + ")");
+      continue;
+    }
     if (solver.empty()) r.fail(&rn, field + ".solver", "missing");
     if (!info) r.fail(solver_node, field + ".solver", "unknown solver '" + clip(solver) + "'");
     const std::size_t steps = *setting_field_index("steps"), wh = *setting_field_index("wh");
@@ -231,6 +235,8 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
         list.runs.push_back(std::move(spec));
       }
   }
+  if (list.runs.empty())
+    r.fail(nullptr, "run", "every [[run]] names an engine this build left out: " + list.left_out.front());
   return list;
 }
 

@@ -50,6 +50,9 @@ struct SettingsList {
   double reference_tol_scale = 0.01;
   double reference_time_limit = 0;  // seconds of wall time per truth run; 0 = none
   std::vector<SweepRun> runs;  // each with one timed solve; a study sets its repetitions
+  // "[[run]] 3: siconos (needs libsiconos-kernel-dev)": the runs of engines this build left
+  // out, skipped (a study without them still runs; the caller says so).
+  std::vector<std::string> left_out;
 };
 
 SettingsList parse_settings_list(std::string_view toml_text, std::string_view source_name);

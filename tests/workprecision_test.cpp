@@ -93,6 +93,34 @@ tol_scale = [1, 100]
   EXPECT_EQ(list.reference_tol_scale, 0.01);
 }
 
+// An engine this build left out (its package missing) drops its [[run]] with a note, so that
+// the shipped lists run on any build; an unknown solver is still an error, and so is a list
+// left with no run.
+TEST(SettingsList, SkipsTheRunsOfAnEngineThisBuildLeftOut) {
+  for (const char* engine : {"ode", "bullet", "siconos", "compliant", "mujoco"}) {
+    const SettingsList list = parse_settings_list(std::string("name = \"t\"\n[[run]]\nsolver = \"") + engine +
+                                                      "\"\n[[run]]\nsolver = \"moreau-jean\"\n",
+                                                  "t.toml");
+    if (find_solver(engine)) {
+      EXPECT_EQ(list.runs.size(), 2u) << engine;
+      EXPECT_TRUE(list.left_out.empty()) << engine;
+      EXPECT_EQ(left_out_needs(engine), "") << engine;
+    } else {
+      ASSERT_EQ(list.runs.size(), 1u) << engine;
+      ASSERT_EQ(list.left_out.size(), 1u) << engine;
+      EXPECT_NE(list.left_out[0].find("(needs lib"), std::string::npos) << list.left_out[0];
+      try {
+        parse_settings_list(std::string("[[run]]\nsolver = \"") + engine + "\"\n", "t.toml");
+        ADD_FAILURE() << engine << ": a list of left-out runs only was accepted";
+      } catch (const SettingsListError& e) {
+        EXPECT_NE(std::string(e.what()).find("left out"), std::string::npos) << e.what();
+      }
+    }
+  }
+  EXPECT_EQ(left_out_needs("no-such-engine"), "");
+  EXPECT_THROW(parse_settings_list("[[run]]\nsolver = \"no-such-engine\"\n", "t.toml"), SettingsListError);
+}
+
 TEST(SettingsList, TakesTheStepAsWhAndAPerRunTimeLimitAndMonitor) {
   const SettingsList list = parse_settings_list(R"(
 name = "t"
