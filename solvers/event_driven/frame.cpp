@@ -112,7 +112,7 @@ void build_frame(const System& s, const State& st, int from, int to, Frame& fr) 
         const int j = i - 1 + wall_shift;  // contact left of body i
         if (j < 0 || (i == first && !fixed)) continue;
         Wave& f = fr.contact[ix(j)];
-        f = constant(st.t, ko);
+        reset(f, st.t, ko);
         add_scaled(f, x, kr);
         if (!fixed) {
           add_scaled(f, dx, cr);
@@ -126,7 +126,7 @@ void build_frame(const System& s, const State& st, int from, int to, Frame& fr) 
   for (int j = first_contact(s, from); j <= last_contact(s, to); ++j) {
     if (st.active[ix(j)]) continue;
     Wave& g = fr.contact[ix(j)];
-    g = constant(st.t, 0.0);
+    reset(g, st.t, 0.0);
     add_scaled(g, fr.body[ix(s.right(j))], 1.0);
     if (s.left(j) != kWall) add_scaled(g, fr.body[ix(s.left(j))], -1.0);
     g.f0 = st.g[ix(j)];
