@@ -3,7 +3,8 @@
 #include <cassert>
 #include <algorithm>
 #include <complex>
-#include <cstring>
+#include <bit>
+#include <cstdint>
 
 namespace pb::event_driven {
 
@@ -28,7 +29,7 @@ void sin_cos(double w, double t0, double& s, double& c) {
   c = last_c;
 }
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
+bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
 
 using Complex = std::complex<double>;
 
