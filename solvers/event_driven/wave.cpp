@@ -1,9 +1,9 @@
 #include "solvers/event_driven/wave.hpp"
 
-#include <cassert>
 #include <algorithm>
-#include <complex>
 #include <bit>
+#include <cassert>
+#include <complex>
 #include <cstdint>
 
 namespace pb::event_driven {

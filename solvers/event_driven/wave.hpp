@@ -42,7 +42,8 @@ struct Mode {
   // |-sigma + i omega| (std::hypot), carried with sigma and omega from the oscillator that
   // made them (add_scaled, derivative): every wave of a frame has its modes, and this hypot
   // per mode per prepare() was a third of a chain's hypot calls. Negative: prepare()
-  // computes it. The same function of the same two numbers, so the same value.
+  // computes it. The same function of the same two numbers, so the same value; code that
+  // changes sigma or omega of a prepared mode must set it back to -1.
   double rate = -1.0;
   // Re and Im of r_j, the near-resonant term's coefficient with the wave's sinusoid j (R_mj).
   std::array<double, kMaxSines> rr{}, ri{};
