@@ -81,20 +81,30 @@ void build_frame(const System& s, const State& st, int from, int to, Frame& fr) 
       mx += b.m * (st.u[ix(i)] - offset(s, first, i));
       mv += b.m * st.v[ix(i)];
     }
-    // Initialised from the call (no default Wave cleared, then overwritten by a copy): a
-    // chain rebuilds every cluster at every event.
-    const auto cluster_motion = [&]() -> Wave {
-      if (fixed) return constant(st.t, -s.delta);
-      if (!s.pulse.paper())
-        return oscillator(st.t, mx / m, mv / m, m, c, k, cluster_load(st.t, m, f_const, piece), piece.end);
-      const bool on = pulse_on(s, st.t);
-      const double load = on ? -m * s.pulse.amplitude : 0.0;
-      const bool sine = s.pulse.shape == PulseShape::sine;
-      const double horizon = on ? s.pulse.duration() : std::numeric_limits<double>::infinity();
-      return oscillator(st.t, mx / m, mv / m, m, c, k, f_const, sine ? load : 0.0, sine ? 0.0 : load, s.pulse.w,
+    // The cluster's motion, written where it goes: a chain rebuilds every body at every
+    // event, and clearing a Wave (some 650 bytes) and copying it cost as much as the maths.
+    const auto motion = [&](Wave& x) {
+      if (fixed) {
+        x = constant(st.t, -s.delta);
+      } else if (!s.pulse.paper()) {
+        oscillator_into(x, st.t, mx / m, mv / m, m, c, k, cluster_load(st.t, m, f_const, piece), piece.end);
+      } else {
+        const bool on = pulse_on(s, st.t);
+        const double load = on ? -m * s.pulse.amplitude : 0.0;
+        const bool sine = s.pulse.shape == PulseShape::sine;
+        const double horizon = on ? s.pulse.duration() : std::numeric_limits<double>::infinity();
+        oscillator_into(x, st.t, mx / m, mv / m, m, c, k, f_const, sine ? load : 0.0, sine ? 0.0 : load, s.pulse.w,
                         horizon);
+      }
     };
-    const Wave x = cluster_motion();
+    if (first == last && !fixed) {  // a free body: no force to build from x
+      Wave& body = fr.body[ix(first)];
+      motion(body);
+      body.f0 += offset(s, first, first);
+      return;
+    }
+    Wave x;
+    motion(x);
     for (int i = first; i <= last; ++i) {
       fr.body[ix(i)] = x;
       fr.body[ix(i)].f0 += offset(s, first, i);

@@ -357,12 +357,29 @@ Wave derivative(const Wave& x) {
   return d;
 }
 
+namespace {
+
+// x as a default Wave in every field an oscillator reads or fills (the first mode, the
+// load's n sinusoids, the counts and totals); the rest nothing reads past the counts.
+void start_oscillator(Wave& x, double t0, double x0, double horizon, int n_sines) {
+  reset(x, t0, x0);
+  x.horizon = horizon;
+  x.mode[0] = Mode{};
+  for (int j = 0; j < n_sines; ++j) x.sine[static_cast<std::size_t>(j)] = Sine{};
+}
+
+}  // namespace
+
 Wave oscillator(double t0, double x0, double v0, double m, double c, double k, double f_const, double fs,
                 double fc, double w, double horizon) {
   Wave x;
-  x.t0 = t0;
-  x.f0 = x0;
-  x.horizon = horizon;
+  oscillator_into(x, t0, x0, v0, m, c, k, f_const, fs, fc, w, horizon);
+  return x;
+}
+
+void oscillator_into(Wave& x, double t0, double x0, double v0, double m, double c, double k, double f_const,
+                     double fs, double fc, double w, double horizon) {
+  start_oscillator(x, t0, x0, horizon, 1);
   const double wn2 = k / m;
   const double two_zeta_wn = c / m;
   const double sigma = 0.5 * two_zeta_wn;
@@ -386,7 +403,7 @@ Wave oscillator(double t0, double x0, double v0, double m, double c, double k, d
     md.rr[0] = r.real();
     md.ri[0] = r.imag();
     x.prepare();
-    return x;
+    return;
   }
   // Particular solution: f_const / k + P sin(w t) + Q cos(w t).
   double p = 0.0, q = 0.0;
@@ -405,14 +422,17 @@ Wave oscillator(double t0, double x0, double v0, double m, double c, double k, d
   md.a = x0 - xp;
   md.b = (v0 - vp + sigma * md.a) / omega;
   x.prepare();
-  return x;
 }
 
 Wave oscillator(double t0, double x0, double v0, double m, double c, double k, const Forcing& load, double horizon) {
   Wave x;
-  x.t0 = t0;
-  x.f0 = x0;
-  x.horizon = horizon;
+  oscillator_into(x, t0, x0, v0, m, c, k, load, horizon);
+  return x;
+}
+
+void oscillator_into(Wave& x, double t0, double x0, double v0, double m, double c, double k, const Forcing& load,
+                     double horizon) {
+  start_oscillator(x, t0, x0, horizon, load.n);
   const double wn2 = k / m;
   const double two_zeta_wn = c / m;
   const double sigma = 0.5 * two_zeta_wn;
@@ -452,7 +472,6 @@ Wave oscillator(double t0, double x0, double v0, double m, double c, double k, c
   md.a = x0 - xp;
   md.b = (v0 - vp + sigma * md.a - resonant_rate) / omega;
   x.prepare();
-  return x;
 }
 
 Wave constant(double t0, double f0) {

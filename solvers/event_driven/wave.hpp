@@ -159,6 +159,13 @@ struct Forcing {
 // arithmetic the stored baselines hold. Prepared.
 Wave oscillator(double t0, double x0, double v0, double m, double c, double k, const Forcing& load, double horizon);
 
+// Both oscillators written into x in place, the same values: a frame rebuilds every free
+// body's wave at every event, and a returned Wave (some 650 bytes) was then copied whole.
+void oscillator_into(Wave& x, double t0, double x0, double v0, double m, double c, double k, double f_const,
+                     double fs, double fc, double w, double horizon);
+void oscillator_into(Wave& x, double t0, double x0, double v0, double m, double c, double k, const Forcing& load,
+                     double horizon);
+
 // Near resonance, below this |i w - z| / w, the forced response is taken as R_m: there the
 // pulse and mode terms would each be over 1 / kNearResonance times the motion they leave,
 // which costs the plain form up to ~200 ulps. Set below the damping of every body and
