@@ -301,6 +301,46 @@ TEST(WaveEval, AResetWaveIsTheFreshOne) {
   }
 }
 
+// A body's wave written in place over a used one (build_frame's free bodies) is the
+// returned one, value for value: plain, near-resonant, and a record's piece.
+TEST(WaveEval, AnOscillatorWrittenInPlaceIsTheReturnedOne) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), pos(0.2, 3.0), xi(0.0, 0.15);
+  Wave reused = random_gap(rng, 0.0, 2);
+  for (int trial = 0; trial < 150; ++trial) {
+    const int kind = trial % 3;
+    const double t0 = 0.3 * trial, m = pos(rng), w = pos(rng), k = m * w * w, x0 = 0.3 * u(rng), v0 = 0.3 * u(rng);
+    const double c = kind == 1 ? 1e-4 * 2.0 * xi(rng) * w * m : 2.0 * xi(rng) * w * m;
+    Wave fresh;
+    if (kind == 2) {
+      Forcing load;
+      load.f0 = 0.2 * u(rng);
+      load.f1 = 0.05 * u(rng);
+      load.n = 2;
+      load.w = {pos(rng), w * (1.0 + 0.001 * u(rng)), 0.0};
+      load.fs = {u(rng), u(rng), 0.0};
+      load.fc = {u(rng), u(rng), 0.0};
+      fresh = oscillator(t0, x0, v0, m, c, k, load, t0 + 20.0);
+      oscillator_into(reused, t0, x0, v0, m, c, k, load, t0 + 20.0);
+    } else {
+      const double wp = kind == 1 ? w * (1.0 + 0.002 * u(rng)) : pos(rng), f = 0.1 * u(rng), fs = u(rng), fc = u(rng);
+      fresh = oscillator(t0, x0, v0, m, c, k, f, fs, fc, wp, t0 + 20.0);
+      oscillator_into(reused, t0, x0, v0, m, c, k, f, fs, fc, wp, t0 + 20.0);
+    }
+    for (double t = t0; t < t0 + 10.0; t += 0.41) {
+      double a[kMaxDerivative + 1], b[kMaxDerivative + 1];
+      fresh.eval(t, a, kMaxDerivative + 1);
+      reused.eval(t, b, kMaxDerivative + 1);
+      for (int d = 0; d <= kMaxDerivative; ++d) {
+        ASSERT_TRUE(same_bits(a[d], b[d])) << trial << " " << t << " " << d;
+        ASSERT_TRUE(same_bits(fresh.bound(t, d), reused.bound(t, d))) << trial << " " << t << " " << d;
+      }
+    }
+    ASSERT_TRUE(same_bits(fresh.mean(), reused.mean()));
+    ASSERT_EQ(fresh.any_resonant, reused.any_resonant);
+  }
+}
+
 // A dip that reaches 1e-10 of the gap below zero is a root, whether the gap starts by
 // closing or by opening: the skips never step over a grazing approach. One that stays as
 // far above zero is none.
