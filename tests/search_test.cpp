@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
@@ -227,6 +228,117 @@ TEST(SearchFirstRoot, NeverLaterThanADenseScanOnRandomGapsIncludingJustOpenedOne
   EXPECT_GE(compared, 500);
   ::testing::Test::RecordProperty("compared", std::to_string(compared));
   ::testing::Test::RecordProperty("found", std::to_string(found));
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
+
+// add_scaled matches sinusoids by frequency, up to kMaxSines: a record's piece (two
+// sinusoids) gives both bodies of a gap its frequencies, as random_gap does.
+Wave same_load(Wave body, const Wave& other) {
+  if (body.lin == 0.0 && other.lin == 0.0) return body;
+  body.sine = other.sine;
+  body.lin = other.lin;
+  body.prepare();
+  return body;
+}
+
+// Where the state is advanced, every wave of a frame is evaluated at one t through one
+// TrigCache: its values must be eval()'s bit for bit (the reference's results rest on it).
+// Waves of all three kinds, from one t0, several sharing their modes (a gap and its
+// bodies), at t = t0 (eval's shortcut) and after.
+TEST(WaveEval, ATrigCacheAtOneTGivesPlainEvalsValuesBitForBit) {
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> later(0.0, 15.0);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int kind = trial % 3;
+    const double t0 = 0.5 * trial;
+    const Wave right = random_body(rng, t0, kind), left = same_load(random_body(rng, t0, kind), right);
+    Wave g = constant(t0, 0.0);
+    add_scaled(g, right, 1.0);
+    add_scaled(g, left, -1.0);
+    g.f0 = 0.1;
+    g.prepare();
+    for (const double t : {t0, t0 + later(rng), t0 + later(rng)}) {
+      TrigCache trig;
+      for (int pass = 0; pass < 2; ++pass) {  // the second pass hits the cache throughout
+        for (const Wave* w : {&right, &left, static_cast<const Wave*>(&g)}) {
+          double plain[kMaxDerivative + 1], cached[kMaxDerivative + 1];
+          w->eval(t, plain, kMaxDerivative + 1);
+          w->eval(t, cached, kMaxDerivative + 1, trig);
+          for (int d = 0; d <= kMaxDerivative; ++d)
+            ASSERT_TRUE(same_bits(plain[d], cached[d])) << trial << " d " << d << ": " << plain[d] << " " << cached[d];
+        }
+      }
+    }
+  }
+}
+
+// A gap rebuilt in place (reset(), as build_frame does at each event) over a wave that held
+// other modes and sinusoids is the gap built from constant(), value for value.
+TEST(WaveEval, AResetWaveIsTheFreshOne) {
+  std::mt19937_64 rng(5);
+  Wave reused = random_gap(rng, 0.0, 2);
+  for (int trial = 0; trial < 100; ++trial) {
+    const int kind = trial % 3;
+    const double t0 = 0.25 * trial;
+    const Wave right = random_body(rng, t0, kind), left = same_load(random_body(rng, t0, kind), right);
+    Wave fresh = constant(t0, 0.0);
+    reset(reused, t0, 0.0);
+    for (Wave* g : {&fresh, &reused}) {
+      add_scaled(*g, right, 1.0);
+      add_scaled(*g, left, -0.5);
+      g->f0 = 0.05;
+      g->prepare();
+    }
+    for (double t = t0; t < t0 + 10.0; t += 0.37) {
+      double a[kMaxDerivative + 1], b[kMaxDerivative + 1];
+      fresh.eval(t, a, kMaxDerivative + 1);
+      reused.eval(t, b, kMaxDerivative + 1);
+      for (int d = 0; d <= kMaxDerivative; ++d) ASSERT_TRUE(same_bits(a[d], b[d])) << trial << " " << t << " " << d;
+      for (int d = 0; d <= kMaxDerivative; ++d) ASSERT_TRUE(same_bits(fresh.bound(t, d), reused.bound(t, d)));
+    }
+    ASSERT_TRUE(same_bits(fresh.mean(), reused.mean()));
+  }
+}
+
+// A body's wave written in place over a used one (build_frame's free bodies) is the
+// returned one, value for value: plain, near-resonant, and a record's piece.
+TEST(WaveEval, AnOscillatorWrittenInPlaceIsTheReturnedOne) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), pos(0.2, 3.0), xi(0.0, 0.15);
+  Wave reused = random_gap(rng, 0.0, 2);
+  for (int trial = 0; trial < 150; ++trial) {
+    const int kind = trial % 3;
+    const double t0 = 0.3 * trial, m = pos(rng), w = pos(rng), k = m * w * w, x0 = 0.3 * u(rng), v0 = 0.3 * u(rng);
+    const double c = kind == 1 ? 1e-4 * 2.0 * xi(rng) * w * m : 2.0 * xi(rng) * w * m;
+    Wave fresh;
+    if (kind == 2) {
+      Forcing load;
+      load.f0 = 0.2 * u(rng);
+      load.f1 = 0.05 * u(rng);
+      load.n = 2;
+      load.w = {pos(rng), w * (1.0 + 0.001 * u(rng)), 0.0};
+      load.fs = {u(rng), u(rng), 0.0};
+      load.fc = {u(rng), u(rng), 0.0};
+      fresh = oscillator(t0, x0, v0, m, c, k, load, t0 + 20.0);
+      oscillator_into(reused, t0, x0, v0, m, c, k, load, t0 + 20.0);
+    } else {
+      const double wp = kind == 1 ? w * (1.0 + 0.002 * u(rng)) : pos(rng), f = 0.1 * u(rng), fs = u(rng), fc = u(rng);
+      fresh = oscillator(t0, x0, v0, m, c, k, f, fs, fc, wp, t0 + 20.0);
+      oscillator_into(reused, t0, x0, v0, m, c, k, f, fs, fc, wp, t0 + 20.0);
+    }
+    for (double t = t0; t < t0 + 10.0; t += 0.41) {
+      double a[kMaxDerivative + 1], b[kMaxDerivative + 1];
+      fresh.eval(t, a, kMaxDerivative + 1);
+      reused.eval(t, b, kMaxDerivative + 1);
+      for (int d = 0; d <= kMaxDerivative; ++d) {
+        ASSERT_TRUE(same_bits(a[d], b[d])) << trial << " " << t << " " << d;
+        ASSERT_TRUE(same_bits(fresh.bound(t, d), reused.bound(t, d))) << trial << " " << t << " " << d;
+      }
+    }
+    ASSERT_TRUE(same_bits(fresh.mean(), reused.mean()));
+    ASSERT_EQ(fresh.any_resonant, reused.any_resonant);
+  }
 }
 
 // A dip that reaches 1e-10 of the gap below zero is a root, whether the gap starts by

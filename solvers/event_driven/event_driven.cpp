@@ -220,15 +220,19 @@ class Solver {
     excess_ = std::max(excess_, balance_);
   }
 
+  // Every wave is evaluated at one t, most of them on the same few frequencies and decay
+  // rates (every wave starts at the last event): they share libm's values (TrigCache).
   void advance(double t) {
     double v[2];
+    TrigCache trig;
     for (int i = 0; i < s_.n_bodies(); ++i) {
-      fr_.body[ix(i)].eval(t, v, 2);
+      fr_.body[ix(i)].eval(t, v, 2, trig);
       st_.u[ix(i)] = v[0];
       st_.v[ix(i)] = v[1];
     }
     for (int j = 0; j < s_.n_contacts(); ++j) {
-      st_.g[ix(j)] = st_.active[ix(j)] ? 0.0 : fr_.contact[ix(j)].value(t);
+      if (!st_.active[ix(j)]) fr_.contact[ix(j)].eval(t, v, 1, trig);
+      st_.g[ix(j)] = st_.active[ix(j)] ? 0.0 : v[0];
       res_.min_gap = std::min(res_.min_gap, st_.g[ix(j)] < 0.0 ? st_.g[ix(j)] : res_.min_gap);
     }
     st_.t = t;
@@ -243,11 +247,12 @@ class Solver {
       const double ts = next_sample_ == samples_ - 1 ? s_.t_end : dt * next_sample_;
       if (ts > t) break;
       double v[2];
+      TrigCache trig;
       data.push_back(ts);
       const std::size_t at_u = data.size();
       data.resize(data.size() + ix(2 * s_.n_bodies()));
       for (int i = 0; i < s_.n_bodies(); ++i) {
-        fr_.body[ix(i)].eval(ts, v, 2);
+        fr_.body[ix(i)].eval(ts, v, 2, trig);
         data[at_u + ix(i)] = v[0];
         data[at_u + ix(s_.n_bodies() + i)] = v[1];
       }

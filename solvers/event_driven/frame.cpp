@@ -81,19 +81,30 @@ void build_frame(const System& s, const State& st, int from, int to, Frame& fr) 
       mx += b.m * (st.u[ix(i)] - offset(s, first, i));
       mv += b.m * st.v[ix(i)];
     }
-    Wave x;
-    if (fixed) {
-      x = constant(st.t, -s.delta);
-    } else if (!s.pulse.paper()) {
-      x = oscillator(st.t, mx / m, mv / m, m, c, k, cluster_load(st.t, m, f_const, piece), piece.end);
-    } else {
-      const bool on = pulse_on(s, st.t);
-      const double load = on ? -m * s.pulse.amplitude : 0.0;
-      const bool sine = s.pulse.shape == PulseShape::sine;
-      const double horizon = on ? s.pulse.duration() : std::numeric_limits<double>::infinity();
-      x = oscillator(st.t, mx / m, mv / m, m, c, k, f_const, sine ? load : 0.0, sine ? 0.0 : load, s.pulse.w,
-                     horizon);
+    // The cluster's motion, written where it goes: a chain rebuilds every body at every
+    // event, and clearing a Wave (some 650 bytes) and copying it cost as much as the maths.
+    const auto motion = [&](Wave& x) {
+      if (fixed) {
+        x = constant(st.t, -s.delta);
+      } else if (!s.pulse.paper()) {
+        oscillator_into(x, st.t, mx / m, mv / m, m, c, k, cluster_load(st.t, m, f_const, piece), piece.end);
+      } else {
+        const bool on = pulse_on(s, st.t);
+        const double load = on ? -m * s.pulse.amplitude : 0.0;
+        const bool sine = s.pulse.shape == PulseShape::sine;
+        const double horizon = on ? s.pulse.duration() : std::numeric_limits<double>::infinity();
+        oscillator_into(x, st.t, mx / m, mv / m, m, c, k, f_const, sine ? load : 0.0, sine ? 0.0 : load, s.pulse.w,
+                        horizon);
+      }
+    };
+    if (first == last && !fixed) {  // a free body: no force to build from x
+      Wave& body = fr.body[ix(first)];
+      motion(body);
+      body.f0 += offset(s, first, first);
+      return;
     }
+    Wave x;
+    motion(x);
     for (int i = first; i <= last; ++i) {
       fr.body[ix(i)] = x;
       fr.body[ix(i)].f0 += offset(s, first, i);
@@ -112,7 +123,7 @@ void build_frame(const System& s, const State& st, int from, int to, Frame& fr) 
         const int j = i - 1 + wall_shift;  // contact left of body i
         if (j < 0 || (i == first && !fixed)) continue;
         Wave& f = fr.contact[ix(j)];
-        f = constant(st.t, ko);
+        reset(f, st.t, ko);
         add_scaled(f, x, kr);
         if (!fixed) {
           add_scaled(f, dx, cr);
@@ -126,7 +137,7 @@ void build_frame(const System& s, const State& st, int from, int to, Frame& fr) 
   for (int j = first_contact(s, from); j <= last_contact(s, to); ++j) {
     if (st.active[ix(j)]) continue;
     Wave& g = fr.contact[ix(j)];
-    g = constant(st.t, 0.0);
+    reset(g, st.t, 0.0);
     add_scaled(g, fr.body[ix(s.right(j))], 1.0);
     if (s.left(j) != kWall) add_scaled(g, fr.body[ix(s.left(j))], -1.0);
     g.f0 = st.g[ix(j)];

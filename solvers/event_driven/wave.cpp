@@ -1,7 +1,10 @@
 #include "solvers/event_driven/wave.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <cassert>
 #include <complex>
+#include <cstdint>
 
 namespace pb::event_driven {
 
@@ -25,6 +28,8 @@ void sin_cos(double w, double t0, double& s, double& c) {
   s = last_s;
   c = last_c;
 }
+
+bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
 
 using Complex = std::complex<double>;
 
@@ -60,7 +65,8 @@ void Wave::prepare() {
       md.re[d] = re;
       md.im[d] = im;
     }
-    const double rate = std::hypot(md.sigma, md.omega);
+    if (!(md.rate >= 0.0)) md.rate = std::hypot(md.sigma, md.omega);
+    const double rate = md.rate;
     md.envelope[0] = std::hypot(md.a, md.b);
     for (std::size_t d = 1; d <= kMaxDerivative; ++d) md.envelope[d] = md.envelope[d - 1] * rate;
   }
@@ -80,7 +86,55 @@ void Wave::prepare() {
   }
 }
 
-void Wave::eval(double t, double* out, int nd) const {
+namespace {
+
+// libm's functions as they are (a search's evaluations).
+struct PlainTrig {
+  void sin_cos(double x, double& s, double& c) const {
+    s = std::sin(x);
+    c = std::cos(x);
+  }
+  double expm1(double x) const { return std::expm1(x); }
+};
+
+}  // namespace
+
+void TrigCache::sin_cos(double x, double& s, double& c) {
+  for (int k = 0; k < n_sc_; ++k) {
+    const SinCos& e = sc_[static_cast<std::size_t>(k)];
+    if (same_bits(e.x, x)) {
+      s = e.s;
+      c = e.c;
+      return;
+    }
+  }
+  s = std::sin(x);
+  c = std::cos(x);
+  sc_[static_cast<std::size_t>(next_sc_)] = {x, s, c};
+  next_sc_ = (next_sc_ + 1) % kSize;
+  n_sc_ = std::min(n_sc_ + 1, kSize);
+}
+
+double TrigCache::expm1(double x) {
+  for (int k = 0; k < n_em_; ++k) {
+    const Expm1& e = em_[static_cast<std::size_t>(k)];
+    if (same_bits(e.x, x)) return e.e;
+  }
+  const double v = std::expm1(x);
+  em_[static_cast<std::size_t>(next_em_)] = {x, v};
+  next_em_ = (next_em_ + 1) % kSize;
+  n_em_ = std::min(n_em_ + 1, kSize);
+  return v;
+}
+
+namespace {
+
+template <class Trig>
+void eval_wave(const Wave& wave, double t, double* out, int nd, Trig& trig) {
+  const double t0 = wave.t0, f0 = wave.f0, lin = wave.lin;
+  const int n_sines = wave.n_sines, n_modes = wave.n_modes;
+  const auto& sine = wave.sine;
+  const auto& mode = wave.mode;
   const double tau = t - t0;
   // Searches start where the wave does (tau = 0): there the functions below are skipped
   // for their exact values (sin 0 = 0, cos 0 = 1, expm1(-0) = -0).
@@ -99,8 +153,7 @@ void Wave::eval(double t, double* out, int nd) const {
     // free of cancellation near t0.
     double sh = 0.0, ch = 1.0;
     if (!start) {
-      sh = std::sin(0.5 * w * tau);
-      ch = std::cos(0.5 * w * tau);
+      trig.sin_cos(0.5 * w * tau, sh, ch);
     }
     const double dc = -2.0 * sh * sh, ds = 2.0 * sh * ch;  // cos(w tau) - 1, sin(w tau)
     out[0] += ps * (s0 * dc + c0 * ds) + pc * (c0 * dc - s0 * ds);
@@ -126,9 +179,8 @@ void Wave::eval(double t, double* out, int nd) const {
     const Mode& md = mode[static_cast<std::size_t>(m)];
     double em1 = -0.0, sh = 0.0, ch = 1.0;
     if (!start) {
-      em1 = std::expm1(-md.sigma * tau);
-      sh = std::sin(0.5 * md.omega * tau);
-      ch = std::cos(0.5 * md.omega * tau);
+      em1 = trig.expm1(-md.sigma * tau);
+      trig.sin_cos(0.5 * md.omega * tau, sh, ch);
     }
     const double e = em1 + 1.0;
     const double cs = 1.0 - 2.0 * sh * sh, sn = 2.0 * sh * ch;
@@ -154,6 +206,15 @@ void Wave::eval(double t, double* out, int nd) const {
     }
   }
 }
+
+}  // namespace
+
+void Wave::eval(double t, double* out, int nd) const {
+  PlainTrig trig;
+  eval_wave(*this, t, out, nd, trig);
+}
+
+void Wave::eval(double t, double* out, int nd, TrigCache& trig) const { eval_wave(*this, t, out, nd, trig); }
 
 void Wave::decays(double t, double* decay) const {
   const double tau = std::max(t - t0, 0.0);
@@ -243,6 +304,7 @@ void add_scaled(Wave& acc, const Wave& x, double s) {
       am = Mode{};
       am.sigma = xm.sigma;
       am.omega = xm.omega;
+      am.rate = xm.rate;
       ++acc.n_modes;
     }
     am.a += s * xm.a;
@@ -276,6 +338,7 @@ Wave derivative(const Wave& x) {
     Mode& dm = d.mode[static_cast<std::size_t>(m)];
     dm.sigma = xm.sigma;
     dm.omega = xm.omega;
+    dm.rate = xm.rate;
     // (r G)' = (i w r) G + r exp(z s): the damped term gains r, the resonant one i w r.
     double a = xm.re[1] + xm.rr[0], b = xm.im[1] + xm.ri[0];
     for (std::size_t j = 1; j < static_cast<std::size_t>(x.n_sines); ++j) {
@@ -296,24 +359,32 @@ Wave derivative(const Wave& x) {
 
 namespace {
 
-// The one mode of the oscillator (m, c, k) from t0, its amplitudes left to the caller.
-Wave one_mode(double t0, double x0, double m, double c, double k, double horizon) {
-  Wave x;
-  x.t0 = t0;
-  x.f0 = x0;
+// x as a default Wave in every field an oscillator reads or fills (the first mode, the
+// load's n sinusoids, the counts and totals; the rest nothing reads past the counts), with
+// the one mode of the oscillator (m, c, k): its amplitudes are left to the caller.
+void start_oscillator(Wave& x, double t0, double x0, double horizon, int n_sines, double m, double c, double k) {
+  reset(x, t0, x0);
   x.horizon = horizon;
+  x.mode[0] = Mode{};
+  for (int j = 0; j < n_sines; ++j) x.sine[static_cast<std::size_t>(j)] = Sine{};
   const double sigma = 0.5 * (c / m);
   x.mode[0].sigma = sigma;
   x.mode[0].omega = std::sqrt(k / m - sigma * sigma);
   x.n_modes = 1;
-  return x;
 }
 
 }  // namespace
 
 Wave oscillator(double t0, double x0, double v0, double m, double c, double k, double f_const, double fs,
                 double fc, double w, double horizon) {
-  Wave x = one_mode(t0, x0, m, c, k, horizon);
+  Wave x;
+  oscillator_into(x, t0, x0, v0, m, c, k, f_const, fs, fc, w, horizon);
+  return x;
+}
+
+void oscillator_into(Wave& x, double t0, double x0, double v0, double m, double c, double k, double f_const,
+                     double fs, double fc, double w, double horizon) {
+  start_oscillator(x, t0, x0, horizon, 1, m, c, k);
   Mode& md = x.mode[0];
   const double wn2 = k / m, two_zeta_wn = c / m, sigma = md.sigma, omega = md.omega;
   const bool forced = fs != 0.0 || fc != 0.0;
@@ -331,7 +402,7 @@ Wave oscillator(double t0, double x0, double v0, double m, double c, double k, d
     md.rr[0] = r.real();
     md.ri[0] = r.imag();
     x.prepare();
-    return x;
+    return;
   }
   // Particular solution: f_const / k + P sin(w t) + Q cos(w t).
   double p = 0.0, q = 0.0;
@@ -350,11 +421,17 @@ Wave oscillator(double t0, double x0, double v0, double m, double c, double k, d
   md.a = x0 - xp;
   md.b = (v0 - vp + sigma * md.a) / omega;
   x.prepare();
-  return x;
 }
 
 Wave oscillator(double t0, double x0, double v0, double m, double c, double k, const Forcing& load, double horizon) {
-  Wave x = one_mode(t0, x0, m, c, k, horizon);
+  Wave x;
+  oscillator_into(x, t0, x0, v0, m, c, k, load, horizon);
+  return x;
+}
+
+void oscillator_into(Wave& x, double t0, double x0, double v0, double m, double c, double k, const Forcing& load,
+                     double horizon) {
+  start_oscillator(x, t0, x0, horizon, load.n, m, c, k);
   Mode& md = x.mode[0];
   const double wn2 = k / m, two_zeta_wn = c / m, sigma = md.sigma, omega = md.omega;
   // The polynomial's particular solution alpha + beta (t - t0); then each sinusoid's, whose
@@ -388,7 +465,6 @@ Wave oscillator(double t0, double x0, double v0, double m, double c, double k, c
   md.a = x0 - xp;
   md.b = (v0 - vp + sigma * md.a - resonant_rate) / omega;
   x.prepare();
-  return x;
 }
 
 Wave constant(double t0, double f0) {
@@ -396,6 +472,17 @@ Wave constant(double t0, double f0) {
   x.t0 = t0;
   x.f0 = f0;
   return x;
+}
+
+void reset(Wave& w, double t0, double f0) {
+  w.t0 = t0;
+  w.f0 = f0;
+  w.lin = 0.0;
+  w.n_sines = 0;
+  w.n_modes = 0;
+  w.horizon = std::numeric_limits<double>::infinity();
+  w.any_resonant = false;
+  w.pulse_envelope.fill(0.0);
 }
 
 }  // namespace pb::event_driven

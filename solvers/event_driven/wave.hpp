@@ -39,6 +39,12 @@ struct Mode {
   double omega = 0.0;  // damped circular frequency
   double a = 0.0;      // coefficient of cos
   double b = 0.0;      // coefficient of sin
+  // |-sigma + i omega| (std::hypot), carried with sigma and omega from the oscillator that
+  // made them (add_scaled, derivative): every wave of a frame has its modes, and this hypot
+  // per mode per prepare() was a third of a chain's hypot calls. Negative: prepare()
+  // computes it. The same function of the same two numbers, so the same value; code that
+  // changes sigma or omega of a prepared mode must set it back to -1.
+  double rate = -1.0;
   // Re and Im of r_j, the near-resonant term's coefficient with the wave's sinusoid j (R_mj).
   std::array<double, kMaxSines> rr{}, ri{};
   // Re/Im of (a - i b) (-sigma + i omega)^d, d = 1..kMaxDerivative, and |(a - i b)|,
@@ -52,6 +58,33 @@ struct Sine {
   double w = 0.0;  // circular frequency
   double ps = 0.0, pc = 0.0;
   double s0 = 0.0, c0 = 1.0;  // set by prepare(): sin, cos of w t0
+};
+
+// The transcendental values eval() takes at one t, kept for the other waves evaluated at
+// that t. After an event every wave of the frame starts at the event (one t0), so where the
+// state is advanced to the next event every body and every gap is evaluated at one tau, on
+// a few frequencies and decay rates: at N = 100 that was 500 sin/cos pairs and 300 expm1
+// for three distinct pairs and two distinct expm1. Keyed by the argument's bits, so a value
+// is libm's for that argument, as eval() without it computes (the results are the same bit
+// for bit). Only for a batch of evaluations at one t: a search's points are all distinct,
+// where the look-up would be pure cost.
+class TrigCache {
+ public:
+  // sin and cos of x.
+  void sin_cos(double x, double& s, double& c);
+  double expm1(double x);
+
+ private:
+  static constexpr int kSize = 8;  // distinct (sigma, omega) of a chain's clusters, and w
+  struct SinCos {
+    double x, s, c;
+  };
+  struct Expm1 {
+    double x, e;
+  };
+  std::array<SinCos, kSize> sc_{};
+  std::array<Expm1, kSize> em_{};
+  int n_sc_ = 0, n_em_ = 0, next_sc_ = 0, next_em_ = 0;
 };
 
 struct Wave {
@@ -74,6 +107,8 @@ struct Wave {
 
   // out[d] = f^(d)(t) for d = 0..nd-1 (nd <= kMaxDerivative + 1).
   void eval(double t, double* out, int nd) const;
+  // The same values, bit for bit, taking sin, cos and expm1 through `trig` (one t per cache).
+  void eval(double t, double* out, int nd, TrigCache& trig) const;
   double value(double t) const {
     double v;
     eval(t, &v, 1);
@@ -124,6 +159,13 @@ struct Forcing {
 // arithmetic the stored baselines hold. Prepared.
 Wave oscillator(double t0, double x0, double v0, double m, double c, double k, const Forcing& load, double horizon);
 
+// Both oscillators written into x in place, the same values: a frame rebuilds every free
+// body's wave at every event, and a returned Wave (some 650 bytes) was then copied whole.
+void oscillator_into(Wave& x, double t0, double x0, double v0, double m, double c, double k, double f_const,
+                     double fs, double fc, double w, double horizon);
+void oscillator_into(Wave& x, double t0, double x0, double v0, double m, double c, double k, const Forcing& load,
+                     double horizon);
+
 // Near resonance, below this |i w - z| / w, the forced response is taken as R_m: there the
 // pulse and mode terms would each be over 1 / kNearResonance times the motion they leave,
 // which costs the plain form up to ~200 ulps. Set below the damping of every body and
@@ -133,5 +175,11 @@ inline constexpr double kNearResonance = 0.005;
 
 // A quantity that does not move.
 Wave constant(double t0, double f0);
+
+// Makes w the constant f0 from t0 in place: the fields past n_sines and n_modes are left as
+// they were (nothing reads them; add_scaled clears a sinusoid or mode as it appends one).
+// A frame's gaps and forces are rebuilt this way at every event: constant() cleared and
+// copied a whole Wave (kMaxModes modes of derivative tables) for each.
+void reset(Wave& w, double t0, double f0);
 
 }  // namespace pb::event_driven
