@@ -15,10 +15,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 from rows import config_label  # noqa: E402
 
 
-def save(fig, out_dir, stem):
-    """Writes figures/STEM.png and .svg under out_dir; returns the PNG's path relative to it."""
+def save(fig, out_dir, stem, vector=True):
+    """Writes figures/STEM.png, and .svg unless `vector` is false, under out_dir; returns the
+    PNG's path relative to it."""
     path = os.path.join(out_dir, "figures", stem)
-    for ext in ("png", "svg"):
+    for ext in ("png", "svg") if vector else ("png",):
         fig.savefig(f"{path}.{ext}", dpi=100)
     plt.close(fig)
     return f"figures/{stem}.png"

@@ -141,7 +141,9 @@ def wp_diagram(family, rows, out_dir):
                             frameon=False)
     fig.suptitle(f"{family}: work against precision (a line: one configuration over its step counts N = 8, 16, ...)",
                  fontsize=11)
-    return save(fig, out_dir, f"wp-{family}")
+    # PNG only: with every setting's line and spread the SVG was 24 000 lines and drawing it
+    # took a quarter of the report's time (main.sh's report step, 47 s).
+    return save(fig, out_dir, f"wp-{family}", vector=False)
 
 
 def wp_diagrams(summary, out_dir):

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # The paper report, reports/paper/: set up and build, run the paper's case sets through the
 # reference, then write the page and its figures. Works from a clean clone.
-#   scripts/paper.sh
+#   scripts/paper.sh            set up and build first
+#   scripts/paper.sh --built    build/ is up to date (scripts/main.sh has just built it)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-scripts/setup.sh --build-dir build --build-type Release
+[ "${1:-}" = "--built" ] || scripts/setup.sh --build-dir build --build-type Release
 mkdir -p results/paper
 pb=build/poundbench
 
