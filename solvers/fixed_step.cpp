@@ -109,6 +109,13 @@ const char* runaway(const System& sys, const double* u, const double* v) {
   return nullptr;
 }
 
+Status state_end(const System& sys, bool finite, const double* u, const double* v, double t, std::string& message) {
+  const char* why = finite ? runaway(sys, u, v) : "non-finite state";
+  if (!why) return Status::ok;
+  message = std::string(why) + " at t = " + std::to_string(t);
+  return finite ? Status::diverged : Status::nan;
+}
+
 void StepTally::state(const System& sys, long k, const double* u) {
   const double a = std::abs(u[ix(sys.ref)]);
   if (a > u_max) {

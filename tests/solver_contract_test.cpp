@@ -447,10 +447,12 @@ TEST_P(SolverContract, TimeLimitStopsAHundredBodyChainSoon) {
     return;
   }
   EXPECT_EQ(r.status, Status::time_limit) << r.message;
-  // Some progress, unless the first step alone outlasted the limit (the Kelvin-Voigt
-  // reference's first matrix exponentials on 24 bodies, under AddressSanitizer at -O0).
+  // Some progress. Where the first step alone outlasted the limit (the Kelvin-Voigt
+  // reference's first matrix exponentials on 24 bodies, under AddressSanitizer at -O0),
+  // a limit of a second must get past it.
   if (!facts().fails_everywhere && r.steps == 0) {
-    EXPECT_GE(elapsed, st.time_limit);
+    st.time_limit = 1.0;
+    EXPECT_GT(solve(s, st).steps, 0);
   }
 }
 

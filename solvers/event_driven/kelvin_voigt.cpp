@@ -243,10 +243,11 @@ class KelvinVoigt {
       } else if (t_ == t_pulse) {
         y_(2 * n_ + 1) = y_(2 * n_ + 2) = 0.0;  // no load after the pulse
       }
-      if (!y_.allFinite()) return stopped(Status::nan, "non-finite state at t = " + std::to_string(t_));
-      bodies_.noalias() = to_bodies_ * y_;
-      if (const char* why = runaway(s_, bodies_.data(), bodies_.data() + n_))
-        return stopped(Status::diverged, std::string(why) + " at t = " + std::to_string(t_));
+      const bool finite = y_.allFinite();
+      if (finite) bodies_.noalias() = to_bodies_ * y_;
+      std::string why;
+      if (const Status end = state_end(s_, finite, bodies_.data(), bodies_.data() + n_, t_, why); end != Status::ok)
+        return stopped(end, std::move(why));
       if (deadline_.tick()) return stopped(Status::time_limit, deadline_.reason() + " at t = " + std::to_string(t_));
     }
     finish();

@@ -127,16 +127,8 @@ Result run_event_driven(const System& sys, const Settings& set) {
     ++events;
     st.read(run, sys, units);
     const double now = run.time() * units.time;
-    if (!before.finite() || !st.finite()) {
-      res.status = Status::nan;
-      res.message = "non-finite state at t = " + std::to_string(now);
-      break;
-    }
-    if (const char* why = runaway(sys, st.u.data(), st.v.data())) {
-      res.status = Status::diverged;
-      res.message = std::string(why) + " at t = " + std::to_string(now);
-      break;
-    }
+    res.status = state_end(sys, before.finite() && st.finite(), st.u.data(), st.v.data(), now, res.message);
+    if (res.status != Status::ok) break;
     // Between two events the motion is smooth: its largest |u0| is that of the cubic through
     // the state after the last event and the state before this one.
     t.peak(hermite_peak(t_last, now - t_last, u_last, v_last, before.u[ref], before.v[ref]));

@@ -125,16 +125,8 @@ Result run_newmark_alpha(const System& sys, const Settings& set) {
       res.message = deadline.reason() + " at t = " + std::to_string(now);
       break;
     }
-    if (!st.finite()) {
-      res.status = Status::nan;
-      res.message = "non-finite state at t = " + std::to_string(now);
-      break;
-    }
-    if (const char* why = runaway(sys, st.u.data(), st.v.data())) {
-      res.status = Status::diverged;
-      res.message = std::string(why) + " at t = " + std::to_string(now);
-      break;
-    }
+    res.status = state_end(sys, st.finite(), st.u.data(), st.v.data(), now, res.message);
+    if (res.status != Status::ok) break;
     if (std::abs(st.u[ref]) > u_max) {
       u_max = std::abs(st.u[ref]);
       t_max = now;
