@@ -40,10 +40,11 @@ void StepMonitor::finish(Result& r) const {
 }
 
 Deadline::Deadline(const Settings& settings)
-    : limit_(settings.time_limit), stop_(settings.stop), start_(std::chrono::steady_clock::now()) {}
+    : limit_(settings.time_limit), stop_(settings.stop), start_(std::chrono::steady_clock::now()) {
+  if (!(limit_ > 0.0) && !stop_) next_ = std::numeric_limits<long>::max();
+}
 
-bool Deadline::passed(long k) {
-  if ((!(limit_ > 0.0) && !stop_) || k < next_) return false;
+bool Deadline::look(long k) {
   if (stop_ && stop_->load(std::memory_order_relaxed)) return true;
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   if (limit_ > 0.0 && elapsed > limit_) return true;

@@ -129,8 +129,11 @@ double TrigCache::expm1(double x) {
 
 namespace {
 
-template <class Trig>
-void eval_wave(const Wave& wave, double t, double* out, int nd, Trig& trig) {
+// nd is a template argument so that the loops over derivatives unroll: the searches ask for
+// 2 or 3 values at a time, and eval is the reference's largest cost. The same operations in
+// the same order whatever nd is, so the same values.
+template <int nd, class Trig>
+void eval_wave(const Wave& wave, double t, double* out, Trig& trig) {
   const double t0 = wave.t0, f0 = wave.f0, lin = wave.lin;
   const int n_sines = wave.n_sines, n_modes = wave.n_modes;
   const auto& sine = wave.sine;
@@ -207,14 +210,30 @@ void eval_wave(const Wave& wave, double t, double* out, int nd, Trig& trig) {
   }
 }
 
+template <class Trig>
+void eval_any(const Wave& wave, double t, double* out, int nd, Trig& trig) {
+  switch (nd) {
+    case 1: return eval_wave<1>(wave, t, out, trig);
+    case 2: return eval_wave<2>(wave, t, out, trig);
+    case 3: return eval_wave<3>(wave, t, out, trig);
+    case 4: return eval_wave<4>(wave, t, out, trig);
+    case 5: return eval_wave<5>(wave, t, out, trig);
+    default: return eval_wave<kMaxDerivative + 1>(wave, t, out, trig);
+  }
+}
+
 }  // namespace
 
 void Wave::eval(double t, double* out, int nd) const {
+  assert(nd >= 1 && nd <= kMaxDerivative + 1);
   PlainTrig trig;
-  eval_wave(*this, t, out, nd, trig);
+  eval_any(*this, t, out, nd, trig);
 }
 
-void Wave::eval(double t, double* out, int nd, TrigCache& trig) const { eval_wave(*this, t, out, nd, trig); }
+void Wave::eval(double t, double* out, int nd, TrigCache& trig) const {
+  assert(nd >= 1 && nd <= kMaxDerivative + 1);
+  eval_any(*this, t, out, nd, trig);
+}
 
 void Wave::decays(double t, double* decay) const {
   const double tau = std::max(t - t0, 0.0);
