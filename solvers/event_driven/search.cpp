@@ -70,11 +70,13 @@ struct Cubic {
   }
   double operator()(double s) const { return c0 + s * (c1 + s * (c2 + s * c3)); }
   // Min and max over [0, 1]: the ends and the stationary points inside.
-  void range(double& lo, double& hi) const {
-    lo = std::min(c0, (*this)(1.0));
-    hi = std::max(c0, (*this)(1.0));
+  void range(double& lo, double& hi) const { range(0.0, 1.0, lo, hi); }
+  // The same over [s0, s1].
+  void range(double s0, double s1, double& lo, double& hi) const {
+    lo = std::min((*this)(s0), (*this)(s1));
+    hi = std::max((*this)(s0), (*this)(s1));
     auto visit = [&](double s) {
-      if (s > 0.0 && s < 1.0) {
+      if (s > s0 && s < s1) {
         const double v = (*this)(s);
         lo = std::min(lo, v);
         hi = std::max(hi, v);
@@ -98,6 +100,32 @@ struct Cubic {
     }
   }
 };
+
+// Bounds of f on a window from its interpolant H where the plain ones, H -+ mid (mid the
+// error bound hermite_error, at the window's middle), do not settle a test. The error is
+// at most max|f''''| (t - a)^2 (b - t)^2 / 24 = 16 mid s^2 (1 - s)^2, which vanishes at
+// the ends; on the left half it is at most 16 mid s^2, on the right 16 mid (1 - s)^2, and
+// H plus or minus either is a cubic. With the constant bound, a window that ends on the
+// largest |f| so far (a peak search's rising f) or near zero (an approaching gap) could
+// never be excluded, only halved until f' alone settled it: some 40 halvings in a first
+// segment from rest, where f' starts at zero.
+void edge_range(const Cubic& h, double mid, double& lo, double& hi) {
+  const double e = 16.0 * mid;
+  double l, u, unused;
+  Cubic c = h;
+  c.c2 = h.c2 + e;  // H + e s^2
+  c.range(0.0, 0.5, unused, u);
+  hi = u;
+  c.c2 = h.c2 - e;  // H - e s^2
+  c.range(0.0, 0.5, l, unused);
+  lo = l;
+  c.c0 = h.c0 + e, c.c1 = h.c1 - 2.0 * e, c.c2 = h.c2 + e;  // H + e (1 - s)^2
+  c.range(0.5, 1.0, unused, u);
+  hi = std::max(hi, u);
+  c.c0 = h.c0 - e, c.c1 = h.c1 + 2.0 * e, c.c2 = h.c2 - e;  // H - e (1 - s)^2
+  c.range(0.5, 1.0, l, unused);
+  lo = std::min(lo, l);
+}
 
 double hermite_error(Bounds& bound, double a, double h) {
   const double h2 = h * h;
@@ -200,10 +228,14 @@ double search(const Wave& g, Bounds& bound, const Point& a, const Point& b, doub
     // A crossing is bracketed; it is the first one if g is monotone on the window.
     if (one_sign(a.df, b.df, bound(a.t, 2), h) || h <= floor) return refine_root(g, a, b);
   } else {
+    const Cubic cubic(a, b);
     double lo, hi;
-    Cubic(a, b).range(lo, hi);
-    if (lo - hermite_error(bound, a.t, h) > 0.0) return kNaN;
+    cubic.range(lo, hi);
+    const double err = hermite_error(bound, a.t, h);
+    if (lo - err > 0.0) return kNaN;
     if (h <= floor) return kNaN;  // a touch within round-off, not a contact
+    edge_range(cubic, err, lo, hi);
+    if (lo > 0.0) return kNaN;
   }
   const Point m = at(g, 0.5 * (a.t + b.t));
   if (m.f <= 0.0) {
@@ -349,10 +381,14 @@ void peak_search(const Wave& f, Bounds& bound, const Point& a, const Point& b, d
                  Deadline& dl) {
   tick(dl);
   const double h = b.t - a.t;
+  const Cubic cubic(a, b);
   double lo, hi;
-  Cubic(a, b).range(lo, hi);
-  if (std::max(-lo, hi) + hermite_error(bound, a.t, h) <= peak.value) return;
+  cubic.range(lo, hi);
+  const double err = hermite_error(bound, a.t, h);
+  if (std::max(-lo, hi) + err <= peak.value) return;
   if (h <= floor) return;
+  edge_range(cubic, err, lo, hi);
+  if (std::max(-lo, hi) <= peak.value) return;
   // f monotone: the ends, already considered, hold the max.
   if (one_sign(a.df, b.df, bound(a.t, 2), h)) return;
   // f'' of one sign on the window: exactly one stationary point inside.

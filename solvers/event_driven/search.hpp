@@ -3,7 +3,8 @@
 //
 // Both cut the interval into windows and bound f on each window by its cubic Hermite
 // interpolant through (f, f') at the window's ends, whose error is at most
-// max|f''''| w^4 / 384; max|f''''| is bounded from the wave's amplitudes (bound()).
+// max|f''''| w^4 / 384 at the middle and vanishes at the ends (max|f''''| is bounded from
+// the wave's amplitudes, bound()).
 // A window is skipped only when that bound proves it holds no crossing (or no value
 // above the best so far); otherwise it is halved. Sampling alone could step over a
 // grazing approach; this cannot, down to windows of `floor` seconds, where a touch is
