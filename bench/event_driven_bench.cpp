@@ -74,7 +74,9 @@ namespace {
 // a_p / w_p on body 0 breaks that symmetry. Counters: events and impacts per run, the time
 // per event and per impact, and impacts per event: here an event is a row of simultaneous
 // impacts that grows with N (about N / 6 of them), so the time per event grows with N even
-// where the time per impact does not.
+// where the time per impact does not. full_search:1 searches every contact at every event
+// (event_driven::detail), as before a contact kept its last search's answer while no event
+// moved its bodies: the two side by side, in one run.
 void BM_EventDrivenChain(benchmark::State& state) {
   pb::Case c;
   c.scene = pb::Scene::chain;
@@ -87,9 +89,10 @@ void BM_EventDrivenChain(benchmark::State& state) {
   c.pi6 = 0.5;
   c.eps = 0.5;
   const pb::System s = pb::make_system(c);
+  const auto solve = state.range(2) ? pb::event_driven::detail::solve_searching_every_contact : pb::event_driven::solve;
   long events = 0, impacts = 0;
   for (auto _ : state) {
-    const pb::Result r = pb::event_driven::solve(s, {});
+    const pb::Result r = solve(s, {});
     events = r.steps;
     impacts = r.impacts;
     benchmark::DoNotOptimize(r.pi1);
@@ -101,8 +104,8 @@ void BM_EventDrivenChain(benchmark::State& state) {
   state.counters["impacts_per_event"] = events > 0 ? static_cast<double>(impacts) / static_cast<double>(events) : 0.0;
 }
 BENCHMARK(BM_EventDrivenChain)
-    ->ArgNames({"N", "kick"})
-    ->ArgsProduct({{2, 5, 10, 20, 50, 100}, {0, 1}})
+    ->ArgNames({"N", "kick", "full_search"})
+    ->ArgsProduct({{2, 5, 10, 20, 50, 100}, {0, 1}, {0, 1}})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -1,8 +1,10 @@
 #include "solvers/event_driven/event_driven.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <exception>
 #include <limits>
 #include <span>
@@ -74,7 +76,7 @@ std::vector<double> start_or_rest(const std::vector<double>& start, const System
 
 class Solver {
  public:
-  Solver(const System& s, const Settings& settings)
+  Solver(const System& s, const Settings& settings, bool keep_searches = true)
       : s_(s),
         tol_(tolerances(s, settings.tol_scale)),
         cap_(settings.step_cap > 0 ? settings.step_cap : 1000000),
@@ -108,6 +110,11 @@ class Solver {
     proposal_.resize(nc);
     eval_u_.resize(n);
     eval_v_.resize(n);
+    incremental_ = keep_searches && s.n_contacts() > 2;
+    fresh_.assign(nc, 1);
+    root_.assign(nc, std::numeric_limits<double>::quiet_NaN());
+    searched_.assign(nc, 0.0);
+    changed_.resize(n);
     if (settings.history_samples > 0) {
       samples_ = settings.history_samples;
       res_.history.n_bodies = s.n_bodies();
@@ -146,8 +153,7 @@ class Solver {
       double b = seg_end;
       int which = -1;
       for (int j = 0; j < s_.n_contacts(); ++j) {
-        const double noise = st_.active[ix(j)] ? tol_.lex * force_scale_[ix(j)] : tol_.gap;
-        const double r = first_root(fr_.contact[ix(j)], st_.t, b, tol_.floor, tol_.settle, noise, deadline_);
+        const double r = next_root(j, b);
         if (!std::isnan(r) && r <= b) {
           b = r;
           which = j;
@@ -156,6 +162,11 @@ class Solver {
       max_abs(fr_.body[ix(s_.ref)], st_.t, b, tol_.floor, peak_, deadline_);
       record(b);
       advance(b);
+      if (incremental_) {
+        u_event_ = st_.u;
+        v_event_ = st_.v;
+        active_event_ = st_.active;
+      }
       if (++res_.steps > cap_) {
         res_.status = Status::step_cap;
         res_.message = "more than " + std::to_string(cap_) + " events";
@@ -173,6 +184,63 @@ class Solver {
       }
       if (!ok) break;
       account(e_before);
+      // At a load's breakpoint every motion changes; a contact's event changes those of the
+      // bodies it reaches.
+      if (which < 0 || b >= seg_end || !incremental_)
+        std::fill(fresh_.begin(), fresh_.end(), 1);
+      else
+        mark_changed(which);
+    }
+  }
+
+  // The first root of contact j's wave after st_.t, searched no further than b (NaN if there
+  // is none by then). A contact whose motion the events since its last search did not
+  // change keeps that search's answer: its root, or its having none up to where it looked,
+  // from where the search goes on if b is now further (DERIVATION.md §9). Its wave is
+  // rebuilt at every event all the same, from a state on the same motion: the same function
+  // to round-off, so the answer holds to round-off.
+  double next_root(int j, double b) {
+    const auto k = ix(j);
+    double from = searched_[k];
+    if (fresh_[k] || (!std::isnan(root_[k]) && !(root_[k] > st_.t))) {
+      fresh_[k] = 0;
+      from = st_.t;
+    } else if (!std::isnan(root_[k]) || !(from < b)) {
+      return root_[k];
+    }
+    const double noise = st_.active[k] ? tol_.lex * force_scale_[k] : tol_.gap;
+    root_[k] = first_root(fr_.contact[k], from, b, tol_.floor, tol_.settle, noise, deadline_);
+    searched_[k] = b;
+    return root_[k];
+  }
+
+  // After contact `which`'s event: marks for a new search every contact whose bodies' state
+  // (position or velocity, to the bit) the event changed, whose persistent-contact flag it
+  // changed, or which it found closed (its gap within tol_gap, or the event's own), with
+  // every body of a cluster (a run of persistent contacts) that holds a changed one.
+  void mark_changed(int which) {
+    const auto same = [](double x, double y) { return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y); };
+    const int nc = s_.n_contacts();
+    for (int i = 0; i < s_.n_bodies(); ++i)
+      changed_[ix(i)] = !same(st_.u[ix(i)], u_event_[ix(i)]) || !same(st_.v[ix(i)], v_event_[ix(i)]);
+    const auto mark = [&](int j) {
+      changed_[ix(s_.right(j))] = 1;
+      if (s_.left(j) != kWall) changed_[ix(s_.left(j))] = 1;
+    };
+    mark(which);
+    for (int j = 0; j < nc; ++j)
+      if (st_.active[ix(j)] != active_event_[ix(j)] || (!active_event_[ix(j)] && st_.g[ix(j)] <= tol_.gap)) mark(j);
+    // A cluster moves as one: spread along its persistent contacts, rightwards then leftwards.
+    const auto spread = [&](int j) {
+      if (!st_.active[ix(j)] || s_.left(j) == kWall) return;
+      const auto l = ix(s_.left(j)), r = ix(s_.right(j));
+      changed_[l] = changed_[r] = changed_[l] || changed_[r];
+    };
+    for (int j = 0; j < nc; ++j) spread(j);
+    for (int j = nc - 1; j >= 0; --j) spread(j);
+    for (int j = 0; j < nc; ++j) {
+      const bool left = s_.left(j) != kWall && changed_[ix(s_.left(j))];
+      if (left || changed_[ix(s_.right(j))] || st_.active[ix(j)] != active_event_[ix(j)]) fresh_[ix(j)] = 1;
     }
   }
 
@@ -190,6 +258,7 @@ class Solver {
     }
     if (!(approach ? impact() : resolve())) return false;
     account(e_before);
+    std::fill(fresh_.begin(), fresh_.end(), 1);
     return true;
   }
 
@@ -518,6 +587,15 @@ class Solver {
   std::vector<int> closed_, set_;
   std::vector<double> impulse_, eval_u_, eval_v_;
   std::vector<char> joined_, before_, proposal_;
+  // Per contact, what its last search found (next_root): a root, or none up to searched_;
+  // fresh_: its motion changed since, search again from the last event. Not with two
+  // contacts or fewer: they share a body, which an event at either moves.
+  bool incremental_ = false;
+  std::vector<char> fresh_;
+  std::vector<double> root_, searched_;
+  // The state where the last event was found, before it was handled (mark_changed).
+  std::vector<double> u_event_, v_event_;
+  std::vector<char> active_event_, changed_;
   ImpactWork work_;
   lcp::LemkeWorkspace lemke_;
   Eigen::MatrixXd delassus_, lex_q_, lex_z_;
@@ -525,7 +603,9 @@ class Solver {
 
 }  // namespace
 
-Result solve(const System& system, const Settings& settings) {
+namespace {
+
+Result solve_rigid(const System& system, const Settings& settings, bool keep_searches) {
   // A variant it does not have fails the run, as every solver's does (the contract).
   if (!known_variant(settings.variant)) {
     Result r;
@@ -535,13 +615,21 @@ Result solve(const System& system, const Settings& settings) {
   }
   if (kelvin_voigt(settings)) return solve_kelvin_voigt(system, settings);
   try {
-    return Solver(system, settings).run();
+    return Solver(system, settings, keep_searches).run();
   } catch (const std::exception& e) {
     Result r;
     r.status = Status::failed;
     r.message = e.what();
     return r;
   }
+}
+
+}  // namespace
+
+Result solve(const System& system, const Settings& settings) { return solve_rigid(system, settings, true); }
+
+Result detail::solve_searching_every_contact(const System& system, const Settings& settings) {
+  return solve_rigid(system, settings, false);
 }
 
 void check_result(const System& s, double tol_scale, Result& r) {

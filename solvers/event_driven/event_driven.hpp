@@ -39,4 +39,10 @@ inline constexpr double kEnergyCheck = 1e-9;
 // Turns an `ok` result that fails those checks into the status naming the first that failed.
 void check_result(const System& system, double tol_scale, Result& result);
 
+namespace detail {
+// For tests: solve() with every contact searched again at every event, as before the
+// searches were kept across events (DERIVATION.md §9).
+Result solve_searching_every_contact(const System& system, const Settings& settings);
+}  // namespace detail
+
 }  // namespace pb::event_driven
