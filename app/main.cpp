@@ -15,6 +15,7 @@
 
 #include "app/adapter_command.hpp"
 #include "app/baseline_command.hpp"
+#include "app/blas_threads.hpp"
 #include "app/errors.hpp"
 #include "app/run_command.hpp"
 #include "app/solvers_command.hpp"
@@ -89,6 +90,7 @@ std::optional<int> check_subcommand_word(const CLI::App& app, int argc, char** a
 }  // namespace
 
 int main(int argc, char** argv) {
+  pb::app::stop_blas_threads();
   std::unique_ptr<pb::Processes> processes;
   try {
     processes = std::make_unique<pb::Processes>(argc, argv);

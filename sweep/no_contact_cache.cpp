@@ -41,27 +41,36 @@ double NoContactCache::pi1(const System& system, const Settings& limits) {
   // A record or a pulse model is not described by the key: solved per point, uncached.
   if (!system.pulse.paper()) return no_contact_pi1(system, limits);
   const NoContactKey key = no_contact_key(system);
+  Shard& shard = shards_[Hash{}(key) % kShards];
   {
-    const std::lock_guard lock(mutex_);
-    if (const auto it = values_.find(key); it != values_.end()) return it->second;
-    ++solves_;
+    const std::lock_guard lock(shard.mutex);
+    if (const auto it = shard.values.find(key); it != shard.values.end()) return it->second;
+    ++shard.solves;
   }
   const double value = no_contact_pi1(system, limits);  // outside the lock: 13 us, and may throw
   if (std::isfinite(value)) {
-    const std::lock_guard lock(mutex_);
-    values_.emplace(key, value);
+    const std::lock_guard lock(shard.mutex);
+    shard.values.emplace(key, value);
   }
   return value;
 }
 
 std::size_t NoContactCache::solves() const {
-  const std::lock_guard lock(mutex_);
-  return solves_;
+  std::size_t n = 0;
+  for (const Shard& shard : shards_) {
+    const std::lock_guard lock(shard.mutex);
+    n += shard.solves;
+  }
+  return n;
 }
 
 std::size_t NoContactCache::size() const {
-  const std::lock_guard lock(mutex_);
-  return values_.size();
+  std::size_t n = 0;
+  for (const Shard& shard : shards_) {
+    const std::lock_guard lock(shard.mutex);
+    n += shard.values.size();
+  }
+  return n;
 }
 
 }  // namespace pb

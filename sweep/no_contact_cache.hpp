@@ -54,9 +54,16 @@ class NoContactCache {
   struct Hash {
     std::size_t operator()(const NoContactKey& k) const;
   };
-  mutable std::mutex mutex_;
-  std::unordered_map<NoContactKey, double, Hash> values_;
-  std::size_t solves_ = 0;
+  // Keys are spread over shards by their hash, each with its own lock and map. With one of
+  // each, the sweep's threads wrote the same cache lines at every point: two threads swept
+  // the Fig. 4 families at 1.78x one thread's rate, against 1.88x with no cache at all.
+  static constexpr std::size_t kShards = 16;
+  struct alignas(64) Shard {
+    mutable std::mutex mutex;
+    std::unordered_map<NoContactKey, double, Hash> values;
+    std::size_t solves = 0;
+  };
+  std::array<Shard, kShards> shards_;
 };
 
 }  // namespace pb
