@@ -71,12 +71,21 @@ def from_bench(path):
 
 
 def from_timings(path, paper_points):
-    """The main job's steps (results/timings.csv: step, wall_s), one run each; the number of
-    points of the paper case set beside its sweep."""
+    """The main job's steps (results/timings.csv: step, wall_s; a step run several times has a
+    line per run): per step its median wall time with the fastest and slowest run, and the
+    sum of its runs (what it added to the main job); the number of points of the paper case
+    set beside its sweep."""
     with open(path, newline="") as f:
-        steps = list(csv.DictReader(f))
-    out = [dict(name=f"main.sh/{s['step']}", measure="wall", median=s["wall_s"], low="", high="", repetitions=1,
-                unit="s") for s in steps]
+        walls = {}
+        for s in csv.DictReader(f):
+            walls.setdefault(s["step"], []).append(float(s["wall_s"]))
+    out = []
+    for step, runs in walls.items():
+        spread = (min(runs), max(runs)) if len(runs) > 1 else ("", "")
+        out.append(dict(name=f"main.sh/{step}", measure="wall", median=median(runs), low=spread[0], high=spread[1],
+                        repetitions=len(runs), unit="s"))
+        out.append(dict(name=f"main.sh/{step}", measure="wall_sum", median=sum(runs), low="", high="", repetitions=1,
+                        unit="s"))
     if paper_points:
         out.append(dict(name="main.sh/paper-reference", measure="points", median=paper_points, low="", high="",
                         repetitions=1, unit=""))
@@ -113,6 +122,9 @@ class Measured:
 
     def get(self, name, measure):
         return next((num(r, "median") for r in self.rows if r["name"] == name and r["measure"] == measure), None)
+
+    def row(self, name, measure):
+        return next((r for r in self.rows if r["name"] == name and r["measure"] == measure), None)
 
     def matching(self, pattern, measure):
         return [num(r, "median") for r in self.rows if re.fullmatch(pattern, r["name"]) and r["measure"] == measure]
@@ -151,8 +163,11 @@ def table(measured, workprecision, stability, provenance):
             f"{sig(per_point)} us", "<= 11 us (a third of 33 us)", per_point <= 11)
     wall, paper = m.get("main.sh/paper-reference", "wall"), m.get("main.sh/paper-reference", "points")
     if wall is not None and paper is not None:
-        add(f"whole paper case set ({paper:.0f} points), `poundbench spectrum`, reference, "
-            f"{provenance['cores']} cores", f"{sig(wall, 3)} s", "<= 0.3 s", wall <= 0.3)
+        runs = m.row("main.sh/paper-reference", "wall")
+        spread = (f" (median of {runs['repetitions']} runs, {sig(num(runs, 'low'), 3)}–{sig(num(runs, 'high'), 3)})"
+                  if int(runs["repetitions"]) > 1 else "")
+        add(f"whole paper case set ({paper:.0f} points), `poundbench spectrum` from the shell, reference, "
+            f"{provenance['cores']} cores", f"{sig(wall, 3)} s{spread}", "<= 0.3 s", wall <= 0.3)
     pair = m.matching(r"BM_MoreauJeanStepLoopPair/.*", "time_per_step")
     row3 = m.matching(r"BM_MoreauJeanStepLoopRow3/.*", "time_per_step")
     if pair and row3:
@@ -207,13 +222,15 @@ def table(measured, workprecision, stability, provenance):
             f"{two[0] / one[0]:.2f}x", ">= 1.8x", two[0] / one[0] >= 1.8)
     timed = {r["name"].split("/", 1)[1]: num(r, "median") for r in measured
              if r["name"].startswith("main.sh/") and r["measure"] == "wall"}
+    spent = {r["name"].split("/", 1)[1]: num(r, "median") for r in measured
+             if r["name"].startswith("main.sh/") and r["measure"] == "wall_sum"}
     if "workprecision" in timed and workprecision:
         add(f"work-precision study ({study_size(workprecision)}), {provenance['cores']} cores",
             minutes(timed["workprecision"]))
     if "stress" in timed and stability:
         add(f"stress study ({study_size(stability, 'runs')}), {provenance['cores']} cores", minutes(timed["stress"]))
     if timed:
-        total = sum(timed.values())
+        total = sum(spent.get(step, wall) for step, wall in timed.items())
         add("`scripts/main.sh`'s sweeps, studies and benchmarks (" + ", ".join(timed) + "; set-up and reports "
             "not included)", minutes(total), "<= 5 min", total <= 300)
     return ["| what | measured | target | met |", "|---|---|---|---|"] + rows
