@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <memory>
 #include <limits>
 #include <span>
 #include <sstream>
@@ -70,9 +71,59 @@ struct Pass {
   int depth;
 };
 
-std::vector<double> start_or_rest(const std::vector<double>& start, const System& s) {
-  return start.size() == s.bodies.size() ? start : std::vector<double>(s.bodies.size(), 0.0);
+// The start state given, or rest, into out.
+void start_or_rest(const std::vector<double>& start, std::size_t n, std::vector<double>& out) {
+  if (start.size() == n)
+    out.assign(start.begin(), start.end());
+  else
+    out.assign(n, 0.0);
 }
+
+// What a solve works in besides its result: the state, the frame, per-contact scratch and
+// the LCP workspaces. Kept per thread between solves: a sweep solves one point after another,
+// and making these twenty-odd vectors and workspaces anew for each was some 5 % of a pair
+// point's instructions (callgrind). Every value a solve reads it writes first (a frame's
+// waves are rebuilt in place at every event already), so a solve's results do not depend on
+// what the last one left.
+struct Scratch {
+  State st;
+  Frame fr;
+  std::vector<double> force_scale;  // per contact
+  std::vector<int> closed, set;
+  std::vector<double> impulse, eval_u, eval_v;
+  std::vector<char> joined, before, proposal;
+  std::vector<char> fresh;
+  std::vector<double> root, searched;
+  std::vector<double> u_event, v_event;
+  std::vector<char> active_event, changed;
+  ImpactWork work;
+  lcp::LemkeWorkspace lemke;
+  Eigen::MatrixXd delassus, lex_q, lex_z;
+  bool busy = false;
+};
+
+// The thread's Scratch, or a new one if the thread's is in use (a solve inside a solve).
+class ScratchLease {
+ public:
+  ScratchLease() {
+    thread_local Scratch kept;
+    if (kept.busy) {
+      own_ = std::make_unique<Scratch>();
+      s_ = own_.get();
+    } else {
+      s_ = &kept;
+    }
+    s_->busy = true;
+  }
+  ScratchLease(const ScratchLease&) = delete;
+  ScratchLease& operator=(const ScratchLease&) = delete;
+  ~ScratchLease() { s_->busy = false; }
+  Scratch& operator*() const { return *s_; }
+
+ private:
+  std::unique_ptr<Scratch> own_;
+  Scratch* s_;
+};
 
 class Solver {
  public:
@@ -86,8 +137,9 @@ class Solver {
         tol_scale_(settings.tol_scale) {
     work_.lemke_only = lemke_first_;
     const auto n = ix(s.n_bodies()), nc = ix(s.n_contacts());
-    st_.u = start_or_rest(s.u_start, s);
-    st_.v = start_or_rest(s.v_start, s);
+    st_.t = 0.0;
+    start_or_rest(s.u_start, n, st_.u);
+    start_or_rest(s.v_start, n, st_.v);
     st_.g.resize(nc);
     for (int j = 0; j < s.n_contacts(); ++j) st_.g[ix(j)] = s.gap(j, st_.u.data());
     st_.active.assign(nc, 0);
@@ -102,6 +154,8 @@ class Solver {
       if (s.left(j) != kWall) inv_mass += 1.0 / s.bodies[ix(s.left(j))].m;
       force_scale_[ix(j)] = s.a_p / inv_mass;
     }
+    closed_.clear();
+    set_.clear();
     closed_.reserve(nc);
     set_.reserve(nc);
     impulse_.resize(nc);
@@ -565,6 +619,8 @@ class Solver {
     return false;
   }
 
+  ScratchLease lease_;  // first: the references below are into it
+  Scratch& scratch_ = *lease_;
   const System& s_;
   Tolerances tol_;
   long cap_;
@@ -572,33 +628,33 @@ class Solver {
   double floor_;  // kRestitutionFloor a_p / w_p
   bool lemke_first_;
   double tol_scale_;
-  State st_;
-  Frame fr_;
+  State& st_ = scratch_.st;
+  Frame& fr_ = scratch_.fr;
   Peak peak_;
   Result res_;
   double rate_ = 1.0;
-  std::vector<double> force_scale_;  // per contact
+  std::vector<double>& force_scale_ = scratch_.force_scale;  // per contact
   int samples_ = 0, next_sample_ = 0;
   // Energy balance and restitution (Result).
   double balance_ = 0.0, excess_ = 0.0;
   long isolated_ = 0;
   double e_low_ = 0.0, e_high_ = 0.0;
   // Scratch kept across events so that handling one allocates nothing.
-  std::vector<int> closed_, set_;
-  std::vector<double> impulse_, eval_u_, eval_v_;
-  std::vector<char> joined_, before_, proposal_;
+  std::vector<int>&closed_ = scratch_.closed, &set_ = scratch_.set;
+  std::vector<double>&impulse_ = scratch_.impulse, &eval_u_ = scratch_.eval_u, &eval_v_ = scratch_.eval_v;
+  std::vector<char>&joined_ = scratch_.joined, &before_ = scratch_.before, &proposal_ = scratch_.proposal;
   // Per contact, what its last search found (next_root): a root, or none up to searched_;
   // fresh_: its motion changed since, search again from the last event. Not with two
   // contacts or fewer: they share a body, which an event at either moves.
   bool incremental_ = false;
-  std::vector<char> fresh_;
-  std::vector<double> root_, searched_;
+  std::vector<char>& fresh_ = scratch_.fresh;
+  std::vector<double>&root_ = scratch_.root, &searched_ = scratch_.searched;
   // The state where the last event was found, before it was handled (mark_changed).
-  std::vector<double> u_event_, v_event_;
-  std::vector<char> active_event_, changed_;
-  ImpactWork work_;
-  lcp::LemkeWorkspace lemke_;
-  Eigen::MatrixXd delassus_, lex_q_, lex_z_;
+  std::vector<double>&u_event_ = scratch_.u_event, &v_event_ = scratch_.v_event;
+  std::vector<char>&active_event_ = scratch_.active_event, &changed_ = scratch_.changed;
+  ImpactWork& work_ = scratch_.work;
+  lcp::LemkeWorkspace& lemke_ = scratch_.lemke;
+  Eigen::MatrixXd &delassus_ = scratch_.delassus, &lex_q_ = scratch_.lex_q, &lex_z_ = scratch_.lex_z;
 };
 
 }  // namespace
