@@ -367,7 +367,8 @@ TEST(SearchPeak, NoScannedValueAboveTheFoundPeakAlsoFromRest) {
     max_abs(f, 0.0, end, 1e-13, peak, never);
     ASSERT_EQ(peak.value, std::abs(f.value(peak.t))) << n;
     const double rounding = 4.0 * kEps * (std::abs(f.f0) + f.bound(0.0, 0));
-    for (double t = 0.0; t <= end; t += 0.005) EXPECT_LE(std::abs(f.value(t)), peak.value + rounding) << n << " at " << t;
+    for (double t = 0.0; t <= end; t += 0.005)
+      EXPECT_LE(std::abs(f.value(t)), peak.value + rounding) << n << " at " << t;
   }
 }
 

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
-#include <memory>
 #include <limits>
+#include <memory>
 #include <span>
 #include <sstream>
 #include <stdexcept>
@@ -273,7 +273,9 @@ class Solver {
   // changed, or which it found closed (its gap within tol_gap, or the event's own), with
   // every body of a cluster (a run of persistent contacts) that holds a changed one.
   void mark_changed(int which) {
-    const auto same = [](double x, double y) { return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y); };
+    const auto same = [](double x, double y) {
+      return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y);
+    };
     const int nc = s_.n_contacts();
     for (int i = 0; i < s_.n_bodies(); ++i)
       changed_[ix(i)] = !same(st_.u[ix(i)], u_event_[ix(i)]) || !same(st_.v[ix(i)], v_event_[ix(i)]);

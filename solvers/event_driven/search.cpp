@@ -119,10 +119,14 @@ void edge_range(const Cubic& h, double mid, double& lo, double& hi) {
   c.c2 = h.c2 - e;  // H - e s^2
   c.range(0.0, 0.5, l, unused);
   lo = l;
-  c.c0 = h.c0 + e, c.c1 = h.c1 - 2.0 * e, c.c2 = h.c2 + e;  // H + e (1 - s)^2
+  c.c0 = h.c0 + e;  // H + e (1 - s)^2
+  c.c1 = h.c1 - 2.0 * e;
+  c.c2 = h.c2 + e;
   c.range(0.5, 1.0, unused, u);
   hi = std::max(hi, u);
-  c.c0 = h.c0 - e, c.c1 = h.c1 + 2.0 * e, c.c2 = h.c2 - e;  // H - e (1 - s)^2
+  c.c0 = h.c0 - e;  // H - e (1 - s)^2
+  c.c1 = h.c1 + 2.0 * e;
+  c.c2 = h.c2 - e;
   c.range(0.5, 1.0, l, unused);
   lo = std::min(lo, l);
 }
@@ -131,6 +135,15 @@ double hermite_error(Bounds& bound, double a, double h) {
   const double h2 = h * h;
   return bound(a, 4) * h2 * h2 / 384.0;
 }
+
+// std::nextafter(x, +inf) and (x, -inf) for a finite x, the same values inline: the polish
+// asks for them at every step, and libm's calls were 2 % of the reference's instructions.
+double next_up(double x) {
+  if (x == 0.0) return std::numeric_limits<double>::denorm_min();
+  const auto bits = std::bit_cast<std::uint64_t>(x);
+  return std::bit_cast<double>(x > 0.0 ? bits + 1 : bits - 1);
+}
+double next_down(double x) { return -next_up(-x); }
 
 // The zero of a function g on a bracket lo < hi with g(lo) > 0 >= g(hi), g monotone there:
 // Newton steps from the latest point, each one evaluation, safeguarded by the bracket
@@ -150,15 +163,6 @@ double hermite_error(Bounds& bound, double a, double h) {
 //
 // eval(t) returns a P with t, f = g(t), df = g'(t) (and whatever else a caller keeps);
 // lo.df or hi.df may be NaN (not known): Newton starts from the other end then.
-// std::nextafter(x, +inf) and (x, -inf) for a finite x, the same values inline: the polish
-// asks for them at every step, and libm's calls were 2 % of the reference's instructions.
-double next_up(double x) {
-  if (x == 0.0) return std::numeric_limits<double>::denorm_min();
-  const auto bits = std::bit_cast<std::uint64_t>(x);
-  return std::bit_cast<double>(x > 0.0 ? bits + 1 : bits - 1);
-}
-double next_down(double x) { return -next_up(-x); }
-
 template <class P>
 struct Bracket {
   P lo, hi;
