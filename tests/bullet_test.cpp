@@ -9,7 +9,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -21,9 +23,11 @@
 #include <BulletDynamics/MLCPSolvers/btLemkeSolver.h>
 
 #include "tests/support.hpp"
+#include "cases/case_set.hpp"
 #include "cases/system.hpp"
 #include "solvers/bullet/bullet_solver.hpp"
 #include "solvers/event_driven/event_driven.hpp"
+#include "sweep/sweep.hpp"
 
 namespace pb {
 namespace {
@@ -471,6 +475,39 @@ TEST(BulletFaithful, TheThreeSolversAgreeOnSingleContacts) {
 // btContactSolverInfo's defaults, when the point first appears at depth d < 0.04 m:
 //   v_after = (|v| >= 0.2 m/s ? r |v| : 0) + erp2 d / h,   r = eps_0 eps_1 (product).
 // Free body at 1 m/s or 0.19 m/s, h = 0.01 s, eps = 1 or 0.5 on every body.
+// Bullet's Dantzig LCP keeps its failure flag in a global (engine.cpp): two worlds solving
+// at once read each other's failures and fall back to sequential impulse by their timing.
+// The stress set's cradles at w_max h = 2, where that LCP fails in some steps, give on two
+// threads the rows of one thread, bit for bit (13 of them did not before its solves were
+// taken one at a time).
+TEST(BulletFaithful, DantzigRowsOnTwoThreadsAreThoseOfOneWhereItsLcpFails) {
+  std::vector<Case> cradles;
+  for (const Case& c : load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/stress.toml").cases)
+    if (c.family == "cradle") cradles.push_back(c);
+  ASSERT_GT(cradles.size(), 50u);
+  Settings st;
+  st.variant = "mlcp-dantzig-faithful";
+  st.wh = 2.0;
+  SweepOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const SolverInfo& solver = *find_solver("bullet");
+  const std::vector<pb::Row> serial = run_sweep(cradles, solver, st, one);
+  int fell_back = 0;
+  for (int pass = 0; pass < 3; ++pass) {  // an interleaving that shows it may take more than one
+    const std::vector<pb::Row> parallel = run_sweep(cradles, solver, st, two);
+    ASSERT_EQ(parallel.size(), serial.size());
+    for (std::size_t i = 0; i < serial.size(); ++i) {
+      const Result &a = serial[i].result, &b = parallel[i].result;
+      ASSERT_EQ(b.status, a.status) << "point " << i << ": " << b.message << " / " << a.message;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(b.pi1), std::bit_cast<std::uint64_t>(a.pi1)) << "point " << i;
+      ASSERT_EQ(b.impacts, a.impacts) << "point " << i;
+      if (pass == 0 && a.message.find("MLCP solver failed") != std::string::npos) ++fell_back;
+    }
+  }
+  EXPECT_GT(fell_back, 5);  // the failures the flag carries do happen here
+}
+
 TEST(BulletDefault, ContactLawHasAVelocityThresholdAProductRestitutionAndAnErpPushOut) {
   for (const bullet::Config& config : variants_of(false)) {
     for (double eps : {0.5, 1.0}) {

@@ -10,6 +10,18 @@
 
 namespace pb::bullet {
 
+namespace {
+
+// Bullet's Dantzig LCP (btDantzigLCP.cpp) keeps its failure flag in a global, s_error, which
+// every solve clears and sets as it pivots: two worlds solving at once on two threads read
+// each other's failures, and a step falls back to Bullet's projected Gauss-Seidel
+// (btMLCPSolver) or not by their timing. Measured: 13 of the stress set's 1232 points on
+// mlcp-dantzig-faithful at w_max h = 2 changed status between two runs of the same 2-thread
+// sweep, none with one thread. So its solves are taken one at a time, process-wide.
+std::mutex dantzig_solves;
+
+}  // namespace
+
 btContactSolverInfo solver_info(const Config& config, double h) {
   btContactSolverInfo info;  // Bullet's defaults (btContactSolverInfo.h)
   info.m_timeStep = static_cast<btScalar>(h);
@@ -103,7 +115,10 @@ World::World(const System& system, const Config& config, double h, double gamma,
   added_.assign(ix(nc), 0);
   switch (config.engine) {
     case Engine::si: solver_ = std::make_unique<btSequentialImpulseConstraintSolver>(); break;
-    case Engine::mlcp_dantzig: mlcp_ = std::make_unique<btDantzigSolver>(); break;
+    case Engine::mlcp_dantzig:
+      mlcp_ = std::make_unique<btDantzigSolver>();
+      serial_ = &dantzig_solves;
+      break;
     case Engine::mlcp_lemke: mlcp_ = std::make_unique<btLemkeSolver>(); break;
   }
   if (mlcp_) {
@@ -162,8 +177,12 @@ void World::step(double t) {
     b.applyCentralForce(btVector3(static_cast<btScalar>(f), 0, 0));
   }
 
-  solver_->solveGroup(body_list_.data(), static_cast<int>(body_list_.size()), touching_.data(), touching, nullptr, 0,
-                      info_, nullptr, nullptr);
+  {
+    std::unique_lock<std::mutex> one_at_a_time;
+    if (serial_) one_at_a_time = std::unique_lock(*serial_);
+    solver_->solveGroup(body_list_.data(), static_cast<int>(body_list_.size()), touching_.data(), touching, nullptr,
+                        0, info_, nullptr, nullptr);
+  }
 
   for (auto& body : bodies_) {
     btTransform next;

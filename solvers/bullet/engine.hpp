@@ -35,6 +35,7 @@
 #include <BulletDynamics/MLCPSolvers/btMLCPSolverInterface.h>
 
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "cases/system.hpp"
@@ -90,6 +91,7 @@ class World {
   std::unique_ptr<btMLCPSolverInterface> mlcp_;  // declared before solver_, which uses it
   std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
   bool is_mlcp_ = false;
+  std::mutex* serial_ = nullptr;  // held around each solve where Bullet's solver is not thread-safe
 };
 
 }  // namespace pb::bullet
