@@ -14,7 +14,13 @@
 //
 // every body's terms formed at once in one SSE2 register (two bodies to a register), and
 // one horizontal sum a step, of the b_i. Measured on pair and row3: 1.2x and 1.3x the time of
-// the unmonitored loop (bench/moreau_jean_bench.cpp).
+// the unmonitored loop (bench/moreau_jean_bench.cpp); since, with the loop itself faster,
+// 1.26x and 1.51-1.55x (126 and 202 instructions a step on row3, callgrind). Tried on row3
+// and slower, each by instructions and time: the stepper's gap rates passed in instead of
+// recomputed; the odd body padded into a zero lane; per-contact maxima of |g'|; the excess
+// and the largest |g'| in one register; each body's energy change from (v - v0)(v + v0)
+// instead of a carried energy. The loop's state and the monitor's running values do not fit
+// in the sixteen XMM registers, and what is spilled is loaded and stored every step.
 //
 // The same quantities, to round-off. The sum of a step's terms is taken body by body
 // instead of term by term, and c / h is rounded once per run: each step's increment differs
