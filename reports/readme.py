@@ -31,6 +31,8 @@ STABILITY = "stability.csv"
 COMPLIANT = "compliant.csv"  # the compliant-contact study's summary
 MEASURED = "measured.csv"
 PROVENANCE = "provenance.json"
+MPI = "mpi.csv"  # scripts/mpi_throughput.sh's medians, measured apart from the main job
+MPI_PROVENANCE = "mpi-provenance.json"
 
 
 def committed(folder):
@@ -46,16 +48,55 @@ def committed(folder):
         measured_on = json.load(f)
     # The compliant study needs SUNDIALS' solver, which a build may leave out.
     has_compliant = os.path.exists(os.path.join(folder, COMPLIANT))
-    return dict(workprecision=load([path(WORKPRECISION)]),
+    mpi = None
+    if os.path.exists(os.path.join(folder, MPI)):
+        with open(path(MPI_PROVENANCE)) as f:
+            mpi = dict(rows=load([path(MPI)]), provenance=json.load(f))
+    return dict(mpi=mpi, workprecision=load([path(WORKPRECISION)]),
                 scenes={r["family"]: r["scene"] for r in load([path(FAMILIES)])},
                 stability=load([path(STABILITY)]), measured=load([path(MEASURED)]),
                 compliant=load([path(COMPLIANT)]) if has_compliant else None, provenance=measured_on)
 
 
-def source_line(inputs, files):
-    return (f"*Measured at {prov.describe(inputs['provenance'])}; written by `reports/make_report.py` from "
+def source_line(inputs, files, provenance=None):
+    return (f"*Measured at {prov.describe(provenance or inputs['provenance'])}; written by `reports/make_report.py` from "
             + ", ".join(f"`reports/{f}`" for f in files) + ". Not edited by hand: the `readme_numbers` test "
             "fails when this block and those files disagree.*")
+
+
+def grouped(n):
+    """An integer with thin groups of three digits, as README writes them (23 820)."""
+    return f"{n:,.0f}".replace(",", " ")
+
+
+def mpi_lines(mpi):
+    """The cluster section's numbers: each configuration's wall time, fixed cost, rate and
+    CPU per point, and what sharing among ranks costs per point."""
+    rows = {r["configuration"]: r for r in mpi["rows"]}
+    labels = {"1 process, 1 thread": "one process, 1 thread", "1 process, 2 threads": "one process, 2 threads",
+              "mpiexec -np 1, 1 thread": "`mpiexec -np 1`, 1 thread",
+              "mpiexec -np 2, 1 thread each": "`mpiexec -np 2`, 1 thread each"}
+    first = next(iter(rows.values()))
+    lines = [f"The paper case set ({grouped(float(first['points']))} points) through the reference, medians of "
+             f"{first['repeats']} runs. The fixed cost is a one-point set's wall time (start, MPI's start, files); the "
+             "rate and the CPU per point are what the whole set adds to it.", "",
+             "| configuration | wall | fixed cost | points/s after it | CPU per point |", "|---|---:|---:|---:|---:|"]
+    for key, label in labels.items():
+        if key in rows:
+            r = rows[key]
+            lines.append(f"| {label} | {float(r['wall_s']):.2f} s | {float(r['one_point_wall_s']):.2f} s | "
+                         f"{grouped(float(r['points_per_s']))} | {float(r['cpu_us_per_point']):.1f} us |")
+    if all(k in rows for k in labels):
+        a, b = float(rows["mpiexec -np 2, 1 thread each"]["cpu_us_per_point"]), \
+            float(rows["1 process, 2 threads"]["cpu_us_per_point"])
+        start = float(rows["mpiexec -np 1, 1 thread"]["one_point_wall_s"]) - \
+            float(rows["1 process, 1 thread"]["one_point_wall_s"])
+        lines += ["", f"Sharing among two ranks costs {a - b:.1f} us of CPU per point ({a:.1f} against {b:.1f} us in "
+                  f"one process on two threads), {100 * (a - b) / b:.0f} % of these points, the cheapest there are; "
+                  "an engine, or a time-stepper at fine steps, the sweeps a cluster is for, costs milliseconds a point. "
+                  f"Starting MPI adds {start:.2f} s a run (the one-point set under `mpiexec -np 1` against one "
+                  "process)."]
+    return lines
 
 
 def blocks(folder):
@@ -63,6 +104,10 @@ def blocks(folder):
     inputs = committed(folder)
     summary = inputs["workprecision"]
     return {
+        "mpi": [
+            *mpi_lines(inputs["mpi"]), "",
+            source_line(inputs, [MPI, MPI_PROVENANCE], inputs["mpi"]["provenance"]),
+        ] if inputs["mpi"] else ["Not measured yet: `scripts/mpi_throughput.sh` writes these numbers."],
         "answer": [
             "For each scene of the work-precision study and each target error, the cheapest setting that meets "
             "it, and its cost. " + answer.rule(summary), "",
