@@ -27,16 +27,17 @@ QUOTED = [
     (r"BM_SiconosScheme/\w+/N:64", ("x_moreau_jean", "x_siconos_moreau_jean")),
     (r"BM_SiconosEventDriven/\w+", ("x_event_driven",)),
     (r"BM_SweepFig4Reference/threads:\d(/real_time)?", ("points_per_s",)),
+    (r"BM_External(PairInProcess|PairThroughAdapter|ProtocolFloor)/real_time", ("real_time",)),
 ]
-UNITS = {"cpu_time": "s", "time_per_step": "s", "median_us": "us", "points_per_s": "1/s",
+UNITS = {"cpu_time": "s", "real_time": "s", "time_per_step": "s", "median_us": "us", "points_per_s": "1/s",
          "x_moreau_jean": "ratio", "vs_moreau_jean": "ratio", "x_event_driven": "ratio",
          "x_siconos_moreau_jean": "ratio"}
 TO_SECONDS = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
 
 
 def value_of(run, measure):
-    if measure == "cpu_time":
-        return run["cpu_time"] * TO_SECONDS[run.get("time_unit", "ns")]
+    if measure in ("cpu_time", "real_time"):
+        return run[measure] * TO_SECONDS[run.get("time_unit", "ns")]
     return run.get(measure)
 
 
@@ -128,6 +129,20 @@ class Measured:
 
     def matching(self, pattern, measure):
         return [num(r, "median") for r in self.rows if re.fullmatch(pattern, r["name"]) and r["measure"] == measure]
+
+
+def external_lines(measured):
+    """What the external protocol costs a point, against the same solve in process
+    (bench/external_bench.cpp, wall time): one sentence, or none without the benchmarks."""
+    m = Measured(measured)
+    inproc, adapter, floor = (m.get(f"BM_External{n}/real_time", "real_time")
+                              for n in ("PairInProcess", "PairThroughAdapter", "ProtocolFloor"))
+    if None in (inproc, adapter, floor):
+        return ["Not measured: the main job's benchmarks did not run the external solver's."]
+    return [f"What the protocol costs a point (`bench/external_bench.cpp`, medians, wall time, the Fig. 4 pair "
+            f"through moreau-jean at N = 64): {sig(1e3 * floor)} ms for a program that only answers (a spawn, the "
+            f"pipes, both documents, the wait), {sig(1e3 * adapter)} ms for poundbench itself as the program (its "
+            f"own start included), against {sig(1e6 * inproc)} us for the same solve in process."]
 
 
 def study_size(summary, count="points"):

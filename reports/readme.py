@@ -122,6 +122,10 @@ def blocks(folder):
             *compliant.answer_lines(inputs["compliant"]), "",
             source_line(inputs, [COMPLIANT, PROVENANCE]),
         ] if inputs["compliant"] else ["Not measured: this build left the compliant solver out (SUNDIALS missing)."],
+        "external": [
+            *measured.external_lines(inputs["measured"]), "",
+            source_line(inputs, [MEASURED, PROVENANCE]),
+        ],
         "measured": [
             *measured.table(inputs["measured"], summary, inputs["stability"], inputs["provenance"]), "",
             source_line(inputs, [MEASURED, WORKPRECISION, STABILITY, PROVENANCE]),
