@@ -101,10 +101,12 @@ class PartialWriter {
     const auto part = [&](std::size_t first) {
       for (std::size_t i = first; i < n; i += ways) text[i] = partial_line(rows[i], with_run_);
     };
-    std::vector<std::jthread> pool;
-    for (std::size_t w = 1; w < ways; ++w) pool.emplace_back(part, w);
-    part(0);
-    return text;  // after the jthreads have joined (declared after text, destroyed first)
+    {
+      std::vector<std::jthread> pool;
+      for (std::size_t w = 1; w < ways; ++w) pool.emplace_back(part, w);
+      part(0);
+    }  // the jthreads join here, before text is returned
+    return text;
   }
 
   BatchedFile file_;  // written in batches: its own size limit only (1 MiB), never its delay
