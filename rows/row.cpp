@@ -66,15 +66,29 @@ std::string case_key(const Case& c) {
   return key;
 }
 
-std::string csv_field(std::string_view text) {
-  if (text.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(text);
-  std::string quoted = "\"";
-  for (char ch : text) {
-    if (ch == '"') quoted += '"';
-    quoted += ch;
+namespace {
+
+// text as one CSV field, appended to out: as it is, or quoted with its quotes doubled where
+// it holds a comma, a quote or a line break.
+void append_csv_field(std::string& out, std::string_view text) {
+  if (text.find_first_of(",\"\r\n") == std::string_view::npos) {
+    out += text;
+    return;
   }
-  quoted += '"';
-  return quoted;
+  out += '"';
+  for (char ch : text) {
+    if (ch == '"') out += '"';
+    out += ch;
+  }
+  out += '"';
+}
+
+}  // namespace
+
+std::string csv_field(std::string_view text) {
+  std::string field;
+  append_csv_field(field, text);
+  return field;
 }
 
 namespace {
@@ -107,10 +121,7 @@ class LineBuilder {
   LineBuilder() { line_.reserve(512); }
   void text(std::string_view s) {
     separate();
-    if (s.find_first_of(",\"\r\n") == std::string_view::npos)
-      line_ += s;
-    else
-      line_ += csv_field(s);
+    append_csv_field(line_, s);
   }
   void number(double x) {
     separate();

@@ -92,21 +92,31 @@ Wave random_body(std::mt19937_64& rng, double t0, int kind) {
   return oscillator(t0, x0, v0, m, cc, k, 0.1 * u(rng), u(rng), u(rng), wp, horizon);
 }
 
+// add_scaled matches sinusoids by frequency, up to kMaxSines: a record's piece (two
+// sinusoids) gives both bodies of a gap its frequencies, as the gaps below need.
+Wave same_load(Wave body, const Wave& other) {
+  if (body.lin == 0.0 && other.lin == 0.0) return body;
+  body.sine = other.sine;
+  body.lin = other.lin;
+  body.prepare();
+  return body;
+}
+
+// g, already the constant 0 from the bodies' t0, made the gap right - left_scale left with
+// value f0 there, prepared.
+void write_gap(Wave& g, const Wave& right, const Wave& left, double left_scale, double f0) {
+  add_scaled(g, right, 1.0);
+  add_scaled(g, left, -left_scale);
+  g.f0 = f0;
+  g.prepare();
+}
+
 // The gap between two random bodies of one kind (both have the load's frequencies then).
 Wave random_gap(std::mt19937_64& rng, double t0, int kind) {
   std::uniform_real_distribution<double> gap(0.0, 0.2);
-  Wave right = random_body(rng, t0, kind), left = random_body(rng, t0, kind);
-  if (kind == 2) {
-    // add_scaled matches sinusoids by frequency: give both the right one's load.
-    left.sine = right.sine;
-    left.lin = right.lin;
-    left.prepare();
-  }
+  const Wave right = random_body(rng, t0, kind), left = same_load(random_body(rng, t0, kind), right);
   Wave g = constant(t0, 0.0);
-  add_scaled(g, right, 1.0);
-  add_scaled(g, left, -1.0);
-  g.f0 = gap(rng);
-  g.prepare();
+  write_gap(g, right, left, 1.0, gap(rng));
   return g;
 }
 
@@ -232,15 +242,6 @@ TEST(SearchFirstRoot, NeverLaterThanADenseScanOnRandomGapsIncludingJustOpenedOne
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
 
-// add_scaled matches sinusoids by frequency, up to kMaxSines: a record's piece (two
-// sinusoids) gives both bodies of a gap its frequencies, as random_gap does.
-Wave same_load(Wave body, const Wave& other) {
-  if (body.lin == 0.0 && other.lin == 0.0) return body;
-  body.sine = other.sine;
-  body.lin = other.lin;
-  body.prepare();
-  return body;
-}
 
 // Where the state is advanced, every wave of a frame is evaluated at one t through one
 // TrigCache: its values must be eval()'s bit for bit (the reference's results rest on it).
@@ -254,10 +255,7 @@ TEST(WaveEval, ATrigCacheAtOneTGivesPlainEvalsValuesBitForBit) {
     const double t0 = 0.5 * trial;
     const Wave right = random_body(rng, t0, kind), left = same_load(random_body(rng, t0, kind), right);
     Wave g = constant(t0, 0.0);
-    add_scaled(g, right, 1.0);
-    add_scaled(g, left, -1.0);
-    g.f0 = 0.1;
-    g.prepare();
+    write_gap(g, right, left, 1.0, 0.1);
     for (const double t : {t0, t0 + later(rng), t0 + later(rng)}) {
       TrigCache trig;
       for (int pass = 0; pass < 2; ++pass) {  // the second pass hits the cache throughout
@@ -284,12 +282,7 @@ TEST(WaveEval, AResetWaveIsTheFreshOne) {
     const Wave right = random_body(rng, t0, kind), left = same_load(random_body(rng, t0, kind), right);
     Wave fresh = constant(t0, 0.0);
     reset(reused, t0, 0.0);
-    for (Wave* g : {&fresh, &reused}) {
-      add_scaled(*g, right, 1.0);
-      add_scaled(*g, left, -0.5);
-      g->f0 = 0.05;
-      g->prepare();
-    }
+    for (Wave* g : {&fresh, &reused}) write_gap(*g, right, left, 0.5, 0.05);
     for (double t = t0; t < t0 + 10.0; t += 0.37) {
       double a[kMaxDerivative + 1], b[kMaxDerivative + 1];
       fresh.eval(t, a, kMaxDerivative + 1);
