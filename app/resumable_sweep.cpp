@@ -42,13 +42,18 @@ constexpr auto kPartialDelay = std::chrono::milliseconds(500);
 // write_all().
 class PartialWriter {
  public:
+  // `expected`: the rows the sweep will queue; the queue takes room for those still to come
+  // at each batch. Grown row by row, it was copied as it doubled, under the sweep's lock.
   PartialWriter(const std::string& partial, bool with_run, std::size_t cases, std::vector<std::string>* lines,
-                unsigned threads)
+                unsigned threads, std::size_t expected)
       : file_(partial, BatchedFile::Mode::append, Clock::duration::max()),
         with_run_(with_run),
         cases_(cases),
         lines_(lines),
-        threads_(std::max(threads, 1u)) {}
+        threads_(std::max(threads, 1u)),
+        to_come_(expected) {
+    queued_.reserve(to_come_);
+  }
 
   // A finished row, from the sweep's callback (any thread, serialised).
   void queue(const Row& row) {
@@ -77,6 +82,8 @@ class PartialWriter {
       if (!error_.empty()) throw std::runtime_error(error_);
       if (queued_.empty() || (!all && Clock::now() - oldest_ < kPartialDelay)) return;
       rows.swap(queued_);
+      to_come_ -= std::min(to_come_, rows.size());
+      queued_.reserve(to_come_);
     }
     try {
       std::vector<std::string> text = format(rows);
@@ -116,6 +123,7 @@ class PartialWriter {
   unsigned threads_;
   std::mutex mutex_;  // guards what follows
   std::vector<Row> queued_;
+  std::size_t to_come_;  // rows not queued yet
   Clock::time_point oldest_{};
   std::string error_;  // a failed write's
 };
@@ -162,7 +170,8 @@ std::optional<std::vector<Row>> run_resumable(std::string_view command, const Pr
       for (const Row& row : earlier) out << partial_line(row, with_run) << '\n';
     });
     if (lines) lines->assign(total, std::string());
-    file.emplace(partial, with_run, cases.size(), lines, threads ? threads : processes.default_threads());
+    file.emplace(partial, with_run, cases.size(), lines, threads ? threads : processes.default_threads(),
+                 todo.size());
   }
 
   const Progress progress = progress_on_stderr(processes.leader());
