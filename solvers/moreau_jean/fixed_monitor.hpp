@@ -15,12 +15,21 @@
 // every body's terms formed at once in one SSE2 register (two bodies to a register), and
 // one horizontal sum a step, of the b_i. Measured on pair and row3: 1.2x and 1.3x the time of
 // the unmonitored loop (bench/moreau_jean_bench.cpp); since, with the loop itself faster,
-// 1.26x and 1.51-1.55x (126 and 202 instructions a step on row3, callgrind). Tried on row3
-// and slower, each by instructions and time: the stepper's gap rates passed in instead of
-// recomputed; the odd body padded into a zero lane; per-contact maxima of |g'|; the excess
-// and the largest |g'| in one register; each body's energy change from (v - v0)(v + v0)
-// instead of a carried energy. The loop's state and the monitor's running values do not fit
-// in the sixteen XMM registers, and what is spilled is loaded and stored every step.
+// 1.26x and 1.51-1.55x (126 and 202 instructions a step on row3, callgrind). The loop's state
+// and the monitor's running values do not fit in the sixteen XMM registers: what is spilled
+// is stored and loaded every step, so the monitor now carries no copy of what the loop has.
+// The step's displacement du comes from the loop, formed before its new q overwrites the old
+// (it had been copied through the stack), and the gap rates at the step's start are the
+// loop's st.rate, read before it is updated (the monitor had kept the last step's own). Both
+// are the same numbers: du is the same difference, and W^T v differs from v_r - v_l at most
+// in the sign of a zero, where the one use of those rates, an impact's approach below
+// -floor_, is not. 1.27x and 1.44-1.47x (130 and 199 instructions a step on row3).
+// Tried on row3 and slower, each by instructions and time: the stepper's gap rates at the
+// step's end passed in instead of recomputed; the odd body padded into a zero lane;
+// per-contact maxima of |g'| (tried twice); the excess and the largest |g'| in one register;
+// each body's energy change from (v - v0)(v + v0) instead of a carried energy; the whole
+// monitor run over blocks of 64 steps after the loop, two steps to a register (242
+// instructions a step: storing the states and reading them back cost more than the spills).
 //
 // The same quantities, to round-off. The sum of a step's terms is taken body by body
 // instead of term by term, and c / h is rounded once per run: each step's increment differs
@@ -61,7 +70,6 @@ class FixedStepMonitor {
     Pairs energy;           // E_i at the start of the step, per body (the paired ones)
     Pairs balance;          // b_i: E_i + D_i - E_i,0 - W_i, per body (the paired ones)
     double last_energy = 0.0, last_balance = 0.0;  // the same, for an odd last body
-    VecC rate;              // gap rates at the start of the step
     unsigned pushed = 0;    // impulses of the step before (bit j: contact j)
     double excess = 0.0;    // the largest balance (sum of the b_i) so far
     double fastest = 0.0;   // largest |g'| so far
@@ -72,12 +80,16 @@ class FixedStepMonitor {
   // Starts from System::u_start, v_start (empty: rest), as StepMonitor does; h is the step.
   FixedStepMonitor(const System& s, double h);
 
-  // One step under the step-mean ground acceleration abar, from displacements u0 to the
-  // state (u, v); bit j of `pushed`: contact j carried a positive impulse.
-  [[gnu::always_inline]] inline void step(Running& r, double abar, const VecB& u0, const VecB& u, const VecB& v,
-                                          unsigned pushed) const;
-  void step(double abar, const VecB& u0, const VecB& u, const VecB& v, unsigned pushed) {
-    step(running_, abar, u0, u, v, pushed);
+  // One step under the step-mean ground acceleration abar that moved the displacements by
+  // du to the state (u, v), from gap rates rate0 (the loop's, W^T v at the step's start);
+  // bit j of `pushed`: contact j carried a positive impulse.
+  [[gnu::always_inline]] inline void step(Running& r, double abar, const VecB& du, const VecB& u, const VecB& v,
+                                          const VecC& rate0, unsigned pushed) const;
+  // The same from the states at the step's two ends, (u0, v0) and (u, v).
+  void step(double abar, const VecB& u0, const VecB& v0, const VecB& u, const VecB& v, unsigned pushed) {
+    VecC rate0;
+    for (int j = 0; j < NC; ++j) rate0(j) = rate(j, v0);
+    step(running_, abar, (u - u0).eval(), u, v, rate0, pushed);
   }
   Running& running() { return running_; }
 
@@ -148,29 +160,25 @@ FixedStepMonitor<NB, NC>::FixedStepMonitor(const System& s, double h)
     running_.balance.setZero();
   }
   if constexpr (kOdd) running_.last_energy = energy(last_half_m_, last_half_k_, u(NB - 1), v(NB - 1));
-  for (int j = 0; j < NC; ++j) {
-    running_.rate(j) = rate(j, v);
-    running_.fastest = std::max(running_.fastest, std::abs(running_.rate(j)));
-  }
+  for (int j = 0; j < NC; ++j) running_.fastest = std::max(running_.fastest, std::abs(rate(j, v)));
 }
 
 template <int NB, int NC>
-void FixedStepMonitor<NB, NC>::step(Running& r, double abar, const VecB& u0, const VecB& u, const VecB& v,
-                                    unsigned pushed) const {
+void FixedStepMonitor<NB, NC>::step(Running& r, double abar, const VecB& du, const VecB& u, const VecB& v,
+                                    const VecC& rate0, unsigned pushed) const {
   double balance = 0.0;
   if constexpr (kPaired > 0) {
     using A = Eigen::Array<double, kPaired, 1>;
     const A up = u.template head<kPaired>().array(), vp = v.template head<kPaired>().array();
-    const A du = up - u0.template head<kPaired>().array();
     const A e = energy<A>(half_m_, half_k_, up, vp);
-    r.balance += increment<A>(e, r.energy.array(), m_, c_over_h_, du, abar).matrix();
+    r.balance += increment<A>(e, r.energy.array(), m_, c_over_h_, du.template head<kPaired>().array(), abar).matrix();
     r.energy = e.matrix();
     balance = r.balance(0);
     for (int i = 1; i < kPaired; ++i) balance += r.balance(i);
   }
   if constexpr (kOdd) {
     const double e = energy(last_half_m_, last_half_k_, u(NB - 1), v(NB - 1));
-    r.last_balance += increment(e, r.last_energy, last_m_, last_c_over_h_, u(NB - 1) - u0(NB - 1), abar);
+    r.last_balance += increment(e, r.last_energy, last_m_, last_c_over_h_, du(NB - 1), abar);
     r.last_energy = e;
     balance = kPaired > 0 ? balance + r.last_balance : r.last_balance;
   }
@@ -185,7 +193,7 @@ void FixedStepMonitor<NB, NC>::step(Running& r, double abar, const VecB& u0, con
   if constexpr (NC > 0) r.fastest = std::max(r.fastest, now.cwiseAbs().maxCoeff());  // one max on the carried value
   if (starts_alone) [[unlikely]] {
     for (int j = 0; j < NC; ++j) {
-      const double before = r.rate(j);
+      const double before = rate0(j);
       if ((pushed >> j & 1u) && before < -floor_) {
         const double e_j = -now(j) / before;
         ++r.isolated;
@@ -194,7 +202,6 @@ void FixedStepMonitor<NB, NC>::step(Running& r, double abar, const VecB& u0, con
       }
     }
   }
-  r.rate = now;
   r.pushed = pushed;
 }
 

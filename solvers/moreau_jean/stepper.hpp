@@ -203,16 +203,18 @@ PB_MJ_INLINE bool step(const Scheme<NB, NC>& sc, State<NB, NC>& st, Tally& t, do
     }
     st.active = mask;
   }
-  [[maybe_unused]] const typename Scheme<NB, NC>::VecB q_old = st.q;  // the monitor's du
+  [[maybe_unused]] typename Scheme<NB, NC>::VecB du;  // the monitor's
+  if constexpr (kMonitor) du = q_new - st.q;
   st.q = q_new;
   st.v = v_new;
   ++st.k;
+  // Before the divergence test: a diverging run's energy excess shows the growth. Before the
+  // new gap rates: the monitor takes the step's first ones from st.rate.
+  if constexpr (kMonitor) monitor->step(*running, work, du, st.q, st.v, st.rate, st.pushed);
   if constexpr (NC > 0) {
     st.g = sc.delta + sc.wt * st.q;
     st.rate = sc.wt * st.v;
   }
-  // Before the divergence test: a diverging run's energy excess shows the growth.
-  if constexpr (kMonitor) monitor->step(*running, work, q_old, st.q, st.v, st.pushed);
   if (!(st.q.array().abs() <= sc.bound).all()) return false;
   tally_state(sc, st, t);
   if constexpr (kRecord) record(sc, st, impulse, *history);
