@@ -41,8 +41,9 @@ inline constexpr double kDivergedEnergy = 1e6;
 // arrays of its own: out of line, reading them through System (s.bodies[i].m, s.gap_rate,
 // s.energy), it cost 205 of Moreau-Jean's 291 instructions per step on pair (callgrind),
 // 14.5 ns a step against 4.1 ns unmonitored. The fixed-size Moreau-Jean loop has a
-// monitor of its own on its fixed-size vectors (solvers/moreau_jean/fixed_monitor.hpp) that
-// does this arithmetic in this order: both report the same numbers to the last bit.
+// monitor of its own on its fixed-size vectors (solvers/moreau_jean/fixed_monitor.hpp): the
+// same restitutions, isolated impacts and gap rate to the last bit, and the energy balance
+// summed body by body, within the round-off bound that file states.
 class StepMonitor {
  public:
   // Starts from System::u_start, v_start (empty: rest).
