@@ -21,9 +21,10 @@
 // The step's displacement du comes from the loop, formed before its new q overwrites the old
 // (it had been copied through the stack), and the gap rates at the step's start are the
 // loop's st.rate, read before it is updated (the monitor had kept the last step's own). Both
-// are the same numbers: du is the same difference, and W^T v differs from v_r - v_l at most
-// in the sign of a zero, where the one use of those rates, an impact's approach below
-// -floor_, is not. 1.27x and 1.44-1.47x (130 and 199 instructions a step on row3).
+// are the same numbers: du is the same difference, and W^T v differs from v_r - v_l (finite
+// velocities) at most in the sign of a zero, where the one use of those rates, an impact's
+// approach below -floor_, is not. 1.27x and 1.44-1.47x (130 and 199 instructions a step on
+// row3).
 // Tried on row3 and slower, each by instructions and time: the stepper's gap rates at the
 // step's end passed in instead of recomputed; the odd body padded into a zero lane;
 // per-contact maxima of |g'| (tried twice); the excess and the largest |g'| in one register;
