@@ -27,7 +27,8 @@
 // row3).
 // Tried on row3 and slower, each by instructions and time: the stepper's gap rates at the
 // step's end passed in instead of recomputed; the odd body padded into a zero lane;
-// per-contact maxima of |g'| (tried twice); the excess and the largest |g'| in one register;
+// per-contact maxima of |g'| (tried twice), or their maximum in scalars; the step before's
+// impulses from the loop (no change); the excess and the largest |g'| in one register;
 // each body's energy change from (v - v0)(v + v0) instead of a carried energy; the whole
 // monitor run over blocks of 64 steps after the loop, two steps to a register (242
 // instructions a step: storing the states and reading them back cost more than the spills).
