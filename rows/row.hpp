@@ -17,12 +17,13 @@
 // empty field. The columns after message came later; they are appended so that scripts
 // reading columns by position keep working.
 //
-// Timing: the solve alone, with the monitor off, repeated (sweep/sweep.hpp: up to the
-// run's repetitions, fewer once a point's solves have spent kRepetitionBudget = 10 ms of
-// CPU time, at least one). seconds and cpu_seconds are the medians over the repetitions,
-// cpu_seconds_low and cpu_seconds_high the fastest and the slowest, repetitions how many
-// there were. A file from before repetitions lacks the last three: read back, low and high
-// are NaN and repetitions 1.
+// Timing: the solve alone, with the monitor off, the clocks' own cost taken off (about 0.37 us
+// of CPU: the thread's CPU clock is a system call; sweep/stopwatch.hpp), repeated
+// (sweep/sweep.hpp: up to the run's repetitions, fewer once a point's solves have spent
+// kRepetitionBudget = 10 ms of CPU time, at least one). seconds and cpu_seconds are the
+// medians over the repetitions, cpu_seconds_low and cpu_seconds_high the fastest and the
+// slowest, repetitions how many there were. A file from before repetitions lacks the last
+// three: read back, low and high are NaN and repetitions 1.
 
 #include <array>
 #include <cstddef>

@@ -2,33 +2,19 @@
 
 #include <algorithm>
 #include <bit>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <ctime>
 #include <exception>
 #include <memory>
 #include <mutex>
 #include <thread>
 
 #include "cases/system.hpp"
+#include "sweep/stopwatch.hpp"
 
 namespace pb {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// CPU time of the calling thread: what a run costs, whatever else the machine is doing.
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 std::string describe_exception(std::exception_ptr error) {
   try {
@@ -49,8 +35,7 @@ struct Timed {
 
 Timed timed_solve(const SolverInfo& solver, const System& system, const Settings& settings) {
   Timed t;
-  const Clock::time_point start = Clock::now();
-  const double cpu_start = thread_cpu_seconds();
+  const Stopwatch watch;
   try {
     t.result = solver.solve(system, settings);
   } catch (...) {
@@ -58,8 +43,9 @@ Timed timed_solve(const SolverInfo& solver, const System& system, const Settings
     t.result.status = Status::failed;
     t.result.message = describe_exception(std::current_exception());
   }
-  t.seconds = seconds_since(start);
-  t.cpu_seconds = thread_cpu_seconds() - cpu_start + t.result.child_cpu_seconds;
+  const Elapsed spent = watch.elapsed();
+  t.seconds = spent.wall;
+  t.cpu_seconds = spent.cpu + t.result.child_cpu_seconds;
   return t;
 }
 

@@ -29,14 +29,15 @@
 
 namespace pb {
 
-// How a run is timed. Every solver the same way: solver.solve alone, on the thread's CPU
-// clock (plus Result::child_cpu_seconds, the CPU of a program the solver ran), with Settings::monitor off (the monitor's bookkeeping is not the scheme's cost: it
-// made Moreau-Jean 2.4 times slower), repeated up to `repetitions` times. A point stops
-// repeating once its timed solves have spent kRepetitionBudget CPU seconds together (it is
-// solved at least once): on the main job's work-precision study, five repetitions of every
-// run would cost 5 times one timing, and this rule keeps it to 1.6 times (measured:
-// docs/cli.md), while every run faster than 2 ms, most of them, gets its 5. The row holds
-// the median, the fastest and the slowest (rows/row.hpp).
+// How a run is timed. Every solver the same way: solver.solve alone, on the thread's CPU clock
+// (plus Result::child_cpu_seconds, the CPU of a program the solver ran), the clocks' own cost
+// taken off (sweep/stopwatch.hpp), with Settings::monitor off (the monitor's bookkeeping is
+// not the scheme's cost: it made Moreau-Jean 2.4 times slower), repeated up to `repetitions`
+// times. A point stops repeating once its timed solves have spent kRepetitionBudget CPU
+// seconds together (it is solved at least once): on the main job's work-precision study, five
+// repetitions of every run would cost 5 times one timing, and this rule keeps it to 1.6 times
+// (measured: docs/cli.md), while every run faster than 2 ms, most of them, gets its 5. The row
+// holds the median, the fastest and the slowest (rows/row.hpp).
 //
 // The monitor's measurements (energy_excess, the restitution range, gap_rate_max, which the
 // stress checks judge) come from one more solve, untimed, with the monitor on, when the
