@@ -18,6 +18,7 @@
 
 #include "app/errors.hpp"
 #include "app/output_files.hpp"
+#include "app/study_run.hpp"
 #include "app/sweep_watch.hpp"
 #include "cases/case_set.hpp"
 #include "studies/baseline.hpp"
@@ -99,15 +100,7 @@ struct Source {
 Source load_source(const fs::path& cases, const fs::path& settings) {
   Source s{load_case_set(cases), std::nullopt};  // CaseSetError: bad input
   if (s.set.cases.empty()) throw BadInput(cases.string() + ": no cases");
-  if (!settings.empty()) {
-    try {
-      s.list = load_settings_list(settings);
-    } catch (const SettingsListError& e) {
-      throw BadInput(e.what());
-    }
-    for (const std::string& run : s.list->left_out)
-      std::cerr << "poundbench: " << settings.string() << ": " << run << " is not in this build: skipped\n";
-  }
+  if (!settings.empty()) s.list = read_settings_list(settings.string(), true);
   return s;
 }
 

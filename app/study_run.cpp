@@ -59,6 +59,19 @@ void add_repetitions_flag(CLI::App& command, int& repetitions) {
       ->capture_default_str();
 }
 
+SettingsList read_settings_list(const std::string& file, bool say) {
+  SettingsList list;
+  try {
+    list = load_settings_list(file);
+  } catch (const SettingsListError& e) {
+    throw BadInput(e.what());
+  }
+  if (say)
+    for (const std::string& run : list.left_out)
+      std::cerr << "poundbench: " << file << ": " << run << " is not in this build: skipped\n";
+  return list;
+}
+
 CLI::App* add_study_command(CLI::App& app, StudyFlags& flags, std::string_view name, std::string_view summary,
                             std::string_view points_help, std::string_view check_help) {
   CLI::App* command = app.add_subcommand(std::string(name), std::string(summary));
@@ -82,14 +95,7 @@ Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_vi
   processes.agree([&] {
     study.set = load_case_set(flags.case_set);
     if (study.set.cases.empty()) throw BadInput(flags.case_set + ": no cases");
-    try {
-      study.list = load_settings_list(flags.settings);
-    } catch (const SettingsListError& e) {
-      throw BadInput(e.what());
-    }
-    if (processes.leader())
-      for (const std::string& run : study.list.left_out)
-        std::cerr << "poundbench: " << flags.settings << ": " << run << " is not in this build: skipped\n";
+    study.list = read_settings_list(flags.settings, processes.leader());
     if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
     runs = study_runs(study.list, options);
     if (!processes.leader()) return;

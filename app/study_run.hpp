@@ -35,6 +35,10 @@ struct StudyFlags {
 // kMaxRepetitions; `spectrum` has it too.
 void add_repetitions_flag(CLI::App& command, int& repetitions);
 
+// A command's settings list (`workprecision`, `stress`, `baseline`): its errors as BadInput,
+// and, when `say` (the leader), each run of an engine this build left out named on stderr.
+SettingsList read_settings_list(const std::string& file, bool say);
+
 // CASESET, --settings, --out, --points, --threads, --repetitions, and --check with `check_help`.
 CLI::App* add_study_command(CLI::App& app, StudyFlags& flags, std::string_view name, std::string_view summary,
                             std::string_view points_help, std::string_view check_help);

@@ -469,12 +469,6 @@ TEST(BulletFaithful, TheThreeSolversAgreeOnSingleContacts) {
   }
 }
 
-// ---------------------------------------------------------------- default: what it does
-
-// Bullet's default contact law for one contact, from setupContactConstraint with
-// btContactSolverInfo's defaults, when the point first appears at depth d < 0.04 m:
-//   v_after = (|v| >= 0.2 m/s ? r |v| : 0) + erp2 d / h,   r = eps_0 eps_1 (product).
-// Free body at 1 m/s or 0.19 m/s, h = 0.01 s, eps = 1 or 0.5 on every body.
 // Bullet's Dantzig LCP keeps its failure flag in a global (engine.cpp): two worlds solving
 // at once read each other's failures and fall back to sequential impulse by their timing.
 // The stress set's cradles at w_max h = 2, where that LCP fails in some steps, give on two
@@ -508,6 +502,12 @@ TEST(BulletFaithful, DantzigRowsOnTwoThreadsAreThoseOfOneWhereItsLcpFails) {
   EXPECT_GT(fell_back, 5);  // the failures the flag carries do happen here
 }
 
+// ---------------------------------------------------------------- default: what it does
+
+// Bullet's default contact law for one contact, from setupContactConstraint with
+// btContactSolverInfo's defaults, when the point first appears at depth d < 0.04 m:
+//   v_after = (|v| >= 0.2 m/s ? r |v| : 0) + erp2 d / h,   r = eps_0 eps_1 (product).
+// Free body at 1 m/s or 0.19 m/s, h = 0.01 s, eps = 1 or 0.5 on every body.
 TEST(BulletDefault, ContactLawHasAVelocityThresholdAProductRestitutionAndAnErpPushOut) {
   for (const bullet::Config& config : variants_of(false)) {
     for (double eps : {0.5, 1.0}) {

@@ -294,10 +294,8 @@ class Solver {
     };
     for (int j = 0; j < nc; ++j) spread(j);
     for (int j = nc - 1; j >= 0; --j) spread(j);
-    for (int j = 0; j < nc; ++j) {
-      const bool left = s_.left(j) != kWall && changed_[ix(s_.left(j))];
-      if (left || changed_[ix(s_.right(j))] || st_.active[ix(j)] != active_event_[ix(j)]) fresh_[ix(j)] = 1;
-    }
+    for (int j = 0; j < nc; ++j)
+      if ((s_.left(j) != kWall && changed_[ix(s_.left(j))]) || changed_[ix(s_.right(j))]) fresh_[ix(j)] = 1;
   }
 
   // t = 0: a closed contact that approaches (a Newton's-cradle kick) is an impact first;

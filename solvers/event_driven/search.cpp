@@ -73,8 +73,9 @@ struct Cubic {
   void range(double& lo, double& hi) const { range(0.0, 1.0, lo, hi); }
   // The same over [s0, s1].
   void range(double s0, double s1, double& lo, double& hi) const {
-    lo = std::min((*this)(s0), (*this)(s1));
-    hi = std::max((*this)(s0), (*this)(s1));
+    const double v0 = (*this)(s0), v1 = (*this)(s1);
+    lo = std::min(v0, v1);
+    hi = std::max(v0, v1);
     auto visit = [&](double s) {
       if (s > s0 && s < s1) {
         const double v = (*this)(s);
