@@ -27,7 +27,7 @@ QUOTED = [
     (r"BM_SiconosScheme/\w+/N:64", ("x_moreau_jean", "x_siconos_moreau_jean")),
     (r"BM_SiconosEventDriven/\w+", ("x_event_driven",)),
     (r"BM_SweepFig4Reference/threads:\d(/real_time)?", ("points_per_s",)),
-    (r"BM_PaperSetThreadScaling(/iterations:\d+)?(/real_time)?", ("speedup",)),
+    (r"BM_PaperSetThreadScaling/iterations:1/real_time", ("speedup",)),
     (r"BM_External(PairInProcess|PairThroughAdapter|ProtocolFloor)/real_time", ("real_time",)),
 ]
 UNITS = {"cpu_time": "s", "real_time": "s", "time_per_step": "s", "median_us": "us", "points_per_s": "1/s",
@@ -111,6 +111,14 @@ def sig(v, digits=2):
     return f"{float(f'{v:.{digits}g}'):g}"
 
 
+def spread(row, show):
+    """ (median of N runs, low–high) for a row of several runs, each end written by show;
+    nothing for one run."""
+    if row["low"] == "" or int(row["repetitions"]) < 2:
+        return ""
+    return f" (median of {row['repetitions']} runs, {show(num(row, 'low'))}–{show(num(row, 'high'))})"
+
+
 def span(values, digits=2):
     lo, hi = sig(min(values), digits), sig(max(values), digits)
     return lo if lo == hi else f"{lo}–{hi}"
@@ -179,11 +187,9 @@ def table(measured, workprecision, stability, provenance):
             f"{sig(per_point)} us", "<= 11 us (a third of 33 us)", per_point <= 11)
     wall, paper = m.get("main.sh/paper-reference", "wall"), m.get("main.sh/paper-reference", "points")
     if wall is not None and paper is not None:
-        runs = m.row("main.sh/paper-reference", "wall")
-        spread = (f" (median of {runs['repetitions']} runs, {sig(num(runs, 'low'), 3)}–{sig(num(runs, 'high'), 3)})"
-                  if int(runs["repetitions"]) > 1 else "")
+        runs = spread(m.row("main.sh/paper-reference", "wall"), lambda v: sig(v, 3))
         add(f"whole paper case set ({paper:.0f} points), `poundbench spectrum` from the shell, reference, "
-            f"{provenance['cores']} cores", f"{sig(wall, 3)} s{spread}", "<= 0.3 s", wall <= 0.3)
+            f"{provenance['cores']} cores", f"{sig(wall, 3)} s{runs}", "<= 0.3 s", wall <= 0.3)
     pair = m.matching(r"BM_MoreauJeanStepLoopPair/.*", "time_per_step")
     row3 = m.matching(r"BM_MoreauJeanStepLoopRow3/.*", "time_per_step")
     if pair and row3:
@@ -232,14 +238,11 @@ def table(measured, workprecision, stability, provenance):
         add("Siconos' event-driven LSODAR, cost per run as a ratio to the reference (wall, pair, row3)"
             + ("; at tol_scale = 1 in the work-precision study, the largest median and max relative Pi1 error of a "
                "family where it runs to the end, and the runs that fail" if wp else ""), f"{span(lsodar)}x{errors}")
-    scaling = next((r for r in measured if r["name"].startswith("BM_PaperSetThreadScaling")
-                    and r["measure"] == "speedup"), None)
+    scaling = m.row("BM_PaperSetThreadScaling/iterations:1/real_time", "speedup")
     if scaling:
         speedup = num(scaling, "median")
-        spread = (f" (median of {scaling['repetitions']}, {num(scaling, 'low'):.2f}–{num(scaling, 'high'):.2f})"
-                  if scaling["low"] != "" else "")
         add("sweep on 2 threads against 1 (the whole paper set through the reference, the two alternated in one "
-            "run; wall time)", f"{speedup:.2f}x{spread}", ">= 1.8x", speedup >= 1.8)
+            "run; wall time)", f"{speedup:.2f}x{spread(scaling, lambda v: f'{v:.2f}')}", ">= 1.8x", speedup >= 1.8)
     timed = {r["name"].split("/", 1)[1]: num(r, "median") for r in measured
              if r["name"].startswith("main.sh/") and r["measure"] == "wall"}
     spent = {r["name"].split("/", 1)[1]: num(r, "median") for r in measured
