@@ -1,13 +1,6 @@
 #include "app/baseline_command.hpp"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cerrno>
 #include <cmath>
-
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -15,17 +8,18 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 
+#include "app/check_report.hpp"
 #include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/study_run.hpp"
 #include "app/sweep_watch.hpp"
+#include "app/version.hpp"
 #include "cases/case_set.hpp"
 #include "studies/baseline.hpp"
 #include "rows/minimal_rows.hpp"
 #include "rows/row_read.hpp"
-
-extern char** environ;
 
 namespace pb::app {
 
@@ -35,57 +29,20 @@ namespace {
 
 constexpr int kCheckFailed = 1;
 
-// The first line a program prints, or "unknown". The program runs from an argument vector,
-// never through a shell: its arguments hold paths the user chose, which a shell would
-// read as commands. stdin and stderr are /dev/null.
-std::string first_line_of(std::vector<std::string> args) {
-  int out[2];
-  if (::pipe2(out, O_CLOEXEC) != 0) return "unknown";
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_adddup2(&actions, out[1], STDOUT_FILENO);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  const int spawned = ::posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  ::close(out[1]);
-  std::string text;
-  if (spawned == 0) {
-    char buffer[256];
-    ssize_t n = 0;
-    // Read to the end, so the program never blocks on a full pipe.
-    while ((n = ::read(out[0], buffer, sizeof buffer)) > 0 || (n < 0 && errno == EINTR))
-      if (n > 0 && text.size() < 4096) text.append(buffer, static_cast<std::size_t>(n));
-  }
-  ::close(out[0]);
-  int status = 0;
-  if (spawned != 0 || ::waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    return "unknown";
-  std::string line = text.substr(0, text.find('\n'));
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  return line.empty() ? "unknown" : line;
-}
-
-// Provenance for people: the commit of the tree the baseline sits in, the compiler, the date.
-std::vector<std::string> provenance(const fs::path& file) {
-  const std::string dir = fs::absolute(file).parent_path().string();
-  std::string commit = first_line_of({"git", "-C", dir, "rev-parse", "--short", "HEAD"});
-  if (commit != "unknown" &&
-      first_line_of({"git", "-C", dir, "status", "--porcelain", "--untracked-files=no"}) != "unknown")
-    commit += " (with uncommitted changes)";
+// Provenance for people: the commit of the poundbench that made the rows (its build's, as
+// `poundbench --version` says it: the rows are this binary's, whatever tree the file sits
+// in), the compiler, the date.
+std::vector<std::string> provenance() {
   char date[32] = {};
   const std::time_t now = std::time(nullptr);
   std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
-  #if defined(__clang__)
+#if defined(__clang__)
   const std::string compiler = std::string("clang ") + __clang_version__;
 #else
   const std::string compiler = std::string("GCC ") + __VERSION__;
 #endif
-  return {"commit: " + commit, "compiler: " + compiler, std::string("made: ") + date};
+  return {std::string("commit: ") + kCommit + " (poundbench " + kVersion + ")", "compiler: " + compiler,
+          std::string("made: ") + date};
 }
 
 fs::path relative_to_file(const fs::path& target, const fs::path& file) {
@@ -134,6 +91,27 @@ RowFile read_rows(const std::string& path) {
   }
 }
 
+// A comparison line as a JUnit testcase names it: family and setting.
+std::string label_of(const Comparison& c) { return (c.family.empty() ? "-" : c.family) + " " + setting_text(c); }
+
+// Why a comparison line failed, one line for a JUnit failure ("" when it passed).
+std::string failure_of(const Comparison& c, Match match, bool allow_unmatched) {
+  if (c.passed(match, allow_unmatched)) return {};
+  std::ostringstream why;
+  if (c.failed > 0)
+    why << c.failed << " of " << c.compared << " compared rows beyond " << c.tolerance << " (largest relative |dPi1| "
+        << c.max_difference << " at point " << c.worst_point << ")";
+  if (c.compared == 0) why << "no row matched a stored case";
+  if (c.unmatched > 0 && !allow_unmatched) {
+    why << (why.tellp() > 0 ? "; " : "") << c.unmatched << " unmatched rows";
+    if (!c.unmatched_rows.empty())
+      why << " (point " << c.unmatched_rows[0].point << ": " << c.unmatched_rows[0].nearest << ")";
+  }
+  if (match == Match::same_setting && c.missing > 0)
+    why << (why.tellp() > 0 ? "; " : "") << c.missing << " stored rows with no row";
+  return why.str();
+}
+
 int interrupted() {
   std::fprintf(stderr, "poundbench: interrupted; nothing was written\n");
   return kInterrupted;
@@ -150,6 +128,7 @@ CLI::App* add_baseline_command(CLI::App& app, BaselineFlags& flags) {
   command->add_option("--check", flags.check, "Rerun these baselines and compare (exit 1 on a change)");
   command->add_option("--update", flags.update, "Rerun these baselines and store them again");
   command->add_option("--threads", flags.threads, "Worker threads (default: all cores)");
+  add_junit_flag(*command, flags.junit, "family and setting of each file");
   return command;
 }
 
@@ -157,6 +136,10 @@ int baseline_command(const CLI::App& command, const BaselineFlags& flags) {
   const int modes = (flags.case_set.empty() ? 0 : 1) + (flags.check.empty() ? 0 : 1) + (flags.update.empty() ? 0 : 1);
   if (modes != 1) throw BadInput("baseline: give one of CASESET (with --out), --check FILE... or --update FILE...");
   if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
+  if (!flags.junit.empty()) {
+    if (flags.check.empty()) throw BadInput("--junit: needs --check (it writes --check's verdicts)");
+    check_output_target(flags.junit, "--junit");
+  }
 
   if (!flags.case_set.empty()) {
     if (flags.out.empty()) throw BadInput("--out: required with CASESET");
@@ -166,13 +149,14 @@ int baseline_command(const CLI::App& command, const BaselineFlags& flags) {
     if (!rows) return interrupted();
     BaselineHeader header{relative_to_file(flags.case_set, flags.out).string(),
                           flags.settings.empty() ? "" : relative_to_file(flags.settings, flags.out).string(),
-                          provenance(flags.out)};
+                          provenance()};
     store(flags.out, header, *rows);
     return 0;
   }
 
   const bool update = !flags.update.empty();
   bool all_passed = true;
+  std::vector<Verdict> verdicts;
   for (const std::string& file : update ? flags.update : flags.check) {
     const RowFile stored = read_rows(file);
     BaselineHeader header;
@@ -188,15 +172,19 @@ int baseline_command(const CLI::App& command, const BaselineFlags& flags) {
     const std::vector<Comparison> table = compare_rows(*rows, stored.rows, Match::same_setting);
     std::cout << file << ":\n" << comparison_table(table, Match::same_setting);
     bool passed = true;
-    for (const Comparison& c : table) passed = passed && c.passed(Match::same_setting);
+    for (const Comparison& c : table) {
+      passed = passed && c.passed(Match::same_setting);
+      verdicts.push_back({file, label_of(c), failure_of(c, Match::same_setting, false)});
+    }
     if (update) {
-      header.notes = provenance(file);
+      header.notes = provenance();
       store(file, header, *rows);
       std::cout << file << ": stored again (" << rows->size() << " rows)" << (passed ? "" : "; it had changed")
                 << '\n';
     }
     all_passed = all_passed && passed;
   }
+  write_junit(flags.junit, "baseline --check", verdicts);
   return all_passed || update ? 0 : kCheckFailed;
 }
 
@@ -215,6 +203,10 @@ CLI::App* add_compare_command(CLI::App& app, CompareFlags& flags) {
   command->add_option("--tolerance", flags.tolerance, "Largest relative Pi1 difference let through");
   command->add_flag("--same-setting", flags.same_setting,
                     "Compare with the stored rows of each row's own solver setting (its stated tolerance)");
+  command->add_flag("--allow-unmatched", flags.allow_unmatched,
+                    "Pass a family whose rows matched no stored case (within 1e-5 on every number of the case) "
+                    "when its other rows pass; by default such a row fails it");
+  add_junit_flag(*command, flags.junit, "family and setting");
   return command;
 }
 
@@ -223,6 +215,7 @@ int compare_command(const CLI::App& command, const CompareFlags& flags) {
   if (!flags.same_setting && !given) throw BadInput("--tolerance: required (or --same-setting)");
   if (given && !(flags.tolerance >= 0.0 && std::isfinite(flags.tolerance)))
     throw BadInput("--tolerance: must be finite and >= 0");
+  if (!flags.junit.empty()) check_output_target(flags.junit, "--junit");
   RowFile rows;
   try {
     rows = read_minimal_csv_file(flags.rows);
@@ -234,9 +227,14 @@ int compare_command(const CLI::App& command, const CompareFlags& flags) {
   const Match match = flags.same_setting ? Match::same_setting : Match::reference;
   const std::vector<Comparison> table =
       compare_rows(rows.rows, stored.rows, match, given ? flags.tolerance : std::numeric_limits<double>::quiet_NaN());
-  std::cout << comparison_table(table, match);
+  std::cout << comparison_table(table, match, flags.allow_unmatched);
   bool passed = true;
-  for (const Comparison& c : table) passed = passed && c.passed(match);
+  std::vector<Verdict> verdicts;
+  for (const Comparison& c : table) {
+    passed = passed && c.passed(match, flags.allow_unmatched);
+    verdicts.push_back({"compare " + flags.rows, label_of(c), failure_of(c, match, flags.allow_unmatched)});
+  }
+  write_junit(flags.junit, "compare", verdicts);
   return passed ? 0 : kCheckFailed;
 }
 

@@ -10,7 +10,10 @@
 //                                                   re-baseline)
 //   compare ROWS --baseline FILE --tolerance X      another program's rows (at least the
 //                                                   columns of rows/minimal_rows.hpp)
-//                                                   against the stored reference
+//                                                   against the stored reference; a row
+//                                                   with no stored case fails unless
+//                                                   --allow-unmatched
+//   --junit FILE (with --check, and on compare)     the verdicts as JUnit XML
 //
 // Exit codes: 0 all within tolerance (or written), 1 a check failed, 2 bad input, 130
 // interrupted (nothing written).
@@ -28,6 +31,7 @@ struct BaselineFlags {
   std::string out;       // write mode
   std::vector<std::string> check, update;
   unsigned threads = 0;
+  std::string junit;  // --junit with --check (app/check_report.hpp)
 };
 
 struct CompareFlags {
@@ -35,6 +39,8 @@ struct CompareFlags {
   std::string baseline;
   double tolerance = 0.0;
   bool same_setting = false;
+  bool allow_unmatched = false;  // a row with no stored case does not fail its family
+  std::string junit;
 };
 
 CLI::App* add_baseline_command(CLI::App& app, BaselineFlags& flags);

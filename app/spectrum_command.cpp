@@ -1,9 +1,11 @@
 #include "app/spectrum_command.hpp"
 
+#include <algorithm>
 #include <iostream>
 #include <stdexcept>
 
 #include "app/case_flags.hpp"
+#include "app/check_report.hpp"
 #include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/resumable_sweep.hpp"
@@ -32,6 +34,42 @@ void write_final(const SpectrumFlags& flags, const std::vector<Row>& rows, const
     write_atomically(flags.out, csv);
 }
 
+// --check: a verdict per family, failing when a point of it did not finish ok; the line
+// names the first few such points, their status and the first one's message.
+std::vector<Verdict> verdicts(const std::vector<Row>& rows) {
+  constexpr std::size_t kListedPoints = 5;
+  std::vector<std::string> families;
+  std::vector<std::vector<const Row*>> failed;
+  std::vector<std::size_t> points;
+  for (const Row& r : rows) {
+    auto at = std::find(families.begin(), families.end(), r.input.family);
+    if (at == families.end()) {
+      families.push_back(r.input.family);
+      failed.emplace_back();
+      points.push_back(0);
+      at = families.end() - 1;
+    }
+    const std::size_t f = static_cast<std::size_t>(at - families.begin());
+    ++points[f];
+    if (r.result.status != Status::ok) failed[f].push_back(&r);
+  }
+  std::vector<Verdict> out;
+  for (std::size_t f = 0; f < families.size(); ++f) {
+    std::string failure;
+    if (!failed[f].empty()) {
+      failure = std::to_string(failed[f].size()) + " of " + std::to_string(points[f]) + " points did not finish ok (";
+      for (std::size_t i = 0; i < failed[f].size() && i < kListedPoints; ++i)
+        failure += (i ? ", " : "") + std::string("point ") + std::to_string(failed[f][i]->point) + " " +
+                   std::string(name(failed[f][i]->result.status));
+      if (failed[f].size() > kListedPoints) failure += " and " + std::to_string(failed[f].size() - kListedPoints) + " more";
+      failure += ")";
+      if (!failed[f][0]->result.message.empty()) failure += "; the first: " + failed[f][0]->result.message;
+    }
+    out.push_back({"spectrum", "family " + families[f], failure});
+  }
+  return out;
+}
+
 }  // namespace
 
 CLI::App* add_spectrum_command(CLI::App& app, SpectrumFlags& flags) {
@@ -42,6 +80,9 @@ CLI::App* add_spectrum_command(CLI::App& app, SpectrumFlags& flags) {
   command->add_option("--out", flags.out, "Write the CSV to this file (default: stdout)");
   command->add_option("--threads", flags.threads, "Worker threads (default: all cores)");
   add_repetitions_flag(*command, flags.repetitions);
+  command->add_flag("--check", flags.check,
+                    "Exit 1 when a point did not finish ok (after writing the output), naming them on stderr per family");
+  add_junit_flag(*command, flags.junit, "family");
   return command;
 }
 
@@ -59,6 +100,10 @@ int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const 
     if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
     if (!processes.leader()) return;
     if (!flags.out.empty()) check_sweep_output(flags.out, "--out");
+    if (!flags.junit.empty()) {
+      if (!flags.check) throw BadInput("--junit: needs --check (it writes --check's verdicts)");
+      check_output_target(flags.junit, "--junit");
+    }
     lock = take_output_lock(flags.out, "spectrum", partial);
     earlier = read_earlier_rows(partial, set.cases, runs);
   }, exit_code_of);
@@ -69,8 +114,10 @@ int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const 
   if (!rows) return kInterrupted;
   if (!processes.leader()) return 0;
   write_outputs(partial, [&] { write_final(flags, *rows, lines); });
-  report_written(rows->size(), flags.out);
-  return 0;
+  const std::size_t failed = static_cast<std::size_t>(
+      std::count_if(rows->begin(), rows->end(), [](const Row& r) { return r.result.status != Status::ok; }));
+  report_written(rows->size(), flags.out, failed ? failed_note(failed, "points", flags.check) : "");
+  return flags.check ? report_check("spectrum", verdicts(*rows), "families", flags.junit) : 0;
 }
 
 }  // namespace pb::app

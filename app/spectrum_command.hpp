@@ -22,11 +22,15 @@ struct SpectrumFlags {
   std::string out;  // empty: stdout
   unsigned threads = 0;
   int repetitions = 1;  // timed solves per point, at most (sweep/sweep.hpp)
+  bool check = false;   // exit 1 when a point did not finish ok (after writing the output)
+  std::string junit;    // --junit: --check's verdicts, a testcase per family (app/check_report.hpp)
   SolverFlags solver_flags;
 };
 
 CLI::App* add_spectrum_command(CLI::App& app, SpectrumFlags& flags);
-// Exit code: 0 done, 130 interrupted (partial file kept).
+// Exit code: 0 done (whatever the points' statuses, unless --check), 1 with --check when a
+// point did not finish ok (the output is written all the same), 130 interrupted (partial
+// file kept).
 int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const Processes& processes);
 
 }  // namespace pb::app

@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "app/check_report.hpp"
 #include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/resumable_sweep.hpp"
@@ -25,11 +26,11 @@ void write_points(std::ostream& out, const Stress& st) {
   for (const Row& row : st.runs.points) out << stress_points_line(row, pi1_error(row, st.truth[row.point].pi1)) << '\n';
 }
 
-// --check: every row that failed a check, with the checks it failed.
-std::vector<std::string> failures(const Stress& st) {
-  std::vector<std::string> out;
+// --check: a verdict per row, failing with the checks it failed.
+std::vector<Verdict> verdicts(const Stress& st) {
+  std::vector<Verdict> out;
   for (const StressRow& row : st.table)
-    if (!row.passed()) out.push_back(row_label(row) + ": failed " + row.failed_checks());
+    out.push_back({"stress", row_label(row), row.passed() ? "" : "failed " + row.failed_checks()});
   return out;
 }
 
@@ -49,9 +50,14 @@ int stress_command(const CLI::App& command, const StressFlags& flags, const Proc
   const Stress st =
       stress_of(study.set.cases, study.list, work_precision_of(study.set.cases, study.list, std::move(*study.rows)));
 
+  std::size_t failed_runs = 0, failed_rows = 0;
+  for (const std::vector<Row>* rows : {&st.runs.reference, &st.runs.points})
+    for (const Row& r : *rows) failed_runs += r.result.status != Status::ok ? 1 : 0;
+  for (const StressRow& row : st.table) failed_rows += row.ok < row.runs ? 1 : 0;
   write_study(
-      flags, study, [&](std::ostream& out) { write_points(out, st); }, [&](std::ostream& out) { write_table(out, st); });
-  return flags.check ? report_check("stress", failures(st), st.table.size()) : 0;
+      flags, study, [&](std::ostream& out) { write_points(out, st); }, [&](std::ostream& out) { write_table(out, st); },
+      failed_runs, failed_rows);
+  return flags.check ? report_check("stress", verdicts(st), "rows", flags.junit) : 0;
 }
 
 }  // namespace pb::app

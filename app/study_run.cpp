@@ -3,6 +3,7 @@
 #include <iostream>
 #include <streambuf>
 
+#include "app/check_report.hpp"
 #include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/resumable_sweep.hpp"
@@ -82,6 +83,7 @@ CLI::App* add_study_command(CLI::App& app, StudyFlags& flags, std::string_view n
   command->add_option("--threads", flags.threads, "Worker threads (default: all cores)");
   add_repetitions_flag(*command, flags.repetitions);
   command->add_flag("--check", flags.check, std::string(check_help));
+  add_junit_flag(*command, flags.junit, "summary row");
   return command;
 }
 
@@ -101,6 +103,10 @@ Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_vi
     if (!processes.leader()) return;
     if (!flags.out.empty()) check_sweep_output(flags.out, "--out");
     if (!flags.points.empty()) check_sweep_output(flags.points, "--points");
+    if (!flags.junit.empty()) {
+      if (!flags.check) throw BadInput("--junit: needs --check (it writes --check's verdicts)");
+      check_output_target(flags.junit, "--junit");
+    }
     study.lock = take_output_lock(flags.out, name, study.partial);
     earlier = read_earlier_rows(study.partial, study.set.cases, runs);
   }, exit_code_of);
@@ -110,7 +116,7 @@ Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_vi
 }
 
 void write_study(const StudyFlags& flags, const Study& study, const std::function<void(std::ostream&)>& points,
-                 const std::function<void(std::ostream&)>& table) {
+                 const std::function<void(std::ostream&)>& table, std::size_t failed_runs, std::size_t failed_rows) {
   std::size_t point_rows = 0, table_rows = 0;
   write_outputs(study.partial, [&] {
     if (!flags.points.empty()) write_atomically(flags.points, counted(points, point_rows));
@@ -119,15 +125,9 @@ void write_study(const StudyFlags& flags, const Study& study, const std::functio
     else
       write_atomically(flags.out, counted(table, table_rows));
   });
-  if (!flags.points.empty()) report_written(point_rows, flags.points);
-  report_written(table_rows, flags.out);
-}
-
-int report_check(std::string_view name, const std::vector<std::string>& failures, std::size_t rows) {
-  const std::string prefix = "poundbench: " + std::string(name) + " --check: ";
-  for (const std::string& failure : failures) std::cerr << prefix << failure << '\n';
-  std::cerr << prefix << failures.size() << " of " << rows << " rows failed\n";
-  return failures.empty() ? 0 : 1;
+  if (!flags.points.empty())
+    report_written(point_rows, flags.points, failed_runs ? failed_note(failed_runs, "runs", flags.check) : "");
+  report_written(table_rows, flags.out, failed_rows ? std::to_string(failed_rows) + " with runs that did not finish ok" : "");
 }
 
 }  // namespace pb::app

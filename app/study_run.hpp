@@ -29,6 +29,7 @@ struct StudyFlags {
   unsigned threads = 0;
   int repetitions = kStudyRepetitions;
   bool check = false;  // exit 1 when a row fails (after writing the outputs)
+  std::string junit;   // --junit: --check's verdicts as JUnit XML (app/check_report.hpp)
 };
 
 // --repetitions R: timed solves per point, at most (sweep/sweep.hpp), from 1 to
@@ -39,7 +40,7 @@ void add_repetitions_flag(CLI::App& command, int& repetitions);
 // and, when `say` (the leader), each run of an engine this build left out named on stderr.
 SettingsList read_settings_list(const std::string& file, bool say);
 
-// CASESET, --settings, --out, --points, --threads, --repetitions, and --check with `check_help`.
+// CASESET, --settings, --out, --points, --threads, --repetitions, --check with `check_help`, --junit.
 CLI::App* add_study_command(CLI::App& app, StudyFlags& flags, std::string_view name, std::string_view summary,
                             std::string_view points_help, std::string_view check_help);
 
@@ -58,19 +59,15 @@ Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_vi
 
 // Writes a finished study's outputs, whole or not at all: the rows of every run to
 // --points when asked, then the summary table to --out or stdout; the partial file goes
-// once both are written.
+// once both are written. The closing line of each file counts what failed in it, where
+// anything did: the runs that did not finish ok, the summary rows with such runs.
 void write_study(const StudyFlags& flags, const Study& study, const std::function<void(std::ostream&)>& points,
-                 const std::function<void(std::ostream&)>& table);
+                 const std::function<void(std::ostream&)>& table, std::size_t failed_runs, std::size_t failed_rows);
 
 // A summary row as --check names it: family, solver, variant (when given) and settings.
 template <typename SummaryRow>
 std::string row_label(const SummaryRow& row) {
   return row.family + " " + row.solver + (row.variant.empty() ? "" : " " + row.variant) + " " + row.settings;
 }
-
-// --check's verdict, once the outputs are written: one line on stderr per failure
-// ("poundbench: <name> --check: <failure>"), then one that counts them; returns the exit
-// code, 1 when any row failed and 0 otherwise.
-int report_check(std::string_view name, const std::vector<std::string>& failures, std::size_t rows);
 
 }  // namespace pb::app

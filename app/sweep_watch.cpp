@@ -54,11 +54,17 @@ Progress progress_on_stderr(bool leader) {
   return ::isatty(STDERR_FILENO) == 1 ? Progress::bar : Progress::lines;
 }
 
-void report_written(std::size_t rows, const std::string& file) {
+void report_written(std::size_t rows, const std::string& file, std::string_view note) {
   const double seconds = std::chrono::duration<double>(Clock::now() - kProcessStart).count();
-  std::fprintf(stderr, "poundbench: wrote %zu rows to %s in %.1f s\n", rows, file.empty() ? "stdout" : file.c_str(),
-               seconds);
+  std::fprintf(stderr, "poundbench: wrote %zu rows to %s in %.1f s%s%.*s\n", rows,
+               file.empty() ? "stdout" : file.c_str(), seconds, note.empty() ? "" : "; ", static_cast<int>(note.size()),
+               note.data());
   std::fflush(stderr);
+}
+
+std::string failed_note(std::size_t failed, std::string_view unit, bool checked) {
+  return std::to_string(failed) + " " + std::string(unit) + " did not finish ok" +
+         (checked ? "" : " (the status and message columns say why; --check makes this exit 1)");
 }
 
 SweepWatch::SweepWatch(std::string command, std::string unit, std::size_t total, std::size_t resumed,

@@ -72,8 +72,14 @@ inline std::string progress_line(std::string_view command, std::string_view unit
 }
 
 // The last line of a sweep command, on stderr, once per output file it wrote:
-// "poundbench: wrote N rows to FILE in T s" ("" is stdout), T from the start of the process.
-void report_written(std::size_t rows, const std::string& file);
+// "poundbench: wrote N rows to FILE in T s" ("" is stdout), T from the start of the process,
+// then "; NOTE" when a note is given (what failed: failed_note).
+void report_written(std::size_t rows, const std::string& file, std::string_view note = {});
+
+// "40 runs did not finish ok (status not ok; --check makes that exit 1)": the note of a
+// closing line whose rows hold failures, so that a sweep whose every point failed does not
+// read as a success. `checked`: --check was given (it will say more).
+std::string failed_note(std::size_t failed, std::string_view unit, bool checked);
 
 class SweepWatch {
  public:

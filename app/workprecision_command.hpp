@@ -16,13 +16,14 @@
 namespace pb::app {
 
 struct WorkPrecisionFlags : StudyFlags {
-  double max_error = std::numeric_limits<double>::quiet_NaN();  // --max-error: NaN when not given
+  double max_error = std::numeric_limits<double>::quiet_NaN();      // --max-error: NaN when not given
+  double max_error_p95 = std::numeric_limits<double>::quiet_NaN();  // --max-error-p95: NaN when not given
 };
 
 CLI::App* add_workprecision_command(CLI::App& app, WorkPrecisionFlags& flags);
 // Exit code: 0 done, 1 with --check when a run did not finish ok or a setting's err_median
-// is above --max-error (the outputs are written all the same), 130 interrupted (partial
-// file kept).
+// is above --max-error or its err_p95 above --max-error-p95 (the outputs are written all the
+// same), 130 interrupted (partial file kept).
 int workprecision_command(const CLI::App& command, const WorkPrecisionFlags& flags, const Processes& processes);
 
 }  // namespace pb::app

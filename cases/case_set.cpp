@@ -13,6 +13,7 @@
 #include "cases/case_set.hpp"
 
 #include "cases/fields.hpp"
+#include "cases/nearest_name.hpp"
 #include "cases/record.hpp"
 #include "cases/toml_input.hpp"
 
@@ -193,34 +194,11 @@ std::optional<double> as_number(const toml::node& n) {
 std::uint32_t line_of(const toml::node& n) { return n.source().begin.line; }
 std::uint32_t line_of(const toml::key& k) { return k.source().begin.line; }
 
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0u : 1u)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
-}
-
 // "unknown key" with a hint: the nearest allowed key when it is close enough to be a typo.
 std::string unknown_key_reason(std::string_view key, const std::vector<std::string_view>& allowed) {
   if (key == "pi4") return "unknown key (Pi4 is written eps)";
   if (key == "pi1") return "unknown key (Pi1 is the response a solver computes, not an input)";
-  std::string_view best;
-  std::size_t best_d = 3;  // more than two edits is no longer a typo
-  for (std::string_view a : allowed) {
-    // A length apart of best_d or more is never closer: skip the quadratic distance (a
-    // 10 MB key would take seconds).
-    if ((key.size() > a.size() ? key.size() - a.size() : a.size() - key.size()) >= best_d) continue;
-    const std::size_t d = edit_distance(key, a);
-    if (d < best_d) best_d = d, best = a;
-  }
+  const std::string_view best = nearest_name(key, allowed);
   if (!best.empty()) return "unknown key (did you mean " + std::string(best) + "?)";
   std::string list;
   for (std::string_view a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 namespace pb {
 
@@ -152,15 +153,17 @@ std::string work_precision_csv_line(const WorkPrecisionRow& row) {
   return line.str();
 }
 
-std::string work_precision_problem(const WorkPrecisionRow& row, double max_error) {
+std::string work_precision_problem(const WorkPrecisionRow& row, double max_error, double max_error_p95) {
   const Summary& s = row.summary;
   std::string problem;
   if (s.failed > 0)
     problem = std::to_string(s.failed) + " of " + std::to_string(s.points) + " runs did not finish ok";
-  if (!std::isnan(max_error) && !(s.err_median <= max_error))
-    problem += (problem.empty() ? "" : "; ") + std::string("err_median ") +
-               (std::isnan(s.err_median) ? "empty (no run finished)" : format_number(s.err_median)) +
-               " above " + format_number(max_error);
+  for (const auto& [bound, value, column] :
+       {std::tuple{max_error, s.err_median, "err_median"}, std::tuple{max_error_p95, s.err_p95, "err_p95"}})
+    if (!std::isnan(bound) && !(value <= bound))
+      problem += (problem.empty() ? "" : "; ") + std::string(column) + " " +
+                 (std::isnan(value) ? "empty (no run finished)" : format_number(value)) + " above " +
+                 format_number(bound);
   return problem;
 }
 

@@ -7,6 +7,7 @@
 // settings, so its tasks are shared out together: no thread or MPI rank waits for the
 // slowest point of one setting before starting the next.
 
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -77,7 +78,9 @@ std::string work_precision_csv_header();
 std::string work_precision_csv_line(const WorkPrecisionRow& row);
 
 // What `workprecision --check` fails a row for, "" when nothing: a run that did not finish
-// ok (a failed count), or, when max_error is not NaN, an err_median above it.
-std::string work_precision_problem(const WorkPrecisionRow& row, double max_error);
+// ok (a failed count), or, when max_error (max_error_p95) is not NaN, an err_median
+// (err_p95) above it.
+std::string work_precision_problem(const WorkPrecisionRow& row, double max_error,
+                                   double max_error_p95 = std::numeric_limits<double>::quiet_NaN());
 
 }  // namespace pb

@@ -139,11 +139,32 @@ TEST(BaselineCompare, LostAndNewCasesFailTheRegressionCheck) {
   EXPECT_FALSE(t[0].passed(Match::same_setting));
 
   std::vector<Row> moved = stored;
-  moved[1].input.pi2 = 1.0 + 1e-15;  // another case, however close
+  moved[1].input.pi2 = 1.0 + 1e-3;  // another case: beyond kCaseMatchTolerance
   t = compare_rows(moved, stored, Match::same_setting);
   EXPECT_EQ(t[0].unmatched, 1u);
   EXPECT_EQ(t[0].missing, 1u);
   EXPECT_FALSE(t[0].passed(Match::same_setting));
+}
+
+// A case's numbers match within kCaseMatchTolerance (1e-5, relative), the nearer stored case
+// where two are within it; names and whole numbers exactly.
+TEST(BaselineCompare, CasesMatchWithinTheStatedToleranceOnTheirNumbersAndExactlyOnTheirNames) {
+  const std::vector<Row> stored = {row(0.5, 2.0), row(0.500004, 3.0)};
+  std::vector<Row> rows = {row(0.5000009, 2.0)};  // 1.8e-6 from the first, 6.2e-6 from the second
+  std::vector<Comparison> t = compare_rows(rows, stored, Match::same_setting);
+  EXPECT_EQ(t[0].compared, 1u);
+  EXPECT_EQ(t[0].failed, 0u) << "matched to the nearer case, whose Pi1 it has";
+  rows[0].input.pi2 = 0.5 * (1.0 - 2e-5);
+  t = compare_rows(rows, stored, Match::same_setting);
+  EXPECT_EQ(t[0].unmatched, 1u);
+  ASSERT_EQ(t[0].unmatched_rows.size(), 1u);
+  EXPECT_NE(t[0].unmatched_rows[0].nearest.find("point 0: pi2=0.5 (2.0e-05 apart)"), std::string::npos)
+      << t[0].unmatched_rows[0].nearest;
+  rows[0].input.pi2 = 0.5;
+  rows[0].input.directivity = Directivity::reverse;
+  t = compare_rows(rows, stored, Match::same_setting);
+  ASSERT_EQ(t[0].unmatched_rows.size(), 1u);
+  EXPECT_EQ(t[0].unmatched_rows[0].nearest, "no stored case of pair sine reverse with its setting");
 }
 
 TEST(BaselineCompare, ReferenceModeMatchesAnySolversRowsToTheStoredReferenceByPhysics) {

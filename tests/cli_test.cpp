@@ -740,8 +740,8 @@ TEST_F(Cli, VersionSaysTheProjectVersionAndTheCommitItWasBuiltFrom) {
 
 TEST_F(Cli, AWordThatIsNoSubcommandIsNamedAndTheSubcommandsListed) {
   const std::string list =
-      "the subcommands are: run, spectrum, workprecision, stress, baseline, compare, solvers, adapter (`poundbench help` "
-      "says what each does)\n";
+      "the subcommands are: run, spectrum, workprecision, stress, baseline, compare, solvers, adapter "
+      "(`poundbench help` says what each does)\n";
   Outcome o = run("bogus --out x.csv");
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_EQ(o.err, "poundbench: unknown subcommand 'bogus'; " + list);
@@ -750,7 +750,7 @@ TEST_F(Cli, AWordThatIsNoSubcommandIsNamedAndTheSubcommandsListed) {
   EXPECT_EQ(o.err, "poundbench: no subcommand; " + list);
   o = run("help spectrumm");
   EXPECT_EQ(o.exit_code, 2);
-  EXPECT_EQ(o.err, "poundbench: unknown subcommand 'spectrumm'; " + list);
+  EXPECT_EQ(o.err, "poundbench: unknown subcommand 'spectrumm' (did you mean spectrum?); " + list);
   o = run("help");
   EXPECT_EQ(o.exit_code, 0);
   EXPECT_EQ(o.out, run("--help").out);
