@@ -18,6 +18,7 @@
 #include "app/baseline_command.hpp"
 #include "app/blas_threads.hpp"
 #include "app/errors.hpp"
+#include "app/report_command.hpp"
 #include "app/run_command.hpp"
 #include "app/solvers_command.hpp"
 #include "app/spectrum_command.hpp"
@@ -159,6 +160,8 @@ int main(int argc, char** argv) {
   CLI::App* solvers = pb::app::add_solvers_command(app, solvers_flags);
   pb::app::AdapterFlags adapter_flags;
   CLI::App* adapter = pb::app::add_adapter_command(app, adapter_flags);
+  pb::app::ReportFlags report_flags;
+  CLI::App* report = pb::app::add_report_command(app, report_flags);
   refuse_empty_values(app);
 
   // Every rank parses the same words, so every rank ends here alike.
@@ -191,6 +194,7 @@ int main(int argc, char** argv) {
     if (*compare) return pb::app::compare_command(*compare, compare_flags);
     if (*solvers) return pb::app::solvers_command(solvers_flags);
     if (*adapter) return pb::app::adapter_command(*adapter, adapter_flags);
+    if (*report) return pb::app::report_command(report_flags);
   } catch (const pb::SharedFailure& e) {
     return leader ? fail(e.what(), e.code) : e.code;
   } catch (const std::exception& e) {

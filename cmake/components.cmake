@@ -48,6 +48,12 @@ function(poundbench_install_package)
   install(TARGETS poundbench_core poundbench_processes EXPORT poundbenchTargets
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
   install(TARGETS poundbench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  # The report generator that `poundbench report` runs (app/report_command.hpp), and the
+  # header whose tolerances its stress section quotes (reports/stability.py).
+  install(DIRECTORY reports/ DESTINATION ${CMAKE_INSTALL_DATADIR}/poundbench/reports
+          FILES_MATCHING PATTERN "*.py" PATTERN "page.js" PATTERN "page.css" PATTERN "paper" EXCLUDE
+          PATTERN "figures" EXCLUDE PATTERN "__pycache__" EXCLUDE)
+  install(FILES studies/stress.hpp DESTINATION ${CMAKE_INSTALL_DATADIR}/poundbench/studies)
   install(DIRECTORY cases solvers sweep rows studies DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/poundbench
           FILES_MATCHING PATTERN "*.hpp")
   install(EXPORT poundbenchTargets NAMESPACE poundbench:: DESTINATION ${config_dir})

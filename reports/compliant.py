@@ -167,10 +167,10 @@ def newmark_table(summary, points):
 def figure(summary, out_dir):
     """Model error (worst family's p95) against K per element, with Moreau-Jean N = 64's, and
     Newmark's integration error against N per K; returns the figure's path in out_dir."""
-    from figure import plt, save
+    from figure import figure_width, plt, save
 
     groups = by_kind(summary)
-    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2), layout="constrained")
+    fig, (left, right) = plt.subplots(1, 2, figsize=(figure_width(2), 4.6), layout="constrained")
     for model in MODELS:
         keys = sorted((k for k in groups if k[0] == "reference" and k[1] == model), key=lambda k: k[2])
         pts = [(k[2], worst([r for r in groups[k].values() if applies(r)], "err_p95")) for k in keys]
@@ -184,7 +184,7 @@ def figure(summary, out_dir):
     left.set_xlabel("contact stiffness K (Pi term)")
     left.set_ylabel("model error: 95th percentile, worst family")
     left.set_title("the model against rigid contact")
-    left.legend(fontsize=8)
+    left.legend(loc="lower left", frameon=False)
     for K in sorted({k[2] for k in groups if k[0] == "newmark"}):
         keys = sorted((k for k in groups if k[0] == "newmark" and k[2] == K), key=lambda k: k[3])
         pts = [(k[3], worst(list(groups[k].values()), "int_err_p95")) for k in keys]
@@ -193,8 +193,8 @@ def figure(summary, out_dir):
             right.loglog(*zip(*pts), marker="s", label=f"K = {K:g}")
     right.set_xlabel("Newmark steps per shortest period N")
     right.set_ylabel("integration error: 95th percentile, worst family")
-    right.set_title("Kelvin–Voigt by Newmark against its exact solution")
-    right.legend(fontsize=8)
+    right.set_title("Kelvin–Voigt by Newmark\nagainst its exact solution")
+    right.legend(loc="lower left", frameon=False)
     return save(fig, out_dir, "compliant")
 
 

@@ -1,9 +1,11 @@
 #!/usr/bin/python3
-"""Turns poundbench result rows into reports/README.md and its figures, commits the small
-result files README's numbers come from (workprecision.csv, workprecision-families.csv,
-stability.csv, measured.csv, provenance.json) beside it, and with --readme writes README's
-generated blocks from them (readme.py). Run by scripts/main.sh; uses Debian's
-python3-matplotlib.
+"""Turns the main job's results into reports/README.md, its figures and report.html, commits
+the small result files README's numbers come from (workprecision.csv,
+workprecision-families.csv, workprecision-impacting.csv, stability.csv, measured.csv,
+provenance.json) beside it, and with --readme writes README's generated blocks from them
+(readme.py). The work-precision and stress studies' sections are report.py's, the report of
+any study (`poundbench report`); this adds the main job's own. Run by scripts/main.sh; uses
+Debian's python3-matplotlib.
 
     reports/make_report.py RESULTS.csv [...] --workprecision WP.csv --points WP-POINTS.csv ... --out reports
     reports/make_report.py --check        README's blocks against reports/: exit 1 and the diff if they differ
@@ -18,140 +20,60 @@ import shutil
 import sys
 from collections import defaultdict
 
-import answer
 import compliant
 import measured
 import provenance
 import readme
-from rows import load, median, num, write_page
+import report as report_of
+from rows import load, write_page
+from study import InputError, Study, spectrum_summary, write_impacting
 
 # The figure modules (spectra, wp, stability: matplotlib) are imported where a figure is drawn,
 # so that --check, which draws none, starts in a blink.
 
 
 # ---------------------------------------------------------------- the sections
+# The studies' sections are report.py's (the report of any study); this file adds what only
+# the main job has: how to read its solvers, the compliant study, the benchmarks, the
+# records and the paper case set.
 
-def answer_section(summary, scenes):
-    return ["## Which solver for which accuracy", "", answer.rule(summary), "",
-            "Per scene of `cases/sets/workprecision.toml`:", "", *answer.scene_table(summary, scenes), "",
-            "Over every family at once, among every solver:", "", *answer.overall_table(summary), "",
-            "Among the time-steppers only (what a general multibody code would use):", "",
-            *answer.overall_table(summary, time_steppers_only=True), ""]
-
-
-def beats_section(summary, points):
-    """Where another time-stepper beats the in-house Moreau-Jean, and the settings whose runs
-    failed, with the cause each solver gives."""
-    lines = ["## Where another scheme beats the in-house Moreau–Jean", "",
-             "Per family and target (the median of the relative Pi1 error, no failed run), the in-house "
-             "`moreau-jean`'s cheapest setting that meets it and its least step count N, against every other "
-             "time-stepper configuration of the study: those that meet the target at less CPU per run, and those "
-             "that meet it with fewer steps per shortest period. The step counts compare the schemes apart from "
-             "what their code costs a step (the libraries' steps cost 10 to 300 times the in-house one's: "
-             "*Cost per run* below).", "", *answer.beats_table(summary), ""]
-    failures = answer.failure_table(points)
-    if failures:
-        lines += ["### Settings with failed runs", "",
-                  "Every setting of the study with runs that did not end ok, and the message of the first: the "
-                  "cause its solver names (`solvers/*/README.md` say more). A setting that failed on every point "
-                  "has no line in the diagrams.", "", *failures, ""]
-    return lines
+STRESS_ABOUT = ("Every case of the stress set (`cases/sets/stress.toml`: stiffness and mass contrasts of 1e-2 and "
+                "1e2, bodies touching at rest, eps = 0 and 1, pulse scales 1e-3 to 1e3, 100 free periods, chains of "
+                "up to 100 bodies, a Newton's cradle; and the recorded ground motion of "
+                "`cases/sets/stress-records.toml`) through every setting of `cases/settings/stress.toml`, the "
+                "time-steppers at w_max h from resolved to a hundred radians ({steps}).")
+STRESS_READING = [
+    "Reading it: ODE and Bullet apply the ground load sampled at the start of each step, which makes energy to first "
+    "order in h, so they fail the energy check at any step (the excess says how much, and shrinks with h: "
+    "`tests/ode_test.cpp`, `tests/bullet_test.cpp`); as explicit schemes they diverge from w_max h = 2 on, the "
+    "stability limit of their semi-implicit Euler step. Where Moreau-Jean makes energy (a plastic impulse on a "
+    "separating contact at theta = 1/2, elastic contacts held closed at theta = 1) is derived in "
+    "`solvers/moreau_jean/README.md`. Siconos' MoreauJeanOSI samples the load at the step's ends instead of averaging "
+    "it over the step, and the work of that sampled load is not the ground's: it fails the energy check at every step "
+    "(`solvers/siconos/README.md`).", ""]
 
 
-def workprecision_section(summary, out_dir):
-    import wp
-
-    text = ["## Work-precision diagrams", "",
-            "Relative Pi1 error against median CPU time per run, over the points of a family; each line is one "
-            "solver configuration over its step counts N (steps per shortest period: 8, 16, ...). A row of panels "
-            "per solver family, the other solvers in light grey behind it; the thick grey band is the Pareto "
-            "front over every solver (the settings no other setting beats in both cost and error; settings with "
-            "failed runs are not candidates, and are drawn hollow). Errors below "
-            f"{wp.ERROR_FLOOR:g} are round-off: they are drawn in the shaded band under it, one row per setting, "
-            "so that none hides another. Settings that failed on every point are left out; failed runs are "
-            "counted in `workprecision.csv`" + (" Horizontal bars: the lowest and highest CPU time of the timing "
-                                                "repetitions." if any(answer.has_spread(r) for r in summary)
-                                                else ".") + "", ""]
-    for family, figure in wp.wp_diagrams(summary, out_dir):
-        text += [f"### {family}", "", f"![work-precision {family}]({figure})", ""]
-    text += ["## Cost per run", "", f"At N = {answer.MIDDLE_N}, as a ratio to the in-house Moreau-Jean stepper "
-             "(theta = 1/2) on the same points (median CPU time per run"
-             + (", in brackets the low-high of the repetitions" if any(answer.has_spread(r) for r in summary) else "")
-             + "):", ""]
-    return text + answer.cost_table(summary) + [""]
-
-
-def spectra_section(points, out_dir):
-    import wp
-
-    text = ["## Spectra and where they go wrong", "",
-            f"Each solver at N = {answer.MIDDLE_N} over the reference (black), and its error along Pi2.", ""]
-    for family, figure in wp.wp_spectra(points, out_dir):
-        text += [f"### {family}", "", f"![spectra {family}]({figure})", ""]
-    return text
-
-
-def stability_section(summary, points, out_dir):
-    """Where each solver breaks: the stress set's checks per family and setting, and the
-    figures against w_max h and the chain's size."""
+def stress_section(study, out):
     import stability
 
-    tol = stability.tolerances()
-    checks = stability.checks_of(summary)
-    lines = ["## Stability on stiff and extreme cases", "",
-             "Every case of the stress set (`cases/sets/stress.toml`: stiffness and mass contrasts of 1e-2 and "
-             "1e2, bodies touching at rest, eps = 0 and 1, pulse scales 1e-3 to 1e3, 100 free periods, chains "
-             "of up to 100 bodies, a Newton's cradle) through every setting of `cases/settings/stress.toml`, "
-             f"the time-steppers at w_max h from resolved to a hundred radians ({stability.steps_sentence(summary)}). "
-             f"{len(checks)} checks per family and setting (tolerances in `studies/stress.hpp`):", "",
-             "* **finite**: every run ends with status ok and a finite Pi1;",
-             "* **energy**: the mechanical energy never exceeds the start's energy plus the work of the ground "
-             f"load, to {tol['kEnergyTolerance']:g} of the energy scale;",
-             "* **gap**: a time-stepper overlaps by at most one step of travel (to "
-             f"{tol['kPenetrationSteps'] - 1:.0e}, room for round-off) at its fastest gap rate, h max|g'|; the "
-             f"reference, by at most {tol['kReferencePenetration']:g} of the gap;",
-             f"* **restitution**: every isolated impact restitutes eps to {tol['kRestitutionTolerance']:g}"
-             + (";" if "accuracy" in checks else "."),
-             *(["* **accuracy**: Pi1 and the impacts against the truth's (the rule: `studies/stress.hpp`; the worst "
-                "95th percentile of the Pi1 error shown)."]
-               if "accuracy" in checks else []), "",
-             "Energy, gap and restitution judge the finished runs only, so a diverged run counts once.", "",
-             "Reading it: ODE and Bullet apply the ground load sampled at the start of each step, which "
-             "makes energy to first order in h, so they fail the energy check at any step (the excess says "
-             "how much, and shrinks with h: `tests/ode_test.cpp`, `tests/bullet_test.cpp`); as explicit "
-             "schemes they diverge from w_max h = 2 on, the stability limit of their semi-implicit Euler step. "
-             "Where Moreau-Jean makes energy (a plastic impulse on a "
-             "separating contact at theta = 1/2, elastic contacts held closed at theta = 1) is derived in "
-             "`solvers/moreau_jean/README.md`. Siconos' MoreauJeanOSI samples the load at the step's ends "
-             "instead of averaging it over the step, and the work of that sampled load is not the ground's: "
-             "it fails the energy check at every step (`solvers/siconos/README.md`).", ""]
-    lines += ["In short, per solver configuration over every family and step (worst values over the failing "
-              "cells):", ""]
-    lines += stability.stability_summary(summary)
-    lines += ["", "Per family and setting:", "", f"![stress verdicts]({stability.verdict_figure(summary, out_dir)})",
-              "", "The numbers behind every cell (runs, finished runs, worst energy excess, penetration and "
-              "restitution error, errors and cost): [`stability.csv`](stability.csv), one line per family and "
-              "setting; every run's row in `poundbench stress --points`.", ""]
-    if points:
-        figure = stability.large_step_figure(points, out_dir)
-        if figure:
-            lines += ["### Against the step", "", f"![large steps]({figure})", ""]
-        figure = stability.chain_cost_figure(points, out_dir)
-        if figure:
-            lines += ["### Chain: cost against the number of bodies", "", f"![chain cost]({figure})", ""]
-    return lines
+    return report_of.stress_sections(study, out, STRESS_ABOUT.format(steps=stability.steps_sentence(study.rows)),
+                                     STRESS_READING)
 
 
 def bench_section(path, quoted, summary, stress, measured_on):
-    """README's measured table (the same rows), then every benchmark's median."""
+    """README's measured table (the same rows), then every benchmark's median (from the
+    benchmarks' JSON, when this run has it)."""
+    lines = ["## Benchmarks", "", "What README quotes (`measured.csv`; the benchmark medians over their "
+             "repetitions):", "", *measured.table(quoted, summary, stress, measured_on), ""]
+    if not path:
+        return lines + ["Every benchmark's median: in the main job's own run (`scripts/main.sh`), from its "
+                        "benchmarks' JSON.", ""]
     with open(path) as f:
         data = json.load(f)
     runs = data.get("benchmarks", [])
     medians = [b for b in runs if b.get("aggregate_name") == "median"] or \
         [b for b in runs if b.get("run_type") != "aggregate"]
-    lines = ["## Benchmarks", "", "What README quotes (`measured.csv`; the benchmark medians over their "
-             "repetitions):", "", *measured.table(quoted, summary, stress, measured_on), "",
-             "Every benchmark: Google Benchmark medians (`build/bench/poundbench_bench`, "
+    lines += ["Every benchmark: Google Benchmark medians (`build/bench/poundbench_bench`, "
              f"{data.get('context', {}).get('num_cpus', '?')} CPUs, "
              f"{data.get('context', {}).get('mhz_per_cpu', '?')} MHz):", "",
              "| benchmark | time | counters |", "|---|---:|---|"]
@@ -174,16 +96,9 @@ def paper_set_section(rows, out_dir):
     text = ["## The paper case set", "",
             "| family | solver | points | failed | impacts (median) | CPU per point, median (us) | total CPU (s) |",
             "|---|---|---:|---:|---:|---:|---:|"]
-    for family, frows in families.items():
-        by_solver = defaultdict(list)
-        for r in frows:
-            by_solver[(r["solver"], r["variant"])].append(r)
-        for (solver, variant), srows in by_solver.items():
-            secs = [num(r, "cpu_seconds") for r in srows]
-            failed = sum(r["status"] != "ok" for r in srows)
-            text.append(f"| {family} | {solver} {variant} | {len(srows)} | {failed} | "
-                        f"{median([num(r, 'impacts') for r in srows]):.0f} | {1e6 * median(secs):.1f} | "
-                        f"{sum(secs):.2f} |")
+    for s in spectrum_summary(rows):
+        text.append(f"| {s['family']} | {s['solver']} {s['variant']} | {s['points']} | {s['failed']} | "
+                    f"{s['impacts']:.0f} | {1e6 * s['cpu']:.1f} | {s['total_cpu']:.2f} |")
     text += ["", "### Reference Pi-spectra", "",
              "Pi1 of body 0 against Pi2 for every family of the paper's case set, from the event-driven "
              "reference. Dashed grey lines: the same case with every contact removed.", ""]
@@ -240,19 +155,34 @@ def write_families(points, path):
             f.write(f"{family},{scene}\n")
 
 
+def studies(args):
+    """The main job's studies as report.py reads any study, checked before anything is
+    written; exits 2 naming the file where one is not what it should be."""
+    try:
+        wp = Study(args.workprecision, args.points) if args.workprecision else None
+        stress = Study(args.stress, args.stress_points) if args.stress else None
+    except InputError as e:
+        print(f"make_report.py: {e}", file=sys.stderr)
+        sys.exit(2)
+    return wp, stress
+
+
 def report(args):
     rows = load(args.results)
+    wp_study, stress_study = studies(args)
     os.makedirs(os.path.join(args.out, "figures"), exist_ok=True)
     measured_on = commit_results(args)
-    summary = load([args.workprecision]) if args.workprecision else []
-    stress = load([args.stress]) if args.stress else []
+    summary = wp_study.rows if wp_study else []
+    stress = stress_study.rows if stress_study else []
     quoted = []
     if args.bench or args.timings:
         quoted = (measured.from_bench(args.bench) if args.bench else []) + \
             (measured.from_timings(args.timings, sum(r["solver"] == "event-driven" for r in rows))
              if args.timings else [])
         measured.write(os.path.join(args.out, readme.MEASURED), quoted)
+    if os.path.exists(os.path.join(args.out, readme.MEASURED)):
         quoted = load([os.path.join(args.out, readme.MEASURED)])  # as README reads it back
+    out = report_of.Output(args.out, "poundbench report")
 
     text = ["# poundbench report", "",
             "Generated by `scripts/main.sh` (one command: build, sweeps, benchmarks, this page). "
@@ -270,7 +200,7 @@ def report(args):
              "law, which fails where impacts accumulate (counted as failed runs); `schatzman-paoli`, "
              "`d1-minus-linear`, `combined-projection` and `direct-projection` its other one-step integrators, "
              "and `bilbao` and `newmark-alpha` two that fail on every run in Siconos 4.4, each naming why "
-             "(*Settings with failed runs*).",
+             "(*Failed runs*).",
              "* **MuJoCo.** `mujoco` has soft contacts (spring-dampers, no restitution law): its faithful "
              "variants calibrate each contact to eps (the clamped oscillator's damping ratio, a time constant "
              "of `--contact-steps` steps), so an isolated impact restitutes eps only up to a scatter with the "
@@ -284,24 +214,26 @@ def report(args):
              "its Pi1 carries float round-off of about 1e-7 to 1e-6 of the peak, which is its floor. All other "
              "solvers are double precision.",
              "* **N** is the number of steps per shortest period (`h = T_min / N`).", ""]
-    if summary:
-        points = load([args.points])
-        write_families(points, os.path.join(args.out, readme.FAMILIES))
-        text += answer_section(summary, {r["family"]: r["scene"] for r in points})
-        text += beats_section(summary, points)
-        text += workprecision_section(summary, args.out)
-        text += spectra_section(points, args.out)
+    text += ["The studies to explore in a browser (the answer for any scene and target, the diagrams and spectra "
+             "with every value on hover): [report.html](report.html), one file that works offline.", ""]
+    if wp_study:
+        write_families(wp_study.points, os.path.join(args.out, readme.FAMILIES))
+        for section in report_of.SECTIONS["workprecision"]:
+            text += section(wp_study, out)
+        write_impacting(out.impacting, os.path.join(args.out, readme.IMPACTING))
     if args.compliant:
         text += compliant.section(load([args.compliant]), load([args.compliant_points]), args.out)
-    if stress:
-        text += stability_section(stress, load([args.stress_points]) if args.stress_points else [], args.out)
-    if args.bench:
+    if stress_study:
+        text += stress_section(stress_study, out)
+    if quoted:
         text += bench_section(args.bench, quoted, summary, stress, measured_on)
     if args.records:
         import records
         text += records.section(load(args.records), args.out)
     text += paper_set_section(rows, args.out)
     text += ["## Where this ran", "", footer(measured_on), ""]
+    out.page.provenance([f"- measured at: {provenance.describe(measured_on)}"])
+    out.page.write(os.path.join(args.out, "report.html"))
     write_page(args.out, text, "make_report.py")
 
 

@@ -9,7 +9,7 @@ Used by make_report.py."""
 import math
 from collections import defaultdict
 
-from figure import plt, save, solver_styles
+from figure import figure_width, legend_below, log_spans, save, solver_styles, with_legend_below
 from rows import config_label, median, num
 
 REFERENCE = "event-driven"
@@ -40,9 +40,10 @@ def errors(rows):
 def plot_family(family, rows, out_dir):
     rows = [r for r in rows if r["family"] == family]
     pi5s = sorted({r["pi5"] for r in rows}, key=float)
-    fig, axes = plt.subplots(2, len(pi5s), figsize=(5.6 * len(pi5s) + 2.4, 6.6), squeeze=False, sharex=True,
-                             gridspec_kw=dict(height_ratios=[2, 1]), layout="constrained")
     styles = solver_styles([r for r in rows if r["solver"] != REFERENCE])
+    fig, grid = with_legend_below(figure_width(len(pi5s)), 5.6, len(styles) + 2, wspace=0.22, hspace=0.1)
+    fig.subplots(2, len(pi5s), squeeze=False, sharex=True, gridspec_kw=dict(grid, height_ratios=[2, 1]))
+    axes = [fig.axes[:len(pi5s)], fig.axes[len(pi5s):]]
     ref = {_key(r): num(r, "pi1") for r in rows if r["solver"] == REFERENCE and r["status"] == "ok"}
     for col, pi5 in enumerate(pi5s):
         top, bottom = axes[0][col], axes[1][col]
@@ -64,6 +65,8 @@ def plot_family(family, rows, out_dir):
             bottom.plot([p for p, _ in e], [max(v, 1e-16) for _, v in e], color=st["color"], ls=st["ls"],
                         marker=st["marker"], ms=3, lw=1.0)
         top.set_xscale("log")
+        if log_spans([num(r, "pi1") for r in rows if r["pi5"] == pi5 and r["solver"] == REFERENCE]):
+            top.set_yscale("log")
         top.set_title(f"{family}: Pi5 = {pi5}")
         top.set_ylabel("Pi1")
         bottom.set_yscale("log")
@@ -71,7 +74,14 @@ def plot_family(family, rows, out_dir):
         bottom.set_ylabel("relative Pi1 error")
         top.grid(True, which="both", alpha=0.3)
         bottom.grid(True, which="both", alpha=0.3)
-    axes[0][-1].legend(fontsize=7, loc="upper right")
+    handles, names = axes[0][0].get_legend_handles_labels()
+    for ax in axes[0][1:]:
+        for h, name in zip(*ax.get_legend_handles_labels()):
+            if name not in names:
+                handles.append(h)
+                names.append(name)
+    legend_below(fig, handles, names)
+    fig.suptitle(f"{family}: Pi-spectra through the reference and the time-steppers, and their error")
     return save(fig, out_dir, f"records-{family}")
 
 

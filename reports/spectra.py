@@ -5,7 +5,7 @@ from collections import defaultdict
 
 from matplotlib.lines import Line2D
 
-from figure import colors, plt, save
+from figure import colors, figure_width, legend_below, log_spans, save, with_legend_below
 from rows import CASE_KEYS, num
 
 
@@ -53,11 +53,15 @@ def plot_family(family, rows, out_dir):
     pulses = sorted({r["pulse"] for r in rows}, reverse=True)  # sine first, as in the paper
     directivities = sorted({r["directivity"] for r in rows})
     keys = [k for k in varying(rows, CASE_KEYS) if k not in ("pulse", "directivity")]
-    fig, axes = plt.subplots(len(pulses), len(directivities), figsize=(5.6 * len(directivities) + 2.2,
-                             3.9 * len(pulses)), squeeze=False, sharex=True, layout="constrained")
     labels = sorted({tuple(r[k] for k in keys) for r in rows}, key=sort_key)
-    palette = dict(zip(labels, colors(len(labels))))
     names = {label: ", ".join(f"{k}={v}" for k, v in zip(keys, label)) or family for label in labels}
+    columns = 4 if max(len(n) for n in names.values()) <= 22 else 2  # a column of a 9 in figure holds ~25 characters
+    fig, grid = with_legend_below(figure_width(len(directivities)), 3.3 * len(pulses) + 0.4, len(labels) + 1,
+                                  columns=columns, wspace=0.18, hspace=0.3)
+    fig.subplots(len(pulses), len(directivities), squeeze=False, sharex=True, gridspec_kw=grid)
+    axes = [fig.axes[i * len(directivities):(i + 1) * len(directivities)] for i in range(len(pulses))]
+    logy = log_spans([num(r, "pi1") for r in rows])
+    palette = dict(zip(labels, colors(len(labels))))
     together = []  # coinciding curves: their labels, largest difference, whether they are all of their panel
     for pi, pulse in enumerate(pulses):
         for di, direc in enumerate(directivities):
@@ -86,7 +90,9 @@ def plot_family(family, rows, out_dir):
                     ax.plot(x, y, color=palette[label], lw=width, alpha=0.45 if width > 3 else 1.0,
                             label=names[label])
             ax.set_xscale("log")
-            ax.set_title(f"{pulse} pulse, {direc} directivity", fontsize=10)
+            if logy:
+                ax.set_yscale("log")
+            ax.set_title(f"{pulse} pulse, {direc} directivity")
             ax.grid(True, which="both", alpha=0.25)
             if pi == len(pulses) - 1:
                 ax.set_xlabel(r"$\Pi_2 = \omega_0/\omega_p$")
@@ -95,9 +101,8 @@ def plot_family(family, rows, out_dir):
     handles, texts = axes[0][-1].get_legend_handles_labels()
     unique = dict(zip(texts, handles))
     unique["no contact"] = Line2D([], [], **NO_CONTACT)
-    axes[0][-1].legend(unique.values(), unique.keys(), fontsize=7.5, loc="upper left", bbox_to_anchor=(1.02, 1.0),
-                       frameon=False)
-    fig.suptitle(f"{family}: Pi-spectra of body 0 (colour: with contact, dashed grey: no contact)", fontsize=11)
+    legend_below(fig, list(unique.values()), list(unique.keys()), columns=columns)
+    fig.suptitle(f"{family}: Pi-spectra of body 0 (colour: with contact, dashed grey: no contact)")
     note = None
     if together:
         members = together[0][0]

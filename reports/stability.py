@@ -12,17 +12,21 @@ import numpy as np
 from matplotlib.colors import to_rgb
 from matplotlib.patches import Patch
 
-from figure import plt, save, solver_styles
+from figure import figure_width, legend_below, plt, save, solver_styles, with_legend_below
 from rows import config_label as config, median, num, settings_fields
 
 FLOOR = 1e-17  # energy excesses and penetrations at or below this are drawn on the floor
 
 
 def tolerances():
-    """The checks' tolerances, read from where the code states them (studies/stress.hpp)."""
+    """The checks' tolerances, read from where the code states them (studies/stress.hpp, which
+    `cmake --install` puts beside the installed reports/ too); {} where it is not found."""
     header = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "studies", "stress.hpp")
-    with open(header) as f:
-        found = dict(re.findall(r"inline constexpr double (k\w+) = ([^;]+);", f.read()))
+    try:
+        with open(header) as f:
+            found = dict(re.findall(r"inline constexpr double (k\w+) = ([^;]+);", f.read()))
+    except OSError:
+        return {}
     return {name: float(value) for name, value in found.items()}
 
 
@@ -60,8 +64,9 @@ def large_step_figure(points, out_dir):
     by_config = defaultdict(lambda: defaultdict(list))
     for r in runs:
         by_config[config(r)][float(settings_fields(r)["wh"])].append(r)
-    fig, axes = plt.subplots(1, 3, figsize=(17, 4.8), layout="constrained")
     styles = solver_styles(runs)
+    fig, grid = with_legend_below(figure_width(3, 3.0), 3.4, len(by_config), wspace=0.42)
+    axes = fig.subplots(1, 3, gridspec_kw=grid)
     for label, per_wh in sorted(by_config.items()):
         whs = sorted(per_wh)
         ok = [[r for r in per_wh[w] if r["status"] == "ok"] for w in whs]
@@ -76,20 +81,19 @@ def large_step_figure(points, out_dir):
                     xs.append(w)
                     ys.append(max(max(values), FLOOR))
             ax.plot(xs, ys, **style)
-    axes[0].set_ylabel("share of runs that finished (status ok)")
+    axes[0].set_ylabel("share of runs that finished")
     axes[0].set_ylim(-0.05, 1.05)
-    axes[1].set_ylabel("worst energy excess (over the energy scale)")
-    axes[2].set_ylabel("worst penetration (over delta, or a_p/w_p^2 at Pi3 = 0)")
+    axes[1].set_ylabel("worst energy excess / energy scale")
+    axes[2].set_ylabel("worst penetration / delta")
     for ax in axes:
         ax.set_xscale("log")
         ax.set_xlabel(r"$\omega_{\max} h$")
         ax.grid(True, which="both", alpha=0.25)
     for ax in axes[1:]:
         ax.set_yscale("log")
-    axes[-1].legend(*axes[0].get_legend_handles_labels(), fontsize=7.5, loc="upper left", bbox_to_anchor=(1.02, 1.0),
-                    frameon=False)
-    fig.suptitle(f"Large steps: every stress case at each w_max h (energy and penetration over the finished runs; "
-                 f"values <= {FLOOR:g} drawn at {FLOOR:g})", fontsize=10)
+    legend_below(fig, *axes[0].get_legend_handles_labels())
+    fig.suptitle(f"Large steps: every stress case at each w_max h\n(energy and penetration: the finished runs; "
+                 f"at most {FLOOR:g}: drawn at it)")
     return save(fig, out_dir, "stability-large-steps")
 
 
@@ -104,8 +108,9 @@ def chain_cost_figure(points, out_dir, wh=2.0):
     for r in runs:
         by_config[config(r)][int(r["bodies"])].append(r)
 
-    fig, axes = plt.subplots(1, 2, figsize=(14, 4.8), layout="constrained")
     styles = solver_styles(runs)
+    fig, grid = with_legend_below(figure_width(2), 3.6, len(by_config), wspace=0.25)
+    axes = fig.subplots(1, 2, gridspec_kw=grid)
     for label, per_n in sorted(by_config.items()):
         ns = sorted(per_n)
         style = dict(styles[label], ms=4.5, lw=1.3, label=label)
@@ -120,10 +125,9 @@ def chain_cost_figure(points, out_dir, wh=2.0):
         ax.set_yscale("log")
         ax.set_xlabel("bodies in the chain, N")
         ax.grid(True, which="both", alpha=0.25)
-    axes[-1].legend(*axes[0].get_legend_handles_labels(), fontsize=7.5, loc="upper left", bbox_to_anchor=(1.02, 1.0),
-                    frameon=False)
-    fig.suptitle(f"Chain: cost against the number of bodies (finished runs of the stress set's chain families; "
-                 f"time-steppers at w_max h = {wh:g})", fontsize=10)
+    legend_below(fig, *axes[0].get_legend_handles_labels())
+    fig.suptitle(f"Chain: cost against the number of bodies\n(finished runs of the chain families; time-steppers at "
+                 f"w_max h = {wh:g})")
     return save(fig, out_dir, "stability-chain-cost")
 
 CHECKS = ("finite", "energy", "gap", "restitution", "accuracy")  # the verdict columns, where the CSV has them

@@ -1,7 +1,8 @@
 """The work-precision part of the report: the diagrams (relative Pi1 error against CPU time
-per run, a panel per solver family, the Pareto front over every solver) and the spectra at
-one step count against the reference. Reads what `poundbench workprecision` writes: the
-summary (--out) and the per-run rows (--points). Used by make_report.py."""
+per run, a figure per family and solver family, the Pareto front over every solver) and the
+spectra at one step count against the reference, split the same way, so that no figure holds
+more lines than can be told apart at the size it is shown. Reads what `poundbench
+workprecision` writes: the summary (--out) and the per-run rows (--points)."""
 
 import math
 from collections import defaultdict
@@ -9,8 +10,8 @@ from collections import defaultdict
 from matplotlib.lines import Line2D
 
 from answer import MIDDLE_N, has_spread
-from figure import MARKERS, colors, plt, save, solver_styles
-from rows import config_label, num, settings_fields, steps_of
+from figure import MARKERS, colors, figure_width, legend_below, log_spans, save, with_legend_below
+from rows import config_label, num, steps_of
 
 ERROR_FLOOR = 1e-13  # errors below this are round-off: drawn in a band under it, one row per setting
 FLOOR_ROW = 10 ** -0.6  # the factor between two rows of that band
@@ -25,7 +26,7 @@ PANELS = {"moreau-jean": "in-house: Moreau–Jean, reference",
           "siconos": "Siconos: Moreau–Jean and its projections",
           "siconos-other": "Siconos: its other integrators",
           "mujoco": "MuJoCo (libmujoco, soft contacts)",
-          "compliant": "Compliant contact elements (CVODE, Newmark) and their exact model"}
+          "compliant": "Compliant contact elements (CVODE, Newmark) and their models' own references"}
 SICONOS_MOREAU_JEAN = ("moreau-jean-lemke", "moreau-jean-enum", "combined-projection", "direct-projection")
 
 
@@ -70,9 +71,20 @@ def _draw_setting(ax, lrows, key, style, floor_y):
                         capsize=2, zorder=4)
 
 
-def wp_diagram(family, rows, out_dir):
-    """One family's diagram: rows of panels per solver family, columns the median and the 95th
-    percentile of the error; in every panel the other solvers in grey and the Pareto front."""
+SLUGS = {PANELS["moreau-jean"]: "in-house", PANELS["ode"]: "ode", PANELS["bullet"]: "bullet",
+         PANELS["siconos"]: "siconos-moreau-jean", PANELS["siconos-other"]: "siconos-other",
+         PANELS["mujoco"]: "mujoco", PANELS["compliant"]: "compliant"}
+
+
+def slug(panel):
+    """A panel as a file name's part ("in-house"); another solver's panel (its name) as itself."""
+    return SLUGS.get(panel) or "".join(c if c.isalnum() else "-" for c in panel.lower()).strip("-") or "other"
+
+
+def panels_of(rows):
+    """The configurations of rows (config_label -> their rows, cheapest first), grouped by
+    panel in PANELS' order (other solvers after, by name); configurations that failed on
+    every point are left out (the report's table of failures names them)."""
     lines = defaultdict(list)
     for r in rows:
         lines[config_label(r)].append(r)
@@ -81,124 +93,170 @@ def wp_diagram(family, rows, out_dir):
     panels = defaultdict(list)
     for label in sorted(lines):
         if all(int(r["failed"]) == int(r["points"]) for r in lines[label]):
-            continue  # nothing to draw: the report's table of failures names it
+            continue
         panels[panel_of(lines[label][0])].append(label)
-    panels = dict(sorted(panels.items(), key=lambda p: list(dict.fromkeys(PANELS.values())).index(p[0])
-                         if p[0] in PANELS.values() else len(PANELS)))
-    # the rows of the floor band: one per configuration of a panel that has a point under the floor
-    floor_rows = {}
-    for labels in panels.values():
-        under = [lb for lb in labels if any(num(r, k) < ERROR_FLOOR for r in lines[lb] for k, _ in ERRORS)]
-        floor_rows.update({lb: ERROR_FLOOR * FLOOR_ROW ** (i + 1) for i, lb in enumerate(under)})
-    deepest = min(floor_rows.values(), default=ERROR_FLOOR)
+    return lines, dict(sorted(panels.items(), key=lambda p: panel_rank(p[0])))
+
+
+def panel_rank(panel):
+    """Where a panel comes: PANELS' order, another solver's after them by name."""
+    order = list(dict.fromkeys(PANELS.values()))
+    return (order.index(panel) if panel in order else len(order), panel)
+
+
+def wp_diagram(family, panel, labels, lines, rows, out_dir):
+    """One family's diagram for one panel's configurations: the median and the 95th percentile
+    of the error side by side, the other solvers in grey and the Pareto front over every solver
+    behind them, the legend below at the size of the text."""
+    # The floor band: a row per configuration of the panel with a point under the floor; the
+    # Pareto front's points there of other panels' configurations on its first row.
+    under = [lb for lb in labels if any(num(r, k) < ERROR_FLOOR for r in lines[lb] for k, _ in ERRORS)]
+    floor_rows = {lb: ERROR_FLOOR * FLOOR_ROW ** (i + 1) for i, lb in enumerate(under)}
+    band = any(num(r, k) < ERROR_FLOOR for r in rows for k, _ in ERRORS)
+    deepest = min(floor_rows.values(), default=ERROR_FLOOR * FLOOR_ROW)
     spread = any(has_spread(r) for r in rows)
     hollow = any(int(r["failed"]) > 0 for r in rows)
+    palette = colors(len(labels))
+    styles = {lb: dict(color=palette[i], marker=MARKERS[i % len(MARKERS)], ls=STYLE.get(lines[lb][0]["solver"], "-"))
+              for i, lb in enumerate(labels)}
 
-    fig, axes = plt.subplots(len(panels), 2, figsize=(15, 3.5 * len(panels) + 1.2), sharex=True, sharey=True,
-                             squeeze=False, layout="constrained")
-    for row, (panel, labels) in enumerate(panels.items()):
-        palette = colors(len(labels))
-        styles = {lb: dict(color=palette[i], marker=MARKERS[i % len(MARKERS)],
-                           ls=STYLE.get(lines[lb][0]["solver"], "-")) for i, lb in enumerate(labels)}
-        for col, (key, title) in enumerate(ERRORS):
-            ax = axes[row][col]
-            for label, lrows in lines.items():  # the other solvers, for context
-                if label not in labels:
-                    ok = [r for r in lrows if num(r, key) >= ERROR_FLOOR]
-                    ax.plot([1e6 * num(r, "cpu_median_s") for r in ok], [num(r, key) for r in ok], color="0.8",
-                            lw=0.8, zorder=1)
-            front = pareto_front(rows, key)
-            ax.plot([1e6 * num(r, "cpu_median_s") for r in front],
-                    [num(r, key) if num(r, key) >= ERROR_FLOOR else floor_rows[config_label(r)] for r in front],
-                    color="k", lw=8, alpha=0.12, solid_capstyle="round", zorder=2)
-            for label in labels:
-                _draw_setting(ax, [r for r in lines[label] if math.isfinite(num(r, key))], key, styles[label],
-                              floor_rows.get(label, ERROR_FLOOR))
+    entries = len(labels) + 2 + hollow + spread
+    fig, grid = with_legend_below(figure_width(2), 3.8, entries)
+    axes = fig.subplots(1, 2, sharex=True, sharey=True, gridspec_kw=grid)
+    for col, (key, title) in enumerate(ERRORS):
+        ax = axes[col]
+        for label, lrows in lines.items():  # the other solvers, for context
+            if label not in labels:
+                ok = [r for r in lrows if num(r, key) >= ERROR_FLOOR]
+                ax.plot([1e6 * num(r, "cpu_median_s") for r in ok], [num(r, key) for r in ok], color="0.85",
+                        lw=0.8, zorder=1)
+        front = pareto_front(rows, key)
+        ax.plot([1e6 * num(r, "cpu_median_s") for r in front],
+                [num(r, key) if num(r, key) >= ERROR_FLOOR else floor_rows.get(config_label(r), ERROR_FLOOR * FLOOR_ROW)
+                 for r in front],
+                color="k", lw=7, alpha=0.12, solid_capstyle="round", zorder=2)
+        for label in labels:
+            _draw_setting(ax, [r for r in lines[label] if math.isfinite(num(r, key))], key, styles[label],
+                          floor_rows.get(label, ERROR_FLOOR))
+        if band:
             ax.axhspan(deepest * FLOOR_ROW ** 1.2, ERROR_FLOOR, color="0.93", zorder=0)
-            ax.set_ylim(deepest * FLOOR_ROW ** 1.2, 3)
-            ax.set_xscale("log")
-            ax.set_yscale("log")
-            ax.grid(True, which="major", alpha=0.3)
-            if row == 0:
-                ax.set_title(f"{title} of the relative Pi1 error over the points", fontsize=10)
-            if row == len(panels) - 1:
-                ax.set_xlabel("CPU time per run, median over the points (us)")
-            if col == 0:
-                ax.set_ylabel(f"{panel}\n" + r"$|\Pi_1 - \Pi_{1,\mathrm{ref}}| / \Pi_{1,\mathrm{ref}}$", fontsize=9)
-                if floor_rows:
-                    ax.text(0.01, 0.02, f"below {ERROR_FLOOR:g} (round-off): one row per setting",
-                            transform=ax.transAxes, fontsize=7, color="0.35")
-        handles = [Line2D([], [], ls=styles[lb]["ls"], marker=styles[lb]["marker"], color=styles[lb]["color"], ms=4.5,
-                          label=lb) for lb in labels]
-        handles += [Line2D([], [], color="k", lw=8, alpha=0.12, label="Pareto front, every solver"),
-                    Line2D([], [], color="0.8", lw=0.8, label="the other solvers")]
-        if hollow:
-            handles.append(Line2D([], [], ls="", marker="o", color="0.3", markerfacecolor="white",
-                                  label="hollow: some runs failed"))
-        if spread:
-            handles.append(Line2D([], [], ls="-", marker="|", color="0.3", label="bar: low–high of the repetitions"))
-        axes[row][1].legend(handles=handles, loc="center left", bbox_to_anchor=(1.02, 0.5), fontsize=7.5,
-                            frameon=False)
-    fig.suptitle(f"{family}: work against precision (a line: one configuration over its step counts N = 8, 16, ...)",
-                 fontsize=11)
-    # PNG only: with every setting's line and spread the SVG was 24 000 lines and drawing it
-    # took a quarter of the report's time (main.sh's report step, 47 s).
-    return save(fig, out_dir, f"wp-{family}", vector=False)
+            ax.text(0.02, 0.02, f"below {ERROR_FLOOR:g}: round-off", transform=ax.transAxes, color="0.35")
+        ax.set_ylim(deepest * FLOOR_ROW ** 1.2 if band else None, 3)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.grid(True, which="major", alpha=0.3)
+        ax.set_title(f"{title} over the points")
+        ax.set_xlabel("CPU time per run (us)")
+    axes[0].set_ylabel("relative Pi1 error")
+    handles = [Line2D([], [], ls=styles[lb]["ls"], marker=styles[lb]["marker"], color=styles[lb]["color"], ms=5,
+                      label=lb) for lb in labels]
+    handles += [Line2D([], [], color="k", lw=7, alpha=0.12, label="Pareto front, every solver"),
+                Line2D([], [], color="0.85", lw=0.8, label="the other solvers")]
+    if hollow:
+        handles.append(Line2D([], [], ls="", marker="o", color="0.3", markerfacecolor="white",
+                              label="hollow: some runs failed"))
+    if spread:
+        handles.append(Line2D([], [], ls="-", marker="|", color="0.3", label="bar: low–high of the repetitions"))
+    legend_below(fig, handles)
+    fig.suptitle(f"{family}: {panel}")
+    return save(fig, out_dir, f"wp-{family}-{slug(panel)}", vector=False)
 
 
 def wp_diagrams(summary, out_dir):
-    return [(family, wp_diagram(family, [r for r in summary if r["family"] == family], out_dir))
-            for family in dict.fromkeys(r["family"] for r in summary)]
+    """Every family's diagrams: [(family, [(panel, figure path)])]."""
+    out = []
+    for family in dict.fromkeys(r["family"] for r in summary):
+        rows = [r for r in summary if r["family"] == family]
+        lines, panels = panels_of(rows)
+        out.append((family, [(panel, wp_diagram(family, panel, labels, lines, rows, out_dir))
+                             for panel, labels in panels.items()]))
+    return out
+
+
+def spectra_steps(points):
+    """The step count N at which spectra are compared: MIDDLE_N where the study has it, else
+    the study's step count nearest to it (geometrically); None without stepped runs."""
+    steps = {n for n in (steps_of(r) for r in points) if n is not None}
+    if not steps:
+        return None
+    return min(steps, key=lambda n: (abs(math.log(n / MIDDLE_N)), n))
+
+
+def spectra_rows(points):
+    """The rows a spectra figure draws, and its step count: every configuration at that N
+    (those with no step, the reference's and CVODE's, at their one setting), the truth apart."""
+    n = spectra_steps(points)
+    truth = {}
+    for r in points:
+        truth.setdefault(r["point"], r)
+    chosen = [r for r in points if truth[r["point"]] is not r and steps_of(r) in (None, n)]
+    return n, truth, chosen
+
+
+def spectrum_panels(rows):
+    """The panels of a family's spectra: one per (pulse, Pi5), sine first."""
+    return sorted({(r["pulse"], r["pi5"]) for r in rows}, reverse=True)
+
+
+def wp_spectrum(family, panel, labels, frows, truth, n, out_dir):
+    """One family's spectra of one panel's configurations: Pi1 against Pi2 over the truth, a
+    column per (pulse, Pi5), their relative error below; the legend below at text size."""
+    panels = spectrum_panels(frows)
+    palette = colors(len(labels))  # a colour per configuration: a panel's are mostly one solver's
+    styles = {lb: dict(color=palette[i], ls=STYLE.get(next(r["solver"] for r in frows if config_label(r) == lb), "-"))
+              for i, lb in enumerate(labels)}
+    fig, grid = with_legend_below(figure_width(len(panels)), 5.6, len(labels) + 2, wspace=0.38, hspace=0.12)
+    axes = fig.subplots(2, len(panels), squeeze=False, sharex=True, gridspec_kw=dict(grid, height_ratios=[3, 2]))
+    for pi, (pulse, pi5) in enumerate(panels):
+        prows = [r for r in frows if r["pulse"] == pulse and r["pi5"] == pi5]
+        refs = sorted({r["point"]: truth[r["point"]] for r in prows}.values(), key=lambda r: num(r, "pi2"))
+        refs = [r for r in refs if r["status"] == "ok"]
+        top, bottom = axes[0][pi], axes[1][pi]
+        x = [num(r, "pi2") for r in refs]
+        top.plot(x, [num(r, "pi1_no_contact") for r in refs], color="0.6", lw=1, ls="--", label="no contact")
+        top.plot(x, [num(r, "pi1") for r in refs], color="k", lw=2.4, label="reference (rigid, 100x tighter)")
+        for label in labels:
+            crow = sorted((r for r in prows if config_label(r) == label and r["status"] == "ok"),
+                          key=lambda r: num(r, "pi2"))
+            if not crow:
+                continue
+            style = dict(styles[label], marker=None, lw=1.3)
+            top.plot([num(r, "pi2") for r in crow], [num(r, "pi1") for r in crow], label=label, **style)
+            err = [max(abs(num(r, "pi1") - num(truth[r["point"]], "pi1")) / num(truth[r["point"]], "pi1"),
+                       ERROR_FLOOR) for r in crow if num(truth[r["point"]], "pi1") > 0]
+            bottom.plot([num(r, "pi2") for r in crow if num(truth[r["point"]], "pi1") > 0], err, **style)
+        top.set_title(f"{pulse}" + (f", Pi5 = {pi5}" if pi5 else ""))
+        if log_spans([num(r, "pi1") for r in refs]):
+            top.set_yscale("log")
+        bottom.set_xscale("log")
+        bottom.set_yscale("log")
+        bottom.set_xlabel(r"$\Pi_2 = \omega_0/\omega_p$")
+        for ax in (top, bottom):
+            ax.grid(True, which="both", alpha=0.25)
+    axes[0][0].set_ylabel(r"$\Pi_1$")
+    axes[1][0].set_ylabel(f"relative Pi1 error\n(below {ERROR_FLOOR:g}: at it)")
+    handles, names = axes[0][0].get_legend_handles_labels()
+    for ax in axes[0][1:]:  # a configuration missing from the first panel
+        for h, name in zip(*ax.get_legend_handles_labels()):
+            if name not in names:
+                handles.append(h)
+                names.append(name)
+    legend_below(fig, handles, names)
+    fig.suptitle(f"{family}: {panel}, at N = {n}" if n else f"{family}: {panel}")
+    return save(fig, out_dir, f"wp-spectra-{family}-{slug(panel)}", vector=False)
 
 
 def wp_spectra(points, out_dir):
-    """At N = MIDDLE_N: each solver's spectrum over the reference, and its error along Pi2."""
-    reference = {}
-    for r in points:
-        if r["solver"] == "event-driven" and settings_fields(r)["tol_scale"] == 0.01:
-            reference.setdefault(r["point"], r)
-    figures = []
-    for family in dict.fromkeys(r["family"] for r in points):
-        frows = [r for r in points if r["family"] == family and steps_of(r) == MIDDLE_N]
-        if not frows:
-            continue
-        panels = sorted({(r["pulse"], r["pi5"]) for r in frows}, reverse=True)
-        styles = solver_styles(frows)
-        fig, axes = plt.subplots(2, len(panels), figsize=(4.2 * len(panels) + 3.2, 7.6), squeeze=False, sharex=True,
-                                 layout="constrained")
-        for pi, (pulse, pi5) in enumerate(panels):
-            prows = [r for r in frows if r["pulse"] == pulse and r["pi5"] == pi5]
-            refs = sorted((reference[r["point"]] for r in prows if r["point"] in reference),
-                          key=lambda r: num(r, "pi2"))
-            refs = list({r["point"]: r for r in refs}.values())
-            top, bottom = axes[0][pi], axes[1][pi]
-            top.plot([num(r, "pi2") for r in refs], [num(r, "pi1_no_contact") for r in refs], color="0.6", lw=1,
-                     ls="--", label="no contact")
-            top.plot([num(r, "pi2") for r in refs], [num(r, "pi1") for r in refs], color="k", lw=2.2,
-                     label="reference")
-            by_config = defaultdict(list)
-            for r in prows:
-                by_config[config_label(r)].append(r)
-            for label, crow in sorted(by_config.items()):
-                crow.sort(key=lambda r: num(r, "pi2"))
-                ok = [r for r in crow if r["status"] == "ok" and r["point"] in reference]
-                x = [num(r, "pi2") for r in ok]
-                style = dict(styles[label], marker=None, lw=1.2)
-                top.plot(x, [num(r, "pi1") for r in ok], label=label, **style)
-                err = [max(abs(num(r, "pi1") - num(reference[r["point"]], "pi1")) / num(reference[r["point"]], "pi1"),
-                           ERROR_FLOOR) for r in ok]
-                bottom.plot(x, err, **style)
-            top.set_title(f"{pulse} pulse" + (f", Pi5 = {pi5}" if pi5 else ""), fontsize=10)
-            bottom.set_xscale("log")
-            bottom.set_yscale("log")
-            bottom.set_xlabel(r"$\Pi_2 = \omega_0/\omega_p$")
-            for ax in (top, bottom):
-                ax.grid(True, which="both", alpha=0.25)
-        axes[0][0].set_ylabel(r"$\Pi_1$")
-        axes[1][0].set_ylabel(f"relative Pi1 error (below {ERROR_FLOOR:g}: drawn at it)")
-        handles, names = axes[0][0].get_legend_handles_labels()
-        axes[0][-1].legend(handles, names, loc="upper left", bbox_to_anchor=(1.03, 1.0), fontsize=7.5, frameon=False)
-        fig.suptitle(f"{family}: spectra at N = {MIDDLE_N} steps per shortest period, and their error along Pi2",
-                     fontsize=10)
-        figures.append((family, save(fig, out_dir, f"wp-spectra-{family}")))
-    return figures
+    """Each family's spectra, a figure per panel of configurations: [(family, N, [(panel, path)])]."""
+    n, truth, chosen = spectra_rows(points)
+    out = []
+    for family in dict.fromkeys(r["family"] for r in chosen):
+        frows = [r for r in chosen if r["family"] == family]
+        panels = defaultdict(list)
+        for label in sorted({config_label(r) for r in frows}):
+            if any(r["status"] == "ok" for r in frows if config_label(r) == label):
+                panels[panel_of(next(r for r in frows if config_label(r) == label))].append(label)
+        ordered = sorted(panels.items(), key=lambda p: panel_rank(p[0]))
+        out.append((family, n, [(panel, wp_spectrum(family, panel, labels, frows, truth, n, out_dir))
+                                for panel, labels in ordered]))
+    return out

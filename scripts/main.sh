@@ -104,8 +104,9 @@ echo "main: benchmarks"
 timed benchmarks build/bench/poundbench_bench --benchmark_repetitions=5 --benchmark_display_aggregates_only=true \
   --benchmark_min_time=0.01 --benchmark_out=results/bench.json --benchmark_out_format=json > /dev/null
 
-# The report, the result files it commits beside it (reports/*.csv, provenance.json), and
-# README's generated blocks written from those files (checked by the readme_numbers test).
+# The report (reports/README.md, figures/, report.html), the result files it commits beside it
+# (reports/*.csv, provenance.json), and README's generated blocks written from those files (checked
+# by the readme_numbers test).
 /usr/bin/python3 reports/make_report.py results/paper-*.csv --workprecision results/workprecision.csv \
   --points results/workprecision-points.csv --bench results/bench.json --timings results/timings.csv \
   --provenance results/provenance.json --stress results/stability.csv --stress-points results/stability-points.csv \

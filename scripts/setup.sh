@@ -27,6 +27,7 @@ packages=(
   libopenmpi-dev openmpi-bin
   python3 python3-matplotlib python3-numpy
   python3-scipy python3-dev pybind11-dev
+  chromium chromium-driver python3-selenium
 )
 missing=()
 for p in "${packages[@]}"; do

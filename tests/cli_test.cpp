@@ -740,7 +740,7 @@ TEST_F(Cli, VersionSaysTheProjectVersionAndTheCommitItWasBuiltFrom) {
 
 TEST_F(Cli, AWordThatIsNoSubcommandIsNamedAndTheSubcommandsListed) {
   const std::string list =
-      "the subcommands are: run, spectrum, workprecision, stress, baseline, compare, solvers, adapter "
+      "the subcommands are: run, spectrum, workprecision, stress, baseline, compare, solvers, adapter, report "
       "(`poundbench help` says what each does)\n";
   Outcome o = run("bogus --out x.csv");
   EXPECT_EQ(o.exit_code, 2);

@@ -13,6 +13,26 @@ cmake --install "$build" --prefix "$tmp/prefix" > "$tmp/install.log"
 test -f "$tmp/prefix/include/poundbench/solvers/solver.hpp"
 test -x "$tmp/prefix/bin/poundbench"
 
+# The installed `poundbench report` runs the generator installed beside it (its README names
+# the generator it was made by): a spectrum of one family, reported.
+cat > "$tmp/one.toml" <<'EOF2'
+name = "one"
+[[family]]
+name = "wall"
+scene = "wall"
+pulse = "sine"
+directivity = "normal"
+eps = 0.5
+pi3 = 0.5
+pi2 = { from = 0.5, to = 2, points = 3, spacing = "log" }
+EOF2
+"$tmp/prefix/bin/poundbench" spectrum "$tmp/one.toml" --out "$tmp/one.csv" 2> /dev/null
+"$tmp/prefix/bin/poundbench" report "$tmp/one.csv" --out "$tmp/one-report" > /dev/null
+test -s "$tmp/one-report/figures/spectrum-wall.png"
+grep -q 'id="report-data"' "$tmp/one-report/report.html"
+grep -q "$tmp/prefix/share/poundbench/reports/report.py" "$tmp/one-report/README.md" ||
+  { echo "the installed poundbench report did not run the installed generator" >&2; exit 1; }
+
 generator=()
 command -v ninja > /dev/null && generator=(-G Ninja)
 configure() { cmake -S "$src/examples/downstream" -B "$tmp/build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \

@@ -26,7 +26,7 @@ if check "$tmp/README.md" "$src/reports" > /dev/null; then
 fi
 # new results committed without regenerating README: every cost of the study doubled
 mkdir "$tmp/reports"
-cp "$src/reports/"{workprecision-families.csv,stability.csv,measured.csv,provenance.json} "$tmp/reports/"
+cp "$src/reports/"{workprecision-families.csv,workprecision-impacting.csv,stability.csv,measured.csv,provenance.json} "$tmp/reports/"
 /usr/bin/python3 - "$src/reports/workprecision.csv" "$tmp/reports/workprecision.csv" <<'PY'
 import csv, sys
 with open(sys.argv[1], newline="") as f:

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The report script on a tiny sweep: every figure it should draw exists afterwards, and the
-# README blocks it writes from its result files pass `make_report.py --check`.
+# README blocks it writes from its result files pass `make_report.py --check`; then
+# `poundbench report` on a stress study and a spectrum, and on inputs it must refuse.
 #   report_smoke.sh POUNDBENCH BENCH SOURCE_DIR
 set -euo pipefail
 pb=$1 bench=$2 src=$3
@@ -35,15 +36,18 @@ fi
 families=$(tail -n +2 "$out/smoke.csv" | cut -d, -f1 | sort -u)
 missing=0
 for f in $families; do
-  for fig in "spectrum-$f" "wp-$f" "wp-spectra-$f"; do
-    exts="png svg"
-    [ "$fig" = "wp-$f" ] && exts=png  # the work-precision diagrams have no SVG (reports/wp.py)
-    for ext in $exts; do
-      [ -s "$out/report/figures/$fig.$ext" ] || { echo "missing figure $fig.$ext"; missing=1; }
-    done
+  for ext in png svg; do
+    [ -s "$out/report/figures/spectrum-$f.$ext" ] || { echo "missing figure spectrum-$f.$ext"; missing=1; }
+  done
+  grep -q "figures/spectrum-$f.png" "$out/report/README.md" || { echo "README.md does not show spectrum-$f"; missing=1; }
+  # the work-precision diagrams and spectra: a figure per family and solver family (reports/wp.py)
+  for fig in "wp-$f-in-house" "wp-spectra-$f-in-house"; do
+    [ -s "$out/report/figures/$fig.png" ] || { echo "missing figure $fig.png"; missing=1; }
     grep -q "figures/$fig.png" "$out/report/README.md" || { echo "README.md does not show $fig"; missing=1; }
   done
 done
+grep -q '<script type="application/json" id="report-data">' "$out/report/report.html" ||
+  { echo "no report.html with its data"; missing=1; }
 for fig in stability-large-steps stability-verdicts; do
   for ext in png svg; do
     [ -s "$out/report/figures/$fig.$ext" ] || { echo "missing figure $fig.$ext"; missing=1; }
@@ -61,4 +65,33 @@ grep -q "^| sweep on 2 threads against 1" "$out/README.md" ||
 grep -q "^| pair | 0.1 | " "$out/README.md" || { echo "no answer for the pair scene in README"; missing=1; }
 /usr/bin/python3 "$src/reports/make_report.py" --check --readme "$out/README.md" --out "$out/report" > /dev/null ||
   { echo "README's blocks as written fail the check"; missing=1; }
+
+# `poundbench report` on the other kinds of study (a work-precision study's: report_page_test.py):
+# the stress study, and a spectrum's rows (two of the smoke set's families).
+"$pb" report "$out/stability.csv" --points "$out/stability-points.csv" --out "$out/stress-report" > /dev/null
+grep -q "figures/stability-verdicts.png" "$out/stress-report/README.md" || { echo "no stress verdicts"; missing=1; }
+grep -q 'class="verdict fail"' "$out/stress-report/report.html" || { echo "no failed verdict in the page"; missing=1; }
+awk -F, 'NR == 1 || $1 == "wall-sine" || $1 == "pair-touching"' "$out/smoke.csv" > "$out/two.csv"
+"$pb" report "$out/two.csv" --out "$out/spectrum-report" > /dev/null
+for f in wall-sine pair-touching; do
+  [ -s "$out/spectrum-report/figures/spectrum-$f.png" ] || { echo "no spectrum of $f"; missing=1; }
+done
+# A file that is no study, and points of another study: exit 2, one line, nothing written.
+refused() {  # refused CODE TEXT ARGS...: poundbench report ARGS exits CODE with one line holding TEXT
+  local code=$1 text=$2 got rc=0
+  shift 2
+  got=$("$pb" report "$@" 2>&1 > /dev/null) || rc=$?
+  [ "$rc" = "$code" ] || { echo "report $*: exit $rc, not $code"; missing=1; }
+  [ "$(printf '%s\n' "$got" | wc -l)" = 1 ] && [[ "$got" == *"$text"* ]] ||
+    { echo "report $*: not one line with '$text': $got"; missing=1; }
+}
+refused 2 "bench.json:1: header: not a poundbench result file" "$out/bench.json" --out "$out/none1"
+refused 2 "not the points of this study" "$out/wp.csv" --points "$out/stability-points.csv" --out "$out/none2"
+[ ! -e "$out/none1" ] && [ ! -e "$out/none2" ] || { echo "a refused report wrote its folder"; missing=1; }
+# No matplotlib for the interpreter (a module that fails to import stands in), no interpreter: exit 1.
+mkdir -p "$out/no-mpl/matplotlib"
+echo 'raise ImportError("stand-in")' > "$out/no-mpl/matplotlib/__init__.py"
+PYTHONPATH="$out/no-mpl" refused 1 "has no matplotlib (Debian: python3-matplotlib" "$out/wp.csv" --out "$out/none3"
+POUNDBENCH_PYTHON=/nonexistent/python3 refused 1 "POUNDBENCH_PYTHON=/nonexistent/python3: not an executable file" \
+  "$out/wp.csv" --out "$out/none4"
 exit $missing
