@@ -136,10 +136,7 @@ int baseline_command(const CLI::App& command, const BaselineFlags& flags) {
   const int modes = (flags.case_set.empty() ? 0 : 1) + (flags.check.empty() ? 0 : 1) + (flags.update.empty() ? 0 : 1);
   if (modes != 1) throw BadInput("baseline: give one of CASESET (with --out), --check FILE... or --update FILE...");
   if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
-  if (!flags.junit.empty()) {
-    if (flags.check.empty()) throw BadInput("--junit: needs --check (it writes --check's verdicts)");
-    check_output_target(flags.junit, "--junit");
-  }
+  check_junit_target(flags.junit, !flags.check.empty());
 
   if (!flags.case_set.empty()) {
     if (flags.out.empty()) throw BadInput("--out: required with CASESET");
@@ -215,7 +212,7 @@ int compare_command(const CLI::App& command, const CompareFlags& flags) {
   if (!flags.same_setting && !given) throw BadInput("--tolerance: required (or --same-setting)");
   if (given && !(flags.tolerance >= 0.0 && std::isfinite(flags.tolerance)))
     throw BadInput("--tolerance: must be finite and >= 0");
-  if (!flags.junit.empty()) check_output_target(flags.junit, "--junit");
+  check_junit_target(flags.junit, true);
   RowFile rows;
   try {
     rows = read_minimal_csv_file(flags.rows);

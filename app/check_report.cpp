@@ -4,6 +4,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "app/errors.hpp"
 #include "app/output_files.hpp"
 
 namespace pb::app {
@@ -35,6 +36,12 @@ void add_junit_flag(CLI::App& command, std::string& file, std::string_view testc
   command.add_option("--junit", file,
                      "Also write the verdicts as a JUnit XML report to this file (a testcase per " +
                          std::string(testcase) + ", a failure where it failed), for CI systems");
+}
+
+void check_junit_target(const std::string& file, bool checked) {
+  if (file.empty()) return;
+  if (!checked) throw BadInput("--junit: needs --check (it writes --check's verdicts)");
+  check_output_target(file, "--junit");
 }
 
 std::string junit_xml(std::string_view command, std::span<const Verdict> verdicts) {

@@ -33,6 +33,10 @@ inline constexpr std::size_t kListedFailures = 20;
 // --junit FILE on a command that judges (its help names what a testcase is).
 void add_junit_flag(CLI::App& command, std::string& file, std::string_view testcase);
 
+// Before anything runs: a --junit FILE needs a check to report (`checked`: --check was
+// given) and a place to be written (check_output_target); throws BadInput otherwise.
+void check_junit_target(const std::string& file, bool checked);
+
 // The JUnit XML of a list of verdicts (their groups in order of first appearance).
 std::string junit_xml(std::string_view command, std::span<const Verdict> verdicts);
 

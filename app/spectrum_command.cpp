@@ -61,7 +61,8 @@ std::vector<Verdict> verdicts(const std::vector<Row>& rows) {
       for (std::size_t i = 0; i < failed[f].size() && i < kListedPoints; ++i)
         failure += (i ? ", " : "") + std::string("point ") + std::to_string(failed[f][i]->point) + " " +
                    std::string(name(failed[f][i]->result.status));
-      if (failed[f].size() > kListedPoints) failure += " and " + std::to_string(failed[f].size() - kListedPoints) + " more";
+      if (failed[f].size() > kListedPoints)
+        failure += " and " + std::to_string(failed[f].size() - kListedPoints) + " more";
       failure += ")";
       if (!failed[f][0]->result.message.empty()) failure += "; the first: " + failed[f][0]->result.message;
     }
@@ -80,8 +81,9 @@ CLI::App* add_spectrum_command(CLI::App& app, SpectrumFlags& flags) {
   command->add_option("--out", flags.out, "Write the CSV to this file (default: stdout)");
   command->add_option("--threads", flags.threads, "Worker threads (default: all cores)");
   add_repetitions_flag(*command, flags.repetitions);
-  command->add_flag("--check", flags.check,
-                    "Exit 1 when a point did not finish ok (after writing the output), naming them on stderr per family");
+  command->add_flag(
+      "--check", flags.check,
+      "Exit 1 when a point did not finish ok (after writing the output), naming them on stderr per family");
   add_junit_flag(*command, flags.junit, "family");
   return command;
 }
@@ -100,10 +102,7 @@ int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const 
     if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
     if (!processes.leader()) return;
     if (!flags.out.empty()) check_sweep_output(flags.out, "--out");
-    if (!flags.junit.empty()) {
-      if (!flags.check) throw BadInput("--junit: needs --check (it writes --check's verdicts)");
-      check_output_target(flags.junit, "--junit");
-    }
+    check_junit_target(flags.junit, flags.check);
     lock = take_output_lock(flags.out, "spectrum", partial);
     earlier = read_earlier_rows(partial, set.cases, runs);
   }, exit_code_of);

@@ -103,10 +103,7 @@ Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_vi
     if (!processes.leader()) return;
     if (!flags.out.empty()) check_sweep_output(flags.out, "--out");
     if (!flags.points.empty()) check_sweep_output(flags.points, "--points");
-    if (!flags.junit.empty()) {
-      if (!flags.check) throw BadInput("--junit: needs --check (it writes --check's verdicts)");
-      check_output_target(flags.junit, "--junit");
-    }
+    check_junit_target(flags.junit, flags.check);
     study.lock = take_output_lock(flags.out, name, study.partial);
     earlier = read_earlier_rows(study.partial, study.set.cases, runs);
   }, exit_code_of);
@@ -127,7 +124,8 @@ void write_study(const StudyFlags& flags, const Study& study, const std::functio
   });
   if (!flags.points.empty())
     report_written(point_rows, flags.points, failed_runs ? failed_note(failed_runs, "runs", flags.check) : "");
-  report_written(table_rows, flags.out, failed_rows ? std::to_string(failed_rows) + " with runs that did not finish ok" : "");
+  report_written(table_rows, flags.out,
+                 failed_rows ? std::to_string(failed_rows) + " with runs that did not finish ok" : "");
 }
 
 }  // namespace pb::app

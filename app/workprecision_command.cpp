@@ -94,7 +94,8 @@ CLI::App* add_workprecision_command(CLI::App& app, WorkPrecisionFlags& flags) {
 
 int workprecision_command(const CLI::App& command, const WorkPrecisionFlags& flags, const Processes& processes) {
   processes.agree([&] {
-    for (const auto& [flag, value] : {std::pair{"--max-error", flags.max_error}, {"--max-error-p95", flags.max_error_p95}}) {
+    for (const auto& [flag, value] :
+         {std::pair{"--max-error", flags.max_error}, {"--max-error-p95", flags.max_error_p95}}) {
       if (!command.count(flag)) continue;
       if (!(value >= 0.0 && std::isfinite(value))) throw BadInput(std::string(flag) + ": must be a finite number >= 0");
       if (!flags.check) throw BadInput(std::string(flag) + ": needs --check");

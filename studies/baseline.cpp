@@ -71,8 +71,10 @@ double distance(const CaseShape& a, const CaseShape& b) {
 
 // "pair sine normal pi2=0.5 pi3=0.5 ...": a case as an unmatched row's line names it.
 std::string case_text(const Case& c, const CaseShape& s) {
-  std::string text = std::string(name(c.scene)) + ' ' + std::string(name(c.pulse)) + ' ' + std::string(name(c.directivity));
-  for (std::size_t i = 0; i < s.numbers.size(); ++i) text += ' ' + std::string(s.names[i]) + '=' + format_number(s.numbers[i]);
+  std::string text =
+      std::string(name(c.scene)) + ' ' + std::string(name(c.pulse)) + ' ' + std::string(name(c.directivity));
+  for (std::size_t i = 0; i < s.numbers.size(); ++i)
+    text += ' ' + std::string(s.names[i]) + '=' + format_number(s.numbers[i]);
   for (const CaseField& field : kCaseFields)
     if (used_by(field, c) && !field.number)
       text += ' ' + std::string(field.name) + '=' + (field.text ? c.*field.text : format_number(field.get(c)));
@@ -93,9 +95,10 @@ class StoredIndex {
     groups_[setting + '\n' + shape.exact].push_back({&row, std::move(shape)});
   }
   void sort() {
-    for (auto& [key, group] : groups_)
-      std::stable_sort(group.begin(), group.end(),
-                       [](const StoredCase& a, const StoredCase& b) { return a.shape.numbers[0] < b.shape.numbers[0]; });
+    const auto by_pi2 = [](const StoredCase& a, const StoredCase& b) {
+      return a.shape.numbers[0] < b.shape.numbers[0];
+    };
+    for (auto& [key, group] : groups_) std::stable_sort(group.begin(), group.end(), by_pi2);
   }
   // The nearest stored case within the tolerance, or null.
   const Row* match(const std::string& setting, const CaseShape& shape) const {
@@ -279,23 +282,24 @@ std::string comparison_table(std::span<const Comparison> table, Match match, boo
   out << std::left << std::setw(fw) << "family" << std::setw(sw) << "solver setting" << std::right << std::setw(9)
       << "compared" << std::setw(8) << "failed" << std::setw(10) << "unmatched" << std::setw(9) << "missing"
       << std::setw(16) << "max rel |dPi1|" << std::setw(11) << "tolerance" << "  verdict\n";
+  const auto family = [](const Comparison& c) { return c.family.empty() ? std::string("-") : c.family; };
   for (const Comparison& c : table) {
     std::ostringstream worst;
     worst << std::setprecision(2) << std::scientific << c.max_difference;
     std::ostringstream tol;
     tol << std::setprecision(0) << std::scientific << c.tolerance;
-    out << std::left << std::setw(fw) << (c.family.empty() ? "-" : c.family) << std::setw(sw) << setting_text(c) << std::right << std::setw(9)
+    out << std::left << std::setw(fw) << family(c) << std::setw(sw) << setting_text(c) << std::right << std::setw(9)
         << c.compared << std::setw(8) << c.failed << std::setw(10) << c.unmatched << std::setw(9) << c.missing
         << std::setw(16) << (c.compared ? worst.str() : "-") << std::setw(11) << tol.str() << "  "
         << (c.passed(match, allow_unmatched) ? "pass" : "FAIL") << '\n';
   }
   for (const Comparison& c : table) {
     for (const Unmatched& u : c.unmatched_rows)
-      out << "unmatched: " << (c.family.empty() ? "-" : c.family) << ' ' << setting_text(c) << ": point " << u.point << " (" << u.row_case
+      out << "unmatched: " << family(c) << ' ' << setting_text(c) << ": point " << u.point << " (" << u.row_case
           << "): no stored case within " << kCaseMatchTolerance << " (relative); " << u.nearest << '\n';
     if (c.unmatched > c.unmatched_rows.size())
-      out << "unmatched: " << (c.family.empty() ? "-" : c.family) << ' ' << setting_text(c) << ": and " << c.unmatched - c.unmatched_rows.size()
-          << " more rows\n";
+      out << "unmatched: " << family(c) << ' ' << setting_text(c) << ": and "
+          << c.unmatched - c.unmatched_rows.size() << " more rows\n";
   }
   return out.str();
 }

@@ -12,20 +12,13 @@
 namespace pb {
 namespace {
 
-// Two spectra of a pair whose middle Pi2 (sqrt(0.3 * 3)) has more digits than 6: a row
-// written to 6 significant digits is not the stored double.
-constexpr const char* kIrrationalSet = R"(name = "irrational"
-[[family]]
-name = "pair"
-scene = "pair"
-pulse = ["sine", "cosine"]
-directivity = "normal"
-eps = 0.5
-pi3 = 0.5
-pi5 = 0.75
-pi6 = 1
-pi2 = { from = 0.3, to = 3, points = 3, spacing = "log" }
-)";
+// kTinySet with a middle Pi2 (sqrt(0.3 * 3)) of more digits than 6: a row written to 6
+// significant digits is not the stored double.
+std::string irrational_set() {
+  std::string set = kTinySet;
+  const std::string grid = "from = 0.5, to = 2";
+  return set.replace(set.find(grid), grid.size(), "from = 0.3, to = 3");
+}
 
 // A baseline's rows (after its comment lines) as another program writes them: the case
 // columns and Pi1 only, every number to 6 significant digits (%g); `nudge_pi2` multiplies
@@ -51,7 +44,7 @@ std::string six_digit_rows(const std::string& baseline, std::size_t nudged = SIZ
 // Pi1 within 5e-6 too; a row 1e-3 away in Pi2 matches nothing, fails, and is named with
 // the stored case nearest to it, unless --allow-unmatched.
 TEST_F(Cli, CompareMatchesSixDigitRowsAndFailsOnAnUnmatchedRowNamingTheNearestCase) {
-  write("set.toml", kIrrationalSet);
+  write("set.toml", irrational_set());
   ASSERT_EQ(run("baseline set.toml --out base.csv").exit_code, 0);
   const std::string base = read_text(file("base.csv"));
   write("mine.csv", six_digit_rows(base));
@@ -79,8 +72,8 @@ TEST_F(Cli, CompareMatchesSixDigitRowsAndFailsOnAnUnmatchedRowNamingTheNearestCa
 // docs/cli.md's example row, a Fig. 4 point written to 5 digits, finds its stored case.
 TEST_F(Cli, TheDocumentedCompareExampleMatchesThePaperReference) {
   write("example.csv", "scene,pulse,directivity,pi2,pi3,eps,pi5,pi6,pi1\npair,sine,normal,0.5,0.5,0.5,0.75,1,5.0698\n");
-  const Outcome o =
-      run("compare example.csv --baseline '" POUNDBENCH_SOURCE_DIR "/tests/baselines/paper-reference.csv' --tolerance 1e-4");
+  const Outcome o = run("compare example.csv --baseline '" POUNDBENCH_SOURCE_DIR
+                        "/tests/baselines/paper-reference.csv' --tolerance 1e-4");
   EXPECT_EQ(o.exit_code, 0) << o.out << o.err;
   EXPECT_NE(o.out.find("       1       0         0        0"), std::string::npos) << o.out;
 }
@@ -174,8 +167,8 @@ TEST_F(Cli, AMistypedFlagIsAnsweredWithTheNearestFlag) {
   Outcome o = run("spectrum tiny.toml --treads 2");
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_EQ(o.err,
-            "poundbench: spectrum: unknown flag --treads (did you mean --threads?); `poundbench help spectrum` lists its "
-            "flags\n");
+            "poundbench: spectrum: unknown flag --treads (did you mean --threads?); `poundbench help spectrum` lists "
+            "its flags\n");
   o = run("workprecision tiny.toml --settings x.toml --max-eror=0.1");
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_NE(o.err.find("unknown flag --max-eror (did you mean --max-error?)"), std::string::npos) << o.err;
