@@ -8,7 +8,8 @@ cd "$(dirname "$0")/.."
 if [ "${1:-}" = "--sanitize" ]; then
   scripts/setup.sh --build-dir build-sanitize --build-type Debug --sanitize --werror
   cd build-sanitize
-  # Left out here: the benchmarks and the report (timed, not checked), the sweep over
+  # Left out here: the benchmarks and the report (timed, not checked), the report's page in
+  # the browser (Python and Chromium; its sweep of a few dozen runs is what other tests run), the sweep over
   # the whole stress set (minutes unoptimised; the optimised suite runs it), and the Python
   # module's test (python_module): an instrumented module loads only into an interpreter
   # started with the sanitizers' runtime preloaded, whose own leaks LSan would then report;
@@ -17,7 +18,7 @@ if [ "${1:-}" = "--sanitize" ]; then
   # with the reason, in tests/lsan_suppressions.txt.
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     LSAN_OPTIONS="suppressions=$(pwd)/../tests/lsan_suppressions.txt" \
-    ctest --output-on-failure -j "$(nproc)" -E 'bench_smoke|report_smoke|python_module|Stress.ReferenceAndMoreauJeanPassTheChecksTheirTheoryPromises|^Mpi\.'
+    ctest --output-on-failure -j "$(nproc)" -E 'bench_smoke|report_smoke|report_page|python_module|Stress.ReferenceAndMoreauJeanPassTheChecksTheirTheoryPromises|^Mpi\.'
   # The MPI tests apart: OpenMPI's own memory, kept until exit, would read as leaks. They
   # are suppressed by library (tests/lsan_openmpi.supp), which needs whole allocation
   # stacks (fast_unwind_on_malloc=0, too slow for the rest of the suite).
