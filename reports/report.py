@@ -280,7 +280,10 @@ def write(study, out_dir, title=None, made_by="poundbench report"):
     out.page.provenance(text[text.index("## Provenance") + 2:])
     out.page.write(os.path.join(out_dir, "report.html"))
     from rows import write_page
-    write_page(out_dir, text, "poundbench report")
+    write_page(out_dir, text, "poundbench: report")
+    figures = sum(line.startswith("![") for line in text)
+    print(f"poundbench: report: wrote {os.path.join(out_dir, 'report.html')} and {figures} figures in "
+          f"{os.path.join(out_dir, 'figures')}")
 
 
 def need_matplotlib():
