@@ -314,6 +314,11 @@ def main():
     if os.path.exists(args.out) and not os.path.isdir(args.out):
         print(f"poundbench: --out: {args.out}: not a directory", file=sys.stderr)
         sys.exit(2)
+    try:
+        os.makedirs(os.path.join(args.out, "figures"), exist_ok=True)
+    except OSError as e:
+        print(f"poundbench: --out: {args.out}: cannot be created ({e.strerror})", file=sys.stderr)
+        sys.exit(2)
     write(study, args.out, args.title, args.made_by)
 
 
