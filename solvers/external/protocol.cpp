@@ -457,7 +457,8 @@ void check_case_domain(const Json& doc, const System& s) {
   const Pulse& p = s.pulse;
   if (p.paper()) {
     if (!close_to(std::abs(p.amplitude), s.a_p)) bad("load.amplitude", "must be a_p or -a_p");
-    if (!close_to(number(doc.at("load").at("duration"), "load.duration"), t_p)) bad("load.duration", "must be 2 pi / w");
+    if (!close_to(number(member(doc.at("load"), "duration", "load.duration"), "load.duration"), t_p))
+      bad("load.duration", "must be 2 pi / w");
   } else if (!p.record) {
     if (p.length > s.t_end) bad("load.duration", "must be within the run (at most t_end)");
     for (int j = 0; j < p.n_waves; ++j) {
@@ -477,6 +478,9 @@ void check_case_domain(const Json& doc, const System& s) {
 }
 
 }  // namespace
+
+// read_case without its guard against the JSON library's own exceptions.
+static CaseRead read_case_document(std::string_view text);
 
 CaseDocument case_document(const System& s, const Settings& settings) {
   CaseDocument doc;
@@ -550,6 +554,14 @@ std::string read_answer(std::string_view text, const System& system, const Setti
 }
 
 CaseRead read_case(std::string_view text) {
+  try {
+    return read_case_document(text);
+  } catch (const Json::exception& e) {  // a type the reader did not foresee: still one line
+    bad("stdin", clip(e.what(), kMaxEchoedReason));
+  }
+}
+
+static CaseRead read_case_document(std::string_view text) {
   const Json doc = parse_object(text, "stdin");
   check_case_keys(doc);
   check_version(doc);

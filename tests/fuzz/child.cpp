@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -125,9 +126,14 @@ ChildOutcome run_program(const std::string& program, const std::vector<std::stri
   for (std::string& v : variables) envp.push_back(v.data());
   envp.push_back(nullptr);
   const std::string where = dir.string();
+  // The stdin's file: in the temporary directory, one per process and call (campaigns run in
+  // parallel, and `dir` may be the source tree).
+  static std::atomic<int> calls{0};
   std::string stdin_file = "/dev/null";
   if (!input.stdin_text.empty()) {
-    stdin_file = (dir / ".fuzz-stdin").string();
+    stdin_file = (std::filesystem::temp_directory_path() /
+                  ("poundbench-fuzz-stdin-" + std::to_string(::getpid()) + "-" + std::to_string(calls++)))
+                     .string();
     std::ofstream(stdin_file, std::ios::binary) << input.stdin_text;
   }
   const ChildOutcome o = supervise(
