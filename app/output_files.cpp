@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstring>
 #include <iostream>
+#include <map>
 #include <streambuf>
 #include <stdexcept>
 #include <system_error>
@@ -33,7 +34,7 @@ bool is_special(const fs::path& file) {
 // A device or a pipe opened for writing, waiting at most kReaderWait for a FIFO's reader
 // (open would wait for ever: a FIFO nobody reads hung the command after its whole run), then
 // made blocking again for the write; -1 and errno on failure (ENXIO: no reader came).
-constexpr auto kReaderWait = std::chrono::seconds(10);
+constexpr auto kReaderWait = std::chrono::seconds(2);
 
 int open_special(const fs::path& file) {
   const auto give_up = std::chrono::steady_clock::now() + kReaderWait;
@@ -52,8 +53,21 @@ int open_special(const fs::path& file) {
   return fd;
 }
 
+// The FIFOs check_output_target opened, kept open until write_atomically writes them: a
+// probe closed before the write would end a reader such as `cat` at its EOF. (The command
+// line is one thread: no lock.)
+std::map<std::string, int>& held_fifos() {
+  static std::map<std::string, int> held;
+  return held;
+}
+
+bool a_fifo(const fs::path& file) {
+  std::error_code ec;
+  return fs::is_fifo(fs::status(file, ec));
+}
+
 std::string cannot_open(int error) {
-  return error == ENXIO ? "cannot open: a FIFO that nobody read within 10 s"
+  return error == ENXIO ? "cannot open: a FIFO that nobody read within 2 s"
                         : std::string("cannot open: ") + std::strerror(error);
 }
 
@@ -137,6 +151,12 @@ void check_output_target(const fs::path& file, std::string_view flag) {
   if (fs::is_directory(file, ec)) throw BadInput(prefix + "is a directory");
   if (is_special(file)) {
     if (::access(file.c_str(), W_OK) != 0) throw BadInput(prefix + "is not writable");
+    // A FIFO nobody reads is refused now, not after the run (the open waits 2 s for a reader).
+    if (a_fifo(file) && !held_fifos().contains(file.string())) {
+      const int fd = open_special(file);
+      if (fd < 0) throw BadInput(prefix + cannot_open(errno));
+      held_fifos()[file.string()] = fd;
+    }
     return;
   }
   fs::path dir = file.parent_path();
@@ -148,13 +168,13 @@ void check_output_target(const fs::path& file, std::string_view flag) {
 }
 
 void check_sweep_output(const fs::path& file, std::string_view flag) {
-  check_output_target(file, flag);
   std::error_code ec;
   const fs::file_status st = fs::status(file, ec);
-  if (!ec && fs::exists(st) && !fs::is_regular_file(st))
+  if (!ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st))
     throw BadInput(std::string(flag) + ": " + file.string() +
                    ": not a regular file (a device or a pipe): a sweep writes its output through a temporary file "
                    "and a partial file next to it; leave out " + std::string(flag) + " to write to stdout");
+  check_output_target(file, flag);
 }
 
 namespace {
@@ -215,7 +235,13 @@ std::vector<NamedFile> record_files(std::span<const Case> cases) {
 
 void write_atomically(const fs::path& file, const std::function<void(std::ostream&)>& write) {
   if (is_special(file)) {
-    const int fd = open_special(file);
+    int fd = -1;
+    if (const auto held = held_fifos().find(file.string()); held != held_fifos().end()) {
+      fd = held->second;
+      held_fifos().erase(held);
+    } else {
+      fd = open_special(file);
+    }
     if (fd < 0) throw std::runtime_error(file.string() + ": " + cannot_open(errno));
     const int error = write_fd(fd, write, false);
     if (error != 0) throw std::runtime_error(file.string() + ": write failed: " + std::strerror(error));

@@ -136,6 +136,13 @@ std::string partial_file_name(const std::string& out, std::string_view command) 
 }
 
 OutputLock take_output_lock(const std::string& out, std::string_view command, const std::string& partial) {
+  // A partial file is read back: a FIFO or a device there is refused as an input is.
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(partial, ec);
+  if (!ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st)) {
+    std::string text;
+    throw BadInput("partial file: " + cannot_read(partial, read_regular_file(partial, text).value_or("not a regular file")));
+  }
   check_output_target(partial, "partial file");  // before the lock names the same directory
   const std::string lock_file = lock_file_name(out, command);
   check_output_target(lock_file, "lock file");

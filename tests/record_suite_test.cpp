@@ -23,14 +23,7 @@ namespace {
 
 const std::string kReal = std::string(POUNDBENCH_SOURCE_DIR) + "/cases/records/real/";
 
-std::string record_error(std::string_view text, std::string_view source) {
-  try {
-    parse_record(text, source);
-  } catch (const RecordError& e) {
-    return e.what();
-  }
-  return "(accepted)";
-}
+using test::record_error;
 
 // Each file's NPTS and DT as its fourth line states them (read off the files, not by the
 // reader under test), and its first value in g.
