@@ -196,14 +196,8 @@ std::vector<std::string_view> settings_used(const SolverInfo& solver, std::strin
   given.variant = variant;
   const std::string described = solver.describe(given);
   std::vector<std::string_view> used;
-  for (const SettingField& field : kSettingFields) {
-    Settings other = given;  // any other value: describe() does not check it
-    if (field.number) other.*field.number += 1.0;
-    if (field.integer) other.*field.integer += 1;
-    if (field.count) other.*field.count += 1;
-    if (field.text) other.*field.text += "?";
-    if (solver.describe(other) != described) used.push_back(field.name);
-  }
+  for (const SettingField& field : kSettingFields)  // any other value: describe() does not check it
+    if (solver.describe(with_field(given, field, true)) != described) used.push_back(field.name);
   return used;
 }
 
