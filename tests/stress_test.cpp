@@ -102,6 +102,7 @@ TEST(Stress, ReferenceAndMoreauJeanPassTheChecksTheirTheoryPromises) {
   }
   double plastic_worst = 0.0;
   for (const Row& r : st.runs.points) {
+    if (beyond_step_bound(r.result)) continue;  // never run: no energy measured
     if (r.input.eps > 0.0) {
       EXPECT_LE(r.result.energy_excess, kEnergyTolerance) << r.input.family << " " << r.settings;
     } else {
