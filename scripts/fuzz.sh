@@ -21,7 +21,7 @@ while [ $# -gt 0 ]; do
 done
 
 targets="poundbench poundbench_fuzz_tests"
-if cmake --build "$build" --target help | grep -q poundbench_python; then targets="$targets poundbench_python"; fi
+if [ "$(cmake --build "$build" --target help | grep -c poundbench_python)" -gt 0 ]; then targets="$targets poundbench_python"; fi
 cmake --build "$build" --target $targets -j2 > /dev/null
 echo "fuzz: seed $seed, $seconds s per target, failing inputs to $failures/"
 # The campaign tests only: the corpus replay is the suite's (ctest -L fuzz).
