@@ -40,7 +40,7 @@ int adapter_command(const CLI::App& command, const AdapterFlags& flags) {
   settings.time_limit = read.settings.time_limit;
   settings.history_samples = read.settings.history_samples;
   settings.monitor = read.settings.monitor;
-  const SolverInfo& solver = checked_solver(solver_flags);
+  const SolverInfo& solver = checked_solver(solver_flags, command);
   const Result result = solver.solve(read.system, settings);
   write_to_stdout([&](std::ostream& out) { out << external::answer_document(result, read.system); });
   return 0;

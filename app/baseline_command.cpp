@@ -142,6 +142,10 @@ int baseline_command(const CLI::App& command, const BaselineFlags& flags) {
     if (flags.out.empty()) throw BadInput("--out: required with CASESET");
     check_output_target(flags.out, "--out");
     const Source s = load_source(flags.case_set, flags.settings);
+    std::vector<NamedFile> inputs = record_files(s.set.cases);
+    inputs.push_back({"CASESET", flags.case_set});
+    if (!flags.settings.empty()) inputs.push_back({"--settings", flags.settings});
+    check_outputs_apart({{"--out", flags.out}}, inputs);
     const std::optional<std::vector<Row>> rows = run(s, flags.threads);
     if (!rows) return interrupted();
     BaselineHeader header{relative_to_file(flags.case_set, flags.out).string(),

@@ -3,13 +3,17 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <iostream>
+#include <map>
 #include <streambuf>
 #include <stdexcept>
 #include <system_error>
+#include <thread>
 
 #include "app/errors.hpp"
 
@@ -25,6 +29,46 @@ bool is_special(const fs::path& file) {
   std::error_code ec;
   const fs::file_status st = fs::status(file, ec);
   return !ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st);
+}
+
+// A device or a pipe opened for writing, waiting at most kReaderWait for a FIFO's reader
+// (open would wait for ever: a FIFO nobody reads hung the command after its whole run), then
+// made blocking again for the write; -1 and errno on failure (ENXIO: no reader came).
+constexpr auto kReaderWait = std::chrono::seconds(2);
+
+int open_special(const fs::path& file) {
+  const auto give_up = std::chrono::steady_clock::now() + kReaderWait;
+  int fd = -1;
+  while ((fd = ::open(file.c_str(), O_WRONLY | O_TRUNC | O_NONBLOCK | O_CLOEXEC)) < 0 && errno == ENXIO &&
+         std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  if (fd < 0) return fd;
+  const int flags = ::fcntl(fd, F_GETFL);
+  if (flags < 0 || ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK) != 0) {
+    const int error = errno;
+    ::close(fd);
+    errno = error;
+    return -1;
+  }
+  return fd;
+}
+
+// The FIFOs check_output_target opened, kept open until write_atomically writes them: a
+// probe closed before the write would end a reader such as `cat` at its EOF. (The command
+// line is one thread: no lock.)
+std::map<std::string, int>& held_fifos() {
+  static std::map<std::string, int> held;
+  return held;
+}
+
+bool a_fifo(const fs::path& file) {
+  std::error_code ec;
+  return fs::is_fifo(fs::status(file, ec));
+}
+
+std::string cannot_open(int error) {
+  return error == ENXIO ? "cannot open: a FIFO that nobody read within 2 s"
+                        : std::string("cannot open: ") + std::strerror(error);
 }
 
 // access() grants root everything and knows nothing of read-only or virtual file systems
@@ -107,6 +151,12 @@ void check_output_target(const fs::path& file, std::string_view flag) {
   if (fs::is_directory(file, ec)) throw BadInput(prefix + "is a directory");
   if (is_special(file)) {
     if (::access(file.c_str(), W_OK) != 0) throw BadInput(prefix + "is not writable");
+    // A FIFO nobody reads is refused now, not after the run (the open waits 2 s for a reader).
+    if (a_fifo(file) && !held_fifos().contains(file.string())) {
+      const int fd = open_special(file);
+      if (fd < 0) throw BadInput(prefix + cannot_open(errno));
+      held_fifos()[file.string()] = fd;
+    }
     return;
   }
   fs::path dir = file.parent_path();
@@ -118,19 +168,81 @@ void check_output_target(const fs::path& file, std::string_view flag) {
 }
 
 void check_sweep_output(const fs::path& file, std::string_view flag) {
-  check_output_target(file, flag);
   std::error_code ec;
   const fs::file_status st = fs::status(file, ec);
-  if (!ec && fs::exists(st) && !fs::is_regular_file(st))
+  if (!ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st))
     throw BadInput(std::string(flag) + ": " + file.string() +
                    ": not a regular file (a device or a pipe): a sweep writes its output through a temporary file "
                    "and a partial file next to it; leave out " + std::string(flag) + " to write to stdout");
+  check_output_target(file, flag);
+}
+
+namespace {
+
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+  const fs::path x = fs::weakly_canonical(fs::absolute(a, ec), ec), y = fs::weakly_canonical(fs::absolute(b, ec), ec);
+  return !x.empty() && x == y;
+}
+
+}  // namespace
+
+void check_outputs_apart(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs,
+                         std::string_view partial, std::string_view lock) {
+  // What goes on the disk, by whose it is: each output and its temporary, then the sweep's
+  // partial file (and its temporary) and lock, which are no output's alone (owner -1).
+  struct Written {
+    NamedFile file;
+    int owner;
+  };
+  std::vector<Written> written;
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const NamedFile& out = outputs[i];
+    if (out.path.empty()) continue;
+    written.push_back({out, static_cast<int>(i)});
+    written.push_back({{out.name + "'s temporary", out.path.string() + ".tmp"}, static_cast<int>(i)});
+  }
+  if (!partial.empty()) {
+    written.push_back({{"the partial file", std::string(partial)}, -1});
+    written.push_back({{"the partial file's temporary", std::string(partial) + ".tmp"}, -1});
+  }
+  if (!lock.empty()) written.push_back({{"the lock file", std::string(lock)}, -1});
+  const auto named = [](const NamedFile& f) { return f.name + " " + clip(f.path.string(), kMaxEchoedReason); };
+  for (const NamedFile& in : inputs)
+    for (const Written& w : written)
+      if (same_file(w.file.path, in.path))
+        throw BadInput(in.name + ": " + clip(in.path.string(), kMaxEchoedReason) + ": " +
+                       (w.owner >= 0 ? "would be overwritten by " : "would be overwritten as ") + named(w.file) +
+                       " (an output must not be an input)");
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    if (outputs[i].path.empty()) continue;
+    for (const Written& w : written)
+      if (w.owner != static_cast<int>(i) && same_file(outputs[i].path, w.file.path))
+        throw BadInput(outputs[i].name + ": " + clip(outputs[i].path.string(), kMaxEchoedReason) + ": is also " +
+                       named(w.file) + " (each output needs a file of its own)");
+  }
+}
+
+std::vector<NamedFile> record_files(std::span<const Case> cases) {
+  std::vector<NamedFile> files;
+  for (const Case& c : cases)
+    if (!c.record.empty() && (files.empty() || files.back().path != c.record) &&
+        std::none_of(files.begin(), files.end(), [&](const NamedFile& f) { return f.path == c.record; }))
+      files.push_back({"record", c.record});
+  return files;
 }
 
 void write_atomically(const fs::path& file, const std::function<void(std::ostream&)>& write) {
   if (is_special(file)) {
-    const int fd = ::open(file.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
-    if (fd < 0) throw std::runtime_error(file.string() + ": cannot open: " + std::strerror(errno));
+    int fd = -1;
+    if (const auto held = held_fifos().find(file.string()); held != held_fifos().end()) {
+      fd = held->second;
+      held_fifos().erase(held);
+    } else {
+      fd = open_special(file);
+    }
+    if (fd < 0) throw std::runtime_error(file.string() + ": " + cannot_open(errno));
     const int error = write_fd(fd, write, false);
     if (error != 0) throw std::runtime_error(file.string() + ": write failed: " + std::strerror(error));
     return;

@@ -10,7 +10,11 @@
 #include <functional>
 #include <ostream>
 #include <string>
+#include <span>
 #include <string_view>
+#include <vector>
+
+#include "cases/case.hpp"
 
 namespace pb::app {
 
@@ -24,6 +28,24 @@ void check_output_target(const std::filesystem::path& file, std::string_view fla
 // and keeps its partial file next to it, neither of which a device's directory is for.
 // Such outputs go to stdout, the sweeps' default.
 void check_sweep_output(const std::filesystem::path& file, std::string_view flag);
+
+// A file a command reads or writes, and what names it ("--out", "CASESET", "record").
+struct NamedFile {
+  std::string name;
+  std::filesystem::path path;
+};
+
+// Throws BadInput ("<input>: <file>: would be overwritten by --out ...", "--points: <file>:
+// is also --out ...") when a file a command writes is one of its inputs (a case set, a
+// settings list, a record), or when two of them are one: the outputs, each output's
+// temporary, and a sweep's partial file and its lock (app/resumable_sweep.hpp; "" when the
+// command has none). Two paths are one file when fs::equivalent says so, or, where one does
+// not exist yet, when their absolute paths with symlinks resolved are equal.
+void check_outputs_apart(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs,
+                         std::string_view partial = {}, std::string_view lock = {});
+
+// The record files of `cases`, each once, as inputs named "record".
+std::vector<NamedFile> record_files(std::span<const Case> cases);
 
 // Writes `file` through "<file>.tmp" and a rename; throws std::runtime_error on failure
 // naming the reason (the temporary is removed then). A device or a pipe (/dev/null) is

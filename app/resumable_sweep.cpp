@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -15,6 +15,7 @@
 #include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/sweep_watch.hpp"
+#include "cases/input_file.hpp"
 #include "solvers/external/process.hpp"
 #include "sweep/partial_rows.hpp"
 
@@ -135,6 +136,13 @@ std::string partial_file_name(const std::string& out, std::string_view command) 
 }
 
 OutputLock take_output_lock(const std::string& out, std::string_view command, const std::string& partial) {
+  // A partial file is read back: a FIFO or a device there is refused as an input is.
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(partial, ec);
+  if (!ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st)) {
+    std::string text;
+    throw BadInput("partial file: " + cannot_read(partial, read_regular_file(partial, text).value_or("not a regular file")));
+  }
   check_output_target(partial, "partial file");  // before the lock names the same directory
   const std::string lock_file = lock_file_name(out, command);
   check_output_target(lock_file, "lock file");
@@ -145,9 +153,11 @@ std::vector<Row> read_earlier_rows(const std::string& partial, std::span<const C
                                    std::span<const SweepRun> runs) {
   check_output_target(partial, "partial file");
   std::error_code ec;
-  if (!std::filesystem::exists(partial, ec)) return {};
-  std::ifstream in(partial);
-  if (!in) throw BadInput("partial file: " + partial + ": cannot be read");
+  if (!std::filesystem::exists(std::filesystem::symlink_status(partial, ec))) return {};
+  std::string text;
+  if (const std::optional<std::string> why = read_regular_file(partial, text))
+    throw BadInput("partial file: " + cannot_read(partial, *why));
+  std::istringstream in(std::move(text));
   try {
     return read_partial_rows(in, partial, cases, runs);
   } catch (const PartialRowsError& e) {

@@ -101,8 +101,14 @@ int run_command(const CLI::App& command, RunFlags flags) {
     check_samples(flags.samples, chosen.input);
     flags.solver_flags.settings.history_samples = flags.samples;
   }
-  const SolverInfo& solver = checked_solver(flags.solver_flags);
-  if (history) check_output_target(flags.history, "--history");
+  const SolverInfo& solver = checked_solver(flags.solver_flags, command);
+  check_step_bound(chosen.input, flags.solver_flags.settings);
+  if (history) {
+    std::vector<NamedFile> inputs = record_files({&chosen.input, 1});
+    if (!chosen.case_file.empty()) inputs.push_back({"--case-file", chosen.case_file});
+    check_outputs_apart({{"--history", flags.history}}, inputs);
+    check_output_target(flags.history, "--history");
+  }
 
   const Row row = run_point(chosen.input, chosen.point, solver, flags.solver_flags.settings);
   if (history)
@@ -110,7 +116,7 @@ int run_command(const CLI::App& command, RunFlags flags) {
 
   write_to_stdout([&](std::ostream& out) {
     if (flags.json)
-      out << row_json(row, chosen).dump() << '\n';
+      out << row_json(row, chosen).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
     else
       print_summary(out, row);
   });

@@ -6,6 +6,7 @@
 
 #include "app/errors.hpp"
 #include "cases/fields.hpp"
+#include "cases/system.hpp"
 #include "solvers/settings_fields.hpp"
 
 namespace pb::app {
@@ -52,11 +53,27 @@ std::string as_flag_message(const std::string& field_reason) {
   return flag_of(field) + field_reason.substr(colon);
 }
 
-const SolverInfo& checked_solver(const SolverFlags& flags) {
+const SolverInfo& checked_solver(const SolverFlags& flags, const GivenSolverFlag& given) {
   const SolverInfo* solver = find_solver(flags.solver);
   if (!solver) throw BadInput("--solver: unknown solver '" + clip(flags.solver) + "' (known: " + solver_names() + ")");
   if (std::string bad = solver->check(flags.settings); !bad.empty()) throw BadInput(as_flag_message(bad));
+  if (given) {
+    const auto field_given = [&](std::string_view field) { return given(flag_of(field)); };
+    if (std::string bad = unused_setting(*solver, flags.settings, field_given); !bad.empty())
+      throw BadInput(as_flag_message(bad));
+  }
   return *solver;
+}
+
+void check_step_bound(const Case& c, const Settings& settings) {
+  if (!(settings.wh > 0.0)) return;  // N steps per shortest period always meet it
+  const System system = make_system(c);
+  if (std::string bad = step_problem(system, time_step(system, settings, 1)); !bad.empty())
+    throw BadInput("--wh: " + bad);
+}
+
+const SolverInfo& checked_solver(const SolverFlags& flags, const CLI::App& command) {
+  return checked_solver(flags, [&](std::string_view flag) { return command.count(std::string(flag)) > 0; });
 }
 
 }  // namespace pb::app

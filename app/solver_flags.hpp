@@ -1,10 +1,13 @@
 #pragma once
 // The flags that pick a solver and fill its Settings, shared by `run` and `spectrum`.
 
+#include <functional>
 #include <string>
+#include <string_view>
 
 #include <CLI/CLI.hpp>
 
+#include "cases/case.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb::app {
@@ -16,8 +19,18 @@ struct SolverFlags {
 
 void add_solver_flags(CLI::App& command, SolverFlags& flags);
 
-// The named solver, after SolverInfo::check accepted the settings; throws BadInput.
-const SolverInfo& checked_solver(const SolverFlags& flags);
+// The named solver, after SolverInfo::check accepted the settings and no flag of
+// solvers/settings_fields.hpp that `given` ("--theta") says was given is one the solver does
+// not use (pb::unused_setting); throws BadInput.
+using GivenSolverFlag = std::function<bool(std::string_view flag)>;
+const SolverInfo& checked_solver(const SolverFlags& flags, const GivenSolverFlag& given = {});
+// The same, `given` being the flags of `command`.
+const SolverInfo& checked_solver(const SolverFlags& flags, const CLI::App& command);
+
+// Throws BadInput ("--wh: step: h = ... is longer than the pulse period ...") when the step
+// the settings give is beyond pb::step_problem's bound for this case: `run` refuses it before
+// running, where a sweep's row says failed.
+void check_step_bound(const Case& c, const Settings& settings);
 
 // "field: reason" from a check() with the field turned into its flag, e.g. "--tol-scale: ...".
 std::string as_flag_message(const std::string& field_reason);

@@ -98,9 +98,12 @@ int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const 
   processes.agree([&] {
     set = load_case_set(flags.case_set);
     validate_case_set(set, flags.case_set);
-    runs[0] = {&checked_solver(flags.solver_flags), flags.solver_flags.settings, flags.repetitions};
+    runs[0] = {&checked_solver(flags.solver_flags, command), flags.solver_flags.settings, flags.repetitions};
     if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
     if (!processes.leader()) return;
+    std::vector<NamedFile> inputs = record_files(set.cases);
+    inputs.push_back({"CASESET", flags.case_set});
+    check_outputs_apart({{"--out", flags.out}}, inputs, partial, lock_file_name(flags.out, "spectrum"));
     if (!flags.out.empty()) check_sweep_output(flags.out, "--out");
     check_junit_target(flags.junit, flags.check);
     lock = take_output_lock(flags.out, "spectrum", partial);

@@ -101,6 +101,11 @@ Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_vi
     if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
     runs = study_runs(study.list, options);
     if (!processes.leader()) return;
+    std::vector<NamedFile> inputs = record_files(study.set.cases);
+    inputs.push_back({"CASESET", flags.case_set});
+    inputs.push_back({"--settings", flags.settings});
+    check_outputs_apart({{"--out", flags.out}, {"--points", flags.points}}, inputs, study.partial,
+                        lock_file_name(flags.out, name));
     if (!flags.out.empty()) check_sweep_output(flags.out, "--out");
     if (!flags.points.empty()) check_sweep_output(flags.points, "--points");
     check_junit_target(flags.junit, flags.check);

@@ -114,6 +114,9 @@ std::optional<std::string> check_load(const Case& c) {
   }
   if (rec && c.record.empty()) return "record: required by pulse record (the file of the accelerogram)";
   if (rec && c.samples == nullptr) return "record: the file " + clip(c.record) + " was not read";
+  if (rec && !(c.samples->peak >= kMinRecordPeak * c.a_p && c.samples->peak <= kMaxRecordPeak * c.a_p))
+    return "a_p: the record's peak (" + text(c.samples->peak) + ") must be within a factor 1e6 of a_p (a record "
+           "1e-320 of a_p hung the reference: its response is below any tolerance)";
   if (!rec && !c.record.empty()) return "record: only the record pulse reads a record";
   return std::nullopt;
 }

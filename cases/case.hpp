@@ -97,6 +97,7 @@ inline constexpr double kMaxPi3 = 1e6;
 inline constexpr double kMaxKick = 1e6;  // |kick|
 inline constexpr double kMinAp = 1e-12, kMaxAp = 1e12;
 inline constexpr double kMinWp = 1e-6, kMaxWp = 1e6;
+inline constexpr double kMinRecordPeak = 1e-6, kMaxRecordPeak = 1e6;  // a record's peak over a_p
 inline constexpr int kMaxCycles = 100;        // makris-c
 inline constexpr double kMaxMpGamma = 100;    // mp: gamma in (1, 100]
 inline constexpr double kMaxMpNu = 360;       // mp: |nu| <= 360 degrees

@@ -106,7 +106,10 @@ LoadPiece Pulse::piece_at(double t, std::size_t i) const {
     const std::vector<double>& ts = record->t;
     const std::vector<double>& as = record->a;
     if (t < ts.front()) {
-      p.start = -inf;
+      // Zero before the first sample; from t = 0 on (a run starts there), so that the piece's
+      // value + slope (t - start) is 0 and not 0 times infinity (a record starting at t = 1
+      // gave Pi1 = nan).
+      p.start = std::min(t, 0.0);
       p.end = ts.front();
     } else if (t >= ts.back()) {
       p.start = ts.back();

@@ -1,20 +1,31 @@
 #include "cases/record.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <optional>
+#include <vector>
 
 #include "cases/case.hpp"
-#include "cases/toml_input.hpp"
+#include "cases/input_file.hpp"
 
 namespace pb {
 
 namespace {
 
 [[noreturn]] void fail(std::string_view source, std::size_t line, const std::string& why) {
-  throw RecordError(std::string(source) + (line > 0 ? ":" + std::to_string(line) : "") + ": " + why);
+  // The file's name as given, clipped: a 100,000-character name gives a line, not a page.
+  throw RecordError(clip(source, kMaxEchoedReason) + (line > 0 ? ":" + std::to_string(line) : "") + ": " + why);
+}
+
+// A value in a message: six digits, never std::to_string's hundreds for -1e308.
+std::string shown(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
 }
 
 std::string_view trim(std::string_view s) {
@@ -38,14 +49,18 @@ std::optional<double> number(std::string_view field) {
   return x;
 }
 
-// The lines of a text with their numbers (from 1), a CR before a line end dropped.
+// The lines of a text with their numbers (from 1), the CRs before a line end dropped (LF,
+// CRLF and CR CR LF endings); a CR elsewhere (old Mac line ends, which would run the whole
+// file into one line) is refused.
 template <class F>
-void for_each_line(std::string_view text, F&& f) {
+void for_each_line(std::string_view text, std::string_view source, F&& f) {
   std::size_t line = 1;
   while (!text.empty()) {
     const std::size_t end = text.find('\n');
     std::string_view piece = text.substr(0, end);
-    if (!piece.empty() && piece.back() == '\r') piece.remove_suffix(1);
+    while (!piece.empty() && piece.back() == '\r') piece.remove_suffix(1);
+    if (piece.find('\r') != std::string_view::npos)
+      fail(source, line, "a CR inside the line: line ends must be LF, CRLF or CR CR LF");
     f(piece, line++);
     if (end == std::string_view::npos) break;
     text.remove_prefix(end + 1);
@@ -55,7 +70,7 @@ void for_each_line(std::string_view text, F&& f) {
 void add_sample(Record& r, double t, double a, std::size_t line) {
   if (r.t.size() >= kMaxRecordSamples)
     fail(r.source, line, "more than " + std::to_string(kMaxRecordSamples) + " samples (the reference takes each as an event)");
-  if (!std::isfinite(t) || t < 0.0) fail(r.source, line, "t: must be finite and >= 0 (got " + std::to_string(t) + ")");
+  if (!std::isfinite(t) || t < 0.0) fail(r.source, line, "t: must be finite and >= 0 (got " + shown(t) + ")");
   if (!r.t.empty() && !(t > r.t.back()))
     fail(r.source, line, std::string("t: ") + (t == r.t.back() ? "repeats" : "goes back from") +
                              " the time before it (times must rise strictly)");
@@ -76,7 +91,7 @@ Record parse_csv(std::string_view text, std::string_view source) {
   r.source = source;
   bool first = true;
   std::size_t last = 0;
-  for_each_line(text, [&](std::string_view piece, std::size_t line) {
+  for_each_line(text, source, [&](std::string_view piece, std::size_t line) {
     const std::string_view s = trim(piece);
     if (s.empty() || s.front() == '#') return;
     last = line;
@@ -104,68 +119,204 @@ std::string upper(std::string_view s) {
   return out;
 }
 
-// The number after "KEY=" in the line (NGA-West2's "NPTS=  3930, DT=   .0100 SEC").
-std::optional<double> keyed(const std::string& line, std::string_view key) {
-  const std::size_t at = line.find(std::string(key) + "=");
-  if (at == std::string::npos) return std::nullopt;
-  std::size_t begin = at + key.size() + 1;
-  while (begin < line.size() && line[begin] == ' ') ++begin;
-  std::size_t end = begin;
-  while (end < line.size() && line[end] != ',' && line[end] != ' ') ++end;
-  return number(std::string_view(line).substr(begin, end - begin));
+// The fields of a line, split at blanks (a CR of a CR CR LF ending included).
+std::vector<std::string_view> fields(std::string_view line) {
+  std::vector<std::string_view> out;
+  while (true) {
+    const std::size_t begin = line.find_first_not_of(" \t\r");
+    if (begin == std::string_view::npos) return out;
+    line.remove_prefix(begin);
+    const std::size_t end = line.find_first_of(" \t\r");
+    out.push_back(line.substr(0, end));
+    if (end == std::string_view::npos) return out;
+    line.remove_prefix(end);
+  }
 }
 
+// A line of values: every field a number (and at least one).
+bool numbers_only(std::string_view line) {
+  const std::vector<std::string_view> f = fields(line);
+  return !f.empty() && std::all_of(f.begin(), f.end(), [](std::string_view x) { return number(x).has_value(); });
+}
+
+// An AT2 header's unit of acceleration and its factor to m/s^2 (cases/README.md, "Records").
+struct Unit {
+  std::string_view name;
+  double si;
+};
+constexpr std::array<Unit, 4> kUnits = {{{"g", kStandardGravity}, {"gal", 0.01}, {"cm/s^2", 0.01}, {"m/s^2", 1.0}}};
+
+// A unit as written ("G.", "GAL", "CM/SEC/SEC", "(M/S**2)"), lower case, in kUnits' spelling
+// where it is one of them: "sec" is "s", "s/s", "s2", "s**2" are "s^2".
+std::string unit_word(std::string_view word) {
+  while (!word.empty() && (word.front() == '(' || word.front() == '['))
+    word.remove_prefix(1);
+  while (!word.empty() && std::string_view(".,;:)]").find(word.back()) != std::string_view::npos)
+    word.remove_suffix(1);
+  std::string w;
+  for (char c : word) w += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const auto replace = [&](std::string_view from, std::string_view to) {
+    for (std::size_t at = w.find(from); at != std::string::npos; at = w.find(from, at + to.size()))
+      w.replace(at, from.size(), to);
+  };
+  replace("sec", "s");
+  replace("**", "^");
+  if (w.ends_with("/s/s")) w.replace(w.size() - 4, 4, "/s^2");
+  if (w.ends_with("/s2")) w.replace(w.size() - 3, 3, "/s^2");
+  if (w == "gals") w = "gal";
+  return w;
+}
+
+const Unit* known_unit(std::string_view word) {
+  for (const Unit& u : kUnits)
+    if (u.name == word) return &u;
+  return nullptr;
+}
+
+// The unit a header line names, as written: the word after "UNITS" or "UNIT" (past "OF",
+// "IN", "=", ":"), or after "IN" where that word is a unit ("ACCELERATION IN CM/S/S"), so
+// "IN UNITS OF GAL" names gal and no word merely containing a G names g. "" when none.
+std::string_view named_unit(std::string_view line) {
+  const std::vector<std::string_view> f = fields(line);
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const std::string word = unit_word(f[i]);  // "(UNITS", "UNITS:" are "units"
+    if (word == "units" || word == "unit") {
+      std::size_t j = i + 1;
+      while (j < f.size() && (unit_word(f[j]) == "of" || unit_word(f[j]) == "in" || unit_word(f[j]).empty() ||
+                              f[j] == "="))
+        ++j;
+      if (j < f.size()) return f[j];
+    } else if (word == "in" && i + 1 < f.size()) {
+      const std::string next = unit_word(f[i + 1]);
+      if (known_unit(next) || next.find('/') != std::string::npos) return f[i + 1];
+    }
+  }
+  return {};
+}
+
+// The number after KEY in "NPTS= 3930, DT= .0100 SEC" (any case; '=' or ':' after the key,
+// blanks around it): KEY must be a word of its own and the number runs to the next blank,
+// comma or letter other than an exponent's.
+std::optional<double> keyed(const std::string& line, std::string_view key, bool& has_key) {
+  for (std::size_t at = line.find(key); at != std::string::npos; at = line.find(key, at + 1)) {
+    if (at > 0 && std::isalpha(static_cast<unsigned char>(line[at - 1]))) continue;
+    std::size_t i = at + key.size();
+    while (i < line.size() && line[i] == ' ') ++i;
+    if (i == line.size() || (line[i] != '=' && line[i] != ':')) continue;
+    has_key = true;
+    ++i;
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    std::size_t end = i;
+    while (end < line.size() && std::string_view("0123456789.+-ED").find(line[end]) != std::string_view::npos) ++end;
+    // "E" or "D" only as an exponent: "5SEC" ends the number at S, ".01 DT" never reads the D.
+    while (end > i && (line[end - 1] == 'E' || line[end - 1] == 'D')) --end;
+    return number(std::string_view(line).substr(i, end - i));
+  }
+  return std::nullopt;
+}
+
+struct Npts {
+  std::optional<double> npts, dt;
+};
+
+// NPTS and DT of a header line that names NPTS ("NPTS= 3930, DT= .0100 SEC", "NPTS= 4800,
+// dt= .005", or the older "3930 .0100 NPTS, DT"); nullopt for a line that does not.
+std::optional<Npts> npts_line(std::string_view piece) {
+  const std::string line = upper(piece);
+  std::size_t word = line.find("NPTS");
+  while (word != std::string::npos && word > 0 && std::isalpha(static_cast<unsigned char>(line[word - 1])))
+    word = line.find("NPTS", word + 1);
+  if (word == std::string::npos) return std::nullopt;
+  Npts out;
+  bool keyed_npts = false, keyed_dt = false;
+  out.npts = keyed(line, "NPTS", keyed_npts);
+  out.dt = keyed(line, "DT", keyed_dt);
+  if (!keyed_npts && !keyed_dt) {  // the values first, then the names
+    std::string values = line.substr(0, word);
+    std::replace(values.begin(), values.end(), ',', ' ');
+    const std::vector<std::string_view> f = fields(values);
+    out.npts = f.size() >= 1 ? number(f[0]) : std::nullopt;
+    out.dt = f.size() >= 2 ? number(f[1]) : std::nullopt;
+  }
+  return out;
+}
+
+constexpr const char* kNptsForm = "(\"NPTS= <n>, DT= <step> SEC\" or \"<n> <step> NPTS, DT\")";
+
+// PEER's AT2 (record.hpp): the header is every line before the first line of numbers; one of
+// its lines gives NPTS and DT, and its lines may name the unit. Then exactly NPTS values, any
+// number a line, and after them only lines that do not start with a number (a trailer such as
+// "*** End Data ***") or blank ones.
 Record parse_at2(std::string_view text, std::string_view source) {
   Record r;
   r.source = source;
-  std::optional<double> npts, dt;
+  std::optional<Npts> given;
+  std::size_t given_line = 0, unit_line = 0;
+  const Unit* unit = &kUnits[0];  // a header that names no unit: PEER's g
+  bool header = true;
   std::size_t count = 0, expected = 0, last = 0;
-  for_each_line(text, [&](std::string_view piece, std::size_t line) {
-    if (line <= 4) {
-      const std::string head = upper(piece);
-      if (line == 3 && head.find("UNITS OF") != std::string::npos && head.find("UNITS OF G") == std::string::npos)
-        fail(source, line, "units: an AT2 record's values are in g (\"UNITS OF G\"), this line names other units");
-      if (line == 4) {
-        npts = keyed(head, "NPTS");
-        dt = keyed(head, "DT");
-        if (!npts && !dt) {  // the older "3930   .0100   NPTS, DT"
-          std::size_t split = head.find_first_of(" \t", head.find_first_not_of(" \t"));
-          const std::string_view h(head);
-          npts = number(h.substr(0, split));
-          if (split != std::string::npos) {
-            const std::string_view rest = trim(h.substr(split));
-            dt = number(rest.substr(0, rest.find_first_of(" \t,")));
-          }
-        }
-        if (!npts || *npts != std::floor(*npts) || *npts < 0 || *npts > 1e9)
-          fail(source, line, "NPTS: not a whole number of points (expected \"NPTS= <n>, DT= <step> SEC\")");
-        if (!dt || !std::isfinite(*dt) || *dt <= 0.0)
-          fail(source, line, "DT: not a positive time step (expected \"NPTS= <n>, DT= <step> SEC\")");
-        expected = static_cast<std::size_t>(*npts);
+  for_each_line(text, source, [&](std::string_view piece, std::size_t line) {
+    // The header: every line up to the NPTS line, and after it each line that does not start
+    // with a number (a units line may follow it).
+    const std::vector<std::string_view> first = fields(piece);
+    if (header && (given ? first.empty() || !number(first.front()) : !numbers_only(piece))) {
+      if (const std::optional<Npts> n = npts_line(piece)) {
+        if (given)
+          fail(source, line, "a second NPTS line (the first is line " + std::to_string(given_line) + ")");
+        given = n;
+        given_line = line;
+        if (!n->npts || *n->npts != std::floor(*n->npts) || *n->npts < 2 ||
+            *n->npts > static_cast<double>(kMaxRecordSamples))
+          fail(source, line, "NPTS: not a whole number of points from 2 to " + std::to_string(kMaxRecordSamples) +
+                                 " " + kNptsForm);
+        if (!n->dt || !std::isfinite(*n->dt) || *n->dt <= 0.0)
+          fail(source, line, std::string("DT: not a positive time step ") + kNptsForm);
+        expected = static_cast<std::size_t>(*n->npts);
+      }
+      if (const std::string_view named = named_unit(piece); !named.empty()) {
+        const Unit* u = known_unit(unit_word(named));
+        if (!u)
+          fail(source, line, "units: '" + clip(named) + "' is not a unit of acceleration poundbench reads (g, gal, "
+                             "cm/s^2, m/s^2)");
+        if (unit_line > 0 && u != unit)
+          fail(source, line, "units: " + std::string(u->name) + " here, " + std::string(unit->name) + " on line " +
+                                 std::to_string(unit_line));
+        unit = u;
+        unit_line = line;
       }
       return;
     }
-    std::string_view rest = piece;
-    while (true) {
-      const std::size_t begin = rest.find_first_not_of(" \t\r");
-      if (begin == std::string_view::npos) break;
-      rest.remove_prefix(begin);
-      const std::size_t end = rest.find_first_of(" \t\r");
-      const std::string_view field = rest.substr(0, end);
-      const std::optional<double> v = number(field);
-      if (!v) fail(source, line, "value " + std::to_string(count + 1) + ": not a number (\"" + clip(field) + "\")");
+    if (header) {
+      header = false;
+      if (!given)
+        fail(source, line, std::string("no NPTS/DT line in the header (the lines before the values) ") + kNptsForm);
+    }
+    const std::vector<std::string_view> values = fields(piece);
+    if (values.empty()) return;
+    if (count == expected) {
+      if (number(values.front()))
+        fail(source, line, "more values than NPTS = " + std::to_string(expected) + " (line " +
+                               std::to_string(given_line) + ")");
+      return;  // a trailer
+    }
+    for (const std::string_view field : values) {
       if (count == expected)
-        fail(source, line, "more values than NPTS = " + std::to_string(expected) + " (line 4)");
-      add_sample(r, static_cast<double>(count) * *dt, *v * kStandardGravity, line);
+        fail(source, line, "more values than NPTS = " + std::to_string(expected) + " (line " +
+                               std::to_string(given_line) + ")");
+      const std::optional<double> v = number(field);
+      if (!v && field == values.front())
+        fail(source, line, "the values end after " + std::to_string(count) + " of NPTS = " +
+                               std::to_string(expected) + " (\"" + clip(field) + "\")");
+      if (!v) fail(source, line, "value " + std::to_string(count + 1) + ": not a number (\"" + clip(field) + "\")");
+      add_sample(r, static_cast<double>(count) * *given->dt, *v * unit->si, line);
       ++count;
       last = line;
-      if (end == std::string_view::npos) break;
-      rest.remove_prefix(end);
     }
   });
-  if (!npts) fail(source, 0, "no NPTS/DT line (an AT2 record has four header lines, the fourth \"NPTS= <n>, DT= <step> SEC\")");
+  if (!given) fail(source, 0, std::string("no NPTS/DT line and no values ") + kNptsForm);
   if (count != expected)
-    fail(source, 4, "NPTS = " + std::to_string(expected) + ", but the file holds " + std::to_string(count) + " values");
+    fail(source, given_line, "NPTS = " + std::to_string(expected) + ", but the file holds " + std::to_string(count) +
+                                 " values");
   finish(r, last);
   return r;
 }

@@ -5,11 +5,14 @@
 // sweep over a record holds its samples once.
 //
 // Two formats, told apart by the file's extension (cases/README.md, "Records"):
-//   .at2 (any case)  PEER NGA: four header lines (the third names the units, which must be
-//                    g; the fourth gives NPTS and DT, as "NPTS= 3930, DT= .0100 SEC" or as
-//                    "3930 .0100 NPTS, DT"), then NPTS values in g, any number per line.
-//                    t_i = i DT (i = 0 .. NPTS-1) and a_i = value_i g, g = 9.80665 m/s^2
-//                    (the standard gravity: the NGA flatfiles' unit).
+//   .at2 (any case)  PEER NGA: a header (every line before the first line of numbers), one
+//                    of whose lines gives NPTS and DT ("NPTS= 3930, DT= .0100 SEC", "NPTS=
+//                    4800, dt= .005", "3930 .0100 NPTS, DT"), and whose lines may name the
+//                    unit as a word (g, gal, cm/s^2, m/s^2; none named: g); then exactly NPTS
+//                    values, any number per line, and after them only lines that do not start
+//                    with a number (a trailer such as "*** End Data ***"). t_i = i DT
+//                    (i = 0 .. NPTS-1) and a_i = value_i times the unit in m/s^2, g being
+//                    9.80665 m/s^2 (the standard gravity: the NGA flatfiles' unit).
 //   anything else    CSV: one sample per line, "t, a_g" (a_g in m/s^2, or any unit the
 //                    case's a_p is given in), '#' lines are comments, blank lines are
 //                    skipped, and a first line with no number in it is a header.

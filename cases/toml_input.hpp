@@ -1,40 +1,18 @@
 #pragma once
 // What the two TOML readers share (case sets, cases/case_set.cpp; settings lists,
-// studies/settings_list.cpp): a file read whole, and TOML syntax errors as one line,
-// "<file>:<line>: syntax: <reason>". Each reader throws its own error type, so both
-// helpers take it as a template argument.
+// studies/settings_list.cpp), besides reading the file (cases/input_file.hpp): TOML syntax
+// errors as one line, "<file>:<line>: syntax: <reason>". Each reader throws its own error
+// type, so the helper takes it as a template argument.
 
 #include <toml++/toml.h>
 
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
-#include <filesystem>
 #include <string>
 #include <string_view>
-#include <system_error>
 
 #include "cases/case.hpp"
+#include "cases/input_file.hpp"
 
 namespace pb {
-
-// The whole file as text; Error("<file>: cannot read: <why>") when it cannot be read.
-template <class Error>
-std::string read_input_file(const std::filesystem::path& file) {
-  const std::string source = file.string();
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) throw Error(source + ": cannot read: is a directory");
-  std::FILE* f = std::fopen(source.c_str(), "rb");
-  if (f == nullptr) throw Error(source + ": cannot read: " + std::strerror(errno));
-  std::string text;
-  char buffer[1 << 14];
-  std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) text.append(buffer, n);
-  const bool failed = std::ferror(f) != 0;
-  std::fclose(f);
-  if (failed) throw Error(source + ": cannot read: read error");
-  return text;
-}
 
 // The TOML document, or Error for its first syntax error (the reason clipped: toml++ may
 // quote the file's own text).

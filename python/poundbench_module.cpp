@@ -60,27 +60,77 @@ struct Keywords {
       if (g == flag) return true;
     return false;
   }
+  app::GivenSolverFlag given_flag() const {
+    return [this](std::string_view flag) { return has(flag); };
+  }
 };
 
 [[noreturn]] void type_error(const std::string& function, const std::string& key, const std::string& why) {
-  throw py::type_error(function + "() keyword " + key + ": " + why);
+  throw py::type_error(function + "() keyword " + clip(key) + ": " + why);
+}
+
+// A str as the bytes it stands for: UTF-8, with the bytes a file name that is not UTF-8 was
+// read with (os.fsdecode's surrogateescape) given back, as os.fsencode does; a lone
+// surrogate is not text (ValueError).
+std::string utf8(const std::string& function, const std::string& key, const py::handle& value) {
+  PyObject* bytes = PyUnicode_AsEncodedString(value.ptr(), "utf-8", "surrogateescape");
+  if (bytes == nullptr) {
+    PyErr_Clear();
+    throw py::value_error(function + "() keyword " + clip(key) + ": not text (a lone surrogate)");
+  }
+  std::string out(PyBytes_AS_STRING(bytes), static_cast<std::size_t>(PyBytes_GET_SIZE(bytes)));
+  Py_DECREF(bytes);
+  return out;
 }
 
 std::string text(const std::string& function, const std::string& key, const py::handle& value) {
-  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  if (py::hasattr(value, "__fspath__")) return py::str(py::module_::import("os").attr("fspath")(value));
+  if (py::isinstance<py::str>(value)) return utf8(function, key, value);
+  if (py::hasattr(value, "__fspath__")) {
+    const py::object path = py::module_::import("os").attr("fspath")(value);
+    if (py::isinstance<py::str>(path)) return utf8(function, key, path);
+    if (py::isinstance<py::bytes>(path)) return path.cast<std::string>();
+  }
   type_error(function, key, "must be a str");
 }
 
+// A whole number (an int, or anything with __index__ such as NumPy's integers, never a bool):
+// one outside a long long's range is out of range for every keyword, a ValueError.
 long long whole(const std::string& function, const std::string& key, const py::handle& value) {
-  if (py::isinstance<py::bool_>(value) || !py::isinstance<py::int_>(value)) type_error(function, key, "must be an int");
-  return value.cast<long long>();
+  if (py::isinstance<py::bool_>(value) || !PyIndex_Check(value.ptr())) type_error(function, key, "must be an int");
+  const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
+  if (!index) throw py::error_already_set();
+  int overflow = 0;
+  const long long x = PyLong_AsLongLongAndOverflow(index.ptr(), &overflow);
+  if (overflow != 0)
+    throw app::BadInput(flag_of(key) + ": " + (overflow > 0 ? "too large" : "too small") + " (out of range)");
+  if (x == -1 && PyErr_Occurred()) throw py::error_already_set();
+  return x;
 }
 
+// A number: a float (NumPy's float64 is one), or a whole number as whole() takes it; an int
+// too large for a double is out of range, a ValueError.
 double number(const std::string& function, const std::string& key, const py::handle& value) {
-  if (py::isinstance<py::bool_>(value) || !(py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)))
-    type_error(function, key, "must be a number");
-  return value.cast<double>();
+  if (py::isinstance<py::bool_>(value)) type_error(function, key, "must be a number");
+  if (PyFloat_Check(value.ptr())) return PyFloat_AS_DOUBLE(value.ptr());
+  if (!PyIndex_Check(value.ptr())) {
+    // Other real numbers (NumPy's float32, fractions): through float(), never a str's parse.
+    if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) || !py::hasattr(value, "__float__"))
+      type_error(function, key, "must be a number");
+    const double x = PyFloat_AsDouble(value.ptr());
+    if (x == -1.0 && PyErr_Occurred()) {
+      PyErr_Clear();
+      type_error(function, key, "must be a number");
+    }
+    return x;
+  }
+  const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
+  if (!index) throw py::error_already_set();
+  const double x = PyLong_AsDouble(index.ptr());
+  if (x == -1.0 && PyErr_Occurred()) {
+    PyErr_Clear();
+    throw app::BadInput(flag_of(key) + ": too large for a double (out of range)");
+  }
+  return x;
 }
 
 int as_int(const std::string& key, long long value) {
@@ -93,7 +143,7 @@ Keywords read_keywords(const std::string& function, const py::kwargs& kwargs) {
   Keywords k;
   Settings& settings = k.solver_flags.settings;
   for (const auto& [key_object, value] : kwargs) {
-    const std::string key = key_object.cast<std::string>();
+    const std::string key = utf8(function, "name", key_object);
     if (value.is_none()) continue;
     const std::string flag = flag_of(key);
     const auto case_field = std::find_if(kCaseFields.begin(), kCaseFields.end(),
@@ -143,7 +193,7 @@ Keywords read_keywords(const std::string& function, const py::kwargs& kwargs) {
       else
         settings.*f.count = static_cast<long>(whole(function, key, value));
     } else {
-      throw py::type_error(function + "() got an unexpected keyword argument '" + key + "'");
+      throw py::type_error(function + "() got an unexpected keyword argument '" + clip(key) + "'");
     }
     k.given.push_back(flag);
   }
@@ -152,6 +202,14 @@ Keywords read_keywords(const std::string& function, const py::kwargs& kwargs) {
 
 // ---------------------------------------------------------------- results
 
+// Text that may hold bytes that are not UTF-8 (a file name, an external program's message),
+// each such byte as U+FFFD, as --json writes them: the answer comes out whatever the bytes.
+py::str decoded(const std::string& text) {
+  PyObject* s = PyUnicode_DecodeUTF8(text.data(), static_cast<Py_ssize_t>(text.size()), "replace");
+  if (s == nullptr) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(s);
+}
+
 py::object to_python(const nlohmann::ordered_json& j) {
   switch (j.type()) {
     case nlohmann::ordered_json::value_t::null: return py::none();
@@ -159,7 +217,7 @@ py::object to_python(const nlohmann::ordered_json& j) {
     case nlohmann::ordered_json::value_t::number_integer: return py::int_(j.get<long long>());
     case nlohmann::ordered_json::value_t::number_unsigned: return py::int_(j.get<unsigned long long>());
     case nlohmann::ordered_json::value_t::number_float: return py::float_(j.get<double>());
-    case nlohmann::ordered_json::value_t::string: return py::str(j.get<std::string>());
+    case nlohmann::ordered_json::value_t::string: return decoded(j.get_ref<const std::string&>());
     case nlohmann::ordered_json::value_t::array: {
       py::list list;
       for (const auto& item : j) list.append(to_python(item));
@@ -167,7 +225,7 @@ py::object to_python(const nlohmann::ordered_json& j) {
     }
     case nlohmann::ordered_json::value_t::object: {
       py::dict dict;
-      for (const auto& [key, item] : j.items()) dict[py::str(key)] = to_python(item);
+      for (const auto& [key, item] : j.items()) dict[decoded(key)] = to_python(item);
       return dict;
     }
     default: return py::none();
@@ -210,22 +268,29 @@ void run_interruptibly(std::atomic<bool>& stop, Work&& work) {
   if (interrupted) throw py::error_already_set();
 }
 
+// A ValueError whose message may echo bytes that are not UTF-8 (a file's name): as U+FFFD,
+// where pybind11's own conversion raised UnicodeDecodeError instead.
+[[noreturn]] void raise_value_error(const std::string& message) {
+  PyErr_SetObject(PyExc_ValueError, decoded(app::one_line(message)).ptr());
+  throw py::error_already_set();
+}
+
 // The checks of the command line, raised as ValueError with its message.
 template <class Check>
 auto checked(Check&& check) {
   try {
     return check();
   } catch (const app::BadInput& e) {
-    throw py::value_error(app::one_line(e.what()));
+    raise_value_error(e.what());
   } catch (const CaseSetError& e) {
-    throw py::value_error(app::one_line(e.what()));
+    raise_value_error(e.what());
   }
 }
 
 // ---------------------------------------------------------------- the functions
 
 py::dict run(const py::kwargs& kwargs) {
-  Keywords k = read_keywords("run", kwargs);
+  Keywords k = checked([&] { return read_keywords("run", kwargs); });
   const bool history = k.history || k.samples.has_value();
   const int samples = k.samples ? static_cast<int>(std::clamp<long long>(*k.samples, INT_MIN, INT_MAX)) : 2000;
   const auto [chosen, solver] = checked([&] {
@@ -234,7 +299,9 @@ py::dict run(const py::kwargs& kwargs) {
       app::check_samples(samples, c.input);
       k.solver_flags.settings.history_samples = samples;
     }
-    return std::pair<app::ChosenCase, const SolverInfo*>(c, &app::checked_solver(k.solver_flags));
+    const SolverInfo* info = &app::checked_solver(k.solver_flags, k.given_flag());
+    app::check_step_bound(c.input, k.solver_flags.settings);
+    return std::pair<app::ChosenCase, const SolverInfo*>(c, info);
   });
   std::atomic<bool> stop{false};
   Settings settings = k.solver_flags.settings;
@@ -248,11 +315,11 @@ py::dict run(const py::kwargs& kwargs) {
 
 py::list spectrum(const py::object& case_set, const py::kwargs& kwargs) {
   const std::string file = text("spectrum", "case_set", case_set);
-  Keywords k = read_keywords("spectrum", kwargs);
+  Keywords k = checked([&] { return read_keywords("spectrum", kwargs); });
   const auto [set, solver] = checked([&] {
     CaseSet s = load_case_set(file);
     app::validate_case_set(s, file);
-    const SolverInfo* info = &app::checked_solver(k.solver_flags);
+    const SolverInfo* info = &app::checked_solver(k.solver_flags, k.given_flag());
     if (k.threads && *k.threads <= 0) throw app::BadInput("--threads: must be >= 1");
     return std::pair<CaseSet, const SolverInfo*>(std::move(s), info);
   });

@@ -1,13 +1,13 @@
 #include "rows/minimal_rows.hpp"
 
 #include <algorithm>
-#include <fstream>
 #include <iterator>
 #include <optional>
 #include <sstream>
 #include <utility>
 
 #include "cases/fields.hpp"
+#include "cases/input_file.hpp"
 #include "solvers/named_values.hpp"
 
 namespace pb {
@@ -100,8 +100,7 @@ RowFile read_minimal_csv(std::istream& in, std::string_view source) {
 }
 
 RowFile read_minimal_csv_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw RowReadError(path + ": cannot read: no such file or not readable");
+  std::istringstream in(read_input_file<RowReadError>(path));
   return read_minimal_csv(in, path);
 }
 

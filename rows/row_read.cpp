@@ -3,12 +3,12 @@
 #include <charconv>
 #include <cmath>
 #include <cstddef>
-#include <fstream>
 #include <limits>
 #include <optional>
 #include <sstream>
 
 #include "cases/fields.hpp"
+#include "cases/input_file.hpp"
 
 namespace pb {
 
@@ -234,8 +234,7 @@ RowFile read_csv(std::istream& in, std::string_view source) {
 }
 
 RowFile read_csv_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw RowReadError(path + ": cannot read: no such file or not readable");
+  std::istringstream in(read_input_file<RowReadError>(path));
   return read_csv(in, path);
 }
 

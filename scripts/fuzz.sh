@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # A longer fuzz campaign than the test suite's (tests/fuzz/README.md): each target (the
-# case-set reader, the settings reader, the command line) runs for --seconds, from --seed,
-# and every failing input of a new kind is written to --failures for the corpus.
+# case-set reader, the settings reader, the command line; the record reader, the external
+# answer reader, the adapter's case documents and the Python keywords) runs for --seconds,
+# from --seed, and every failing input of a new kind is written to --failures for the corpus.
 #   scripts/fuzz.sh [--seconds N] [--seed S] [--build-dir DIR] [--failures DIR]
 # Exit 0 when nothing was found, 1 otherwise. A finding is reproduced alone with the line
 # it prints (POUNDBENCH_FUZZ_SEED=S POUNDBENCH_FUZZ_INDEX=I ...).
@@ -19,9 +20,12 @@ while [ $# -gt 0 ]; do
   esac
 done
 
-cmake --build "$build" --target poundbench poundbench_fuzz_tests -j2 > /dev/null
+targets="poundbench poundbench_fuzz_tests"
+if [ "$(cmake --build "$build" --target help | grep -c poundbench_python)" -gt 0 ]; then targets="$targets poundbench_python"; fi
+cmake --build "$build" --target $targets -j2 > /dev/null
 echo "fuzz: seed $seed, $seconds s per target, failing inputs to $failures/"
 # The campaign tests only: the corpus replay is the suite's (ctest -L fuzz).
 POUNDBENCH_FUZZ_SEED=$seed POUNDBENCH_FUZZ_SECONDS=$seconds POUNDBENCH_FUZZ_MAX_FAILURES=1000 \
   POUNDBENCH_FUZZ_FAILURES=$failures \
-  "$build/tests/fuzz/poundbench_fuzz_tests" --gtest_filter='CaseSetReaderFuzz.*:SettingsReaderFuzz.*:CliFuzz.*'
+  "$build/tests/fuzz/poundbench_fuzz_tests" \
+  --gtest_filter='CaseSetReaderFuzz.*:SettingsReaderFuzz.*:CliFuzz.*:RecordReaderFuzz.*:AnswerReaderFuzz.*:AdapterDocumentFuzz.*:PythonKeywordFuzz.*'

@@ -1,5 +1,6 @@
 #include "solvers/fixed_step.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -61,7 +62,7 @@ class ContactTally {
 
 }  // namespace
 
-long step_count(double t_end, double h) { return static_cast<long>(std::ceil(t_end / h - 1e-9)); }
+long step_count(double t_end, double h) { return std::max(1L, static_cast<long>(std::ceil(t_end / h - 1e-9))); }
 
 Result plan_steps(const System& sys, const Settings& set, int default_steps, long default_cap, StepPlan& plan) {
   plan = {};
@@ -74,6 +75,7 @@ Result plan_steps(const System& sys, const Settings& set, int default_steps, lon
     return stopped(Status::failed,
                    "step: h = " + std::to_string(h) + " is not a usable step for t_end = " + std::to_string(sys.t_end),
                    h);
+  if (std::string bad = step_problem(sys, h); !bad.empty()) return stopped(Status::failed, bad, h);
   const long n = step_count(sys.t_end, h);
   const long cap = set.step_cap > 0 ? set.step_cap : default_cap;
   if (n > cap)

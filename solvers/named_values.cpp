@@ -26,13 +26,19 @@ std::string json_number(T x) {
   return std::isnan(x) ? "\"nan\"" : x > 0 ? "\"inf\"" : "\"-inf\"";
 }
 
+// A JSON string; a byte that is not UTF-8 (a name from a file, an argument) becomes U+FFFD,
+// so that the settings of a run can always be written.
+std::string json_string(std::string_view text) {
+  return nlohmann::json(std::string(text)).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 }  // namespace
 
 std::string format_number(double x) { return std::isnan(x) ? std::string() : shortest(x); }
 
 NamedValues& NamedValues::add_raw(std::string_view name, std::string_view json_value) {
   if (json_.size() > 1) json_ += ',';
-  json_ += nlohmann::json(std::string(name)).dump();
+  json_ += json_string(name);
   json_ += ':';
   json_ += json_value;
   return *this;
@@ -49,7 +55,7 @@ NamedValues& NamedValues::add(std::string_view name, long long value) { return a
 NamedValues& NamedValues::add(std::string_view name, bool value) { return add_raw(name, value ? "true" : "false"); }
 
 NamedValues& NamedValues::add(std::string_view name, std::string_view text) {
-  return add_raw(name, nlohmann::json(std::string(text)).dump());
+  return add_raw(name, json_string(text));
 }
 
 }  // namespace pb

@@ -1,10 +1,12 @@
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "solvers/event_driven/event_driven.hpp"
 #include "solvers/external/external.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
+#include "solvers/named_values.hpp"
 #include "solvers/settings_fields.hpp"
 #include "solvers/solver.hpp"
 #ifdef POUNDBENCH_HAVE_ODE
@@ -53,6 +55,16 @@ std::string check_step(const Settings& settings, int default_steps) {
   return {};
 }
 
+std::string step_problem(const System& system, double h) {
+  const double t_p = 2.0 * std::numbers::pi / system.pulse.w;
+  // 1e-12: a step of exactly T_p (w_max h = 2 pi on a case whose pulse is its fastest) may
+  // round a few ulps above it.
+  if (h <= t_p * (1.0 + 1e-12)) return {};
+  return std::string(kStepBoundMessage) + format_number(h) + " is longer than the pulse period T_p = " + format_number(t_p) +
+         " (w_p h = " + format_number(h * system.pulse.w) + " > 2 pi): a run takes at least one step per pulse; "
+         "give a smaller --wh, or --steps";
+}
+
 std::string check_theta_method(const Settings& settings) {
   if (!(settings.theta >= 0.5 && settings.theta <= 1.0)) return "theta: must be in [0.5, 1]";
   return check_gamma(settings);
@@ -72,14 +84,11 @@ std::string check_limits(const Settings& settings) {
 
 namespace {
 
-// The limits of a run mean the same to every solver, so they are checked here, where
-// every solver is reached, and not left to each solver's own check (the reference's
-// never looked at them: a negative --step-cap or a NaN --time-limit went through).
+// What every solver's check does besides its own, defined below the table: the limits of a
+// run (they mean the same to every solver: the reference's own check never looked at them,
+// and a negative --step-cap or a NaN --time-limit went through) and unused_setting's rule.
 template <std::string (*OwnCheck)(const Settings&)>
-std::string check_all(const Settings& settings) {
-  if (std::string bad = check_limits(settings); !bad.empty()) return bad;
-  return OwnCheck(settings);
-}
+std::string check_all(const Settings& settings);
 
 const std::array kSolvers = {
     // Every solver is a deterministic sequence of floating-point operations: the stored
@@ -127,7 +136,48 @@ const std::array kSolvers = {
                &external::solve, &external::describe, &check_all<&external::check>, &external::variant_list, 1e-9},
 };
 
+// The row whose check this is finds its describe() in the table, so that a row added as
+// `&check_all<&X::check>` has every rule without naming its describe() twice.
+template <std::string (*OwnCheck)(const Settings&)>
+std::string check_all(const Settings& settings) {
+  if (std::string bad = check_limits(settings); !bad.empty()) return bad;
+  if (std::string bad = OwnCheck(settings); !bad.empty()) return bad;
+  for (const SolverInfo& solver : kSolvers)
+    if (solver.check == &check_all<OwnCheck>) return unused_setting(solver, settings);
+  return {};
+}
+
+// `settings` with one field set to its default, or (`moved`) to another value.
+Settings with_field(Settings settings, const SettingField& field, bool moved) {
+  const Settings d;
+  if (field.number) settings.*field.number = d.*field.number + (moved ? 1.0 : 0.0);
+  if (field.integer) settings.*field.integer = d.*field.integer + (moved ? 1 : 0);
+  if (field.count) settings.*field.count = d.*field.count + (moved ? 1 : 0);
+  if (field.text) settings.*field.text = d.*field.text + (moved ? "?" : "");
+  return settings;
+}
+
+bool is_default(const Settings& settings, const SettingField& field) {
+  const Settings d;
+  if (field.text) return settings.*field.text == d.*field.text;
+  return field.get(settings) == field.get(d);  // NaN is never the default
+}
+
 }  // namespace
+
+std::string unused_setting(const SolverInfo& solver, const Settings& settings, const GivenSetting& given) {
+  for (const SettingField& field : kSettingFields) {
+    if (field.name == "step_cap" || field.name == "time_limit") continue;  // every solver's
+    if (given ? !given(field.name) && is_default(settings, field) : is_default(settings, field)) continue;
+    // Used when its value changes what describe() says the run is, the other fields as given.
+    if (solver.describe(with_field(settings, field, false)) != solver.describe(with_field(settings, field, true)))
+      continue;
+    const std::string variant = settings.variant.empty() ? "its default variant" : "variant " + settings.variant;
+    return std::string(field.name) + ": not used by " + std::string(solver.name) + " (" + clip(variant) +
+           ", with these settings); leave it out (`poundbench solvers` lists what each variant uses)";
+  }
+  return {};
+}
 
 std::span<const SolverInfo> solvers() { return kSolvers; }
 
@@ -146,14 +196,8 @@ std::vector<std::string_view> settings_used(const SolverInfo& solver, std::strin
   given.variant = variant;
   const std::string described = solver.describe(given);
   std::vector<std::string_view> used;
-  for (const SettingField& field : kSettingFields) {
-    Settings other = given;  // any other value: describe() does not check it
-    if (field.number) other.*field.number += 1.0;
-    if (field.integer) other.*field.integer += 1;
-    if (field.count) other.*field.count += 1;
-    if (field.text) other.*field.text += "?";
-    if (solver.describe(other) != described) used.push_back(field.name);
-  }
+  for (const SettingField& field : kSettingFields)  // any other value: describe() does not check it
+    if (solver.describe(with_field(given, field, true)) != described) used.push_back(field.name);
   return used;
 }
 

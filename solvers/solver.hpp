@@ -8,6 +8,7 @@
 // Solvers are listed by name in the registry (find_solver), which is all a sweep sees.
 
 #include <atomic>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <span>
@@ -110,6 +111,23 @@ inline double time_step(const System& s, const Settings& settings, int default_s
   return s.step(settings.steps > 0 ? settings.steps : default_steps);
 }
 
+// The step bound of every fixed step (issue 33): a step may be at most the pulse period
+// T_p = 2 pi / w_p (w_p h <= 2 pi), so that a run takes at least one step per pulse. A
+// longer step steps over the load it is meant to follow (an engine that samples a_g at its
+// step ends may never see it), and far beyond it a run has no step at all: --wh 1e11 said
+// ok with zero steps and Pi1 = 0, and Siconos died of SIGFPE from about 1e293. N = steps
+// always meets it (h = T_min / N, T_min <= T_p); w_max h = wh meets it for wh <= 2 pi, and
+// beyond where the bodies are faster than the pulse. "" when h is within it, else the
+// reason, naming h and T_p.
+std::string step_problem(const System& system, double h);
+// A result that step_problem refused (status failed, its message): a run that never started,
+// which a study leaves out of its cell rather than count as a scheme's failure.
+inline constexpr std::string_view kStepBoundMessage = "step: h = ";
+inline bool beyond_step_bound(const Result& r) {
+  return r.status == Status::failed && r.message.starts_with(kStepBoundMessage) &&
+         r.message.find("longer than the pulse period") != std::string::npos;
+}
+
 // Checks Settings::steps and Settings::wh for a time-stepper; "" when they are fine.
 std::string check_step(const Settings& settings, int default_steps);
 // Checks Settings::theta and gamma of a theta-method (moreau-jean, Siconos' MoreauJeanOSI).
@@ -169,6 +187,17 @@ const SolverInfo& reference_solver();
 // value changes what its describe() says (the settings column of its rows), in the table's
 // order. The limits (step_cap, time_limit) are every solver's and in no describe().
 std::vector<std::string_view> settings_used(const SolverInfo& solver, std::string_view variant);
+// One rule for every solver (issue 12): a setting given but not used is refused, so that no
+// flag or key is accepted and silently ignored (`mujoco --stiffness 1e4`, `compliant --theta
+// nan`). A field of solvers/settings_fields.hpp is used by these settings when its value
+// changes what the solver's describe() says (the other fields as given): describe() names
+// every setting that changes a run, as the rows' settings column. Given means `given(name)`
+// says so, or, without `given`, a value other than Settings{}'s (NaN included). The limits
+// (step_cap, time_limit) are every solver's. Every check of the registry applies it with
+// values alone (a settings list, the library); the command line and the Python module
+// apply it to the flags given too. Returns "field: not used by ..." or "".
+using GivenSetting = std::function<bool(std::string_view field)>;
+std::string unused_setting(const SolverInfo& solver, const Settings& settings, const GivenSetting& given = {});
 // Pi1 of body 0 with every contact removed, by the reference; only the time limit and stop
 // flag of `limits` are used.
 double no_contact_pi1(const System& system, const Settings& limits);

@@ -230,6 +230,9 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
           if (++at[a] < axis_size(axes[a])) break;
           at[a] = 0;
         }
+        // The check refuses a key the variant does not use, by its value (pb::unused_setting):
+        // a [[run]]'s key applies to each variant of its list, and at its default it changes
+        // nothing for those that do not use it (theta 1/2 beside d1-minus-linear).
         if (const std::string bad = info->check(spec.settings); !bad.empty())
           r.fail(&rn, field, clip(bad, kMaxEchoedReason));  // it may echo the file's own values
         list.runs.push_back(std::move(spec));

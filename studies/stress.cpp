@@ -88,11 +88,14 @@ StressRow summarize_stress(std::span<const Row* const> rows, std::span<const Tru
     s.variant = rows.front()->variant;
     s.settings = rows.front()->settings;
   }
-  s.runs = rows.size();
   std::vector<double> errors;
   bool any_finished = false, stepped = false;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& row = *rows[i];
+    // A point whose step is beyond the step bound (pb::step_problem: longer than the pulse)
+    // was never run: it is left out of the cell, not counted as a run that failed.
+    if (beyond_step_bound(row.result)) continue;
+    ++s.runs;
     if (!finished(row)) continue;
     ++s.ok;
     any_finished = true;
@@ -116,7 +119,7 @@ StressRow summarize_stress(std::span<const Row* const> rows, std::span<const Tru
     s.accuracy = s.pi1_err_p95 <= kAccuracyTolerance && s.missed_impact_points == 0 ? Verdict::pass : Verdict::fail;
   }
   s.cpu = cpu_cost(rows);
-  if (!rows.empty()) s.finite = s.ok == s.runs ? Verdict::pass : Verdict::fail;
+  if (s.runs > 0) s.finite = s.ok == s.runs ? Verdict::pass : Verdict::fail;
   if (any_finished) {
     s.energy = within(s.energy_excess_max, kEnergyTolerance);
     s.gap = stepped ? within(s.penetration_steps_max, kPenetrationSteps)

@@ -134,14 +134,15 @@ struct BadInput {
   std::string names;  // the flag or file the error line must name
 };
 
-// Three settings of moreau-jean: N = 64, and w_max h = 2 and 100 under a time limit.
+// Three settings of moreau-jean: N = 64, and w_max h = 2 and 6 under a time limit (6: a step
+// just within the step bound, at most the pulse period, on the pulse-dominated tiny cases).
 constexpr const char* kTinyList = R"(name = "tiny"
 [[run]]
 solver = "moreau-jean"
 steps = 64
 [[run]]
 solver = "moreau-jean"
-wh = [2, 100]
+wh = [2, 6]
 time_limit = 5
 )";
 
@@ -551,14 +552,14 @@ TEST_F(CliStudy, StressWritesASummaryPerFamilyAndSettingAndEveryRunWithItsPi1Err
 }
 
 // --check: the outputs are written whatever the verdict; the exit code says whether a row
-// failed, and stderr names each one and then counts them. Moreau-Jean at w_max h = 100
+// failed, and stderr names each one and then counts them. Moreau-Jean at w_max h = 6
 // passes every stability check and fails accuracy; at N = 64 it passes them all.
 TEST_F(CliStudy, CheckExitsOneWhenARowFailsAfterWritingTheOutputs) {
   Outcome o = run("stress tiny.toml --settings list.toml --out sum.csv --check");
   EXPECT_EQ(o.exit_code, 1) << o.err;
   EXPECT_TRUE(fs::exists(file("sum.csv")));
-  const std::string wh100 = R"(poundbench: stress --check: pair moreau-jean {"wh":100,"theta":0.5,"gamma":0.5}: )";
-  EXPECT_NE(o.err.find(wh100 + "failed accuracy\n"), std::string::npos) << o.err;
+  const std::string wh6 = R"(poundbench: stress --check: pair moreau-jean {"wh":6,"theta":0.5,"gamma":0.5}: )";
+  EXPECT_NE(o.err.find(wh6 + "failed accuracy\n"), std::string::npos) << o.err;
   EXPECT_EQ(o.err.find("event-driven"), std::string::npos) << o.err;  // the truth passes
   const std::string last = o.err.substr(o.err.rfind('\n', o.err.size() - 2) + 1);
   EXPECT_EQ(last.rfind("poundbench: stress --check: ", 0), 0u) << o.err;
@@ -579,7 +580,7 @@ TEST_F(CliStudy, CheckExitsOneWhenARowFailsAfterWritingTheOutputs) {
   EXPECT_EQ(o.exit_code, 0) << o.err;
   o = run("workprecision tiny.toml --settings list.toml --out wp.csv --check --max-error 0.05");
   EXPECT_EQ(o.exit_code, 1) << o.err;
-  EXPECT_NE(o.err.find(R"(poundbench: workprecision --check: pair moreau-jean {"wh":100,"theta":0.5,"gamma":0.5}: )"
+  EXPECT_NE(o.err.find(R"(poundbench: workprecision --check: pair moreau-jean {"wh":6,"theta":0.5,"gamma":0.5}: )"
                        "err_median "),
             std::string::npos)
       << o.err;

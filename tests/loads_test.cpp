@@ -31,14 +31,7 @@ using test::sci;
 
 const std::string kRecords = std::string(POUNDBENCH_SOURCE_DIR) + "/cases/records/";
 
-std::string record_error(std::string_view text, std::string_view source) {
-  try {
-    parse_record(text, source);
-  } catch (const RecordError& e) {
-    return e.what();
-  }
-  return "(accepted)";
-}
+using test::record_error;
 
 // ---------------------------------------------------------------- reading
 

@@ -95,6 +95,51 @@ TEST(Siconos, MoreauJeanOsiMatchesTheInHouseStepperWithEndSampledLoads) {
   EXPECT_GT(worst_default, 1e-3);
 }
 
+// At a touching start (Pi3 = 0) the two implementations of the one scheme part (issue 33,
+// item 5): which of them departs is round-off, not the scheme. Two bodies that the load
+// presses together stay in persistent contact, where the gap is zero in exact arithmetic and
+// the activation test g + gamma h g' <= 0 meets it at zero. Siconos computes the gap as
+// H q + b of bodies whose displacements its LCP keeps bit for bit equal: 0, so the contact
+// stays in the index set. moreau-jean forms delta - u_L + u_R from displacements each updated
+// on its own: 8.7e-19 on the pair below (2e-16 of u), so the contact leaves the step, the
+// bodies overlap by a step's travel and it comes back. With a gap of 1e-9 a_p / w_p^2 instead
+// of 0 no gap sits at round-off and they agree to round-off again. The difference at Pi3 = 0
+// is bounded by what a step of that chatter moves: measured here at most 7.4e-4 (the issue's
+// campaign saw 1.6e-2 over 70 touching cases at N = 64), bounded at 2e-2.
+TEST(Siconos, AtATouchingStartMoreauJeanOsiAndEndSamplesPartOnlyWhereRoundOffDecidesAContact) {
+  double worst_touching = 0.0, worst_apart = 0.0;
+  int differ = 0, cases = 0;
+  for (Scene scene : {Scene::pair, Scene::row3})
+    for (PulseShape p : {PulseShape::sine, PulseShape::cosine})
+      for (Directivity d : {Directivity::normal, Directivity::reverse})
+        for (double pi2 : {0.5, 1.0, 2.0})
+          for (double pi5 : {0.5, 2.0})
+            for (double pi3 : {0.0, 1e-9}) {
+              Case c = make_case(scene, p, pi2, pi5, 0.5);
+              c.directivity = d;
+              c.pi3 = pi3;
+              if (scene == Scene::row3) c.pi7 = pi5, c.pi8 = 1.0;
+              const System s = make_system(c);
+              const Result mine = moreau_jean::solve(s, variant(moreau_jean::kEndSamples));
+              const Result theirs = siconos::solve(s, variant("moreau-jean-lemke"));
+              ASSERT_EQ(mine.status, Status::ok) << mine.message;
+              ASSERT_EQ(theirs.status, Status::ok) << theirs.message;
+              const double e = relative(theirs.pi1, mine.pi1);
+              if (pi3 == 0.0) {
+                worst_touching = std::max(worst_touching, e);
+                differ += e > 1e-10 ? 1 : 0;
+                ++cases;
+              } else {
+                worst_apart = std::max(worst_apart, e);
+              }
+            }
+  RecordProperty("worst_relative_pi1_touching", sci(worst_touching));
+  RecordProperty("touching_cases_that_differ", std::to_string(differ) + " of " + std::to_string(cases));
+  EXPECT_LT(worst_apart, 1e-10);     // the scheme, where no gap sits at round-off
+  EXPECT_LT(worst_touching, 2e-2);   // a step's chatter where one does
+  EXPECT_GT(differ, 0) << "the round-off this test documents no longer shows: revisit its comment";
+}
+
 // Siconos' dense LCP driver returns z = 0 without a solver when q >= 0, and z = -q / M without
 // a solver when the LCP has one row; only the other calls reach Lemke or enumeration, and only
 // those write the solver's iteration counter (counted independently by the solver).

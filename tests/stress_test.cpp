@@ -62,6 +62,13 @@ TEST(Stress, ReferenceAndMoreauJeanPassTheChecksTheirTheoryPromises) {
   ASSERT_TRUE(st.complete);
   ASSERT_EQ(st.table.size(), 8u * 5u);  // 8 families x (the reference + 4 steps)
   for (const StressRow& row : st.table) {
+    // Where every point's step is beyond the step bound (longer than the pulse: the cradle at
+    // w_max h = 100), the cell has no run and no verdict.
+    if (row.runs == 0) {
+      EXPECT_EQ(row.finite, Verdict::none) << what(row);
+      EXPECT_TRUE(row.settings.starts_with(R"({"wh":100,)")) << what(row);
+      continue;
+    }
     EXPECT_EQ(row.finite, Verdict::pass) << what(row);
     EXPECT_TRUE(passes(row.gap)) << what(row) << ": " << row.penetration_max << " / " << row.penetration_steps_max;
     EXPECT_TRUE(passes(row.restitution)) << what(row) << ": " << row.restitution_error_max;
@@ -71,11 +78,12 @@ TEST(Stress, ReferenceAndMoreauJeanPassTheChecksTheirTheoryPromises) {
       EXPECT_EQ(row.energy, Verdict::pass) << what(row) << ": " << row.energy_excess_max;
     }
     // Stable is not right: a step a hundred radians long passes the four checks above and
-    // misses the response in every family (95th percentile of the Pi1 error 1 but in
-    // contrast-row3, 2.3; impacts missed at every point but the cradle's).
+    // misses the response in every family, on the points where it is within the step bound
+    // (the bodies faster than the pulse): 95th percentile of the Pi1 error 0.28
+    // (touching-symmetric) to 2.3 (contrast-row3).
     if (row.settings.starts_with(R"({"wh":100,)")) {
       EXPECT_EQ(row.accuracy, Verdict::fail) << what(row) << ": " << row.pi1_err_p95;
-      EXPECT_GT(row.pi1_err_p95, 0.9) << what(row);
+      EXPECT_GT(row.pi1_err_p95, 0.25) << what(row);
     }
     // At w_max h = 0.5 the 95th percentile is 3.9 % (contrast-pair) to 16 % (cradle): half
     // the families pass (studies/stress.hpp says why the cradle never does).
@@ -94,6 +102,7 @@ TEST(Stress, ReferenceAndMoreauJeanPassTheChecksTheirTheoryPromises) {
   }
   double plastic_worst = 0.0;
   for (const Row& r : st.runs.points) {
+    if (beyond_step_bound(r.result)) continue;  // never run: no energy measured
     if (r.input.eps > 0.0) {
       EXPECT_LE(r.result.energy_excess, kEnergyTolerance) << r.input.family << " " << r.settings;
     } else {

@@ -9,12 +9,24 @@
 #include <iomanip>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "cases/record.hpp"
 #include "cases/system.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb::test {
+
+// What parse_record says of a record's text: its error's message, or "(accepted)".
+inline std::string record_error(std::string_view text, std::string_view source) {
+  try {
+    parse_record(text, source);
+  } catch (const RecordError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
 
 // A Fig. 4 style case: Pi3 = 0.5, Pi6 = 1; row3 is the symmetric configuration of the paper.
 inline Case make_case(Scene scene, PulseShape p, double pi2, double pi5, double eps) {

@@ -1,5 +1,6 @@
 #include "solvers/external/external.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -86,10 +87,21 @@ Result solve(const System& system, const Settings& settings) {
     return finish(Status::time_limit, "stopped (the sweep was interrupted) before the program started");
   const CaseDocument document = case_document(system, settings);
   if (!document.error.empty()) return finish(Status::failed, document.error);
-  if (settings.steps > 0 || settings.wh > 0.0) r.step = time_step(system, settings, 1);
+  if (settings.steps > 0 || settings.wh > 0.0) {
+    r.step = time_step(system, settings, 1);
+    if (std::string bad = step_problem(system, r.step); !bad.empty()) return finish(Status::failed, bad);
+  }
 
   ProgramLimits limits;
   limits.kill_after = settings.time_limit > 0.0 ? settings.time_limit + kGraceSeconds : 0.0;
+  // The answer is read within the same limit as the program ran (a run's limit is the whole
+  // run's: a 40 MB answer took 13.7 s to parse after it).
+  const auto start = std::chrono::steady_clock::now();
+  // (1e9 s: a limit beyond it is none, and its time_point would overflow.)
+  const auto deadline = limits.kill_after > 0.0 && limits.kill_after < 1e9
+                            ? start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                              std::chrono::duration<double>(limits.kill_after))
+                                                : std::chrono::steady_clock::time_point::max();
   limits.stop = settings.stop;
   limits.max_output = kMaxAnswerBytes;
   const ProgramRun run = run_program(command.words, document.text, limits);
@@ -97,8 +109,9 @@ Result solve(const System& system, const Settings& settings) {
   std::string why;
   if (const Status status = outcome(run, settings, why); !why.empty()) {
     finish(status, why);
-  } else if (std::string bad = read_answer(run.out, system, settings, r); !bad.empty()) {
-    finish(Status::failed, bad + stderr_note(run));
+  } else if (std::string bad = read_answer(run.out, system, settings, r, deadline); !bad.empty()) {
+    // Past the deadline the answer was cut off by the limit, whatever else it lacked.
+    finish(std::chrono::steady_clock::now() > deadline ? Status::time_limit : Status::failed, bad + stderr_note(run));
   }
   r.child_cpu_seconds = cpu;
   return r;

@@ -32,8 +32,9 @@ inline constexpr std::string_view kPerPoint = "per-point";
 // A program asked to stop at Settings::time_limit gets this much longer to write its
 // answer before it is ended (a Python program's start alone takes 0.1 to 0.3 s of it).
 inline constexpr double kGraceSeconds = 0.5;
-// Its stdout, at most: the history of u0 at run's largest --samples (1e6) is ~40 MB.
-inline constexpr std::size_t kMaxAnswerBytes = std::size_t{256} << 20;
+// Its stdout, at most: the history of u0 at run's largest --samples (1e6) is ~40 MB. Read
+// and parsed within the run's time limit (protocol.hpp, read_answer).
+inline constexpr std::size_t kMaxAnswerBytes = std::size_t{64} << 20;
 // The lines of stderr a failure's message quotes.
 inline constexpr int kStderrLines = 5;
 

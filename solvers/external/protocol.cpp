@@ -1,17 +1,22 @@
 #include "solvers/external/protocol.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <string>
 #include <stdexcept>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "cases/load.hpp"
 #include "cases/record.hpp"
+#include "solvers/named_values.hpp"
 
 namespace pb::external {
 
@@ -19,6 +24,12 @@ namespace {
 
 using Json = nlohmann::json;
 using Ordered = nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+
+// How deep a document may nest (parse_object), and how long an answer's message may be: a
+// message is shown in a row, and a program's message of 100 MB was 528 MB resident.
+constexpr int kMaxDepth = 16;
+constexpr std::size_t kMaxMessageBytes = 10'000;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -103,12 +114,38 @@ void check_version(const Json& doc) {
     bad("version", "must be " + std::to_string(kVersion) + " (it is " + clip(version.dump()) + ")");
 }
 
-Json parse_object(std::string_view text, const char* what) {
+// A document as the protocol reads it: one JSON object, no key twice in an object
+// (nlohmann keeps the last one, and "status":"failed","status":"ok" read as ok), nested at
+// most kMaxDepth deep (a document's own depth is 3 or 4: a 40 MB answer of nested arrays
+// took 13.7 s and 1.5 GB to parse), and parsed by `deadline` (a long answer is read within
+// the run's time limit, not after it). The callback sees every token, so the parse stops at
+// the first key seen twice, the first level too deep, or the first look at the clock past
+// the deadline.
+Json parse_object(std::string_view text, const char* what, Clock::time_point deadline = Clock::time_point::max()) {
   if (text.find_first_not_of(" \t\r\n") == std::string_view::npos)
     bad(what, "empty (one JSON document is expected)");
+  std::vector<std::vector<std::string>> keys;  // the keys of each open object
+  std::size_t events = 0;
+  const Json::parser_callback_t check = [&](int depth, Json::parse_event_t event, Json& parsed) {
+    if (++events % 4096 == 0 && Clock::now() > deadline)
+      bad(what, "still being read at the time limit (" + std::to_string(text.size()) + " bytes)");
+    if ((event == Json::parse_event_t::object_start || event == Json::parse_event_t::array_start) &&
+        depth >= kMaxDepth)
+      bad(what, "nested more than " + std::to_string(kMaxDepth) + " levels deep");
+    if (event == Json::parse_event_t::object_start) keys.emplace_back();
+    if (event == Json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
+    if (event == Json::parse_event_t::key && !keys.empty()) {
+      const std::string& key = parsed.get_ref<const std::string&>();
+      std::vector<std::string>& seen = keys.back();
+      if (std::find(seen.begin(), seen.end(), key) != seen.end())
+        bad(what, "key \"" + clip(key) + "\" given twice in one object");
+      seen.push_back(key);
+    }
+    return true;
+  };
   Json doc;
   try {
-    doc = Json::parse(text);
+    doc = Json::parse(text, check);
   } catch (const Json::exception& e) {
     bad(what, "not one JSON document (" + clip(e.what(), kMaxEchoedReason) + ")");
   }
@@ -163,6 +200,9 @@ void fill_answer(const Json& doc, const System& s, const Settings& settings, Res
   if (const auto it = doc.find("message"); it != doc.end() && !it->is_null()) {
     if (!it->is_string()) bad("message", "must be a string");
     r.message = it->get<std::string>();
+    if (r.message.size() > kMaxMessageBytes)
+      bad("message", std::to_string(r.message.size()) + " bytes, more than " + std::to_string(kMaxMessageBytes) +
+                         " (a message is shown in a row: put long output on stderr)");
   }
   for (auto [key, count] : {std::pair{"impacts", &r.impacts}, {"contact_phases", &r.contact_phases},
                             {"steps", &r.steps}, {"isolated_impacts", &r.isolated_impacts}})
@@ -171,12 +211,27 @@ void fill_answer(const Json& doc, const System& s, const Settings& settings, Res
                             {"restitution_high", &r.restitution_high}, {"gap_rate_max", &r.gap_rate_max}})
     *value = maybe_number(doc, key).value_or(kNaN);
   r.min_gap = maybe_number(doc, "min_gap").value_or(std::numeric_limits<double>::infinity());
-  if (const auto step = maybe_number(doc, "step")) r.step = *step;
+  if (const auto step = maybe_number(doc, "step")) {
+    if (!(*step > 0.0 && *step <= s.t_end)) bad("step", "must be > 0 and at most t_end (a step of the run)");
+    r.step = *step;
+  }
 
+  // Times of the run: 0 to t_end, and a time-stepper's last step may end past t_end by up to
+  // a step (the fixed_step.hpp shell's rule), so a Pi1 is never taken from outside the run.
+  const double t_last = s.t_end + (std::isfinite(r.step) ? r.step : 0.0) + 1e-9 * s.t_end;
+  const auto in_run = [&](double t) { return t >= 0.0 && t <= t_last; };
+  const std::string run_times = "must be within the run, 0 to t_end = " + format_number(s.t_end) +
+                                (std::isfinite(r.step) ? " (plus one step)" : "");
   U0History history;
   if (const auto it = doc.find("history"); it != doc.end() && !it->is_null()) history = read_history(*it);
+  for (std::size_t i = 0; i < history.t.size(); ++i) {
+    const std::string field = "history.t[" + std::to_string(i) + "]";
+    if (!in_run(history.t[i])) bad(field, run_times + " (it is " + format_number(history.t[i]) + ")");
+    if (i > 0 && history.t[i] < history.t[i - 1]) bad(field, "goes back from the time before it (times must not fall)");
+  }
   r.pi1 = maybe_number(doc, "pi1").value_or(kNaN);
   r.t_max = maybe_number(doc, "t_max").value_or(kNaN);
+  if (!std::isnan(r.t_max) && !in_run(r.t_max)) bad("t_max", run_times + " (it is " + format_number(r.t_max) + ")");
   if (std::isnan(r.pi1) && !history.u0.empty() && r.status == Status::ok) {
     if (std::any_of(history.u0.begin(), history.u0.end(), [](double u) { return !std::isfinite(u); }))
       bad("history.u0", "status ok needs a finite u0 at every time to take pi1 from");
@@ -329,7 +384,103 @@ void read_load(const Json& doc, System& s) {
   if (!(s.pulse.w > 0.0)) bad("load.w", "must be > 0");
 }
 
+// ---------------------------------------------------------------- the case's schema and domain
+
+// The keys case.schema.json allows, per object: anything else is refused, as the schema's
+// additionalProperties false says (a misspelt "eps " would leave the program's default).
+void only_keys(const Json& object, const std::string& field, std::initializer_list<std::string_view> keys) {
+  if (!object.is_object()) return;  // the readers say what it must be
+  for (const auto& [key, value] : object.items())
+    if (std::find(keys.begin(), keys.end(), key) == keys.end())
+      bad((field.empty() ? "" : field + ".") + clip(key), "unknown key (docs/external/case.schema.json)");
+}
+
+void check_case_keys(const Json& doc) {
+  only_keys(doc, "", {"protocol", "version", "bodies", "reference", "contacts", "eps", "xi", "load", "a_p",
+                      "length_scale", "t_end", "t_min", "step", "steps_per_period", "step_cap", "time_limit",
+                      "history_samples", "monitor"});
+  if (const auto b = doc.find("bodies"); b != doc.end() && b->is_array())
+    for (std::size_t i = 0; i < b->size(); ++i)
+      only_keys((*b)[i], "bodies[" + std::to_string(i) + "]", {"m", "k", "c", "w", "u", "v"});
+  if (const auto c = doc.find("contacts"); c != doc.end() && c->is_array())
+    for (std::size_t i = 0; i < c->size(); ++i)
+      only_keys((*c)[i], "contacts[" + std::to_string(i) + "]", {"left", "right", "gap"});
+  if (const auto load = doc.find("load"); load != doc.end() && load->is_object()) {
+    const auto kind = load->find("kind");
+    if (kind != load->end() && *kind == "record") only_keys(*load, "load", {"kind", "source", "w", "t", "a"});
+    else if (kind != load->end() && *kind == "sinusoids")
+      only_keys(*load, "load", {"kind", "shape", "amplitude", "w", "duration", "terms", "cycles", "mp_gamma", "mp_nu"});
+    else only_keys(*load, "load", {"kind", "shape", "amplitude", "w", "duration"});
+  }
+}
+
+// Equal to what poundbench writes, up to a hand-written document's rounding.
+bool close_to(double x, double expected) { return std::abs(x - expected) <= 1e-9 * std::abs(expected); }
+
+// The valid domain of cases (cases/README.md), in the document's physical terms: a document
+// is answered only when it describes a case poundbench itself could send. Outside it the
+// engines fail in ways no answer can report (ODE aborted on a mass of 5e-324, Siconos on
+// a_p = 0, LSODAR on a_p = 1e300; w_p = 1e300 gave "ok" with no Pi1).
+void check_case_domain(const Json& doc, const System& s) {
+  for (const char* key : {"length_scale", "step", "steps_per_period", "step_cap", "time_limit", "history_samples",
+                          "monitor"})
+    member(doc, key, key);  // required, as the schema has them (null where it allows null)
+  if (!(s.eps >= 0.0 && s.eps <= 1.0)) bad("eps", "must be in [0, 1]");
+  if (!(s.xi >= 0.0 && s.xi < 1.0)) bad("xi", "must be in [0, 1)");
+  if (!(s.a_p >= kMinAp && s.a_p <= kMaxAp)) bad("a_p", "must be in [1e-12, 1e12] (the valid domain, cases/README.md)");
+  const double w_p = s.pulse.w;
+  if (!(w_p >= kMinWp && w_p <= kMaxWp)) bad("load.w", "must be in [1e-6, 1e6] (the valid domain, cases/README.md)");
+  const double length = s.a_p / (w_p * w_p);
+  if (!close_to(number(doc.at("length_scale"), "length_scale"), length)) bad("length_scale", "must be a_p / w_p^2");
+  if (!(s.delta >= 0.0)) bad("contacts.gap", "must be >= 0");
+  if (s.delta > kMaxPi3 * length) bad("contacts.gap", "must be at most 1e6 a_p / w_p^2 (Pi3 <= 1e6)");
+  double w_lo = w_p, w_hi = w_p, m_lo = s.bodies.front().m, m_hi = m_lo;
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    const Body& b = s.bodies[i];
+    const std::string field = "bodies[" + std::to_string(i) + "]";
+    if (!(b.w > 0.0)) bad(field + ".w", "must be > 0");
+    if (!close_to(b.k, b.m * b.w * b.w)) bad(field + ".k", "must be m w^2");
+    if (!close_to(b.c, 2.0 * s.xi * b.m * b.w)) bad(field + ".c", "must be 2 xi m w");
+    if (std::abs(s.u_start[i]) > 1e6 * length) bad(field + ".u", "must be within 1e6 a_p / w_p^2 of rest");
+    if (std::abs(s.v_start[i]) > kMaxKick * s.a_p / w_p) bad(field + ".v", "must be within 1e6 a_p / w_p");
+    w_lo = std::min(w_lo, b.w), w_hi = std::max(w_hi, b.w), m_lo = std::min(m_lo, b.m), m_hi = std::max(m_hi, b.m);
+  }
+  if (w_hi / w_lo > kMaxFrequencyContrast)
+    bad("bodies", "the frequencies and w_p span a contrast of " + format_number(w_hi / w_lo) + ", more than 1e4");
+  if (m_hi / m_lo > kMaxMassContrast)
+    bad("bodies", "the masses span a contrast of " + format_number(m_hi / m_lo) + ", more than 1e6");
+  // poundbench's masses are m0 = 1 and its contrasts; a program's own may be in kg.
+  if (!(m_lo >= 1e-12 && m_hi <= 1e12)) bad("bodies", "masses must be in [1e-12, 1e12]");
+  const double t_p = 2.0 * std::numbers::pi / w_p, t_min = std::min(t_p, 2.0 * std::numbers::pi / w_hi);
+  if (!close_to(s.t_min, t_min)) bad("t_min", "must be min(T_p, the shortest natural period)");
+  if (s.t_end / s.t_min > kMaxPeriodsPerRun) bad("t_end", "must be at most 1e6 t_min (the valid domain)");
+  const Pulse& p = s.pulse;
+  if (p.paper()) {
+    if (!close_to(std::abs(p.amplitude), s.a_p)) bad("load.amplitude", "must be a_p or -a_p");
+    if (!close_to(number(member(doc.at("load"), "duration", "load.duration"), "load.duration"), t_p))
+      bad("load.duration", "must be 2 pi / w");
+  } else if (!p.record) {
+    if (p.length > s.t_end) bad("load.duration", "must be within the run (at most t_end)");
+    for (int j = 0; j < p.n_waves; ++j) {
+      const Sinusoid& wave = p.waves[static_cast<std::size_t>(j)];
+      const std::string field = "load.terms[" + std::to_string(j) + "]";
+      if (wave.w > kMaxFrequencyContrast * w_p || wave.w * kMaxFrequencyContrast < w_p)
+        bad(field + ".w", "must be within a factor 1e4 of w_p");
+      if (std::abs(wave.s) > 10.0 * s.a_p || std::abs(wave.c) > 10.0 * s.a_p)
+        bad(field, "sin and cos must be at most 10 a_p (the models' are at most a_p)");
+    }
+  }
+  if (p.record) {
+    if (!(p.record->peak >= kMinRecordPeak * s.a_p && p.record->peak <= kMaxRecordPeak * s.a_p))
+      bad("load.a", "the record's peak must be within a factor 1e6 of a_p (the valid domain)");
+    if (p.record->length() > s.t_end) bad("load.t", "must end within the run (at most t_end)");
+  }
+}
+
 }  // namespace
+
+// read_case without its guard against the JSON library's own exceptions.
+static CaseRead read_case_document(std::string_view text);
 
 CaseDocument case_document(const System& s, const Settings& settings) {
   CaseDocument doc;
@@ -383,15 +534,16 @@ CaseDocument case_document(const System& s, const Settings& settings) {
   j["time_limit"] = settings.time_limit;
   j["history_samples"] = settings.history_samples;
   j["monitor"] = settings.monitor;
-  doc.text = j.dump() + '\n';
+  doc.text = j.dump(-1, ' ', false, Ordered::error_handler_t::replace) + '\n';
   return doc;
 }
 
-std::string read_answer(std::string_view text, const System& system, const Settings& settings, Result& result) {
+std::string read_answer(std::string_view text, const System& system, const Settings& settings, Result& result,
+                        std::chrono::steady_clock::time_point deadline) {
   Result r;
   r.step = result.step;  // the step sent, unless the answer says otherwise
   try {
-    fill_answer(parse_object(text, "stdout"), system, settings, r);
+    fill_answer(parse_object(text, "stdout", deadline), system, settings, r);
   } catch (const std::invalid_argument& e) {
     return std::string("answer: ") + e.what();
   } catch (const Json::exception& e) {  // a type the reader did not foresee
@@ -402,7 +554,16 @@ std::string read_answer(std::string_view text, const System& system, const Setti
 }
 
 CaseRead read_case(std::string_view text) {
+  try {
+    return read_case_document(text);
+  } catch (const Json::exception& e) {  // a type the reader did not foresee: still one line
+    bad("stdin", clip(e.what(), kMaxEchoedReason));
+  }
+}
+
+static CaseRead read_case_document(std::string_view text) {
   const Json doc = parse_object(text, "stdin");
+  check_case_keys(doc);
   check_version(doc);
   CaseRead out;
   System& s = out.system;
@@ -428,7 +589,7 @@ CaseRead read_case(std::string_view text) {
   }
   if (const auto cap = doc.find("step_cap"); cap != doc.end()) set.step_cap = whole(*cap, "step_cap");
   if (const auto limit = maybe_number(doc, "time_limit")) {
-    if (!(*limit >= 0.0)) bad("time_limit", "must be >= 0 (0: none)");
+    if (!(*limit >= 0.0 && *limit <= 1e9)) bad("time_limit", "must be in [0, 1e9] seconds (0: none)");
     set.time_limit = *limit;
   }
   if (const auto samples = doc.find("history_samples"); samples != doc.end()) {
@@ -440,6 +601,7 @@ CaseRead read_case(std::string_view text) {
     if (!monitor->is_boolean()) bad("monitor", "must be true or false");
     set.monitor = monitor->get<bool>();
   }
+  check_case_domain(doc, s);
   return out;
 }
 
@@ -471,7 +633,7 @@ std::string answer_document(const Result& r, const System& s) {
     }
     j["history"] = {{"t", std::move(t)}, {"u0", std::move(u0)}};
   }
-  return j.dump() + '\n';
+  return j.dump(-1, ' ', false, Ordered::error_handler_t::replace) + '\n';
 }
 
 }  // namespace pb::external

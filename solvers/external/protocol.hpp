@@ -13,6 +13,7 @@
 // round-trip form), so a program that reads them loses nothing: `poundbench adapter`
 // reproduces the in-process Pi1 bit for bit.
 
+#include <chrono>
 #include <string>
 #include <string_view>
 
@@ -37,8 +38,11 @@ CaseDocument case_document(const System& system, const Settings& settings);
 
 // The answer read into `result`: status, message, Pi1 (from the history of u0 when only that
 // is given), counts and measurements; a history is kept when settings.history_samples > 0.
-// Returns "" or "answer: field: why" (the answer is then not used).
-std::string read_answer(std::string_view text, const System& system, const Settings& settings, Result& result);
+// Returns "" or "answer: field: why" (the answer is then not used): a key twice, nesting
+// deeper than any answer's, a message over 10,000 bytes, a time outside the run (a history's
+// times must also not fall), or still being read at `deadline` (the run's time limit).
+std::string read_answer(std::string_view text, const System& system, const Settings& settings, Result& result,
+                        std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 // A program's side: the system and the settings a case document carries (the step as
 // steps_per_period, or as wh from step, step_cap, time_limit, history_samples, monitor).

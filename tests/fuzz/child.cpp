@@ -1,16 +1,20 @@
 #include "tests/fuzz/child.hpp"
 
+#include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
+
+extern char** environ;
 
 namespace pb::fuzz {
 
@@ -109,21 +113,41 @@ ChildOutcome run_in_child(const std::function<void()>& body, const ChildLimits& 
 }
 
 ChildOutcome run_program(const std::string& program, const std::vector<std::string>& args,
-                         const std::filesystem::path& dir, const ChildLimits& limits) {
+                         const std::filesystem::path& dir, const ChildLimits& limits, const ProgramInput& input) {
   // Built before the fork: the child only calls async-signal-safe functions.
   std::vector<char*> argv;
   std::vector<std::string> words = {program};
   words.insert(words.end(), args.begin(), args.end());
   for (std::string& w : words) argv.push_back(w.data());
   argv.push_back(nullptr);
+  std::vector<std::string> variables = input.environment;
+  for (char** e = environ; *e; ++e) variables.emplace_back(*e);  // the added ones first: they win
+  std::vector<char*> envp;
+  for (std::string& v : variables) envp.push_back(v.data());
+  envp.push_back(nullptr);
   const std::string where = dir.string();
-  return supervise(
+  // The stdin's file: in the temporary directory, one per process and call (campaigns run in
+  // parallel, and `dir` may be the source tree).
+  static std::atomic<int> calls{0};
+  std::string stdin_file = "/dev/null";
+  if (!input.stdin_text.empty()) {
+    stdin_file = (std::filesystem::temp_directory_path() /
+                  ("poundbench-fuzz-stdin-" + std::to_string(::getpid()) + "-" + std::to_string(calls++)))
+                     .string();
+    std::ofstream(stdin_file, std::ios::binary) << input.stdin_text;
+  }
+  const ChildOutcome o = supervise(
       [&] {
         if (::chdir(where.c_str()) != 0) ::_exit(126);
-        ::execv(program.c_str(), argv.data());
+        const int in = ::open(stdin_file.c_str(), O_RDONLY);
+        if (in < 0 || ::dup2(in, 0) < 0) ::_exit(126);
+        ::close(in);
+        ::execve(program.c_str(), argv.data(), envp.data());
         ::_exit(127);
       },
       limits);
+  if (!input.stdin_text.empty()) std::filesystem::remove(stdin_file);
+  return o;
 }
 
 std::string sanitizer_line(const std::string& err) {

@@ -33,9 +33,17 @@ struct ChildOutcome {
 // handlers: the parent's test framework must not run twice).
 ChildOutcome run_in_child(const std::function<void()>& body, const ChildLimits& limits);
 
+// What a program gets besides its arguments: its stdin (a file's contents; empty: /dev/null,
+// so that no program ever waits on the test's terminal) and variables added to the
+// environment ("NAME=value").
+struct ProgramInput {
+  std::string stdin_text;
+  std::vector<std::string> environment;
+};
+
 // Forks and executes `program` with `args` (argv[1..]) in `dir`.
 ChildOutcome run_program(const std::string& program, const std::vector<std::string>& args,
-                         const std::filesystem::path& dir, const ChildLimits& limits);
+                         const std::filesystem::path& dir, const ChildLimits& limits, const ProgramInput& input = {});
 
 // The first line that a sanitizer prints, if `err` holds a sanitizer report.
 std::string sanitizer_line(const std::string& err);

@@ -7,16 +7,19 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <chrono>
 #include <fstream>
+#include <optional>
 #include <set>
 
 #include "tests/fuzz/harness.hpp"
 #include "tests/fuzz/mutator.hpp"
+#include "tests/fuzz/targets.hpp"
 
 namespace pb::fuzz {
 namespace {
@@ -67,6 +70,36 @@ std::string cli_test_name(const ::testing::TestParamInfo<fs::path>& p) { return 
 
 INSTANTIATE_TEST_SUITE_P(Fuzz, ReaderCorpus, ::testing::ValuesIn(reader_corpus()), reader_test_name);
 INSTANTIATE_TEST_SUITE_P(Fuzz, CliCorpus, ::testing::ValuesIn(corpus_files("cli")), cli_test_name);
+
+// Issue 33's targets (targets.hpp): records, answers, case documents, Python keywords.
+class DocumentCorpus : public ::testing::TestWithParam<fs::path> {};
+
+TEST_P(DocumentCorpus, IsReadOrRefusedInOneLineAndNeverCrashes) {
+  const fs::path& file = GetParam();
+  const std::string folder = file.parent_path().filename().string();
+  const std::string text = expand_generators(read_file(file));
+  std::optional<std::string> problem;
+  if (folder == "python") {
+    if (!python_available()) GTEST_SKIP() << "the Python module is not built";
+    // A first line starting with '#' says what the entry found; the rest is the keywords.
+    problem = check_python(text.starts_with('#') ? text.substr(text.find('\n') + 1) : text, budget().cli_limits);
+  } else {
+    const Document kind = folder == "record" ? Document::record
+                          : folder == "answer" ? Document::answer
+                                               : Document::case_document;
+    problem = check_document(kind, text, budget().cli_limits, true);
+  }
+  if (problem) ADD_FAILURE() << file << ": " << *problem;
+}
+
+std::vector<fs::path> document_corpus() {
+  std::vector<fs::path> files;
+  for (const char* folder : {"record", "answer", "document", "python"})
+    for (const fs::path& f : corpus_files(folder)) files.push_back(f);
+  return files;
+}
+
+INSTANTIATE_TEST_SUITE_P(Fuzz, DocumentCorpus, ::testing::ValuesIn(document_corpus()), reader_test_name);
 
 // ---- Seeded mutation campaigns. ----
 
@@ -176,6 +209,43 @@ TEST(CliFuzz, ExitsZeroOrTwoInTimeWithOneLineAndNoStrayFile) {
                return problem;
              }),
          "CliFuzz.*");
+}
+
+void document_campaign(Document kind, const std::string& target, const std::string& filter, std::size_t count) {
+  const std::vector<std::string> seeds = document_seeds(kind);
+  report(campaign(
+             target, count, kind == Document::record ? ".at2" : ".json",
+             [&](Rng& rng) { return mutate_document(kind, rng.pick(seeds), seeds, rng); },
+             [&](const std::string& text) { return check_document(kind, text, budget().reader_limits); }),
+         filter);
+}
+
+TEST(RecordReaderFuzz, ReturnsARecordOrOneLineError) {
+  document_campaign(Document::record, "record", "RecordReaderFuzz.*", budget().reader_inputs);
+}
+
+TEST(AnswerReaderFuzz, AcceptsOnlyAnswersWithAPi1FromTheRun) {
+  document_campaign(Document::answer, "answer", "AnswerReaderFuzz.*", budget().reader_inputs);
+}
+
+// Each accepted document is solved by an engine: half the count of the readers' campaigns.
+TEST(AdapterDocumentFuzz, RefusesInOneLineOrSolvesWithoutACrash) {
+  document_campaign(Document::case_document, "document", "AdapterDocumentFuzz.*", budget().reader_inputs / 2);
+}
+
+// A Python process per input (0.2-0.5 s each): the command line's count, halved.
+TEST(PythonKeywordFuzz, ReturnsOrRaisesValueErrorOrTypeError) {
+  if (!python_available()) GTEST_SKIP() << "the Python module is not built";
+  const std::vector<std::string> seeds = python_seeds();
+  report(campaign(
+             "python", std::max<std::size_t>(budget().cli_runs / 2, 1), ".py",
+             [&](Rng& rng) { return mutate_python(rng.pick(seeds), rng); },
+             [&](const std::string& text) {
+               auto problem = check_python(text, budget().cli_limits);
+               if (problem) *problem += "\n  keywords: " + excerpt(text, 400);
+               return problem;
+             }),
+         "PythonKeywordFuzz.*");
 }
 
 // ---- The harness itself. ----

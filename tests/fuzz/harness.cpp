@@ -1,5 +1,6 @@
 #include "tests/fuzz/harness.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -98,7 +99,8 @@ bool non_negative_number_flag(const std::string& flag) {
   static const std::set<std::string> flags = {
       "--pi2", "--pi3", "--eps", "--pi5", "--pi6", "--pi7", "--pi8", "--xi", "--n-free", "--a-p", "--w-p",
       "--bodies", "--point", "--steps", "--wh", "--tol-scale", "--step-cap", "--time-limit", "--samples",
-      "--threads", "--tolerance"};
+      "--threads", "--tolerance", "--tp", "--stiffness", "--rtol", "--contact-steps", "--projection-tol",
+      "--repetitions", "--max-error"};
   return flags.count(flag) > 0;
 }
 
@@ -229,6 +231,14 @@ std::optional<std::string> check_cli(const std::vector<std::string>& given, cons
   fs::create_directories(dir);
   std::ofstream(dir / "tiny.toml") << kTinyCaseSet;
   std::ofstream(dir / "tiny-settings.toml") << kTinySettings;
+  // FIFOs nobody writes to (issue 33): every input must refuse one rather than wait, the
+  // partial file of `--out p.csv` too.
+  ::mkfifo((dir / "fifo").c_str(), 0644);
+  ::mkfifo((dir / "p.csv.partial").c_str(), 0644);
+  // Records as copies in the run's directory: a mutation may make any file value an output
+  // (--record renamed --out), and a path into the source tree would then be overwritten.
+  fs::copy_file(fs::path(POUNDBENCH_SOURCE_DIR) / "cases/records/real/AZF225.AT2", dir / "rec.at2");
+  std::ofstream(dir / "rec.csv") << "t, a_g\n0, 0\n0.05, 1.5\n0.1, -2\n0.15, 0.5\n0.2, 0\n";
   std::vector<std::string> args;
   for (const std::string& a : given) args.push_back(replace_all(a, "@SOURCE@", POUNDBENCH_SOURCE_DIR));
 
@@ -309,6 +319,12 @@ std::vector<std::vector<std::string>> cli_seeds() {
   add({"baseline", "tiny.toml", "--settings", "tiny-settings.toml", "--out", "base.csv", "--threads", "1"});
   add({"compare", "@SOURCE@/tests/baselines/smoke.csv", "--baseline", "@SOURCE@/tests/baselines/smoke.csv",
        "--tolerance", "1e-3"});
+  // issue 33: a real record, an engine at a large step, outputs beside their inputs
+  add({"run", "--scene", "pair", "--pulse", "record", "--record", "rec.at2", "--tp",
+       "0.5", "--directivity", "normal", "--pi2", "1", "--pi3", "0.5", "--eps", "0.5", "--pi5", "2", "--pi6", "1",
+       "--json"});
+  add({"run", "--solver", "ode", "--wh", "2"}, wall);
+  add({"spectrum", "tiny.toml", "--out", "tiny.csv", "--threads", "1", "--solver", "compliant", "--stiffness", "1e4"});
   add({"solvers"});
   return seeds;
 }

@@ -120,7 +120,10 @@ const std::vector<std::string>& arg_values() {
       "1e200", "1e8", "9223372036854775807", "9223372036854775808", "1099511627776", "2147483648", "0x10", "1,2",
       " 1", "x", std::string(5000, 'x'), "-", "--", "wall", "pair", "row3", "chain", "sine", "cosine",
       "reverse", "moreau-jean", "event-driven", "ode", "bullet", "tiny.toml", "tiny-settings.toml", "missing.toml",
-      "/", ".", "out.csv", "sub/dir/out.csv", "/dev/null"};
+      "/", ".", "out.csv", "sub/dir/out.csv", "/dev/null",
+      // issue 33: inputs that are not regular files, records, outputs onto inputs, huge steps, engines
+      "fifo", "/dev/zero", "tiny.toml.partial", "record", "siconos", "mujoco", "compliant", "external",
+      "kelvin-voigt", "newmark", "1e11", "1e293", "rec.at2", "rec.csv"};
   return values;
 }
 
@@ -229,7 +232,11 @@ const std::vector<std::string>& known_flags() {
       "--bodies", "--kick", "--xi", "--n-free", "--a-p", "--w-p", "--case-file", "--point", "--solver",
       "--variant", "--steps", "--wh", "--theta", "--gamma", "--tol-scale", "--step-cap", "--json", "--history",
       "--samples", "--out", "--points", "--threads", "--settings", "--tolerance", "--same-setting", "--baseline",
-      "--help", "--check", "--update"};
+      "--help", "--check", "--update",
+      // issue 33: records, every solver's settings, the studies' flags
+      "--record", "--tp", "--cycles", "--mp-gamma", "--mp-nu", "--stiffness", "--contact", "--integrator",
+      "--method", "--rtol", "--contact-steps", "--command", "--lcp", "--projection-tol", "--repetitions",
+      "--max-error"};
   return flags;
 }
 

@@ -1,0 +1,66 @@
+#include "cases/input_file.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include "cases/case.hpp"
+
+namespace pb {
+
+namespace {
+
+std::string kind_of(mode_t mode) {
+  if (S_ISDIR(mode)) return "is a directory";
+  if (S_ISFIFO(mode)) return "not a regular file (a FIFO: it would wait for a writer)";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "not a regular file (a device)";
+  if (S_ISSOCK(mode)) return "not a regular file (a socket)";
+  return "not a regular file";
+}
+
+}  // namespace
+
+std::optional<std::string> read_regular_file(const std::filesystem::path& file, std::string& text) {
+  text.clear();
+  if (file.empty()) return "empty file name";
+  // O_NONBLOCK: a FIFO with no writer opens at once (and is then refused) instead of waiting.
+  const int fd = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return std::string(std::strerror(errno));
+  struct stat st {};
+  std::optional<std::string> why;
+  if (::fstat(fd, &st) != 0) why = std::strerror(errno);
+  else if (!S_ISREG(st.st_mode)) why = kind_of(st.st_mode);
+  else if (static_cast<unsigned long long>(st.st_size) > kMaxInputBytes)
+    why = "larger than " + std::to_string(kMaxInputBytes >> 20) + " MB (" + std::to_string(st.st_size) + " bytes)";
+  if (!why) {
+    text.reserve(static_cast<std::size_t>(st.st_size));
+    char buffer[1 << 16];
+    while (true) {
+      const ssize_t n = ::read(fd, buffer, sizeof buffer);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) {
+        why = std::string("read error: ") + std::strerror(errno);
+        break;
+      }
+      if (n == 0) break;
+      text.append(buffer, static_cast<std::size_t>(n));
+      // A file that grows while it is read is bounded all the same.
+      if (text.size() > kMaxInputBytes) {
+        why = "larger than " + std::to_string(kMaxInputBytes >> 20) + " MB";
+        break;
+      }
+    }
+  }
+  ::close(fd);
+  if (why) text.clear();
+  return why;
+}
+
+std::string cannot_read(const std::filesystem::path& file, const std::string& why) {
+  return clip(file.string(), kMaxEchoedReason) + ": cannot read: " + why;
+}
+
+}  // namespace pb
