@@ -23,31 +23,11 @@ using test::make_case;
 using test::sci;
 using Row = test::HistoryRow;
 
-Result run(const System& s, std::string_view variant, int n, bool history = false) {
-  Settings st;
-  st.variant = std::string(variant);
-  st.steps = n;
-  st.history_samples = history ? 1 : 0;
-  return dart::solve(s, st);
+Result run(const System& s, std::string_view variant, int n = 0, bool history = false) {
+  return test::run_variant(&dart::solve, s, variant, n, history);
 }
 
-// A free mass (no spring, no damper, no load) coasting at v0 towards the wall from a gap g0,
-// h = 0.01 (t_min 0.64, N = 64); at a_p = w_p = 1, so that the default variant's normalised
-// units are the case's.
-System free_mass_at_wall(double g0, double eps, double v0) {
-  System s;
-  s.bodies = {Body{2.0, 1.0, 0.0, 0.0}};
-  s.wall = true;
-  s.delta = g0;
-  s.eps = eps;
-  s.a_p = 1.0;
-  s.pulse.amplitude = 0.0;
-  s.t_min = 0.64;
-  s.t_end = 0.1 + g0 / std::abs(v0);
-  s.u_start = {0.0};
-  s.v_start = {v0};
-  return s;
-}
+using test::free_mass_at_wall;
 
 // The six cases of the agreement: wall, pair and symmetric row3 under both pulses, Pi2 = 1,
 // Pi5 = 0.5, eps = 0.5 (impacts in every one).

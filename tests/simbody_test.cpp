@@ -29,29 +29,10 @@ using test::sci;
 using Row = test::HistoryRow;
 
 Result run(const System& s, std::string_view variant, int n = 0, bool history = false) {
-  Settings st;
-  st.variant = std::string(variant);
-  st.steps = n;
-  st.history_samples = history ? 1 : 0;
-  return simbody::solve(s, st);
+  return test::run_variant(&simbody::solve, s, variant, n, history);
 }
 
-// A free mass (w = 1 but no spring, damper or load) coasting at v0 towards the wall from a
-// gap g0; t_min 0.64 (h = 0.01 at N = 64), a_p = w_p = 1: the model's units are the case's.
-System free_mass_at_wall(double g0, double eps, double v0) {
-  System s;
-  s.bodies = {Body{2.0, 1.0, 0.0, 0.0}};
-  s.wall = true;
-  s.delta = g0;
-  s.eps = eps;
-  s.a_p = 1.0;
-  s.pulse.amplitude = 0.0;
-  s.t_min = 0.64;
-  s.t_end = 0.1 + g0 / std::abs(v0);
-  s.u_start = {0.0};
-  s.v_start = {v0};
-  return s;
-}
+using test::free_mass_at_wall;
 
 // With no other force the stepper's impact alone acts: an approach leaves at exactly eps
 // times its speed (Poisson's and Newton's laws agree on one contact), and the momentum
