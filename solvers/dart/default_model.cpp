@@ -14,6 +14,7 @@
 //   contacts  FCL's at overlap, up to a dozen points per face pair, each a ContactConstraint
 //             with DART's default friction 1 (two friction rows the joints make idle).
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>

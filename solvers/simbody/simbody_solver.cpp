@@ -120,7 +120,8 @@ class Engine : public StepEngine {
   void finish(Result& res) override {
     if (!compliant_) return;
     whole_.finish(res);
-    // The peak between reports, which the integrator's own steps resolve.
+    // The peak between reports, which the integrator's own steps resolve (its time: the end
+    // of the internal step that passed it).
     if (res.status == Status::ok) {
       res.pi1 = sys_.pi1(u0_max_);
       res.t_max = t_max_;
