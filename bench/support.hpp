@@ -152,9 +152,13 @@ inline Result time_variant(benchmark::State& state, SolveFn solve, const char* v
   return r;
 }
 
-// The step counts of the per-case benchmarks: N = 64 and 256, timed in microseconds.
-inline benchmark::internal::Benchmark* at_each_n(benchmark::internal::Benchmark* b) {
-  return b->ArgName("N")->Arg(64)->Arg(256)->Unit(benchmark::kMicrosecond);
+// The step counts of the per-case benchmarks: N = 64 and 256 (or those given), timed in
+// microseconds.
+inline benchmark::internal::Benchmark* at_each_n(benchmark::internal::Benchmark* b,
+                                                 std::initializer_list<int> steps = {64, 256}) {
+  b->ArgName("N")->Unit(benchmark::kMicrosecond);
+  for (int n : steps) b->Arg(n);
+  return b;
 }
 
 // time_variant at N = state.range(0), and x_moreau_jean: the CPU time of a run over
@@ -173,13 +177,15 @@ struct Labelled {
   const char* variant;
 };
 
-// Registers, at_each_n, <prefix>/<label>_<scene> for every variant on wall, pair and row3
-// (time_vs_moreau_jean), then <prefix>BaselineMoreauJean/<scene>: the baseline on its own.
-// Returns true, to initialise a namespace-scope flag with.
+// Registers, at_each_n (N = 64 and 256, or the steps given), <prefix>/<label>_<scene> for
+// every variant on wall, pair and row3 (time_vs_moreau_jean), then
+// <prefix>BaselineMoreauJean/<scene>: the baseline on its own. Returns true, to initialise a
+// namespace-scope flag with.
 inline bool register_vs_moreau_jean(const std::string& prefix, SolveFn solve,
-                                    std::initializer_list<Labelled> variants) {
-  const auto add = [](const std::string& title, auto fn) {
-    at_each_n(benchmark::RegisterBenchmark(title.c_str(), fn));
+                                    std::initializer_list<Labelled> variants,
+                                    std::initializer_list<int> steps = {64, 256}) {
+  const auto add = [steps](const std::string& title, auto fn) {
+    at_each_n(benchmark::RegisterBenchmark(title.c_str(), fn), steps);
   };
   constexpr Scene kScenes[] = {Scene::wall, Scene::pair, Scene::row3};
   for (const Labelled& v : variants)

@@ -24,6 +24,9 @@ QUOTED = [
     (r"BM_Bullet/[\w-]+/\w+/N:64", ("vs_moreau_jean",)),
     (r"BM_Siconos/\w+/N:64", ("x_moreau_jean",)),
     (r"BM_Mujoco/\w+/N:64", ("x_moreau_jean",)),
+    (r"BM_Dart/\w+/N:64", ("x_moreau_jean",)),
+    (r"BM_Simbody/\w+/N:64", ("x_moreau_jean",)),
+    (r"BM_SimbodyHuntCrossley/\w+", ("x_compliant",)),
     (r"BM_SiconosScheme/\w+/N:64", ("x_moreau_jean", "x_siconos_moreau_jean")),
     (r"BM_SiconosEventDriven/\w+", ("x_event_driven",)),
     (r"BM_SweepFig4Reference/threads:\d(/real_time)?", ("points_per_s",)),
@@ -32,7 +35,7 @@ QUOTED = [
 ]
 UNITS = {"cpu_time": "s", "real_time": "s", "time_per_step": "s", "median_us": "us", "points_per_s": "1/s",
          "x_moreau_jean": "ratio", "vs_moreau_jean": "ratio", "x_event_driven": "ratio",
-         "x_siconos_moreau_jean": "ratio", "speedup": "ratio"}
+         "x_siconos_moreau_jean": "ratio", "speedup": "ratio", "x_compliant": "ratio"}
 TO_SECONDS = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
 
 
@@ -217,7 +220,14 @@ def table(measured, workprecision, stability, provenance):
                                    ("Siconos' `MoreauJeanOSI`, same (Lemke and enumeration)", r"BM_Siconos/.*",
                                     "x_moreau_jean"),
                                    ("MuJoCo, same (Euler, implicit, RK4 and default; a run's model compilation "
-                                    "included)", r"BM_Mujoco/.*", "x_moreau_jean")):
+                                    "included)", r"BM_Mujoco/.*", "x_moreau_jean"),
+                                   ("DART, same (faithful by Dantzig and PGS, and default)", r"BM_Dart/.*",
+                                    "x_moreau_jean"),
+                                   ("Simbody, same (faithful by PLUS and PGS, and default)", r"BM_Simbody/.*",
+                                    "x_moreau_jean"),
+                                   ("Simbody's Hunt–Crossley elements, cost per run as a ratio to the compliant "
+                                    "solver's Hunt–Crossley element through CVODE (wall, pair, row3; K = 1e4)",
+                                    r"BM_SimbodyHuntCrossley/.*", "x_compliant")):
         values = m.matching(pattern, measure)
         if values:
             add(what, f"{span(values)}x")

@@ -16,7 +16,7 @@ from rows import config_label, num, steps_of
 ERROR_FLOOR = 1e-13  # errors below this are round-off: drawn in a band under it, one row per setting
 FLOOR_ROW = 10 ** -0.6  # the factor between two rows of that band
 STYLE = {"moreau-jean": "-", "ode": "--", "bullet": ":", "siconos": "-.", "mujoco": (0, (5, 1, 1, 1)),
-         "compliant": (0, (3, 1)), "event-driven": "-"}
+         "compliant": (0, (3, 1)), "event-driven": "-", "dart": (0, (1, 1)), "simbody": (0, (5, 2))}
 # The panels of a diagram: one per solver family, the in-house stepper with the reference;
 # Siconos in two, its Moreau–Jean integrators apart from its other ones, so that no panel
 # carries more lines than can be told apart.
@@ -26,6 +26,7 @@ PANELS = {"moreau-jean": "in-house: Moreau–Jean, reference",
           "siconos": "Siconos: Moreau–Jean and its projections",
           "siconos-other": "Siconos: its other integrators",
           "mujoco": "MuJoCo (libmujoco, soft contacts)",
+          "dart": "DART (libdart)", "simbody": "Simbody (libsimbody; hunt-crossley: compliant)",
           "compliant": "Compliant contact elements (CVODE, Newmark) and their models' own references"}
 SICONOS_MOREAU_JEAN = ("moreau-jean-lemke", "moreau-jean-enum", "combined-projection", "direct-projection")
 
@@ -37,6 +38,8 @@ def panel_of(row):
     if row["solver"] == "event-driven" and "contact" in row["settings"]:  # a compliant model, solved exactly
         return PANELS["compliant"]
     return PANELS.get(row["solver"], row["solver"])
+
+
 ERRORS = (("err_median", "median"), ("err_p95", "95th percentile"))
 
 

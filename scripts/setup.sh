@@ -24,6 +24,7 @@ packages=(
   libgtest-dev libbenchmark-dev
   libode-dev libbullet-dev libsiconos-kernel-dev libsundials-dev
   libmujoco-dev libgl-dev libglx-dev libopengl-dev libqhull-dev
+  libdart-dev libsimbody-dev
   libopenmpi-dev openmpi-bin
   python3 python3-matplotlib python3-numpy
   python3-scipy python3-dev pybind11-dev

@@ -24,6 +24,12 @@
 #ifdef POUNDBENCH_HAVE_MUJOCO
 #include "solvers/mujoco/mujoco_solver.hpp"
 #endif
+#ifdef POUNDBENCH_HAVE_DART
+#include "solvers/dart/dart_solver.hpp"
+#endif
+#ifdef POUNDBENCH_HAVE_SIMBODY
+#include "solvers/simbody/simbody_solver.hpp"
+#endif
 
 namespace pb {
 
@@ -129,6 +135,18 @@ const std::array kSolvers = {
     SolverInfo{"mujoco", "MuJoCo: soft contacts calibrated to eps, Euler, implicit or RK4 (see --variant)",
                &mujoco::solve, &mujoco::describe, &check_all<&mujoco::check>, &mujoco::variant_list, 1e-12},
 #endif
+#ifdef POUNDBENCH_HAVE_DART
+    // A fixed-step engine in double precision, as ODE: round-off only, 1e-12.
+    SolverInfo{"dart", "DART: its constraint solver with a gap constraint of its own, or boxes via FCL (see --variant)",
+               &dart::solve, &dart::describe, &check_all<&dart::check>, &dart::variant_list, 1e-12},
+#endif
+#ifdef POUNDBENCH_HAVE_SIMBODY
+    // Its time-stepper, in double precision, is deterministic: round-off only, 1e-12. Its
+    // hunt-crossley variant's Runge-Kutta-Merson chooses its steps, and round-off can move a
+    // choice and Pi1 with it within its accuracy (1e-8 by default): 1e-7, as CVODE's.
+    SolverInfo{"simbody", "Simbody: its semi-explicit Euler time-stepper with Poisson impacts, or Hunt-Crossley elements (see --variant)",
+               &simbody::solve, &simbody::describe, &check_all<&simbody::check>, &simbody::variant_list, 1e-7},
+#endif
     // Another program, run once per point (docs/external.md): what it computes is its own; a
     // deterministic program gives its Pi1 again bit for bit, and 1e-9 lets another build of it
     // round differently, as the reference's.
@@ -209,11 +227,13 @@ const SolverInfo* find_solver(std::string_view solver_name) {
 
 std::string_view left_out_needs(std::string_view solver_name) {
   // The optional engines and their packages (CMakeLists.txt, scripts/setup.sh).
-  constexpr std::array<std::array<std::string_view, 2>, 5> kOptional{{{"ode", "libode-dev"},
+  constexpr std::array<std::array<std::string_view, 2>, 7> kOptional{{{"ode", "libode-dev"},
                                                                       {"bullet", "libbullet-dev"},
                                                                       {"siconos", "libsiconos-kernel-dev"},
                                                                       {"compliant", "libsundials-dev"},
-                                                                      {"mujoco", "libmujoco-dev"}}};
+                                                                      {"mujoco", "libmujoco-dev"},
+                                                                      {"dart", "libdart-dev"},
+                                                                      {"simbody", "libsimbody-dev"}}};
   if (find_solver(solver_name)) return {};
   for (const auto& [solver, package] : kOptional)
     if (solver == solver_name) return package;

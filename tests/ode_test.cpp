@@ -122,9 +122,9 @@ TEST(Ode, FaithfulVariantsReverseAFreeApproachByExactlyEps) {
 
 // ---------------------------------------------------------------- the shared activation rule
 
-// The faithful variant of every time-stepper of the registry (Bullet and Siconos where
-// they are built).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 8> kFaithful = {{
+// The faithful variant of every time-stepper of the registry (Bullet, Siconos, DART and
+// Simbody where they are built).
+constexpr std::array<std::pair<std::string_view, std::string_view>, 12> kFaithful = {{
     {"moreau-jean", ""},
     {"ode", "dantzig-faithful"},
     {"ode", "quickstep-faithful"},
@@ -133,6 +133,10 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 8> kFaithful
     {"bullet", "mlcp-lemke-faithful"},
     {"siconos", "moreau-jean-lemke"},
     {"siconos", "moreau-jean-enum"},
+    {"dart", "dantzig-faithful"},
+    {"dart", "pgs-faithful"},
+    {"simbody", "plus-faithful"},
+    {"simbody", "pgs-faithful"},
 }};
 
 // Every faithful time-stepper puts a contact into the problem of a step on one predicate,

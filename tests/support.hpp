@@ -105,6 +105,34 @@ inline std::vector<System> convergence_systems() {
   return systems;
 }
 
+// A free mass (m = 2 and w = 1, but no spring, damper or load) coasting at v0 towards the wall
+// from a gap g0: t_min 0.64 (h = 0.01 at N = 64), a_p = w_p = 1, so that a model built in the
+// pulse's units is built in the case's; t_end 0.1 past the time it reaches the wall.
+inline System free_mass_at_wall(double g0, double eps, double v0) {
+  System s;
+  s.bodies = {Body{2.0, 1.0, 0.0, 0.0}};
+  s.wall = true;
+  s.delta = g0;
+  s.eps = eps;
+  s.a_p = 1.0;
+  s.pulse.amplitude = 0.0;
+  s.t_min = 0.64;
+  s.t_end = 0.1 + g0 / std::abs(v0);
+  s.u_start = {0.0};
+  s.v_start = {v0};
+  return s;
+}
+
+// solve(s) with a variant, N steps per shortest period (0: the default) and, if asked, every
+// step's history.
+inline Result run_variant(SolveFn solve, const System& s, std::string_view variant, int n = 0, bool history = false) {
+  Settings st;
+  st.variant = std::string(variant);
+  st.steps = n;
+  st.history_samples = history ? 1 : 0;
+  return solve(s, st);
+}
+
 // Row r of a History: t, u[nb], v[nb], g[nc], lambda[nc] (solvers/solver.hpp).
 struct HistoryRow {
   const History& h;

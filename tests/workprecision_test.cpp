@@ -97,7 +97,7 @@ tol_scale = [1, 100]
 // the shipped lists run on any build; an unknown solver is still an error, and so is a list
 // left with no run.
 TEST(SettingsList, SkipsTheRunsOfAnEngineThisBuildLeftOut) {
-  for (const char* engine : {"ode", "bullet", "siconos", "compliant", "mujoco"}) {
+  for (const char* engine : {"ode", "bullet", "siconos", "compliant", "mujoco", "dart", "simbody"}) {
     const SettingsList list = parse_settings_list(std::string("name = \"t\"\n[[run]]\nsolver = \"") + engine +
                                                       "\"\n[[run]]\nsolver = \"moreau-jean\"\n",
                                                   "t.toml");

@@ -8,6 +8,7 @@
 
 #include "solvers/fixed_step.hpp"
 #include "solvers/mujoco/model.hpp"
+#include "solvers/whole_contacts.hpp"
 
 namespace pb::mujoco {
 
@@ -21,60 +22,6 @@ Result fail(Status status, std::string message) {
   r.message = std::move(message);
   return r;
 }
-
-// Whole contacts, as MuJoCo has them: a contact is closed over the steps in which MuJoCo
-// reports it. Counts the impacts and measures the restitution of the isolated ones.
-class Contacts {
- public:
-  explicit Contacts(const System& sys)
-      : sys_(sys),
-        closed_(ix(sys.n_contacts()), 0),
-        isolated_(ix(sys.n_contacts()), 0),
-        onset_(ix(sys.n_contacts()), 0.0),
-        floor_(kRestitutionFloor * sys.a_p / sys.pulse.w) {}
-
-  // Contact j was (touched) or was not reported in the step that started at velocities v.
-  void step(int j, bool touched, const double* v) {
-    const auto jj = ix(j);
-    const double rate = sys_.gap_rate(j, v);
-    if (touched && !closed_[jj]) {
-      if (rate < 0.0) ++impacts_;
-      for (char& flag : isolated_) flag = 0;  // nobody is alone now
-      isolated_[jj] = n_closed_ == 0 && rate < -floor_;
-      onset_[jj] = rate;
-      closed_[jj] = 1;
-      ++n_closed_;
-    } else if (!touched && closed_[jj]) {
-      if (isolated_[jj]) {
-        const double e = -rate / onset_[jj];
-        low_ = std::min(low_, e);
-        high_ = std::max(high_, e);
-        ++isolated_count_;
-      }
-      isolated_[jj] = 0;
-      closed_[jj] = 0;
-      --n_closed_;
-    }
-  }
-
-  void finish(Result& r) const {
-    r.impacts = impacts_;
-    r.contact_phases = 0;
-    r.isolated_impacts = isolated_count_;
-    r.restitution_low = isolated_count_ > 0 ? low_ : std::numeric_limits<double>::quiet_NaN();
-    r.restitution_high = isolated_count_ > 0 ? high_ : std::numeric_limits<double>::quiet_NaN();
-  }
-
- private:
-  const System& sys_;
-  std::vector<char> closed_, isolated_;
-  std::vector<double> onset_;
-  int n_closed_ = 0;
-  long impacts_ = 0;
-  long isolated_count_ = 0;
-  double floor_;
-  double low_ = std::numeric_limits<double>::infinity(), high_ = -std::numeric_limits<double>::infinity();
-};
 
 // The geom of each body's sphere is the right end of at most one contact: its index, or -1.
 std::vector<int> contacts_by_geom(const System& sys, const mjModel* m) {
@@ -159,7 +106,7 @@ class Engine : public StepEngine {
   DataPtr data_;
   std::vector<int> geoms_;
   Load load_;
-  Contacts contacts_;
+  WholeContacts contacts_;
   std::vector<char> touched_;  // per contact: MuJoCo reported it in the last step
 };
 

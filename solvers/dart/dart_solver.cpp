@@ -1,0 +1,68 @@
+#include "solvers/dart/dart_solver.hpp"
+
+#include <exception>
+#include <memory>
+#include <optional>
+
+#include "solvers/dart/engines.hpp"
+#include "solvers/dart/variants.hpp"
+#include "solvers/fixed_step.hpp"
+
+namespace pb::dart {
+
+namespace {
+
+Result fail(std::string message) {
+  Result r;
+  r.status = Status::failed;
+  r.message = std::move(message);
+  return r;
+}
+
+Result run(const System& sys, const Settings& set, const Config& config) {
+  for (const Body& b : sys.bodies)
+    if (!(b.m > 0.0 && std::isfinite(b.m)) || !std::isfinite(b.k) || !std::isfinite(b.c))
+      return fail("every body needs a finite positive mass and a finite stiffness and damping");
+  // Debian's DART asserts (and so aborts the process) on a joint spring or damper below zero.
+  if (!config.faithful)
+    for (const Body& b : sys.bodies)
+      if (b.k < 0.0 || b.c < 0.0)
+        return fail("the default variant's joint springs and dampers must be >= 0: DART's joints take no unstable spring");
+  StepPlan plan;
+  if (Result r = plan_steps(sys, set, kDefaultSteps, kDefaultStepCap, plan); r.status != Status::ok) return r;
+  std::unique_ptr<StepEngine> engine =
+      config.faithful ? make_faithful(sys, config, set, plan.h) : make_default(sys, config, plan.h);
+  return run_steps(sys, set, plan, *engine);
+}
+
+}  // namespace
+
+Result solve(const System& system, const Settings& settings) {
+  const std::optional<Config> config = find_variant(settings.variant);
+  if (!config) return fail("unknown variant '" + settings.variant + "'");
+  try {
+    return run(system, settings, *config);
+  } catch (const std::exception& e) {
+    return fail(std::string("DART: ") + e.what());
+  }
+}
+
+std::string describe(const Settings& settings) {
+  const std::optional<Config> config = find_variant(settings.variant);
+  NamedValues out;
+  out.add("variant", config ? config->name : settings.variant);
+  if (!config) return out.add("unknown", true).json();
+  add_step(out, settings, kDefaultSteps);
+  add_config(out, *config, settings);
+  return out.json();
+}
+
+std::string check(const Settings& settings) {
+  const std::optional<Config> config = find_variant(settings.variant);
+  if (!config) return "variant: unknown dart variant '" + settings.variant + "' (one of " + variant_names() + ")";
+  if (std::string bad = check_step(settings, kDefaultSteps); !bad.empty()) return bad;
+  if (std::string bad = check_activation(config->activation, settings); !bad.empty()) return bad;
+  return check_limits(settings);
+}
+
+}  // namespace pb::dart

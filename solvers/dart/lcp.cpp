@@ -1,0 +1,43 @@
+#include "solvers/dart/lcp.hpp"
+
+#include <cmath>
+#include <cstdarg>
+#include <mutex>
+
+#include <dart/external/odelcpsolver/error.h>
+
+namespace pb::dart {
+
+namespace {
+
+thread_local long t_messages = 0;
+
+void count_message(int, const char*, va_list) { ++t_messages; }
+
+}  // namespace
+
+void prepare_process() {
+  static std::once_flag once;
+  std::call_once(once, [] { ::dart::external::ode::dSetMessageHandler(&count_message); });
+}
+
+long lcp_messages() { return t_messages; }
+
+bool CountingDantzig::solve(int n, double* A, double* x, double* b, int nub, double* lo, double* hi, int* findex,
+                            bool earlyTermination) {
+  const bool ok = DantzigBoxedLcpSolver::solve(n, A, x, b, nub, lo, hi, findex, earlyTermination);
+  bool finite = true;
+  for (int i = 0; i < n; ++i) finite = finite && !std::isnan(x[i]);
+  if (!ok || !finite) ++failures;
+  return ok;
+}
+
+bool CountingPgs::solve(int n, double* A, double* x, double* b, int nub, double* lo, double* hi, int* findex,
+                        bool earlyTermination) {
+  ++calls;
+  const bool ok = PgsBoxedLcpSolver::solve(n, A, x, b, nub, lo, hi, findex, earlyTermination);
+  if (!ok) ++failures;
+  return ok;
+}
+
+}  // namespace pb::dart

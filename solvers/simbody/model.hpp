@@ -1,0 +1,70 @@
+#pragma once
+// The Simbody model of a scene and its stepping, behind an interface with no Simbody type:
+// model.cpp alone includes Simbody's headers, and is compiled as C++17 (they are not valid
+// C++20: ambiguous rewritten comparisons in ContactGeometry.h) and without NDEBUG (as Debian
+// built the library: the layout of SimTK's State cache entries depends on it).
+// Everything here is in the model's units (simbody_solver.cpp converts).
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace pb::simbody {
+
+enum class Kind {
+  faithful_plus,  // SemiExplicitEulerTimeStepper, PLUS impulse solver, predicted contacts
+  faithful_pgs,   // the same with its PGS impulse solver
+  stepper_default,  // SemiExplicitEulerTimeStepper with its own settings, contacts by its margin
+  hunt_crossley,  // HuntCrossleyForce contacts, integrated by RungeKuttaMersonIntegrator
+};
+
+struct ModelSpec {
+  Kind kind = Kind::faithful_plus;
+  std::vector<double> m, k, c;   // per body, left to right
+  std::vector<double> u, v;      // per body, at t = 0
+  std::vector<int> left, right;  // per contact: its bodies (left -1: the wall)
+  double delta = 0.0;            // the gap at rest
+  double eps = 0.0;              // coefficient of restitution (minCOR of the unilateral contacts)
+  std::function<double(double)> ground_accel;  // a_g(t)
+  double h = 0.0;                // the step (steppers) or the output interval (hunt-crossley)
+  double gamma = 0.5;            // faithful: the look-ahead of the predicted activation rule
+  double constraint_tol = 1e-12;  // faithful: the stepper's constraint tolerance
+  // hunt-crossley: the Hertz coefficient K of f = K x^(3/2) (1 + 1.5 c x'), the dissipation
+  // c, and the integrator's accuracy.
+  double hertz = 0.0;
+  double dissipation = 0.0;
+  double accuracy = 1e-8;
+};
+
+// What a step did to a contact.
+struct ContactStep {
+  // steppers: a constraint of the step (proximal); hunt-crossley: penetrating at the step's end
+  bool engaged = false;
+  // steppers: its impulse over the step divided by the step (>= 0 pushes the bodies apart);
+  // hunt-crossley: the element's force at the step's end
+  double force = 0.0;
+};
+
+// hunt-crossley: called after every internal step of the integrator with its time and the
+// bodies' positions and velocities.
+using InternalStep = std::function<void(double t, const double* q, const double* u)>;
+
+class Model {
+ public:
+  explicit Model(const ModelSpec& spec);  // throws std::runtime_error with Simbody's message
+  ~Model();
+  Model(const Model&) = delete;
+  Model& operator=(const Model&) = delete;
+
+  // Advances from t_k = k h to (k + 1) h, calling `each` (if set) after every internal step.
+  void step(long k, const InternalStep& each = nullptr);
+  double u(int body) const;
+  double v(int body) const;
+  const ContactStep& contact(int j) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pb::simbody

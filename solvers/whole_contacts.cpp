@@ -1,0 +1,49 @@
+#include "solvers/whole_contacts.hpp"
+
+#include <algorithm>
+
+namespace pb {
+
+namespace {
+std::size_t ix(int i) { return static_cast<std::size_t>(i); }
+}  // namespace
+
+WholeContacts::WholeContacts(const System& sys)
+    : sys_(sys),
+      closed_(ix(sys.n_contacts()), 0),
+      isolated_(ix(sys.n_contacts()), 0),
+      onset_(ix(sys.n_contacts()), 0.0),
+      floor_(kRestitutionFloor * sys.a_p / sys.pulse.w) {}
+
+void WholeContacts::step(int j, bool touched, const double* v) {
+  const auto jj = ix(j);
+  const double rate = sys_.gap_rate(j, v);
+  if (touched && !closed_[jj]) {
+    if (rate < 0.0) ++impacts_;
+    for (char& flag : isolated_) flag = 0;  // nobody is alone now
+    isolated_[jj] = n_closed_ == 0 && rate < -floor_;
+    onset_[jj] = rate;
+    closed_[jj] = 1;
+    ++n_closed_;
+  } else if (!touched && closed_[jj]) {
+    if (isolated_[jj]) {
+      const double e = -rate / onset_[jj];
+      low_ = std::min(low_, e);
+      high_ = std::max(high_, e);
+      ++isolated_count_;
+    }
+    isolated_[jj] = 0;
+    closed_[jj] = 0;
+    --n_closed_;
+  }
+}
+
+void WholeContacts::finish(Result& r) const {
+  r.impacts = impacts_;
+  r.contact_phases = 0;
+  r.isolated_impacts = isolated_count_;
+  r.restitution_low = isolated_count_ > 0 ? low_ : std::numeric_limits<double>::quiet_NaN();
+  r.restitution_high = isolated_count_ > 0 ? high_ : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace pb
