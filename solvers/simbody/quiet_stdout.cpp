@@ -30,9 +30,10 @@ class FilterBuffer : public std::streambuf {
 
 ssize_t write_on(void* original, const char* data, size_t size) {
   if (t_quiet) return static_cast<ssize_t>(size);
-  auto* file = static_cast<FILE*>(original);
-  const size_t written = std::fwrite(data, 1, size, file);
-  std::fflush(file);
+  // Into the original FILE's own buffer, unflushed: a program's output keeps the buffering
+  // it had (a write per printf made `solve_case | head -1` die of SIGPIPE, and every CSV line
+  // a system call).
+  const size_t written = std::fwrite(data, 1, size, static_cast<FILE*>(original));
   return written == 0 && size > 0 ? -1 : static_cast<ssize_t>(written);
 }
 

@@ -9,14 +9,15 @@
 // filtered per thread:
 //
 //  - C's `stdout` FILE is replaced by an unbuffered one (fopencookie) that passes what it
-//    is given to the original FILE and flushes it, except on a thread inside a QuietScope;
+//    is given on to the original FILE, whose buffer and buffering mode stay as they were,
+//    except on a thread inside a QuietScope;
 //  - std::cout's buffer is replaced by one that passes everything to the original buffer,
 //    except on a thread inside a QuietScope.
 //
 // Both are installed once, before main (a static object in quiet_stdout.cpp, which every
 // program that links this solver runs): no other thread exists then, so nothing races with
 // the swap. Outside a QuietScope, output is unchanged and in order (std::cout keeps its
-// buffer; C's stdout becomes line-for-line unbuffered, each call flushed through). Inside
+// buffer, C's stdout its original FILE's). Inside
 // one, what the thread writes to stdout is dropped; other threads write as before.
 
 namespace pb::simbody {
