@@ -19,6 +19,11 @@
 // the swap. Outside a QuietScope, output is unchanged and in order (std::cout keeps its
 // buffer, C's stdout its original FILE's). Inside
 // one, what the thread writes to stdout is dropped; other threads write as before.
+//
+// One difference remains: fflush(stdout) empties the filter, not the original FILE behind
+// it, so a program that must deliver its output before _exit (a forked child) calls
+// fflush(nullptr), which empties every stream; exit() and a terminal's line buffering
+// deliver as before.
 
 namespace pb::simbody {
 

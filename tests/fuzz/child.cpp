@@ -39,6 +39,7 @@ template <class InChild>
 ChildOutcome supervise(InChild in_child, const ChildLimits& limits) {
   int out_pipe[2], err_pipe[2];
   if (::pipe(out_pipe) != 0 || ::pipe(err_pipe) != 0) throw std::runtime_error("pipe failed");
+  std::fflush(nullptr);  // else the child inherits, and would print, the parent's pending output
   const auto start = Clock::now();
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error("fork failed");
@@ -105,8 +106,10 @@ ChildOutcome run_in_child(const std::function<void()>& body, const ChildLimits& 
   return supervise(
       [&] {
         body();
-        std::fflush(stdout);
-        std::fflush(stderr);
+        // Every stream, not just `stdout`: where the Simbody engine is linked, `stdout` is
+        // its filter (solvers/simbody/quiet_stdout.hpp), which hands bytes to the original
+        // FILE's buffer, and _exit flushes nothing.
+        std::fflush(nullptr);
         ::_exit(0);
       },
       limits);
