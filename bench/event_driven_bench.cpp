@@ -41,6 +41,35 @@ BENCHMARK(BM_EventDrivenPairFig4)
 
 namespace {
 
+// Issue 32's case (pair, sine, normal, Pi3 = 0.5, eps = 0.5, Pi5 = 4, Pi6 = 1, xi = 0) at
+// Pi2 = 4 - 5e-5, 4 and 4 + 5e-5: body 1 resonant with the pulse and body 0, undamped, at
+// four times its frequency, whose wave rounds to exact zeros near t = 0 (search.cpp,
+// max_abs). The three should cost alike (53 impacts each); Pi2 = 4 took 40 times as long.
+void BM_EventDrivenPowerOfTwoPi2(benchmark::State& state) {
+  pb::Case c;
+  c.scene = pb::Scene::pair;
+  c.pulse = pb::PulseShape::sine;
+  c.pi2 = 4.0 + 5e-5 * static_cast<double>(state.range(0));
+  c.pi3 = 0.5;
+  c.eps = 0.5;
+  c.pi5 = 4.0;
+  c.pi6 = 1.0;
+  c.xi = 0.0;
+  const pb::System s = pb::make_system(c);
+  long impacts = 0;
+  for (auto _ : state) {
+    const pb::Result r = pb::event_driven::solve(s, {});
+    impacts = r.impacts;
+    benchmark::DoNotOptimize(r.pi1);
+  }
+  state.counters["impacts"] = static_cast<double>(impacts);
+}
+BENCHMARK(BM_EventDrivenPowerOfTwoPi2)->ArgName("pi2_minus_4_in_5e-5")->DenseRange(-1, 1)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+namespace {
+
 // The whole Fig. 4 pair family (bench/support.hpp): each point is timed on its own, and
 // the median and 90th percentile per point are reported (the target is a median <= 50 us).
 void BM_EventDrivenFig4FamilyPerPoint(benchmark::State& state) {
