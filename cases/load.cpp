@@ -106,7 +106,10 @@ LoadPiece Pulse::piece_at(double t, std::size_t i) const {
     const std::vector<double>& ts = record->t;
     const std::vector<double>& as = record->a;
     if (t < ts.front()) {
-      p.start = -inf;
+      // Zero before the first sample, from a finite start: the reference reads the piece's
+      // value as value + slope (t - start), which an infinite start made NaN (0 inf), and a
+      // record whose first sample came after t = 0 ended at once with status nan.
+      p.start = std::min(t, 0.0);
       p.end = ts.front();
     } else if (t >= ts.back()) {
       p.start = ts.back();
