@@ -164,6 +164,35 @@ def newmark_table(summary, points):
     return lines
 
 
+def restitution_lines(rows):
+    """README's table of what each element restitutes (bench/restitution_table.cpp's
+    measurements, reports/restitution.csv): one row per element and damping rule, one column
+    per eps, each cell the measured restitution and the damping parameter that gave it."""
+    eps_values = sorted({num(r, "eps") for r in rows if r["element"] != "hertz"})
+    rules = list(dict.fromkeys((r["element"], r["rule"]) for r in rows if r["element"] != "hertz"))
+    cell = {(r["element"], r["rule"], num(r, "eps")): r for r in rows}
+    methods = [r["measured_by"] for r in rows]
+    usual = max(set(methods), key=methods.count)
+    other = sorted(set(methods) - {usual})
+    lines = ["Restitution of one free impact, nothing but the element acting (`bench/restitution_table.cpp`), and "
+             f"in brackets the damping parameter that gives it. Measured by {usual}"
+             + (f"; rows marked * by {', '.join(other)} (closed forms that are no variant of the solver)" if other
+                else "") + ".", "",
+             "| element | damping | " + " | ".join(f"eps = {e:g}" for e in eps_values) + " |",
+             "|---|---|" + "---:|" * len(eps_values)]
+    for element, rule in rules:
+        cells = []
+        for e in eps_values:
+            r = cell.get((element, rule, e))
+            cells.append(f"{num(r, 'restitution'):.4f} ({r['parameter']} {num(r, 'value'):.4g})" if r else "")
+        marked = any(r["measured_by"] != usual for r in rows if (r["element"], r["rule"]) == (element, rule))
+        lines.append(f"| `{element}` | {rule}{' *' if marked else ''} | " + " | ".join(cells) + " |")
+    for r in rows:
+        if r["element"] == "hertz":
+            lines += ["", f"`hertz` is elastic (eps = 1 only): it restitutes {num(r, 'restitution'):.4f}."]
+    return lines
+
+
 def figure(summary, out_dir):
     """Model error (worst family's p95) against K per element, with Moreau-Jean N = 64's, and
     Newmark's integration error against N per K; returns the figure's path in out_dir."""

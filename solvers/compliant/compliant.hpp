@@ -16,7 +16,8 @@
 //            does not converge ends the run with status failed and says where. A step is
 //            split where the load jumps (second order across it: newmark.cpp).
 //
-// The variant is the element (kelvin-voigt, the default; hertz; hunt-crossley; jankowski);
+// The variant is the element (kelvin-voigt, the default; hertz; hunt-crossley; jankowski;
+// jankowski-published, his element with his own zeta(eps));
 // --stiffness is its Pi term K (default kDefaultStiffness). Both integrators load the
 // bodies with -m a_g(t) at the times they evaluate (CVODE: every stage; Newmark: the step
 // ends, as its trapezoidal rule asks).
