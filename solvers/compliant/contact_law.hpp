@@ -27,9 +27,11 @@
 // The Hunt-Crossley force is clamped: with chi > 1 its damping would otherwise pull.
 //
 // Stiffness as a Pi term K (cases/README.md): k = K m0 w0^2 for the linear element, and
-// k = K m0 w0^2 / sqrt(L), L = a_p / w_p^2, for the Hertz family, so that at a penetration
-// of L every element pushes K times body 0's own spring force at that displacement, and
-// Pi1 depends on dimensionless groups only.
+// k = K m0 w0^2 / sqrt(L) for the Hertz family, so that at a penetration of L every element
+// pushes K times body 0's own spring force at that displacement. L = a_p / w_p^2 for the
+// paper's pulses and the pulse models, and Pi1 depends on dimensionless groups only; for a
+// record, whose a_p and w_p are only a unit, L is the record's own (its peak over its mean
+// circular frequency squared), so that the model does not move with that unit.
 //
 // chi of Hunt-Crossley: the isolated impact of that element is scale-free (in units of
 // X = (m_eff v-^2 / k)^(2/5) and X / v- it is x'' = -x^(3/2) (1 + chi x'), x(0) = 0,

@@ -8,7 +8,7 @@ namespace pb::compliant {
 double element_stiffness(const System& sys, Model model, double K) {
   const Body& b0 = sys.bodies[static_cast<std::size_t>(sys.ref)];
   const double linear = K * b0.m * b0.w * b0.w;
-  return model == Model::kelvin_voigt ? linear : linear / std::sqrt(sys.length_scale());
+  return model == Model::kelvin_voigt ? linear : linear / std::sqrt(sys.contact_length_scale());
 }
 
 Elements::Elements(const System& sys, Model model, double K)
