@@ -43,7 +43,7 @@ def beats_section(summary, points):
     """Where another time-stepper beats the in-house Moreau-Jean, and the settings whose runs
     failed, with the cause each solver gives."""
     lines = ["## Where another scheme beats the in-house Moreau–Jean", "",
-             "Per family and target (the median of the relative Pi1 error, no failed run), the in-house "
+             "Per family and target (the median of the relative Pi1 error, no failed or unresolved run), the in-house "
              "`moreau-jean`'s cheapest setting that meets it and its least step count N, against every other "
              "time-stepper configuration of the study: those that meet the target at less CPU per run, and those "
              "that meet it with fewer steps per shortest period. The step counts compare the schemes apart from "
@@ -55,6 +55,12 @@ def beats_section(summary, points):
                   "Every setting of the study with runs that did not end ok, and the message of the first: the "
                   "cause its solver names (`solvers/*/README.md` say more). A setting that failed on every point "
                   "has no line in the diagrams.", "", *failures, ""]
+    unresolved = answer.unresolved_table(points)
+    if unresolved:
+        lines += ["### Settings with unresolved runs", "",
+                  "Every setting with runs that ended ok but whose own measurements say they did not resolve what "
+                  "they solved (`resolved` false in their rows, `solvers/verdict.hpp`), and the reasons of the first. "
+                  "No table above ranks them; the diagrams draw them hollow.", "", *unresolved, ""]
     return lines
 
 
@@ -66,7 +72,7 @@ def workprecision_section(summary, out_dir):
             "solver configuration over its step counts N (steps per shortest period: 8, 16, ...). A row of panels "
             "per solver family, the other solvers in light grey behind it; the thick grey band is the Pareto "
             "front over every solver (the settings no other setting beats in both cost and error; settings with "
-            "failed runs are not candidates, and are drawn hollow). Errors below "
+            "failed or unresolved runs are not candidates, and are drawn hollow). Errors below "
             f"{wp.ERROR_FLOOR:g} are round-off: they are drawn in the shaded band under it, one row per setting, "
             "so that none hides another. Settings that failed on every point are left out; failed runs are "
             "counted in `workprecision.csv`" + (" Horizontal bars: the lowest and highest CPU time of the timing "

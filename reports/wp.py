@@ -10,7 +10,7 @@ from matplotlib.lines import Line2D
 
 from answer import MIDDLE_N, has_spread
 from figure import MARKERS, colors, plt, save, solver_styles
-from rows import config_label, num, settings_fields, steps_of
+from rows import config_label, num, settings_fields, sound, steps_of
 
 ERROR_FLOOR = 1e-13  # errors below this are round-off: drawn in a band under it, one row per setting
 FLOOR_ROW = 10 ** -0.6  # the factor between two rows of that band
@@ -41,8 +41,8 @@ ERRORS = (("err_median", "median"), ("err_p95", "95th percentile"))
 
 def pareto_front(rows, key):
     """The rows no other row beats in both cost and error (errors under the floor count as
-    the floor), in order of cost; settings with failed runs are not candidates."""
-    candidates = sorted((r for r in rows if int(r["failed"]) == 0 and math.isfinite(num(r, key))),
+    the floor), in order of cost; settings with failed or unresolved runs are not candidates."""
+    candidates = sorted((r for r in rows if sound(r) and math.isfinite(num(r, key))),
                         key=lambda r: num(r, "cpu_median_s"))
     front = []
     for r in candidates:
@@ -53,7 +53,7 @@ def pareto_front(rows, key):
 
 def _draw_setting(ax, lrows, key, style, floor_y):
     """One configuration's line over its step counts; points under the floor in its own row
-    of the floor band; hollow markers where some runs failed; the low-high of the timing
+    of the floor band; hollow markers where some runs failed or did not resolve; the low-high of the timing
     repetitions as horizontal bars where the rows have it."""
     above = [r for r in lrows if num(r, key) >= ERROR_FLOOR]
     ax.plot([1e6 * num(r, "cpu_median_s") for r in above], [num(r, key) for r in above], ls=style["ls"],
@@ -61,7 +61,7 @@ def _draw_setting(ax, lrows, key, style, floor_y):
     for r in lrows:
         x = 1e6 * num(r, "cpu_median_s")
         y = num(r, key) if num(r, key) >= ERROR_FLOOR else floor_y
-        hollow = int(r["failed"]) > 0
+        hollow = not sound(r)
         ax.plot([x], [y], marker=style["marker"], ms=4.5, color=style["color"], zorder=4,
                 markerfacecolor="white" if hollow else style["color"])
         if has_spread(r):
@@ -92,7 +92,7 @@ def wp_diagram(family, rows, out_dir):
         floor_rows.update({lb: ERROR_FLOOR * FLOOR_ROW ** (i + 1) for i, lb in enumerate(under)})
     deepest = min(floor_rows.values(), default=ERROR_FLOOR)
     spread = any(has_spread(r) for r in rows)
-    hollow = any(int(r["failed"]) > 0 for r in rows)
+    hollow = any(not sound(r) for r in rows)
 
     fig, axes = plt.subplots(len(panels), 2, figsize=(15, 3.5 * len(panels) + 1.2), sharex=True, sharey=True,
                              squeeze=False, layout="constrained")
@@ -134,7 +134,7 @@ def wp_diagram(family, rows, out_dir):
                     Line2D([], [], color="0.8", lw=0.8, label="the other solvers")]
         if hollow:
             handles.append(Line2D([], [], ls="", marker="o", color="0.3", markerfacecolor="white",
-                                  label="hollow: some runs failed"))
+                                  label="hollow: some runs failed or did not resolve"))
         if spread:
             handles.append(Line2D([], [], ls="-", marker="|", color="0.3", label="bar: low–high of the repetitions"))
         axes[row][1].legend(handles=handles, loc="center left", bbox_to_anchor=(1.02, 0.5), fontsize=7.5,

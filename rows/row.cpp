@@ -55,6 +55,19 @@ std::string row_problem(const Row& row) {
   return {};
 }
 
+std::string_view resolved_text(const std::optional<bool>& resolved) {
+  return resolved ? (*resolved ? "true" : "false") : "";
+}
+
+std::optional<std::optional<bool>> parse_resolved(std::string_view text) {
+  std::optional<std::optional<bool>> out;
+  if (text.empty())
+    out.emplace();
+  else if (text == "true" || text == "false")
+    out.emplace(text == "true");
+  return out;
+}
+
 std::string case_key(const Case& c) {
   std::string key(name(c.scene));
   key += ';';
@@ -102,6 +115,9 @@ constexpr std::array kMiddleColumns = {"solver",         "variant", "settings", 
 constexpr std::array kTailColumns = {"wh",          "energy_excess",   "penetration",     "isolated_impacts",
                                      "restitution_low", "restitution_high", "penetration_steps",
                                      "cpu_seconds_low", "cpu_seconds_high", "repetitions"};
+
+// The verdict (solvers/verdict.hpp), after everything else: the columns added last.
+constexpr std::array kVerdictColumns = {"resolved", "unresolved"};
 
 // Where a field's column is: after the directivity (those of every scene's bodies), after
 // the message (the chain's, where they were added) or at the end (the pulses', added last).
@@ -176,6 +192,7 @@ std::string csv_header() {
   for (const char* column : kTailColumns) line.text(column);
   for (const CaseField& f : kCaseFields)
     if (group_of(f) == Group::pulse) line.text(f.name);
+  for (const char* column : kVerdictColumns) line.text(column);
   return line.take();
 }
 
@@ -215,6 +232,8 @@ std::string csv_line(const Row& row) {
   line.number(row.cpu_seconds_high);
   line.count(row.repetitions);
   case_numbers(line, c, Group::pulse);
+  line.text(resolved_text(r.resolved));
+  line.text(r.unresolved);
   return line.take();
 }
 

@@ -62,6 +62,7 @@ void Elements::open(int j, double q) {
 }
 
 void Elements::finish(Result& r) const {
+  r.restitution_over_contacts = true;
   r.isolated_impacts = n_isolated_;
   r.restitution_low = n_isolated_ > 0 ? e_low_ : std::numeric_limits<double>::quiet_NaN();
   r.restitution_high = n_isolated_ > 0 ? e_high_ : std::numeric_limits<double>::quiet_NaN();

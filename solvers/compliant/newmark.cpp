@@ -228,6 +228,8 @@ class NewmarkEngine final : public StepEngine {
     for (double& a : a_) a -= jump.after - jump.before;
   }
 
+  bool contacts_have_duration() const override { return true; }
+
   void finish(Result& res) override {
     res.impacts = el_.impacts();
     res.contact_phases = 0;
