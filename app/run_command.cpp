@@ -78,7 +78,9 @@ void print_summary(std::ostream& out, const Row& row) {
   out << "min gap  " << (std::isinf(gap) ? std::string("never below zero") : brief(gap) + " a_p/w_p^2") << '\n';
   if (std::isfinite(row.wh)) out << "step     w_max h = " << brief(row.wh) << '\n';
   if (std::isfinite(r.energy_excess)) out << "energy   largest excess " << brief(r.energy_excess) << " of the energy scale\n";
-  out << "penetr.  " << brief(penetration(row)) << (c.pi3 > 0.0 ? " of delta\n" : " a_p/w_p^2\n");
+  out << "penetr.  " << brief(penetration(row)) << " a_p/w_p^2";
+  if (std::isfinite(row.penetration_steps)) out << ", " << brief(row.penetration_steps) << " steps of travel (h max|g'|)";
+  out << '\n';
   if (r.isolated_impacts > 0)
     out << "restit.  " << brief(r.restitution_low) << " to " << brief(r.restitution_high) << " over "
         << r.isolated_impacts << " isolated impacts (eps " << brief(c.eps) << ")\n";

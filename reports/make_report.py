@@ -115,7 +115,7 @@ def stability_section(summary, points, out_dir):
              f"load, to {tol['kEnergyTolerance']:g} of the energy scale;",
              "* **gap**: a time-stepper overlaps by at most one step of travel (to "
              f"{tol['kPenetrationSteps'] - 1:.0e}, room for round-off) at its fastest gap rate, h max|g'|; the "
-             f"reference, by at most {tol['kReferencePenetration']:g} of the gap;",
+             f"reference, by at most {tol['kReferencePenetration']:g} a_p/w_p^2;",
              f"* **restitution**: every isolated impact restitutes eps to {tol['kRestitutionTolerance']:g}"
              + (";" if "accuracy" in checks else "."),
              *(["* **accuracy**: Pi1 and the impacts against the truth's (the rule: `studies/stress.hpp`; the worst "
@@ -137,7 +137,10 @@ def stability_section(summary, points, out_dir):
     lines += ["", "Per family and setting:", "", f"![stress verdicts]({stability.verdict_figure(summary, out_dir)})",
               "", "The numbers behind every cell (runs, finished runs, worst energy excess, penetration and "
               "restitution error, errors and cost): [`stability.csv`](stability.csv), one line per family and "
-              "setting; every run's row in `poundbench stress --points`.", ""]
+              "setting; every run's row in `poundbench stress --points`. Penetration has one scale there and in "
+              "every row, `a_p / w_p^2` (`penetration_max`, the rows' `penetration` and `min_gap`), and the "
+              "gap check's per-step overlap besides (`penetration_steps_max`: over one step of travel, `h max|g'|`, "
+              "which the figure below plots).", ""]
     if points:
         figure = stability.large_step_figure(points, out_dir)
         if figure:

@@ -20,10 +20,7 @@ double min_gap_ratio(const Row& row) { return row.result.min_gap / row.length_sc
 
 // Through min_gap_ratio, the value the CSV carries, so that a row read back from its CSV
 // line (rows/row_read.hpp) gives the same bits.
-double penetration(const Row& row) {
-  const double depth = std::max(0.0, -min_gap_ratio(row));
-  return row.input.pi3 > 0.0 ? depth / row.input.pi3 : depth;
-}
+double penetration(const Row& row) { return std::max(0.0, -min_gap_ratio(row)); }
 
 double penetration_steps(const Result& r) {
   const double travel = r.step * r.gap_rate_max;
