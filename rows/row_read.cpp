@@ -199,7 +199,7 @@ Row parse_row(const Columns& columns, const std::vector<std::string>& fields) {
   r.resolved = f.named("resolved", &parse_resolved);  // a file from before the verdict: not judged
   r.unresolved = f.text("unresolved");
   if (const std::string bad = row_problem(row); !bad.empty()) throw RowReadError(bad);
-  return row;  // penetration is not read: it is made from min_gap and pi3
+  return row;  // penetration is not read: it is made from min_gap
 }
 
 Row parse_row(const std::vector<std::string>& fields) {
