@@ -65,6 +65,12 @@ void print_summary(std::ostream& out, const Row& row) {
   }
   out << ")\n";
   out << "status   " << name(r.status) << (r.message.empty() ? "" : ": " + r.message) << '\n';
+  if (r.resolved) {
+    out << "verdict  "
+        << (*r.resolved ? "resolved (no criterion of solvers/verdict.hpp failed)"
+                        : "UNRESOLVED, do not trust this Pi1: " + r.unresolved)
+        << '\n';
+  }
   out << "Pi1      " << brief(r.pi1) << "  (no contact " << brief(row.pi1_no_contact)
       << "), at t = " << brief(r.t_max) << '\n';
   out << "impacts  " << r.impacts << ", contact phases " << r.contact_phases << ", steps/events " << r.steps << '\n';
@@ -72,7 +78,9 @@ void print_summary(std::ostream& out, const Row& row) {
   out << "min gap  " << (std::isinf(gap) ? std::string("never below zero") : brief(gap) + " a_p/w_p^2") << '\n';
   if (std::isfinite(row.wh)) out << "step     w_max h = " << brief(row.wh) << '\n';
   if (std::isfinite(r.energy_excess)) out << "energy   largest excess " << brief(r.energy_excess) << " of the energy scale\n";
-  out << "penetr.  " << brief(penetration(row)) << (c.pi3 > 0.0 ? " of delta\n" : " a_p/w_p^2\n");
+  out << "penetr.  " << brief(penetration(row)) << " a_p/w_p^2";
+  if (std::isfinite(row.penetration_steps)) out << ", " << brief(row.penetration_steps) << " steps of travel (h max|g'|)";
+  out << '\n';
   if (r.isolated_impacts > 0)
     out << "restit.  " << brief(r.restitution_low) << " to " << brief(r.restitution_high) << " over "
         << r.isolated_impacts << " isolated impacts (eps " << brief(c.eps) << ")\n";
@@ -120,6 +128,11 @@ int run_command(const CLI::App& command, RunFlags flags) {
     else
       print_summary(out, row);
   });
+  // Also where a script that reads only stdout's Pi1 leaves its log: status ok says the run
+  // finished, not that it resolved what it solved.
+  if (row.result.resolved == false)
+    std::cerr << "poundbench: warning: the run did not resolve what it solved (" << clip(row.result.unresolved, 200)
+              << "): its Pi1 is not to be trusted\n";
   return row.result.status == Status::ok ? 0 : 1;
 }
 

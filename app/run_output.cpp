@@ -62,6 +62,9 @@ nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {
   const Result& r = row.result;
   nlohmann::ordered_json j;
   j["status"] = name(r.status);
+  // The verdict (solvers/verdict.hpp): true or false for a run that ended ok, null otherwise.
+  j["resolved"] = r.resolved ? nlohmann::ordered_json(*r.resolved) : nlohmann::ordered_json(nullptr);
+  j["unresolved"] = r.unresolved;
   j["message"] = r.message;
   j["pi1"] = number_or_null(r.pi1);
   j["pi1_no_contact"] = number_or_null(row.pi1_no_contact);

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <optional>
 #include <vector>
 
@@ -336,11 +337,19 @@ Record record_from_samples(std::vector<double> t, std::vector<double> a, std::st
   r.a.reserve(a.size());
   for (std::size_t i = 0; i < t.size(); ++i) add_sample(r, t[i], a[i], i + 1);
   finish(r, t.size());
+  r.t_m = mean_period(r.t, r.a);
   return r;
 }
 
 Record parse_record(std::string_view text, std::string_view source) {
-  return is_at2(source) ? parse_at2(text, source) : parse_csv(text, source);
+  Record r = is_at2(source) ? parse_at2(text, source) : parse_csv(text, source);
+  r.t_m = mean_period(r.t, r.a);
+  return r;
+}
+
+double Record::length_scale() const {
+  const double w_m = 2.0 * std::numbers::pi / t_m;
+  return peak / (w_m * w_m);
 }
 
 std::shared_ptr<const Record> read_record(const std::filesystem::path& file) {

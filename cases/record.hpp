@@ -22,6 +22,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -40,11 +41,27 @@ struct RecordError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The mean period T_m of Rathje, Abrahamson & Bray (1998, J. Geotech. Geoenviron. Eng.
+// 124(2):150-159), a record's characteristic period: T_m = sum(C_i^2 / f_i) / sum(C_i^2) over
+// the Fourier amplitudes C_i of the record at the frequencies f_i in kMeanPeriodBand (Hz;
+// times in seconds). The record is taken on an even grid of its mean spacing (linear between
+// its samples), zero-padded to a power of two. NaN when no amplitude falls in the band (a
+// record of fewer than two samples, or one with nothing between 0.25 and 20 Hz).
+// cases/README.md gives its value on a pure harmonic.
+inline constexpr double kMeanPeriodBand[2] = {0.25, 20.0};
+double mean_period(const std::vector<double>& t, const std::vector<double>& a);
+
 struct Record {
   std::string source;        // the file it was read from, as named
   std::vector<double> t, a;  // sample times (rising) and accelerations
   double peak = 0.0;         // max |a_i|: the record's peak ground acceleration
+  // mean_period(t, a), computed once with the samples (an FFT), shared with them.
+  double t_m = std::numeric_limits<double>::quiet_NaN();
   double length() const { return t.back(); }
+  // The record's own length scale, its peak over the square of its mean circular frequency
+  // 2 pi / T_m: a length of the ground motion that the a_p and w_p of its Pi terms, a unit
+  // of the user's choosing, do not move (a Hertz-type contact's, cases/README.md).
+  double length_scale() const;
 };
 
 // The record in `text` (the format by `source`'s extension); throws RecordError.

@@ -53,6 +53,11 @@ struct System {
   double gap_rate(int j, const double* v) const { return v[right(j)] - (left(j) == kWall ? 0.0 : v[left(j)]); }
   // The pulse's length scale a_p / w_p^2 (Pi3 and Pi1 are lengths over it).
   double length_scale() const { return a_p / (pulse.w * pulse.w); }
+  // The length of a Hertz-type contact's stiffness (cases/README.md, "Contact stiffness"): the
+  // pulse's a_p / w_p^2, physical for the paper's pulses and the pulse models; a record's own
+  // (Record::length_scale), as its a_p and w_p are only the unit of its Pi terms. NaN for a
+  // record with no Fourier amplitude between 0.25 and 20 Hz.
+  double contact_length_scale() const { return pulse.record ? pulse.record->length_scale() : length_scale(); }
   double pi1(double u_max) const { return u_max / length_scale(); }
   // Fixed step of a time-stepper with N steps per shortest period.
   double step(int n) const { return t_min / n; }

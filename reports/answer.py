@@ -4,7 +4,7 @@ study that meets it, per scene and over every family. Read off the study's summa
 
 from collections import defaultdict
 
-from rows import config_label, num, setting_label, settings_fields, steps_of
+from rows import config_label, num, setting_label, settings_fields, sound, steps_of
 
 MIDDLE_N = 64  # the step count of the cost table and of the spectra drawn against the reference
 TARGETS = [1e-1, 1e-2, 1e-3, 1e-4]
@@ -63,13 +63,13 @@ def settings_over(summary, families, time_steppers_only=False):
 
 
 def cheapest(settings, key, target):
-    """Among settings (each its rows by family), those with no failed run and an error `key`
-    <= target on every family; the cheapest by its median CPU time per run on its most
-    expensive family. Returns that family's row, or None."""
+    """Among settings (each its rows by family), those with no failed or unresolved run and an
+    error `key` <= target on every family; the cheapest by its median CPU time per run on its
+    most expensive family. Returns that family's row, or None."""
     best = None
     for per_family in settings:
         rows = list(per_family.values())
-        if any(int(r["failed"]) > 0 or not num(r, key) <= target for r in rows):
+        if any(not sound(r) or not num(r, key) <= target for r in rows):
             continue
         costliest = max(rows, key=lambda r: num(r, "cpu_median_s"))
         if best is None or num(costliest, "cpu_median_s") < num(best, "cpu_median_s"):
@@ -150,8 +150,9 @@ def rule(summary, impacting=True):
     spread = any(has_spread(r) for r in summary)
     return ("A setting meets a target when its relative Pi1 error against the reference solved 100x tighter "
             "(the median, or the 95th percentile, over the points of a family) is at most the target on every "
-            "family of the scene (of the study, for *all scenes*), with no failed run. Its cost is its median CPU "
-            "time per run on its most expensive family, named under *cost set by*" +
+            "family of the scene (of the study, for *all scenes*), with no failed run and no unresolved one (a run "
+            "that finished but whose own measurements say it did not resolve what it solved: `solvers/verdict.hpp`). "
+            "Its cost is its median CPU time per run on its most expensive family, named under *cost set by*" +
             (" (in brackets, the lowest and highest of the timing repetitions)" if spread else "") +
             ". Its error is given on the scene's worst family" +
             (", over every point and over the points where the reference has an impact (where it has none, "
@@ -180,7 +181,7 @@ def beats_table(summary, key="err_median"):
             configs[(r["solver"], config_label(r))].append(r)
         for target in TARGETS:
             def meets(r):
-                return int(r["failed"]) == 0 and num(r, key) <= target
+                return sound(r) and num(r, key) <= target
             mine = [r for r in rows if r["solver"] == IN_HOUSE and meets(r)]
             if not mine:
                 lines.append(f"| {family} | {target:g} | none | | | |")
@@ -221,6 +222,23 @@ def failure_table(points):
         lines.append(f"| {setting_label(frows[0])} | {key[3]} | {len(frows)} of {total[key]} | {statuses} | "
                      f"{message} |")
     return lines if failed else []
+
+
+def unresolved_table(points):
+    """Markdown: every setting with runs that finished without resolving what they solved, per
+    family: how many, and the first one's reasons (solvers/verdict.hpp). Empty when none."""
+    found = defaultdict(list)
+    total = defaultdict(int)
+    for r in points:
+        key = (r["solver"], r["variant"], r["settings"], r["family"])
+        total[key] += 1
+        if r.get("resolved") == "false":
+            found[key].append(r)
+    lines = ["| setting | family | unresolved | the first one's reasons |", "|---|---|---:|---|"]
+    for key, urows in found.items():
+        why = urows[0]["unresolved"].replace("|", "/")
+        lines.append(f"| {setting_label(urows[0])} | {key[3]} | {len(urows)} of {total[key]} | {why} |")
+    return lines if found else []
 
 
 def cost_table(summary):

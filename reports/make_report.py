@@ -141,7 +141,7 @@ def commit_results(args):
         json.dump(measured_on, f, indent=2)
         f.write("\n")
     for source, name in ((args.workprecision, readme.WORKPRECISION), (args.stress, readme.STABILITY),
-                         (args.compliant, readme.COMPLIANT)):
+                         (args.compliant, readme.COMPLIANT), (args.restitution, readme.RESTITUTION)):
         if source and os.path.abspath(source) != os.path.abspath(target(name)):
             shutil.copyfile(source, target(name))
     return measured_on
@@ -251,6 +251,8 @@ def main():
     parser.add_argument("--compliant", help="summary CSV of the compliant-contact study (`poundbench workprecision "
                         "cases/sets/compliant.toml --settings cases/settings/compliant.toml`; needs --compliant-points)")
     parser.add_argument("--compliant-points", help="its per-run CSV (--points)")
+    parser.add_argument("--restitution", help="what each compliant element restitutes, measured "
+                        "(build/bench/poundbench_restitution's CSV): README's table")
     parser.add_argument("--stress-points", help="per-run CSV from `poundbench stress --points`")
     parser.add_argument("--records", nargs="+", help="rows of `poundbench spectrum cases/sets/records.toml` through "
                         "the reference and the time-steppers (scripts/main.sh: results/records-*.csv)")

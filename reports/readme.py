@@ -31,6 +31,7 @@ FAMILIES = "workprecision-families.csv"  # family -> scene of the work-precision
 IMPACTING = "workprecision-impacting.csv"  # its errors over the points where the reference has an impact
 STABILITY = "stability.csv"
 COMPLIANT = "compliant.csv"  # the compliant-contact study's summary
+RESTITUTION = "restitution.csv"  # what each compliant element restitutes (bench/restitution_table.cpp)
 MEASURED = "measured.csv"
 PROVENANCE = "provenance.json"
 MPI = "mpi.csv"  # scripts/mpi_throughput.sh's medians, measured apart from the main job
@@ -50,6 +51,7 @@ def committed(folder):
         measured_on = json.load(f)
     # The compliant study needs SUNDIALS' solver, which a build may leave out.
     has_compliant = os.path.exists(os.path.join(folder, COMPLIANT))
+    has_restitution = os.path.exists(os.path.join(folder, RESTITUTION))
     mpi = None
     if os.path.exists(os.path.join(folder, MPI)):
         with open(path(MPI_PROVENANCE)) as f:
@@ -59,7 +61,8 @@ def committed(folder):
                 impacting=read_impacting(path(IMPACTING)) if has_impacting else None,
                 scenes={r["family"]: r["scene"] for r in load([path(FAMILIES)])},
                 stability=load([path(STABILITY)]), measured=load([path(MEASURED)]),
-                compliant=load([path(COMPLIANT)]) if has_compliant else None, provenance=measured_on)
+                compliant=load([path(COMPLIANT)]) if has_compliant else None,
+                restitution=load([path(RESTITUTION)]) if has_restitution else None, provenance=measured_on)
 
 
 def source_line(inputs, files, provenance=None):
@@ -124,6 +127,10 @@ def blocks(folder):
             *compliant.answer_lines(inputs["compliant"]), "",
             source_line(inputs, [COMPLIANT, PROVENANCE]),
         ] if inputs["compliant"] else ["Not measured: this build left the compliant solver out (SUNDIALS missing)."],
+        "restitution": [
+            *compliant.restitution_lines(inputs["restitution"]), "",
+            source_line(inputs, [RESTITUTION, PROVENANCE]),
+        ] if inputs["restitution"] else ["Not measured: this build left the compliant solver out (SUNDIALS missing)."],
         "external": [
             *measured.external_lines(inputs["measured"]), "",
             source_line(inputs, [MEASURED, PROVENANCE]),

@@ -58,7 +58,7 @@ def beats_section(study, out):
     table = answer.beats_table(summary)
     out.page.table("Where another scheme beats the in-house Moreau–Jean", table)
     return ["## Where another scheme beats the in-house Moreau–Jean", "",
-            "Per family and target (the median of the relative Pi1 error, no failed run), the in-house "
+            "Per family and target (the median of the relative Pi1 error, no failed or unresolved run), the in-house "
             "`moreau-jean`'s cheapest setting that meets it and its least step count N, against every other "
             "time-stepper configuration of the study: those that meet the target at less CPU per run, and those "
             "that meet it with fewer steps per shortest period. The step counts compare the schemes apart from "
@@ -83,6 +83,18 @@ def failures_section(study, out):
             "setting that failed on every point has no line in the diagrams.", "", *table, ""]
 
 
+def unresolved_section(study, out):
+    """Every setting with runs that ended ok without resolving what they solved (their rows'
+    `resolved` false): how many, and the first one's reasons. Nothing when there are none."""
+    table = answer.unresolved_table(study.points) if study.points else []
+    if not table:
+        return []
+    out.page.table("Unresolved runs", table)
+    return ["## Unresolved runs", "", "Every setting with runs that ended ok but whose own measurements say they did "
+            "not resolve what they solved (`resolved` false in their rows, `solvers/verdict.hpp`), and the reasons of "
+            "the first. No table above ranks them; the diagrams draw them hollow.", "", *table, ""]
+
+
 def diagrams_section(study, out):
     import wp
 
@@ -93,8 +105,8 @@ def diagrams_section(study, out):
             "solver configuration over its step counts N (steps per shortest period). A figure per family and "
             "solver family, the median of the error on the left and its 95th percentile on the right, the other "
             "solvers in light grey behind; the thick grey band is the Pareto front over every solver (the "
-            "settings no other setting beats in both cost and error; settings with failed runs are not "
-            "candidates, and are drawn hollow). Errors below "
+            "settings no other setting beats in both cost and error; settings with failed or unresolved runs are "
+            "not candidates, and are drawn hollow). Errors below "
             f"{wp.ERROR_FLOOR:g} are round-off: they are drawn in the shaded band under it, one row per setting, so "
             "that none hides another." + (" Horizontal bars: the lowest and highest CPU time of the timing "
                                          "repetitions." if spread else ""), ""]
@@ -159,7 +171,7 @@ def stress_sections(study, out, about=None, reading=None):
              "load, to " + bound("kEnergyTolerance", "{:g} of the energy scale") + ";",
              "* **gap**: a time-stepper overlaps by at most one step of travel ("
              + bound("kPenetrationSteps", "to {:.0e}, room for round-off", 1.0) + ") at its fastest gap rate, h max|g'|; "
-             "the reference, by at most " + bound("kReferencePenetration", "{:g} of the gap") + ";",
+             "the reference, by at most " + bound("kReferencePenetration", "{:g} a_p/w_p^2") + ";",
              "* **restitution**: every isolated impact restitutes eps to " + bound("kRestitutionTolerance", "{:g}")
              + (";" if "accuracy" in checks else "."),
              *(["* **accuracy**: Pi1 and the impacts against the truth's (the rule: `studies/stress.hpp`; the worst "
@@ -172,13 +184,16 @@ def stress_sections(study, out, about=None, reading=None):
               f"The numbers behind every cell (runs, finished runs, worst energy excess, penetration and restitution "
               f"error, errors and cost): `{study.name}`, one line per family and setting"
               + ("; every run's row in `poundbench stress --points`." if about else
-                 f"; every run's row in `{os.path.basename(study.points_path)}`." if study.points_path else "."), ""]
+                 f"; every run's row in `{os.path.basename(study.points_path)}`." if study.points_path else ".")
+              + " Penetration has one scale there and in every row, `a_p / w_p^2` (`penetration_max`, the rows' "
+              "`penetration` and `min_gap`), and the gap check's per-step overlap besides (`penetration_steps_max`: "
+              "over one step of travel, `h max|g'|`, which the figure against the step plots).", ""]
     out.page.verdicts(summary, checks, stability.table_config)
     if study.points:
         figure = stability.large_step_figure(study.points, out.dir)
         if figure:
-            lines += ["### Against the step", "", "Penetration over delta, or over a_p/w_p^2 where Pi3 = 0.", "",
-                      f"![large steps]({figure})", ""]
+            lines += ["### Against the step", "", "Penetration over one step of travel at the run's fastest gap "
+                      "rate, h max|g'| (the gap check's measure).", "", f"![large steps]({figure})", ""]
         figure = stability.chain_cost_figure(study.points, out.dir)
         if figure:
             lines += ["### Chain: cost against the number of bodies", "", f"![chain cost]({figure})", ""]
@@ -218,7 +233,8 @@ def spectrum_sections(study, out):
 
 
 SECTIONS = {
-    "workprecision": [answer_section, beats_section, failures_section, diagrams_section, spectra_section],
+    "workprecision": [answer_section, beats_section, failures_section, unresolved_section, diagrams_section,
+                      spectra_section],
     "stress": [stress_sections],
     "spectrum": [spectrum_sections],
 }

@@ -27,6 +27,17 @@ def num(row, key):
     return float(value) if value not in ("", None) else float("nan")
 
 
+def unresolved(row):
+    """A summary row's runs that finished without resolving what they solved (the
+    `unresolved` column, solvers/verdict.hpp); 0 in a file from before that column."""
+    return int(row.get("unresolved") or 0)
+
+
+def sound(row):
+    """Whether a summary row may be ranked: none of its runs failed, none is unresolved."""
+    return int(row["failed"]) == 0 and unresolved(row) == 0
+
+
 def settings_fields(row):
     """The `settings` column (a JSON object of the solver's named values) as a dict."""
     return json.loads(row["settings"] or "{}")

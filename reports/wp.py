@@ -11,7 +11,7 @@ from matplotlib.lines import Line2D
 
 from answer import MIDDLE_N, has_spread
 from figure import MARKERS, colors, figure_width, legend_below, log_spans, save, with_legend_below
-from rows import config_label, num, steps_of
+from rows import config_label, num, sound, steps_of
 
 ERROR_FLOOR = 1e-13  # errors below this are round-off: drawn in a band under it, one row per setting
 FLOOR_ROW = 10 ** -0.6  # the factor between two rows of that band
@@ -45,8 +45,8 @@ ERRORS = (("err_median", "median"), ("err_p95", "95th percentile"))
 
 def pareto_front(rows, key):
     """The rows no other row beats in both cost and error (errors under the floor count as
-    the floor), in order of cost; settings with failed runs are not candidates."""
-    candidates = sorted((r for r in rows if int(r["failed"]) == 0 and math.isfinite(num(r, key))),
+    the floor), in order of cost; settings with failed or unresolved runs are not candidates."""
+    candidates = sorted((r for r in rows if sound(r) and math.isfinite(num(r, key))),
                         key=lambda r: num(r, "cpu_median_s"))
     front = []
     for r in candidates:
@@ -57,7 +57,7 @@ def pareto_front(rows, key):
 
 def _draw_setting(ax, lrows, key, style, floor_y):
     """One configuration's line over its step counts; points under the floor in its own row
-    of the floor band; hollow markers where some runs failed; the low-high of the timing
+    of the floor band; hollow markers where some runs failed or did not resolve; the low-high of the timing
     repetitions as horizontal bars where the rows have it."""
     above = [r for r in lrows if num(r, key) >= ERROR_FLOOR]
     ax.plot([1e6 * num(r, "cpu_median_s") for r in above], [num(r, key) for r in above], ls=style["ls"],
@@ -65,7 +65,7 @@ def _draw_setting(ax, lrows, key, style, floor_y):
     for r in lrows:
         x = 1e6 * num(r, "cpu_median_s")
         y = num(r, key) if num(r, key) >= ERROR_FLOOR else floor_y
-        hollow = int(r["failed"]) > 0
+        hollow = not sound(r)
         ax.plot([x], [y], marker=style["marker"], ms=4.5, color=style["color"], zorder=4,
                 markerfacecolor="white" if hollow else style["color"])
         if has_spread(r):
@@ -118,7 +118,7 @@ def wp_diagram(family, panel, labels, lines, rows, out_dir):
     band = any(num(r, k) < ERROR_FLOOR for r in rows for k, _ in ERRORS)
     deepest = min(floor_rows.values(), default=ERROR_FLOOR * FLOOR_ROW)
     spread = any(has_spread(r) for r in rows)
-    hollow = any(int(r["failed"]) > 0 for r in rows)
+    hollow = any(not sound(r) for r in rows)
     palette = colors(len(labels))
     styles = {lb: dict(color=palette[i], marker=MARKERS[i % len(MARKERS)], ls=STYLE.get(lines[lb][0]["solver"], "-"))
               for i, lb in enumerate(labels)}
@@ -157,7 +157,7 @@ def wp_diagram(family, panel, labels, lines, rows, out_dir):
                 Line2D([], [], color="0.85", lw=0.8, label="the other solvers")]
     if hollow:
         handles.append(Line2D([], [], ls="", marker="o", color="0.3", markerfacecolor="white",
-                              label="hollow: some runs failed"))
+                              label="hollow: some runs failed or did not resolve"))
     if spread:
         handles.append(Line2D([], [], ls="-", marker="|", color="0.3", label="bar: low–high of the repetitions"))
     legend_below(fig, handles)

@@ -20,10 +20,7 @@ double min_gap_ratio(const Row& row) { return row.result.min_gap / row.length_sc
 
 // Through min_gap_ratio, the value the CSV carries, so that a row read back from its CSV
 // line (rows/row_read.hpp) gives the same bits.
-double penetration(const Row& row) {
-  const double depth = std::max(0.0, -min_gap_ratio(row));
-  return row.input.pi3 > 0.0 ? depth / row.input.pi3 : depth;
-}
+double penetration(const Row& row) { return std::max(0.0, -min_gap_ratio(row)); }
 
 double penetration_steps(const Result& r) {
   const double travel = r.step * r.gap_rate_max;
@@ -53,6 +50,19 @@ std::string row_problem(const Row& row) {
       return std::string(column) + ": must be a finite number >= 0, or empty (it is " + shown(t) + ")";
   if (row.repetitions < 1) return "repetitions: must be >= 1 (it is " + std::to_string(row.repetitions) + ")";
   return {};
+}
+
+std::string_view resolved_text(const std::optional<bool>& resolved) {
+  return resolved ? (*resolved ? "true" : "false") : "";
+}
+
+std::optional<std::optional<bool>> parse_resolved(std::string_view text) {
+  std::optional<std::optional<bool>> out;
+  if (text.empty())
+    out.emplace();
+  else if (text == "true" || text == "false")
+    out.emplace(text == "true");
+  return out;
 }
 
 std::string case_key(const Case& c) {
@@ -102,6 +112,9 @@ constexpr std::array kMiddleColumns = {"solver",         "variant", "settings", 
 constexpr std::array kTailColumns = {"wh",          "energy_excess",   "penetration",     "isolated_impacts",
                                      "restitution_low", "restitution_high", "penetration_steps",
                                      "cpu_seconds_low", "cpu_seconds_high", "repetitions"};
+
+// The verdict (solvers/verdict.hpp), after everything else: the columns added last.
+constexpr std::array kVerdictColumns = {"resolved", "unresolved"};
 
 // Where a field's column is: after the directivity (those of every scene's bodies), after
 // the message (the chain's, where they were added) or at the end (the pulses', added last).
@@ -176,6 +189,7 @@ std::string csv_header() {
   for (const char* column : kTailColumns) line.text(column);
   for (const CaseField& f : kCaseFields)
     if (group_of(f) == Group::pulse) line.text(f.name);
+  for (const char* column : kVerdictColumns) line.text(column);
   return line.take();
 }
 
@@ -215,6 +229,8 @@ std::string csv_line(const Row& row) {
   line.number(row.cpu_seconds_high);
   line.count(row.repetitions);
   case_numbers(line, c, Group::pulse);
+  line.text(resolved_text(r.resolved));
+  line.text(r.unresolved);
   return line.take();
 }
 

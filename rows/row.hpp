@@ -9,13 +9,15 @@
 //   contact_phases, steps, min_gap, seconds, cpu_seconds, message, bodies, kick, wh,
 //   energy_excess, penetration, isolated_impacts, restitution_low, restitution_high,
 //   penetration_steps, cpu_seconds_low, cpu_seconds_high, repetitions, cycles, mp_gamma,
-//   mp_nu, record
+//   mp_nu, record, resolved, unresolved
 // pi5/pi6 are empty for the wall scene and pi7/pi8 for every scene but row3; bodies and
 // kick are empty except for chain; cycles, mp_gamma, mp_nu and record except for the pulse
 // that uses them (makris-c, mp, record: the record's file as the case named it); min_gap is divided by the pulse's length scale
 // a_p / w_p^2 and empty when no contact ever closed (infinite); a NaN is written as an
 // empty field. The columns after message came later; they are appended so that scripts
-// reading columns by position keep working.
+// reading columns by position keep working. resolved is the verdict of solvers/verdict.hpp,
+// true or false for a run that ended ok and empty otherwise (and in a file from before it),
+// unresolved its reasons.
 //
 // Timing: the solve alone, with the monitor off, the clocks' own cost taken off (about 0.37 us
 // of CPU: the thread's CPU clock is a system call; sweep/stopwatch.hpp), repeated
@@ -28,6 +30,7 @@
 #include <array>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <ostream>
 #include <span>
 #include <string>
@@ -68,7 +71,9 @@ void clear_timing(Row& row);
 // Result::min_gap over the length scale: dimensionless like Pi3 (infinite if no contact).
 double min_gap_ratio(const Row& row);
 
-// The deepest penetration over delta, or over a_p / w_p^2 when delta = 0 (0 if none).
+// The deepest penetration over a_p / w_p^2, the one length scale of Pi3, Pi1 and min_gap
+// (0 if none). It was over delta, or over a_p / w_p^2 where delta = 0: one overlap of
+// Moreau-Jean at N = 16 read 0.138 at Pi3 = 0 and 138 094 at Pi3 = 1e-6 (issue 32).
 double penetration(const Row& row);
 
 // The deepest penetration over one step of travel at the run's fastest gap rate,
@@ -87,6 +92,10 @@ std::string row_problem(const Row& row);
 // The physics of a case as text (scene, pulse, directivity, every number the scene uses):
 // equal exactly when two rows are of the same case. Matches rows with stored ones.
 std::string case_key(const Case& c);
+// Result::resolved as the `resolved` column writes it ("true", "false", "" when not judged),
+// and back (nullopt: none of these).
+std::string_view resolved_text(const std::optional<bool>& resolved);
+std::optional<std::optional<bool>> parse_resolved(std::string_view text);
 // A CSV field, quoted as RFC 4180 asks only when it holds a comma, a quote, CR or LF.
 std::string csv_field(std::string_view text);
 

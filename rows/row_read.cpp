@@ -196,8 +196,10 @@ Row parse_row(const Columns& columns, const std::vector<std::string>& fields) {
   row.cpu_seconds_low = f.number("cpu_seconds_low");
   row.cpu_seconds_high = f.number("cpu_seconds_high");
   row.repetitions = f.count<int>("repetitions", 1);  // a file from before repetitions: one timing
+  r.resolved = f.named("resolved", &parse_resolved);  // a file from before the verdict: not judged
+  r.unresolved = f.text("unresolved");
   if (const std::string bad = row_problem(row); !bad.empty()) throw RowReadError(bad);
-  return row;  // penetration is not read: it is made from min_gap and pi3
+  return row;  // penetration is not read: it is made from min_gap
 }
 
 Row parse_row(const std::vector<std::string>& fields) {

@@ -44,6 +44,9 @@ if built compliant; then
   timed compliant $pb workprecision cases/sets/compliant.toml --settings cases/settings/compliant.toml \
     --repetitions 3 --out results/compliant.csv --points results/compliant-points.csv
   compliant=(--compliant results/compliant.csv --compliant-points results/compliant-points.csv)
+  echo "main: what each compliant element restitutes (README's table)"
+  build/bench/poundbench_restitution > results/restitution.csv
+  compliant+=(--restitution results/restitution.csv)
 fi
 
 echo "main: stability on the stress case set"

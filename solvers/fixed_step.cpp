@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -38,11 +39,25 @@ void record(const System& sys, double t, const StepOutput& out, std::vector<doub
 }
 
 // Impacts and contact phases of the step just taken; rate_before holds the gap rates at
-// its start. A phase is counted once, when a second consecutive step pushes.
+// its start. A phase is counted once, when a second consecutive step pushes. For an engine
+// whose contacts last (StepEngine::contacts_have_duration), also each contact's duration in
+// step ends with a nonzero force, from one that entered approaching faster than `floor`.
 class ContactTally {
  public:
-  explicit ContactTally(std::size_t nc) : pushed_(nc), in_phase_(nc) {}
+  ContactTally(std::size_t nc, bool durations, double floor)
+      : pushed_(nc), in_phase_(nc), run_(durations ? nc : 0, -1), floor_(floor) {}
   void step(const StepOutput& out, const std::vector<double>& rate_before, StepTally& t) {
+    for (std::size_t j = 0; j < run_.size(); ++j) {
+      if (out.entered[j]) run_[j] = rate_before[j] < -floor_ ? 0 : -1;
+      if (run_[j] < 0) continue;
+      if (out.force[j] != 0.0) {
+        ++run_[j];
+      } else {  // ended
+        const double steps = static_cast<double>(run_[j]);
+        if (!(shortest_ <= steps)) shortest_ = steps;  // NaN: the first
+        run_[j] = -1;
+      }
+    }
     for (std::size_t j = 0; j < pushed_.size(); ++j) {
       if (out.entered[j] && rate_before[j] < 0.0) ++t.impacts;
       const bool push = out.force[j] > 0.0;
@@ -55,9 +70,14 @@ class ContactTally {
     }
   }
   const char* pushed() const { return pushed_.data(); }
+  // The shortest finished contact in steps (NaN: none, or durations not counted).
+  double shortest() const { return shortest_; }
 
  private:
   std::vector<char> pushed_, in_phase_;  // per contact, in the last step
+  std::vector<long> run_;                // per contact: step ends closed so far, -1 not counted
+  double floor_;
+  double shortest_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace
@@ -146,7 +166,7 @@ Result run_steps(const System& sys, const Settings& set, const StepPlan& plan, S
   res.step = h;
   StepTally tally;
   tally.state(sys, 0, out.u.data());
-  ContactTally contacts(ix(nc));
+  ContactTally contacts(ix(nc), engine.contacts_have_duration(), kRestitutionFloor * sys.a_p / sys.pulse.w);
   std::vector<double> rate(ix(nc));
   std::optional<StepMonitor> monitor;
   if (set.monitor) monitor.emplace(sys);
@@ -192,6 +212,7 @@ Result run_steps(const System& sys, const Settings& set, const StepPlan& plan, S
     }
   }
   if (monitor) monitor->finish(res);
+  res.contact_steps_min = contacts.shortest();
   finish_steps(sys, tally, k, h, why, res);
   engine.finish(res);
   if (res.status != Status::ok) {

@@ -122,6 +122,11 @@ class StepEngine {
   // Engine notes added to every result (fallbacks, library messages, LCP paths), and any
   // check that can fail only at the end. Called once, after the counts are in res.
   virtual void finish(Result& res) { (void)res; }
+  // True for an engine whose contacts are elements with a duration of their own (a nonzero
+  // force at each step end while closed): the shell counts the steps each lasts
+  // (Result::contact_steps_min, solvers/verdict.hpp). A rigid contact acts within one step by
+  // design, and MuJoCo's soft one lasts a number of steps its calibration fixes.
+  virtual bool contacts_have_duration() const { return false; }
   const StepOutput& out() const { return out_; }
 
  protected:

@@ -119,6 +119,8 @@ class Deadline {
   // The same for a loop that counts nothing itself (the reference's searches): one call
   // per unit of work.
   bool tick() { return passed(++ticks_); }
+  // The units of work tick() has counted: a search's windows, which tests hold to a budget.
+  long ticks() const { return ticks_; }
   // Why it passed, for Result::message.
   std::string reason() const;
 

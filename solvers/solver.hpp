@@ -90,6 +90,11 @@ struct Result {
   long isolated_impacts = 0;
   double restitution_low = std::numeric_limits<double>::quiet_NaN();
   double restitution_high = std::numeric_limits<double>::quiet_NaN();
+  // The range is over whole contacts of elements that last (the compliant elements, MuJoCo's
+  // soft contacts: -g' at the contact's end over -g' at its start), not over one step or
+  // event: it then holds the model's own response to the bodies' springs and the load during
+  // each contact as well as the impact law's.
+  bool restitution_over_contacts = false;
   // A time-stepper's largest |g'| over the states at its step ends: h times it is one step
   // of travel at the fastest gap rate, what a velocity-level scheme may overlap (stress
   // check `gap`). NaN: not measured (the reference, or monitor off).
@@ -97,6 +102,17 @@ struct Result {
   // CPU seconds of the processes the solver ran (the external solver's program), which the
   // thread's own CPU clock does not see: a sweep adds them to the solve's CPU time.
   double child_cpu_seconds = 0.0;
+  // The shortest contact of an element with a duration of its own (the compliant solver's
+  // Newmark), in steps of the integrator: from the step end its element was first found closed
+  // at, approaching faster than kRestitutionFloor a_p / w_p, to the last. NaN: no such contact,
+  // or a solver whose contacts are instantaneous or whose steps are its own (CVODE).
+  double contact_steps_min = std::numeric_limits<double>::quiet_NaN();
+  // Whether the run can vouch for its answer, judged from its own measurements by
+  // solvers/verdict.hpp (every run_point judges its run): true or false for a run that ended
+  // ok, empty for one that did not (its status says what happened) or that was not judged (a
+  // Result straight from a solver's solve). `unresolved` says why not, criterion by criterion.
+  std::optional<bool> resolved;
+  std::string unresolved;
   History history;
 };
 

@@ -41,6 +41,7 @@ void WholeContacts::step(int j, bool touched, const double* v) {
 void WholeContacts::finish(Result& r) const {
   r.impacts = impacts_;
   r.contact_phases = 0;
+  r.restitution_over_contacts = true;
   r.isolated_impacts = isolated_count_;
   r.restitution_low = isolated_count_ > 0 ? low_ : std::numeric_limits<double>::quiet_NaN();
   r.restitution_high = isolated_count_ > 0 ? high_ : std::numeric_limits<double>::quiet_NaN();

@@ -43,6 +43,7 @@ Summary summarize(std::span<const Row* const> rows, std::span<const double> refe
       ++s.failed;
       continue;
     }
+    if (row.result.resolved == false) ++s.unresolved;
     if (!std::isfinite(reference[i])) continue;  // the reference's own failure: no error to measure
     errors.push_back(std::abs(row.result.pi1 - reference[i]) / std::abs(reference[i]));
   }

@@ -8,7 +8,7 @@
 //   finite       every run ended with status ok and a finite Pi1
 //   energy       largest Result::energy_excess <= kEnergyTolerance
 //   gap          a time-stepper: largest penetration_steps (rows/row.hpp) <= kPenetrationSteps;
-//                the reference: largest penetration <= kReferencePenetration
+//                the reference: largest penetration (over a_p / w_p^2) <= kReferencePenetration
 //   restitution  largest |e - eps| over isolated impacts <= kRestitutionTolerance
 //   accuracy     over the runs compared with the truth (both finished): the 95th percentile
 //                of the relative Pi1 error <= kAccuracyTolerance, and no point where the
@@ -54,8 +54,9 @@ inline constexpr double kEnergyTolerance = 1e-6;
 // contact only once it overlaps reaches it exactly where touching bodies close at their
 // fastest rate. The 1e-5 is room for round-off there (single-precision Bullet: 1 + 1e-6).
 inline constexpr double kPenetrationSteps = 1.00001;
-// Of delta, or of a_p / w_p^2 when delta = 0: the reference closes a gap to within
-// 1e-10 a_p / w_p^2 (its closure tolerance), 2e-10 of delta at Pi3 = 0.5.
+// Of a_p / w_p^2 (penetration's one scale, rows/row.hpp): the reference closes a gap to
+// within 1e-10 a_p / w_p^2 (its closure tolerance) and checks its own answer for a gap below
+// 10 of them (README); this is that bound. It was of delta, or of a_p / w_p^2 where delta = 0.
 inline constexpr double kReferencePenetration = 1e-9;
 // On the measured coefficient of restitution -g'+ / g'- of isolated impacts.
 inline constexpr double kRestitutionTolerance = 1e-3;

@@ -137,7 +137,8 @@ WorkPrecision run_work_precision(std::span<const Case> cases, const SettingsList
 
 std::string work_precision_csv_header() {
   return "family,solver,variant,settings,points,failed,err_median,err_p95,err_max,cpu_median_s,cpu_mean_s,"
-         "cpu_median_low_s,cpu_median_high_s,repetitions,model_reference,int_err_median,int_err_p95,int_err_max";
+         "cpu_median_low_s,cpu_median_high_s,repetitions,model_reference,int_err_median,int_err_p95,int_err_max,"
+         "unresolved";
 }
 
 std::string work_precision_csv_line(const WorkPrecisionRow& row) {
@@ -150,6 +151,7 @@ std::string work_precision_csv_line(const WorkPrecisionRow& row) {
   line << ',' << s.cpu.repetitions << ',' << csv_field(row.model_reference);
   for (double x : {row.integration.err_median, row.integration.err_p95, row.integration.err_max})
     line << ',' << format_number(x);
+  line << ',' << s.unresolved;
   return line.str();
 }
 
@@ -158,6 +160,9 @@ std::string work_precision_problem(const WorkPrecisionRow& row, double max_error
   std::string problem;
   if (s.failed > 0)
     problem = std::to_string(s.failed) + " of " + std::to_string(s.points) + " runs did not finish ok";
+  if (s.unresolved > 0)
+    problem += (problem.empty() ? "" : "; ") + std::to_string(s.unresolved) + " of " + std::to_string(s.points) +
+               " runs finished without resolving what they solved (solvers/verdict.hpp)";
   for (const auto& [bound, value, column] :
        {std::tuple{max_error, s.err_median, "err_median"}, std::tuple{max_error_p95, s.err_p95, "err_p95"}})
     if (!std::isnan(bound) && !(value <= bound))

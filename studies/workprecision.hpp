@@ -78,8 +78,8 @@ std::string work_precision_csv_header();
 std::string work_precision_csv_line(const WorkPrecisionRow& row);
 
 // What `workprecision --check` fails a row for, "" when nothing: a run that did not finish
-// ok (a failed count), or, when max_error (max_error_p95) is not NaN, an err_median
-// (err_p95) above it.
+// ok (a failed count), one that did not resolve what it solved (an unresolved count), or,
+// when max_error (max_error_p95) is not NaN, an err_median (err_p95) above it.
 std::string work_precision_problem(const WorkPrecisionRow& row, double max_error,
                                    double max_error_p95 = std::numeric_limits<double>::quiet_NaN());
 

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "cases/system.hpp"
+#include "solvers/verdict.hpp"
 #include "sweep/stopwatch.hpp"
 
 namespace pb {
@@ -196,6 +197,7 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
   if (settings.monitor && !solver.reference && row.result.status != Status::time_limit)
     add_monitor(row, solver, system, settings, deadline);
 
+  judge(system, row.result);
   row.wh = 2.0 * std::numbers::pi * row.result.step / system.t_min;
   row.penetration_steps = penetration_steps(row.result);
 

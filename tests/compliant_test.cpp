@@ -6,16 +6,21 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include <algorithm>
+#include <memory>
+#include <utility>
 #include <string>
 #include <vector>
 
 #include "cases/case_set.hpp"
+#include "cases/record.hpp"
 #include "cases/system.hpp"
 #include "solvers/event_driven/kelvin_voigt.hpp"
 #include "solvers/compliant/compliant.hpp"
 #include "solvers/compliant/contact_law.hpp"
+#include "solvers/compliant/free_impact.hpp"
 #include "solvers/event_driven/event_driven.hpp"
 #include "support.hpp"
 
@@ -60,6 +65,62 @@ TEST(CompliantLaw, PublishedHuntCrossleyFormulasMissTheTargetRestitution) {
   EXPECT_NEAR(flores, 0.470, 0.01);
 }
 
+// Issue 32: Jankowski's published zeta restitutes 0.2917, 0.4946, 0.5962, 0.8997 at eps 0.3,
+// 0.5, 0.6, 0.9 (the audit's numbers, measured on an isolated impact); the default element's
+// zeta is calibrated on that impact as Hunt-Crossley's chi is (1.4937 at eps 0.3, not 1.5508).
+// The integral converges to 2e-12 (contact_law.cpp); the bisection stops at 1e-11 of zeta.
+TEST(CompliantLaw, JankowskiZetaIsCalibratedToRestituteEpsAndHisOwnIsKeptByName) {
+  const std::vector<std::pair<double, double>> published = {{0.3, 0.2917}, {0.5, 0.4946}, {0.6, 0.5962}, {0.9, 0.8997}};
+  for (const auto& [eps, e] : published) {
+    EXPECT_NEAR(compliant::jankowski_restitution(compliant::jankowski_zeta(eps)), eps, 1e-9) << eps;
+    EXPECT_NEAR(compliant::jankowski_restitution(compliant::jankowski_published_zeta(eps)), e, 5e-5) << eps;
+  }
+  EXPECT_NEAR(compliant::jankowski_zeta(0.3), 1.4937, 5e-5);
+  EXPECT_NEAR(compliant::jankowski_published_zeta(0.3), 1.5508, 5e-5);
+  EXPECT_EQ(compliant::parse_model("jankowski-published"), compliant::Model::jankowski_published);
+}
+
+// The same through the solver: one free impact (nothing but the element acting), CVODE at
+// rtol 1e-12 placing the contact's onset and end at its roots. Every calibrated element
+// restitutes eps to 1e-6 (measured within 5e-10); the published zeta does not.
+TEST(CompliantLaw, EveryCalibratedElementRestitutesEpsOnAFreeImpact) {
+  for (double eps : {0.1, 0.5, 0.9}) {
+    for (const char* variant : {"kelvin-voigt", "hunt-crossley", "jankowski"}) {
+      const Result r = compliant::free_impact(variant, eps);
+      ASSERT_EQ(r.status, Status::ok) << variant << ": " << r.message;
+      ASSERT_EQ(r.isolated_impacts, 1) << variant;
+      EXPECT_NEAR(r.restitution_low, eps, 1e-6) << variant << " at eps " << eps;
+    }
+    const Result his = compliant::free_impact("jankowski-published", eps);
+    EXPECT_GT(std::abs(his.restitution_low - eps), 2e-4) << eps;
+  }
+  EXPECT_NEAR(compliant::free_impact("hertz", 1.0).restitution_low, 1.0, 1e-6);
+}
+
+// The issue's case: as K grows the element converges to the rigid answer at the restitution
+// it really has. With his zeta at K = 1e10 Pi1 is 3.29419 (the rigid answer at eps 0.3 is
+// 3.32234, at 0.29175 3.29398): 8.5e-3 off. Calibrated: 3.32256, 6.4e-5 off; the test asks 1e-3.
+TEST(Compliant, CalibratedJankowskiConvergesToTheRigidAnswerAtItsEps) {
+  Case c = make_case(Scene::wall, PulseShape::cosine, 0.398177, 1.0, 0.3);
+  c.directivity = Directivity::reverse;
+  c.pi3 = 0.159397;
+  const System s = make_system(c);
+  const Result rigid = event_driven::solve(s, {});
+  Settings st;
+  st.rtol = 1e-11;
+  st.stiffness = 1e10;
+  st.variant = "jankowski";
+  const Result calibrated = compliant::solve(s, st);
+  st.variant = "jankowski-published";
+  const Result his = compliant::solve(s, st);
+  ASSERT_EQ(calibrated.status, Status::ok) << calibrated.message;
+  ASSERT_EQ(his.status, Status::ok) << his.message;
+  RecordProperty("calibrated_error", sci(rel(calibrated.pi1, rigid.pi1)));
+  RecordProperty("published_error", sci(rel(his.pi1, rigid.pi1)));
+  EXPECT_LT(rel(calibrated.pi1, rigid.pi1), 1e-3);
+  EXPECT_GT(rel(his.pi1, rigid.pi1), 5e-3);
+}
+
 TEST(Compliant, HertzRefusesAnInelasticCaseByName) {
   const Result r = solve(make_case(Scene::wall, PulseShape::sine, 0.5, 1.0, 0.5), "hertz", 0.0);
   EXPECT_EQ(r.status, Status::failed);
@@ -84,6 +145,42 @@ TEST(Compliant, KelvinVoigtApproachesTheRigidReferenceAsTheStiffnessGrows) {
       EXPECT_LT(e, last / 5.0) << name(scene) << " K " << K;
       last = e;
     }
+  }
+}
+
+// Issue 32: for a record, a_p and w_p only set the Pi terms' unit, so the same buildings given
+// at --tp 1 and --tp 2 (Pi2 doubled, Pi3 a quarter, K the same: body 0's own spring is its
+// unit) must peak at the same physical |u0| = Pi1 a_p / w_p^2. The Hertz family's length was
+// a_p / w_p^2, and Hunt-Crossley moved by 1.6 % (0.53363 against 0.52502, and an impact
+// fewer); it is now the record's own (cases/record.hpp: its peak over its mean circular
+// frequency squared), and both agree as Kelvin-Voigt's do, to CVODE's tolerance (measured
+// 1.5e-8 at rtol 1e-10, whose absolute part is a_p / w_p^2 times it; 1e-6 allowed).
+TEST(Compliant, AHertzTypeElementOnARecordDoesNotMoveWithThePiTermsUnit) {
+  const auto record = read_record(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/records/mp-noise-20s.csv");
+  for (const char* variant : {"hunt-crossley", "kelvin-voigt"}) {
+    double peak[2] = {0.0, 0.0};
+    long impacts[2] = {0, 0};
+    for (int k = 0; k < 2; ++k) {
+      const double tp = 1.0 + k, scale = tp;  // w_p = 2 pi / tp: w0 = Pi2 w_p and delta fixed
+      Case c = make_case(Scene::pair, PulseShape::record, 0.5 * scale, 0.5, 0.5);
+      c.samples = record;
+      c.record = record->source;
+      c.a_p = record->peak;
+      c.w_p = 2.0 * std::numbers::pi / tp;
+      c.pi3 = 0.5 / (scale * scale);
+      c.n_free = 1.0;
+      Settings st;
+      st.variant = variant;
+      st.stiffness = 1e4;
+      st.rtol = 1e-10;
+      const System s = make_system(c);
+      const Result r = compliant::solve(s, st);
+      ASSERT_EQ(r.status, Status::ok) << variant << ": " << r.message;
+      peak[k] = r.pi1 * s.length_scale();
+      impacts[k] = r.impacts;
+    }
+    EXPECT_EQ(impacts[0], impacts[1]) << variant;
+    EXPECT_NEAR(peak[1], peak[0], 1e-6 * peak[0]) << variant;
   }
 }
 
@@ -155,6 +252,75 @@ TEST(Compliant, NewmarkConvergesToTheExactSolutionOfTheSameModel) {
     RecordProperty("newmark_error_N" + std::to_string(n), sci(e));
     EXPECT_LT(e, last / 3.0) << "N " << n;
     last = e;
+  }
+}
+
+// Newmark's largest displacement error over 16 times common to every N (multiples of the
+// coarsest step), against the exact motion there (the reference run to that time), over
+// a_p / w_p^2. No contact closes (Pi3 = 1000), so this is the integrator's error alone.
+double newmark_state_error(const System& s, int n, int coarsest) {
+  Settings st;
+  st.integrator = "newmark";
+  st.steps = n;
+  st.history_samples = 1;  // every step
+  const Result r = compliant::solve(s, st);
+  EXPECT_EQ(r.status, Status::ok) << r.message;
+  EXPECT_EQ(r.impacts, 0);
+  const auto stride = static_cast<std::size_t>(n / coarsest);
+  const std::size_t width = static_cast<std::size_t>(r.history.row_size()), ref = 1 + static_cast<std::size_t>(s.ref);
+  const std::size_t steps = r.history.rows() - 1, every = std::max<std::size_t>(1, steps / stride / 16) * stride;
+  double worst = 0.0;
+  for (std::size_t k = every; k <= steps; k += every) {
+    System to = s;
+    to.t_end = r.history.data[k * width];
+    Settings exact;
+    exact.history_samples = 2;  // the start and t_end
+    const Result e = event_driven::solve(to, exact);
+    worst = std::max(worst, std::abs(r.history.data[k * width + ref] - e.history.data[width + ref]));
+  }
+  return worst / s.length_scale();
+}
+
+// Average-acceleration Newmark is second order for a smooth load, and stays so where the load
+// jumps (issue 32): the cosine pulse at its end T_p, on a step's end (Pi2 < 1: T_min = T_p)
+// and inside a step (Pi2 = 1.7), and a record that starts after t = 0 and ends at a nonzero
+// sample, each inside a step. Before, the step after a jump started from the acceleration of
+// the load before it (and a step across one integrated it by the trapezoid): first order,
+// the error falling 4 times per factor 4 of N (measured 4.0 on the issue's case). Now measured
+// 15 to 17 per factor 4 on each; the test asks for 10.
+TEST(Compliant, NewmarkIsSecondOrderAcrossTheLoadsJumps) {
+  std::vector<std::pair<std::string, System>> cases;
+  for (double pi2 : {0.398177, 1.7}) {
+    Case c = make_case(Scene::wall, PulseShape::cosine, pi2, 1.0, 0.5);
+    c.directivity = Directivity::reverse;
+    c.pi3 = 1000.0;
+    cases.emplace_back("cosine pi2 " + std::to_string(pi2), make_system(c));
+  }
+  {  // a cosine sampled at 0.01 s from 0.2 s to 1.55 s, 1.6 m/s^2 at its last sample
+    std::vector<double> t, a;
+    for (int i = 0; i <= 135; ++i) {
+      t.push_back(0.2 + 0.01 * i);
+      a.push_back(2.0 * std::cos(4.0 * t.back()));
+    }
+    Case c = make_case(Scene::wall, PulseShape::record, 0.8, 1.0, 0.5);
+    c.samples = std::make_shared<const Record>(record_from_samples(t, a, "jumps"));
+    c.record = "jumps";
+    c.a_p = c.samples->peak;
+    c.w_p = 4.0;
+    c.pi3 = 1000.0;
+    c.n_free = 1.0;
+    cases.emplace_back("record", make_system(c));
+  }
+  for (const auto& [label, s] : cases) {
+    double last = 0.0;
+    for (int n : {256, 1024, 4096}) {
+      const double e = newmark_state_error(s, n, 256);
+      RecordProperty(label + " N" + std::to_string(n), sci(e));
+      if (last > 0.0) {
+        EXPECT_GT(last / e, 10.0) << label << ", N " << n << ": " << last << " then " << e;
+      }
+      last = e;
+    }
   }
 }
 

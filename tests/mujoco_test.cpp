@@ -95,13 +95,14 @@ TEST(MujocoCalibration, EffectiveImpedanceIsThreeDOverOnePlusTwoD) {
 // step: the restitution range over 16 phases.
 struct Range {
   double low = 1e300, high = -1e300;
+  double sum = 0.0;  // of the restitutions, for their mean
   int impacts = 0;
 };
 
-Range free_impacts(std::string_view variant, double eps, double contact_steps) {
+Range free_impacts(std::string_view variant, double eps, double contact_steps, int phases = 16) {
   Range r;
   const int n_steps = 256;
-  for (int phase = 0; phase < 16; ++phase) {
+  for (int phase = 0; phase < phases; ++phase) {
     System s;
     s.wall = true;
     s.bodies = {Body{1.0, 0.0, 0.0, 0.0}};
@@ -109,7 +110,7 @@ Range free_impacts(std::string_view variant, double eps, double contact_steps) {
     s.pulse.amplitude = 0.0;
     s.t_min = 1.0;
     const double h = s.t_min / n_steps;
-    s.delta = (3.0 + phase / 16.0) * h;
+    s.delta = (3.0 + static_cast<double>(phase) / phases) * h;
     s.u_start = {0.0};
     s.v_start = {-1.0};
     s.t_end = (20.0 + 60.0 * contact_steps) * h;
@@ -126,6 +127,7 @@ Range free_impacts(std::string_view variant, double eps, double contact_steps) {
     }
     r.low = std::min(r.low, res.restitution_low);
     r.high = std::max(r.high, res.restitution_high);
+    r.sum += res.restitution_low;
     ++r.impacts;
   }
   return r;
@@ -166,6 +168,23 @@ TEST(MujocoRestitution, IsolatedImpactsScatterAroundEpsWithThePhaseOfTheStep) {
     EXPECT_GE(r.low, e.low - 0.005) << e.variant << " eps=" << e.eps << " M=" << e.steps;
     EXPECT_LE(r.high, e.high + 0.005) << e.variant << " eps=" << e.eps << " M=" << e.steps;
   }
+}
+
+// "eps on average" measured (issue 32): the mean over 64 phases of the step, eps = 0.5 and
+// the default M = 2. RK4's is eps to 0.0012 (measured 0.5012); Euler's (and so implicit's)
+// is low, 0.4865, and nears eps only as M grows (0.4920 at M = 4, 0.4957 at 8): the
+// phases where the contact starts late in a step lose more than the early ones gain. The
+// README quotes these numbers from this test's properties (the bounds: the measured means
+// widened by 0.002, another libm's round-off).
+TEST(MujocoRestitution, TheMeanOverTheStepsPhasesIsEpsForRk4AndLowForEuler) {
+  const Range euler = free_impacts("euler-faithful", 0.5, 2, 64), rk4 = free_impacts("rk4-faithful", 0.5, 2, 64);
+  ASSERT_EQ(euler.impacts, 64);
+  ASSERT_EQ(rk4.impacts, 64);
+  const double euler_mean = euler.sum / 64, rk4_mean = rk4.sum / 64;
+  RecordProperty("euler_mean_eps0.5_M2", sci(euler_mean));
+  RecordProperty("rk4_mean_eps0.5_M2", sci(rk4_mean));
+  EXPECT_NEAR(euler_mean, 0.4865, 0.002);
+  EXPECT_NEAR(rk4_mean, 0.5012, 0.002);
 }
 
 // ---------------------------------------------------------------- forces, warnings, variants
@@ -348,12 +367,17 @@ TEST(MujocoIntegrators, ImplicitTakesEulersStepsWhereOnlyJointsAreDamped) {
   Settings euler, implicit;
   implicit.variant = "implicit-faithful";
   double worst = 0.0;
+  int same = 0;
   for (const System& s : some_systems()) {
     const Result a = mujoco::solve(s, euler), b = mujoco::solve(s, implicit);
     ASSERT_EQ(a.status, Status::ok) << a.message;
     worst = std::max(worst, std::abs(b.pi1 - a.pi1) / a.pi1);
+    if (a.pi1 == b.pi1) ++same;
   }
+  // The same motion, but not the same operations: Pi1 equal to the bit on 8 of the 18 cases,
+  // the others within 1.3e-14 (issue 32: README had "equal to the bit"); 1e-12 leaves room.
   RecordProperty("worst", sci(worst));
+  RecordProperty("equal_bit_for_bit", std::to_string(same) + " of " + std::to_string(some_systems().size()));
   EXPECT_LT(worst, 1e-12);
 }
 

@@ -43,6 +43,16 @@ class Run(unittest.TestCase):
                 self.assertEqual(result[key], expected[key], key)
         self.assertNotIn("history", result)
 
+    def test_the_verdict_is_in_the_dict(self):
+        # Issue 32: a run that finished without resolving what it solved says so (Newmark at
+        # its defaults on the issue's wall case), as run --json does; the reference's resolves.
+        wall = dict(scene="wall", pulse="cosine", directivity="normal", pi2=1.0, pi3=0.5, eps=0.5)
+        result = poundbench.run(**wall, solver="compliant", integrator="newmark")
+        self.assertEqual(result["status"], "ok")
+        self.assertIs(result["resolved"], False)
+        self.assertIn("a contact lasted", result["unresolved"])
+        self.assertIs(poundbench.run(**wall)["resolved"], True)
+
     def test_history_is_one_numpy_array_per_column_of_run_history(self):
         result = poundbench.run(**CASE, samples=101)
         history = result["history"]

@@ -198,6 +198,27 @@ TEST(ReferenceResonance, ResonantBodyOfAPairAndAResonantStuckClusterFinish) {
   }
 }
 
+// Issue 32's case: undamped, body 1 resonant with the pulse (Pi5 = 4 at Pi2 = 4) and body 0
+// at four times its frequency, whose peak search once took 40 times its neighbours' time
+// (search_test.cpp holds the cost; bench/event_driven_bench.cpp BM_EventDrivenPowerOfTwoPi2
+// times it). The answer at Pi2 = 4 is its neighbours' limit: the same impacts, and Pi1 their
+// mean to O(delta^2) (measured 1.5e-10 relative at delta = 5e-5; 1e-8 leaves room).
+TEST(ReferenceResonance, Pi2OfFourIsItsNeighboursLimit) {
+  const auto solve = [](double pi2) {
+    Case c = undamped(Scene::pair, PulseShape::sine, pi2);
+    c.pi5 = 4.0;
+    c.pi6 = 1.0;
+    return event_driven::solve(make_system(c), {});
+  };
+  const double delta = 5e-5;
+  const Result below = solve(4.0 - delta), at = solve(4.0), above = solve(4.0 + delta);
+  ASSERT_EQ(at.status, Status::ok) << at.message;
+  EXPECT_EQ(at.impacts, 53);  // the issue's count
+  EXPECT_EQ(at.impacts, below.impacts);
+  EXPECT_EQ(at.impacts, above.impacts);
+  EXPECT_NEAR(at.pi1, 0.5 * (below.pi1 + above.pi1), 1e-8 * at.pi1);
+}
+
 TEST(ReferenceTolerances, CheckRefusesTolScalesDoublePrecisionCannotMean) {
   Settings st;
   for (double bad : {1e-320, 1e-6, 0.0, -1.0, 1e5, std::nan(""), std::numeric_limits<double>::infinity()}) {

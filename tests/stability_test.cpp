@@ -74,7 +74,7 @@ TEST(StabilitySummary, EachCheckFailsJustAboveItsToleranceAndPassesAtIt) {
   EXPECT_EQ(s.energy_excess_max, 2 * kEnergyTolerance);
   EXPECT_FALSE(s.passed());
 
-  // Gap, time-stepper: judged in steps of travel, whatever the overlap over delta.
+  // Gap, time-stepper: judged in steps of travel, whatever the overlap over a_p / w_p^2.
   rows = {good_row(), good_row()};
   rows[0].result.min_gap = -10.0;
   rows[0].penetration_steps = kPenetrationSteps;
@@ -83,19 +83,19 @@ TEST(StabilitySummary, EachCheckFailsJustAboveItsToleranceAndPassesAtIt) {
   s = summary_of(rows);
   EXPECT_EQ(s.gap, Verdict::fail);
   EXPECT_DOUBLE_EQ(s.penetration_steps_max, 2 * kPenetrationSteps);
-  EXPECT_DOUBLE_EQ(s.penetration_max, 20.0);  // over delta = 0.5
+  EXPECT_DOUBLE_EQ(s.penetration_max, 10.0);  // over a_p / w_p^2 = 1, not delta = 0.5
 
-  // Gap, the reference (no step): penetration is over delta (0.5 here).
+  // Gap, the reference (no step): penetration over a_p / w_p^2 (1 here), whatever delta.
   rows = {good_row(), good_row()};
   for (Row& r : rows) {
     r.solver = "event-driven";
     r.wh = r.penetration_steps = kNaN;
   }
-  rows[0].result.min_gap = -0.5 * kReferencePenetration;
+  rows[0].result.min_gap = -kReferencePenetration;
   s = summary_of(rows);
   EXPECT_EQ(s.gap, Verdict::pass);
   EXPECT_TRUE(std::isnan(s.penetration_steps_max));
-  rows[0].result.min_gap = -0.5 * 2 * kReferencePenetration;
+  rows[0].result.min_gap = -2 * kReferencePenetration;
   EXPECT_EQ(summary_of(rows).gap, Verdict::fail);
 
   // Restitution: either end of the measured range may be the worst.

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -513,12 +514,13 @@ TEST(Csv, NumbersReadBackToTheSameDouble) {
 
 TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   const std::vector<std::string> header = split_csv(csv_header());
-  ASSERT_EQ(header.size(), 45u);
+  ASSERT_EQ(header.size(), 47u);
   EXPECT_EQ(header.front(), "family");
   EXPECT_EQ(header[28], "message");  // the columns after it were appended later
   EXPECT_EQ(header[37], "penetration_steps");
   EXPECT_EQ(header[40], "repetitions");
-  EXPECT_EQ(header.back(), "record");  // the loads' columns came last (issue 21)
+  EXPECT_EQ(header[44], "record");  // the loads' columns (issue 21)
+  EXPECT_EQ(header.back(), "unresolved");  // the verdict's came last (issue 32)
 
   Row row;
   row.input.family = "odd, \"name\"";
@@ -549,6 +551,35 @@ TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   EXPECT_EQ(field("pi7"), "");    // but no body 2
   EXPECT_EQ(field("min_gap"), "");  // no contact closed: infinite gap
   EXPECT_EQ(field("pi1_no_contact"), "");  // NaN
+}
+
+// The verdict (solvers/verdict.hpp) goes out and comes back as it was: true, false with its
+// reasons (a comma and a quote in them), and not judged; and a file written before its two
+// columns reads, its rows not judged.
+TEST(Csv, TheVerdictReadsBackAndAFileFromBeforeItStillReads) {
+  Row row;
+  row.input.scene = Scene::wall;
+  row.solver = "compliant";
+  row.settings = "{}";
+  row.result.pi1 = 1.5;
+  row.length_scale = 1.0;
+  for (std::optional<bool> resolved : {std::optional<bool>(true), std::optional<bool>(false), std::optional<bool>()}) {
+    row.result.resolved = resolved;
+    row.result.unresolved = resolved == false ? "a contact lasted 1 step, \"short\"" : "";
+    const Row back = parse_row(split_csv(csv_line(row)));
+    EXPECT_EQ(back.result.resolved, resolved);
+    EXPECT_EQ(back.result.unresolved, row.result.unresolved);
+    EXPECT_EQ(csv_line(back), csv_line(row));
+  }
+  std::string header = csv_header(), line = csv_line(row);
+  header.erase(header.rfind(",resolved"));
+  line.erase(line.rfind(",,"));  // both verdict fields are empty for a row not judged
+  std::istringstream old(header + "\n" + line + "\n");
+  const RowFile file = read_csv(old, "old.csv");
+  ASSERT_EQ(file.rows.size(), 1u);
+  EXPECT_FALSE(file.rows[0].result.resolved.has_value());
+  std::istringstream bad(csv_header() + "\n" + csv_line(row).substr(0, csv_line(row).size() - 2) + ",maybe,\n");
+  EXPECT_THROW(read_csv(bad, "bad.csv"), RowReadError);
 }
 
 TEST(Csv, MinGapIsDividedByTheLengthScale) {

@@ -47,6 +47,28 @@ TEST(Summary, ErrorsAreRelativeAndFailedRunsAreCountedNotAveraged) {
   EXPECT_DOUBLE_EQ(s.cpu.mean, 3.0);
 }
 
+// A finished run that did not resolve what it solved is counted apart (issue 32): its
+// error is a finished run's, but the table says how many there were, and `--check` and the
+// report's tables (reports/answer.py) hold it against the setting.
+TEST(Summary, UnresolvedRunsAreCountedAndTheCheckNamesThem) {
+  std::vector<Row> rows = {synthetic(1.1, 1.0), synthetic(1.2, 1.0), synthetic(0.7, 1.0)};
+  rows[1].result.resolved = false;
+  rows[1].result.unresolved = "a contact lasted 1 step ends of the integrator (fewer than 4)";
+  rows[2].result.resolved = true;
+  const std::vector<const Row*> ptrs = {&rows[0], &rows[1], &rows[2]};
+  const std::vector<double> ref = {1.0, 1.0, 1.0};
+  WorkPrecisionRow row;
+  row.summary = summarize(ptrs, ref);
+  EXPECT_EQ(row.summary.unresolved, 1u);
+  EXPECT_EQ(row.summary.failed, 0u);
+  EXPECT_NEAR(row.summary.err_max, 0.3, 1e-15);
+  const std::string line = work_precision_csv_line(row);
+  EXPECT_EQ(line.substr(line.rfind(',') + 1), "1");
+  EXPECT_EQ(work_precision_csv_header().substr(work_precision_csv_header().rfind(',') + 1), "unresolved");
+  EXPECT_NE(work_precision_problem(row, std::nan("")).find("1 of 3 runs finished without resolving"),
+            std::string::npos);
+}
+
 Row timed(double median, double low, double high, int repetitions) {
   Row r = synthetic(1.0, median);
   r.cpu_seconds_low = low;

@@ -60,6 +60,9 @@ Result solve(const System& system, const Settings& settings) {
   const Model model = *parse_model(settings.variant);
   if (std::string_view bad = eps_problem(model, system.eps); !bad.empty())
     return failed("eps: " + std::string(bad));
+  if (model != Model::kelvin_voigt && !(system.contact_length_scale() > 0.0))
+    return failed("record: its Fourier amplitudes vanish between 0.25 and 20 Hz, so it has no mean period to "
+                  "give a Hertz-type element its length scale (cases/README.md)");
   for (const Body& b : system.bodies)
     if (!(b.m > 0.0 && std::isfinite(b.m) && std::isfinite(b.k) && std::isfinite(b.c)))
       return failed("every body needs a finite positive mass and a finite spring and dashpot");

@@ -13,9 +13,11 @@
 //            by default (`integrator Newmark 0.5 0.25`, `algorithm Newton`). The contact's
 //            own period is not in T_min: a step that does not resolve it shows as
 //            penetration, restitution and energy in the row, and a Newton iteration that
-//            does not converge ends the run with status failed and says where.
+//            does not converge ends the run with status failed and says where. A step is
+//            split where the load jumps (second order across it: newmark.cpp).
 //
-// The variant is the element (kelvin-voigt, the default; hertz; hunt-crossley; jankowski);
+// The variant is the element (kelvin-voigt, the default; hertz; hunt-crossley; jankowski;
+// jankowski-published, his element with his own zeta(eps));
 // --stiffness is its Pi term K (default kDefaultStiffness). Both integrators load the
 // bodies with -m a_g(t) at the times they evaluate (CVODE: every stage; Newmark: the step
 // ends, as its trapezoidal rule asks).

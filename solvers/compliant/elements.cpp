@@ -8,7 +8,7 @@ namespace pb::compliant {
 double element_stiffness(const System& sys, Model model, double K) {
   const Body& b0 = sys.bodies[static_cast<std::size_t>(sys.ref)];
   const double linear = K * b0.m * b0.w * b0.w;
-  return model == Model::kelvin_voigt ? linear : linear / std::sqrt(sys.length_scale());
+  return model == Model::kelvin_voigt ? linear : linear / std::sqrt(sys.contact_length_scale());
 }
 
 Elements::Elements(const System& sys, Model model, double K)
@@ -62,6 +62,7 @@ void Elements::open(int j, double q) {
 }
 
 void Elements::finish(Result& r) const {
+  r.restitution_over_contacts = true;
   r.isolated_impacts = n_isolated_;
   r.restitution_low = n_isolated_ > 0 ? e_low_ : std::numeric_limits<double>::quiet_NaN();
   r.restitution_high = n_isolated_ > 0 ? e_high_ : std::numeric_limits<double>::quiet_NaN();

@@ -14,7 +14,8 @@
 
 namespace pb::compliant {
 
-// k of the element from the Pi term K (contact_law.hpp: linear, or Hertz family over sqrt(L)).
+// k of the element from the Pi term K (contact_law.hpp: linear, or Hertz family over sqrt(L),
+// L = System::contact_length_scale()).
 double element_stiffness(const System& sys, Model model, double K);
 
 class Elements {

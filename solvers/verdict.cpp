@@ -1,0 +1,46 @@
+#include "solvers/verdict.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace pb {
+
+namespace {
+
+// Three significant digits: a reason to read (the row's columns hold every digit).
+std::string brief(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", x);
+  return text;
+}
+
+}  // namespace
+
+void judge(const System& system, Result& r) {
+  r.resolved.reset();
+  r.unresolved.clear();
+  if (r.status != Status::ok) return;
+  std::string why;
+  const auto fail = [&why](const std::string& reason) { why += (why.empty() ? "" : "; ") + reason; };
+  if (const double per_period = system.t_min / r.step; per_period < kMinStepsPerPeriod)
+    fail("its step is " + brief(1.0 / per_period) + " of the shortest period T_min (fewer than " +
+         brief(kMinStepsPerPeriod) + " steps a period)");
+  if (r.contact_steps_min < kMinContactSteps)
+    fail("a contact lasted " + brief(r.contact_steps_min) + " step ends of the integrator (fewer than " +
+         brief(kMinContactSteps) + ")");
+  if (r.energy_excess > kEnergyMade)
+    fail("it made energy, " + brief(r.energy_excess) + " of the energy scale (above " +
+         brief(kEnergyMade) + ")");
+  if (r.isolated_impacts > 0 && !r.restitution_over_contacts) {
+    const double off = std::max(std::abs(r.restitution_low - system.eps), std::abs(r.restitution_high - system.eps));
+    if (off > kRestitutionMargin)
+      fail("its isolated impacts restituted " + brief(r.restitution_low) + " to " +
+           brief(r.restitution_high) + " for eps " + brief(system.eps) + " (off by more than " +
+           brief(kRestitutionMargin) + ")");
+  }
+  r.resolved = why.empty();
+  r.unresolved = std::move(why);
+}
+
+}  // namespace pb

@@ -1,0 +1,91 @@
+// The verdict on a finished run (solvers/verdict.hpp): each criterion alone makes a run
+// unresolved and is named; what a run did not measure is not judged; a run that did not end
+// ok has none. The contract test (solver_contract_test.cpp) holds every solver to it.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "cases/system.hpp"
+#include "solvers/verdict.hpp"
+#include "tests/support.hpp"
+
+namespace pb {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A run that measured nothing the verdict judges (the reference's ok run is one).
+Result quiet(const System& s) {
+  Result r;
+  r.pi1 = 1.0;
+  r.step = s.t_min / 64.0;
+  return r;
+}
+
+TEST(Verdict, EachCriterionAloneMakesAFinishedRunUnresolvedAndIsNamed) {
+  const System s = make_system(test::make_case(Scene::wall, PulseShape::sine, 1.0, 1.0, 0.5));
+  Result r = quiet(s);
+  judge(s, r);
+  EXPECT_EQ(r.resolved, true);
+  EXPECT_EQ(r.unresolved, "");
+
+  struct Bad {
+    const char* words;
+    void (*make)(Result&, const System&);
+  };
+  const Bad bad[] = {
+      {"its step is", [](Result& x, const System& sys) { x.step = sys.t_min / 3.9; }},
+      {"a contact lasted", [](Result& x, const System&) { x.contact_steps_min = 3.0; }},
+      {"it made energy", [](Result& x, const System&) { x.energy_excess = 1.01; }},
+      {"its isolated impacts restituted", [](Result& x, const System&) {
+         x.isolated_impacts = 2;
+         x.restitution_low = 0.5;
+         x.restitution_high = 0.61;
+       }},
+  };
+  for (const Bad& b : bad) {
+    Result x = quiet(s);
+    b.make(x, s);
+    judge(s, x);
+    EXPECT_EQ(x.resolved, false) << b.words;
+    EXPECT_EQ(x.unresolved.find(b.words), 0u) << x.unresolved;
+  }
+  // At the margins themselves: resolved.
+  Result edge = quiet(s);
+  edge.step = s.t_min / kMinStepsPerPeriod;
+  edge.contact_steps_min = kMinContactSteps;
+  edge.energy_excess = kEnergyMade;
+  edge.isolated_impacts = 1;
+  edge.restitution_low = edge.restitution_high = 0.5 + kRestitutionMargin / 2;
+  judge(s, edge);
+  EXPECT_EQ(edge.resolved, true) << edge.unresolved;
+}
+
+TEST(Verdict, WhatARunDidNotMeasureIsNotJudgedAndAFailedRunHasNone) {
+  const System s = make_system(test::make_case(Scene::wall, PulseShape::sine, 1.0, 1.0, 0.5));
+  Result r;
+  r.pi1 = 1.0;  // no step (an event-driven or adaptive solver), nothing measured
+  r.energy_excess = kNaN;
+  r.contact_steps_min = kNaN;
+  judge(s, r);
+  EXPECT_EQ(r.resolved, true);
+  // Restitution over whole contacts carries the model's response to the load (not judged).
+  Result whole = quiet(s);
+  whole.isolated_impacts = 1;
+  whole.restitution_low = whole.restitution_high = 1.7;
+  whole.restitution_over_contacts = true;
+  judge(s, whole);
+  EXPECT_EQ(whole.resolved, true);
+  Result failed = quiet(s);
+  failed.status = Status::diverged;
+  failed.energy_excess = 1e6;
+  judge(s, failed);
+  EXPECT_FALSE(failed.resolved.has_value());
+  EXPECT_EQ(failed.unresolved, "");
+}
+
+}  // namespace
+}  // namespace pb
