@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -243,6 +244,43 @@ TEST(Siconos, EventDrivenFailsWithSiconosMessageWhereImpactsAccumulate) {
   EXPECT_GT(r.steps, 100) << "events before the failure are kept";
   EXPECT_GT(r.impacts, 10);
   EXPECT_TRUE(std::isnan(r.pi1));
+}
+
+// Issue 33 (9): LSODAR on a 1000-body chain under a 1 s limit took 6.3 s. Siconos' set-up is
+// O(n^3) (LsodarOSI sizes its work arrays anew for every body it is given, (2i)^2 doubles
+// zeroed for the i-th: 8.3 s at 1000 bodies) and ran before the run's deadline was made.
+// The deadline now starts first, and the load plugin reads it once per body in the set-up
+// and in every right-hand side LSODAR evaluates, inside its Fortran steps and Jacobians too.
+// What a run does between two reads is at most one LU factorisation of LSODAR's 2n x 2n
+// Jacobian or one Lemke LCP on the closed contacts (1.0 s for an LU at 1000 bodies, measured
+// alone), so the bounds below are generous multiples of the limit, not timings.
+TEST(Siconos, LsodarEndsWithinItsTimeLimitInTheSetUpAndInItsSteps) {
+  const auto timed = [](const Case& c, double limit, Result& r) {
+    Settings st = variant("event-driven-lsodar");
+    st.time_limit = limit;
+    const System s = make_system(c);
+    const auto start = std::chrono::steady_clock::now();
+    r = siconos::solve(s, st);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  Case big = make_case(Scene::chain, PulseShape::sine, 1.0, 1.0, 0.5);
+  big.bodies = 1000;
+  Result r;
+  double seconds = timed(big, 0.5, r);
+  EXPECT_EQ(r.status, Status::time_limit) << r.message;
+  EXPECT_NE(r.message.find("in Siconos' set-up of 1000 bodies"), std::string::npos) << r.message;
+  EXPECT_LT(seconds, 2.0) << "the old code: 8 s";
+  RecordProperty("set_up_seconds", sci(seconds));
+  // A stiff chain (body 0 at half the others' frequency, Pi2 = 5): LSODAR switches to BDF and
+  // forms its Jacobian, so the limit passes inside the Fortran integrator's calls.
+  Case stiff = make_case(Scene::chain, PulseShape::sine, 5.0, 0.5, 0.0);
+  stiff.pi3 = 0.1;
+  stiff.bodies = 100;
+  seconds = timed(stiff, 0.5, r);
+  EXPECT_EQ(r.status, Status::time_limit) << r.message;
+  EXPECT_NE(r.message.find("wall time at t = "), std::string::npos) << r.message;
+  EXPECT_LT(seconds, 2.0);
+  RecordProperty("steps_seconds", sci(seconds));
 }
 
 // Siconos sees the case in the pulse's units, so its absolute tolerances do not move with a_p

@@ -130,6 +130,13 @@ struct Mode {
   // norm = |D a D^-1|_inf.
   VectorXd plain;
   double norm = 0;
+  // For a gap at exactly zero (a touching start, bodies that move alike), the first of its
+  // derivatives W a^p y that does not vanish decides its side (sides()): a scaled by 2^-e
+  // (exactly: a power of two, so a zero stays a zero and no entry overflows when raised to
+  // the 50th power), the modes' |lambda| 2^-e, and |W D^-1| summed per function.
+  MatrixXd motion;
+  int exponent = 0;
+  VectorXd modulus, wb_size;
   // Per level: exp(a h 2^-level) - I, computed directly (not by squaring, so that each level is
   // as exact as the first) once the level has been used kCacheAfter times; how often it was.
   std::vector<MatrixXd> levels;
@@ -162,6 +169,7 @@ class KelvinVoigt {
         term_(m_),
         sum_(m_),
         scratch_(m_),
+        deriv_(m_),
         yc_(m_),
         c_(m_),
         range_(ix(nf_)),
@@ -366,11 +374,15 @@ class KelvinVoigt {
     md.rows.resize(2 * nf_, m_);
     md.rows << w_, w_ * a;
     const MatrixXd wb = w_ * d.cwiseInverse().asDiagonal();  // W D^-1: functions of D y
+    std::frexp(a.cwiseAbs().rowwise().sum().maxCoeff(), &md.exponent);
+    md.motion = a * std::ldexp(1.0, -md.exponent);
+    md.wb_size = wb.cwiseAbs().rowwise().sum();
 
     // The plain bound, for where the modal one cannot be trusted.
     const MatrixXd b2 = md.balanced * md.balanced;
     md.plain = (wb * (b2 * b2)).cwiseAbs().rowwise().sum() * kBoundMargin;
     md.norm = md.balanced.cwiseAbs().rowwise().sum().maxCoeff();
+    md.modulus = VectorXd::Constant(m_, std::ldexp(md.norm, -md.exponent));  // the plain bound's, unless modal
 
     // The modal bound: the eigenvectors of the whole motion, the load's states included (their
     // modes are the constant, 0, and the pulse, +-i w_p; at resonance a body's coincide with the
@@ -387,6 +399,7 @@ class KelvinVoigt {
         md.g = wb.cast<std::complex<double>>() * v;
         md.modal_bound = md.g.cwiseAbs() * lambda.cwiseAbs2().cwiseAbs2().asDiagonal();  // |g| |lambda|^4
         md.modal_bound *= kBoundMargin;
+        md.modulus = lambda.cwiseAbs() * std::ldexp(1.0, -md.exponent);
         pair_close_modes(lambda, md);
         fastest = lambda.cwiseAbs().maxCoeff();
       }
@@ -441,6 +454,51 @@ class KelvinVoigt {
     }
   }
 
+  enum class Verdict { unproven, proven, proven_with_room };
+
+  // Whether the gap of contact j, exactly zero at t_, keeps to its element's side over
+  // [t_, t_ + h] (open: not below zero; closed: not above), decided by its first derivative
+  // f^(p) = W a^p y that does not vanish, as the rigid reference decides a touching start
+  // (DERIVATION.md §8). Past it, f(s) = f^(p) s^p / p! + R with |R| <= B s^(p+1) / (p+1)!, B a
+  // bound on |f^(p+1)| over the stretch (modal or plain, as b4 is for p = 3), so f keeps the
+  // sign of f^(p) while s B / (p + 1) < |f^(p)|. If W a^p y vanishes for every p < m, it does for
+  // every p (Cayley-Hamilton): the gap is zero throughout, and its element changes neither way
+  // (each acts while its gap is strictly negative). The Hermite tests cannot see either: a gap
+  // identically zero is never proven positive, and one that starts as s^5 (bodies of unequal
+  // frequency at rest, a sine pulse) has a negative interpolant near zero. After
+  // fourth_bounds(md, h) (c_, size_).
+  Verdict sides(const Mode& md, int j, double h) {
+    const double side = elements_.closed(j) ? -1.0 : 1.0;
+    deriv_ = y_;
+    for (int p = 1; p < m_; ++p) {
+      scratch_.noalias() = md.motion * deriv_;
+      deriv_.swap(scratch_);
+      const double d = side * deriv_(j);  // f^(p) 2^(-e p): W's row j picks gap j
+      if (d == 0.0) continue;
+      if (!(d > 0.0)) return Verdict::unproven;
+      double b = 0.0;  // B 2^(-e (p + 1))
+      if (md.modal) {
+        for (int k = 0; k < m_; ++k) b += std::abs(md.g(j, k)) * std::pow(md.modulus(k), p + 1) * size_(k);
+        b *= kBoundMargin * std::exp(md.growth * h);
+      } else {
+        b = kBoundMargin * md.wb_size(j) * std::pow(md.modulus(0), p + 1) * std::exp(md.norm * h) *
+            md.scale.cwiseProduct(y_).cwiseAbs().maxCoeff();
+      }
+      const double need = b * std::ldexp(h, md.exponent) / (p + 1);
+      return kEasyRoom * need < d ? Verdict::proven_with_room : need < d ? Verdict::proven : Verdict::unproven;
+    }
+    return Verdict::proven_with_room;
+  }
+
+  // Where the Hermite tests fail: true if gap j is at zero and sides() proves it (room
+  // updated), false to halve.
+  bool at_zero_keeps_side(const Mode& md, int j, double h, bool& room) {
+    if (fa_(j) != 0.0) return false;
+    const Verdict side = sides(md, j, h);
+    room = room && side == Verdict::proven_with_room;
+    return side != Verdict::unproven;
+  }
+
   // Whether contact j's element should change at state y: its gap has crossed zero. Each
   // element acts exactly while its gap is negative: a band of hysteresis of width tol would
   // let the dashpot push or pull c tol too long at every change (6.5e-11 of Pi1 measured at
@@ -450,8 +508,6 @@ class KelvinVoigt {
       if (elements_.closed(j) ? y(j) > 0.0 : y(j) < 0.0) return j;
     return -1;
   }
-
-  enum class Verdict { unproven, proven, proven_with_room };
 
   // Judges [t_, t_ + h] from y_ to yb: proven when no element changes in it, and |u0| and
   // every penetration are either below what was seen or known to within the slack there.
@@ -481,13 +537,16 @@ class KelvinVoigt {
         room = room && (kEasyRoom * e <= slack || top + kEasyRoom * e <= best_u_ + slack);
       } else if (!elements_.closed(j)) {
         if (r.lo - e + noise <= 0.0 &&
-            hermite_range(fa_(j), fa_(nf_ + j), fb_(j), fb_(nf_ + j), h, -bend).lo + noise <= 0.0)
-          return Verdict::unproven;
-        room = room && r.lo - kEasyRoom * e > 0.0;
+            hermite_range(fa_(j), fa_(nf_ + j), fb_(j), fb_(nf_ + j), h, -bend).lo + noise <= 0.0) {
+          if (!at_zero_keeps_side(md, j, h, room)) return Verdict::unproven;
+        } else {
+          room = room && r.lo - kEasyRoom * e > 0.0;
+        }
       } else {
         if (r.hi + e - noise >= 0.0 &&
-            hermite_range(fa_(j), fa_(nf_ + j), fb_(j), fb_(nf_ + j), h, bend).hi - noise >= 0.0)
-          return Verdict::unproven;
+            hermite_range(fa_(j), fa_(nf_ + j), fb_(j), fb_(nf_ + j), h, bend).hi - noise >= 0.0) {
+          if (!at_zero_keeps_side(md, j, h, room)) return Verdict::unproven;
+        }
         const double slack = std::max({slack_, 1e-9 * -min_gap_, noise});
         if (e > slack && r.lo - e < min_gap_ - slack) return Verdict::unproven;
         room = room && r.hi + kEasyRoom * e < 0.0 && (kEasyRoom * e <= slack || r.lo - kEasyRoom * e >= min_gap_ - slack);
@@ -598,7 +657,7 @@ class KelvinVoigt {
   MatrixXd to_gaps_, to_bodies_;  // bodies' coordinates to the gaps', and back
   MatrixXd w_, w_abs_;
   // Scratch, sized once: judging a stretch allocates nothing.
-  VectorXd fa_, fb_, b4_, noise_, size_, abs_y_, bodies_, term_, sum_, scratch_;
+  VectorXd fa_, fb_, b4_, noise_, size_, abs_y_, bodies_, term_, sum_, scratch_, deriv_;
   VectorXcd yc_, c_;
   std::vector<Range> range_;
   std::vector<double> error_;

@@ -89,15 +89,43 @@ class CoutCapture {
 };
 
 // The parameters of a body's load plugin, in its DynamicalSystem's z vector.
-// A sampler's address is held as two whole numbers below 2^32, each exact as a double.
-enum LoadParameter { kMass, kCosine, kAmplitude, kSampleStep, kSamplerHigh, kSamplerLow, kLoadParameters };
+// An address (a sampler's, a watch's) is held as two whole numbers below 2^32, each exact as
+// a double.
+enum LoadParameter {
+  kMass,
+  kCosine,
+  kAmplitude,
+  kSampleStep,
+  kSamplerHigh,
+  kSamplerLow,
+  kWatchHigh,
+  kWatchLow,
+  kLoadParameters
+};
+
+// ModelSpec::stop, where the load plugin finds it.
+struct Watch {
+  bool (*stop)(void*);
+  void* data;
+};
+
+void put_address(SiconosVector& z, int high, const void* p) {
+  const auto address = reinterpret_cast<std::uintptr_t>(p);
+  z(static_cast<unsigned>(high)) = static_cast<double>(address >> 32);
+  z(static_cast<unsigned>(high + 1)) = static_cast<double>(address & 0xffffffffu);
+}
+
+template <class T>
+T* address_in(const double* z, int high) {
+  return reinterpret_cast<T*>((static_cast<std::uintptr_t>(z[high]) << 32) | static_cast<std::uintptr_t>(z[high + 1]));
+}
 
 // Siconos' external force F_ext(t) = -m a_g(t) of one body. A plain function of t and z:
-// reentrant (a sampler is its run's own).
+// reentrant (a sampler and a watch are their run's own).
 void ground_load(double t, unsigned int, double* f, unsigned int, double* z) {
-  if (z[kSamplerHigh] != 0.0 || z[kSamplerLow] != 0.0) {
-    const auto address = (static_cast<std::uintptr_t>(z[kSamplerHigh]) << 32) | static_cast<std::uintptr_t>(z[kSamplerLow]);
-    f[0] = -z[kMass] * (*reinterpret_cast<GroundSampler*>(address))(t);
+  if (const Watch* watch = address_in<Watch>(z, kWatchHigh); watch && watch->stop(watch->data)) throw Stopped{};
+  if (GroundSampler* sampler = address_in<GroundSampler>(z, kSamplerHigh)) {
+    f[0] = -z[kMass] * (*sampler)(t);
     return;
   }
   f[0] = -z[kMass] * ground_sample(z[kCosine] != 0.0, z[kAmplitude], t, z[kSampleStep]);
@@ -122,13 +150,16 @@ struct Model {
   SP::NonSmoothDynamicalSystem nsds;
   std::vector<SP::LagrangianDS> bodies;
   std::vector<SP::Interaction> contacts;
-  // The load plugin's sampler, kept as long as the model: a run's ModelSpec may be a temporary.
+  // The load plugin's sampler and watch, kept as long as the model: a run's ModelSpec may be
+  // a temporary.
   std::shared_ptr<GroundSampler> sampler;
+  std::unique_ptr<Watch> watch;
 };
 
 Model make_model(const ModelSpec& spec, bool diagonal = false) {
   Model m;
   m.sampler = spec.sampler;
+  if (spec.stop) m.watch = std::make_unique<Watch>(Watch{spec.stop, spec.stop_data});
   m.nsds = std::make_shared<NonSmoothDynamicalSystem>(0.0, spec.t_end);
   for (const BodySpec& b : spec.bodies) {
     SP::LagrangianDS body;
@@ -143,9 +174,8 @@ Model make_model(const ModelSpec& spec, bool diagonal = false) {
     (*z)(kCosine) = spec.cosine ? 1.0 : 0.0;
     (*z)(kAmplitude) = spec.amplitude;
     (*z)(kSampleStep) = spec.sample_step;
-    const auto address = reinterpret_cast<std::uintptr_t>(spec.sampler.get());
-    (*z)(kSamplerHigh) = static_cast<double>(address >> 32);
-    (*z)(kSamplerLow) = static_cast<double>(address & 0xffffffffu);
+    put_address(*z, kSamplerHigh, spec.sampler.get());
+    put_address(*z, kWatchHigh, m.watch.get());
     body->setzPtr(z);
     body->setComputeFExtFunction(&ground_load);
     m.nsds->insertDynamicalSystem(body);

@@ -51,7 +51,16 @@ struct ModelSpec {
   // reaches it through the body's z vector (engine.cpp).
   std::shared_ptr<GroundSampler> sampler;
   double t_end = 0.0;
+  // Called at every evaluation of the load: once per body in Siconos' set-up and in every
+  // right-hand side its integrator evaluates. True abandons the run: Stopped is thrown from
+  // the load plugin, out of whatever Siconos (or LSODAR's Fortran) was doing, and the run
+  // can only be destroyed. Null: never.
+  bool (*stop)(void*) = nullptr;
+  void* stop_data = nullptr;
 };
+
+// Thrown out of a run's construction and calls when ModelSpec::stop says so.
+struct Stopped {};
 
 // a_g in the pulse's units, sampled as Pulse::sample(t, step) does (defined with Pulse, in
 // model.cpp): what the load plugin gives Siconos.

@@ -55,6 +55,8 @@ engine::ModelSpec model_spec(const System& s, double sample_step, double t_end) 
   return spec;
 }
 
+bool deadline_passed(void* deadline) { return static_cast<Deadline*>(deadline)->tick(); }
+
 Result stopped(Status status, std::string message) {
   Result r;
   r.status = status;

@@ -40,6 +40,10 @@ Units units_of(const System& s);
 // The model of s for engine.hpp, in Siconos' units; sample_step and t_end in System's.
 engine::ModelSpec model_spec(const System& s, double sample_step, double t_end);
 
+// A run's stop callback (engine::ModelSpec::stop, NewmarkAlphaRun's): one tick of the Deadline
+// it is given (Settings::time_limit and Settings::stop).
+bool deadline_passed(void* deadline);
+
 // A Result that stops before a run: a status and why.
 Result stopped(Status status, std::string message);
 

@@ -28,10 +28,6 @@ namespace {
 // solver contract's facts name).
 constexpr const char* kFails = "NewMarkAlphaOSI with EventDriven fails: ";
 
-// NewmarkAlphaRun's stop callback: Settings::time_limit and Settings::stop, one tick per
-// Newton iteration.
-bool deadline_passed(void* deadline) { return static_cast<Deadline*>(deadline)->tick(); }
-
 std::string newton_loop_message(const engine::NewmarkAlphaRun::NewtonLoop& loop, double time_unit) {
   std::ostringstream msg;
   msg << kFails << "EventDriven::newtonSolve does not converge: " << loop.iterations
