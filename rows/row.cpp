@@ -25,6 +25,11 @@ double penetration(const Row& row) {
   return row.input.pi3 > 0.0 ? depth / row.input.pi3 : depth;
 }
 
+double ductility(const Row& row) {
+  const double pi_y = pi_y_ref(row.input);
+  return std::isfinite(pi_y) ? row.result.pi1 / pi_y : std::numeric_limits<double>::quiet_NaN();
+}
+
 double penetration_steps(const Result& r) {
   const double travel = r.step * r.gap_rate_max;
   if (std::isnan(travel)) return std::numeric_limits<double>::quiet_NaN();
@@ -62,7 +67,7 @@ std::string case_key(const Case& c) {
   key += ';';
   key += name(c.directivity);
   for (const CaseField& field : kCaseFields)
-    if (used_by(field, c)) key += ';' + (field.text ? c.*field.text : format_number(field.get(c)));
+    if (written(field, c)) key += ';' + (field.text ? c.*field.text : format_number(field.get(c)));
   return key;
 }
 
@@ -104,11 +109,16 @@ constexpr std::array kTailColumns = {"wh",          "energy_excess",   "penetrat
                                      "cpu_seconds_low", "cpu_seconds_high", "repetitions"};
 
 // Where a field's column is: after the directivity (those of every scene's bodies), after
-// the message (the chain's, where they were added) or at the end (the pulses', added last).
-enum class Group { body, chain, pulse };
+// the message (the chain's, where they were added), after the tail (the pulses') or at the
+// end (yielding's, added last).
+enum class Group { body, chain, pulse, yielding };
 Group group_of(const CaseField& f) {
+  if (f.yielding) return Group::yielding;
   return f.use == FieldUse::chain ? Group::chain : pulse_use(f.use) ? Group::pulse : Group::body;
 }
+
+// The responses of yielding, after its fields.
+constexpr std::array kYieldColumns = {"mu", "residual", "hysteretic"};
 
 // Written as an empty field: a body the scene does not have, a gap that never closed.
 constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
@@ -152,7 +162,7 @@ class LineBuilder {
 void case_numbers(LineBuilder& line, const Case& c, Group group) {
   for (const CaseField& f : kCaseFields) {
     if (group_of(f) != group) continue;
-    if (!used_by(f, c))
+    if (!written(f, c))
       line.text("");
     else if (f.text)
       line.text(c.*f.text);
@@ -176,6 +186,9 @@ std::string csv_header() {
   for (const char* column : kTailColumns) line.text(column);
   for (const CaseField& f : kCaseFields)
     if (group_of(f) == Group::pulse) line.text(f.name);
+  for (const CaseField& f : kCaseFields)
+    if (group_of(f) == Group::yielding) line.text(f.name);
+  for (const char* column : kYieldColumns) line.text(column);
   return line.take();
 }
 
@@ -215,6 +228,10 @@ std::string csv_line(const Row& row) {
   line.number(row.cpu_seconds_high);
   line.count(row.repetitions);
   case_numbers(line, c, Group::pulse);
+  case_numbers(line, c, Group::yielding);
+  line.number(ductility(row));
+  line.number(r.residual);
+  line.number(r.hysteretic);
   return line.take();
 }
 

@@ -46,7 +46,8 @@ CaseShape shape_of(const Case& c) {
   CaseShape s{std::string(name(c.scene)) + ';' + std::string(name(c.pulse)) + ';' + std::string(name(c.directivity)),
               {}, {}};
   for (const CaseField& field : kCaseFields) {
-    if (!used_by(field, c)) continue;
+    if (!written(field, c)) continue;
+    if (field.yielding) s.exact += ';' + std::string(field.name);  // cases that yield alike have the same numbers
     if (field.number) {
       s.numbers.push_back(c.*field.number);
       s.names.push_back(field.name);
@@ -76,7 +77,7 @@ std::string case_text(const Case& c, const CaseShape& s) {
   for (std::size_t i = 0; i < s.numbers.size(); ++i)
     text += ' ' + std::string(s.names[i]) + '=' + format_number(s.numbers[i]);
   for (const CaseField& field : kCaseFields)
-    if (used_by(field, c) && !field.number)
+    if (written(field, c) && !field.number)
       text += ' ' + std::string(field.name) + '=' + (field.text ? c.*field.text : format_number(field.get(c)));
   return text;
 }
