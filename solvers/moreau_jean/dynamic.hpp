@@ -75,6 +75,13 @@ Work make_work(const Scheme& sc);
 bool advance(const Scheme& sc, State& st, Work& w, Tally& t, long k_end, std::vector<double>* history,
              StepMonitor* monitor);
 
+// The two halves of a step around its free motion, for a loop that forms the free motion
+// itself (yielding.cpp): `contacts` takes w.v_new, w.q_new (the free motion) to the motion
+// with the step's impulses, and counts impacts and phases into t; `finish_step` moves the
+// state there and tallies it (no monitor); false if the run blew up.
+void contacts(const Scheme& sc, State& st, Work& w, Tally& t);
+bool finish_step(const Scheme& sc, State& st, Work& w, Tally& t, std::vector<double>* history);
+
 // One history row of the state (t, u, v, g, lambda = P / h).
 void record(const Scheme& sc, const State& st, const Eigen::VectorXd& impulse, std::vector<double>& out);
 

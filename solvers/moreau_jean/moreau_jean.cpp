@@ -11,6 +11,7 @@
 #include "solvers/monitor.hpp"
 #include "solvers/moreau_jean/dynamic.hpp"
 #include "solvers/moreau_jean/stepper.hpp"
+#include "solvers/moreau_jean/yielding.hpp"
 
 namespace pb::moreau_jean {
 
@@ -140,6 +141,7 @@ Result dispatch(const System& sys, const Settings& set, bool force_dynamic) {
     if (res.status != Status::ok) return res;
     const double h = plan.h;
     const long n = plan.n;
+    if (sys.yields()) return run_yielding(sys, set, h, n, std::move(res));
     if (!force_dynamic) {
       const int nb = sys.n_bodies(), nc = sys.n_contacts();
       if (nb == 1 && nc == 1) return run_fixed<1, 1>(sys, set, h, n, std::move(res));  // wall
