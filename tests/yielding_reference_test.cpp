@@ -140,20 +140,6 @@ TEST(YieldingReference, GeneralModeBoundsHoldAndItsDerivativeIsItsRate) {
   }
 }
 
-Case yielding(Scene scene, PulseShape pulse, double pi2, double pi5, double eps, double pi_y, double alpha) {
-  Case c = test::make_case(scene, pulse, pi2, pi5, eps);
-  if (scene == Scene::chain) {
-    c.bodies = 6;
-    c.pi_y = pi_y;
-  } else {
-    c.pi_y0 = pi_y;
-    if (scene != Scene::wall) c.pi_y1 = 2.0 * pi_y;
-    if (scene == Scene::row3) c.pi_y2 = 1.5 * pi_y;
-  }
-  c.alpha = alpha;
-  return c;
-}
-
 // The cases the energy and self-similarity tests run: every scene, both pulses and
 // directivities, alpha 0 (elastic-perfectly plastic), 0.05, 0.2, undamped bodies, and
 // touching bodies (persistent contact between a yielding and an elastic body).
@@ -163,24 +149,24 @@ std::vector<Case> yielding_cases() {
     for (PulseShape pulse : {PulseShape::sine, PulseShape::cosine})
       for (double alpha : {0.0, 0.05, 0.2})
         for (double pi2 : {0.4, 1.0, 2.5}) {
-          Case c = yielding(scene, pulse, pi2, scene == Scene::chain ? 1.0 : 0.5, 0.5, 0.4, alpha);
+          Case c = test::yielding_case(scene, pulse, pi2, scene == Scene::chain ? 1.0 : 0.5, 0.5, 0.4, alpha);
           if (pi2 == 2.5) c.directivity = Directivity::reverse;
           out.push_back(c);
         }
-  Case undamped = yielding(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5, 0.3, 0.0);
+  Case undamped = test::yielding_case(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5, 0.3, 0.0);
   undamped.xi = 0.0;
   out.push_back(undamped);
-  Case touching = yielding(Scene::pair, PulseShape::cosine, 0.8, 2.0, 0.0, 0.3, 0.05);
+  Case touching = test::yielding_case(Scene::pair, PulseShape::cosine, 0.8, 2.0, 0.0, 0.3, 0.05);
   touching.pi3 = 0.0;
   touching.pi_y1 = kInf;
   out.push_back(touching);
-  Case plastic_row = yielding(Scene::row3, PulseShape::sine, 1.5, 0.5, 0.0, 0.2, 0.0);
+  Case plastic_row = test::yielding_case(Scene::row3, PulseShape::sine, 1.5, 0.5, 0.0, 0.2, 0.0);
   plastic_row.pi3 = 0.05;
   out.push_back(plastic_row);
   // The other loads (cases/load.hpp): a pulse model's sinusoids, and a record's linear
   // pieces (the general mode's ramp), one event per sample.
   for (PulseShape pulse : {PulseShape::makris_c, PulseShape::mp}) {
-    Case c = yielding(Scene::pair, pulse, 1.0, 0.5, 0.5, 0.3, 0.05);
+    Case c = test::yielding_case(Scene::pair, pulse, 1.0, 0.5, 0.5, 0.3, 0.05);
     if (pulse == PulseShape::makris_c) c.cycles = 2;
     if (pulse == PulseShape::mp) {
       c.mp_gamma = 2.0;
@@ -189,7 +175,7 @@ std::vector<Case> yielding_cases() {
     out.push_back(c);
   }
   for (double alpha : {0.0, 0.2}) {
-    Case c = yielding(Scene::pair, PulseShape::record, 1.0, 0.5, 0.5, 0.3, alpha);
+    Case c = test::yielding_case(Scene::pair, PulseShape::record, 1.0, 0.5, 0.5, 0.3, alpha);
     c.samples = read_record(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/records/mp-noise-20s.csv");
     c.record = "mp-noise-20s.csv";
     c.a_p = c.samples->peak;

@@ -137,10 +137,10 @@ bool step(Plastic& p, dynamic::Scheme& sc, dynamic::State& st, dynamic::Work& w,
   for (int x = 1; x <= sc.nb; ++x) {
     const double dq = w.q_new(x) - st.q(x);
     p.input -= p.m(x) * abar * dq;  // the step mean of the load times the step's travel
-    const double z_new = std::clamp(p.z(x) + dq, -p.u_y(x), p.u_y(x));
-    // (1 - alpha) k z de, de = dq - dz the plastic travel, at the end value z_k+1 (the
-    // implicit step's); exact where z sits at its limit all through the step.
-    if (x == sc.ref) p.hysteretic += (1.0 - p.alpha) * p.k(x) * z_new * (dq - (z_new - p.z(x)));
+    const double trial = p.z(x) + dq, z_new = std::clamp(trial, -p.u_y(x), p.u_y(x));
+    // (1 - alpha) k z de with de = trial - z_k+1 the plastic travel the map removed (zero,
+    // exactly, on the elastic branch), at z_k+1 = +-u_y: the implicit step's dissipation.
+    if (x == sc.ref) p.hysteretic += (1.0 - p.alpha) * p.k(x) * z_new * (trial - z_new);
     p.z(x) = z_new;
   }
   return dynamic::finish_step(sc, st, w, t, history);
