@@ -157,6 +157,11 @@ struct ModelReference {
   Settings settings;
 };
 
+// The run of a yielding system (System::yields) by a solver whose engine owns the bodies'
+// springs and cannot take the bilinear law: failed, with "yielding: " and why in its
+// message, never an elastic answer in place of the yielding one.
+Result yielding_refused(std::string_view why);
+
 struct SolverInfo {
   std::string_view name;     // as given to --solver
   std::string_view summary;  // one line for --help

@@ -21,6 +21,10 @@
 // means the element is closed (or open) after all, and it is released to that state. An
 // element pinned at the step's end starts (or ends) its contact there. Elements whose force is
 // continuous at p = 0 (the Hertz family) never flip so.
+//
+// A yielding body's spring is the bilinear law's return map at the iterate (hysteresis.hpp):
+// its force and its slope, k or alpha k, enter R and the Jacobian as OpenSees' Newton runs a
+// Steel01 material with hardening; the step's end commits its z.
 
 #include <cmath>
 #include <string>
@@ -29,6 +33,7 @@
 #include "solvers/compliant/elements.hpp"
 #include "solvers/compliant/integrators.hpp"
 #include "solvers/fixed_step.hpp"
+#include "solvers/hysteresis.hpp"
 
 namespace pb::compliant {
 
@@ -67,14 +72,17 @@ class NewmarkEngine final : public StepEngine {
     rhs_.assign(ix(nc_), 0.0);
     s_.assign(ix(nc_ * nc_), 0.0);
     z_.assign(ix(nc_), std::vector<double>(nb, 0.0));
+    zn_ = out_.u;  // z = u: at rest a yielding body's z is 0, and an elastic body's is its u
     onset_rates();
     // The start's acceleration from the equation of motion itself.
     forces(out_.u, out_.v);
     const double ag = sys.pulse.accel(0.0);
     for (int i = 0; i < n_; ++i) {
       const Body& b = sys.bodies[ix(i)];
-      a_[ix(i)] = (f_[ix(i)] - b.k * out_.u[ix(i)] - b.c * out_.v[ix(i)]) / b.m - ag;
+      const double spring = return_map(b, sys.alpha, zn_[ix(i)], out_.u[ix(i)], 0.0).force;
+      a_[ix(i)] = (f_[ix(i)] - spring - b.c * out_.v[ix(i)]) / b.m - ag;
     }
+    ag_n_ = ag;
   }
 
   StepOutcome step(long k, Result& res) override {
@@ -102,8 +110,9 @@ class NewmarkEngine final : public StepEngine {
       for (int i = 0; i < n_; ++i) {
         const Body& b = sys_.bodies[ix(i)];
         const double acc = c_a * (u[ix(i)] - un_[ix(i)]) - 2.0 * c_v * vn_[ix(i)] - a_[ix(i)];
-        res_[ix(i)] = b.m * acc + b.c * v[ix(i)] + b.k * u[ix(i)] + b.m * ag - f_[ix(i)];
-        diag_[ix(i)] = c_a * b.m + c_v * b.c + b.k;
+        const Hysteresis spring = return_map(b, sys_.alpha, zn_[ix(i)], u[ix(i)], u[ix(i)] - un_[ix(i)]);
+        res_[ix(i)] = b.m * acc + b.c * v[ix(i)] + spring.force + b.m * ag - f_[ix(i)];
+        diag_[ix(i)] = c_a * b.m + c_v * b.c + spring.tangent;
         upper_[ix(i)] = 0.0;
         scale = std::max(scale, std::abs(u[ix(i)]));
       }
@@ -145,6 +154,15 @@ class NewmarkEngine final : public StepEngine {
       v[ix(i)] = c_v * (u[ix(i)] - un_[ix(i)]) - vn_[ix(i)];
       a_[ix(i)] = c_a * (u[ix(i)] - un_[ix(i)]) - 2.0 * c_v * vn_[ix(i)] - a_[ix(i)];
     }
+    if (sys_.yields()) {
+      for (int i = 0; i < n_; ++i) {
+        const double du = u[ix(i)] - un_[ix(i)];
+        const Hysteresis spring = return_map(sys_.bodies[ix(i)], sys_.alpha, zn_[ix(i)], u[ix(i)], du);
+        yield_tally_.step(sys_, i, 0.5 * (ag_n_ + ag), du, spring);  // the load's trapezoid
+        zn_[ix(i)] = spring.z;
+      }
+    }
+    ag_n_ = ag;
     forces(u, v);  // the closed set at the converged state; a pinned gap is closed while approaching
     for (int j = 0; j < nc_; ++j) {
       if (pinned_[ix(j)]) closed_[ix(j)] = el_.q(j, v.data()) > 0.0;
@@ -164,6 +182,7 @@ class NewmarkEngine final : public StepEngine {
     res.impacts = el_.impacts();
     res.contact_phases = 0;
     el_.finish(res);  // restitution over whole contacts, not over one step
+    if (sys_.yields()) yield_tally_.finish(sys_, out_.u[ix(sys_.ref)], zn_[ix(sys_.ref)], res);
     if (pinned_steps_ > 0 && res.status == Status::ok)
       res.message = std::to_string(pinned_steps_) + " steps ended with a gap pinned at zero (set-valued onset)";
   }
@@ -319,6 +338,9 @@ class NewmarkEngine final : public StepEngine {
   std::vector<std::vector<double>> z_;
   int pins_ = 0;
   long pinned_steps_ = 0;
+  std::vector<double> zn_;  // per body: the hysteretic variable at the step's start
+  HystereticTally yield_tally_;
+  double ag_n_ = 0.0;  // a_g at the step's start
 };
 
 }  // namespace

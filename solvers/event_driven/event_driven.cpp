@@ -716,11 +716,8 @@ Result solve_rigid(const System& system, const Settings& settings, bool keep_sea
   }
   if (kelvin_voigt(settings)) {
     if (!system.yields()) return solve_kelvin_voigt(system, settings);
-    Result r;
-    r.status = Status::failed;
-    r.message = "contact: the Kelvin-Voigt reference has no yielding bodies (its motion is one linear system); "
-                "yielding is solved with rigid contact";
-    return r;
+    return yielding_refused("the Kelvin-Voigt reference's motion is one linear system; "
+                            "yielding is solved with rigid contact");
   }
   try {
     return Solver(system, settings, keep_searches).run();
