@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <filesystem>
 #include <cmath>
 #include <iomanip>
 #include <map>
@@ -52,7 +53,11 @@ CaseShape shape_of(const Case& c) {
       s.numbers.push_back(c.*field.number);
       s.names.push_back(field.name);
     } else {
-      s.exact += ';' + std::string(field.name) + '=' + (field.text ? c.*field.text : format_number(field.get(c)));
+      // A record by its file's name: a stored row names it relative to where the run was
+      // made, a rerun by the path its case set resolved.
+      const std::string text = field.text ? c.*field.text : format_number(field.get(c));
+      s.exact += ';' + std::string(field.name) + '=' +
+                 (field.text == &Case::record ? std::filesystem::path(text).filename().string() : text);
     }
   }
   return s;
