@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -37,8 +40,8 @@ std::vector<Case> family() {
 // make the step first order (an impact inside a step is taken at its end) and a single
 // case's error is erratic (row3's stays at 3e-4 from 1024 on), so the order is measured on
 // the family: its mean Pi1 error falls with an order above 0.9 from 256 to 4096 (measured
-// 1.02: mean errors 3.8e-3, 1.0e-3, 2.3e-4), and each case's finest run is within 5e-3 of the reference (measured at most 1.8e-3,
-// the perfectly plastic wall under the sine pulse).
+// 1.02: mean errors 3.8e-3, 1.0e-3, 2.3e-4), and each case's finest run is within 5e-3 of
+// the reference (measured at most 1.8e-3, the perfectly plastic wall under the sine pulse).
 TEST(YieldingMoreauJean, ConvergesToTheReferenceOnYieldingFamilies) {
   const std::vector<int> steps = {256, 1024, 4096};
   std::vector<double> mean(steps.size(), 0.0);

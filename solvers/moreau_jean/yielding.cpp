@@ -89,7 +89,8 @@ void free_motion(const Plastic& p, const dynamic::Scheme& sc, const dynamic::Sta
   // elastic: k q_k+1 - (1 - alpha) k (q_k - z_k); yielding: alpha k q_k+1 + (1 - alpha) k s u_y
   const double kb = s == 0 ? k : p.alpha * k;
   const double f0 = s == 0 ? -plastic * (q - z) : plastic * s * p.u_y(x);
-  const double dv = sc.minv(x) * h * (-p.c(x) * v - theta * (kb * (q + h * v) + f0) - (1.0 - theta) * r_k - p.m(x) * abar);
+  const double force = -p.c(x) * v - theta * (kb * (q + h * v) + f0) - (1.0 - theta) * r_k - p.m(x) * abar;
+  const double dv = sc.minv(x) * h * force;
   w.v_new(x) = v + dv;
   w.q_new(x) = q + h * v + h * theta * dv;
 }
