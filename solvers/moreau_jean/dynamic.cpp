@@ -81,6 +81,23 @@ Work make_work(const Scheme& sc) {
   return w;
 }
 
+State start_run(const Scheme& sc, const System& sys, long n, const Work& w, Tally& tally, Result& res,
+                std::vector<double>* rows) {
+  std::vector<double> u0(static_cast<std::size_t>(sc.nb), 0.0), v0(u0.size(), 0.0);
+  if (!sys.u_start.empty()) u0.assign(sys.u_start.begin(), sys.u_start.end());
+  if (!sys.v_start.empty()) v0.assign(sys.v_start.begin(), sys.v_start.end());
+  State st = make_state(sc, u0.data(), v0.data());
+  tally.u_max = std::abs(st.q(sc.ref));
+  if (sc.nc > 0) tally.g_min = std::min(0.0, st.g.minCoeff());
+  if (rows) {
+    res.history.n_bodies = sc.nb;
+    res.history.n_contacts = sc.nc;
+    rows->reserve(static_cast<std::size_t>(n + 1) * static_cast<std::size_t>(res.history.row_size()));
+    record(sc, st, w.impulse, *rows);
+  }
+  return st;
+}
+
 void record(const Scheme& sc, const State& st, const Eigen::VectorXd& impulse, std::vector<double>& out) {
   out.push_back(static_cast<double>(st.k) * sc.h);
   for (int i = 1; i <= sc.nb; ++i) out.push_back(st.q(i));

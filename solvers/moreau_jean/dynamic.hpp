@@ -70,6 +70,12 @@ struct Work {
 
 Work make_work(const Scheme& sc);
 
+// The start of a run on this loop: the state from the System's start values (rest where it
+// gives none), its tally, and where rows is given the history's first row (room reserved
+// for n steps, the layout set in res.history).
+State start_run(const Scheme& sc, const System& sys, long n, const Work& w, Tally& tally, Result& res,
+                std::vector<double>* rows);
+
 // Steps until st.k == k_end; false if the run blew up (st is left at the bad step).
 // history (one row per step, room reserved) and monitor may be null.
 bool advance(const Scheme& sc, State& st, Work& w, Tally& t, long k_end, std::vector<double>* history,

@@ -153,26 +153,12 @@ Result run_yielding(const System& sys, const Settings& set, double h, long n, Re
   dynamic::Scheme sc = dynamic::make_scheme(sys, h, set.theta, set.gamma, set.variant == kEndSamples
                                                                                ? LoadRule::end_samples
                                                                                : LoadRule::step_mean);
-  std::vector<double> u0(static_cast<std::size_t>(sc.nb)), v0(u0.size());
-  for (int i = 0; i < sc.nb; ++i) {
-    u0[static_cast<std::size_t>(i)] = sys.u_start.empty() ? 0.0 : sys.u_start[static_cast<std::size_t>(i)];
-    v0[static_cast<std::size_t>(i)] = sys.v_start.empty() ? 0.0 : sys.v_start[static_cast<std::size_t>(i)];
-  }
-  dynamic::State st = dynamic::make_state(sc, u0.data(), v0.data());
   dynamic::Work work = dynamic::make_work(sc);
+  Tally tally;
+  std::vector<double>* rows = set.history_samples > 0 ? &res.history.data : nullptr;
+  dynamic::State st = dynamic::start_run(sc, sys, n, work, tally, res, rows);
   Plastic p = make_plastic(sys, h, set.theta, st);
   for (int x = 1; x <= sc.nb; ++x) set_branch(p, sc, x);
-  Tally tally;
-  tally.u_max = std::abs(st.q(sc.ref));
-  if (sc.nc > 0) tally.g_min = std::min(0.0, st.g.minCoeff());
-
-  std::vector<double>* rows = set.history_samples > 0 ? &res.history.data : nullptr;
-  if (rows) {
-    res.history.n_bodies = sc.nb;
-    res.history.n_contacts = sc.nc;
-    rows->reserve(static_cast<std::size_t>(n + 1) * static_cast<std::size_t>(res.history.row_size()));
-    dynamic::record(sc, st, work.impulse, *rows);
-  }
   Deadline deadline(set);
   std::string why;
   bool finite = true;
