@@ -52,7 +52,7 @@ void print_summary(std::ostream& out, const Row& row) {
   for (const CaseField& f : kCaseFields)
     if (f.text && used_by(f, c))
       out << ' ' << f.name << '=' << c.*f.text;
-    else if (used_by(f, c) && f.use != FieldUse::chain && (f.required || f.get(c) != f.get(Case{})))
+    else if (used_by(f, c) && (f.use != FieldUse::chain || f.yielding) && (f.required || f.get(c) != f.get(Case{})))
       out << ' ' << f.name << '=' << brief(f.get(c));
   out << '\n';
   out << "solver   " << row.solver << "  (";
@@ -84,6 +84,10 @@ void print_summary(std::ostream& out, const Row& row) {
   if (r.isolated_impacts > 0)
     out << "restit.  " << brief(r.restitution_low) << " to " << brief(r.restitution_high) << " over "
         << r.isolated_impacts << " isolated impacts (eps " << brief(c.eps) << ")\n";
+  if (yields(c)) {
+    out << "yield    mu " << brief(ductility(row)) << " (Pi1 / Pi_y0), residual " << brief(r.residual)
+        << " a_p/w_p^2, hysteretic " << brief(r.hysteretic) << " of the input energy\n";
+  }
   out << "time     " << brief(row.seconds) << " s\n";
 }
 

@@ -32,7 +32,7 @@ nlohmann::ordered_json case_json(const Case& c) {
   j["pulse"] = name(c.pulse);
   j["directivity"] = name(c.directivity);
   for (const CaseField& field : kCaseFields) {
-    if (!used_by(field, c)) continue;
+    if (!written(field, c)) continue;
     if (field.text)
       j[std::string(field.name)] = c.*field.text;
     else if (field.integer)
@@ -80,6 +80,9 @@ nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {
   j["isolated_impacts"] = r.isolated_impacts;
   j["restitution_low"] = number_or_null(r.restitution_low);
   j["restitution_high"] = number_or_null(r.restitution_high);
+  j["mu"] = number_or_null(ductility(row));
+  j["residual"] = number_or_null(r.residual);
+  j["hysteretic"] = number_or_null(r.hysteretic);
   j["solver"] = row.solver;
   j["variant"] = row.variant;
   j["settings"] = nlohmann::json::parse(row.settings);

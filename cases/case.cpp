@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <tuple>
 
 #include "cases/record.hpp"
 
@@ -121,6 +122,26 @@ std::optional<std::string> check_load(const Case& c) {
   return std::nullopt;
 }
 
+// The yield displacements and alpha (cases/README.md, "Yielding"):
+//   pi_y in [1e-6, inf]: the reference locates a yield like a contact, with gaps below
+//     1e-10 a_p / w_p^2 counted as closed; a yield displacement 1e4 times that is still
+//     resolved to 1e-6 of itself. Infinity is an elastic body.
+//   alpha in [0, 1): the spec's; 1 would be elastic, and above it the branch would soften
+//     the body on unloading.
+std::optional<std::string> check_yielding(const Case& c) {
+  for (const auto& [value, field, used] :
+       {std::tuple{c.pi_y0, "pi_y0", c.scene != Scene::chain},
+        {c.pi_y1, "pi_y1", c.scene == Scene::pair || c.scene == Scene::row3}, {c.pi_y2, "pi_y2", c.scene == Scene::row3},
+        {c.pi_y, "pi_y", c.scene == Scene::chain}}) {
+    if (std::isinf(value) && value > 0.0) continue;
+    if (!used) return std::string(field) + ": not used by scene " + std::string(name(c.scene));
+    if (!(value >= kMinPiY))
+      return std::string(field) + ": a yield displacement must be >= " + text(kMinPiY) + " (inf: elastic)";
+  }
+  if (!(c.alpha >= 0.0 && c.alpha < 1.0)) return "alpha: post-yield stiffness ratio must be in [0, 1)";
+  return std::nullopt;
+}
+
 // Each value alone: the spec's rules (cases/README.md), then the bounds of the domain.
 //   pi3 <= 1e6: a gap is delta + u_R - u_L, rounded to about 1e-16 delta; the reference
 //     counts a gap below 1e-10 a_p / w_p^2 as closed, and at pi3 = 1e6 the rounding
@@ -166,6 +187,7 @@ std::optional<std::string> check_values(const Case& c) {
   if (!within(c.a_p, kMinAp, kMaxAp)) return "a_p: must be in [" + text(kMinAp) + ", " + text(kMaxAp) + "]";
   if (!positive(c.w_p)) return "w_p: must be finite and > 0";
   if (!within(c.w_p, kMinWp, kMaxWp)) return "w_p: must be in [" + text(kMinWp) + ", " + text(kMaxWp) + "]";
+  if (auto bad = check_yielding(c)) return bad;
   return check_load(c);
 }
 
@@ -232,6 +254,14 @@ std::optional<std::string> check_duration(const Case& c) {
 }
 
 }  // namespace
+
+bool yields(const Case& c) {
+  return std::isfinite(pi_y_ref(c)) ||
+         (uses_body1(c.scene) && c.scene != Scene::chain && std::isfinite(c.pi_y1)) ||
+         (uses_body2(c.scene) && std::isfinite(c.pi_y2));
+}
+
+double pi_y_ref(const Case& c) { return c.scene == Scene::chain ? c.pi_y : c.pi_y0; }
 
 double load_periods(const Case& c) {
   switch (c.pulse) {

@@ -5,6 +5,7 @@
 // the same physical scene for the same Case.
 
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -80,7 +81,22 @@ struct Case {
   double mp_nu = 0.0;
   std::string record;
   std::shared_ptr<const Record> samples;
+  // Yielding (cases/README.md, "Yielding"): a body's restoring force is bilinear with
+  // kinematic hardening, elastic up to its yield displacement u_y = Pi_y a_p / w_p^2, then
+  // of stiffness alpha k. pi_y0, pi_y1, pi_y2 are those of bodies 0, 1, 2 (wall, pair,
+  // row3), pi_y that of every body of a chain; infinity (the default) is elastic, today's
+  // behaviour bit for bit. alpha, the post-yield stiffness ratio, is every body's.
+  double pi_y0 = std::numeric_limits<double>::infinity();
+  double pi_y1 = std::numeric_limits<double>::infinity();
+  double pi_y2 = std::numeric_limits<double>::infinity();
+  double pi_y = std::numeric_limits<double>::infinity();
+  double alpha = 0.0;
 };
+
+// Whether any body of the case yields (a finite Pi_y the scene uses).
+bool yields(const Case& c);
+// Pi_y of body 0 (the chain's pi_y): its ductility demand is Pi1 over it.
+double pi_y_ref(const Case& c);
 
 // Number of bodies (wall excluded) and of contacts of the case's scene.
 int body_count(const Case& c);
@@ -101,6 +117,7 @@ inline constexpr double kMinRecordPeak = 1e-6, kMaxRecordPeak = 1e6;  // a recor
 inline constexpr int kMaxCycles = 100;        // makris-c
 inline constexpr double kMaxMpGamma = 100;    // mp: gamma in (1, 100]
 inline constexpr double kMaxMpNu = 360;       // mp: |nu| <= 360 degrees
+inline constexpr double kMinPiY = 1e-6;       // a yield displacement, over a_p / w_p^2
 
 // Whether a pulse is the paper's own (sine, cosine), whose closed forms and step loads
 // keep their own code, bit for bit as the stored baselines have them.

@@ -117,16 +117,28 @@ const std::vector<Key>& expansion_order() {
   return order;
 }
 
-// The body-1 number that a symmetric row3 copies into a body-2 number (pi5 into pi7): the
-// same place in the table's list of each.
+// The body-1 number that a symmetric row3 copies into a body-2 number (pi5 into pi7, pi_y1
+// into pi_y2): the same place in the table's list of each.
 Key body1_twin(Key body2_key) {
   std::vector<Key> ones, twos;
   for (Key k = kFirstNumber; k < kSymmetric; ++k) {
-    if (is_body1(k)) ones.push_back(k);
+    if (is_body1(k) || use_of(k) == FieldUse::pair_row3) ones.push_back(k);
     if (is_body2(k)) twos.push_back(k);
   }
   const auto at = std::find(twos.begin(), twos.end(), body2_key) - twos.begin();
   return ones.at(static_cast<std::size_t>(at));
+}
+
+// The bodies a kind of use describes, as a message says it.
+std::string bodies_of(FieldUse use) {
+  switch (use) {
+    case FieldUse::body1: return "body 1 of pair and row3, and the odd bodies of a chain";
+    case FieldUse::body2: return "body 2, of row3 only";
+    case FieldUse::chain: return "a chain only";
+    case FieldUse::not_chain: return "body 0 of wall, pair and row3 (a chain's bodies: pi_y)";
+    case FieldUse::pair_row3: return "body 1 of pair and row3 (a chain's bodies: pi_y)";
+    default: return "every case";
+  }
 }
 
 // The keys of one kind of use, as a message lists them: "pi5/pi6".
@@ -200,8 +212,29 @@ std::string unknown_key_reason(std::string_view key, const std::vector<std::stri
   if (key == "pi1") return "unknown key (Pi1 is the response a solver computes, not an input)";
   const std::string_view best = nearest_name(key, allowed);
   if (!best.empty()) return "unknown key (did you mean " + std::string(best) + "?)";
+  // Runs of three or more numbered keys as a range (pi5..pi8, pi_y0..pi_y2): the list fits
+  // the one line of an error with room for the echoed key.
+  const auto numbered = [](std::string_view k, std::string_view& stem) {
+    const std::size_t digits = k.find_last_not_of("0123456789") + 1;
+    stem = k.substr(0, digits);
+    return digits < k.size() && digits > 0 ? std::stoi(std::string(k.substr(digits))) : -1;
+  };
   std::string list;
-  for (std::string_view a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+  for (std::size_t i = 0; i < allowed.size();) {
+    std::string_view stem, next_stem;
+    const int n = numbered(allowed[i], stem);
+    std::size_t j = i + 1;
+    while (n >= 0 && j < allowed.size() && numbered(allowed[j], next_stem) == n + static_cast<int>(j - i) &&
+           next_stem == stem)
+      ++j;
+    list += (list.empty() ? "" : ", ") + std::string(allowed[i]);
+    if (j - i >= 3) {
+      list += ".." + std::string(allowed[j - 1]);
+      i = j;
+    } else {
+      ++i;
+    }
+  }
   return "unknown key (expected one of " + list + ")";
 }
 
@@ -562,15 +595,11 @@ class Reader {
     // merely not needed here, since [defaults] serves families of every scene.
     for (Key k = kFirstNumber; k < kName; ++k) {
       if (use_of(k) == FieldUse::every || is_pulse_key(k)) continue;
-      const bool used = is_body1(k) ? body1 : is_chain(k) ? chain : body2;
+      const bool used = std::any_of(scenes.begin(), scenes.end(),
+                                    [&](int s) { return scene_uses(use_of(k), static_cast<Scene>(s)); });
       if (used) continue;
       const Entry& o = own[index(k)];
-      if (o.given)
-        fail(o.line, o.field,
-             used_by + " (" + keys_of(use_of(k)) +
-                 (is_body1(k)  ? " describe body 1 of pair and row3, and the odd bodies of a chain)"
-                  : is_chain(k) ? " describe a chain only)"
-                                : " describe body 2, of row3 only)"));
+      if (o.given) fail(o.line, o.field, used_by + " (" + keys_of(use_of(k)) + " describe " + bodies_of(use_of(k)) + ")");
       eff[index(k)] = Entry{};
     }
     for (Key k = kFirstNumber; k < kSymmetric; ++k)
@@ -651,9 +680,8 @@ class Reader {
       const auto scene = static_cast<Scene>(scene_value);
       std::vector<Key> axes;
       for (Key k : expansion_order()) {
-        if (is_chain(k) && !has_chain(scene)) continue;
-        if (is_body1(k) && !uses_body1(scene)) continue;
-        if (is_body2(k) && (!uses_body2(scene) || symmetric)) continue;
+        if (!is_pulse_key(k) && !scene_uses(use_of(k), scene)) continue;
+        if (is_body2(k) && symmetric) continue;
         if (is_pulse_key(k) && !eff[index(k)].given) continue;
         axes.push_back(k);
       }

@@ -5,17 +5,30 @@
 
 namespace pb {
 
-bool used_by(const CaseField& field, Scene scene, PulseShape pulse) {
-  switch (field.use) {
+bool scene_uses(FieldUse use, Scene scene) {
+  switch (use) {
     case FieldUse::every: return true;
     case FieldUse::body1: return uses_body1(scene);
     case FieldUse::body2: return uses_body2(scene);
     case FieldUse::chain: return scene == Scene::chain;
+    case FieldUse::not_chain: return scene != Scene::chain;
+    case FieldUse::pair_row3: return scene == Scene::pair || scene == Scene::row3;
+    default: return false;
+  }
+}
+
+bool used_by(const CaseField& field, Scene scene, PulseShape pulse) {
+  switch (field.use) {
     case FieldUse::makris_c: return pulse == PulseShape::makris_c;
     case FieldUse::mp: return pulse == PulseShape::mp;
     case FieldUse::record: return pulse == PulseShape::record;
+    default: return scene_uses(field.use, scene);
   }
-  return false;
+}
+
+bool written(const CaseField& field, const Case& c) {
+  if (!used_by(field, c)) return false;
+  return !field.yielding || field.get(c) != field.get(Case{});
 }
 
 double period_to_frequency(double tp) { return 2.0 * std::numbers::pi / tp; }

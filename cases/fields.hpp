@@ -26,8 +26,10 @@
 namespace pb {
 
 // Which cases use a field: every one; by scene, those with a body 1 (pair, row3, and a
-// chain's odd bodies), row3's body 2, the chain alone; by pulse, makris-c, mp, record.
-enum class FieldUse { every, body1, body2, chain, makris_c, mp, record };
+// chain's odd bodies), row3's body 2, the chain alone, every scene but the chain, pair and
+// row3 (a yielding body's own Pi_y: a chain gives one for every body); by pulse, makris-c,
+// mp, record.
+enum class FieldUse { every, body1, body2, chain, not_chain, pair_row3, makris_c, mp, record };
 
 // Whether a use is a pulse's (the field's column comes at the end of a row).
 constexpr bool pulse_use(FieldUse use) {
@@ -42,6 +44,11 @@ struct CaseField {
   bool required;          // no default: a case given by flags must state it
   std::string_view help;  // with its unit, for --help
   std::string Case::* text = nullptr;
+  // A field of yielding (cases/README.md, "Yielding"): its column comes after every other
+  // one, and at its default (a Pi_y of infinity: elastic, as before; alpha 0) it is absent,
+  // an empty column, no JSON key and no part of a row's key, so that an elastic case's row
+  // is the row it always was.
+  bool yielding = false;
 
   // A number's value; NaN for text (which case_key and the rows take as text).
   double get(const Case& c) const {
@@ -49,7 +56,7 @@ struct CaseField {
   }
 };
 
-inline constexpr std::array<CaseField, 17> kCaseFields = {{
+inline constexpr std::array<CaseField, 22> kCaseFields = {{
     {"pi2", &Case::pi2, nullptr, FieldUse::every, true, "Pi2 = w0 / w_p"},
     {"pi3", &Case::pi3, nullptr, FieldUse::every, true, "Pi3 = delta w_p^2 / a_p (gap)"},
     {"eps", &Case::eps, nullptr, FieldUse::every, true, "Coefficient of restitution, in [0, 1]"},
@@ -72,10 +79,27 @@ inline constexpr std::array<CaseField, 17> kCaseFields = {{
     {"mp_nu", &Case::mp_nu, nullptr, FieldUse::mp, true, "mp: nu, the phase of its velocity, in degrees"},
     {"record", nullptr, nullptr, FieldUse::record, true,
      "record: the accelerogram, a two-column CSV (t, a_g) or a PEER NGA .AT2 file (values in g)", &Case::record},
+    {"pi_y0", &Case::pi_y0, nullptr, FieldUse::not_chain, false,
+     "Pi_y0 = u_y0 w_p^2 / a_p: body 0 yields at u_y0 (bilinear, kinematic hardening); inf: elastic", nullptr, true},
+    {"pi_y1", &Case::pi_y1, nullptr, FieldUse::pair_row3, false, "Pi_y1 = u_y1 w_p^2 / a_p (pair, row3); inf: elastic",
+     nullptr, true},
+    {"pi_y2", &Case::pi_y2, nullptr, FieldUse::body2, false, "Pi_y2 = u_y2 w_p^2 / a_p (row3); inf: elastic", nullptr,
+     true},
+    {"pi_y", &Case::pi_y, nullptr, FieldUse::chain, false,
+     "Chain: Pi_y = u_y w_p^2 / a_p of every body; inf: elastic", nullptr, true},
+    {"alpha", &Case::alpha, nullptr, FieldUse::every, false,
+     "Post-yield stiffness over the elastic one, in [0, 1), of every yielding body (0: elastic-perfectly plastic)",
+     nullptr, true},
 }};
+
+// Whether a field is written for a case (a row's column, a JSON key, a part of the row's
+// key): the case uses it and, for a field of yielding, it is not at its default.
+bool written(const CaseField& field, const Case& c);
 
 // Whether a case of this scene and pulse has the bodies (or start, or load) a field describes.
 bool used_by(const CaseField& field, Scene scene, PulseShape pulse);
+// The same for a use that is a scene's (every use but the pulses').
+bool scene_uses(FieldUse use, Scene scene);
 inline bool used_by(const CaseField& field, const Case& c) { return used_by(field, c.scene, c.pulse); }
 
 // A second name for a field, with its value converted: `tp` (a pulse period) gives

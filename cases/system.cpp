@@ -53,7 +53,34 @@ System make_system(const Case& c) {
   s.u_start.assign(s.bodies.size(), 0.0);
   s.v_start.assign(s.bodies.size(), 0.0);
   if (c.scene == Scene::chain) s.v_start[0] = c.kick * c.a_p / c.w_p;
+  // Yield displacements: a Pi_y times the length scale (infinity stays infinity).
+  const double length = c.a_p / (c.w_p * c.w_p);
+  const auto yield_at = [&](double pi_y) { return std::isinf(pi_y) ? pi_y : pi_y * length; };
+  if (c.scene == Scene::chain) {
+    for (Body& b : s.bodies) b.u_y = yield_at(c.pi_y);
+  } else {
+    s.bodies[static_cast<std::size_t>(s.ref)].u_y = yield_at(c.pi_y0);
+    if (uses_body1(c.scene)) s.bodies[0].u_y = yield_at(c.pi_y1);
+    if (uses_body2(c.scene)) s.bodies[2].u_y = yield_at(c.pi_y2);
+  }
+  s.alpha = c.alpha;
   return s;
+}
+
+bool System::yields() const {
+  return std::any_of(bodies.begin(), bodies.end(), [](const Body& b) { return b.yields(); });
+}
+
+double System::residual(double u, double z) const { return (1.0 - alpha) * (u - z) / length_scale(); }
+
+double System::energy(const double* u, const double* v, const double* z) const {
+  double e = 0.0;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const Body& b = bodies[i];
+    e += b.yields() ? b.m * v[i] * v[i] + alpha * b.k * u[i] * u[i] + (1.0 - alpha) * b.k * z[i] * z[i]
+                    : b.m * v[i] * v[i] + b.k * u[i] * u[i];
+  }
+  return 0.5 * e;
 }
 
 double System::energy(const double* u, const double* v) const {
@@ -106,6 +133,15 @@ Case case_of(const System& s) {
     c.pi7 = b0.w / b2.w;
     c.pi8 = b0.m / b2.m;
   }
+  const auto pi_y = [&](const Body& b) { return std::isinf(b.u_y) ? b.u_y : b.u_y / s.length_scale(); };
+  if (c.scene == Scene::chain) {
+    c.pi_y = pi_y(b0);
+  } else {
+    c.pi_y0 = pi_y(b0);
+    if (c.scene == Scene::pair || c.scene == Scene::row3) c.pi_y1 = pi_y(s.bodies[0]);
+    if (c.scene == Scene::row3) c.pi_y2 = pi_y(s.bodies[2]);
+  }
+  c.alpha = s.alpha;
   double w_min = b0.w;
   for (const Body& b : s.bodies) w_min = std::min(w_min, b.w);
   c.n_free = (s.t_end - s.pulse.duration()) * w_min / (2.0 * std::numbers::pi);

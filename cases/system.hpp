@@ -12,6 +12,7 @@
 // Equation of motion: M u'' + C u' + K u = -M 1 a_g(t) + W lambda, lambda >= 0 on g = 0.
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -25,6 +26,9 @@ struct Body {
   double w;  // natural circular frequency
   double k;  // m w^2
   double c;  // 2 xi m w
+  // Yield displacement (cases/README.md, "Yielding"): infinity for an elastic body.
+  double u_y = std::numeric_limits<double>::infinity();
+  bool yields() const { return u_y < std::numeric_limits<double>::infinity(); }
 };
 
 inline constexpr int kWall = -1;
@@ -41,6 +45,11 @@ struct System {
   double t_end = 0.0;  // the load's duration (T_p, a record's length) + n_free T_max
   double t_min = 0.0;  // min(T_p, shortest natural period): fixed steps are t_min / N
   std::vector<double> u_start, v_start;  // state at t = 0, one value per body
+  // A yielding body's restoring force (Body::u_y finite) is bilinear with kinematic
+  // hardening: r = alpha k u + (1 - alpha) k z, where z follows u (z' = u') while |z| < u_y
+  // or while the body moves back from |z| = u_y, and stays at +-u_y while it moves on
+  // outward. Every body starts at z = 0. Damping stays 2 xi m w.
+  double alpha = 0.0;
 
   int n_bodies() const { return static_cast<int>(bodies.size()); }
   int n_contacts() const { return n_bodies() - 1 + (wall ? 1 : 0); }
@@ -64,6 +73,15 @@ struct System {
   // Mechanical energy in the ground's frame: kinetic plus spring energy. The wall moves
   // with the ground, so contacts do no work in this frame except at impacts.
   double energy(const double* u, const double* v) const;
+  // The same with the hysteretic variables z (one per body; an elastic body's is its u):
+  // a yielding body stores alpha k u^2 / 2 + (1 - alpha) k z^2 / 2. An elastic body's
+  // term is energy()'s, bit for bit.
+  double energy(const double* u, const double* v, const double* z) const;
+  // Whether any body yields.
+  bool yields() const;
+  // The residual displacement of body ref over a_p / w_p^2: where it comes to rest from
+  // u, z (its last elastic branch's equilibrium, (1 - alpha) (u - z)); 0 for an elastic body.
+  double residual(double u, double z) const;
   // What energy excesses are measured against: the start's energy plus the kinetic
   // energy of every body moving at a_p / w_p (the velocity scale of the pulse).
   double energy_scale() const;

@@ -230,6 +230,9 @@ def report(args):
     if args.records:
         import records
         text += records.section(load(args.records), args.out)
+    if args.yielding:
+        import yielding
+        text += yielding.section(load(args.yielding), args.out)
     text += paper_set_section(rows, args.out)
     text += ["## Where this ran", "", footer(measured_on), ""]
     out.page.provenance([f"- measured at: {provenance.describe(measured_on)}"])
@@ -256,6 +259,8 @@ def main():
     parser.add_argument("--stress-points", help="per-run CSV from `poundbench stress --points`")
     parser.add_argument("--records", nargs="+", help="rows of `poundbench spectrum cases/sets/records.toml` through "
                         "the reference and the time-steppers (scripts/main.sh: results/records-*.csv)")
+    parser.add_argument("--yielding", nargs="+", help="rows of `poundbench spectrum cases/sets/yielding.toml` "
+                        "through the reference and Moreau-Jean (scripts/main.sh: results/yielding-*.csv)")
     parser.add_argument("--out", default=here, help="folder for README.md, figures/ and the committed result files")
     parser.add_argument("--readme", help="also write the generated blocks of this README (scripts/main.sh: README.md)")
     parser.add_argument("--check", action="store_true", help="write nothing: exit 1, with the diff, when README's "

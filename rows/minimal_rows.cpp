@@ -20,7 +20,8 @@ std::vector<std::pair<std::string, std::string>> defaults() {
   std::vector<std::pair<std::string, std::string>> out = {{"family", ""}, {"point", ""}};
   const Case standard;
   for (const CaseField& field : kCaseFields)
-    if (field.use == FieldUse::every && !field.required) out.emplace_back(field.name, format_number(field.get(standard)));
+    if (field.use == FieldUse::every && !field.required && !field.yielding)
+      out.emplace_back(field.name, format_number(field.get(standard)));
   for (const char* column : {"solver", "variant", "settings"}) out.emplace_back(column, "");
   out.emplace_back("status", "ok");
   return out;

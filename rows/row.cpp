@@ -22,6 +22,11 @@ double min_gap_ratio(const Row& row) { return row.result.min_gap / row.length_sc
 // line (rows/row_read.hpp) gives the same bits.
 double penetration(const Row& row) { return std::max(0.0, -min_gap_ratio(row)); }
 
+double ductility(const Row& row) {
+  const double pi_y = pi_y_ref(row.input);
+  return std::isfinite(pi_y) ? row.result.pi1 / pi_y : std::numeric_limits<double>::quiet_NaN();
+}
+
 double penetration_steps(const Result& r) {
   const double travel = r.step * r.gap_rate_max;
   if (std::isnan(travel)) return std::numeric_limits<double>::quiet_NaN();
@@ -72,7 +77,7 @@ std::string case_key(const Case& c) {
   key += ';';
   key += name(c.directivity);
   for (const CaseField& field : kCaseFields)
-    if (used_by(field, c)) key += ';' + (field.text ? c.*field.text : format_number(field.get(c)));
+    if (written(field, c)) key += ';' + (field.text ? c.*field.text : format_number(field.get(c)));
   return key;
 }
 
@@ -117,11 +122,16 @@ constexpr std::array kTailColumns = {"wh",          "energy_excess",   "penetrat
 constexpr std::array kVerdictColumns = {"resolved", "unresolved"};
 
 // Where a field's column is: after the directivity (those of every scene's bodies), after
-// the message (the chain's, where they were added) or at the end (the pulses', added last).
-enum class Group { body, chain, pulse };
+// the message (the chain's, where they were added), after the tail (the pulses') or at the
+// end (yielding's, added last).
+enum class Group { body, chain, pulse, yielding };
 Group group_of(const CaseField& f) {
+  if (f.yielding) return Group::yielding;
   return f.use == FieldUse::chain ? Group::chain : pulse_use(f.use) ? Group::pulse : Group::body;
 }
+
+// The responses of yielding, after its fields.
+constexpr std::array kYieldColumns = {"mu", "residual", "hysteretic"};
 
 // Written as an empty field: a body the scene does not have, a gap that never closed.
 constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
@@ -165,7 +175,7 @@ class LineBuilder {
 void case_numbers(LineBuilder& line, const Case& c, Group group) {
   for (const CaseField& f : kCaseFields) {
     if (group_of(f) != group) continue;
-    if (!used_by(f, c))
+    if (!written(f, c))
       line.text("");
     else if (f.text)
       line.text(c.*f.text);
@@ -190,6 +200,9 @@ std::string csv_header() {
   for (const CaseField& f : kCaseFields)
     if (group_of(f) == Group::pulse) line.text(f.name);
   for (const char* column : kVerdictColumns) line.text(column);
+  for (const CaseField& f : kCaseFields)
+    if (group_of(f) == Group::yielding) line.text(f.name);
+  for (const char* column : kYieldColumns) line.text(column);
   return line.take();
 }
 
@@ -231,6 +244,10 @@ std::string csv_line(const Row& row) {
   case_numbers(line, c, Group::pulse);
   line.text(resolved_text(r.resolved));
   line.text(r.unresolved);
+  case_numbers(line, c, Group::yielding);
+  line.number(ductility(row));
+  line.number(r.residual);
+  line.number(r.hysteretic);
   return line.take();
 }
 

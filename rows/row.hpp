@@ -9,10 +9,12 @@
 //   contact_phases, steps, min_gap, seconds, cpu_seconds, message, bodies, kick, wh,
 //   energy_excess, penetration, isolated_impacts, restitution_low, restitution_high,
 //   penetration_steps, cpu_seconds_low, cpu_seconds_high, repetitions, cycles, mp_gamma,
-//   mp_nu, record, resolved, unresolved
+//   mp_nu, record, resolved, unresolved, pi_y0, pi_y1, pi_y2, pi_y, alpha, mu, residual, hysteretic
 // pi5/pi6 are empty for the wall scene and pi7/pi8 for every scene but row3; bodies and
 // kick are empty except for chain; cycles, mp_gamma, mp_nu and record except for the pulse
-// that uses them (makris-c, mp, record: the record's file as the case named it); min_gap is divided by the pulse's length scale
+// that uses them (makris-c, mp, record: the record's file as the case named it); the fields
+// of yielding (pi_y0 .. alpha) and its responses (mu, residual, hysteretic: Result, and
+// ductility below) are empty for a case with no yielding body; min_gap is divided by the pulse's length scale
 // a_p / w_p^2 and empty when no contact ever closed (infinite); a NaN is written as an
 // empty field. The columns after message came later; they are appended so that scripts
 // reading columns by position keep working. resolved is the verdict of solvers/verdict.hpp,
@@ -75,6 +77,10 @@ double min_gap_ratio(const Row& row);
 // (0 if none). It was over delta, or over a_p / w_p^2 where delta = 0: one overlap of
 // Moreau-Jean at N = 16 read 0.138 at Pi3 = 0 and 138 094 at Pi3 = 1e-6 (issue 32).
 double penetration(const Row& row);
+
+// Body 0's ductility demand mu = max |u0| / u_y0: Pi1 over its Pi_y (NaN where body 0 does
+// not yield or Pi1 is not known).
+double ductility(const Row& row);
 
 // The deepest penetration over one step of travel at the run's fastest gap rate,
 // Result::step times Result::gap_rate_max: at most 1 for a velocity-level scheme. NaN

@@ -106,7 +106,7 @@ Columns::Columns(const std::vector<std::string>& header) : size_(header.size()) 
   };
   for (const char* column : {"family", "point", "scene", "pulse", "directivity"}) require(column);
   for (const CaseField& field : kCaseFields)
-    if (field.use == FieldUse::every) require(field.name);
+    if (field.use == FieldUse::every && !field.yielding) require(field.name);
   for (const char* column : {"solver", "variant", "settings", "status", "pi1"}) require(column);
 }
 
@@ -160,11 +160,11 @@ Row parse_row(const Columns& columns, const std::vector<std::string>& fields) {
   c.pulse = f.named("pulse", &parse_pulse);
   c.directivity = f.named("directivity", &parse_directivity);
   // Every number of the case by its column. Those of every scene must be there; those of
-  // some scenes' bodies are empty elsewhere (or missing, in older files) and keep the Case's
-  // default there.
+  // some scenes' bodies, and those of yielding, are empty elsewhere (or missing, in older
+  // files) and keep the Case's default there.
   for (const CaseField& field : kCaseFields) {
     const std::string column(field.name);
-    if (field.use == FieldUse::every)
+    if (field.use == FieldUse::every && !field.yielding)
       c.*field.number = f.number(column);
     else if (field.text)
       c.*field.text = f.text(column);
@@ -198,6 +198,8 @@ Row parse_row(const Columns& columns, const std::vector<std::string>& fields) {
   row.repetitions = f.count<int>("repetitions", 1);  // a file from before repetitions: one timing
   r.resolved = f.named("resolved", &parse_resolved);  // a file from before the verdict: not judged
   r.unresolved = f.text("unresolved");
+  r.residual = f.number("residual");  // mu is not read: it is made from pi1 and Pi_y
+  r.hysteretic = f.number("hysteretic");
   if (const std::string bad = row_problem(row); !bad.empty()) throw RowReadError(bad);
   return row;  // penetration is not read: it is made from min_gap
 }

@@ -54,6 +54,13 @@ std::optional<Status> parse_status(std::string_view text) {
   return std::nullopt;
 }
 
+Result yielding_refused(std::string_view why) {
+  Result r;
+  r.status = Status::failed;
+  r.message = "yielding: " + std::string(why);
+  return r;
+}
+
 std::string check_step(const Settings& settings, int default_steps) {
   if (settings.steps < 0) return "steps: must be >= 1 (0: the default " + std::to_string(default_steps) + ")";
   if (!(settings.wh >= 0.0) || !std::isfinite(settings.wh)) return "wh: must be finite and > 0 (0: use steps)";

@@ -99,6 +99,25 @@ struct Result {
   // of travel at the fastest gap rate, what a velocity-level scheme may overlap (stress
   // check `gap`). NaN: not measured (the reference, or monitor off).
   double gap_rate_max = std::numeric_limits<double>::quiet_NaN();
+  // Yielding (cases/README.md, "Yielding"; NaN for a system with no yielding body): body 0's
+  // residual displacement over a_p / w_p^2, (1 - alpha) (u0 - z0) at t_end
+  // (System::residual), and the energy its hysteresis dissipated by t_end over the work the
+  // ground load did on every body (the input energy). Its ductility demand is Pi1 over
+  // its Pi_y (rows/row.hpp, ductility).
+  double residual = std::numeric_limits<double>::quiet_NaN();
+  double hysteretic = std::numeric_limits<double>::quiet_NaN();
+  // The reference's energy terms at t_end of a yielding system (NaN otherwise): the
+  // ground's work `input` equals what the bodies hold (kinetic, elastic: System::energy)
+  // plus what the dampers, the hysteresis of every body and the impacts took, up to the
+  // round-off of the closed forms and of the quadrature of input and damped.
+  struct Energies {
+    double input = std::numeric_limits<double>::quiet_NaN();
+    double kinetic = std::numeric_limits<double>::quiet_NaN();
+    double elastic = std::numeric_limits<double>::quiet_NaN();
+    double damped = std::numeric_limits<double>::quiet_NaN();
+    double hysteretic = std::numeric_limits<double>::quiet_NaN();
+    double impacts = std::numeric_limits<double>::quiet_NaN();
+  } energies;
   // CPU seconds of the processes the solver ran (the external solver's program), which the
   // thread's own CPU clock does not see: a sweep adds them to the solve's CPU time.
   double child_cpu_seconds = 0.0;
@@ -171,6 +190,11 @@ struct ModelReference {
   std::string_view solver;
   Settings settings;
 };
+
+// The run of a yielding system (System::yields) by a solver whose engine owns the bodies'
+// springs and cannot take the bilinear law: failed, with "yielding: " and why in its
+// message, never an elastic answer in place of the yielding one.
+Result yielding_refused(std::string_view why);
 
 struct SolverInfo {
   std::string_view name;     // as given to --solver

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <filesystem>
 #include <cmath>
 #include <iomanip>
 #include <map>
@@ -46,12 +47,17 @@ CaseShape shape_of(const Case& c) {
   CaseShape s{std::string(name(c.scene)) + ';' + std::string(name(c.pulse)) + ';' + std::string(name(c.directivity)),
               {}, {}};
   for (const CaseField& field : kCaseFields) {
-    if (!used_by(field, c)) continue;
+    if (!written(field, c)) continue;
+    if (field.yielding) s.exact += ';' + std::string(field.name);  // cases that yield alike have the same numbers
     if (field.number) {
       s.numbers.push_back(c.*field.number);
       s.names.push_back(field.name);
     } else {
-      s.exact += ';' + std::string(field.name) + '=' + (field.text ? c.*field.text : format_number(field.get(c)));
+      // A record by its file's name: a stored row names it relative to where the run was
+      // made, a rerun by the path its case set resolved.
+      const std::string text = field.text ? c.*field.text : format_number(field.get(c));
+      s.exact += ';' + std::string(field.name) + '=' +
+                 (field.text == &Case::record ? std::filesystem::path(text).filename().string() : text);
     }
   }
   return s;
@@ -76,7 +82,7 @@ std::string case_text(const Case& c, const CaseShape& s) {
   for (std::size_t i = 0; i < s.numbers.size(); ++i)
     text += ' ' + std::string(s.names[i]) + '=' + format_number(s.numbers[i]);
   for (const CaseField& field : kCaseFields)
-    if (used_by(field, c) && !field.number)
+    if (written(field, c) && !field.number)
       text += ' ' + std::string(field.name) + '=' + (field.text ? c.*field.text : format_number(field.get(c)));
   return text;
 }

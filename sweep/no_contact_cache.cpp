@@ -9,9 +9,9 @@ namespace pb {
 // no_contact_key with it, then update the size here. The key holds a paper pulse's fields
 // only (shape, amplitude, w): the record and pulse-model fields issue 21 added (waves,
 // length, cycles, the record) are not in it, so such loads bypass the cache (pi1 below).
-static_assert(sizeof(Body) == 4 * sizeof(double), "Body has a new field: add it to no_contact_key");
+static_assert(sizeof(Body) == 5 * sizeof(double), "Body has a new field: add it to no_contact_key");
 static_assert(sizeof(Pulse) == 152, "Pulse has a new field: add it to no_contact_key");
-static_assert(sizeof(System) == 280, "System has a new field: add it to no_contact_key if the no-contact solve reads it");
+static_assert(sizeof(System) == 288, "System has a new field: add it to no_contact_key if the no-contact solve reads it");
 
 namespace {
 
@@ -28,7 +28,8 @@ NoContactKey no_contact_key(const System& s) {
   const Body& b = s.bodies[static_cast<std::size_t>(s.ref)];
   return {{bits(b.m), bits(b.w), bits(b.k), bits(b.c), static_cast<std::uint64_t>(s.pulse.shape),
            bits(s.pulse.amplitude), bits(s.pulse.w), bits(s.a_p), bits(s.t_end), bits(s.t_min), bits(s.delta),
-           bits(s.eps), bits(s.xi), bits(start_of(s.u_start, s.ref)), bits(start_of(s.v_start, s.ref)), 0}};
+           bits(s.eps), bits(s.xi), bits(start_of(s.u_start, s.ref)), bits(start_of(s.v_start, s.ref)), bits(b.u_y),
+           bits(s.alpha)}};
 }
 
 std::size_t NoContactCache::Hash::operator()(const NoContactKey& k) const {

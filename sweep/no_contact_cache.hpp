@@ -35,7 +35,7 @@ namespace pb {
 
 // The bits of every value the one-body no-contact System holds.
 struct NoContactKey {
-  std::array<std::uint64_t, 16> bits{};
+  std::array<std::uint64_t, 17> bits{};
   bool operator==(const NoContactKey&) const = default;
 };
 

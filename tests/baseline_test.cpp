@@ -63,6 +63,8 @@ TEST(Baseline, ReferenceSpectraOfThePaperSetAreReproducedTo1e9) { expect_reprodu
 
 TEST(Baseline, ReferenceOnTheStressSetIsReproducedTo1e9) { expect_reproduced("stress-reference.csv", 1); }
 
+TEST(Baseline, ReferenceOnTheYieldingSetIsReproducedTo1e9) { expect_reproduced("yielding-reference.csv", 1); }
+
 // The reference and the time-stepper settings of cases/settings/baseline.toml on the smoke set.
 TEST(Baseline, EveryTimeStepperSettingOfTheListReproducesItsStoredRows) {
   std::size_t settings = 1 + 3;  // the reference, Moreau-Jean theta 1/2 and 1, its end-samples load
@@ -82,7 +84,8 @@ TEST(Baseline, SiconosSettingsReproduceTheirStoredRows) {
 }
 
 TEST(Baseline, EveryStoredFileNamesItsCaseSetSettingsAndCommit) {
-  for (const char* name : {"paper-reference.csv", "stress-reference.csv", "smoke.csv", "smoke-siconos.csv"}) {
+  for (const char* name :
+       {"paper-reference.csv", "stress-reference.csv", "yielding-reference.csv", "smoke.csv", "smoke-siconos.csv"}) {
     const RowFile stored = read_csv_file((kBaselines / name).string());
     const BaselineHeader h = parse_header(stored.comments, name);
     EXPECT_TRUE(fs::exists(kBaselines / h.cases)) << name << ": " << h.cases;
@@ -258,7 +261,7 @@ TEST(RowReader, BadInputNamesFileLineColumnAndReason) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message(text), "rows.csv:2: 49 fields, the header has 47");
+  EXPECT_EQ(message(text), "rows.csv:2: 57 fields, the header has 55");
   std::string bad_status = good;
   bad_status.replace(bad_status.find(",ok,"), 4, ",fine,");
   EXPECT_EQ(message(bad_status), "rows.csv:2: status: unknown name (\"fine\")");

@@ -156,22 +156,33 @@ class ExternalExamples(unittest.TestCase):
         for name in ("case", "answer"):
             with open(f"{SOURCE}/docs/external/{name}.schema.json") as f:
                 schemas[name] = json.load(f)
-        with tempfile.TemporaryDirectory() as tmp:
-            path = os.path.join(tmp, "case.json")
-            # tee keeps the case (and its echo is refused as an answer: the run fails, exit 1)
-            subprocess.run([POUNDBENCH, "run", "--scene", "wall", "--pulse", "sine", "--directivity", "normal",
-                            "--pi2", "1", "--pi3", "1", "--eps", "0.5", "--solver", "external", "--steps", "16",
-                            "--command", f"tee {path}"], capture_output=True, check=False)
-            with open(path) as f:
-                text = f.read()
+        def case_of(*extra):
+            with tempfile.TemporaryDirectory() as tmp:
+                path = os.path.join(tmp, "case.json")
+                # tee keeps the case (and its echo is refused as an answer: the run fails, exit 1)
+                subprocess.run([POUNDBENCH, "run", "--scene", "wall", "--pulse", "sine", "--directivity", "normal",
+                                "--pi2", "1", "--pi3", "1", "--eps", "0.5", "--solver", "external", "--steps", "16",
+                                *extra, "--command", f"tee {path}"], capture_output=True, check=False)
+                with open(path) as f:
+                    return f.read()
+        text = case_of()
         case = json.loads(text)
-        self.assertEqual(set(case), set(schemas["case"]["required"]))
-        self.assertEqual(set(case), set(schemas["case"]["properties"]))
         body = schemas["case"]["properties"]["bodies"]["items"]
+        self.assertEqual(set(case), set(schemas["case"]["required"]))
         self.assertEqual(set(case["bodies"][0]), set(body["required"]))
         self.assertEqual(set(case["load"]), set(schemas["case"]["properties"]["load"]["oneOf"][0]["required"]))
         answer = json.loads(poundbench("adapter", "--solver", "moreau-jean", stdin=text))
         self.assertEqual(answer["status"], "ok")
+        self.assertLessEqual(set(answer), set(schemas["answer"]["properties"]))
+        # A yielding case adds the optional keys (bodies[].u_y, alpha): then every key of the
+        # schema is there, and the answer carries residual and hysteretic.
+        text = case_of("--pi-y0", "0.5", "--alpha", "0.05")
+        case = json.loads(text)
+        self.assertEqual(set(case), set(schemas["case"]["properties"]))
+        self.assertEqual(set(case["bodies"][0]), set(body["properties"]))
+        answer = json.loads(poundbench("adapter", "--solver", "moreau-jean", stdin=text))
+        self.assertEqual(answer["status"], "ok")
+        self.assertLessEqual({"residual", "hysteretic"}, set(answer))
         self.assertLessEqual(set(answer), set(schemas["answer"]["properties"]))
 
 

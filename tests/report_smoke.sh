@@ -21,11 +21,17 @@ if "$pb" solvers | grep -q '^compliant '; then
     --repetitions 1 --out "$out/compliant.csv" --points "$out/compliant-points.csv"
   compliant=(--compliant "$out/compliant.csv" --compliant-points "$out/compliant-points.csv")
 fi
+# The yielding section (reports/yielding.py) on the yielding set through the reference and
+# Moreau-Jean (about 3 s each).
+for s in event-driven moreau-jean; do
+  "$pb" spectrum "$src/cases/sets/yielding.toml" --solver "$s" --out "$out/yielding-$s.csv"
+done
 /usr/bin/python3 "$src/reports/provenance.py" --build-dir "$(dirname "$pb")" > "$out/provenance.json"
 cp "$src/README.md" "$out/README.md"
 /usr/bin/python3 "$src/reports/make_report.py" "$out/smoke.csv" --workprecision "$out/wp.csv" \
   --points "$out/points.csv" --bench "$out/bench.json" --provenance "$out/provenance.json" \
-  --stress "$out/stability.csv" --stress-points "$out/stability-points.csv" "${compliant[@]}" --out "$out/report" \
+  --stress "$out/stability.csv" --stress-points "$out/stability-points.csv" "${compliant[@]}" \
+  --yielding "$out/yielding-event-driven.csv" "$out/yielding-moreau-jean.csv" --out "$out/report" \
   --readme "$out/README.md" > /dev/null
 if [ ${#compliant[@]} -gt 0 ]; then
   for ext in png svg; do
@@ -46,6 +52,13 @@ for f in $families; do
     grep -q "figures/$fig.png" "$out/report/README.md" || { echo "README.md does not show $fig"; missing=1; }
   done
 done
+for fig in yielding-yield-fig4 yielding-yield-fig5; do
+  [ -s "$out/report/figures/$fig.png" ] || { echo "missing figure $fig.png"; missing=1; }
+  grep -q "figures/$fig.png" "$out/report/README.md" || { echo "README.md does not show $fig"; missing=1; }
+done
+grep -q '^\* \*\*Self-similarity (master curves).\*\* .* within [0-9.]*e-1[0-9] of each other' "$out/report/README.md" ||
+  { echo "the yielding section does not find its spectra self-similar to round-off"; missing=1; }
+grep -q '^| moreau-jean theta=0.5 | ' "$out/report/README.md" || { echo "no Moreau-Jean row on yielding cases"; missing=1; }
 grep -q '<script type="application/json" id="report-data">' "$out/report/report.html" ||
   { echo "no report.html with its data"; missing=1; }
 for fig in stability-large-steps stability-verdicts; do

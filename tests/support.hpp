@@ -43,6 +43,23 @@ inline Case make_case(Scene scene, PulseShape p, double pi2, double pi5, double 
   return c;
 }
 
+// A case whose bodies yield (cases/README.md, "Yielding"): body 0 at Pi_y pi_y, body 1 at
+// twice that, body 2 at 1.5 times (a chain: six bodies at pi_y).
+inline Case yielding_case(Scene scene, PulseShape pulse, double pi2, double pi5, double eps, double pi_y,
+                          double alpha) {
+  Case c = make_case(scene, pulse, pi2, pi5, eps);
+  if (scene == Scene::chain) {
+    c.bodies = 6;
+    c.pi_y = pi_y;
+  } else {
+    c.pi_y0 = pi_y;
+    if (scene != Scene::wall) c.pi_y1 = 2.0 * pi_y;
+    if (scene == Scene::row3) c.pi_y2 = 1.5 * pi_y;
+  }
+  c.alpha = alpha;
+  return c;
+}
+
 // A measured number for RecordProperty and messages, in scientific notation (std::to_string
 // would print 1e-13 as 0.000000).
 inline std::string sci(double x) {

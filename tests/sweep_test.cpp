@@ -514,13 +514,15 @@ TEST(Csv, NumbersReadBackToTheSameDouble) {
 
 TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   const std::vector<std::string> header = split_csv(csv_header());
-  ASSERT_EQ(header.size(), 47u);
+  ASSERT_EQ(header.size(), 55u);
   EXPECT_EQ(header.front(), "family");
   EXPECT_EQ(header[28], "message");  // the columns after it were appended later
   EXPECT_EQ(header[37], "penetration_steps");
   EXPECT_EQ(header[40], "repetitions");
   EXPECT_EQ(header[44], "record");  // the loads' columns (issue 21)
-  EXPECT_EQ(header.back(), "unresolved");  // the verdict's came last (issue 32)
+  EXPECT_EQ(header[46], "unresolved");  // then the verdict's (issue 32)
+  EXPECT_EQ(header[47], "pi_y0");  // yielding's fields and responses, appended last
+  EXPECT_EQ(header.back(), "hysteretic");
 
   Row row;
   row.input.family = "odd, \"name\"";
@@ -551,6 +553,20 @@ TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   EXPECT_EQ(field("pi7"), "");    // but no body 2
   EXPECT_EQ(field("min_gap"), "");  // no contact closed: infinite gap
   EXPECT_EQ(field("pi1_no_contact"), "");  // NaN
+  EXPECT_EQ(field("pi_y0"), "");  // an elastic case: no yield fields, no yield responses
+  EXPECT_EQ(field("alpha"), "");
+  EXPECT_EQ(field("mu"), "");
+  row.input.pi_y0 = 0.5;
+  row.input.alpha = 0.05;
+  row.result.residual = 0.25;
+  const std::vector<std::string> yielding = split_csv(csv_line(row));
+  const Row back = parse_row(yielding);
+  EXPECT_EQ(back.input.pi_y0, 0.5);
+  EXPECT_EQ(back.input.alpha, 0.05);
+  EXPECT_TRUE(std::isinf(back.input.pi_y1));  // not given: elastic
+  EXPECT_EQ(back.result.residual, 0.25);
+  EXPECT_EQ(ductility(back), row.result.pi1 / 0.5);
+  EXPECT_EQ(case_key(back.input), case_key(row.input));
 }
 
 // The verdict (solvers/verdict.hpp) goes out and comes back as it was: true, false with its

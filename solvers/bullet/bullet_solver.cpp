@@ -35,6 +35,7 @@ class Engine : public StepEngine {
   }
 
   void finish(Result& res) override {
+    world_.finish_springs(res);
     if (const int fb = world_.fallbacks(); fb > 0) {
       if (!res.message.empty()) res.message += "; ";
       res.message +=

@@ -78,12 +78,12 @@ World::World(const System& system, const Config& config, double h, double gamma,
       activation_(config.activation),
       gamma_h_(gamma * h),
       u_(u0.size()),
-      v_(v0.size()) {
+      v_(v0.size()),
+      springs_(system, u0) {
   const int nb = system.n_bodies(), nc = system.n_contacts();
   shape_ = std::make_unique<btEmptyShape>();  // no geometry: contacts come from the gaps
   for (int i = 0; i < nb; ++i) {
     const Body& b = system.bodies[ix(i)];
-    k_.push_back(b.k);
     c_.push_back(b.c);
     m_.push_back(b.m);
     bodies_.push_back(make_body(shape_.get(), b.m, u0[ix(i)], v0[ix(i)], system.eps));
@@ -173,7 +173,7 @@ void World::step(double t) {
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     btRigidBody& b = *bodies_[i];
     const double u_i = b.getWorldTransform().getOrigin().x(), v_i = b.getLinearVelocity().x();
-    const double f = -k_[i] * u_i - c_[i] * v_i - m_[i] * ag;
+    const double f = -springs_.force(static_cast<int>(i), u_i, ag) - c_[i] * v_i - m_[i] * ag;
     b.applyCentralForce(btVector3(static_cast<btScalar>(f), 0, 0));
   }
 
@@ -190,6 +190,12 @@ void World::step(double t) {
     body->proceedToTransform(next);
     body->clearForces();
   }
+}
+
+void World::finish_springs(Result& res) {
+  std::vector<double> u(bodies_.size());
+  for (std::size_t i = 0; i < u.size(); ++i) u[i] = this->u(static_cast<int>(i));
+  springs_.finish(u.data(), res);
 }
 
 }  // namespace pb::bullet

@@ -40,6 +40,7 @@
 
 #include "cases/system.hpp"
 #include "solvers/bullet/variants.hpp"
+#include "solvers/hysteresis.hpp"
 
 namespace pb::bullet {
 
@@ -68,6 +69,8 @@ class World {
   double impulse(int j) const;
   // Steps in which the MLCP solver failed and Bullet fell back to sequential impulse.
   int fallbacks() const;
+  // The yielding responses (residual, hysteretic share) from the current state.
+  void finish_springs(Result& res);
 
  private:
   static std::size_t ix(int i) { return static_cast<std::size_t>(i); }
@@ -78,7 +81,8 @@ class World {
   Activation activation_;
   double gamma_h_;                 // Settings::gamma h, for the predicted rule
   std::vector<double> u_, v_;      // the state at the start of a step, per body
-  std::vector<double> k_, c_, m_;  // per body
+  std::vector<double> c_, m_;      // per body
+  StepSprings springs_;            // the bodies' springs (hysteresis.hpp)
   std::unique_ptr<btCollisionShape> shape_;
   std::unique_ptr<btRigidBody> wall_;
   std::vector<std::unique_ptr<btRigidBody>> bodies_;

@@ -24,6 +24,10 @@
 //
 // Where the load jumps (load_jumps below), a step is split at the jump, and the step after it
 // starts from the acceleration of the load after it: second order across it.
+//
+// A yielding body's spring is the bilinear law's return map at the iterate (hysteresis.hpp):
+// its force and its slope, k or alpha k, enter R and the Jacobian as OpenSees' Newton runs a
+// Steel01 material with hardening; the step's end commits its z.
 
 #include <cmath>
 #include <string>
@@ -32,6 +36,7 @@
 #include "solvers/compliant/elements.hpp"
 #include "solvers/compliant/integrators.hpp"
 #include "solvers/fixed_step.hpp"
+#include "solvers/hysteresis.hpp"
 
 namespace pb::compliant {
 
@@ -98,14 +103,17 @@ class NewmarkEngine final : public StepEngine {
     // As LoadCursor::sample treats the load's end: within 1e-9 max(h, T) of a step's end, a
     // jump is at that end (so that T_p = N h ends the pulse on a boundary however N h rounds).
     for (const LoadJump& j : jumps_) jump_tol_ = std::max(jump_tol_, 1e-9 * std::max(h, j.t));
+    zn_ = out_.u;  // z = u: at rest a yielding body's z is 0, and an elastic body's is its u
     onset_rates();
     // The start's acceleration from the equation of motion itself.
     forces(out_.u, out_.v);
     const double ag = sys.pulse.accel(0.0);
     for (int i = 0; i < n_; ++i) {
       const Body& b = sys.bodies[ix(i)];
-      a_[ix(i)] = (f_[ix(i)] - b.k * out_.u[ix(i)] - b.c * out_.v[ix(i)]) / b.m - ag;
+      const double spring = return_map(b, sys.alpha, zn_[ix(i)], out_.u[ix(i)], 0.0).force;
+      a_[ix(i)] = (f_[ix(i)] - spring - b.c * out_.v[ix(i)]) / b.m - ag;
     }
+    ag_n_ = ag;
   }
 
   StepOutcome step(long k, Result& res) override {
@@ -164,8 +172,9 @@ class NewmarkEngine final : public StepEngine {
       for (int i = 0; i < n_; ++i) {
         const Body& b = sys_.bodies[ix(i)];
         const double acc = c_a * (u[ix(i)] - un_[ix(i)]) - 2.0 * c_v * vn_[ix(i)] - a_[ix(i)];
-        res_[ix(i)] = b.m * acc + b.c * v[ix(i)] + b.k * u[ix(i)] + b.m * ag - f_[ix(i)];
-        diag_[ix(i)] = c_a * b.m + c_v * b.c + b.k;
+        const Hysteresis spring = return_map(b, sys_.alpha, zn_[ix(i)], u[ix(i)], u[ix(i)] - un_[ix(i)]);
+        res_[ix(i)] = b.m * acc + b.c * v[ix(i)] + spring.force + b.m * ag - f_[ix(i)];
+        diag_[ix(i)] = c_a * b.m + c_v * b.c + spring.tangent;
         upper_[ix(i)] = 0.0;
         scale = std::max(scale, std::abs(u[ix(i)]));
       }
@@ -205,6 +214,15 @@ class NewmarkEngine final : public StepEngine {
       v[ix(i)] = c_v * (u[ix(i)] - un_[ix(i)]) - vn_[ix(i)];
       a_[ix(i)] = c_a * (u[ix(i)] - un_[ix(i)]) - 2.0 * c_v * vn_[ix(i)] - a_[ix(i)];
     }
+    if (sys_.yields()) {
+      for (int i = 0; i < n_; ++i) {
+        const double du = u[ix(i)] - un_[ix(i)];
+        const Hysteresis spring = return_map(sys_.bodies[ix(i)], sys_.alpha, zn_[ix(i)], u[ix(i)], du);
+        yield_tally_.step(sys_, i, 0.5 * (ag_n_ + ag), du, spring);  // the load's trapezoid
+        zn_[ix(i)] = spring.z;
+      }
+    }
+    ag_n_ = ag;
     forces(u, v);  // the closed set at the converged state; a pinned gap is closed while approaching
     for (int j = 0; j < nc_; ++j) {
       if (pinned_[ix(j)]) closed_[ix(j)] = el_.q(j, v.data()) > 0.0;
@@ -226,6 +244,7 @@ class NewmarkEngine final : public StepEngine {
   // by the jump alone (the springs, dashpots and elements are where the step left them).
   void restart(const LoadJump& jump) {
     for (double& a : a_) a -= jump.after - jump.before;
+    ag_n_ = jump.after;  // the yield tally's trapezoid then starts from the load after it
   }
 
   bool contacts_have_duration() const override { return true; }
@@ -234,6 +253,7 @@ class NewmarkEngine final : public StepEngine {
     res.impacts = el_.impacts();
     res.contact_phases = 0;
     el_.finish(res);  // restitution over whole contacts, not over one step
+    if (sys_.yields()) yield_tally_.finish(sys_, out_.u[ix(sys_.ref)], zn_[ix(sys_.ref)], res);
     if (pinned_steps_ > 0 && res.status == Status::ok)
       res.message = std::to_string(pinned_steps_) + " steps ended with a gap pinned at zero (set-valued onset)";
   }
@@ -394,6 +414,9 @@ class NewmarkEngine final : public StepEngine {
   std::vector<LoadJump> jumps_;            // in time order
   std::size_t next_jump_ = 0;              // the first not yet passed
   double jump_tol_ = 0.0;
+  std::vector<double> zn_;  // per body: the hysteretic variable at the step's start
+  HystereticTally yield_tally_;
+  double ag_n_ = 0.0;  // a_g at the step's start
 };
 
 }  // namespace

@@ -19,6 +19,7 @@
 #include "solvers/event_driven/impact.hpp"
 #include "solvers/compliant/contact_law.hpp"
 #include "solvers/event_driven/kelvin_voigt.hpp"
+#include "solvers/event_driven/plastic.hpp"
 #include "solvers/event_driven/search.hpp"
 #include "solvers/lcp/lemke.hpp"
 #include "solvers/named_values.hpp"
@@ -47,6 +48,11 @@ Tolerances tolerances(const System& s, double scale) {
   t.settle = 1e-4 * s.t_min;
   return t;
 }
+
+// A yielding body's unloading function s u' is a velocity: its neutral level (search.hpp,
+// first_root) this far below the plastic-approach speed, 1e-10 a_p / w_p at tol_scale 1, so
+// that a phase that ends on a grazing stop keeps z within round-off of u_y.
+constexpr double kNeutralRate = 1e-3;
 
 // Runs of closed contacts up to this length are decided by enumerating their 2^n active
 // sets; longer ones take Lemke's proposal (DERIVATION.md §4).
@@ -99,6 +105,7 @@ struct Scratch {
   ImpactWork work;
   lcp::LemkeWorkspace lemke;
   Eigen::MatrixXd delassus, lex_q, lex_z;
+  Plasticity plastic;
   bool busy = false;
 };
 
@@ -145,6 +152,7 @@ class Solver {
     st_.active.assign(nc, 0);
     fr_.body.resize(n);
     fr_.contact.resize(nc);
+    plastic_.start(s, st_, fr_);
     rate_ = s.pulse.w;
     for (const Body& b : s.bodies) rate_ = std::max(rate_, b.w);
     // A force is compared with the gap accelerations it makes: lambda (1/m_left + 1/m_right).
@@ -213,8 +221,20 @@ class Solver {
           which = j;
         }
       }
+      // A yield or unloading (DERIVATION.md §10) before it; at the same time the contact's
+      // event goes first, and the impact's settling of the branches sees the yield.
+      YieldEvent yield{std::numeric_limits<double>::quiet_NaN()};
+      if (plastic_.on()) {
+        yield = plastic_.next(s_, st_, fr_, b, tol_.floor, tol_.settle, tol_.gap, kNeutralRate * tol_.speed,
+                              deadline_);
+        if (!std::isnan(yield.t)) {
+          b = yield.t;
+          which = -1;
+        }
+      }
       max_abs(fr_.body[ix(s_.ref)], st_.t, b, tol_.floor, peak_, deadline_);
       record(b);
+      if (plastic_.on()) plastic_.integrate(s_, fr_, st_.t, b);
       advance(b);
       if (incremental_) {
         u_event_ = st_.u;
@@ -228,18 +248,23 @@ class Solver {
       }
       if (deadline_.tick()) throw OutOfTime{};  // one counter with the searches' looks
       if (which < 0 && st_.t >= s_.t_end) break;
-      const double e_before = s_.energy(st_.u.data(), st_.v.data());
+      const double e_before = energy(st_.u.data(), st_.v.data());
       bool ok;
       if (which >= 0 && !st_.active[ix(which)]) {
         st_.g[ix(which)] = 0.0;
         ok = impact();
       } else {
-        ok = detach();  // a force reached zero, or the load reached a breakpoint (it may jump)
+        // A force reached zero, the load reached a breakpoint (it may jump), or a body
+        // yielded or unloaded (its stiffness changed): the persistent contacts anew. A
+        // yield found an ulp before a contact's closure (a yield displacement equal to the
+        // gap) leaves that contact closed and approaching: its impact is now.
+        if (!std::isnan(yield.t)) plastic_.change(s_, st_, yield);
+        ok = !std::isnan(yield.t) && closing() ? impact() : detach();
       }
       if (!ok) break;
       account(e_before);
-      // At a load's breakpoint every motion changes; a contact's event changes those of the
-      // bodies it reaches.
+      // At a load's breakpoint (and a yield) every motion changes; a contact's event
+      // changes those of the bodies it reaches.
       if (which < 0 || b >= seg_end || !incremental_)
         std::fill(fresh_.begin(), fresh_.end(), 1);
       else
@@ -301,7 +326,7 @@ class Solver {
   // t = 0: a closed contact that approaches (a Newton's-cradle kick) is an impact first;
   // otherwise the contact LCP decides the closed contacts at rest relative to each other.
   bool start() {
-    const double e_before = s_.energy(st_.u.data(), st_.v.data());
+    const double e_before = energy(st_.u.data(), st_.v.data());
     bool approach = false;
     closed_.clear();
     for (int j = 0; j < s_.n_contacts(); ++j) {
@@ -317,6 +342,7 @@ class Solver {
   }
 
   Result finish() {
+    if (plastic_.on() && res_.status == Status::ok) plastic_.finish(s_, st_, -balance_, res_);
     res_.pi1 = s_.pi1(peak_.value);
     res_.t_max = peak_.t;
     res_.energy_excess = excess_ / s_.energy_scale();
@@ -326,8 +352,16 @@ class Solver {
     check_result(s_, tol_scale_, res_);
     // As every solver: a run that did not end ok has no Pi1 (the largest |u0| of a run cut
     // short, or of a run that failed its own checks, is not an answer to report).
-    if (res_.status != Status::ok) res_.pi1 = res_.t_max = std::numeric_limits<double>::quiet_NaN();
+    if (res_.status != Status::ok) {
+      res_.pi1 = res_.t_max = res_.residual = res_.hysteretic = std::numeric_limits<double>::quiet_NaN();
+      res_.energies = {};
+    }
     return std::move(res_);
+  }
+
+  // System::energy, with the hysteretic variables of the state's branches where bodies yield.
+  double energy(const double* u, const double* v) {
+    return plastic_.on() ? plastic_.energy(s_, st_, u, v) : s_.energy(u, v);
   }
 
   // The energy balance E + D - E0 - W moves only at events (DERIVATION.md §5): adds the jump
@@ -339,7 +373,7 @@ class Solver {
       eval_u_[ix(i)] = v[0];
       eval_v_[ix(i)] = v[1];
     }
-    balance_ += s_.energy(eval_u_.data(), eval_v_.data()) - e_before;
+    balance_ += energy(eval_u_.data(), eval_v_.data()) - e_before;
     excess_ = std::max(excess_, balance_);
   }
 
@@ -430,6 +464,13 @@ class Solver {
     return true;
   }
 
+  // Whether an open contact is closed (within tol_gap) and approaching.
+  bool closing() const {
+    for (int k = 0; k < s_.n_contacts(); ++k)
+      if (!st_.active[ix(k)] && st_.g[ix(k)] <= tol_.gap && gap_rate(s_, k, st_.v) < -tol_.speed) return true;
+    return false;
+  }
+
   // A persistent contact's force reached zero, or the load jumped: re-decide all of them.
   bool detach() {
     closed_.clear();
@@ -442,6 +483,9 @@ class Solver {
   // relative velocity). Runs of consecutive contacts share no body with each other, so
   // each run is decided alone, on a frame of its own bodies; then the whole frame is built.
   bool resolve() {
+    // Velocities may have jumped (an impact): bodies at their yield limit take the branch
+    // their motion says.
+    if (plastic_.on()) plastic_.settle(s_, st_, tol_.gap, tol_.speed);
     before_ = st_.active;
     std::fill(joined_.begin(), joined_.end(), 0);
     for (int j : closed_) joined_[ix(j)] = 1;
@@ -653,6 +697,7 @@ class Solver {
   std::vector<double>&u_event_ = scratch_.u_event, &v_event_ = scratch_.v_event;
   std::vector<char>&active_event_ = scratch_.active_event, &changed_ = scratch_.changed;
   ImpactWork& work_ = scratch_.work;
+  Plasticity& plastic_ = scratch_.plastic;
   lcp::LemkeWorkspace& lemke_ = scratch_.lemke;
   Eigen::MatrixXd &delassus_ = scratch_.delassus, &lex_q_ = scratch_.lex_q, &lex_z_ = scratch_.lex_z;
 };
@@ -669,7 +714,11 @@ Result solve_rigid(const System& system, const Settings& settings, bool keep_sea
     r.message = "variant: unknown '" + clip(settings.variant) + "'";
     return r;
   }
-  if (kelvin_voigt(settings)) return solve_kelvin_voigt(system, settings);
+  if (kelvin_voigt(settings)) {
+    if (!system.yields()) return solve_kelvin_voigt(system, settings);
+    return yielding_refused("the Kelvin-Voigt reference's motion is one linear system; "
+                            "yielding is solved with rigid contact");
+  }
   try {
     return Solver(system, settings, keep_searches).run();
   } catch (const std::exception& e) {

@@ -1,5 +1,6 @@
 #include "solvers/event_driven/frame.hpp"
 
+#include <algorithm>
 #include <limits>
 
 namespace pb::event_driven {
@@ -62,7 +63,57 @@ void for_each_cluster(const System& s, const std::vector<char>& joined, int from
 // Offset of body i from the first body of its cluster when their gaps are closed.
 double offset(const System& s, int first, int i) { return -(i - first) * s.delta; }
 
+// The load as a Forcing for a softened cluster's general oscillator: the paper's pulse as its
+// one sinusoid, any other load from its piece.
+Forcing load_of(const System& s, double t, double m, double f_const, const LoadPiece& piece) {
+  if (!s.pulse.paper()) return cluster_load(t, m, f_const, piece);
+  Forcing f;
+  f.f0 = f_const;
+  if (pulse_on(s, t)) {
+    f.n = 1;
+    f.w[0] = s.pulse.w;
+    (s.pulse.shape == PulseShape::sine ? f.fs[0] : f.fc[0]) = -m * s.pulse.amplitude;
+  }
+  return f;
+}
+
+// Writes the yield functions of body i from its wave (Frame::yield).
+void yield_functions(const System& s, const State& st, int i, Frame& fr) {
+  const Body& b = s.bodies[ix(i)];
+  const Wave& u = fr.body[ix(i)];
+  Wave& up = fr.yield[ix(2 * i)];
+  Wave& down = fr.yield[ix(2 * i + 1)];
+  const int branch = st.branch[ix(i)];
+  if (branch == 0) {
+    reset(up, st.t, b.u_y + st.e[ix(i)]);  // u_y - z = u_y + e - u
+    add_scaled(up, u, -1.0);
+    up.prepare();
+    reset(down, st.t, b.u_y - st.e[ix(i)]);  // u_y + z
+    add_scaled(down, u, 1.0);
+    down.prepare();
+  } else {
+    reset(up, st.t, 0.0);  // s u'
+    add_scaled(up, derivative(u), branch);
+    up.prepare();
+  }
+}
+
 }  // namespace
+
+Spring spring(const System& s, const State& st, int i) {
+  const Body& b = s.bodies[ix(i)];
+  if (st.branch.empty() || !b.yields()) return {b.k, 0.0};
+  const int branch = st.branch[ix(i)];
+  if (branch == 0) return {b.k, -(1.0 - s.alpha) * b.k * st.e[ix(i)]};
+  return {s.alpha * b.k, branch * (1.0 - s.alpha) * b.k * b.u_y};
+}
+
+double hysteretic_z(const System& s, const State& st, int i) {
+  const Body& b = s.bodies[ix(i)];
+  if (st.branch.empty() || !b.yields()) return st.u[ix(i)];
+  const int branch = st.branch[ix(i)];
+  return branch == 0 ? st.u[ix(i)] - st.e[ix(i)] : branch * b.u_y;
+}
 
 // A cluster's coordinate x is the displacement of its leftmost body; the others sit at
 // fixed offsets (closed gaps).
@@ -72,12 +123,16 @@ void build_frame(const System& s, const State& st, int from, int to, Frame& fr) 
   const int wall_shift = s.wall ? 1 : 0;
   for_each_cluster(s, st.active, from, to, [&](int first, int last, bool fixed) {
     double m = 0.0, c = 0.0, k = 0.0, f_const = 0.0, mx = 0.0, mv = 0.0;
+    bool soft = false;  // a body of it yields: its stiffness is alpha k
     for (int i = first; i <= last; ++i) {
       const Body& b = s.bodies[ix(i)];
+      const Spring sp = spring(s, st, i);
       m += b.m;
       c += b.c;
-      k += b.k;
-      f_const -= b.k * offset(s, first, i);
+      k += sp.k;
+      f_const -= sp.k * offset(s, first, i);
+      if (sp.r0 != 0.0) f_const -= sp.r0;  // (x - 0.0 would turn a -0.0 into 0.0: no bit moves for elastic bodies)
+      soft = soft || (!st.branch.empty() && st.branch[ix(i)] != 0);
       mx += b.m * (st.u[ix(i)] - offset(s, first, i));
       mv += b.m * st.v[ix(i)];
     }
@@ -86,7 +141,20 @@ void build_frame(const System& s, const State& st, int from, int to, Frame& fr) 
     const auto motion = [&](Wave& x) {
       if (fixed) {
         x = constant(st.t, -s.delta);
-      } else if (!s.pulse.paper()) {
+        return;
+      }
+      if (soft) {
+        // A softened cluster may be critically or overdamped, or have no stiffness: the
+        // general mode (underdamped near a sinusoid's resonance, the forms below), whose
+        // growth without stiffness needs a finite horizon: t_end at most.
+        const Forcing load = load_of(s, st.t, m, f_const, piece);
+        if (!near_resonance(m, c, k, load)) {
+          const double end = s.pulse.paper() ? (pulse_on(s, st.t) ? s.pulse.duration() : s.t_end) : piece.end;
+          general_oscillator_into(x, st.t, mx / m, mv / m, m, c, k, load, std::min(end, s.t_end));
+          return;
+        }
+      }
+      if (!s.pulse.paper()) {
         oscillator_into(x, st.t, mx / m, mv / m, m, c, k, cluster_load(st.t, m, f_const, piece), piece.end);
       } else {
         const bool on = pulse_on(s, st.t);
@@ -116,10 +184,12 @@ void build_frame(const System& s, const State& st, int from, int to, Frame& fr) 
       double mr = 0.0, cr = 0.0, kr = 0.0, ko = 0.0;
       for (int i = last; i >= first; --i) {
         const Body& b = s.bodies[ix(i)];
+        const Spring sp = spring(s, st, i);
         mr += b.m;
         cr += b.c;
-        kr += b.k;
-        ko += b.k * offset(s, first, i);
+        kr += sp.k;
+        ko += sp.k * offset(s, first, i);
+        if (sp.r0 != 0.0) ko += sp.r0;
         const int j = i - 1 + wall_shift;  // contact left of body i
         if (j < 0 || (i == first && !fixed)) continue;
         Wave& f = fr.contact[ix(j)];
@@ -134,6 +204,9 @@ void build_frame(const System& s, const State& st, int from, int to, Frame& fr) 
       }
     }
   });
+  if (!fr.yield.empty())
+    for (int i = from; i <= to; ++i)
+      if (s.bodies[ix(i)].yields()) yield_functions(s, st, i, fr);
   for (int j = first_contact(s, from); j <= last_contact(s, to); ++j) {
     if (st.active[ix(j)]) continue;
     Wave& g = fr.contact[ix(j)];

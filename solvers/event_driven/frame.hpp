@@ -20,12 +20,32 @@ struct State {
   double t = 0.0;
   std::vector<double> u, v, g;  // per body, per body, per contact
   std::vector<char> active;     // per contact: persistent contact
+  // Yielding (System::yields(); empty otherwise), per body: its branch, 0 elastic or +-1
+  // yielding at z = +-u_y, and on the elastic branch its plastic offset e = u - z
+  // (DERIVATION.md §10). An elastic body stays on branch 0 with e = 0.
+  std::vector<signed char> branch;
+  std::vector<double> e;
 };
 
 struct Frame {
   std::vector<Wave> body;
   std::vector<Wave> contact;  // gap (open contact) or force (persistent contact)
+  // Per body that yields (2 i, 2 i + 1; empty for a system that does not): on the elastic
+  // branch u_y - z and u_y + z, which fall to zero where it yields; yielding at z = s u_y,
+  // s u' (2 i alone), which falls to zero where it unloads.
+  std::vector<Wave> yield;
 };
+
+// Body i's restoring force on its branch, k u + r0 (DERIVATION.md §10): k, r0 = 0 for an
+// elastic body; k and -(1 - alpha) k e on the elastic branch; alpha k and s (1 - alpha) k u_y
+// yielding at z = s u_y.
+struct Spring {
+  double k, r0;
+};
+Spring spring(const System& s, const State& st, int i);
+
+// The hysteretic variable z of body i (its u for a body that does not yield).
+double hysteretic_z(const System& s, const State& st, int i);
 
 inline std::size_t ix(int i) { return static_cast<std::size_t>(i); }
 

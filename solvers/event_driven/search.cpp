@@ -44,7 +44,7 @@ class Bounds {
       known_ = 0;
     }
     if (!(known_ & (1u << d))) {
-      value_[d] = w_.bound_at(decay_, d);
+      value_[d] = w_.bound_at(t_, decay_, d);
       known_ |= 1u << d;
     }
     return value_[d];
@@ -55,7 +55,7 @@ class Bounds {
   double t_ = std::numeric_limits<double>::quiet_NaN();
   double decay_[kMaxModes] = {};
   double value_[kMaxDerivative + 1] = {};
-  unsigned known_ = 0;  // bit d: value_[d] is bound_at(decay_, d)
+  unsigned known_ = 0;  // bit d: value_[d] is bound_at(t_, decay_, d)
 };
 
 // Coefficients of the cubic Hermite interpolant on s in [0, 1].

@@ -5,6 +5,7 @@
 #include <cassert>
 #include <complex>
 #include <cstdint>
+#include <numbers>
 
 namespace pb::event_driven {
 
@@ -48,11 +49,124 @@ Complex grow(double sigma, double delta, double s) {
          d;
 }
 
+// The coefficients of h0 and h1 in each derivative of a general mode (Mode::general):
+// (a, b, c2, c3) -> (-sigma a + b, -w2 a - sigma b + c2, c3, 0).
+void prepare_general(Mode& md) {
+  double a = md.a, b = md.b, c2 = md.c2, c3 = md.c3;
+  for (std::size_t d = 0; d <= kMaxDerivative; ++d) {
+    md.re[d] = a;
+    md.im[d] = b;
+    const double na = -md.sigma * a + b, nb = -md.w2 * a - md.sigma * b + c2;
+    a = na;
+    b = nb;
+    c2 = c3;
+    c3 = 0.0;
+  }
+  md.envelope.fill(0.0);
+}
+
+// 1 / k! for the series below.
+constexpr std::array<double, 28> kInverseFactorial = [] {
+  std::array<double, 28> f{};
+  double x = 1.0;
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    f[k] = 1.0 / x;
+    x *= static_cast<double>(k + 1);
+  }
+  return f;
+}();
+
+// The basis of a general mode at s > 0 (Mode::general): h0 - 1 and h0, h1, h2, h3, each to
+// the round-off of its own size (DERIVATION.md §10).
+struct GeneralBasis {
+  double h0m1, h0, h1, h2, h3;
+};
+
+template <class Trig>
+GeneralBasis general_basis(const Mode& md, double s, Trig& trig) {
+  GeneralBasis g;
+  const double sigma = md.sigma, k_m = md.k_m;
+  const double reach = (md.w2 < 0.0 ? md.fast : std::sqrt(k_m)) * s;  // the largest |root| s
+  if (reach <= 1.0) {
+    // Every root within 1 / s of zero: the divided differences of exp(x s) over the roots
+    // (and 0, 0) as Taylor series, sum_k p_k / (k + n)! with p_k = h_k(lambda_1 s,
+    // lambda_2 s), the complete homogeneous polynomials, which follow p_k = e1 p_k-1 -
+    // e2 p_k-2 from their sum e1 = -2 sigma s and product e2 = k_m s^2, real for either
+    // sign of w2. |p_k| <= (k + 1) reach^k, so 24 terms are below 2e-23.
+    const double e1 = -2.0 * sigma * s, e2 = k_m * s * s;
+    double p_before = 0.0, p = 1.0;
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    for (std::size_t k = 0; k < 24; ++k) {
+      if (k > 0) s0 += p * kInverseFactorial[k];
+      s1 += p * kInverseFactorial[k + 1];
+      s2 += p * kInverseFactorial[k + 2];
+      s3 += p * kInverseFactorial[k + 3];
+      const double next = e1 * p - e2 * p_before;
+      p_before = p;
+      p = next;
+    }
+    g.h1 = s * s1;
+    g.h0m1 = s0 + sigma * g.h1;  // h0 = h1' + sigma h1, h1' = sum p_k / k!
+    g.h0 = 1.0 + g.h0m1;
+    g.h2 = s * s * s2;
+    g.h3 = s * s * s * s3;
+    return g;
+  }
+  if (md.w2 >= 0.0) {
+    // Complex (or double) roots, |root| s > 1: the damped sinusoid, h2 and h3 from the
+    // equation of motion, k_m h2 = 1 - h0 - sigma h1 and k_m h3 = s - h1 - 2 sigma h2, which
+    // lose nothing against the size of h2 (>= 1 / (2 k_m) here) or h3.
+    const double omega = md.omega, x = omega * s;
+    double sh, ch;
+    trig.sin_cos(0.5 * x, sh, ch);
+    const double em1 = trig.expm1(-sigma * s), e = em1 + 1.0;
+    const double cs = 1.0 - 2.0 * sh * sh;
+    const double sinc = x < 1e-3 ? s * (1.0 - x * x / 6.0 + x * x * x * x / 120.0) : 2.0 * sh * ch / omega;
+    g.h0m1 = em1 * cs - 2.0 * sh * sh;
+    g.h0 = e * cs;
+    g.h1 = e * sinc;
+    g.h2 = (-g.h0m1 - sigma * g.h1) / k_m;
+    g.h3 = (s - g.h1 - 2.0 * sigma * g.h2) / k_m;
+    return g;
+  }
+  // Real roots lambda_2 = -fast <= lambda_1 = -slow <= 0, fast s > 1: Newton's divided
+  // differences in the order lambda_2, lambda_1, 0, 0, each difference over fast >= 1 / s,
+  // of terms that are not close (their ratio stays below about 3 for every lambda_1).
+  const double l1 = -md.slow, l2 = -md.fast, gap = 2.0 * md.omega;  // lambda_1 - lambda_2
+  const double e1 = trig.expm1(l1 * s), e2 = trig.expm1(l2 * s);
+  g.h0m1 = 0.5 * (e1 + e2);
+  g.h0 = 1.0 + g.h0m1;
+  const double x = gap * s;
+  if (x > 1.0) {
+    g.h1 = (e1 - e2) / gap;
+  } else {
+    const double phi1 = x == 0.0 ? 1.0 : trig.expm1(x) / x;  // (exp(x) - 1) / x
+    g.h1 = (e2 + 1.0) * s * phi1;
+  }
+  const double z = l1 * s;  // in (-1 / ..., 0]
+  const double d1 = l1 == 0.0 ? s : e1 / l1;  // divided difference over lambda_1, 0
+  double phi2;                                  // (exp(z) - 1 - z) / z^2
+  if (std::abs(z) < 0.5) {
+    phi2 = 0.0;
+    double zk = 1.0;
+    for (std::size_t k = 0; k < 18; ++k, zk *= z) phi2 += zk * kInverseFactorial[k + 2];
+  } else {
+    phi2 = (e1 - z) / (z * z);
+  }
+  g.h2 = (d1 - g.h1) / md.fast;
+  g.h3 = (s * s * phi2 - g.h2) / md.fast;
+  return g;
+}
+
 }  // namespace
 
 void Wave::prepare() {
   for (int m = 0; m < n_modes; ++m) {
     Mode& md = mode[static_cast<std::size_t>(m)];
+    if (md.general) {
+      prepare_general(md);
+      continue;
+    }
     // (a - i b) * lambda^d with lambda = -sigma + i omega.
     double re = md.a, im = -md.b;
     md.re[0] = re;
@@ -180,6 +294,20 @@ void eval_wave(const Wave& wave, double t, double* out, Trig& trig) {
   }
   for (int m = 0; m < n_modes; ++m) {
     const Mode& md = mode[static_cast<std::size_t>(m)];
+    if (md.general) [[unlikely]] {
+      if (start) {  // h0 = 1, h1 = h2 = h3 = 0
+        for (int d = 1; d < nd; ++d) out[d] += md.re[static_cast<std::size_t>(d)];
+        continue;
+      }
+      const GeneralBasis g = general_basis(md, tau, trig);
+      out[0] += md.a * g.h0m1 + md.b * g.h1 + md.c2 * g.h2 + md.c3 * g.h3;
+      if (nd > 1) out[1] += md.re[1] * g.h0 + md.im[1] * g.h1 + md.c3 * g.h2;
+      for (int d = 2; d < nd; ++d) {
+        const auto k = static_cast<std::size_t>(d);
+        out[d] += md.re[k] * g.h0 + md.im[k] * g.h1;
+      }
+      continue;
+    }
     double em1 = -0.0, sh = 0.0, ch = 1.0;
     if (!start) {
       em1 = trig.expm1(-md.sigma * tau);
@@ -237,22 +365,64 @@ void Wave::eval(double t, double* out, int nd, TrigCache& trig) const {
 
 void Wave::decays(double t, double* decay) const {
   const double tau = std::max(t - t0, 0.0);
-  for (int m = 0; m < n_modes; ++m)
-    decay[m] = tau == 0.0 ? 1.0 : std::exp(-mode[static_cast<std::size_t>(m)].sigma * tau);
+  for (int m = 0; m < n_modes; ++m) {
+    const Mode& md = mode[static_cast<std::size_t>(m)];
+    decay[m] = tau == 0.0 ? 1.0 : std::exp(-(md.general ? md.slow : md.sigma) * tau);
+  }
 }
 
 double Wave::bound(double t, int d) const {
   double decay[kMaxModes];
   decays(t, decay);
-  return bound_at(decay, d);
+  return bound_at(t, decay, d);
 }
 
-double Wave::bound_at(const double* decay_of, int d) const {
+namespace {
+
+// An upper bound of |G^(d)(s)| over tau <= s <= span (s from the mode's start) for a general
+// mode, from bounds of its basis there (DERIVATION.md §10), decay = exp(-slow tau):
+//   |h0| <= decay;  |h1| <= s exp(-slow s), and <= decay min(span, 1 / omega) (w2 > 0), or
+//   decay min(span, 1 / (2 omega)) (w2 < 0: exp(l1 s) (1 - exp(-2 omega s)) / (2 omega));
+//   h2, h3: |divided differences| <= span^n / n!, and by the equation of motion (w2 >= 0)
+//   or by the monotonicity of divided differences of exp in their nodes (w2 < 0).
+// An unbounded growth (no stiffness, no damping, an infinite span) gives infinity, which a
+// search refuses (NonFinite): the frame gives such a wave a finite horizon.
+double general_bound(const Mode& md, double decay, double tau, double span, int d) {
+  const double inf = std::numeric_limits<double>::infinity();
+  double cap = span;
+  if (md.w2 > 0.0) cap = std::min(span, 1.0 / md.omega);
+  if (md.w2 < 0.0) cap = std::min(span, 0.5 / md.omega);
+  double h1 = std::isinf(cap) ? cap : decay * cap;
+  if (md.slow > 0.0) h1 = std::min(h1, tau >= 1.0 / md.slow ? tau * decay : 1.0 / (std::numbers::e * md.slow));
+  const auto k = static_cast<std::size_t>(d);
+  double b = std::abs(md.re[k]) * decay + (md.im[k] != 0.0 ? std::abs(md.im[k]) * h1 : 0.0);
+  if (d > 1 || (md.c2 == 0.0 && md.c3 == 0.0)) return b;
+  double h2, h3;
+  if (md.w2 >= 0.0) {
+    h2 = md.k_m > 0.0 ? (1.0 + decay + md.sigma * h1) / md.k_m : inf;
+    h3 = md.k_m > 0.0 ? (span + h1 + 2.0 * md.sigma * h2) / md.k_m : inf;
+  } else {
+    h2 = std::min(span / md.fast, md.slow > 0.0 ? 1.0 / md.k_m : inf);
+    h3 = std::min(0.5 * span * span / md.fast, md.slow > 0.0 ? span / md.k_m : inf);
+  }
+  h2 = std::min(h2, 0.5 * span * span);
+  h3 = std::min(h3, span * span * span / 6.0);
+  if (d == 0) return b + (md.c2 != 0.0 ? std::abs(md.c2) * h2 : 0.0) + (md.c3 != 0.0 ? std::abs(md.c3) * h3 : 0.0);
+  return b + (md.c3 != 0.0 ? std::abs(md.c3) * h2 : 0.0);
+}
+
+}  // namespace
+
+double Wave::bound_at(double t, const double* decay_of, int d) const {
   const auto k = static_cast<std::size_t>(d);
   double b = pulse_envelope[k];
   for (int m = 0; m < n_modes; ++m) {
     const Mode& md = mode[static_cast<std::size_t>(m)];
     const double decay = decay_of[m];
+    if (md.general) [[unlikely]] {
+      b += general_bound(md, decay, std::max(t - t0, 0.0), horizon - t0, d);
+      continue;
+    }
     b += md.envelope[k] * decay;
     if (!any_resonant) continue;  // the same sum, without looking at every r_mj
     for (int q = 0; q < n_sines; ++q) {
@@ -315,7 +485,9 @@ void add_scaled(Wave& acc, const Wave& x, double s) {
     const Mode& xm = x.mode[static_cast<std::size_t>(m)];
     int k = 0;
     while (k < acc.n_modes && !(acc.mode[static_cast<std::size_t>(k)].sigma == xm.sigma &&
-                                acc.mode[static_cast<std::size_t>(k)].omega == xm.omega))
+                                acc.mode[static_cast<std::size_t>(k)].omega == xm.omega &&
+                                acc.mode[static_cast<std::size_t>(k)].general == xm.general &&
+                                acc.mode[static_cast<std::size_t>(k)].w2 == xm.w2))
       ++k;
     assert(k < kMaxModes);
     Mode& am = acc.mode[static_cast<std::size_t>(k)];
@@ -324,10 +496,21 @@ void add_scaled(Wave& acc, const Wave& x, double s) {
       am.sigma = xm.sigma;
       am.omega = xm.omega;
       am.rate = xm.rate;
+      if (xm.general) {
+        am.general = true;
+        am.k_m = xm.k_m;
+        am.w2 = xm.w2;
+        am.slow = xm.slow;
+        am.fast = xm.fast;
+      }
       ++acc.n_modes;
     }
     am.a += s * xm.a;
     am.b += s * xm.b;
+    if (xm.general) {
+      am.c2 += s * xm.c2;
+      am.c3 += s * xm.c3;
+    }
     for (int j = 0; j < x.n_sines; ++j) {
       const auto jj = static_cast<std::size_t>(j);
       am.rr[at[jj]] += s * xm.rr[jj];
@@ -358,6 +541,17 @@ Wave derivative(const Wave& x) {
     dm.sigma = xm.sigma;
     dm.omega = xm.omega;
     dm.rate = xm.rate;
+    if (xm.general) {
+      dm.general = true;
+      dm.k_m = xm.k_m;
+      dm.w2 = xm.w2;
+      dm.slow = xm.slow;
+      dm.fast = xm.fast;
+      dm.a = xm.re[1];
+      dm.b = xm.im[1];
+      dm.c2 = xm.c3;
+      continue;
+    }
     // (r G)' = (i w r) G + r exp(z s): the damped term gains r, the resonant one i w r.
     double a = xm.re[1] + xm.rr[0], b = xm.im[1] + xm.ri[0];
     for (std::size_t j = 1; j < static_cast<std::size_t>(x.n_sines); ++j) {
@@ -483,6 +677,57 @@ void oscillator_into(Wave& x, double t0, double x0, double v0, double m, double 
   }
   md.a = x0 - xp;
   md.b = (v0 - vp + sigma * md.a - resonant_rate) / omega;
+  x.prepare();
+}
+
+bool near_resonance(double m, double c, double k, const Forcing& load) {
+  const double sigma = 0.5 * (c / m), w2 = k / m - sigma * sigma;
+  if (!(w2 > 0.0)) return false;  // real roots: |i w - lambda| >= w
+  const double omega = std::sqrt(w2);
+  for (std::size_t j = 0; j < static_cast<std::size_t>(load.n); ++j)
+    if ((load.fs[j] != 0.0 || load.fc[j] != 0.0) && std::hypot(sigma, load.w[j] - omega) < kNearResonance * load.w[j])
+      return true;
+  return false;
+}
+
+void general_oscillator_into(Wave& x, double t0, double x0, double v0, double m, double c, double k,
+                             const Forcing& load, double horizon) {
+  reset(x, t0, x0);
+  x.horizon = horizon;
+  x.mode[0] = Mode{};
+  Mode& md = x.mode[0];
+  const double sigma = 0.5 * (c / m), k_m = k / m, w0 = std::sqrt(k_m);
+  md.general = true;
+  md.sigma = sigma;
+  md.k_m = k_m;
+  md.w2 = (w0 - sigma) * (w0 + sigma);  // its sign exact near critical damping
+  md.omega = std::sqrt(std::abs(md.w2));
+  md.fast = md.w2 < 0.0 ? sigma + md.omega : sigma;
+  md.slow = md.w2 < 0.0 ? k_m / md.fast : sigma;
+  x.n_modes = 1;
+  // Each sinusoid's particular solution, as the other oscillators write it; the general
+  // mode starts from the state less their value and rate at t0.
+  double xp = 0.0, vp = 0.0;
+  x.n_sines = load.n;
+  for (std::size_t j = 0; j < static_cast<std::size_t>(load.n); ++j) {
+    const double w = load.w[j], fs = load.fs[j], fc = load.fc[j];
+    x.sine[j] = Sine{};
+    x.sine[j].w = w;
+    if (fs == 0.0 && fc == 0.0) continue;
+    const double a = k_m - w * w, b = (c / m) * w;
+    const double det = a * a + b * b;
+    const double p = (a * fs / m + b * fc / m) / det;
+    const double q = (a * fc / m - b * fs / m) / det;
+    x.sine[j].ps = p;
+    x.sine[j].pc = q;
+    const double sn = std::sin(w * t0), cs = std::cos(w * t0);
+    xp += p * sn + q * cs;
+    vp += w * (p * cs - q * sn);
+  }
+  md.a = x0 - xp;
+  md.b = (v0 - vp) + sigma * md.a;
+  md.c2 = load.f0 / m;
+  md.c3 = load.f1 / m;
   x.prepare();
 }
 

@@ -51,6 +51,24 @@ struct Mode {
   // |-sigma + i omega|: derivative coefficients and their bounds.
   std::array<double, kMaxDerivative + 1> re{}, im{};
   std::array<double, kMaxDerivative + 1> envelope{};  // |a - i b| |lambda|^d
+  // A general mode (DERIVATION.md §10), for a cluster that a yielding body has softened: it
+  // may be critically or overdamped, or have no stiffness at all (alpha = 0), where the
+  // damped sinusoid above has no frequency. With k_m = K / M and w2 = k_m - sigma^2 of
+  // either sign, it is
+  //   G(s) = a h0(s) + b h1(s) + c2 h2(s) + c3 h3(s),  h0 = exp(-sigma s) C(s),
+  //   h1 = exp(-sigma s) S(s), h2 = integral of h1 from 0, h3 = integral of h2 from 0,
+  // C = cos(omega s), S = sin(omega s) / omega for w2 > 0, cosh and sinh / omega for w2 < 0
+  // (omega = sqrt|w2|), 1 and s for w2 = 0: the motion from (x0, v0) under the constant and
+  // ramp load c2 + c3 s per unit mass is x0 h0 + (v0 + sigma x0) h1 + c2 h2 + c3 h3, with no
+  // particular solution F0 / K to cancel. Its derivative is of the same form, (a, b, c2, c3)
+  // -> (-sigma a + b, -w2 a - sigma b + c2, c3, 0): re[d], im[d] hold the coefficients of h0
+  // and h1 in the d-th derivative. sigma, omega are set as above; rate unused.
+  bool general = false;
+  double k_m = 0.0, w2 = 0.0;
+  double c2 = 0.0, c3 = 0.0;
+  // The envelope's decay rate: sigma for w2 >= 0, -lambda_1 = k_m / (sigma + omega) (the
+  // slower real root, without cancellation) for w2 < 0; and -lambda_2 = sigma + omega there.
+  double slow = 0.0, fast = 0.0;
 };
 
 // A sinusoid of the load's: ps sin(w t) + pc cos(w t) in absolute time.
@@ -118,10 +136,11 @@ struct Wave {
   // (the damped terms only decay, the sinusoids keep their amplitudes, a near-resonant term
   // grows at most like s - t0, the linear term has the slope lin and no higher derivative).
   double bound(double t, int d) const;
-  // The same bound at t from decay[m] = exp(-sigma_m max(t - t0, 0)), which decays(t)
-  // writes: a search asks for several d at one t, and the exp per mode per call was a tenth
-  // of the reference's time. Bit for bit bound(t, d).
-  double bound_at(const double* decay, int d) const;
+  // The same bound at t from decay[m] = exp(-sigma_m max(t - t0, 0)) (a general mode's
+  // slow rate instead of sigma), which decays(t) writes: a search asks for several d at one
+  // t, and the exp per mode per call was a tenth of the reference's time. Bit for bit
+  // bound(t, d).
+  double bound_at(double t, const double* decay, int d) const;
   void decays(double t, double* decay) const;
   // f(s) = mean() + oscillation with |oscillation| <= swing(t) for t <= s <= horizon: a bound
   // that lets a whole remaining segment be skipped once the motion has decayed. A linear
@@ -158,6 +177,15 @@ struct Forcing {
 // plain one or, near its resonance, R_mj. The paper's pulses keep the function above, whose
 // arithmetic the stored baselines hold. Prepared.
 Wave oscillator(double t0, double x0, double v0, double m, double c, double k, const Forcing& load, double horizon);
+
+// The oscillator of a cluster that a yielding body has softened (its K from alpha k): any
+// damping, K >= 0, as a general mode (Mode::general) under the constant and ramp part of
+// the load, each sinusoid with its plain particular solution. Not near a sinusoid's
+// resonance (below kNearResonance, use the oscillator above, underdamped there). Prepared.
+void general_oscillator_into(Wave& x, double t0, double x0, double v0, double m, double c, double k,
+                             const Forcing& load, double horizon);
+// Whether general_oscillator_into's cluster is near the resonance of a load's sinusoid.
+bool near_resonance(double m, double c, double k, const Forcing& load);
 
 // Both oscillators written into x in place, the same values: a frame rebuilds every free
 // body's wave at every event, and a returned Wave (some 650 bytes) was then copied whole.

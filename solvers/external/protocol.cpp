@@ -160,7 +160,7 @@ constexpr std::array kAnswerKeys = {"protocol",         "version",         "stat
                                     "pi1",              "t_max",           "history",          "impacts",
                                     "contact_phases",   "steps",           "isolated_impacts", "min_gap",
                                     "step",             "energy_excess",   "restitution_low",  "restitution_high",
-                                    "gap_rate_max"};
+                                    "gap_rate_max",     "residual",        "hysteretic"};
 
 struct U0History {
   std::vector<double> t, u0;
@@ -211,6 +211,13 @@ void fill_answer(const Json& doc, const System& s, const Settings& settings, Res
                             {"restitution_high", &r.restitution_high}, {"gap_rate_max", &r.gap_rate_max}})
     *value = maybe_number(doc, key).value_or(kNaN);
   r.min_gap = maybe_number(doc, "min_gap").value_or(std::numeric_limits<double>::infinity());
+  // A yielding case's answer says what the bilinear law left (never an elastic answer
+  // passed off as the yielding one): a program that does not apply it answers failed.
+  r.residual = maybe_number(doc, "residual").value_or(kNaN);
+  r.hysteretic = maybe_number(doc, "hysteretic").value_or(kNaN);
+  if (s.yields() && r.status == Status::ok && (std::isnan(r.residual) || std::isnan(r.hysteretic)))
+    bad("residual", "a yielding case (bodies[].u_y) needs residual and hysteretic with status ok; a program that "
+                    "does not apply the bilinear law answers status failed");
   if (const auto step = maybe_number(doc, "step")) {
     if (!(*step > 0.0 && *step <= s.t_end)) bad("step", "must be > 0 and at most t_end (a step of the run)");
     r.step = *step;
@@ -278,6 +285,10 @@ void read_bodies(const Json& doc, System& s) {
     body.c = number(member(b, "c", field + ".c"), field + ".c");
     body.w = number(member(b, "w", field + ".w"), field + ".w");
     if (!(body.m > 0.0)) bad(field + ".m", "must be > 0");
+    if (const auto u_y = maybe_number(b, "u_y")) {
+      if (!(*u_y > 0.0)) bad(field + ".u_y", "must be > 0 (absent: elastic)");
+      body.u_y = *u_y;
+    }
     s.bodies.push_back(body);
     s.u_start.push_back(number(member(b, "u", field + ".u"), field + ".u"));
     s.v_start.push_back(number(member(b, "v", field + ".v"), field + ".v"));
@@ -511,6 +522,7 @@ CaseDocument case_document(const System& s, const Settings& settings) {
                       {"w", b.w},
                       {"u", s.u_start.empty() ? 0.0 : s.u_start[i]},
                       {"v", s.v_start.empty() ? 0.0 : s.v_start[i]}});
+    if (b.yields()) bodies.back()["u_y"] = b.u_y;
   }
   j["bodies"] = std::move(bodies);
   j["reference"] = s.ref;
@@ -522,6 +534,7 @@ CaseDocument case_document(const System& s, const Settings& settings) {
   j["contacts"] = std::move(contacts);
   j["eps"] = s.eps;
   j["xi"] = s.xi;
+  if (s.yields()) j["alpha"] = s.alpha;
   j["load"] = load_json(s.pulse);
   j["a_p"] = s.a_p;
   j["length_scale"] = s.length_scale();
@@ -572,6 +585,8 @@ static CaseRead read_case_document(std::string_view text) {
   read_load(doc, s);
   s.eps = number(member(doc, "eps", "eps"), "eps");
   s.xi = number(member(doc, "xi", "xi"), "xi");
+  s.alpha = maybe_number(doc, "alpha").value_or(0.0);
+  if (!(s.alpha >= 0.0 && s.alpha < 1.0)) bad("alpha", "must be in [0, 1)");
   s.a_p = number(member(doc, "a_p", "a_p"), "a_p");
   s.t_end = number(member(doc, "t_end", "t_end"), "t_end");
   s.t_min = number(member(doc, "t_min", "t_min"), "t_min");
@@ -623,6 +638,10 @@ std::string answer_document(const Result& r, const System& s) {
   j["restitution_low"] = number_or_null(r.restitution_low);
   j["restitution_high"] = number_or_null(r.restitution_high);
   j["gap_rate_max"] = number_or_null(r.gap_rate_max);
+  if (s.yields()) {
+    j["residual"] = number_or_null(r.residual);
+    j["hysteretic"] = number_or_null(r.hysteretic);
+  }
   const History& h = r.history;
   if (h.rows() > 0 && h.n_bodies == s.n_bodies()) {
     Ordered t = Ordered::array(), u0 = Ordered::array();

@@ -81,6 +81,23 @@ Work make_work(const Scheme& sc) {
   return w;
 }
 
+State start_run(const Scheme& sc, const System& sys, long n, const Work& w, Tally& tally, Result& res,
+                std::vector<double>* rows) {
+  std::vector<double> u0(static_cast<std::size_t>(sc.nb), 0.0), v0(u0.size(), 0.0);
+  if (!sys.u_start.empty()) u0.assign(sys.u_start.begin(), sys.u_start.end());
+  if (!sys.v_start.empty()) v0.assign(sys.v_start.begin(), sys.v_start.end());
+  State st = make_state(sc, u0.data(), v0.data());
+  tally.u_max = std::abs(st.q(sc.ref));
+  if (sc.nc > 0) tally.g_min = std::min(0.0, st.g.minCoeff());
+  if (rows) {
+    res.history.n_bodies = sc.nb;
+    res.history.n_contacts = sc.nc;
+    rows->reserve(static_cast<std::size_t>(n + 1) * static_cast<std::size_t>(res.history.row_size()));
+    record(sc, st, w.impulse, *rows);
+  }
+  return st;
+}
+
 void record(const Scheme& sc, const State& st, const Eigen::VectorXd& impulse, std::vector<double>& out) {
   out.push_back(static_cast<double>(st.k) * sc.h);
   for (int i = 1; i <= sc.nb; ++i) out.push_back(st.q(i));
@@ -123,20 +140,16 @@ void solve_run(const Scheme& sc, const State& st, Work& w, int a, int n) {
   }
 }
 
-// One step from st.k to st.k + 1 under the ground load abar (work: the exact step mean, for
-// the monitor); false when the state is no longer finite or |u| passed the divergence bound.
-bool step(const Scheme& sc, State& st, Work& w, Tally& t, double abar, double work, std::vector<double>* history,
-          StepMonitor* monitor) {
-  w.v_new = sc.fv.cwiseProduct(st.v) + sc.fq.cwiseProduct(st.q) + sc.fa * abar;
-  w.q_new = sc.qv.cwiseProduct(st.v) + sc.qq.cwiseProduct(st.q) + sc.qa * abar;
+// The contacts of a step, on the free motion in w.v_new, w.q_new: one scan over the
+// contacts finds the index set, solves each run of consecutive active contacts where it
+// ends, and updates the counts and flags. (Values the scan reads are copied to locals: a
+// store through a char pointer may alias anything, and would make the compiler reload
+// them at every contact.)
+[[gnu::always_inline]] inline void contacts_of_step(const Scheme& sc, State& st, Work& w, Tally& t) {
   const int nc = sc.nc;
   const double* g = st.g.data();
   double* rate = st.rate.data();
   w.impulse.setZero();
-  // One scan over the contacts finds the index set, solves each run of consecutive active
-  // contacts where it ends, and updates the counts and flags. (Values the scan reads are
-  // copied to locals: a store through a char pointer may alias anything, and would make
-  // the compiler reload them at every contact.)
   const double gamma_h = sc.gamma_h;
   const double* p = w.impulse.data();
   char* was_active = st.active.data();
@@ -167,6 +180,13 @@ bool step(const Scheme& sc, State& st, Work& w, Tally& t, double abar, double wo
   }
   t.impacts += impacts;
   t.phases += phases;
+}
+
+// The step's end once v_new, q_new hold the new state: the state moves there, its gaps and
+// rates, the monitor, divergence, the tally and the history row.
+[[gnu::always_inline]] inline bool end_of_step(const Scheme& sc, State& st, Work& w, Tally& t, double work,
+                                               std::vector<double>* history, StepMonitor* monitor) {
+  const int nc = sc.nc;
   st.q.swap(w.q_new);
   st.v.swap(w.v_new);
   ++st.k;
@@ -178,7 +198,7 @@ bool step(const Scheme& sc, State& st, Work& w, Tally& t, double abar, double wo
   // Both vectorise; a NaN anywhere makes the sum NaN, whatever maxCoeff makes of it.
   const auto u = st.q.tail(sc.nb);
   if (!(u.cwiseAbs().maxCoeff() <= sc.bound) || std::isnan(u.sum())) return false;
-  // Not in the loop above: a running minimum there is a chain of dependent operations.
+  // Not in the contact scan: a running minimum there is a chain of dependent operations.
   if (nc > 0) t.g_min = std::min(t.g_min, st.g.minCoeff());
   const double u_ref = std::abs(st.q(sc.ref));
   if (u_ref > t.u_max) {
@@ -189,7 +209,23 @@ bool step(const Scheme& sc, State& st, Work& w, Tally& t, double abar, double wo
   return true;
 }
 
+// One step from st.k to st.k + 1 under the ground load abar (work: the exact step mean, for
+// the monitor); false when the state is no longer finite or |u| passed the divergence bound.
+bool step(const Scheme& sc, State& st, Work& w, Tally& t, double abar, double work, std::vector<double>* history,
+          StepMonitor* monitor) {
+  w.v_new = sc.fv.cwiseProduct(st.v) + sc.fq.cwiseProduct(st.q) + sc.fa * abar;
+  w.q_new = sc.qv.cwiseProduct(st.v) + sc.qq.cwiseProduct(st.q) + sc.qa * abar;
+  contacts_of_step(sc, st, w, t);
+  return end_of_step(sc, st, w, t, work, history, monitor);
+}
+
 }  // namespace
+
+void contacts(const Scheme& sc, State& st, Work& w, Tally& t) { contacts_of_step(sc, st, w, t); }
+
+bool finish_step(const Scheme& sc, State& st, Work& w, Tally& t, std::vector<double>* history) {
+  return end_of_step(sc, st, w, t, 0.0, history, nullptr);
+}
 
 bool advance(const Scheme& sc, State& st, Work& w, Tally& t, long k_end, std::vector<double>* history,
              StepMonitor* monitor) {

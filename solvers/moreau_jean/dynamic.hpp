@@ -70,10 +70,23 @@ struct Work {
 
 Work make_work(const Scheme& sc);
 
+// The start of a run on this loop: the state from the System's start values (rest where it
+// gives none), its tally, and where rows is given the history's first row (room reserved
+// for n steps, the layout set in res.history).
+State start_run(const Scheme& sc, const System& sys, long n, const Work& w, Tally& tally, Result& res,
+                std::vector<double>* rows);
+
 // Steps until st.k == k_end; false if the run blew up (st is left at the bad step).
 // history (one row per step, room reserved) and monitor may be null.
 bool advance(const Scheme& sc, State& st, Work& w, Tally& t, long k_end, std::vector<double>* history,
              StepMonitor* monitor);
+
+// The two halves of a step around its free motion, for a loop that forms the free motion
+// itself (yielding.cpp): `contacts` takes w.v_new, w.q_new (the free motion) to the motion
+// with the step's impulses, and counts impacts and phases into t; `finish_step` moves the
+// state there and tallies it (no monitor); false if the run blew up.
+void contacts(const Scheme& sc, State& st, Work& w, Tally& t);
+bool finish_step(const Scheme& sc, State& st, Work& w, Tally& t, std::vector<double>* history);
 
 // One history row of the state (t, u, v, g, lambda = P / h).
 void record(const Scheme& sc, const State& st, const Eigen::VectorXd& impulse, std::vector<double>& out);

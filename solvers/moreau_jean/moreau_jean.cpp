@@ -11,6 +11,7 @@
 #include "solvers/monitor.hpp"
 #include "solvers/moreau_jean/dynamic.hpp"
 #include "solvers/moreau_jean/stepper.hpp"
+#include "solvers/moreau_jean/yielding.hpp"
 
 namespace pb::moreau_jean {
 
@@ -97,24 +98,10 @@ Result run_fixed(const System& sys, const Settings& set, double h, long n, Resul
 
 Result run_dynamic(const System& sys, const Settings& set, double h, long n, Result res) {
   const dynamic::Scheme sc = dynamic::make_scheme(sys, h, set.theta, set.gamma, load_rule(set));
-  std::vector<double> u0(static_cast<std::size_t>(sc.nb)), v0(u0.size());
-  for (int i = 0; i < sc.nb; ++i) {
-    u0[static_cast<std::size_t>(i)] = start_value(sys.u_start, i);
-    v0[static_cast<std::size_t>(i)] = start_value(sys.v_start, i);
-  }
-  dynamic::State st = dynamic::make_state(sc, u0.data(), v0.data());
   dynamic::Work work = dynamic::make_work(sc);
   Tally tally;
-  tally.u_max = std::abs(st.q(sc.ref));
-  if (sc.nc > 0) tally.g_min = std::min(0.0, st.g.minCoeff());
-
   std::vector<double>* rows = set.history_samples > 0 ? &res.history.data : nullptr;
-  if (rows) {
-    res.history.n_bodies = sc.nb;
-    res.history.n_contacts = sc.nc;
-    rows->reserve(static_cast<std::size_t>(n + 1) * static_cast<std::size_t>(res.history.row_size()));
-    dynamic::record(sc, st, work.impulse, *rows);
-  }
+  dynamic::State st = dynamic::start_run(sc, sys, n, work, tally, res, rows);
   std::optional<StepMonitor> monitor;
   if (set.monitor) monitor.emplace(sys);
   StepMonitor* m = monitor ? &*monitor : nullptr;
@@ -140,6 +127,7 @@ Result dispatch(const System& sys, const Settings& set, bool force_dynamic) {
     if (res.status != Status::ok) return res;
     const double h = plan.h;
     const long n = plan.n;
+    if (sys.yields()) return run_yielding(sys, set, h, n, std::move(res));
     if (!force_dynamic) {
       const int nb = sys.n_bodies(), nc = sys.n_contacts();
       if (nb == 1 && nc == 1) return run_fixed<1, 1>(sys, set, h, n, std::move(res));  // wall

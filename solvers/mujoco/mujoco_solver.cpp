@@ -151,6 +151,9 @@ Result guarded(const System& sys, const Settings& set, const Config& config) {
 Result solve(const System& system, const Settings& settings) {
   const std::optional<Config> config = find_variant(settings.variant);
   if (!config) return fail(Status::failed, "unknown variant '" + settings.variant + "'");
+  if (system.yields())
+    return yielding_refused("mujoco's slide joints own the bodies' springs (a linear joint stiffness); "
+                            "the bilinear law is not applied");
   return guarded(system, settings, *config);
 }
 

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "solvers/fixed_step.hpp"
+#include "solvers/hysteresis.hpp"
 #include "solvers/ode/world.hpp"
 
 namespace pb::ode {
@@ -41,7 +42,7 @@ class Engine : public StepEngine {
  public:
   Engine(const System& sys, const Config& config, double h, double gamma)
       : StepEngine(sys), sys_(sys), load_(sys.pulse), config_(config), h_(h), gamma_h_(gamma * h), joint_(ix(sys.n_contacts()), 0),
-        feedback_(ix(sys.n_contacts()), dJointFeedback{}) {}
+        feedback_(ix(sys.n_contacts()), dJointFeedback{}), springs_(sys, out_.u) {}
 
   // False when ODE could not make the world.
   bool start() {
@@ -82,6 +83,7 @@ class Engine : public StepEngine {
   }
 
   void finish(Result& res) override {
+    springs_.finish(out_.u.data(), res);
     if (res.status == Status::ok && !still_on_axis()) {
       res.status = Status::failed;
       res.message = "a body left the x axis or rotated";
@@ -128,13 +130,14 @@ class Engine : public StepEngine {
     }
   }
 
-  // Spring, dashpot and ground load of each body at the start of step k. Returns false
+  // Spring (a yielding body's by its return map), dashpot and ground load of each body at the
+  // start of step k. Returns false
   // if a force is not finite (ODE must never see one).
   bool apply_loads(long k) {
     const double a_g = load_.accel(static_cast<double>(k) * h_);
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
       const Body& b = sys_.bodies[i];
-      const double f = -b.k * out_.u[i] - b.c * out_.v[i] - b.m * a_g;
+      const double f = -springs_.force(static_cast<int>(i), out_.u[i], a_g) - b.c * out_.v[i] - b.m * a_g;
       if (!std::isfinite(f)) return false;
       dBodyAddForce(bodies_[i], f, 0.0, 0.0);
     }
@@ -197,6 +200,7 @@ class Engine : public StepEngine {
   std::vector<dBodyID> bodies_;
   std::vector<char> joint_;                // a contact joint was made for the last step
   std::vector<dJointFeedback> feedback_;   // one per contact; ODE writes it during the step
+  StepSprings springs_;                    // the bodies' springs (hysteresis.hpp)
   long lcp_failures_before_ = 0;
 };
 

@@ -113,6 +113,9 @@ Result run(const Variant& variant, const System& system, const Settings& setting
 Result solve(const System& system, const Settings& settings) {
   const Variant* variant = find_variant(settings.variant);
   if (!variant) return stopped(Status::failed, "unknown variant " + settings.variant);
+  if (system.yields())
+    return yielding_refused("siconos' LagrangianLinearTIDS owns the bodies' springs (its constant K); "
+                            "the bilinear law is not applied");
   return run(*variant, system, settings, nullptr);
 }
 
