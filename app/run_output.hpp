@@ -16,8 +16,9 @@ namespace pb::app {
 // The JSON object of `run --json` (docs/cli.md); a row of a case file names it and its point.
 nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen);
 
-// Where a record case's w_p came from: "mean period" (the default, 2 pi / T_m of the record)
-// or "given" (w_p or tp); empty for every other pulse, and for a case without its samples.
+// What a record case's w_p is: "mean period" when it is the record's 2 pi / T_m (the default,
+// or a w_p or tp given equal to it), "given" otherwise; empty for every other pulse, and for
+// a case without its samples.
 std::string w_p_source(const Case& c);
 
 // The columns of a history: t, then u, v of each body and g, lambda of each contact, labelled

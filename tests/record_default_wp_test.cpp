@@ -53,7 +53,10 @@ TEST_F(RecordDefaultWpCli, RunWithNoTpUsesTheMeanPeriodAndSaysSo) {
   ASSERT_EQ(given.exit_code, 0) << given.err;
   const auto g = nlohmann::json::parse(given.out);
   EXPECT_EQ(g.at("pi1"), j.at("pi1"));
-  EXPECT_EQ(g.at("w_p_source"), "given");
+  EXPECT_EQ(g.at("w_p_source"), "mean period");  // the w_p used is the mean frequency, given or not
+  const Outcome other = run("run --pulse record --record '" + record + "' --tp 1" + kPair + " --solver event-driven --json");
+  ASSERT_EQ(other.exit_code, 0) << other.err;
+  EXPECT_EQ(nlohmann::json::parse(other.out).at("w_p_source"), "given");
   const Outcome text = run("run --pulse record --record '" + record + "'" + kPair + " --solver event-driven");
   ASSERT_EQ(text.exit_code, 0) << text.err;
   EXPECT_NE(text.out.find("mean period T_m "), std::string::npos) << text.out;
