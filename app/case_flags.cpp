@@ -89,16 +89,19 @@ ChosenCase case_from_flags(const GivenFlag& given, const CaseFlags& flags) {
       if (field.name == alias.field) c.*field.number = alias.convert(x);
   }
   if (c.pulse == PulseShape::record) {
-    // A record's Pi terms: w_p is the user's (a pulse period read from the record), a_p its
-    // peak unless given. The record is read here, once.
-    if (!given("--w-p") && !given("--tp"))
-      throw BadInput("--w-p: required by pulse record (or --tp, the period of the record's pulse: w_p = 2 pi / tp)");
+    // A record's Pi terms: w_p the user's (a pulse period read from the record) or else the
+    // record's mean frequency 2 pi / T_m, a_p its peak unless given. The record is read here, once.
     try {
       c.samples = read_record(c.record);
     } catch (const RecordError& e) {
       throw BadInput("--record: " + std::string(e.what()));
     }
     if (!given("--a-p")) c.a_p = c.samples->peak;
+    if (!given("--w-p") && !given("--tp")) {
+      if (!std::isfinite(c.samples->t_m))
+        throw BadInput("--tp: required by --record " + clip(c.record) + ": " + no_mean_period_reason());
+      c.w_p = c.samples->mean_frequency();
+    }
   }
   if (auto bad = validate(c)) throw BadInput(case_flag_message(*bad));
   return {c, 0, {}};

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "app/output_files.hpp"
 #include "app/run_output.hpp"
 #include "cases/fields.hpp"
+#include "cases/record.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb::app {
@@ -55,6 +57,10 @@ void print_summary(std::ostream& out, const Row& row) {
     else if (used_by(f, c) && (f.use != FieldUse::chain || f.yielding) && (f.required || f.get(c) != f.get(Case{})))
       out << ' ' << f.name << '=' << brief(f.get(c));
   out << '\n';
+  if (const std::string source = w_p_source(c); !source.empty())
+    out << "record   peak " << brief(c.samples->peak) << ", mean period T_m " << brief(c.samples->t_m) << " s; w_p "
+        << brief(c.w_p) << " (T_p " << brief(2.0 * std::numbers::pi / c.w_p) << " s, "
+        << (source == "given" ? "given" : "2 pi / T_m") << "), a_p " << brief(c.a_p) << '\n';
   out << "solver   " << row.solver << "  (";
   // The named values as "name value, ...": a line to read; --json has them as an object.
   const char* sep = "";

@@ -4,6 +4,7 @@
 
 #include "app/errors.hpp"
 #include "cases/fields.hpp"
+#include "cases/record.hpp"
 
 namespace pb::app {
 
@@ -91,7 +92,17 @@ nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {
     j["point"] = chosen.point;
   }
   j.update(case_json(row.input));
+  if (const std::string source = w_p_source(row.input); !source.empty()) {
+    j["record_peak"] = row.input.samples->peak;
+    j["record_t_m"] = number_or_null(row.input.samples->t_m);
+    j["w_p_source"] = source;
+  }
   return j;
+}
+
+std::string w_p_source(const Case& c) {
+  if (c.pulse != PulseShape::record || !c.samples) return {};
+  return c.w_p == c.samples->mean_frequency() ? "mean period" : "given";
 }
 
 std::vector<std::string> history_columns(const Case& c) {

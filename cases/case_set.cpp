@@ -638,8 +638,7 @@ class Reader {
 
   // The keys of one pulse (record, cycles, mp_gamma, mp_nu): a family's pulses all use each
   // of them or none (else a pulse that does not would repeat its cases for each value); one
-  // that a family's pulses need is required; a default that they do not use is left out. A
-  // record needs w_p (or tp) from the file: its Pi terms are the user's choice.
+  // that a family's pulses need is required; a default that they do not use is left out.
   void resolve_pulse_keys(const Entries& own, Entries& eff, const std::string& prefix, std::uint32_t line) const {
     const std::vector<int>& pulses = eff[index(kPulse)].choices;
     auto list = [](const std::vector<PulseShape>& ps) {
@@ -664,11 +663,6 @@ class Reader {
       if (!eff[index(k)].given && number_field(k)->required)
         fail(line, field, "required by pulse " + list(users) + " (" + std::string(number_field(k)->help) + ")");
     }
-    const bool record = std::any_of(pulses.begin(), pulses.end(),
-                                    [](int p) { return static_cast<PulseShape>(p) == PulseShape::record; });
-    if (record && eff[index(key_of("w_p"))].builtin)
-      fail(line, prefix + ".w_p",
-           "required by pulse record (give w_p, or tp: the period of the record's pulse, w_p = 2 pi / tp)");
   }
 
   // The cartesian product, in Key order (scene outermost, pi2 innermost). Keys a scene
@@ -702,8 +696,13 @@ class Reader {
         if (symmetric && uses_body2(scene))
           for (Key k = kFirstNumber; k < kSymmetric; ++k)
             if (is_body2(k)) c.*(number_field(k)->number) = c.*(number_field(body1_twin(k))->number);
-        // A record's a_p defaults to its peak (cases/README.md, "Records").
+        // A record's a_p defaults to its peak (cases/README.md, "Records"),
+        // and its w_p to its mean frequency 2 pi / T_m.
         if (c.pulse == PulseShape::record && c.samples && eff[index(key_of("a_p"))].builtin) c.a_p = c.samples->peak;
+        if (c.pulse == PulseShape::record && c.samples && eff[index(key_of("w_p"))].builtin) {
+          if (!std::isfinite(c.samples->t_m)) report_record(eff, axes, at, no_mean_period_reason());
+          c.w_p = c.samples->mean_frequency();
+        }
         if (auto bad = validate(c)) report_invalid(*bad, eff, axes, at, symmetric);
         out.push_back(c);
         for (std::size_t a = axes.size(); a-- > 0;) {  // odometer: the last axis turns fastest
@@ -726,6 +725,18 @@ class Reader {
       if (f->integer) c.*(f->integer) = static_cast<int>(std::clamp(s.values[i], -1e9, 1e9));
       else c.*(f->number) = s.values[i];
     }
+  }
+
+  // A reason about this case's record, at the value of the record key that named it.
+  [[noreturn]] void report_record(const Entries& eff, const std::vector<Key>& axes, const std::vector<std::size_t>& at,
+                                  const std::string& reason) const {
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      if (!is_text(axes[a])) continue;
+      const Entry& s = eff[index(axes[a])];
+      const std::string field = s.field + (s.shape == Entry::Shape::list ? "[" + std::to_string(at[a]) + "]" : "");
+      fail(s.value_lines[at[a]], field, clip(s.texts[at[a]]) + ": " + reason);
+    }
+    fail(0, "", reason);
   }
 
   // validate() names the bad field; point at the value of that field that this case used.

@@ -69,7 +69,7 @@ inline constexpr std::array<CaseField, 22> kCaseFields = {{
     {"a_p", &Case::a_p, nullptr, FieldUse::every, false,
      "Pulse amplitude a_p (Pi1 does not depend on it); a record: the a_p of its Pi terms, default its peak"},
     {"w_p", &Case::w_p, nullptr, FieldUse::every, false,
-     "Pulse circular frequency w_p (Pi1 does not depend on it); a record: required (or --tp)"},
+     "Pulse circular frequency w_p (Pi1 does not depend on it); a record: default 2 pi / T_m, its mean period's"},
     {"bodies", nullptr, &Case::bodies, FieldUse::chain, true, "Chain: number of bodies N, 2 to 1000"},
     {"kick", &Case::kick, nullptr, FieldUse::chain, false,
      "Chain: start velocity of body 0 (the left end) towards +x, times w_p / a_p"},

@@ -347,8 +347,17 @@ Record parse_record(std::string_view text, std::string_view source) {
   return r;
 }
 
+double Record::mean_frequency() const { return 2.0 * std::numbers::pi / t_m; }
+
+std::string no_mean_period_reason() {
+  char band[64];
+  std::snprintf(band, sizeof band, "%g and %g Hz", kMeanPeriodBand[0], kMeanPeriodBand[1]);
+  return std::string("it has no mean period (no Fourier amplitude between ") + band +
+         ") to take w_p from: give w_p or tp";
+}
+
 double Record::length_scale() const {
-  const double w_m = 2.0 * std::numbers::pi / t_m;
+  const double w_m = mean_frequency();
   return peak / (w_m * w_m);
 }
 

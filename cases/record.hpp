@@ -58,11 +58,19 @@ struct Record {
   // mean_period(t, a), computed once with the samples (an FFT), shared with them.
   double t_m = std::numeric_limits<double>::quiet_NaN();
   double length() const { return t.back(); }
+  // 2 pi / T_m: the record's mean circular frequency. It is the record's default w_p, the
+  // characteristic frequency its Pi terms are measured against when the user gives neither
+  // w_p nor tp (cases/README.md, "Records"); NaN when T_m is.
+  double mean_frequency() const;
   // The record's own length scale, its peak over the square of its mean circular frequency
   // 2 pi / T_m: a length of the ground motion that the a_p and w_p of its Pi terms, a unit
   // of the user's choosing, do not move (a Hertz-type contact's, cases/README.md).
   double length_scale() const;
 };
+
+// Why a record without a mean period (T_m NaN) needs its w_p given: one phrase, for the
+// CLI's and the case sets' errors.
+std::string no_mean_period_reason();
 
 // The record in `text` (the format by `source`'s extension); throws RecordError.
 Record parse_record(std::string_view text, std::string_view source);

@@ -26,7 +26,7 @@ import provenance
 import readme
 import report as report_of
 from rows import load, write_page
-from study import InputError, Study, spectrum_summary, write_impacting
+from study import InputError, Study, scope_of, spectrum_summary, write_impacting
 
 # The figure modules (spectra, wp, stability: matplotlib) are imported where a figure is drawn,
 # so that --check, which draws none, starts in a blink.
@@ -141,17 +141,19 @@ def commit_results(args):
         json.dump(measured_on, f, indent=2)
         f.write("\n")
     for source, name in ((args.workprecision, readme.WORKPRECISION), (args.stress, readme.STABILITY),
-                         (args.compliant, readme.COMPLIANT), (args.restitution, readme.RESTITUTION)):
+                         (args.compliant, readme.COMPLIANT), (args.restitution, readme.RESTITUTION),
+                         (args.records_wp, readme.RECORDS_WP)):
         if source and os.path.abspath(source) != os.path.abspath(target(name)):
             shutil.copyfile(source, target(name))
     return measured_on
 
 
 def write_families(points, path):
-    """The scene of every family of the work-precision study, from its per-run rows."""
+    """The scene of every family of the work-precision study, from its per-run rows, as the
+    answer tables group them (study.scope_of: a record's family is "<scene> records")."""
     with open(path, "w") as f:
         f.write("family,scene\n")
-        for family, scene in dict.fromkeys((r["family"], r["scene"]) for r in points):
+        for family, scene in dict.fromkeys((r["family"], scope_of(r)) for r in points):
             f.write(f"{family},{scene}\n")
 
 
@@ -233,6 +235,12 @@ def report(args):
     if args.yielding:
         import yielding
         text += yielding.section(load(args.yielding), args.out)
+    if args.records_real:
+        import records_real
+        text += records_real.section(load([args.records_real]), args.out)
+    if args.records_wp:
+        import records_wp
+        text += records_wp.section(load([args.records_wp]))
     text += paper_set_section(rows, args.out)
     text += ["## Where this ran", "", footer(measured_on), ""]
     out.page.provenance([f"- measured at: {provenance.describe(measured_on)}"])
@@ -261,6 +269,10 @@ def main():
                         "the reference and the time-steppers (scripts/main.sh: results/records-*.csv)")
     parser.add_argument("--yielding", nargs="+", help="rows of `poundbench spectrum cases/sets/yielding.toml` "
                         "through the reference and Moreau-Jean (scripts/main.sh: results/yielding-*.csv)")
+    parser.add_argument("--records-real", help="rows of `poundbench spectrum cases/sets/records-real.toml --solver "
+                        "event-driven` (scripts/main.sh: results/real-records-event-driven.csv)")
+    parser.add_argument("--records-wp", help="summary CSV of the time-steppers on the real record suite (`poundbench "
+                        "workprecision cases/sets/workprecision-records.toml --settings cases/settings/records.toml`)")
     parser.add_argument("--out", default=here, help="folder for README.md, figures/ and the committed result files")
     parser.add_argument("--readme", help="also write the generated blocks of this README (scripts/main.sh: README.md)")
     parser.add_argument("--check", action="store_true", help="write nothing: exit 1, with the diff, when README's "

@@ -19,6 +19,7 @@ import answer
 import compliant
 import measured
 import provenance as prov
+import records_wp
 from rows import load
 from study import read_impacting
 
@@ -30,6 +31,7 @@ WORKPRECISION = "workprecision.csv"
 FAMILIES = "workprecision-families.csv"  # family -> scene of the work-precision study
 IMPACTING = "workprecision-impacting.csv"  # its errors over the points where the reference has an impact
 STABILITY = "stability.csv"
+RECORDS_WP = "workprecision-records.csv"  # the time-steppers on real records (reports/records_wp.py)
 COMPLIANT = "compliant.csv"  # the compliant-contact study's summary
 RESTITUTION = "restitution.csv"  # what each compliant element restitutes (bench/restitution_table.cpp)
 MEASURED = "measured.csv"
@@ -57,12 +59,14 @@ def committed(folder):
         with open(path(MPI_PROVENANCE)) as f:
             mpi = dict(rows=load([path(MPI)]), provenance=json.load(f))
     has_impacting = os.path.exists(os.path.join(folder, IMPACTING))
+    has_records_wp = os.path.exists(os.path.join(folder, RECORDS_WP))
     return dict(mpi=mpi, workprecision=load([path(WORKPRECISION)]),
                 impacting=read_impacting(path(IMPACTING)) if has_impacting else None,
                 scenes={r["family"]: r["scene"] for r in load([path(FAMILIES)])},
                 stability=load([path(STABILITY)]), measured=load([path(MEASURED)]),
                 compliant=load([path(COMPLIANT)]) if has_compliant else None,
-                restitution=load([path(RESTITUTION)]) if has_restitution else None, provenance=measured_on)
+                restitution=load([path(RESTITUTION)]) if has_restitution else None, provenance=measured_on,
+                records_wp=load([path(RECORDS_WP)]) if has_records_wp else None)
 
 
 def source_line(inputs, files, provenance=None):
@@ -123,6 +127,10 @@ def blocks(folder):
             source_line(inputs, [WORKPRECISION, FAMILIES] + ([IMPACTING] if inputs["impacting"] else [])
                         + [PROVENANCE]),
         ],
+        "records": [
+            *records_wp.lines(inputs["records_wp"]), "",
+            source_line(inputs, [RECORDS_WP, PROVENANCE]),
+        ] if inputs["records_wp"] else ["Not measured yet: `scripts/main.sh` writes these numbers."],
         "compliant": [
             *compliant.answer_lines(inputs["compliant"]), "",
             source_line(inputs, [COMPLIANT, PROVENANCE]),

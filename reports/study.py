@@ -111,7 +111,7 @@ class Study:
             self._check_points_belong()
         self.families = list(dict.fromkeys(r["family"] for r in self.rows))
         runs = self.rows if self.kind == "spectrum" else self.points
-        self.scenes = {r["family"]: r["scene"] for r in runs}  # family -> scene, where known
+        self.scenes = {r["family"]: scope_of(r) for r in runs}  # family -> its answer's scope, where known
         self.truth = {}  # point -> the truth's row (the first row of each point: the study writes it first)
         if self.points:
             for r in self.points:
@@ -132,6 +132,14 @@ class Study:
 
     def has_scenes(self):
         return all(f in self.scenes for f in self.families)
+
+
+def scope_of(run):
+    """The scope of the answer tables a run's family belongs to: its scene, or for a recorded
+    ground motion "<scene> records", a row of its own: a record's rough load costs a
+    time-stepper far more than a pulse (issue 34: the synthetic record set the cost of every
+    `pair` answer, sending pulse users to a setting 60x costlier than they need)."""
+    return run["scene"] + (" records" if run.get("pulse") == "record" else "")
 
 
 def percentile(values, p):

@@ -109,6 +109,16 @@ yielding() {
   done
 }
 timed yielding yielding
+# The real record suite (issue 34): its spectra through the reference (2250 runs, 14 s of CPU
+# measured), and the time-steppers on one record of each earthquake (1280 runs, 18 s of CPU at one
+# timing repetition: each run is milliseconds, so one is enough to rank them).
+echo "main: the real record suite through the reference (cases/sets/records-real.toml)"
+timed records-real $pb spectrum cases/sets/records-real.toml --solver event-driven \
+  --out results/real-records-event-driven.csv
+echo "main: the time-steppers on real records (cases/sets/workprecision-records.toml)"
+timed workprecision-records $pb workprecision cases/sets/workprecision-records.toml \
+  --settings cases/settings/records.toml --repetitions 1 \
+  --out results/workprecision-records.csv --points results/workprecision-records-points.csv
 
 echo "main: benchmarks"
 # 5 repetitions of at least 10 ms each: the 280 benchmarks took 139 s at 50 ms, the main
@@ -124,7 +134,9 @@ timed benchmarks build/bench/poundbench_bench --benchmark_repetitions=5 --benchm
   --points results/workprecision-points.csv --bench results/bench.json --timings results/timings.csv \
   --provenance results/provenance.json --stress results/stability.csv --stress-points results/stability-points.csv \
   "${compliant[@]}" \
-  --records results/records-*.csv --yielding results/yielding-*.csv --out reports --readme README.md
+  --records results/records-*.csv --yielding results/yielding-*.csv \
+  --records-real results/real-records-event-driven.csv --records-wp results/workprecision-records.csv \
+  --out reports --readme README.md
 
 echo "main: the paper report (reports/paper/)"
 scripts/paper.sh --built

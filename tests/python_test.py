@@ -113,8 +113,12 @@ class Run(unittest.TestCase):
             code, out, _ = cli("run", *flags, *load_flags, "--json")
             self.assertEqual(code, 0)
             self.assertEqual(result["pi1"], json.loads(out)["pi1"])
-        with self.assertRaisesRegex(ValueError, "--w-p: required by pulse record"):
-            poundbench.run(**base, pulse="record", record=record)
+        # Without tp, the record's mean frequency 2 pi / T_m, as on the command line.
+        result = poundbench.run(**base, pulse="record", record=record)
+        code, out, _ = cli("run", *flags, "--pulse", "record", "--record", record, "--json")
+        self.assertEqual(code, 0)
+        self.assertEqual(result["pi1"], json.loads(out)["pi1"])
+        self.assertEqual(result["w_p"], json.loads(out)["w_p"])
 
 
 class Spectrum(unittest.TestCase):

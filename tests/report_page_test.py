@@ -161,8 +161,12 @@ def main():
         with open(os.path.join(out, "README.md")) as f:
             readme = f.read()
         expected = answer_rows(readme)
-        if len(expected) != 2 * 4 * 4:  # 2 measures; pair, wall, all scenes, its time-steppers; 4 targets
-            fail(f"the markdown has {len(expected)} answers, not 2 x 4 scopes x 4 targets")
+        # 2 measures; pair (the pulse), pair records (the record: a scope of its own, never merged
+        # into the pulse's), wall, all scenes, its time-steppers; 4 targets
+        if len(expected) != 2 * 5 * 4:
+            fail(f"the markdown has {len(expected)} answers, not 2 x 5 scopes x 4 targets")
+        if not any(scene == "pair records" for _, scene, _ in expected):
+            fail("the record's family is not a scope of its own (pair records)")
         with open(os.path.join(tmp, "wp.csv"), newline="") as f:
             summary = list(csv.DictReader(f))
 
