@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "app/cost_left.hpp"
 #include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/sweep_watch.hpp"
@@ -53,7 +54,7 @@ class PartialWriter {
         lines_(lines),
         threads_(std::max(threads, 1u)),
         to_come_(expected) {
-    queued_.reserve(to_come_);
+    queued_.reserve(room());
   }
 
   // A finished row, from the sweep's callback (any thread, serialised).
@@ -81,10 +82,10 @@ class PartialWriter {
     {
       const std::lock_guard hold(mutex_);
       if (!error_.empty()) throw std::runtime_error(error_);
-      if (queued_.empty() || (!all && Clock::now() - oldest_ < kPartialDelay)) return;
+      if (queued_.empty() || (!all && Clock::now() - oldest_ < kPartialDelay && queued_.size() < kBatchRows)) return;
       rows.swap(queued_);
       to_come_ -= std::min(to_come_, rows.size());
-      queued_.reserve(to_come_);
+      queued_.reserve(room());
     }
     try {
       std::vector<std::string> text = format(rows);
@@ -116,6 +117,12 @@ class PartialWriter {
     }  // the jthreads join here, before text is returned
     return text;
   }
+
+  // A batch is written at the watcher's next tick once it holds kBatchRows rows, whatever their
+  // age, and the queue takes room for no more than that at a time: with room for every row to
+  // come, a million-point sweep reserved 1.5 GB up front.
+  static constexpr std::size_t kBatchRows = 4096;
+  std::size_t room() const { return std::min(to_come_, 2 * kBatchRows); }
 
   BatchedFile file_;  // written in batches: its own size limit only (1 MiB), never its delay
   bool with_run_;
@@ -168,9 +175,10 @@ std::vector<Row> read_earlier_rows(const std::string& partial, std::span<const C
 std::optional<std::vector<Row>> run_resumable(std::string_view command, const Processes& processes,
                                               std::span<const Case> cases, std::span<const SweepRun> runs,
                                               const std::string& partial, OutputLock& lock, std::vector<Row> earlier,
-                                              unsigned threads, std::vector<std::string>* lines) {
+                                              unsigned threads, std::vector<std::string>* lines, bool keep_rows) {
   const std::size_t total = cases.size() * runs.size();
   const bool with_run = runs.size() > 1;
+  const std::size_t resumed = earlier.size();
   std::vector<std::size_t> todo;
   std::optional<PartialWriter> file;
   if (processes.leader()) {
@@ -179,6 +187,7 @@ std::optional<std::vector<Row>> run_resumable(std::string_view command, const Pr
       out << partial_header(with_run) << '\n';
       for (const Row& row : earlier) out << partial_line(row, with_run) << '\n';
     });
+    if (!keep_rows) std::vector<Row>().swap(earlier);  // in the file now, which is where the output comes from
     if (lines) lines->assign(total, std::string());
     file.emplace(partial, with_run, cases.size(), lines, threads ? threads : processes.default_threads(),
                  todo.size());
@@ -206,14 +215,22 @@ std::optional<std::vector<Row>> run_resumable(std::string_view command, const Pr
   const auto write_due = [&] {
     if (file) file->write_due();
   };
-  SweepWatch watch(std::string(command), unit, total, earlier.size(), progress, abandon, write_due);
+  CostLeft cost_left(runs, cases.size(), todo);
+  SweepWatch::Left left;
+  if (runs.size() > 1) left = [&](double elapsed) { return cost_left.seconds_left(elapsed); };
+  SweepWatch watch(std::string(command), unit, total, resumed, progress, abandon, write_due, left);
 
   SweepOptions options;
   options.threads = threads ? threads : processes.default_threads();
   options.cancel = &watch.cancel();
+  options.keep_rows = keep_rows;
+  std::size_t finished = resumed;
   if (file) {
-    options.on_row = [&](const Row& row) { file->queue(row); };
-    options.on_progress = [&](std::size_t done, std::size_t) { watch.set_done(earlier.size() + done); };
+    options.on_row = [&](const Row& row) {
+      file->queue(row);
+      cost_left.add(row);
+    };
+    options.on_progress = [&](std::size_t done, std::size_t) { watch.set_done(finished = resumed + done); };
   }
 
   std::vector<Row> rows;
@@ -236,8 +253,8 @@ std::optional<std::vector<Row>> run_resumable(std::string_view command, const Pr
 
   rows.insert(rows.end(), std::make_move_iterator(earlier.begin()), std::make_move_iterator(earlier.end()));
   std::sort(rows.begin(), rows.end(), task_order);
-  if (rows.size() < total) {
-    std::fprintf(stderr, "poundbench: interrupted after %zu of %zu %s; the finished rows are in %s\n", rows.size(),
+  if (finished < total) {
+    std::fprintf(stderr, "poundbench: interrupted after %zu of %zu %s; the finished rows are in %s\n", finished,
                  total, unit, partial.c_str());
     return std::nullopt;
   }

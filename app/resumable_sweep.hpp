@@ -51,10 +51,14 @@ std::vector<Row> read_earlier_rows(const std::string& partial, std::span<const C
 // other processes return an empty list. `lines`, when given (the leader's), receives each
 // new row's line of the partial file by task (run * cases + point), "" for the earlier rows:
 // a sweep of one run writes its output from them instead of formatting every row again.
+// keep_rows false: no row is held in memory, on any process (SweepOptions::keep_rows); the
+// leader returns an empty list once every task is done, and its output is built from the
+// partial file (app/partial_output.hpp).
 std::optional<std::vector<Row>> run_resumable(std::string_view command, const Processes& processes,
                                               std::span<const Case> cases, std::span<const SweepRun> runs,
                                               const std::string& partial, OutputLock& lock, std::vector<Row> earlier,
-                                              unsigned threads, std::vector<std::string>* lines = nullptr);
+                                              unsigned threads, std::vector<std::string>* lines = nullptr,
+                                              bool keep_rows = true);
 
 // Runs `write` (the command's outputs), then removes the partial file, which is no longer
 // needed. A failure to write keeps it, and the error says so: its rows are the result.

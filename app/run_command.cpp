@@ -128,7 +128,11 @@ int run_command(const CLI::App& command, RunFlags flags) {
     check_output_target(flags.history, "--history");
   }
 
-  const Row row = run_point(chosen.input, chosen.point, solver, flags.solver_flags.settings);
+  // Without --monitor the one solve is monitored (sweep.hpp, run_point's monitor_timed).
+  const bool second_pass = flags.solver_flags.settings.monitor;
+  Settings settings = flags.solver_flags.settings;
+  settings.monitor = true;
+  const Row row = run_point(chosen.input, chosen.point, solver, settings, 1, nullptr, !second_pass);
   if (history)
     write_atomically(flags.history, [&](std::ostream& out) { write_history(out, row.result.history, row.input); });
 

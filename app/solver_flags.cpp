@@ -37,6 +37,9 @@ void add_solver_flags(CLI::App& command, SolverFlags& flags) {
                                       : command.add_option(flag, s.*f.text, help);
     option->capture_default_str();
   }
+  command.add_flag("--monitor", s.monitor,
+                   "Solve each point once more, untimed, with the time-steppers' monitor on: energy_excess, "
+                   "the restitution range and gap_rate_max, and the verdict's energy and restitution criteria");
 }
 
 std::string as_flag_message(const std::string& field_reason) {

@@ -8,6 +8,7 @@
 #include "app/check_report.hpp"
 #include "app/errors.hpp"
 #include "app/output_files.hpp"
+#include "app/partial_output.hpp"
 #include "app/resumable_sweep.hpp"
 #include "app/sweep_watch.hpp"
 #include "app/study_run.hpp"
@@ -18,57 +19,68 @@ namespace pb::app {
 
 namespace {
 
-// lines: each row's CSV line by point as the sweep wrote it to the partial file ("" for a
-// row read back from it), so that no row is formatted twice.
-void write_final(const SpectrumFlags& flags, const std::vector<Row>& rows, const std::vector<std::string>& lines) {
-  const auto csv = [&](std::ostream& out) {
-    out << csv_header() << '\n';
-    for (const Row& row : rows) {
-      const std::string& line = lines[row.point];
-      out << (line.empty() ? csv_line(row) : line) << '\n';
+// --check: a verdict per family, failing when a point of it did not finish ok; the line
+// names the first few such points, their status and the first one's message. Fed the rows in
+// point order, one at a time (the rows are not held: app/partial_output.hpp).
+class FamilyVerdicts {
+ public:
+  void add(const std::string& family, std::size_t point, std::string_view status, const std::string& message) {
+    auto at = std::find_if(families_.begin(), families_.end(), [&](const Family& f) { return f.name == family; });
+    if (at == families_.end()) {
+      families_.emplace_back();
+      families_.back().name = family;
+      at = families_.end() - 1;
     }
+    ++at->points;
+    if (status == name(Status::ok)) return;
+    if (at->failed++ == 0) at->first_message = message;
+    if (at->listed.size() < kListedPoints) at->listed.push_back("point " + std::to_string(point) + " " + std::string(status));
+  }
+  std::size_t failed() const {
+    std::size_t n = 0;
+    for (const Family& f : families_) n += f.failed;
+    return n;
+  }
+  std::vector<Verdict> verdicts() const {
+    std::vector<Verdict> out;
+    for (const Family& f : families_) {
+      std::string failure;
+      if (f.failed) {
+        failure = std::to_string(f.failed) + " of " + std::to_string(f.points) + " points did not finish ok (";
+        for (std::size_t i = 0; i < f.listed.size(); ++i) failure += (i ? ", " : "") + f.listed[i];
+        if (f.failed > kListedPoints) failure += " and " + std::to_string(f.failed - kListedPoints) + " more";
+        failure += ")";
+        if (!f.first_message.empty()) failure += "; the first: " + f.first_message;
+      }
+      out.push_back({"spectrum", "family " + f.name, failure});
+    }
+    return out;
+  }
+
+ private:
+  static constexpr std::size_t kListedPoints = 5;
+  struct Family {
+    std::string name;
+    std::size_t points = 0, failed = 0;
+    std::vector<std::string> listed;
+    std::string first_message;
+  };
+  std::vector<Family> families_;
+};
+
+// The output, from the partial file's lines in point order (app/partial_output.hpp).
+void write_final(const SpectrumFlags& flags, const std::string& partial, std::size_t points,
+                 FamilyVerdicts& verdicts) {
+  const auto csv = [&](std::ostream& out) {
+    write_from_partial(partial, points, out, [&](const PartialRecord& r) {
+      verdicts.add(r.field("family"), static_cast<std::size_t>(std::stoull(r.field("point"))), r.field("status"),
+                   r.field("message"));
+    });
   };
   if (flags.out.empty())
     write_to_stdout(csv);
   else
     write_atomically(flags.out, csv);
-}
-
-// --check: a verdict per family, failing when a point of it did not finish ok; the line
-// names the first few such points, their status and the first one's message.
-std::vector<Verdict> verdicts(const std::vector<Row>& rows) {
-  constexpr std::size_t kListedPoints = 5;
-  std::vector<std::string> families;
-  std::vector<std::vector<const Row*>> failed;
-  std::vector<std::size_t> points;
-  for (const Row& r : rows) {
-    auto at = std::find(families.begin(), families.end(), r.input.family);
-    if (at == families.end()) {
-      families.push_back(r.input.family);
-      failed.emplace_back();
-      points.push_back(0);
-      at = families.end() - 1;
-    }
-    const std::size_t f = static_cast<std::size_t>(at - families.begin());
-    ++points[f];
-    if (r.result.status != Status::ok) failed[f].push_back(&r);
-  }
-  std::vector<Verdict> out;
-  for (std::size_t f = 0; f < families.size(); ++f) {
-    std::string failure;
-    if (!failed[f].empty()) {
-      failure = std::to_string(failed[f].size()) + " of " + std::to_string(points[f]) + " points did not finish ok (";
-      for (std::size_t i = 0; i < failed[f].size() && i < kListedPoints; ++i)
-        failure += (i ? ", " : "") + std::string("point ") + std::to_string(failed[f][i]->point) + " " +
-                   std::string(name(failed[f][i]->result.status));
-      if (failed[f].size() > kListedPoints)
-        failure += " and " + std::to_string(failed[f].size() - kListedPoints) + " more";
-      failure += ")";
-      if (!failed[f][0]->result.message.empty()) failure += "; the first: " + failed[f][0]->result.message;
-    }
-    out.push_back({"spectrum", "family " + families[f], failure});
-  }
-  return out;
 }
 
 }  // namespace
@@ -110,16 +122,15 @@ int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const 
     earlier = read_earlier_rows(partial, set.cases, runs);
   }, exit_code_of);
 
-  std::vector<std::string> lines;
   const auto rows = run_resumable("spectrum", processes, set.cases, runs, partial, lock, std::move(earlier),
-                                  flags.threads, &lines);
+                                  flags.threads, nullptr, false);
   if (!rows) return kInterrupted;
   if (!processes.leader()) return 0;
-  write_outputs(partial, [&] { write_final(flags, *rows, lines); });
-  const std::size_t failed = static_cast<std::size_t>(
-      std::count_if(rows->begin(), rows->end(), [](const Row& r) { return r.result.status != Status::ok; }));
-  report_written(rows->size(), flags.out, failed ? failed_note(failed, "points", flags.check) : "");
-  return flags.check ? report_check("spectrum", verdicts(*rows), "families", flags.junit) : 0;
+  FamilyVerdicts verdicts;
+  write_outputs(partial, [&] { write_final(flags, partial, set.cases.size(), verdicts); });
+  const std::size_t failed = verdicts.failed();
+  report_written(set.cases.size(), flags.out, failed ? failed_note(failed, "points", flags.check) : "");
+  return flags.check ? report_check("spectrum", verdicts.verdicts(), "families", flags.junit) : 0;
 }
 
 }  // namespace pb::app

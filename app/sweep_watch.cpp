@@ -68,7 +68,7 @@ std::string failed_note(std::size_t failed, std::string_view unit, bool checked)
 }
 
 SweepWatch::SweepWatch(std::string command, std::string unit, std::size_t total, std::size_t resumed,
-                       Progress progress, std::function<void()> abandon, std::function<void()> on_tick)
+                       Progress progress, std::function<void()> abandon, std::function<void()> on_tick, Left left)
     : command_(std::move(command)),
       unit_(std::move(unit)),
       total_(total),
@@ -76,6 +76,7 @@ SweepWatch::SweepWatch(std::string command, std::string unit, std::size_t total,
       progress_(progress),
       abandon_(std::move(abandon)),
       on_tick_(std::move(on_tick)),
+      left_(std::move(left)),
       signals_(stop_signals()),
       done_(resumed) {
   pthread_sigmask(SIG_BLOCK, &signals_, nullptr);
@@ -139,7 +140,8 @@ void SweepWatch::draw(bool stopping) {
   const std::size_t done = done_;
   const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
   if (progress_ == Progress::lines) {
-    const std::string line = progress_line(command_, unit_, done, total_, resumed_, elapsed, stopping);
+    const std::optional<double> left = left_ ? left_(elapsed) : std::nullopt;
+    const std::string line = progress_line(command_, unit_, done, total_, resumed_, elapsed, stopping, left);
     std::fprintf(stderr, "poundbench: %s\n", line.c_str());
     std::fflush(stderr);
     return;
@@ -150,9 +152,12 @@ void SweepWatch::draw(bool stopping) {
   const int filled = static_cast<int>(fraction * kWidth);
   const std::string bar = std::string(static_cast<std::size_t>(filled), '#') +
                           std::string(static_cast<std::size_t>(kWidth - filled), '-');
+  const std::optional<double> left = left_ && done > resumed_ ? left_(elapsed) : std::nullopt;
   const std::string eta =
-      stopping ? "stopping (Ctrl-C again to abandon running points)"
-               : done > resumed_ ? "ETA " + duration_text(static_cast<double>(total_ - done) / rate) : "ETA --:--";
+      stopping           ? "stopping (Ctrl-C again to abandon running points)"
+      : left             ? "ETA " + duration_text(*left)
+      : done > resumed_  ? "ETA " + duration_text(static_cast<double>(total_ - done) / rate)
+                         : "ETA --:--";
   std::fprintf(stderr, "\r\033[K[%s] %zu/%zu  %.*f %s/s  %s  elapsed %s", bar.c_str(), done, total_, rate < 10 ? 2 : 0,
                rate, unit_.c_str(), eta.c_str(), duration_text(elapsed).c_str());
   std::fflush(stderr);

@@ -32,6 +32,7 @@
 #include <cstdio>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <thread>
@@ -56,17 +57,20 @@ inline std::string rough_duration(double seconds) {
 }
 
 // The plain progress line, without its "poundbench: " and line end:
-// "spectrum: 1234/23820 points, 12 s, about 3 min left". The time left is extrapolated
-// from the rate of this run (the `resumed` tasks an earlier run did are not in it), and
-// missing until a task is done. Inline: the tests, which do not link the command line, check it.
+// "spectrum: 1234/23820 points, 12 s, about 3 min left". The time left is `left` when given
+// (app/cost_left.hpp: from the cost of what is left), else extrapolated from the rate of this
+// run (the `resumed` tasks an earlier run did are not in it), and missing until a task is
+// done. Inline: the tests, which do not link the command line, check it.
 inline std::string progress_line(std::string_view command, std::string_view unit, std::size_t done,
-                                 std::size_t total, std::size_t resumed, double elapsed, bool stopping) {
+                                 std::size_t total, std::size_t resumed, double elapsed, bool stopping,
+                                 std::optional<double> left = std::nullopt) {
   std::string line = std::string(command) + ": " + std::to_string(done) + "/" + std::to_string(total) + " " +
                      std::string(unit) + ", " + rough_duration(elapsed);
   if (stopping) return line + ", stopping (a second Ctrl-C abandons the running ones)";
   if (done > resumed && done < total)
     line += ", about " +
-            rough_duration(static_cast<double>(total - done) * elapsed / static_cast<double>(done - resumed)) +
+            rough_duration(left ? *left
+                                : static_cast<double>(total - done) * elapsed / static_cast<double>(done - resumed)) +
             " left";
   return line;
 }
@@ -85,8 +89,11 @@ class SweepWatch {
  public:
   // command, unit: for progress_line ("spectrum", "points"). resumed: of the total, the
   // tasks an earlier run finished (not counted in the rate).
+  // left: seconds left after so many elapsed (app/cost_left.hpp), for the progress; none, or
+  // nullopt from it: from the count.
+  using Left = std::function<std::optional<double>(double elapsed)>;
   SweepWatch(std::string command, std::string unit, std::size_t total, std::size_t resumed, Progress progress,
-             std::function<void()> abandon, std::function<void()> on_tick = {});
+             std::function<void()> abandon, std::function<void()> on_tick = {}, Left left = {});
   ~SweepWatch();
   SweepWatch(const SweepWatch&) = delete;
   SweepWatch& operator=(const SweepWatch&) = delete;
@@ -108,6 +115,7 @@ class SweepWatch {
   Progress progress_;
   std::function<void()> abandon_;
   std::function<void()> on_tick_;
+  Left left_;
   sigset_t signals_;  // the ones the watcher takes
   struct sigaction previous_[2] = {};  // SIGINT's and SIGTERM's actions before the watcher
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();

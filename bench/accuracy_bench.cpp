@@ -49,7 +49,7 @@ const Fig4& fig4() {
 
 void BM_Fig4MoreauJeanToMedianError1e3(benchmark::State& state) {
   const Fig4& f = fig4();
-  pb::Settings s;
+  pb::Settings s = pb::bench::timed({});
   s.steps = f.steps;
   for (auto _ : state)
     for (const pb::System& sys : f.systems) benchmark::DoNotOptimize(pb::moreau_jean::solve(sys, s).pi1);

@@ -11,6 +11,10 @@
 //                           (cache:0, as sweeps did) or through a sweep's NoContactCache
 //   PartialFileRows         a row's way to the partial file: its CSV line, then one flushed
 //                           write per row (batched:0, as sweeps did) or BatchedFile's batches
+//   PaperSetMoreauJean      the whole paper set through Moreau-Jean (default settings), one
+//                           thread, CPU time: each point solved once (monitor:0, as `spectrum`
+//                           and `run` do since issue 36) or once more with the monitor on
+//                           (monitor:1, as they did before; `--monitor` still does)
 //   SpectrumCommand         `poundbench spectrum` on the paper set, 2 threads, to a file:
 //                           the command as the main job runs it (wall time, start included)
 
@@ -121,6 +125,17 @@ void BM_PaperSetThreadScaling(benchmark::State& state) {
   state.counters["speedup"] = sum / static_cast<double>(pairs);
 }
 BENCHMARK(BM_PaperSetThreadScaling)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_PaperSetMoreauJean(benchmark::State& state) {
+  const std::vector<pb::Case>& cases = paper_cases();
+  pb::Settings settings;
+  settings.monitor = state.range(0) != 0;
+  pb::SweepOptions options;
+  options.threads = 1;
+  for (auto _ : state) benchmark::DoNotOptimize(pb::run_sweep(cases, *pb::find_solver("moreau-jean"), settings, options));
+  state.counters["per_point"] = per_item(cases.size());
+}
+BENCHMARK(BM_PaperSetMoreauJean)->ArgName("monitor")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // The no-contact Pi1 of every paper-set point, one thread: per point (cache:0) or through
 // one NoContactCache, as a sweep now shares it (cache:1). Counter: solves per run.

@@ -12,9 +12,8 @@
 // when asked; spectrum() a list of such dicts, one per point in point order (a list rather
 // than columns: each row keeps its types, and pandas.DataFrame(rows) makes the table).
 //
-// A solve runs with the GIL released, in a thread of its own, while the calling thread looks
-// at Python's signals every 50 ms: Ctrl-C stops the sweep (its stop flag) and raises
-// KeyboardInterrupt.
+// A solve runs with the GIL released on the calling thread: Ctrl-C stops the sweep (its stop
+// flag, set by a SIGINT handler held for the call) and raises KeyboardInterrupt.
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -22,7 +21,8 @@
 #include <atomic>
 #include <chrono>
 #include <climits>
-#include <future>
+#include <csignal>
+#include <exception>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -178,6 +178,9 @@ Keywords read_keywords(const std::string& function, const py::kwargs& kwargs) {
     } else if (!for_run && key == "threads") {
       k.threads = whole(function, key, value);
       continue;
+    } else if (key == "monitor") {
+      if (!py::isinstance<py::bool_>(value)) type_error(function, key, "must be True or False");
+      settings.monitor = value.cast<bool>();
     } else if (key == "solver") {
       k.solver_flags.solver = text(function, key, value);
     } else if (key == "variant") {
@@ -247,25 +250,49 @@ py::dict history_arrays(const Row& row) {
   return out;
 }
 
-// Runs `work` in a thread of its own with the GIL released; every 50 ms the calling thread
-// takes the GIL back to let Python handle its signals, and on Ctrl-C sets `stop`, waits for
-// the work to end (its solvers see the flag within milliseconds) and raises.
+// Runs `work` on the calling thread with the GIL released, with SIGINT caught by a handler of
+// our own that sets `stop` (its solvers see the flag within milliseconds); Python's handler is
+// put back afterwards and, when Ctrl-C came, the signal handed to it (KeyboardInterrupt, or
+// whatever the program's handler does). A thread started per call (std::async, polling Python's
+// signals every 50 ms) cost tens of microseconds a call, more than a Moreau-Jean solve.
+// Where SIGINT is ignored, or the call is not on the main thread (which alone runs Python's
+// handlers), the work runs without the handler.
+std::atomic<bool>* interrupt_target = nullptr;
+unsigned long main_thread = 0;  // threading.main_thread().ident, read when the module loads
+extern "C" void on_interrupt(int) {
+  if (std::atomic<bool>* stop = interrupt_target) stop->store(true);
+}
+
 template <class Work>
 void run_interruptibly(std::atomic<bool>& stop, Work&& work) {
-  bool interrupted = false;
+  struct sigaction ours {}, python {};
+  sigaction(SIGINT, nullptr, &python);
+  const bool catching = python.sa_handler != SIG_IGN && PyThread_get_thread_ident() == main_thread;
+  if (catching) {
+    interrupt_target = &stop;
+    ours.sa_handler = on_interrupt;
+    ours.sa_flags = SA_RESTART;
+    sigemptyset(&ours.sa_mask);
+    sigaction(SIGINT, &ours, nullptr);
+  }
+  std::exception_ptr error;
   {
     py::gil_scoped_release release;
-    std::future<void> done = std::async(std::launch::async, std::forward<Work>(work));
-    while (done.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
-      py::gil_scoped_acquire acquire;
-      if (!interrupted && PyErr_CheckSignals() != 0) {
-        interrupted = true;
-        stop = true;
-      }
+    try {
+      std::forward<Work>(work)();
+    } catch (...) {
+      error = std::current_exception();
     }
-    done.get();  // rethrows what the work threw
   }
-  if (interrupted) throw py::error_already_set();
+  if (catching) {
+    sigaction(SIGINT, &python, nullptr);
+    interrupt_target = nullptr;
+  }
+  if (catching && stop.load()) {
+    PyErr_SetInterrupt();
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  }
+  if (error) std::rethrow_exception(error);
 }
 
 // A ValueError whose message may echo bytes that are not UTF-8 (a file's name): as U+FFFD,
@@ -306,8 +333,11 @@ py::dict run(const py::kwargs& kwargs) {
   std::atomic<bool> stop{false};
   Settings settings = k.solver_flags.settings;
   settings.stop = &stop;
+  // As `run`: without monitor=True its one solve is monitored; monitor=False: not at all.
+  const bool second_pass = settings.monitor;
+  if (!k.has("--monitor")) settings.monitor = true;
   Row row;
-  run_interruptibly(stop, [&] { row = run_point(chosen.input, chosen.point, *solver, settings); });
+  run_interruptibly(stop, [&] { row = run_point(chosen.input, chosen.point, *solver, settings, 1, nullptr, !second_pass); });
   py::dict out = to_python(app::row_json(row, chosen));
   if (history) out["history"] = history_arrays(row);
   return out;
@@ -348,6 +378,7 @@ std::string keyword_lines(const Table& table) {
 
 PYBIND11_MODULE(poundbench, m) {
   using namespace pb;
+  python::main_thread = py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
   m.doc() = "poundbench: solve pounding cases with the project's solvers (README.md, docs/cli.md).";
   const std::string run_doc =
       "run(**keywords) -> dict\n\n"
@@ -358,6 +389,8 @@ PYBIND11_MODULE(poundbench, m) {
       "    history: True for the time history, or samples=N (default 2000; a time-stepper records every\n"
       "      step): result['history'] is a dict of NumPy arrays, one per column of `run --history`\n"
       "      (t, u1, u0, ..., lambda1).\n"
+      "    monitor: True for one more, untimed solve with the time-steppers' monitor on (as --monitor);\n"
+      "      by default the one solve is monitored, False: not at all.\n"
       "A bad keyword value raises ValueError with the command line's message.";
   m.def("run", &python::run, run_doc.c_str());
   const std::string spectrum_doc =
@@ -365,7 +398,7 @@ PYBIND11_MODULE(poundbench, m) {
       "Solves every point of a case-set file (TOML, cases/README.md) with one solver, as `poundbench\n"
       "spectrum`: one dict per point, in point order, with the keys of run()'s result (and case_file,\n"
       "point); pandas.DataFrame(rows) makes the table. Keywords: solver, variant, threads (default: every\n"
-      "core), and\n" +
+      "core), monitor (as run()), and\n" +
       python::keyword_lines(kSettingFields);
   m.def("spectrum", &python::spectrum, py::arg("case_set"), spectrum_doc.c_str());
   m.def(

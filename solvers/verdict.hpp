@@ -30,7 +30,7 @@
 //                errors of 0.05 % to 5.8 %, as on the points where it made less, 0.008 % to
 //                7.5 %), which the work-precision study measures. Needs the monitor
 //                (Settings::monitor): NaN, so not judged, without it (a work-precision study's
-//                runs, and every sweep's once issue 36 drops their second, monitored solve).
+//                runs, and `run` and `spectrum` without --monitor, which solve a point once).
 //   restitution  an isolated impact's restitution off eps by more than kRestitutionMargin,
 //                where it is measured over one step or event (the monitor's, the reference's):
 //                an impact law that does not give eps (Bullet's default variants: 0.42 off in

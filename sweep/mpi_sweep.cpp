@@ -162,6 +162,7 @@ std::vector<Row> lead(const Job& job, std::span<const Case> cases, std::span<con
   local.cancel = options.cancel;
   local.next_task = [&] { return dispenser.take_one(); };
   local.on_row = report;
+  local.keep_rows = options.keep_rows;
   std::vector<Row> rows;  // rank 0's own, then those received
   std::atomic<bool> local_done{false};
   std::exception_ptr local_error;  // read only once local_done, which is set after it
@@ -206,7 +207,7 @@ std::vector<Row> lead(const Job& job, std::span<const Case> cases, std::span<con
           Row row = parse_partial_line(line, true);
           row.input = cases[row.point];  // exactly, also in the columns the CSV leaves empty
           report(row);
-          received.push_back(std::move(row));
+          if (options.keep_rows) received.push_back(std::move(row));
         }
       } else if (status->MPI_TAG == kDone) {
         receive<int>(*status, MPI_INT);
@@ -235,6 +236,7 @@ void follow(std::span<const Case> cases, std::span<const SweepRun> runs, const S
   SweepOptions local;
   local.threads = threads;
   local.cancel = options.cancel;
+  local.keep_rows = false;  // each row leaves as its line (the outbox below)
   local.next_task = [&]() -> std::optional<std::size_t> {
     std::unique_lock lock(mutex);
     // The cancel flag is set by a signal watcher that cannot notify: look again now and then.

@@ -51,6 +51,7 @@ double NoContactCache::pi1(const System& system, const Settings& limits) {
   const double value = no_contact_pi1(system, limits);  // outside the lock: 13 us, and may throw
   if (std::isfinite(value)) {
     const std::lock_guard lock(shard.mutex);
+    if (shard.values.size() >= kShardValues) shard.values.clear();
     shard.values.emplace(key, value);
   }
   return value;

@@ -100,8 +100,8 @@ class PointDeadline {
 // The timed solves of run_point (sweep.hpp says how): row.result is the first's, the
 // timing columns the repetitions'.
 void time_solves(Row& row, const SolverInfo& solver, const System& system, Settings settings, int repetitions,
-                 const PointDeadline& deadline) {
-  settings.monitor = false;
+                 const PointDeadline& deadline, bool monitor_timed) {
+  if (!monitor_timed) settings.monitor = false;
   std::vector<double> wall, cpu;
   double spent = 0.0;
   for (int j = 0; j < repetitions && (j == 0 || spent < kRepetitionBudget); ++j) {
@@ -160,7 +160,7 @@ void add_monitor(Row& row, const SolverInfo& solver, const System& system, Setti
 }  // namespace
 
 Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const Settings& settings,
-              int repetitions, NoContactCache* no_contact) {
+              int repetitions, NoContactCache* no_contact, bool monitor_timed) {
   Row row;
   row.input = c;
   row.point = point;
@@ -193,8 +193,8 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
   row.length_scale = system.length_scale();
 
   const PointDeadline deadline(settings.time_limit);
-  time_solves(row, solver, system, settings, repetitions, deadline);
-  if (settings.monitor && !solver.reference && row.result.status != Status::time_limit)
+  time_solves(row, solver, system, settings, repetitions, deadline, monitor_timed);
+  if (settings.monitor && !monitor_timed && !solver.reference && row.result.status != Status::time_limit)
     add_monitor(row, solver, system, settings, deadline);
 
   judge(system, row.result);
@@ -246,7 +246,8 @@ std::vector<Row> run_sweep(std::span<const Case> cases, std::span<const SweepRun
 
   std::mutex mutex;  // guards everything below and serialises the callbacks
   std::vector<Row> rows;
-  rows.reserve(total);
+  if (options.keep_rows) rows.reserve(total);
+  std::size_t done = 0;
   std::exception_ptr error;
 
   // What each run's points are solved with: its settings, the sweep's stop flag and, where
@@ -274,8 +275,8 @@ std::vector<Row> run_sweep(std::span<const Case> cases, std::span<const SweepRun
       if (error) return;
       try {
         if (options.on_row) options.on_row(row);
-        rows.push_back(std::move(row));
-        if (options.on_progress) options.on_progress(rows.size(), total);
+        if (options.keep_rows) rows.push_back(std::move(row));
+        if (options.on_progress) options.on_progress(++done, total);
       } catch (...) {
         error = std::current_exception();
         stop = true;

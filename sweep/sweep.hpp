@@ -57,8 +57,11 @@ inline constexpr double kRepetitionBudget = 0.01;  // CPU seconds per point, ove
 // no-contact Pi1 (from `no_contact` when given: a sweep's cache, sweep/no_contact_cache.hpp).
 // Never throws for a bad case or a throwing solver: the row then has Status::failed and the
 // reason in its message.
+// monitor_timed: the timed solves keep settings.monitor as it is and there is no monitored
+// pass. `run` monitors its one solve so: the verdict then judges every criterion at the cost of
+// one solve (the monitor adds 30 % to 44 % to a Moreau-Jean step), where a second pass doubled it.
 Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const Settings& settings,
-              int repetitions = 1, NoContactCache* no_contact = nullptr);
+              int repetitions = 1, NoContactCache* no_contact = nullptr, bool monitor_timed = false);
 
 // One solver with its settings, run over every case of a sweep. settings.monitor: the rows
 // carry the monitor's measurements, from one untimed pass more (run_point).
@@ -98,6 +101,10 @@ struct SweepOptions {
   // one point that never ends must not hold a whole sweep. Past it the row has status
   // time-limit and the sweep goes on. 0: no limit.
   double point_time_limit = kPointTimeLimit;
+  // false: run_sweep keeps no row (it returns none): on_row is where they go. A sweep of a
+  // million points held 1.5 KB a point until its end (issue 36); `spectrum` streams its rows
+  // to the partial file and builds its output from there (app/partial_output.hpp).
+  bool keep_rows = true;
 };
 
 // Rows sorted by run, then point: one per task run (every task unless next_task says

@@ -133,8 +133,13 @@ TEST_F(Cli, RunWithWhStepsATimeStepperAtThatWmaxH) {
   EXPECT_EQ(j.at("steps").get<long>(), row.result.steps);
   EXPECT_EQ(j.at("pi1").get<double>(), row.result.pi1);
   EXPECT_EQ(j.at("isolated_impacts").get<long>(), row.result.isolated_impacts);
-  EXPECT_TRUE(j.at("energy_excess").is_number());  // the stepper's monitor measured it
+  EXPECT_TRUE(j.at("energy_excess").is_number());  // its one solve monitored (issue 36)
   EXPECT_TRUE(j.at("penetration").is_number());
+  const Outcome monitored = run(std::string("run ") + kPairCase + " --solver moreau-jean --wh 2 --json --monitor");
+  ASSERT_EQ(monitored.exit_code, 0) << monitored.err;
+  const nlohmann::json m = nlohmann::json::parse(monitored.out);
+  EXPECT_TRUE(m.at("energy_excess").is_number());  // the monitored pass measured it
+  EXPECT_EQ(m.at("pi1").get<double>(), j.at("pi1").get<double>());  // and changed nothing
 
   const Outcome both = run(std::string("run ") + kPairCase + " --solver moreau-jean --wh 2 --steps 64");
   EXPECT_EQ(both.exit_code, 2);
@@ -617,9 +622,10 @@ TEST_F(CliStudy, CheckExitsOneWhenARowFailsAfterWritingTheOutputs) {
 // --repetitions: each row says how many timed solves it had (at most R; a point stops once
 // its solves have spent 10 ms), and its CPU time is their median, within their range.
 TEST_F(CliStudy, RepetitionsAreRecordedInEveryRow) {
-  ASSERT_EQ(run("spectrum tiny.toml --solver moreau-jean --out r3.csv --repetitions 3").exit_code, 0);
-  ASSERT_EQ(run("spectrum tiny.toml --solver moreau-jean --out r1.csv").exit_code, 0);
-  const CsvTable r3(read_text(file("r3.csv"))), r1(read_text(file("r1.csv")));
+  ASSERT_EQ(run("spectrum tiny.toml --solver moreau-jean --out r3.csv --repetitions 3 --monitor").exit_code, 0);
+  ASSERT_EQ(run("spectrum tiny.toml --solver moreau-jean --out r1.csv --monitor").exit_code, 0);
+  ASSERT_EQ(run("spectrum tiny.toml --solver moreau-jean --out once.csv").exit_code, 0);
+  const CsvTable r3(read_text(file("r3.csv"))), r1(read_text(file("r1.csv"))), once(read_text(file("once.csv")));
   ASSERT_EQ(r3.rows.size(), 6u);
   for (std::size_t i = 0; i < r3.rows.size(); ++i) {
     const auto number = [&](const CsvTable& t, std::string_view column) {
@@ -632,6 +638,9 @@ TEST_F(CliStudy, RepetitionsAreRecordedInEveryRow) {
     EXPECT_EQ(number(r1, "cpu_seconds_low"), number(r1, "cpu_seconds"));
     // Timed without the monitor, its measurements from a pass of their own all the same.
     EXPECT_NE(r3.rows[i][r3.column("energy_excess")], "");
+    // Without --monitor each point is solved once: no monitor columns, the same answer.
+    EXPECT_EQ(once.rows[i][once.column("energy_excess")], "");
+    EXPECT_EQ(once.rows[i][once.column("pi1")], r1.rows[i][r1.column("pi1")]);
   }
   EXPECT_EQ(r3.without(kTimingColumns).rows, r1.without(kTimingColumns).rows);
 }

@@ -176,7 +176,7 @@ TEST_F(Cli, TheAdapterRefusesADocumentOutsideItsSchemaOrTheDomain) {
 TEST_F(Cli, TheTimeLimitIsTheWholeRuns) {
   write("slow.sh", "sleep 1.5; echo '{\"version\":1,\"status\":\"ok\",\"pi1\":1}'\n");
   const auto start = std::chrono::steady_clock::now();
-  const Outcome o = run("run " + kPair + " --solver external --command 'sh slow.sh' --time-limit 2 --json");
+  const Outcome o = run("run " + kPair + " --solver external --command 'sh slow.sh' --time-limit 2 --json --monitor");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_EQ(o.exit_code, 0) << o.err << o.out;
   const auto j = nlohmann::json::parse(o.out);

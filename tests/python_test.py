@@ -53,6 +53,34 @@ class Run(unittest.TestCase):
         self.assertIn("a contact lasted", result["unresolved"])
         self.assertIs(poundbench.run(**wall)["resolved"], True)
 
+    def test_monitor_asks_for_the_monitored_pass_as_the_flag_does(self):
+        # Issue 36: a point is solved once unless monitor=True (--monitor) asks for the second,
+        # monitored pass, whose measurements then come back as the command line's.
+        self.assertIsNone(poundbench.run(**CASE, solver="moreau-jean", monitor=False)["energy_excess"])
+        self.assertIsNotNone(poundbench.run(**CASE, solver="moreau-jean")["energy_excess"])  # its one solve
+        result = poundbench.run(**CASE, solver="moreau-jean", monitor=True)
+        code, out, _ = cli("run", *FLAGS, "--solver", "moreau-jean", "--json", "--monitor")
+        self.assertEqual(code, 0)
+        self.assertIsNotNone(result["energy_excess"])
+        self.assertEqual(result["energy_excess"], json.loads(out)["energy_excess"])
+
+    def test_ctrl_c_stops_a_call_with_keyboard_interrupt(self):
+        # The solve runs on the calling thread; SIGINT sets its stop flag (a handler held for
+        # the call) and is then handed to Python's handler. The paper set at N = 4096 on one
+        # thread takes many seconds: the call must end long before.
+        import signal
+        import threading
+        import time
+        timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
+        started = time.monotonic()
+        timer.start()
+        with self.assertRaises(KeyboardInterrupt):
+            poundbench.spectrum(os.path.join(SOURCE, "cases/sets/paper.toml"), solver="moreau-jean",
+                                steps=4096, threads=1)
+        timer.join()
+        self.assertLess(time.monotonic() - started, 5.0)
+        self.assertIs(signal.getsignal(signal.SIGINT), signal.default_int_handler)
+
     def test_history_is_one_numpy_array_per_column_of_run_history(self):
         result = poundbench.run(**CASE, samples=101)
         history = result["history"]

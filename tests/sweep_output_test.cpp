@@ -9,11 +9,14 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
 
+#include "app/cost_left.hpp"
 #include "app/output_files.hpp"
+#include "app/partial_output.hpp"
 #include "app/sweep_watch.hpp"
 #include "tests/cli_fixture.hpp"
 
@@ -31,6 +34,55 @@ class BatchedFileTest : public ::testing::Test {
   void TearDown() override { fs::remove(path_); }
   fs::path path_;
 };
+
+// The time left from the cost of what is left: a run not started yet costs a finished run of
+// its solver scaled by their steps (N = 256 four times N = 64), not the count's rate, and the
+// sum turns into seconds at the sweep's own ratio of wall time to finished cost.
+TEST(CostLeft, ScalesARunNotStartedByItsStepsAndTheSweepsWallToCostRatio) {
+  const SolverInfo* mj = find_solver("moreau-jean");
+  Settings coarse, fine;
+  coarse.steps = 64;
+  fine.steps = 256;
+  const std::vector<SweepRun> runs{{mj, coarse}, {mj, fine}};
+  const std::vector<std::size_t> todo{0, 1, 2, 3, 4, 5};  // 3 cases, 2 runs
+  CostLeft left(runs, 3, todo);
+  EXPECT_FALSE(left.seconds_left(1.0).has_value());  // nothing finished: no estimate
+  for (std::size_t p = 0; p < 3; ++p) {
+    Row row;
+    row.run = 0;
+    row.point = p;
+    row.cpu_seconds = 0.001;
+    row.repetitions = 1;
+    left.add(row);
+  }
+  // 3 points of 4 ms left, at 2 s of wall time per 3 ms of finished cost: 8 s. The count
+  // (3 of 6 done in 2 s) would say 2 s.
+  ASSERT_TRUE(left.seconds_left(2.0).has_value());
+  EXPECT_NEAR(*left.seconds_left(2.0), 8.0, 1e-9);
+}
+
+// A spectrum's output from its partial file: the lines in point order whatever order they
+// finished in (a quoted field holding a comma and a line break included), each row's fields
+// handed over in that order, and a point missing or written twice refused.
+TEST_F(BatchedFileTest, TheOutputFromThePartialFileHasItsLinesInPointOrder) {
+  const std::string header = csv_header();
+  const auto write = [&](const std::string& body) {
+    std::ofstream out(path_, std::ios::binary);
+    out << header << '\n' << body;
+  };
+  write("b,2,x\n\"a, \nquoted\",0,y\nc,1,z\n");
+  std::ostringstream out;
+  std::vector<std::string> points;
+  write_from_partial(path_, 3, out, [&](const PartialRecord& r) { points.push_back(r.field("point")); });
+  EXPECT_EQ(out.str(), header + "\n\"a, \nquoted\",0,y\nc,1,z\nb,2,x\n");
+  EXPECT_EQ(points, (std::vector<std::string>{"0", "1", "2"}));
+
+  std::ostringstream ignored;
+  write("b,2,x\nc,1,z\n");
+  EXPECT_THROW(write_from_partial(path_, 3, ignored), std::runtime_error);  // point 0 missing
+  write("b,2,x\nc,1,z\nd,1,z\na,0,y\n");
+  EXPECT_THROW(write_from_partial(path_, 3, ignored), std::runtime_error);  // point 1 twice
+}
 
 // Lines wait in memory until the batch is due, then reach the file together.
 TEST_F(BatchedFileTest, KeepsLinesUntilTheOldestHasWaitedItsDelay) {

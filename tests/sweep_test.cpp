@@ -63,6 +63,23 @@ TEST(Sweep, ReturnsOneRowPerCaseInPointOrder) {
   }
 }
 
+// keep_rows false (a streamed spectrum): the rows go to on_row alone, the same ones, each once,
+// and the progress still counts every one.
+TEST(Sweep, KeepingNoRowsHandsEveryRowToOnRowAlone) {
+  const std::vector<Case> cases = smoke_cases();
+  SweepOptions options;
+  options.threads = 2;
+  const std::vector<Row> kept = run_sweep(cases, reference_solver(), Settings{}, options);
+  std::vector<std::string> seen(cases.size());
+  std::size_t last_done = 0;
+  options.keep_rows = false;
+  options.on_row = [&](const Row& row) { seen.at(row.point) += line_without_time(row); };
+  options.on_progress = [&](std::size_t done, std::size_t) { last_done = done; };
+  EXPECT_TRUE(run_sweep(cases, reference_solver(), Settings{}, options).empty());
+  EXPECT_EQ(last_done, cases.size());
+  for (std::size_t i = 0; i < cases.size(); ++i) EXPECT_EQ(seen[i], line_without_time(kept[i])) << i;
+}
+
 // The solvers are deterministic and reentrant, so the thread count must not change a
 // single digit of any result; only the measured time differs.
 TEST(Sweep, OneAndTwoThreadsGiveIdenticalRows) {
