@@ -12,10 +12,10 @@
 #include <thread>
 #include <vector>
 
-#include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/sweep_watch.hpp"
 #include "cases/input_file.hpp"
+#include "frontend/errors.hpp"
 #include "solvers/external/process.hpp"
 #include "sweep/partial_rows.hpp"
 

@@ -1,9 +1,9 @@
-#include "app/run_output.hpp"
+#include "frontend/run_output.hpp"
 
 #include <cmath>
 
-#include "app/errors.hpp"
 #include "cases/fields.hpp"
+#include "frontend/errors.hpp"
 
 namespace pb::app {
 
