@@ -5,9 +5,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "cases/fields.hpp"
+#include "frontend/errors.hpp"
 #include "solvers/external/protocol.hpp"
 
 namespace pb::app {

@@ -15,7 +15,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/solver_flags.hpp"
+#include "frontend/solver_flags.hpp"
 
 namespace pb::app {
 

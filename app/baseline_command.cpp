@@ -11,15 +11,15 @@
 #include <sstream>
 
 #include "app/check_report.hpp"
-#include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/study_run.hpp"
 #include "app/sweep_watch.hpp"
 #include "app/version.hpp"
 #include "cases/case_set.hpp"
-#include "studies/baseline.hpp"
+#include "frontend/errors.hpp"
 #include "rows/minimal_rows.hpp"
 #include "rows/row_read.hpp"
+#include "studies/baseline.hpp"
 
 namespace pb::app {
 

@@ -4,8 +4,8 @@
 #include <iostream>
 #include <sstream>
 
-#include "app/errors.hpp"
 #include "app/output_files.hpp"
+#include "frontend/errors.hpp"
 
 namespace pb::app {
 

@@ -17,7 +17,6 @@
 #include "app/adapter_command.hpp"
 #include "app/baseline_command.hpp"
 #include "app/blas_threads.hpp"
-#include "app/errors.hpp"
 #include "app/report_command.hpp"
 #include "app/run_command.hpp"
 #include "app/solvers_command.hpp"
@@ -27,6 +26,8 @@
 #include "app/workprecision_command.hpp"
 #include "cases/case_set.hpp"
 #include "cases/nearest_name.hpp"
+#include "cases/text.hpp"
+#include "frontend/errors.hpp"
 #include "sweep/processes.hpp"
 
 namespace {

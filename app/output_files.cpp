@@ -15,7 +15,8 @@
 #include <system_error>
 #include <thread>
 
-#include "app/errors.hpp"
+#include "cases/text.hpp"
+#include "frontend/errors.hpp"
 
 namespace pb::app {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <utility>
 
-#include "app/errors.hpp"
+#include "frontend/errors.hpp"
 
 namespace pb::app {
 

@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "app/cost_left.hpp"
-#include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/sweep_watch.hpp"
 #include "cases/input_file.hpp"
+#include "frontend/errors.hpp"
 #include "solvers/external/process.hpp"
 #include "sweep/partial_rows.hpp"
 

@@ -10,11 +10,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/errors.hpp"
 #include "app/output_files.hpp"
-#include "app/run_output.hpp"
 #include "cases/fields.hpp"
 #include "cases/record.hpp"
+#include "cases/text.hpp"
+#include "frontend/errors.hpp"
+#include "frontend/run_output.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb::app {

@@ -6,8 +6,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/case_flags.hpp"
-#include "app/solver_flags.hpp"
+#include "frontend/case_flags.hpp"
+#include "frontend/solver_flags.hpp"
 
 namespace pb::app {
 

@@ -4,15 +4,15 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "app/case_flags.hpp"
 #include "app/check_report.hpp"
-#include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/partial_output.hpp"
 #include "app/resumable_sweep.hpp"
-#include "app/sweep_watch.hpp"
 #include "app/study_run.hpp"
+#include "app/sweep_watch.hpp"
 #include "cases/case_set.hpp"
+#include "frontend/case_flags.hpp"
+#include "frontend/errors.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb::app {

@@ -12,8 +12,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "frontend/solver_flags.hpp"
 #include "sweep/processes.hpp"
-#include "app/solver_flags.hpp"
 
 namespace pb::app {
 

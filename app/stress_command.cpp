@@ -5,9 +5,9 @@
 #include <stdexcept>
 
 #include "app/check_report.hpp"
-#include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/resumable_sweep.hpp"
+#include "frontend/errors.hpp"
 #include "studies/stress.hpp"
 
 namespace pb::app {

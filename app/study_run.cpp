@@ -4,10 +4,10 @@
 #include <streambuf>
 
 #include "app/check_report.hpp"
-#include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/resumable_sweep.hpp"
 #include "app/sweep_watch.hpp"
+#include "frontend/errors.hpp"
 #include "studies/workprecision.hpp"
 
 namespace pb::app {

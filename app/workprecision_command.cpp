@@ -8,9 +8,10 @@
 #include <stdexcept>
 
 #include "app/check_report.hpp"
-#include "app/errors.hpp"
 #include "app/output_files.hpp"
 #include "app/resumable_sweep.hpp"
+#include "cases/text.hpp"
+#include "frontend/errors.hpp"
 #include "studies/workprecision.hpp"
 
 namespace pb::app {

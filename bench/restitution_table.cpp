@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "solvers/compliant/contact_law.hpp"
+#include "cases/text.hpp"
 #include "solvers/compliant/free_impact.hpp"
-#include "solvers/named_values.hpp"
+#include "solvers/contact_elements/contact_law.hpp"
 
 namespace {
 

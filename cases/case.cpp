@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "cases/record.hpp"
+#include "cases/text.hpp"
 
 namespace pb {
 
@@ -277,19 +278,6 @@ std::optional<std::string> validate(const Case& c) {
   if (auto bad = check_values(c)) return bad;
   if (auto bad = check_contrasts(c)) return bad;
   return check_duration(c);
-}
-
-std::string clip(std::string_view text, std::size_t max) {
-  std::size_t cut = text.size();
-  if (cut > max) {
-    cut = max;
-    while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // inside a UTF-8 character
-  }
-  std::string out(text.substr(0, cut));
-  // A control character (a newline in a TOML string) would break the one-line message.
-  for (char& c : out)
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  return cut < text.size() ? out + "..." : out;
 }
 
 }  // namespace pb

@@ -130,13 +130,5 @@ double load_periods(const Case& c);
 // Returns "field: reason" for the first bad one; the reason names the bound.
 std::optional<std::string> validate(const Case& c);
 
-// A reason that quotes user text inside a library's or a solver's own words (a TOML
-// syntax error, a solver's check) is clipped as a whole, at this length.
-inline constexpr std::size_t kMaxEchoedReason = 200;
-// User text (a key, a value, a name) as echoed in a message: at most `max` bytes, cut at a
-// character boundary and marked with "...", so that a 10 MB key gives a one-line error;
-// control characters become '?'.
-inline constexpr std::size_t kMaxEchoed = 60;
-std::string clip(std::string_view text, std::size_t max = kMaxEchoed);
 
 }  // namespace pb

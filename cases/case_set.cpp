@@ -15,6 +15,7 @@
 #include "cases/fields.hpp"
 #include "cases/nearest_name.hpp"
 #include "cases/record.hpp"
+#include "cases/text.hpp"
 #include "cases/toml_input.hpp"
 
 #include <toml++/toml.h>

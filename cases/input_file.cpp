@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "cases/case.hpp"
+#include "cases/text.hpp"
 
 namespace pb {
 

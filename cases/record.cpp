@@ -12,6 +12,7 @@
 
 #include "cases/case.hpp"
 #include "cases/input_file.hpp"
+#include "cases/text.hpp"
 
 namespace pb {
 

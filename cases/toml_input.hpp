@@ -11,6 +11,7 @@
 
 #include "cases/case.hpp"
 #include "cases/input_file.hpp"
+#include "cases/text.hpp"
 
 namespace pb {
 

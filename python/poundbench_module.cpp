@@ -6,7 +6,7 @@
 //
 // Its keywords are the command line's flags, with '_' for '-' (n_free for --n-free), made
 // from the same tables (cases/fields.hpp, solvers/settings_fields.hpp), and they are checked
-// by the same code as the flags (app/case_flags.cpp, app/solver_flags.cpp): a bad keyword is a
+// by the same code as the flags (frontend/case_flags.cpp, frontend/solver_flags.cpp): a bad keyword is a
 // ValueError with the command line's message ("--pi3: required (or give --case-file)").
 // run() returns the object `run --json` prints, as a dict, with the history as NumPy arrays
 // when asked; spectrum() a list of such dicts, one per point in point order (a list rather
@@ -30,12 +30,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/case_flags.hpp"
-#include "app/errors.hpp"
-#include "app/run_output.hpp"
-#include "app/solver_flags.hpp"
 #include "cases/case_set.hpp"
 #include "cases/fields.hpp"
+#include "cases/text.hpp"
+#include "frontend/case_flags.hpp"
+#include "frontend/errors.hpp"
+#include "frontend/run_output.hpp"
+#include "frontend/solver_flags.hpp"
 #include "solvers/settings_fields.hpp"
 #include "sweep/sweep.hpp"
 

@@ -8,7 +8,7 @@
 
 #include "cases/fields.hpp"
 #include "cases/input_file.hpp"
-#include "solvers/named_values.hpp"
+#include "cases/text.hpp"
 
 namespace pb {
 

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "cases/fields.hpp"
+#include "cases/text.hpp"
 
 namespace pb {
 

@@ -39,7 +39,6 @@
 #include <string_view>
 
 #include "cases/case.hpp"
-#include "solvers/named_values.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb {

@@ -78,15 +78,6 @@ Result plan_steps(const System& sys, const Settings& set, int default_steps, lon
 // steps = N or wh = X, whichever fixed the step: the first of a time-stepper's describe().
 void add_step(NamedValues& out, const Settings& set, int default_steps);
 
-// Why a finite state counts as diverged (|u| beyond 1e6 a_p / w_p^2, or the mechanical
-// energy beyond kDivergedEnergy times its scale), or nullptr.
-const char* runaway(const System& sys, const double* u, const double* v);
-
-// How an event loop's run ends on its state (u, v) at time t: nan where the state is not
-// finite, diverged where it ran away (with runaway's reason), each with its message "... at
-// t = T"; ok (message untouched) otherwise.
-Status state_end(const System& sys, bool finite, const double* u, const double* v, double t, std::string& message);
-
 // Counts over a run's steps, as every time-stepper reports them.
 struct StepTally {
   double u_max = 0.0;  // largest |u_ref| over the states

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 namespace pb {
 
@@ -37,29 +36,6 @@ void StepMonitor::finish(Result& r) const {
   r.restitution_low = e_low_;
   r.restitution_high = e_high_;
   r.gap_rate_max = fastest_;
-}
-
-Deadline::Deadline(const Settings& settings)
-    : limit_(settings.time_limit), stop_(settings.stop), start_(std::chrono::steady_clock::now()) {
-  if (!(limit_ > 0.0) && !stop_) next_ = std::numeric_limits<long>::max();
-}
-
-bool Deadline::look(long k) {
-  if (stop_ && stop_->load(std::memory_order_relaxed)) return true;
-  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  if (limit_ > 0.0 && elapsed > limit_) return true;
-  // The next look after ~1 ms of steps at the mean cost so far (a look costs ~25 ns).
-  const double per_step = elapsed / static_cast<double>(k);
-  const double stride = per_step > 0.0 ? 1e-3 / per_step : 4096.0;
-  next_ = k + std::clamp(static_cast<long>(stride), 1L, 4096L);
-  return false;
-}
-
-std::string Deadline::reason() const {
-  if (stop_ && stop_->load(std::memory_order_relaxed)) return "stopped (the sweep was interrupted)";
-  std::ostringstream msg;
-  msg << "more than " << limit_ << " s of wall time";
-  return msg.str();
 }
 
 }  // namespace pb

@@ -1,28 +1,19 @@
 #include "solvers/named_values.hpp"
 
-#include <array>
-#include <charconv>
 #include <cmath>
 
 #include <nlohmann/json.hpp>
+
+#include "cases/text.hpp"
 
 namespace pb {
 
 namespace {
 
-template <typename T>
-std::string shortest(T x) {
-  // Without a format argument to_chars gives the shortest text that round-trips.
-  std::array<char, 64> buffer{};
-  const auto [end, error] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), x);
-  if (error != std::errc{}) return {};
-  return {buffer.data(), end};
-}
-
 // JSON has no infinity or NaN; the strings keep what they mean (max_vel = "inf": no limit).
 template <typename T>
 std::string json_number(T x) {
-  if (std::isfinite(x)) return shortest(x);
+  if (std::isfinite(x)) return shortest_text(x);
   return std::isnan(x) ? "\"nan\"" : x > 0 ? "\"inf\"" : "\"-inf\"";
 }
 
@@ -33,8 +24,6 @@ std::string json_string(std::string_view text) {
 }
 
 }  // namespace
-
-std::string format_number(double x) { return std::isnan(x) ? std::string() : shortest(x); }
 
 NamedValues& NamedValues::add_raw(std::string_view name, std::string_view json_value) {
   if (json_.size() > 1) json_ += ',';
@@ -50,7 +39,7 @@ NamedValues& NamedValues::add(std::string_view name, float value) {
   return add_raw(name, json_number(value));
 }
 
-NamedValues& NamedValues::add(std::string_view name, long long value) { return add_raw(name, shortest(value)); }
+NamedValues& NamedValues::add(std::string_view name, long long value) { return add_raw(name, shortest_text(value)); }
 
 NamedValues& NamedValues::add(std::string_view name, bool value) { return add_raw(name, value ? "true" : "false"); }
 

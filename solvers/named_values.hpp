@@ -9,9 +9,6 @@
 
 namespace pb {
 
-// Shortest decimal text that reads back (strtod) to exactly x; NaN gives "".
-std::string format_number(double x);
-
 class NamedValues {
  public:
   NamedValues& add(std::string_view name, double value);

@@ -169,7 +169,8 @@ std::string check_step(const Settings& settings, int default_steps);
 std::string check_theta_method(const Settings& settings);
 // Checks Settings::gamma, the look-ahead of a time-stepper that predicts its contacts.
 std::string check_gamma(const Settings& settings);
-// Checks Settings::step_cap and time_limit.
+// Checks Settings::step_cap and time_limit: the registry applies it to every solver's check
+// (solvers/registry.cpp), so a solver's own check leaves them alone.
 std::string check_limits(const Settings& settings);
 
 using SolveFn = Result (*)(const System&, const Settings&);

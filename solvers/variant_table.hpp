@@ -1,11 +1,16 @@
 #pragma once
 // A solver's variants as a table of configurations, each with a `name`: the engines' (ODE,
-// Bullet, MuJoCo) look theirs up by name and list the names in their messages the same way.
+// Bullet, MuJoCo, DART, Simbody) look theirs up by name, list the names in their messages,
+// and describe and check a run's settings the same way.
 
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+
+#include "solvers/fixed_step.hpp"
+#include "solvers/named_values.hpp"
+#include "solvers/solver.hpp"
 
 namespace pb {
 
@@ -27,6 +32,43 @@ std::string names_of(std::span<const Config> table) {
     out += c.name;
   }
   return out;
+}
+
+// Whether a configuration steps at a fixed step (Settings::steps, wh): every one, unless its
+// type says otherwise (Simbody's Hunt-Crossley chooses its own steps).
+template <class Config>
+bool takes_steps(const Config& config) {
+  if constexpr (requires { config.time_stepper(); })
+    return config.time_stepper();
+  else
+    return true;
+}
+
+// describe() of an engine with a variant table: the variant's name, the step (steps = N or
+// wh = X) where it takes one, then its configuration's own settings, as the engine's
+// add_config(NamedValues&, const Config&, const Settings&) writes them (found beside Config).
+template <class Config>
+std::string describe_variant(const std::optional<Config>& config, const Settings& settings, int default_steps) {
+  NamedValues out;
+  out.add("variant", config ? std::string_view(config->name) : std::string_view(settings.variant));
+  if (!config) return out.add("unknown", true).json();
+  if (takes_steps(*config)) add_step(out, settings, default_steps);
+  add_config(out, *config, settings);
+  return out.json();
+}
+
+// What every such engine's check() asks first: a known variant, and where it steps, a valid
+// step and contact activation rule. "" when they are fine; the engine checks its own after.
+template <class Config>
+std::string check_variant(std::string_view solver, const std::optional<Config>& config, std::span<const Config> table,
+                          const Settings& settings, int default_steps) {
+  if (!config)
+    return "variant: unknown " + std::string(solver) + " variant '" + settings.variant + "' (one of " +
+           names_of(table) + ")";
+  if (!takes_steps(*config)) return {};
+  if (std::string bad = check_step(settings, default_steps); !bad.empty()) return bad;
+  if constexpr (requires { config->activation; }) return check_activation(config->activation, settings);
+  return {};
 }
 
 }  // namespace pb

@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "cases/fields.hpp"
+#include "cases/text.hpp"
 #include "rows/row_read.hpp"
 #include "studies/workprecision.hpp"
 

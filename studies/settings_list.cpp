@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "cases/case.hpp"
+#include "cases/text.hpp"
 #include "cases/toml_input.hpp"
 #include "solvers/settings_fields.hpp"
 

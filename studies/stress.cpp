@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "cases/text.hpp"
 #include "studies/stats.hpp"
 
 namespace pb {

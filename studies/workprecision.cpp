@@ -5,6 +5,8 @@
 #include <sstream>
 #include <tuple>
 
+#include "cases/text.hpp"
+
 namespace pb {
 
 namespace {

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "cases/system.hpp"
+#include "cases/text.hpp"
 #include "solvers/verdict.hpp"
 #include "sweep/stopwatch.hpp"
 

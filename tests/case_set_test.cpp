@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "cases/system.hpp"
+#include "cases/text.hpp"
 #include "solvers/solver.hpp"
 #include "tests/support.hpp"
 

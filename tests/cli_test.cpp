@@ -24,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "cases/text.hpp"
 #include "solvers/solver.hpp"
 #include "studies/stress.hpp"
 #include "sweep/sweep.hpp"

@@ -17,11 +17,11 @@
 #include "cases/case_set.hpp"
 #include "cases/record.hpp"
 #include "cases/system.hpp"
-#include "solvers/event_driven/kelvin_voigt.hpp"
 #include "solvers/compliant/compliant.hpp"
-#include "solvers/compliant/contact_law.hpp"
 #include "solvers/compliant/free_impact.hpp"
+#include "solvers/contact_elements/contact_law.hpp"
 #include "solvers/event_driven/event_driven.hpp"
+#include "solvers/event_driven/kelvin_voigt.hpp"
 #include "support.hpp"
 
 namespace pb {

@@ -10,7 +10,7 @@
 #include <numbers>
 
 #include "cases/system.hpp"
-#include "solvers/compliant/contact_law.hpp"
+#include "solvers/contact_elements/contact_law.hpp"
 #include "solvers/event_driven/event_driven.hpp"
 #include "solvers/event_driven/kelvin_voigt.hpp"
 #include "support.hpp"

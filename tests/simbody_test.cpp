@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "cases/system.hpp"
-#include "solvers/compliant/contact_law.hpp"
+#include "solvers/contact_elements/contact_law.hpp"
 #include "solvers/simbody/quiet_stdout.hpp"
 #include "solvers/simbody/simbody_solver.hpp"
 #include "tests/support.hpp"

@@ -53,32 +53,34 @@ using test::sci;
 
 // What a solver states about itself, per variant that changes how it runs. Every number is
 // a bound with the value measured on this machine (Debian 12's ODE 0.16, Bullet 3.24,
-// Siconos 4.4) and the reason for the margin.
+// Siconos 4.4) and the reason for the margin. The defaults are the strictest facts (those of
+// a solver without a row): a row names its solver and variant and then, by field name, only
+// where it differs from them.
 struct Facts {
   std::string_view solver;
-  std::string_view variant;  // "" = the solver's default
-  bool time_stepper;         // takes Settings::steps / wh
+  std::string_view variant = "";  // the solver's default
+  bool time_stepper = false;  // takes Settings::steps / wh
   // Largest |e - eps| of the isolated wall impacts (Result::restitution_low/high).
-  double restitution_tolerance;
+  double restitution_tolerance = 1e-12;
   // Time-steppers: the least factor by which the mean relative Pi1 error falls as N goes
   // 16 -> 64 -> 256 (first order would be 4).
-  double error_drop;
+  double error_drop = 1.8;
   // A stiff pair at w_max h = 10 and 100 ends diverged or nan (explicit springs), instead of
   // running to the end (an implicit scheme).
-  bool diverges_at_large_steps;
+  bool diverges_at_large_steps = false;
   // A body with a NaN spring or an infinite damper: nan (run until the state is not finite),
   // or failed (refused before the run, the message naming it).
-  Status non_finite_body;
+  Status non_finite_body = Status::nan;
   // A lone body on a negative spring: diverged, or nan where the solver's motion cannot
   // hold an unstable spring at all.
-  Status runaway;
+  Status runaway = Status::diverged;
   // Fails (status failed, with the library's message) where the reference has a contact
   // phase (persistent contact); everywhere else it must end ok.
-  bool fails_where_contact_persists;
+  bool fails_where_contact_persists = false;
   // Every k-th smoke point (1: all 40): a subset for a slow engine.
-  int smoke_stride;
+  int smoke_stride = 1;
   // How long a run told to stop after 0.05 s may take (the clock is not read inside a step).
-  double time_limit_bound;
+  double time_limit_bound = 0.5;
   // Fails (status failed, the message naming eps) where its model has no element for eps.
   bool refuses_plastic = false;
   // Settings::integrator and stiffness, for a solver that has them ("", 0: its defaults).
@@ -114,80 +116,93 @@ struct Facts {
 // sine and cosine); error drops are the worst of the two quadruplings on the Pi1 test's cases;
 // time-limit bounds allow 10 times the measured 0.05 s for a loaded machine and the sanitizer.
 const std::vector<Facts>& facts_table() {
-  constexpr Status nan = Status::nan, failed = Status::failed, diverged = Status::diverged;
+  constexpr Status nan = Status::nan, failed = Status::failed;
   static const std::vector<Facts> table = {
       // The reference: exact between events, Poisson's law at impacts. |e - eps| measured
       // 1.1e-16 (2.2e-13 over 600 random cases: event_driven_test). Its closed form has no
       // unstable spring (nan at t = 0).
-      {"event-driven", "", false, 1e-11, 0.0, false, nan, nan, false, 1, 0.5},
+      {.solver = "event-driven", .restitution_tolerance = 1e-11, .error_drop = 0.0, .runaway = nan},
       // Newton's law on the predicted contacts, in double: measured 2.2e-16. Drops 2.2, 3.3.
       // theta = 1/2 is unconditionally stable.
-      {"moreau-jean", "", true, 1e-12, 1.8, false, nan, diverged, false, 1, 0.5},
-      {"moreau-jean", "end-samples", true, 1e-12, 1.8, false, nan, diverged, false, 1, 0.5},
+      {.solver = "moreau-jean", .time_stepper = true},
+      {.solver = "moreau-jean", .variant = "end-samples", .time_stepper = true},
       // ODE faithful: bounce without push-out, one LCP in double: measured 4.4e-16. Drops
       // 7.7, 3.0. Explicit springs.
-      {"ode", "dantzig-faithful", true, 1e-12, 1.8, true, nan, diverged, false, 1, 0.5},
-      {"ode", "quickstep-faithful", true, 1e-12, 1.8, true, nan, diverged, false, 1, 0.5},
+      {.solver = "ode", .variant = "dantzig-faithful", .time_stepper = true, .diverges_at_large_steps = true},
+      {.solver = "ode", .variant = "quickstep-faithful", .time_stepper = true, .diverges_at_large_steps = true},
       // ODE default: ERP pushes a plastic impact out of the wall (measured e = 0.15 for
       // eps = 0, ode_test's DefaultPushOutGivesAPlasticImpactARebound), CFM softens the others
       // by 2e-9. Drops 3.3, 4.0.
-      {"ode", "dantzig-default", true, 0.2, 1.8, true, nan, diverged, false, 1, 0.5},
-      {"ode", "quickstep-default", true, 0.2, 1.8, true, nan, diverged, false, 1, 0.5},
+      {.solver = "ode", .variant = "dantzig-default", .time_stepper = true, .restitution_tolerance = 0.2,
+       .diverges_at_large_steps = true},
+      {.solver = "ode", .variant = "quickstep-default", .time_stepper = true, .restitution_tolerance = 0.2,
+       .diverges_at_large_steps = true},
       // Bullet faithful, single precision: measured 1.1e-7. Drops 7.7, 3.0, ODE's faithful
       // ones (the same scheme and activation rule, in float).
-      {"bullet", "si-faithful", true, 1e-6, 1.8, true, nan, diverged, false, 1, 0.5},
-      {"bullet", "mlcp-dantzig-faithful", true, 1e-6, 1.8, true, nan, diverged, false, 1, 0.5},
-      {"bullet", "mlcp-lemke-faithful", true, 1e-6, 1.8, true, nan, diverged, false, 1, 0.5},
+      {.solver = "bullet", .variant = "si-faithful", .time_stepper = true, .restitution_tolerance = 1e-6,
+       .diverges_at_large_steps = true},
+      {.solver = "bullet", .variant = "mlcp-dantzig-faithful", .time_stepper = true, .restitution_tolerance = 1e-6,
+       .diverges_at_large_steps = true},
+      {.solver = "bullet", .variant = "mlcp-lemke-faithful", .time_stepper = true, .restitution_tolerance = 1e-6,
+       .diverges_at_large_steps = true},
       // si-faithful with contacts at overlap (Bullet's own contact generation): the same
       // restitution law, measured 1.1e-7. Drops 3.3, 4.0.
-      {"bullet", "si-overlap", true, 1e-6, 1.8, true, nan, diverged, false, 1, 0.5},
+      {.solver = "bullet", .variant = "si-overlap", .time_stepper = true, .restitution_tolerance = 1e-6,
+       .diverges_at_large_steps = true},
       // Bullet default: restitution eps^2 (product with the wall's), none below 0.2 m/s, ERP
       // push-out: measured |e - eps| up to 0.47 (eps = 0.5 gives 0.25 and less). Drops 2.7,
       // 1.7: the 0.2 m/s threshold does not shrink with h. The Lemke default's steps on a
       // 100-body chain cost ~1 ms once its contacts close, after the clock's pace is set:
       // measured 0.25 to 0.68 s.
-      {"bullet", "si-default", true, 0.6, 1.3, true, nan, diverged, false, 1, 0.5},
-      {"bullet", "mlcp-dantzig-default", true, 0.6, 1.3, true, nan, diverged, false, 1, 0.5},
-      {"bullet", "mlcp-lemke-default", true, 0.6, 1.3, true, nan, diverged, false, 1, 2.0},
+      {.solver = "bullet", .variant = "si-default", .time_stepper = true, .restitution_tolerance = 0.6,
+       .error_drop = 1.3, .diverges_at_large_steps = true},
+      {.solver = "bullet", .variant = "mlcp-dantzig-default", .time_stepper = true, .restitution_tolerance = 0.6,
+       .error_drop = 1.3, .diverges_at_large_steps = true},
+      {.solver = "bullet", .variant = "mlcp-lemke-default", .time_stepper = true, .restitution_tolerance = 0.6,
+       .error_drop = 1.3, .diverges_at_large_steps = true, .time_limit_bound = 2.0},
       // Siconos refuses a non-finite body (its own checks would print). MoreauJeanOSI as
       // moreau-jean end-samples: measured 4.4e-16, drops 2.2, 3.3. LSODAR fails where contact
       // persists (solvers/siconos/README.md); its runs cost ~10 ms, so every 2nd smoke point.
-      {"siconos", "moreau-jean-lemke", true, 1e-12, 1.8, false, failed, diverged, false, 1, 0.5},
-      {"siconos", "moreau-jean-enum", true, 1e-12, 1.8, false, failed, diverged, false, 1, 0.5},
-      {"siconos", "event-driven-lsodar", false, 1e-12, 0.0, false, failed, diverged, true, 2, 0.5},
+      {.solver = "siconos", .variant = "moreau-jean-lemke", .time_stepper = true, .non_finite_body = failed},
+      {.solver = "siconos", .variant = "moreau-jean-enum", .time_stepper = true, .non_finite_body = failed},
+      {.solver = "siconos", .variant = "event-driven-lsodar", .error_drop = 0.0, .non_finite_body = failed,
+       .fails_where_contact_persists = true, .smoke_stride = 2},
       // Siconos' other integrators (issue 20), through the same model. SchatzmanPaoliOSI
       // (theta 1/2): its velocity is the central difference (q_k+1 - q_k-1) / 2h, which spans
       // the impact over two steps, so the one-step restitution the monitor measures is that
       // of the impact's middle: e from -0.90 to -0.10 (|e - eps| up to 1.83). Drops 2.3, 3.6.
       // Its stiffness enters the free state explicitly (Siconos 4.4 implements only the first
       // residual, M (q_k-1 - q_k) + h^2 K q_k): diverged at w_max h = 10 and 100.
-      {"siconos", "schatzman-paoli", true, 2.0, 1.8, true, failed, diverged, false, 2, 0.5},
+      {.solver = "siconos", .variant = "schatzman-paoli", .time_stepper = true, .restitution_tolerance = 2.0,
+       .diverges_at_large_steps = true, .non_finite_body = failed, .smoke_stride = 2},
       // D1MinusLinearOSI: the impact falls inside a step whose smooth forces are half-explicit,
       // so the one-step restitution moves by them: |e - eps| up to 0.18. Drops 1.4, 3.0 (its
       // error at N = 16 is already 1.4e-2: the impact's position in the step dominates).
       // Explicit in the springs: diverged at w_max h = 10 and 100.
-      {"siconos", "d1-minus-linear", true, 0.25, 1.2, true, failed, diverged, false, 2, 0.5},
+      {.solver = "siconos", .variant = "d1-minus-linear", .time_stepper = true, .restitution_tolerance = 0.25,
+       .error_drop = 1.2, .diverges_at_large_steps = true, .non_finite_body = failed, .smoke_stride = 2},
       // MoreauJeanCombinedProjectionOSI: MoreauJeanOSI's impact law, |e - eps| 3.3e-16. Drops
       // 6.4, 2.5. Runs to the end at w_max h = 10, diverges at 100: the projection moves the
       // positions onto the gaps without touching the velocities, and the springs' energy it
       // adds grows at so long a step. Its MLCP by enumeration refuses more than 12 contacts
       // (the 100-body chain: siconos_solver.hpp).
-      {"siconos", "combined-projection", true, 1e-12, 1.8, false, failed, diverged, false, 2, 0.5, false, "", 0.0,
-       "by enumeration tries up to 2^n active sets", "", false, 100.0},
+      {.solver = "siconos", .variant = "combined-projection", .time_stepper = true, .non_finite_body = failed,
+       .smoke_stride = 2, .documented_failure = "by enumeration tries up to 2^n active sets",
+       .diverges_from_wh = 100.0},
       // MoreauJeanDirectProjectionOSI: |e - eps| 4.4e-16. Drops 2.6, 3.7. Runs to the end at
       // w_max h = 10 and 100. Enumeration as combined-projection.
-      {"siconos", "direct-projection", true, 1e-12, 1.8, false, failed, diverged, false, 2, 0.5, false, "", 0.0,
-       "by enumeration tries up to 2^n active sets"},
+      {.solver = "siconos", .variant = "direct-projection", .time_stepper = true, .non_finite_body = failed,
+       .smoke_stride = 2, .documented_failure = "by enumeration tries up to 2^n active sets"},
       // MoreauJeanBilbaoOSI leaves the ground load out (its computeFreeState): every run under
       // a load fails, found by an unloaded twin run equal to it bit for bit; the lone body on a
       // negative spring stays at rest too, so it fails the same way instead of diverging.
-      {"siconos", "bilbao", true, 1e-12, 1.8, false, failed, failed, false, 2, 0.5, false, "", 0.0,
-       "left the ground load out", "", true},
+      {.solver = "siconos", .variant = "bilbao", .time_stepper = true, .non_finite_body = failed, .runaway = failed,
+       .smoke_stride = 2, .documented_failure = "left the ground load out", .fails_everywhere = true},
       // NewMarkAlphaOSI with EventDriven: computeW negates K and C in place on every Newton
       // iteration, so Newton's loop never converges, or converges on the changed system; both
       // are stopped and fail by name, within 2 ms a run on the smoke set.
-      {"siconos", "newmark-alpha", true, 1e-12, 1.8, false, failed, failed, false, 1, 0.5, false, "", 0.0,
-       "NewMarkAlphaOSI with EventDriven fails", "", true},
+      {.solver = "siconos", .variant = "newmark-alpha", .time_stepper = true, .non_finite_body = failed,
+       .runaway = failed, .documented_failure = "NewMarkAlphaOSI with EventDriven fails", .fails_everywhere = true},
       // Compliant contact through CVODE at the default stiffness K = 1e4: an isolated wall
       // impact restitutes eps only up to what the body's spring, its dashpot and the pulse do
       // during the contact (measured |e - eps| up to 5.8e-3 for Kelvin-Voigt; it falls as K
@@ -197,16 +212,20 @@ const std::vector<Facts>& facts_table() {
       // Jankowski's published zeta, which restitutes less than eps by itself (0.4946 at 0.5), 0.021.
       // It refuses a non-finite body. (Hertz, elastic, refuses eps != 1 by name: the
       // contract's cases have eps = 0.5, so it is tested in compliant_test.cpp.)
-      {"compliant", "kelvin-voigt", false, 0.02, 0.0, false, failed, diverged, false, 1, 0.5},
+      {.solver = "compliant", .variant = "kelvin-voigt", .restitution_tolerance = 0.02, .error_drop = 0.0,
+       .non_finite_body = failed},
       // Hunt-Crossley's and Jankowski's damping grows without bound as eps -> 0: both refuse eps = 0.
-      {"compliant", "hunt-crossley", false, 0.15, 0.0, false, failed, diverged, false, 1, 0.5, true},
-      {"compliant", "jankowski", false, 0.15, 0.0, false, failed, diverged, false, 1, 0.5, true},
-      {"compliant", "jankowski-published", false, 0.15, 0.0, false, failed, diverged, false, 1, 0.5, true},
+      {.solver = "compliant", .variant = "hunt-crossley", .restitution_tolerance = 0.15, .error_drop = 0.0,
+       .non_finite_body = failed, .refuses_plastic = true},
+      {.solver = "compliant", .variant = "jankowski", .restitution_tolerance = 0.15, .error_drop = 0.0,
+       .non_finite_body = failed, .refuses_plastic = true},
+      {.solver = "compliant", .variant = "jankowski-published", .restitution_tolerance = 0.15, .error_drop = 0.0,
+       .non_finite_body = failed, .refuses_plastic = true},
       // Hertz's element is elastic: eps = 1 alone, at which the contract's cases and smoke
       // points are taken (elsewhere it fails, naming eps). Its wall impacts at K = 1e4
       // restitute 1 up to the body's spring and the pulse (measured 5.3e-3).
-      {"compliant", "hertz", false, 0.02, 0.0, false, failed, diverged, false, 1, 0.5, false, "", 0.0,
-       "eps: the hertz element is elastic", "", false, 0.0, "", 0, "", 1.0},
+      {.solver = "compliant", .variant = "hertz", .restitution_tolerance = 0.02, .error_drop = 0.0,
+       .non_finite_body = failed, .documented_failure = "eps: the hertz element is elastic", .only_eps = 1.0},
       // Kelvin-Voigt through Newmark at K = 10 (a contact of ~T0 / 3: resolved from about
       // N = 16). Its error is against the exact solution of the same element (event-driven
       // --contact kelvin-voigt; rigid impacts are another model): drops 29, 1.5 (the
@@ -215,38 +234,46 @@ const std::vector<Facts>& facts_table() {
       // every smoke run since the onset is solved as a set-valued law (48 of the 160 at
       // N = 4..64 failed before); a failure to converge stays a documented one, saying where
       // (solvers/compliant/README.md).
-      {"compliant", "kelvin-voigt", true, 0.4, 1.3, false, failed, diverged, false, 1, 0.5, false, "newmark", 10.0,
-       "Newton's iteration", "kelvin-voigt"},
+      {.solver = "compliant", .variant = "kelvin-voigt", .time_stepper = true, .restitution_tolerance = 0.4,
+       .error_drop = 1.3, .non_finite_body = failed, .integrator = "newmark", .stiffness = 10.0,
+       .documented_failure = "Newton's iteration", .own_reference_contact = "kelvin-voigt"},
       // The reference solving the Kelvin-Voigt model exactly (DERIVATION.md §8) at K = 1e4: its
       // isolated impacts restitute eps up to what the body's spring, dashpot and the pulse do
       // during the contact, as CVODE's on the same element (measured up to 5.8e-3). It refuses
       // a non-finite body, runs a negative spring until it runs away, and holds the whole
       // state in one matrix: chains of at most 24 bodies.
-      {"event-driven", "", false, 0.02, 0.0, false, failed, diverged, false, 1, 0.5, false, "", 1e4, "", "", false, 0.0,
-       "kelvin-voigt", 24},
+      {.solver = "event-driven", .restitution_tolerance = 0.02, .error_drop = 0.0, .non_finite_body = failed,
+       .stiffness = 1e4, .contact = "kelvin-voigt", .max_bodies = 24},
       // MuJoCo, soft contacts calibrated to eps (contact time constant 2 h): restitution is
       // over whole contacts, so the body's spring and the pulse act during each (Euler:
       // measured |e - eps| up to 0.052; its implicit integrator gives the same motion to
       // round-off here). RK4 measured 0.42: an eps = 0 contact whose force ends while the
       // body still moves in. Drops 2.9, 2.5 (RK4 2.3, 2.6); no clean order (README). It
       // refuses a non-finite body (MuJoCo would reset the state and go on).
-      {"mujoco", "euler-faithful", true, 0.1, 1.8, true, failed, diverged, false, 1, 0.5},
-      {"mujoco", "implicit-faithful", true, 0.1, 1.8, true, failed, diverged, false, 1, 0.5},
-      {"mujoco", "rk4-faithful", true, 0.5, 1.8, true, failed, diverged, false, 1, 0.5},
+      {.solver = "mujoco", .variant = "euler-faithful", .time_stepper = true, .restitution_tolerance = 0.1,
+       .diverges_at_large_steps = true, .non_finite_body = failed},
+      {.solver = "mujoco", .variant = "implicit-faithful", .time_stepper = true, .restitution_tolerance = 0.1,
+       .diverges_at_large_steps = true, .non_finite_body = failed},
+      {.solver = "mujoco", .variant = "rk4-faithful", .time_stepper = true, .restitution_tolerance = 0.5,
+       .diverges_at_large_steps = true, .non_finite_body = failed},
       // MuJoCo's default contact (solref 0.02 1) knows no eps: measured |e - eps| up to 0.94.
       // Drops 2.5, 1.3: the time constant stops shrinking with h once 2h < 0.02.
-      {"mujoco", "default", true, 1.0, 1.1, true, failed, diverged, false, 1, 0.5},
+      {.solver = "mujoco", .variant = "default", .time_stepper = true, .restitution_tolerance = 1.0, .error_drop = 1.1,
+       .diverges_at_large_steps = true, .non_finite_body = failed},
       // DART faithful: ODE's faithful row in a gap constraint of its own, in double: ODE's
       // dantzig-faithful step for step (dart_test.cpp), measured |e - eps| 2.2e-16. Drops 7.7,
       // 3.0, ODE's. Explicit springs. It refuses a non-finite body.
-      {"dart", "dantzig-faithful", true, 1e-12, 1.8, true, failed, diverged, false, 1, 0.5},
-      {"dart", "pgs-faithful", true, 1e-12, 1.8, true, failed, diverged, false, 1, 0.5},
+      {.solver = "dart", .variant = "dantzig-faithful", .time_stepper = true, .diverges_at_large_steps = true,
+       .non_finite_body = failed},
+      {.solver = "dart", .variant = "pgs-faithful", .time_stepper = true, .diverges_at_large_steps = true,
+       .non_finite_body = failed},
       // DART's default: restitution eps^2 (the two shapes' product), none where eps^2 times the
       // approach is below 0.1 a_p / w_p, a push-out: measured |e - eps| up to 0.49. Drops 4.2,
       // 3.8. Its joint springs and dampers are implicit: it runs to the end at w_max h = 10 and
       // 100. DART asserts (and aborts) on a negative joint spring: refused by name instead. Its
       // steps cost ~10 us (FCL's boxes, a dozen contact rows a face): every 2nd smoke point.
-      {"dart", "default", true, 0.6, 1.8, false, failed, failed, false, 2, 0.5},
+      {.solver = "dart", .variant = "default", .time_stepper = true, .restitution_tolerance = 0.6,
+       .non_finite_body = failed, .runaway = failed, .smoke_stride = 2},
       // Simbody's SemiExplicitEulerTimeStepper: the impact at the step's start velocities, then
       // the step's forces with the contact held, so one step's restitution is eps plus what
       // those forces add: measured |e - eps| up to 0.080 (default 0.10: its capture speed makes
@@ -256,18 +283,22 @@ const std::vector<Facts>& facts_table() {
       // diverges: each impact reverses the approach at the step's start and the spring then
       // pushes the body out of its penetration on top of it (README); from N = 8 every point
       // ends ok. Its steps cost ~15 us (Simbody's realizations): every 2nd smoke point.
-      {"simbody", "plus-faithful", true, 0.1, 1.8, true, failed, failed, false, 2, 0.5, false, "", 0.0, "", "", false,
-       0.0, "", 0, "", -1.0, 8},
-      {"simbody", "pgs-faithful", true, 0.1, 1.8, true, failed, failed, false, 2, 0.5, false, "", 0.0, "", "", false,
-       0.0, "", 0, "", -1.0, 8},
-      {"simbody", "default", true, 0.15, 1.8, true, failed, failed, false, 2, 0.5, false, "", 0.0, "", "", false,
-       0.0, "", 0, "", -1.0, 8},
+      {.solver = "simbody", .variant = "plus-faithful", .time_stepper = true, .restitution_tolerance = 0.1,
+       .diverges_at_large_steps = true, .non_finite_body = failed, .runaway = failed, .smoke_stride = 2,
+       .coarsest_steps = 8},
+      {.solver = "simbody", .variant = "pgs-faithful", .time_stepper = true, .restitution_tolerance = 0.1,
+       .diverges_at_large_steps = true, .non_finite_body = failed, .runaway = failed, .smoke_stride = 2,
+       .coarsest_steps = 8},
+      {.solver = "simbody", .variant = "default", .time_stepper = true, .restitution_tolerance = 0.15,
+       .diverges_at_large_steps = true, .non_finite_body = failed, .runaway = failed, .smoke_stride = 2,
+       .coarsest_steps = 8},
       // Simbody's Hunt-Crossley elements at K = 1e4, calibrated at a_p / w_p: restitution
       // varies with the impact speed (simbody_test.cpp), and the body's spring and the pulse act
       // during a contact: measured |e - eps| up to 0.33 on the wall cases. Its runs cost
       // ~0.1 s (Runge-Kutta-Merson through Simbody's realizations): every 4th smoke point.
       // Like the in-house element, it refuses eps = 0.
-      {"simbody", "hunt-crossley", false, 0.4, 0.0, false, failed, failed, false, 4, 0.5, true},
+      {.solver = "simbody", .variant = "hunt-crossley", .restitution_tolerance = 0.4, .error_drop = 0.0,
+       .non_finite_body = failed, .runaway = failed, .smoke_stride = 4, .refuses_plastic = true},
       // The external solver running poundbench itself (`poundbench adapter --solver moreau-jean`,
       // docs/external.md): the documents carry the system, the step, the limits and the answer
       // exactly, so its facts are moreau-jean's (restitution 2.2e-16, drops 2.2, 3.3), and the
@@ -280,14 +311,14 @@ const std::vector<Facts>& facts_table() {
       // interpreter's start (~0.3 s a point) would make this suite minutes long
       // (tests/external_examples_test.py runs it). A time limit of 0.05 s: the program's start
       // and its own 0.05 s; 1 s allows the sanitizer's slower start.
-      {"external", "", true, 1e-12, 1.8, false, failed, failed, false, 2, 1.0, false, "", 0.0, "", "", false, 0.0, "", 0,
-       POUNDBENCH_EXE " adapter --solver moreau-jean"},
+      {.solver = "external", .time_stepper = true, .non_finite_body = failed, .runaway = failed, .smoke_stride = 2,
+       .time_limit_bound = 1.0, .command = POUNDBENCH_EXE " adapter --solver moreau-jean"},
   };
   return table;
 }
 
 // What a solver without a row is held to: the strictest facts.
-const Facts kUnstated{"", "", false, 1e-12, 1.8, false, Status::nan, Status::diverged, false, 1, 0.5};
+const Facts kUnstated{};
 
 struct Subject {
   const SolverInfo* solver;

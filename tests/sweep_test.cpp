@@ -18,9 +18,10 @@
 #include <vector>
 
 #include "cases/case_set.hpp"
-#include "solvers/solver.hpp"
+#include "cases/text.hpp"
 #include "rows/row.hpp"
 #include "rows/row_read.hpp"
+#include "solvers/solver.hpp"
 #include "sweep/no_contact_cache.hpp"
 #include "sweep/stopwatch.hpp"
 #include "sweep/sweep.hpp"

@@ -42,8 +42,6 @@ std::optional<Config> find_variant(std::string_view name) {
   return find_named(std::span<const Config>(kVariants), name, kDefaultVariant);
 }
 
-std::string variant_names() { return names_of(std::span<const Config>(kVariants)); }
-
 void add_config(NamedValues& out, const Config& config, const Settings& settings) {
   // The step does not change any of these settings; 1 stands for it.
   const btContactSolverInfo info = solver_info(config, 1.0);

@@ -48,8 +48,6 @@ inline constexpr std::string_view kDefaultVariant = "si-faithful";
 std::span<const Config> variants();
 // The variant of that name; the empty name is kDefaultVariant.
 std::optional<Config> find_variant(std::string_view name);
-// "a, b, c" for messages.
-std::string variant_names();
 
 // Every setting that shapes an impact (solver, iterations, ..., the activation rule and the
 // gamma of settings where it uses one), read back from the solver info a run uses, for

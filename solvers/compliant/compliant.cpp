@@ -3,8 +3,9 @@
 #include <cmath>
 #include <exception>
 
-#include "solvers/compliant/contact_law.hpp"
+#include "cases/text.hpp"
 #include "solvers/compliant/integrators.hpp"
+#include "solvers/contact_elements/contact_law.hpp"
 #include "solvers/fixed_step.hpp"
 #include "solvers/named_values.hpp"
 

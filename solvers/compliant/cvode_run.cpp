@@ -17,9 +17,9 @@
 
 #include "solvers/compliant/compliant.hpp"
 #include "solvers/compliant/integrators.hpp"
-#include "solvers/compliant/elements.hpp"
+#include "solvers/contact_elements/elements.hpp"
 #include "solvers/fixed_step.hpp"
-#include "solvers/monitor.hpp"
+#include "solvers/run_limits.hpp"
 
 namespace pb::compliant {
 

@@ -1,7 +1,7 @@
 #pragma once
 // The two integrators of the compliant solver (compliant.hpp), each a whole run.
 
-#include "solvers/compliant/contact_law.hpp"
+#include "solvers/contact_elements/contact_law.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb::compliant {

@@ -33,8 +33,8 @@
 #include <string>
 #include <vector>
 
-#include "solvers/compliant/elements.hpp"
 #include "solvers/compliant/integrators.hpp"
+#include "solvers/contact_elements/elements.hpp"
 #include "solvers/fixed_step.hpp"
 #include "solvers/hysteresis.hpp"
 

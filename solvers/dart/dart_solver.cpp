@@ -7,6 +7,7 @@
 #include "solvers/dart/engines.hpp"
 #include "solvers/dart/variants.hpp"
 #include "solvers/fixed_step.hpp"
+#include "solvers/variant_table.hpp"
 
 namespace pb::dart {
 
@@ -48,21 +49,11 @@ Result solve(const System& system, const Settings& settings) {
 }
 
 std::string describe(const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
-  NamedValues out;
-  out.add("variant", config ? config->name : settings.variant);
-  if (!config) return out.add("unknown", true).json();
-  add_step(out, settings, kDefaultSteps);
-  add_config(out, *config, settings);
-  return out.json();
+  return describe_variant(find_variant(settings.variant), settings, kDefaultSteps);
 }
 
 std::string check(const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
-  if (!config) return "variant: unknown dart variant '" + settings.variant + "' (one of " + variant_names() + ")";
-  if (std::string bad = check_step(settings, kDefaultSteps); !bad.empty()) return bad;
-  if (std::string bad = check_activation(config->activation, settings); !bad.empty()) return bad;
-  return check_limits(settings);
+  return check_variant("dart", find_variant(settings.variant), variants(), settings, kDefaultSteps);
 }
 
 }  // namespace pb::dart

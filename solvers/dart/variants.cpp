@@ -31,8 +31,6 @@ std::optional<Config> find_variant(std::string_view name) {
   return find_named(std::span<const Config>(kVariants), name, kDefaultVariant);
 }
 
-std::string variant_names() { return names_of(std::span<const Config>(kVariants)); }
-
 void add_config(NamedValues& out, const Config& config, const Settings& settings) {
   out.add("lcp", lcp_name(config.lcp));
   if (config.faithful) {

@@ -48,8 +48,6 @@ inline constexpr int kFaithfulPgsSweeps = 200;
 std::span<const Config> variants();
 // The variant of that name; the empty name is kDefaultVariant.
 std::optional<Config> find_variant(std::string_view name);
-// "a, b, c" for messages.
-std::string variant_names();
 
 // Every setting of the configuration, for describe() after the variant and the step.
 void add_config(NamedValues& out, const Config& config, const Settings& settings);

@@ -15,14 +15,16 @@
 
 #include <Eigen/Core>
 
+#include "cases/text.hpp"
+#include "solvers/contact_elements/contact_law.hpp"
 #include "solvers/event_driven/frame.hpp"
 #include "solvers/event_driven/impact.hpp"
-#include "solvers/compliant/contact_law.hpp"
 #include "solvers/event_driven/kelvin_voigt.hpp"
 #include "solvers/event_driven/plastic.hpp"
 #include "solvers/event_driven/search.hpp"
 #include "solvers/lcp/lemke.hpp"
 #include "solvers/named_values.hpp"
+#include "solvers/run_limits.hpp"
 
 namespace pb::event_driven {
 

@@ -14,10 +14,9 @@
 #include <Eigen/Dense>
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "solvers/compliant/contact_law.hpp"
-#include "solvers/compliant/elements.hpp"
-#include "solvers/fixed_step.hpp"
-#include "solvers/monitor.hpp"
+#include "solvers/contact_elements/contact_law.hpp"
+#include "solvers/contact_elements/elements.hpp"
+#include "solvers/run_limits.hpp"
 
 namespace pb::event_driven {
 

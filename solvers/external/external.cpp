@@ -8,6 +8,7 @@
 #include <signal.h>
 #include <string.h>
 
+#include "cases/text.hpp"
 #include "solvers/external/command_words.hpp"
 #include "solvers/external/process.hpp"
 #include "solvers/external/protocol.hpp"

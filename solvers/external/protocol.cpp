@@ -16,7 +16,7 @@
 
 #include "cases/load.hpp"
 #include "cases/record.hpp"
-#include "solvers/named_values.hpp"
+#include "cases/text.hpp"
 
 namespace pb::external {
 

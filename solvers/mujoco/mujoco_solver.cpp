@@ -8,6 +8,7 @@
 
 #include "solvers/fixed_step.hpp"
 #include "solvers/mujoco/model.hpp"
+#include "solvers/variant_table.hpp"
 #include "solvers/whole_contacts.hpp"
 
 namespace pb::mujoco {
@@ -158,23 +159,17 @@ Result solve(const System& system, const Settings& settings) {
 }
 
 std::string describe(const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
-  NamedValues out;
-  out.add("variant", config ? config->name : settings.variant);
-  if (!config) return out.add("unknown", true).json();
-  add_step(out, settings, kDefaultSteps);
-  add_config(out, *config, settings);
-  return out.json();
+  return describe_variant(find_variant(settings.variant), settings, kDefaultSteps);
 }
 
 std::string check(const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
-  if (!config) return "variant: unknown mujoco variant '" + settings.variant + "' (one of " + variant_names() + ")";
-  if (std::string bad = check_step(settings, kDefaultSteps); !bad.empty()) return bad;
+  if (std::string bad = check_variant("mujoco", find_variant(settings.variant), variants(), settings, kDefaultSteps);
+      !bad.empty())
+    return bad;
   const double m = settings.contact_steps;
   if (!(m == 0.0 || (m >= kMinContactSteps && m <= kMaxContactSteps)))
     return "contact_steps: must be in [1, 1e6] (0: the default 2)";
-  return check_limits(settings);
+  return {};
 }
 
 }  // namespace pb::mujoco

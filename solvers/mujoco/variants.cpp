@@ -24,8 +24,6 @@ std::optional<Config> find_variant(std::string_view name) {
   return find_named(std::span<const Config>(kVariants), name, kDefaultVariant);
 }
 
-std::string variant_names() { return names_of(std::span<const Config>(kVariants)); }
-
 double contact_steps(const Settings& settings) {
   return settings.contact_steps > 0.0 ? settings.contact_steps : kDefaultContactSteps;
 }

@@ -43,8 +43,6 @@ inline constexpr double kMaxContactSteps = 1e6;
 std::span<const Config> variants();
 // The variant of that name; the empty name is kDefaultVariant.
 std::optional<Config> find_variant(std::string_view name);
-// "a, b, c" for messages.
-std::string variant_names();
 // Settings::contact_steps, or the default when it is 0.
 double contact_steps(const Settings& settings);
 

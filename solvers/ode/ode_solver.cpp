@@ -10,6 +10,7 @@
 #include "solvers/fixed_step.hpp"
 #include "solvers/hysteresis.hpp"
 #include "solvers/ode/world.hpp"
+#include "solvers/variant_table.hpp"
 
 namespace pb::ode {
 
@@ -237,25 +238,11 @@ Result solve_with(const System& system, const Settings& settings, const Config& 
 }
 
 std::string describe(const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
-  NamedValues out;
-  out.add("variant", config ? config->name : settings.variant);
-  if (!config) return out.json();
-  add_step(out, settings, kDefaultSteps);
-  add_config(out, *config, settings);
-  return out.json();
+  return describe_variant(find_variant(settings.variant), settings, kDefaultSteps);
 }
 
 std::string check(const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
-  if (!config) {
-    std::string known;
-    for (const Config& c : variants()) known += (known.empty() ? "" : ", ") + std::string(c.name);
-    return "variant: unknown '" + settings.variant + "' (known: " + known + ")";
-  }
-  if (std::string bad = check_step(settings, kDefaultSteps); !bad.empty()) return bad;
-  if (std::string bad = check_activation(config->activation, settings); !bad.empty()) return bad;
-  return check_limits(settings);
+  return check_variant("ode", find_variant(settings.variant), variants(), settings, kDefaultSteps);
 }
 
 }  // namespace pb::ode

@@ -12,6 +12,7 @@
 
 #include "solvers/fixed_step.hpp"
 #include "solvers/monitor.hpp"
+#include "solvers/run_limits.hpp"
 #include "solvers/siconos/model.hpp"
 
 namespace pb::siconos {

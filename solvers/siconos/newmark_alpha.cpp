@@ -17,7 +17,7 @@
 #include <sstream>
 
 #include "solvers/fixed_step.hpp"
-#include "solvers/monitor.hpp"
+#include "solvers/run_limits.hpp"
 #include "solvers/siconos/model.hpp"
 
 namespace pb::siconos {

@@ -5,10 +5,12 @@
 #include <exception>
 #include <optional>
 
-#include "solvers/compliant/contact_law.hpp"
+#include "cases/text.hpp"
+#include "solvers/contact_elements/contact_law.hpp"
 #include "solvers/fixed_step.hpp"
 #include "solvers/simbody/model.hpp"
 #include "solvers/simbody/variants.hpp"
+#include "solvers/variant_table.hpp"
 #include "solvers/whole_contacts.hpp"
 
 namespace pb::simbody {
@@ -199,22 +201,13 @@ Result solve(const System& system, const Settings& settings) {
 }
 
 std::string describe(const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
-  NamedValues out;
-  out.add("variant", config ? config->name : settings.variant);
-  if (!config) return out.add("unknown", true).json();
-  if (config->time_stepper()) add_step(out, settings, kDefaultSteps);
-  add_config(out, *config, settings);
-  return out.json();
+  return describe_variant(find_variant(settings.variant), settings, kDefaultSteps);
 }
 
 std::string check(const Settings& settings) {
   const std::optional<Config> config = find_variant(settings.variant);
-  if (!config) return "variant: unknown simbody variant '" + settings.variant + "' (one of " + variant_names() + ")";
-  if (config->time_stepper()) {
-    if (std::string bad = check_step(settings, kDefaultSteps); !bad.empty()) return bad;
-    if (std::string bad = check_activation(config->activation, settings); !bad.empty()) return bad;
-  } else {
+  if (std::string bad = check_variant("simbody", config, variants(), settings, kDefaultSteps); !bad.empty()) return bad;
+  if (!config->time_stepper()) {
     if (settings.steps != 0) return "steps: hunt-crossley's integrator chooses its own steps (--rtol)";
     if (settings.wh != 0.0) return "wh: hunt-crossley's integrator chooses its own steps (--rtol)";
     if (!(settings.stiffness >= 0.0) || !std::isfinite(settings.stiffness))
@@ -222,7 +215,7 @@ std::string check(const Settings& settings) {
     if (!(settings.rtol >= 0.0 && settings.rtol < 1.0)) return "rtol: must be in (0, 1) (0: the default " + format_number(kDefaultAccuracy) + ")";
     if (settings.rtol > 0.0 && settings.rtol < 1e-14) return "rtol: below 1e-14 is below double precision's round-off";
   }
-  return check_limits(settings);
+  return {};
 }
 
 }  // namespace pb::simbody

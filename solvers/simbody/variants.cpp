@@ -25,8 +25,6 @@ std::optional<Config> find_variant(std::string_view name) {
   return find_named(std::span<const Config>(kVariants), name, kDefaultVariant);
 }
 
-std::string variant_names() { return names_of(std::span<const Config>(kVariants)); }
-
 double stiffness(const Settings& settings) { return settings.stiffness > 0.0 ? settings.stiffness : kDefaultStiffness; }
 
 double accuracy(const Settings& settings) { return settings.rtol > 0.0 ? settings.rtol : kDefaultAccuracy; }

@@ -54,8 +54,6 @@ inline constexpr int kHuntCrossleyReports = 64;
 std::span<const Config> variants();
 // The variant of that name; the empty name is kDefaultVariant.
 std::optional<Config> find_variant(std::string_view name);
-// "a, b, c" for messages.
-std::string variant_names();
 
 double stiffness(const Settings& settings);
 double accuracy(const Settings& settings);

@@ -1,9 +1,10 @@
-#include "app/errors.hpp"
+#include "frontend/errors.hpp"
 
 #include <algorithm>
 #include <string_view>
 
 #include "cases/case_set.hpp"
+#include "cases/text.hpp"
 
 namespace pb::app {
 

@@ -1,12 +1,13 @@
-#include "app/solver_flags.hpp"
+#include "frontend/solver_flags.hpp"
 
 #include <algorithm>
 #include <array>
 #include <string_view>
 
-#include "app/errors.hpp"
 #include "cases/fields.hpp"
 #include "cases/system.hpp"
+#include "cases/text.hpp"
+#include "frontend/errors.hpp"
 #include "solvers/settings_fields.hpp"
 
 namespace pb::app {

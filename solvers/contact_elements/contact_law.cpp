@@ -1,4 +1,4 @@
-#include "solvers/compliant/contact_law.hpp"
+#include "solvers/contact_elements/contact_law.hpp"
 
 #include <algorithm>
 #include <cmath>

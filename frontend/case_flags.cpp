@@ -1,4 +1,4 @@
-#include "app/case_flags.hpp"
+#include "frontend/case_flags.hpp"
 
 #include <algorithm>
 #include <array>
@@ -6,10 +6,11 @@
 #include <optional>
 #include <string_view>
 
-#include "app/errors.hpp"
 #include "cases/case_set.hpp"
 #include "cases/fields.hpp"
 #include "cases/record.hpp"
+#include "cases/text.hpp"
+#include "frontend/errors.hpp"
 
 namespace pb::app {
 

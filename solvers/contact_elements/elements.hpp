@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cases/system.hpp"
-#include "solvers/compliant/contact_law.hpp"
+#include "solvers/contact_elements/contact_law.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb::compliant {

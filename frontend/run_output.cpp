@@ -1,10 +1,10 @@
-#include "app/run_output.hpp"
+#include "frontend/run_output.hpp"
 
 #include <cmath>
 
-#include "app/errors.hpp"
 #include "cases/fields.hpp"
 #include "cases/record.hpp"
+#include "frontend/errors.hpp"
 
 namespace pb::app {
 

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/case_flags.hpp"
+#include "frontend/case_flags.hpp"
 #include "rows/row.hpp"
 
 namespace pb::app {

@@ -1,4 +1,4 @@
-#include "solvers/compliant/elements.hpp"
+#include "solvers/contact_elements/elements.hpp"
 
 #include <algorithm>
 #include <cmath>
