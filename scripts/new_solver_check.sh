@@ -45,4 +45,4 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPOUNDBENCH_BENCH=OFF \
       ${CMAKE_CXX_COMPILER_LAUNCHER:+-DCMAKE_CXX_COMPILER_LAUNCHER=$CMAKE_CXX_COMPILER_LAUNCHER} > build-configure.log
 cmake --build build -j "$(nproc)" --target poundbench_tests poundbench > build.log
 echo "new_solver_check: the solver contract on symplectic-euler"
-build/tests/poundbench_tests --gtest_filter='*symplectic_euler*:*SymplecticEuler*:Registry*'
+build/tests/poundbench_tests --gtest_filter='*symplectic_euler*'

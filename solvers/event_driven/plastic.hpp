@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "solvers/event_driven/frame.hpp"
-#include "solvers/monitor.hpp"
+#include "solvers/run_limits.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb::event_driven {

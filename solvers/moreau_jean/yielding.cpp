@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "solvers/fixed_step.hpp"
-#include "solvers/monitor.hpp"
 #include "solvers/moreau_jean/dynamic.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
+#include "solvers/run_limits.hpp"
 
 namespace pb::moreau_jean {
 

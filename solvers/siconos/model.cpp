@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "solvers/monitor.hpp"
+#include "solvers/run_limits.hpp"
 
 namespace pb::siconos {
 

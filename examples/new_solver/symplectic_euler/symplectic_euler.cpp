@@ -57,6 +57,12 @@ class Engine final : public StepEngine {
 }  // namespace
 
 Result solve(const System& system, const Settings& settings) {
+  if (std::string bad = check(settings); !bad.empty()) {  // solve() may be called unchecked
+    Result r;
+    r.status = Status::failed;
+    r.message = bad;
+    return r;
+  }
   StepPlan plan;
   if (Result r = plan_steps(system, settings, kDefaultSteps, kDefaultStepCap, plan); r.status != Status::ok) return r;
   Engine engine(system, settings, plan.h);
