@@ -4,6 +4,8 @@
 
 #include "app/errors.hpp"
 #include "cases/fields.hpp"
+#include "cases/physical.hpp"
+#include "rows/physical_results.hpp"
 
 namespace pb::app {
 
@@ -88,6 +90,10 @@ nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {
     j["point"] = chosen.point;
   }
   j.update(case_json(row.input));
+  // A case in physical units: the values it was given (the Pi terms above follow from them).
+  for (const PhysicalField& field : kPhysicalFields)
+    if (!std::isnan(row.input.physical.*field.member)) j[std::string(field.name)] = row.input.physical.*field.member;
+  for (const PhysicalResult& x : physical_results(row)) j[std::string(x.name)] = number_or_null(x.value);
   return j;
 }
 

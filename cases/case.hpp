@@ -5,6 +5,7 @@
 // the same physical scene for the same Case.
 
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -48,6 +49,15 @@ bool uses_body2(Scene s);
 // The largest chain the case files accept.
 inline constexpr int kMaxChainBodies = 1000;
 
+// The physical values a case was given in (cases/physical.hpp), NaN where not given: periods
+// (s), masses (kg), the gap (m). The Pi terms are the case; these say what the user typed.
+struct Physical {
+  static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  double t0 = kNone, t1 = kNone, t2 = kNone;
+  double m0 = kNone, m1 = kNone, m2 = kNone;
+  double gap = kNone;
+};
+
 struct Case {
   std::string family;  // name of the sweep it belongs to; a label only
   Scene scene = Scene::pair;
@@ -80,6 +90,7 @@ struct Case {
   double mp_nu = 0.0;
   std::string record;
   std::shared_ptr<const Record> samples;
+  Physical physical;  // what a physical case was given as; its Pi terms above follow from it
 };
 
 // Number of bodies (wall excluded) and of contacts of the case's scene.

@@ -8,6 +8,8 @@
 #include <utility>
 
 #include "cases/fields.hpp"
+#include "cases/physical.hpp"
+#include "rows/physical_results.hpp"
 
 namespace pb {
 
@@ -190,6 +192,8 @@ std::string csv_header() {
   for (const CaseField& f : kCaseFields)
     if (group_of(f) == Group::pulse) line.text(f.name);
   for (const char* column : kVerdictColumns) line.text(column);
+  for (const PhysicalField& f : kPhysicalFields) line.text(f.name);
+  for (std::string_view column : kPhysicalResultNames) line.text(column);
   return line.take();
 }
 
@@ -231,6 +235,8 @@ std::string csv_line(const Row& row) {
   case_numbers(line, c, Group::pulse);
   line.text(resolved_text(r.resolved));
   line.text(r.unresolved);
+  for (const PhysicalField& f : kPhysicalFields) line.number(c.physical.*f.member);
+  for (const PhysicalResult& x : physical_results(row)) line.number(x.value);
   return line.take();
 }
 

@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "cases/fields.hpp"
+#include "cases/physical.hpp"
+#include "rows/physical_results.hpp"
 #include "cases/input_file.hpp"
 
 namespace pb {
@@ -198,6 +200,13 @@ Row parse_row(const Columns& columns, const std::vector<std::string>& fields) {
   row.repetitions = f.count<int>("repetitions", 1);  // a file from before repetitions: one timing
   r.resolved = f.named("resolved", &parse_resolved);  // a file from before the verdict: not judged
   r.unresolved = f.text("unresolved");
+  // The physical units (rows/physical_results.hpp), after the verdict: a file from before them
+  // has none. The results that are Pi terms times a scale are made again, not read.
+  for (const PhysicalField& field : kPhysicalFields) c.physical.*field.member = f.number(std::string(field.name));
+  r.step = f.number("h_s");
+  r.first_impact = f.number("first_impact_s");
+  r.impact_velocity_max = f.number("impact_velocity");
+  r.contact_force_max = f.number("contact_force_max") / mass_unit(c);
   if (const std::string bad = row_problem(row); !bad.empty()) throw RowReadError(bad);
   return row;  // penetration is not read: it is made from min_gap
 }
