@@ -76,8 +76,10 @@ TEST_F(Cli, PhysicalRecordCaseEqualsItsPiTermCase) {
 
 // The same buildings with a physical contact stiffness under two normalisations of one record
 // (its mean period's w_p and peak; --tp 2 and --a-p 1): the model is the same, so the peak in
-// metres is. CVODE integrates the same physical system in both; only round-off differs, which
-// its step control may grow to about its tolerance (rtol 1e-8 by default): 1e-6 relative.
+// metres is. CVODE integrates the same physical system in both, but its absolute tolerance is
+// on the Pi terms' length unit, which moves 20-fold here: the two runs differ by their
+// integration errors, 3.6e-5 relative on the peak at the default rtol (2e-8 at rtol 1e-11,
+// so not the model): 2e-4. The largest force is sampled at CVODE's accepted steps (3.5e-4): 2e-3.
 TEST_F(Cli, KContactGivesTheSamePeakUnderTwoNormalisationsOfARecord) {
   for (const char* variant : {"kelvin-voigt", "hunt-crossley"}) {
     const std::string args = kBuildings + " --pulse record --record " + kElCentro +
@@ -87,8 +89,8 @@ TEST_F(Cli, KContactGivesTheSamePeakUnderTwoNormalisationsOfARecord) {
     const nlohmann::json b = run_json(*this, args + " --tp 2 --a-p 1");
     ASSERT_FALSE(a.empty() || b.empty()) << variant;
     EXPECT_NE(num(a, "pi3"), num(b, "pi3")) << variant;  // two units indeed
-    EXPECT_NEAR(num(a, "peak_m"), num(b, "peak_m"), 1e-6 * num(a, "peak_m")) << variant;
-    EXPECT_NEAR(num(a, "contact_force_max"), num(b, "contact_force_max"), 1e-5 * num(a, "contact_force_max"))
+    EXPECT_NEAR(num(a, "peak_m"), num(b, "peak_m"), 2e-4 * num(a, "peak_m")) << variant;
+    EXPECT_NEAR(num(a, "contact_force_max"), num(b, "contact_force_max"), 2e-3 * num(a, "contact_force_max"))
         << variant;
     EXPECT_GT(num(a, "contact_force_max"), 0.0) << variant;
   }
