@@ -554,7 +554,7 @@ class Reader {
     }
     // An alias gives its field: the family's own (either way) before [defaults]'s, and never
     // both in one table. It is no axis itself.
-    for (Key a = kFirstAlias; a < kKeyCount; ++a) {
+    for (Key a = kFirstAlias; a < kFirstPhysical; ++a) {
       const Key f = key_of(alias_of(a)->field);
       for (const Entries* table : {&own, &defaults})
         if ((*table)[index(a)].given && (*table)[index(f)].given)
