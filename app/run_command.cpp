@@ -14,8 +14,10 @@
 #include "cases/fields.hpp"
 #include "cases/record.hpp"
 #include "cases/text.hpp"
+#include "frontend/contact_stiffness.hpp"
 #include "frontend/errors.hpp"
 #include "frontend/run_output.hpp"
+#include "rows/physical_results.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb::app {
@@ -43,6 +45,23 @@ std::string brief(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%.6g", x);
   return text;
+}
+
+// The results in the case's units (rows/physical_results.hpp): metres and seconds when the
+// case was given in them, the pulse's a_p and w_p in SI otherwise.
+void print_physical(std::ostream& out, const Row& row) {
+  const auto x = physical_results(row);
+  const auto value = [&](std::size_t k) { return brief(x[k].value); };
+  out << "peak     " << value(0) << " m (body 0)";
+  if (std::isfinite(x[1].value)) out << ", step h = " << value(1) << " s";
+  out << '\n';
+  if (std::isfinite(x[2].value))
+    out << "pounding first impact at t = " << value(2) << " s, fastest approach " << value(3) << " m/s (Pi "
+        << value(4) << ")\n";
+  else if (row.result.impacts == 0)
+    out << "pounding none\n";
+  if (std::isfinite(x[5].value))
+    out << "contact  largest force " << value(5) << " N, deepest penetration " << value(6) << " m\n";
 }
 
 void print_summary(std::ostream& out, const Row& row) {
@@ -96,6 +115,7 @@ void print_summary(std::ostream& out, const Row& row) {
         << " a_p/w_p^2, hysteretic " << brief(r.hysteretic) << " of the input energy\n";
   }
   out << "time     " << brief(row.seconds) << " s\n";
+  print_physical(out, row);
 }
 
 }  // namespace
@@ -109,6 +129,9 @@ CLI::App* add_run_command(CLI::App& app, RunFlags& flags) {
                       "Write the time history as CSV (t,u1,u0,...,v...,g...,lambda...) to this file");
   command->add_option("--samples", flags.samples, "Samples of the time history (with --history)")
       ->capture_default_str();
+  command->add_option("--k-contact", flags.k_contact,
+                      "Compliant: contact stiffness in N/m (linear element) or N/m^1.5 (Hertz family), for a case in "
+                      "physical units; sets --stiffness's Pi term K");
   return command;
 }
 
@@ -120,7 +143,13 @@ int run_command(const CLI::App& command, RunFlags flags) {
     check_samples(flags.samples, chosen.input);
     flags.solver_flags.settings.history_samples = flags.samples;
   }
-  const SolverInfo& solver = checked_solver(flags.solver_flags, command);
+  const bool k_contact = command.count("--k-contact") > 0;
+  if (k_contact)
+    apply_k_contact(chosen.input, flags.solver_flags.solver, flags.solver_flags.settings, flags.k_contact,
+                    command.count("--stiffness") > 0);
+  const SolverInfo& solver = checked_solver(flags.solver_flags, [&](std::string_view flag) {
+    return command.count(std::string(flag)) > 0 || (k_contact && flag == "--stiffness");
+  });
   check_step_bound(chosen.input, flags.solver_flags.settings);
   if (history) {
     std::vector<NamedFile> inputs = record_files({&chosen.input, 1});

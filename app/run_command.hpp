@@ -17,6 +17,7 @@ struct RunFlags {
   bool json = false;
   std::string history;
   int samples = 2000;
+  double k_contact = 0.0;  // --k-contact (frontend/contact_stiffness.hpp)
 };
 
 CLI::App* add_run_command(CLI::App& app, RunFlags& flags);

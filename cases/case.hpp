@@ -49,6 +49,15 @@ bool uses_body2(Scene s);
 // The largest chain the case files accept.
 inline constexpr int kMaxChainBodies = 1000;
 
+// The physical values a case was given in (cases/physical.hpp), NaN where not given: periods
+// (s), masses (kg), the gap (m). The Pi terms are the case; these say what the user typed.
+struct Physical {
+  static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  double t0 = kNone, t1 = kNone, t2 = kNone;
+  double m0 = kNone, m1 = kNone, m2 = kNone;
+  double gap = kNone;
+};
+
 struct Case {
   std::string family;  // name of the sweep it belongs to; a label only
   Scene scene = Scene::pair;
@@ -91,6 +100,7 @@ struct Case {
   double pi_y2 = std::numeric_limits<double>::infinity();
   double pi_y = std::numeric_limits<double>::infinity();
   double alpha = 0.0;
+  Physical physical;  // what a physical case was given as; its Pi terms above follow from it
 };
 
 // Whether any body of the case yields (a finite Pi_y the scene uses).

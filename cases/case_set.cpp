@@ -14,6 +14,7 @@
 
 #include "cases/fields.hpp"
 #include "cases/nearest_name.hpp"
+#include "cases/physical.hpp"
 #include "cases/record.hpp"
 #include "cases/text.hpp"
 #include "cases/toml_input.hpp"
@@ -43,7 +44,10 @@ constexpr Key kScene = 0, kPulse = 1, kDirectivity = 2, kFirstNumber = 3;
 constexpr Key kSymmetric = kFirstNumber + static_cast<Key>(kCaseFields.size());
 constexpr Key kName = kSymmetric + 1;
 constexpr Key kFirstAlias = kName + 1;
-constexpr int kKeyCount = kFirstAlias + static_cast<Key>(kCaseAliases.size());
+// The physical units (cases/physical.hpp), after the aliases: numbers and axes like the Pi
+// terms they replace, never beside them.
+constexpr Key kFirstPhysical = kFirstAlias + static_cast<Key>(kCaseAliases.size());
+constexpr int kKeyCount = kFirstPhysical + static_cast<Key>(kPhysicalFields.size());
 
 // Limits that keep a typo (points = 2000000) from exhausting memory.
 constexpr std::int64_t kMaxGridPoints = 100'000;
@@ -57,12 +61,17 @@ constexpr const CaseField* number_field(Key k) {
 }
 
 constexpr const CaseAlias* alias_of(Key k) {
-  return k >= kFirstAlias && k < kKeyCount ? &kCaseAliases[index(k - kFirstAlias)] : nullptr;
+  return k >= kFirstAlias && k < kFirstPhysical ? &kCaseAliases[index(k - kFirstAlias)] : nullptr;
+}
+
+constexpr const PhysicalField* physical_of(Key k) {
+  return k >= kFirstPhysical && k < kKeyCount ? &kPhysicalFields[index(k - kFirstPhysical)] : nullptr;
 }
 
 constexpr std::string_view key_name(Key k) {
   if (const CaseField* f = number_field(k)) return f->name;
   if (const CaseAlias* a = alias_of(k)) return a->name;
+  if (const PhysicalField* f = physical_of(k)) return f->name;
   switch (k) {
     case kScene: return "scene";
     case kPulse: return "pulse";
@@ -82,10 +91,13 @@ Key key_of(std::string_view s) { return *parse_key(s); }
 
 bool is_choice(Key k) { return k < kFirstNumber; }
 bool is_text(Key k) { return number_field(k) != nullptr && number_field(k)->text != nullptr; }
-bool is_number(Key k) { return (number_field(k) != nullptr && !is_text(k)) || alias_of(k) != nullptr; }
+bool is_number(Key k) {
+  return (number_field(k) != nullptr && !is_text(k)) || alias_of(k) != nullptr || physical_of(k) != nullptr;
+}
 // Which scenes use a key: symmetric speaks of body 2, as pi7 and pi8 do.
 FieldUse use_of(Key k) {
   if (const CaseField* f = number_field(k)) return f->use;
+  if (const PhysicalField* f = physical_of(k)) return f->body == 1 ? FieldUse::body1 : f->body == 2 ? FieldUse::body2 : FieldUse::every;
   return k == kSymmetric ? FieldUse::body2 : FieldUse::every;
 }
 bool is_body1(Key k) { return use_of(k) == FieldUse::body1; }
@@ -97,6 +109,13 @@ bool pulse_uses(FieldUse use, PulseShape p) {
          (use == FieldUse::record && p == PulseShape::record);
 }
 bool has_chain(Scene s) { return s == Scene::chain; }
+// Whether a key is given in physical units, and the Pi term a physical family has instead.
+bool is_physical(Key k) { return physical_of(k) != nullptr; }
+bool replaced_by_physical(Key k) {
+  for (const PhysicalField& f : kPhysicalFields)
+    if (number_field(k) && f.pi == number_field(k)->name) return true;
+  return false;
+}
 
 // The order in which a family's lists expand: scene outermost (not listed: it is the outer
 // loop), pi2 innermost, so the points of one spectrum are contiguous. A number not listed
@@ -113,6 +132,13 @@ const std::vector<Key>& expansion_order() {
     for (std::string_view n : kExpansionOrder) out.push_back(key_of(n));
     for (Key k = kFirstNumber; k < kSymmetric; ++k)
       if (std::find(out.begin(), out.end(), k) == out.end()) out.insert(out.end() - 1, k);
+    // A physical key expands where its Pi term does (t0 innermost, as pi2); a family has
+    // one or the other.
+    for (Key k = kFirstPhysical; k < kKeyCount; ++k) {
+      const std::string_view pi = physical_of(k)->pi;
+      const auto at = pi.empty() ? out.end() - 1 : std::find(out.begin(), out.end(), key_of(pi));
+      out.insert(at + 1, k);
+    }
     return out;
   }();
   return order;
@@ -562,7 +588,7 @@ class Reader {
     }
     // An alias gives its field: the family's own (either way) before [defaults]'s, and never
     // both in one table. It is no axis itself.
-    for (Key a = kFirstAlias; a < kKeyCount; ++a) {
+    for (Key a = kFirstAlias; a < kFirstPhysical; ++a) {
       const Key f = key_of(alias_of(a)->field);
       for (const Entries* table : {&own, &defaults})
         if ((*table)[index(a)].given && (*table)[index(f)].given)
@@ -573,10 +599,28 @@ class Reader {
       else if (!own[index(f)].given && defaults[index(a)].given) eff[index(f)] = defaults[index(a)];
       eff[index(a)] = Entry{};
     }
+    // A family in physical units (cases/physical.hpp): never beside the Pi terms they give.
+    const Entry* physical = nullptr;
+    for (Key k = kFirstPhysical; k < kKeyCount && !physical; ++k)
+      if (eff[index(k)].given) physical = &eff[index(k)];
+    if (physical) {
+      // A family's own Pi term is a mistake; a default one serves the families in Pi terms.
+      for (Key k = kFirstNumber; k < kSymmetric; ++k) {
+        if (!replaced_by_physical(k)) continue;
+        if (own[index(k)].given)
+          fail(own[index(k)].line, own[index(k)].field,
+               "not with " + physical->field + " (line " + std::to_string(physical->line) +
+                   "): a family is given in Pi terms or in physical units, not both");
+        eff[index(k)] = Entry{};
+      }
+      for (std::string_view key : {"t0", "gap"})
+        if (!eff[index(key_of(key))].given)
+          fail(line, prefix + "." + std::string(key), "required by a family in physical units");
+    }
 
     for (Key k = 0; k < kSymmetric; ++k) {
       const bool required = is_choice(k) || (number_field(k)->required && use_of(k) == FieldUse::every);
-      if (!required || eff[index(k)].given) continue;
+      if (!required || eff[index(k)].given || (physical && replaced_by_physical(k))) continue;
       const std::string field = prefix + "." + std::string(key_name(k));
       if (key_name(k) == "eps") fail(line, field, "required (the coefficient of restitution is always stated)");
       fail(line, field, "required");
@@ -594,7 +638,8 @@ class Reader {
 
     // A family's own key for a body its scenes lack is a mistake; a default for it is
     // merely not needed here, since [defaults] serves families of every scene.
-    for (Key k = kFirstNumber; k < kName; ++k) {
+    for (Key k = kFirstNumber; k < kKeyCount; ++k) {
+      if (k >= kName && !is_physical(k)) continue;
       if (use_of(k) == FieldUse::every || is_pulse_key(k)) continue;
       const bool used = std::any_of(scenes.begin(), scenes.end(),
                                     [&](int s) { return scene_uses(use_of(k), static_cast<Scene>(s)); });
@@ -608,23 +653,29 @@ class Reader {
         fail(line, prefix + "." + std::string(key_name(k)), "required by scene chain (" +
                                                                 std::string(number_field(k)->help) + ")");
 
-    resolve_pulse_keys(own, eff, prefix, line);
+    resolve_pulse_keys(own, eff, prefix, line, physical != nullptr);
 
     const Entry& sym = eff[index(kSymmetric)];
     if (sym.given && sym.flag) {
-      for (Key k = kFirstNumber; k < kSymmetric; ++k) {
-        if (!is_body2(k)) continue;
+      for (Key k = kFirstNumber; k < kKeyCount; ++k) {
+        if (!is_body2(k) || (k >= kSymmetric && !is_physical(k))) continue;
         const Entry& o = own[index(k)];
         if (o.given)
           fail(o.line, o.field,
                "not allowed with symmetric = true (line " + std::to_string(sym.line) + "), which sets " +
-                   std::string(key_name(k)) + " = " + std::string(key_name(body1_twin(k))));
+                   std::string(is_physical(k) ? physical_of(k)->name : key_name(k)) + " = " +
+                   (is_physical(k) ? std::string(physical_of(k)->name == "t2" ? "t1" : "m1")
+                                   : std::string(key_name(body1_twin(k)))));
         eff[index(k)] = Entry{};  // a default gives way to the family's symmetry
       }
     }
 
-    for (Key k = kFirstNumber; k < kSymmetric; ++k) {
-      if (!(is_body1(k) || is_body2(k)) || !number_field(k)->required) continue;
+    for (Key k = kFirstNumber; k < kKeyCount; ++k) {
+      if (k >= kSymmetric && !is_physical(k)) continue;
+      // In physical units the periods are required, the masses default to m0.
+      const bool required = is_physical(k) ? physical && (physical_of(k)->name == "t1" || physical_of(k)->name == "t2")
+                                           : number_field(k)->required && !physical;
+      if (!(is_body1(k) || is_body2(k)) || !required) continue;
       const bool needed = is_body1(k) ? body1 : body2 && !(sym.given && sym.flag);
       if (!needed || eff[index(k)].given) continue;
       std::vector<int> users;
@@ -640,7 +691,8 @@ class Reader {
   // The keys of one pulse (record, cycles, mp_gamma, mp_nu): a family's pulses all use each
   // of them or none (else a pulse that does not would repeat its cases for each value); one
   // that a family's pulses need is required; a default that they do not use is left out.
-  void resolve_pulse_keys(const Entries& own, Entries& eff, const std::string& prefix, std::uint32_t line) const {
+  void resolve_pulse_keys(const Entries& own, Entries& eff, const std::string& prefix, std::uint32_t line,
+                          bool physical) const {
     const std::vector<int>& pulses = eff[index(kPulse)].choices;
     auto list = [](const std::vector<PulseShape>& ps) {
       std::string out;
@@ -664,6 +716,15 @@ class Reader {
       if (!eff[index(k)].given && number_field(k)->required)
         fail(line, field, "required by pulse " + list(users) + " (" + std::string(number_field(k)->help) + ")");
     }
+    // In physical units a record's w_p defaults to its mean frequency (expand); a pulse's a_p
+    // and period are the load itself.
+    const bool other = std::any_of(pulses.begin(), pulses.end(),
+                                   [](int p) { return static_cast<PulseShape>(p) != PulseShape::record; });
+    if (physical && other)
+      for (std::string_view key : {"a_p", "w_p"})
+        if (eff[index(key_of(key))].builtin)
+          fail(line, prefix + "." + std::string(key),
+               "required by a family in physical units (the pulse's a_p in m/s^2, and w_p or tp in s)");
   }
 
   // The cartesian product, in Key order (scene outermost, pi2 innermost). Keys a scene
@@ -671,13 +732,15 @@ class Reader {
   // repeat cases.
   void expand(const Entries& eff, const std::string& family, std::vector<Case>& out) const {
     const bool symmetric = eff[index(kSymmetric)].given && eff[index(kSymmetric)].flag;
+    bool physical = false;
+    for (Key k = kFirstPhysical; k < kKeyCount; ++k) physical = physical || eff[index(k)].given;
     for (int scene_value : eff[index(kScene)].choices) {
       const auto scene = static_cast<Scene>(scene_value);
       std::vector<Key> axes;
       for (Key k : expansion_order()) {
         if (!is_pulse_key(k) && !scene_uses(use_of(k), scene)) continue;
         if (is_body2(k) && symmetric) continue;
-        if (is_pulse_key(k) && !eff[index(k)].given) continue;
+        if (!eff[index(k)].given) continue;  // a pulse's key for other pulses, a Pi term in physical units
         axes.push_back(k);
       }
       std::size_t count = 1;
@@ -704,6 +767,7 @@ class Reader {
           if (!std::isfinite(c.samples->t_m)) report_record(eff, axes, at, no_mean_period_reason());
           c.w_p = c.samples->mean_frequency();
         }
+        if (physical) to_pi_terms(c, eff, axes, at, symmetric);
         if (auto bad = validate(c)) report_invalid(*bad, eff, axes, at, symmetric);
         out.push_back(c);
         for (std::size_t a = axes.size(); a-- > 0;) {  // odometer: the last axis turns fastest
@@ -714,8 +778,26 @@ class Reader {
     }
   }
 
+  // A case in physical units: its Pi terms, in the unit of a record's mean frequency unless
+  // w_p (or tp) is given.
+  void to_pi_terms(Case& c, const Entries& eff, const std::vector<Key>& axes, const std::vector<std::size_t>& at,
+                   bool symmetric) const {
+    if (symmetric && uses_body2(c.scene)) {
+      c.physical.t2 = c.physical.t1;
+      c.physical.m2 = c.physical.m1;
+    }
+    if (c.pulse == PulseShape::record && eff[index(key_of("w_p"))].builtin) {
+      c.w_p = default_w_p(c);
+      if (!std::isfinite(c.w_p))
+        fail(eff[index(key_of("t0"))].line, eff[index(key_of("t0"))].field,
+             "record " + clip(c.record) + " has no mean period (no Fourier amplitude in 0.25-20 Hz): give w_p or tp");
+    }
+    if (auto bad = apply_physical(c)) report_invalid(*bad, eff, axes, at, symmetric);
+  }
+
   void set(Case& c, Key k, const Entry& s, std::size_t i) const {
-    if (k == kPulse) c.pulse = static_cast<PulseShape>(s.choices[i]);
+    if (const PhysicalField* p = physical_of(k)) c.physical.*(p->member) = s.values[i];
+    else if (k == kPulse) c.pulse = static_cast<PulseShape>(s.choices[i]);
     else if (is_text(k)) {
       c.*(number_field(k)->text) = s.texts[i];
       c.samples = records_.at(s.texts[i]);
@@ -746,7 +828,7 @@ class Reader {
     const std::size_t colon = bad.find(':');
     const std::string reason = colon == std::string::npos ? bad : bad.substr(colon + 1);
     std::optional<Key> k = parse_key(bad.substr(0, colon));
-    if (k && symmetric && is_body2(*k)) k = body1_twin(*k);
+    if (k && symmetric && is_body2(*k)) k = is_physical(*k) ? key_of(physical_of(*k)->name == "t2" ? "t1" : "m1") : body1_twin(*k);
     const auto pos = k ? std::find(axes.begin(), axes.end(), *k) : axes.end();
     if (pos == axes.end()) fail(0, "", bad);  // validate checked a field this file does not set
     const Entry& s = eff[index(*k)];

@@ -8,6 +8,7 @@
 
 #include "cases/case_set.hpp"
 #include "cases/fields.hpp"
+#include "cases/physical.hpp"
 #include "cases/record.hpp"
 #include "cases/text.hpp"
 #include "frontend/errors.hpp"
@@ -30,6 +31,8 @@ ChosenCase case_from_file(const GivenFlag& given, const CaseFlags& flags) {
     if (given(flag_of(field))) throw BadInput(flag_of(field) + ": cannot be combined with --case-file");
   for (const CaseAlias& alias : kCaseAliases)
     if (given(flag_of(alias.name))) throw BadInput(flag_of(alias.name) + ": cannot be combined with --case-file");
+  for (const PhysicalField& field : kPhysicalFields)
+    if (given(flag_of(field.name))) throw BadInput(flag_of(field.name) + ": cannot be combined with --case-file");
   const CaseSet set = load_case_set(flags.case_file);
   const std::size_t n = set.cases.size();
   const std::string file = flags.case_file;
@@ -51,22 +54,39 @@ ChosenCase case_from_file(const GivenFlag& given, const CaseFlags& flags) {
 
 ChosenCase case_from_flags(const GivenFlag& given, const CaseFlags& flags) {
   if (given("--point")) throw BadInput("--point: only used with --case-file");
+  // A case in physical units (cases/physical.hpp) gives the Pi terms its fields replace,
+  // never beside them: the first physical flag given names the way the case was given.
+  std::string physical_flag;
+  for (const PhysicalField& field : kPhysicalFields)
+    if (physical_flag.empty() && given(flag_of(field.name))) physical_flag = flag_of(field.name);
+  // In physical units the load is as recorded or described: --directivity defaults to normal.
   for (std::string_view flag : {"--scene", "--pulse", "--directivity"})
-    if (!given(flag)) throw BadInput(std::string(flag) + ": required (or give --case-file)");
+    if (!given(flag) && !(flag == "--directivity" && !physical_flag.empty()))
+      throw BadInput(std::string(flag) + ": required (or give --case-file)");
 
   Case c;
   c.scene = parsed("--scene", flags.scene, parse_scene(flags.scene), "wall, pair, row3, chain");
   c.pulse = parsed("--pulse", flags.pulse, parse_pulse(flags.pulse),
                    "sine, cosine, makris-a, makris-b, makris-c, mp, record");
-  c.directivity =
-      parsed("--directivity", flags.directivity, parse_directivity(flags.directivity), "normal, reverse");
+  if (given("--directivity"))
+    c.directivity =
+        parsed("--directivity", flags.directivity, parse_directivity(flags.directivity), "normal, reverse");
   const std::string scene(name(c.scene));
+  const auto replaced = [&](const CaseField& field) {
+    for (const PhysicalField& p : kPhysicalFields)
+      if (!physical_flag.empty() && p.pi == field.name) return true;
+    return false;
+  };
   // A field the scene and pulse use is taken from its flag (a required one must be given);
   // one they do not use must not be given, and keeps Case's default.
   for (const CaseField& field : kCaseFields) {
     const std::string flag = flag_of(field);
     const bool used = used_by(field, c);
     const std::string user = pulse_use(field.use) ? "pulse " + std::string(name(c.pulse)) : "scene " + scene;
+    if (replaced(field)) {
+      if (given(flag)) throw BadInput(flag + ": not with " + physical_flag + " (a case is given in Pi terms or in physical units, not both)");
+      continue;
+    }
     if (used && field.required && !given(flag))
       throw BadInput(flag + (field.use == FieldUse::every ? ": required (or give --case-file)" : ": required by " + user));
     if (!used && given(flag)) throw BadInput(flag + ": not used by " + user);
@@ -104,6 +124,25 @@ ChosenCase case_from_flags(const GivenFlag& given, const CaseFlags& flags) {
       c.w_p = c.samples->mean_frequency();
     }
   }
+  if (!physical_flag.empty()) {
+    for (const PhysicalField& field : kPhysicalFields) {
+      if (!given(flag_of(field.name))) continue;
+      if (!used_by(field, c.scene)) throw BadInput(flag_of(field.name) + ": not used by scene " + scene);
+      c.physical.*field.member = flags.numbers.physical.*field.member;
+    }
+    // The unit of the Pi terms: a pulse's own a_p and period; a record's peak and mean period
+    // unless given (any unit gives the same physical case).
+    if (c.pulse != PulseShape::record && !given("--a-p"))
+      throw BadInput("--a-p: required by a case in physical units (the pulse's peak acceleration, m/s^2)");
+    if (!given("--w-p") && !given("--tp")) {
+      if (c.pulse != PulseShape::record)
+        throw BadInput("--tp: required by a case in physical units (the pulse's period, s; or --w-p)");
+      c.w_p = default_w_p(c);
+      if (!std::isfinite(c.w_p))
+        throw BadInput("--tp: required: " + c.record + " has no mean period (no Fourier amplitude in 0.25-20 Hz)");
+    }
+    if (auto bad = apply_physical(c)) throw BadInput(case_flag_message(*bad));
+  }
   if (auto bad = validate(c)) throw BadInput(case_flag_message(*bad));
   return {c, 0, {}};
 }
@@ -123,6 +162,8 @@ void add_case_flags(CLI::App& command, CaseFlags& f) {
   }
   for (std::size_t a = 0; a < kCaseAliases.size(); ++a)
     command.add_option(flag_of(kCaseAliases[a].name), f.aliases[a], std::string(kCaseAliases[a].help));
+  for (const PhysicalField& field : kPhysicalFields)
+    command.add_option(flag_of(field.name), f.numbers.physical.*field.member, std::string(field.help));
   command.add_option("--case-file", f.case_file, "Take the case from a case-set file instead of the flags above");
   command.add_option("--point", f.point, "Which case of --case-file (0-based; needed when it has several)");
 }

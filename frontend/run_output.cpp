@@ -5,6 +5,8 @@
 #include "cases/fields.hpp"
 #include "cases/record.hpp"
 #include "frontend/errors.hpp"
+#include "cases/physical.hpp"
+#include "rows/physical_results.hpp"
 
 namespace pb::app {
 
@@ -97,6 +99,10 @@ nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {
     j["record_t_m"] = number_or_null(row.input.samples->t_m);
     j["w_p_source"] = source;
   }
+  // A case in physical units: the values it was given (the Pi terms above follow from them).
+  for (const PhysicalField& field : kPhysicalFields)
+    if (!std::isnan(row.input.physical.*field.member)) j[std::string(field.name)] = row.input.physical.*field.member;
+  for (const PhysicalResult& x : physical_results(row)) j[std::string(x.name)] = number_or_null(x.value);
   return j;
 }
 

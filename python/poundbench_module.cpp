@@ -37,6 +37,8 @@
 #include "frontend/errors.hpp"
 #include "frontend/run_output.hpp"
 #include "frontend/solver_flags.hpp"
+#include "cases/physical.hpp"
+#include "frontend/contact_stiffness.hpp"
 #include "solvers/settings_fields.hpp"
 #include "sweep/sweep.hpp"
 
@@ -55,6 +57,7 @@ struct Keywords {
   std::vector<std::string> given;  // the flags the keywords stand for ("--pi3")
   bool history = false;
   std::optional<long long> samples, threads;
+  double k_contact = 0.0;
 
   bool has(std::string_view flag) const {
     for (const std::string& g : given)
@@ -165,6 +168,12 @@ Keywords read_keywords(const std::string& function, const py::kwargs& kwargs) {
                                                [&](const CaseAlias& x) { return x.name == key; });
                for_run && alias != kCaseAliases.end()) {
       k.case_flags.aliases[static_cast<std::size_t>(alias - kCaseAliases.begin())] = number(function, key, value);
+    } else if (const auto physical = std::find_if(kPhysicalFields.begin(), kPhysicalFields.end(),
+                                                  [&](const PhysicalField& x) { return x.name == key; });
+               for_run && physical != kPhysicalFields.end()) {
+      k.case_flags.numbers.physical.*physical->member = number(function, key, value);
+    } else if (for_run && key == "k_contact") {
+      k.k_contact = number(function, key, value);
     } else if (for_run && key == "case_file") {
       k.case_flags.case_file = text(function, key, value);
     } else if (for_run && key == "point") {
@@ -327,7 +336,13 @@ py::dict run(const py::kwargs& kwargs) {
       app::check_samples(samples, c.input);
       k.solver_flags.settings.history_samples = samples;
     }
-    const SolverInfo* info = &app::checked_solver(k.solver_flags, k.given_flag());
+    // k_contact as run's --k-contact: the Pi term K of --stiffness (frontend/contact_stiffness.hpp).
+    const bool k_contact = k.has("--k-contact");
+    if (k_contact)
+      app::apply_k_contact(c.input, k.solver_flags.solver, k.solver_flags.settings, k.k_contact, k.has("--stiffness"));
+    const app::GivenSolverFlag given = k.given_flag();
+    const SolverInfo* info = &app::checked_solver(
+        k.solver_flags, [&](std::string_view flag) { return given(flag) || (k_contact && flag == "--stiffness"); });
     app::check_step_bound(c.input, k.solver_flags.settings);
     return std::pair<app::ChosenCase, const SolverInfo*>(c, info);
   });
@@ -386,7 +401,10 @@ PYBIND11_MODULE(poundbench, m) {
       "Solves one case, as `poundbench run --json`: returns its object (status, message, pi1, the counts,\n"
       "the solver and settings, the case). Keywords are the command line's flags with '_' for '-':\n"
       "scene, pulse, directivity (or case_file and point), solver, variant, and\n" +
-      python::keyword_lines(kCaseFields) + python::keyword_lines(kCaseAliases) + python::keyword_lines(kSettingFields) +
+      python::keyword_lines(kCaseFields) + python::keyword_lines(kCaseAliases) +
+      python::keyword_lines(kPhysicalFields) +
+      "    k_contact: Compliant: contact stiffness in N/m (linear) or N/m^1.5 (Hertz family), for a case in\n"
+      "      physical units; sets stiffness's Pi term K\n" + python::keyword_lines(kSettingFields) +
       "    history: True for the time history, or samples=N (default 2000; a time-stepper records every\n"
       "      step): result['history'] is a dict of NumPy arrays, one per column of `run --history`\n"
       "      (t, u1, u0, ..., lambda1).\n"

@@ -38,6 +38,7 @@ MEASURED = "measured.csv"
 PROVENANCE = "provenance.json"
 MPI = "mpi.csv"  # scripts/mpi_throughput.sh's medians, measured apart from the main job
 MPI_PROVENANCE = "mpi-provenance.json"
+PHYSICAL = "physical-example.json"  # scripts/physical_example.sh: README's question in metres and seconds
 
 
 def committed(folder):
@@ -60,7 +61,11 @@ def committed(folder):
             mpi = dict(rows=load([path(MPI)]), provenance=json.load(f))
     has_impacting = os.path.exists(os.path.join(folder, IMPACTING))
     has_records_wp = os.path.exists(os.path.join(folder, RECORDS_WP))
-    return dict(mpi=mpi, workprecision=load([path(WORKPRECISION)]),
+    physical = None
+    if os.path.exists(os.path.join(folder, PHYSICAL)):
+        with open(path(PHYSICAL)) as f:
+            physical = json.load(f)
+    return dict(mpi=mpi, physical=physical, workprecision=load([path(WORKPRECISION)]),
                 impacting=read_impacting(path(IMPACTING)) if has_impacting else None,
                 scenes={r["family"]: r["scene"] for r in load([path(FAMILIES)])},
                 stability=load([path(STABILITY)]), measured=load([path(MEASURED)]),
@@ -110,11 +115,37 @@ def mpi_lines(mpi):
     return lines
 
 
+def physical_lines(example):
+    """README's physical example: the two commands, and what each answered, in metres and
+    seconds (the error against the first, the reference)."""
+    if example is None:
+        return ["Not run yet: `scripts/physical_example.sh` writes this example."]
+    ref = example["results"][0]
+
+    def g(x, digits=4):
+        return "–" if x is None else f"{x:.{digits}g}"
+
+    lines = ["```", *example["commands"], "```", "",
+             f"The record's peak is {g(ref['a_p'])} m/s^2 and its mean period {g(2 * 3.141592653589793 / ref['w_p'])} s "
+             f"(the unit of the Pi terms: Pi2 = {g(ref['pi2'])}, Pi3 = {g(ref['pi3'])}, Pi5 = {g(ref['pi5'])}).", "",
+             "| solver | peak of body 0 (m) | error | step h (s) | impacts | first impact (s) | "
+             "largest impact velocity (m/s) | verdict |", "|---|---:|---:|---:|---:|---:|---:|---|"]
+    for r in example["results"]:
+        error = abs(r["peak_m"] - ref["peak_m"]) / ref["peak_m"]
+        verdict = {True: "resolved", False: "UNRESOLVED", None: r["status"]}[r["resolved"]]
+        lines.append(f"| {r['solver']} | {g(r['peak_m'])} | {'exact' if r is ref else f'{100 * error:.2g} %'} | "
+                     f"{g(r['h_s'])} | {r['impacts']} | {g(r['first_impact_s'])} | {g(r['impact_velocity'])} | "
+                     f"{verdict} |")
+    return lines + ["", "*Written by `reports/make_report.py` from `reports/physical-example.json` "
+                        "(`scripts/physical_example.sh`). Not edited by hand.*"]
+
+
 def blocks(folder):
     """Every generated block of README, by name, as lines."""
     inputs = committed(folder)
     summary = inputs["workprecision"]
     return {
+        "physical": physical_lines(inputs["physical"]),
         "mpi": [
             *mpi_lines(inputs["mpi"]), "",
             source_line(inputs, [MPI, MPI_PROVENANCE], inputs["mpi"]["provenance"]),

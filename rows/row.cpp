@@ -9,6 +9,8 @@
 
 #include "cases/fields.hpp"
 #include "cases/text.hpp"
+#include "cases/physical.hpp"
+#include "rows/physical_results.hpp"
 
 namespace pb {
 
@@ -204,6 +206,8 @@ std::string csv_header() {
   for (const CaseField& f : kCaseFields)
     if (group_of(f) == Group::yielding) line.text(f.name);
   for (const char* column : kYieldColumns) line.text(column);
+  for (const PhysicalField& f : kPhysicalFields) line.text(f.name);
+  for (std::string_view column : kPhysicalResultNames) line.text(column);
   return line.take();
 }
 
@@ -249,6 +253,8 @@ std::string csv_line(const Row& row) {
   line.number(ductility(row));
   line.number(r.residual);
   line.number(r.hysteretic);
+  for (const PhysicalField& f : kPhysicalFields) line.number(c.physical.*f.member);
+  for (const PhysicalResult& x : physical_results(row)) line.number(x.value);
   return line.take();
 }
 

@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "cases/fields.hpp"
+#include "cases/physical.hpp"
+#include "rows/physical_results.hpp"
 #include "cases/input_file.hpp"
 
 namespace pb {
@@ -200,6 +202,13 @@ Row parse_row(const Columns& columns, const std::vector<std::string>& fields) {
   r.unresolved = f.text("unresolved");
   r.residual = f.number("residual");  // mu is not read: it is made from pi1 and Pi_y
   r.hysteretic = f.number("hysteretic");
+  // The physical units (rows/physical_results.hpp), after the verdict: a file from before them
+  // has none. The results that are Pi terms times a scale are made again, not read.
+  for (const PhysicalField& field : kPhysicalFields) c.physical.*field.member = f.number(std::string(field.name));
+  r.step = f.number("h_s");
+  r.first_impact = f.number("first_impact_s");
+  r.impact_velocity_max = f.number("impact_velocity");
+  r.contact_force_max = f.number("contact_force_max") / mass_unit(c);
   if (const std::string bad = row_problem(row); !bad.empty()) throw RowReadError(bad);
   return row;  // penetration is not read: it is made from min_gap
 }

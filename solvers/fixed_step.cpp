@@ -47,12 +47,14 @@ class ContactTally {
  public:
   ContactTally(std::size_t nc, bool durations, double floor)
       : pushed_(nc), in_phase_(nc), run_(durations ? nc : 0, -1), floor_(floor) {}
-  void step(const StepOutput& out, const std::vector<double>& rate_before, StepTally& t) {
+  // t_end: the end of the step, where an impact of it is first seen closed.
+  void step(const StepOutput& out, const std::vector<double>& rate_before, StepTally& t, double t_end) {
     for (std::size_t j = 0; j < run_.size(); ++j) {
       if (out.entered[j]) run_[j] = rate_before[j] < -floor_ ? 0 : -1;
       if (run_[j] < 0) continue;
       if (out.force[j] != 0.0) {
         ++run_[j];
+        force_max_ = std::max(force_max_, out.force[j]);
       } else {  // ended
         const double steps = static_cast<double>(run_[j]);
         if (!(shortest_ <= steps)) shortest_ = steps;  // NaN: the first
@@ -60,7 +62,7 @@ class ContactTally {
       }
     }
     for (std::size_t j = 0; j < pushed_.size(); ++j) {
-      if (out.entered[j] && rate_before[j] < 0.0) ++t.impacts;
+      if (out.entered[j] && rate_before[j] < 0.0) t.impact(t_end, rate_before[j]);
       const bool push = out.force[j] > 0.0;
       if (push && pushed_[j] && !in_phase_[j]) {
         ++t.phases;
@@ -71,6 +73,10 @@ class ContactTally {
     }
   }
   const char* pushed() const { return pushed_.data(); }
+  // The largest force of a contact that lasts (NaN: durations not counted; 0: no contact).
+  double force_max() const {
+    return run_.empty() ? std::numeric_limits<double>::quiet_NaN() : force_max_;
+  }
   // The shortest finished contact in steps (NaN: none, or durations not counted).
   double shortest() const { return shortest_; }
 
@@ -79,6 +85,7 @@ class ContactTally {
   std::vector<long> run_;                // per contact: step ends closed so far, -1 not counted
   double floor_;
   double shortest_ = std::numeric_limits<double>::quiet_NaN();
+  double force_max_ = 0.0;
 };
 
 }  // namespace
@@ -174,7 +181,7 @@ Result run_steps(const System& sys, const Settings& set, const StepPlan& plan, S
     const StepOutcome outcome = engine.step(k, res);
     if (outcome == StepOutcome::refused) break;
     ++k;
-    contacts.step(out, rate, tally);
+    contacts.step(out, rate, tally, static_cast<double>(k) * h);
     if (outcome == StepOutcome::taken_then_stop) break;
     if (!finite(out)) {
       res.status = Status::nan;
@@ -200,6 +207,7 @@ Result run_steps(const System& sys, const Settings& set, const StepPlan& plan, S
   }
   if (monitor) monitor->finish(res);
   res.contact_steps_min = contacts.shortest();
+  res.contact_force_max = contacts.force_max();
   finish_steps(sys, tally, k, h, why, res);
   engine.finish(res);
   if (res.status != Status::ok) {
@@ -211,6 +219,7 @@ Result run_steps(const System& sys, const Settings& set, const StepPlan& plan, S
 void finish_steps(const System& sys, const StepTally& tally, long k, double h, const char* why, Result& res) {
   res.steps = k;
   res.impacts = tally.impacts;
+  if (tally.impacts > 0) note_impact(res, tally.first_impact, -tally.fastest_impact);
   res.contact_phases = tally.phases;
   res.min_gap = tally.g_min < 0.0 ? tally.g_min : std::numeric_limits<double>::infinity();
   if (res.status == Status::nan || res.status == Status::diverged) {

@@ -133,7 +133,22 @@ struct Result {
   std::optional<bool> resolved;
   std::string unresolved;
   History history;
+  // The pounding itself, measured where impacts are counted (note_impact): the time of the
+  // first impact and the largest relative approach velocity -g' at one (the gap rate before
+  // it: a time-stepper's at the start of the step it closed in, seen at the step's end); NaN
+  // without impacts, or from a solver that does not report them (the external programs).
+  // For an element that lasts, the largest contact force over the run (per unit of m0,
+  // which make_system takes as 1: times the user's m0 it is in N); NaN for rigid contact.
+  double first_impact = std::numeric_limits<double>::quiet_NaN();
+  double impact_velocity_max = std::numeric_limits<double>::quiet_NaN();
+  double contact_force_max = std::numeric_limits<double>::quiet_NaN();
 };
+
+// An impact at time t approaching at -rate > 0: what every solver's impact count notes.
+inline void note_impact(Result& r, double t, double rate) {
+  if (!(r.first_impact <= t)) r.first_impact = t;
+  if (!(r.impact_velocity_max >= -rate)) r.impact_velocity_max = -rate;
+}
 
 // Slower approaches are not counted as isolated impacts: there a step's smooth forces
 // change the relative velocity as much as the impact does.

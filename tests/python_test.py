@@ -149,6 +149,23 @@ class Run(unittest.TestCase):
         self.assertEqual(result["w_p"], json.loads(out)["w_p"])
 
 
+    def test_physical_keywords_and_k_contact_give_the_command_lines_answers(self):
+        record = os.path.join(SOURCE, "cases", "records", "real", "B-ELC000.AT2")
+        keywords = dict(scene="pair", pulse="record", record=record, t0=0.5, t1=1, gap=0.01, eps=0.6, m0=2e6,
+                        solver="compliant", k_contact=5e9)
+        flags = ["--scene", "pair", "--pulse", "record", "--record", record, "--t0", "0.5", "--t1", "1", "--gap",
+                 "0.01", "--eps", "0.6", "--m0", "2e6", "--solver", "compliant", "--k-contact", "5e9"]
+        result = poundbench.run(**keywords)
+        code, out, err = cli("run", *flags, "--json")
+        self.assertEqual(code, 0, err)
+        expected = json.loads(out)
+        for key in ("pi1", "pi2", "pi3", "peak_m", "impact_velocity", "first_impact_s", "contact_force_max", "t0",
+                    "gap", "settings"):
+            self.assertEqual(result[key], expected[key], key)
+        with self.assertRaisesRegex(ValueError, "--pi3: not with --t0"):
+            poundbench.run(**{**keywords, "pi3": 1})
+
+
 class Spectrum(unittest.TestCase):
     def test_spectrum_gives_the_rows_of_the_command_line(self):
         smoke = f"{SOURCE}/cases/sets/smoke.toml"

@@ -532,15 +532,16 @@ TEST(Csv, NumbersReadBackToTheSameDouble) {
 
 TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   const std::vector<std::string> header = split_csv(csv_header());
-  ASSERT_EQ(header.size(), 55u);
+  ASSERT_EQ(header.size(), 69u);  // 47, the yielding columns, then the physical values and results
   EXPECT_EQ(header.front(), "family");
   EXPECT_EQ(header[28], "message");  // the columns after it were appended later
   EXPECT_EQ(header[37], "penetration_steps");
   EXPECT_EQ(header[40], "repetitions");
   EXPECT_EQ(header[44], "record");  // the loads' columns (issue 21)
   EXPECT_EQ(header[46], "unresolved");  // then the verdict's (issue 32)
-  EXPECT_EQ(header[47], "pi_y0");  // yielding's fields and responses, appended last
-  EXPECT_EQ(header.back(), "hysteretic");
+  EXPECT_EQ(header[47], "pi_y0");  // yielding's fields and responses (issue 39)
+  EXPECT_EQ(header[55], "t0");     // the physical values and results last (issue 35)
+  EXPECT_EQ(header.back(), "penetration_m");
 
   Row row;
   row.input.family = "odd, \"name\"";
@@ -605,14 +606,23 @@ TEST(Csv, TheVerdictReadsBackAndAFileFromBeforeItStillReads) {
     EXPECT_EQ(back.result.unresolved, row.result.unresolved);
     EXPECT_EQ(csv_line(back), csv_line(row));
   }
-  std::string header = csv_header(), line = csv_line(row);
+  // A file from before the verdict: its columns end before `resolved` (and the physical ones after it).
+  std::string header = csv_header();
   header.erase(header.rfind(",resolved"));
-  line.erase(line.rfind(",,"));  // both verdict fields are empty for a row not judged
-  std::istringstream old(header + "\n" + line + "\n");
+  const std::vector<std::string> fields = split_csv(csv_line(row));
+  const auto joined = [](const std::vector<std::string>& f) {
+    std::string text;
+    for (std::size_t i = 0; i < f.size(); ++i) (text += i ? "," : "") += csv_field(f[i]);
+    return text;
+  };
+  const std::vector<std::string> before(fields.begin(), fields.begin() + static_cast<long>(split_csv(header).size()));
+  std::istringstream old(header + "\n" + joined(before) + "\n");
   const RowFile file = read_csv(old, "old.csv");
   ASSERT_EQ(file.rows.size(), 1u);
   EXPECT_FALSE(file.rows[0].result.resolved.has_value());
-  std::istringstream bad(csv_header() + "\n" + csv_line(row).substr(0, csv_line(row).size() - 2) + ",maybe,\n");
+  std::vector<std::string> maybe = fields;
+  maybe[split_csv(header).size()] = "maybe";  // the resolved column
+  std::istringstream bad(csv_header() + "\n" + joined(maybe) + "\n");
   EXPECT_THROW(read_csv(bad, "bad.csv"), RowReadError);
 }
 

@@ -146,7 +146,7 @@ Result run_cvode(const System& sys, const Settings& set, Model model, double K, 
   if (flag != CV_SUCCESS) return failure(Status::failed, "CVODE set-up: " + flag_name(flag));
 
   Result res;
-  double u_max = std::abs(pr.u[ix(sys.ref)]), t_max = 0.0, g_min = 0.0;
+  double u_max = std::abs(pr.u[ix(sys.ref)]), t_max = 0.0, g_min = 0.0, f_max = 0.0;
   std::vector<int> found(ix(nc + 1));
   std::vector<double>* rows = set.history_samples > 0 ? &res.history.data : nullptr;
   std::size_t next_sample = 0;
@@ -176,11 +176,11 @@ Result run_cvode(const System& sys, const Settings& set, Model model, double K, 
   // A contact whose state disagrees with its gap by more than round-off (one that closed
   // at t = 0 with Pi3 = 0, where CVODE ignores a root function that starts at zero).
   const double slack = 1e-10 * L;
-  const auto reconcile = [&]() {
+  const auto reconcile = [&](double t) {
     bool changed = false;
     for (int j = 0; j < nc; ++j) {
       const double g = sys.gap(j, pr.u.data());
-      if (!elements.closed(j) && g < -slack) elements.close(j, elements.q(j, pr.v.data())), changed = true;
+      if (!elements.closed(j) && g < -slack) elements.close(j, elements.q(j, pr.v.data()), t), changed = true;
       if (elements.closed(j) && g > slack) elements.open(j, elements.q(j, pr.v.data())), changed = true;
     }
     return changed;
@@ -225,7 +225,10 @@ Result run_cvode(const System& sys, const Settings& set, Model model, double K, 
     record_until(t);
     const double a = std::abs(pr.u[ix(sys.ref)]);
     if (a > u_max) u_max = a, t_max = t;
-    for (int j = 0; j < nc; ++j) g_min = std::min(g_min, sys.gap(j, pr.u.data()));
+    for (int j = 0; j < nc; ++j) {
+      g_min = std::min(g_min, sys.gap(j, pr.u.data()));
+      if (elements.closed(j)) f_max = std::max(f_max, elements.force(j, pr.u.data(), pr.v.data()));
+    }
     if ((why = runaway(sys, pr.u.data(), pr.v.data()))) {
       res.status = Status::diverged;
       break;
@@ -234,11 +237,11 @@ Result run_cvode(const System& sys, const Settings& set, Model model, double K, 
     if (flag == CV_ROOT_RETURN) {
       CVodeGetRootInfo(cv.mem, found.data());
       for (int j = 0; j < nc; ++j) {
-        if (found[ix(j)] < 0) elements.close(j, elements.q(j, pr.v.data())), contacts_changed = true;
+        if (found[ix(j)] < 0) elements.close(j, elements.q(j, pr.v.data()), t), contacts_changed = true;
         if (found[ix(j)] > 0) elements.open(j, elements.q(j, pr.v.data())), contacts_changed = true;
       }
     }
-    contacts_changed = reconcile() || contacts_changed;
+    contacts_changed = reconcile(t) || contacts_changed;
     if (flag == CV_TSTOP_RETURN && t < sys.t_end) {
       stop = sys.pulse.paper() ? sys.t_end : next_stop(t);
       contacts_changed = true;  // the load may jump at the pulse's end
@@ -259,6 +262,7 @@ Result run_cvode(const System& sys, const Settings& set, Model model, double K, 
   res.steps = total_steps();
   res.impacts = elements.impacts();
   res.min_gap = g_min < 0.0 ? g_min : std::numeric_limits<double>::infinity();
+  res.contact_force_max = f_max;  // at CVODE's accepted steps: the force between them is not sampled
   elements.finish(res);
   if (res.status == Status::nan || res.status == Status::diverged)
     res.message = std::string(why) + " at t = " + std::to_string(t);

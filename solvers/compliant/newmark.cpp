@@ -229,7 +229,7 @@ class NewmarkEngine final : public StepEngine {
       const bool now = closed_[ix(j)] != 0, before = el_.closed(j);
       if (now && !before) {
         out_.entered[ix(j)] = 1;
-        el_.close(j, el_.q(j, vn_.data()));
+        el_.close(j, el_.q(j, vn_.data()), t1);
       }
       if (!now && before) el_.open(j, el_.q(j, v.data()));
       out_.force[ix(j)] = pinned_[ix(j)] ? lambda_[ix(j)]

@@ -26,7 +26,7 @@ Elements::Elements(const System& sys, Model model, double K)
   // A body that starts overlapping its neighbour starts in contact.
   const std::vector<double> u = sys.u_start.empty() ? std::vector<double>(ix(sys.n_bodies()), 0.0) : sys.u_start;
   for (int j = 0; j < size(); ++j)
-    if (p(j, u.data()) > 0.0) close(j, 0.0);
+    if (p(j, u.data()) > 0.0) close(j, 0.0, 0.0);
 }
 
 void Elements::add_forces(const double* u, const double* v, double* f) const {
@@ -38,11 +38,15 @@ void Elements::add_forces(const double* u, const double* v, double* f) const {
   }
 }
 
-void Elements::close(int j, double q) {
+void Elements::close(int j, double q, double t) {
   if (closed(j)) return;
   closed_[ix(j)] = 1;
   v_minus_[ix(j)] = onset_rate(q);
-  if (q > 0.0) ++impacts_;
+  if (q > 0.0) {
+    ++impacts_;
+    if (!(first_impact_ <= t)) first_impact_ = t;
+    fastest_impact_ = std::max(fastest_impact_, q);
+  }
   for (std::size_t i = 0; i < isolated_.size(); ++i) isolated_[i] = 0;  // nobody is alone now
   isolated_[ix(j)] = n_closed_ == 0 && q > floor_;
   ++n_closed_;
@@ -63,6 +67,7 @@ void Elements::open(int j, double q) {
 
 void Elements::finish(Result& r) const {
   r.restitution_over_contacts = true;
+  if (first_impact_ >= 0.0) note_impact(r, first_impact_, -fastest_impact_);
   r.isolated_impacts = n_isolated_;
   r.restitution_low = n_isolated_ > 0 ? e_low_ : std::numeric_limits<double>::quiet_NaN();
   r.restitution_high = n_isolated_ > 0 ? e_high_ : std::numeric_limits<double>::quiet_NaN();

@@ -46,7 +46,8 @@ class Elements {
 
   // Contact j closes at rate q (> 0: approaching), or opens at rate q. open() returns
   // whether it was an impact (closed while approaching).
-  void close(int j, double q);
+  // t: when (the pounding's first impact and fastest approach, Result::first_impact).
+  void close(int j, double q, double t);
   void open(int j, double q);
   // Impacts so far, and the restitution range of the isolated ones (into a Result).
   long impacts() const { return impacts_; }
@@ -58,6 +59,7 @@ class Elements {
   const System& sys_;
   std::vector<Law> laws_;
   std::vector<char> closed_;
+  double first_impact_ = std::numeric_limits<double>::quiet_NaN(), fastest_impact_ = 0.0;
   std::vector<char> isolated_;  // closed alone, and no other closed since
   std::vector<double> v_minus_;
   int n_closed_ = 0;

@@ -430,7 +430,10 @@ class Solver {
     for (int k = 0; k < s_.n_contacts(); ++k)
       if (st_.active[ix(k)] || st_.g[ix(k)] <= tol_.gap) set_.push_back(k);
     for (int k : set_)
-      if (gap_rate(s_, k, st_.v) < -tol_.speed) ++res_.impacts;
+      if (const double rate = gap_rate(s_, k, st_.v); rate < -tol_.speed) {
+        ++res_.impacts;
+        note_impact(res_, st_.t, rate);
+      }
     bool ok = true;
     for_each_run(s_, std::span<const int>(set_), [&](std::size_t begin, std::size_t end) {
       if (ok) ok = impact_run(std::span<const int>(set_).subspan(begin, end - begin));

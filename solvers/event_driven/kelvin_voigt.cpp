@@ -237,7 +237,7 @@ class KelvinVoigt {
       if (changed >= 0) {
         const double q = -y_(n_ + changed);
         if (elements_.closed(changed)) elements_.open(changed, q);
-        else elements_.close(changed, q);
+        else elements_.close(changed, q, t_);
         mode = &mode_for_closed();
         level_ = 0;
         ++events_;

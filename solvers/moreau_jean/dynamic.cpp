@@ -155,7 +155,7 @@ void solve_run(const Scheme& sc, const State& st, Work& w, int a, int n) {
   char* was_active = st.active.data();
   char* pushed = st.pushed.data();
   char* in_phase = st.in_phase.data();
-  long impacts = 0, phases = 0;
+  long phases = 0;
   int j = 0;
   while (j < nc) {
     if (g[j] + gamma_h * rate[j] > 0.0) {
@@ -170,7 +170,7 @@ void solve_run(const Scheme& sc, const State& st, Work& w, int a, int n) {
     solve_run(sc, st, w, a, j - a);  // reads the flags of the step before: updated below
     for (int i = a; i < j; ++i) {
       const int pushing = p[i] > 0.0;
-      impacts += !was_active[i] & (rate[i] < 0.0);
+      if (!was_active[i] & (rate[i] < 0.0)) t.impact(static_cast<double>(st.k + 1) * sc.h, rate[i]);
       const int starts = pushing & pushed[i] & !in_phase[i];
       phases += starts;
       in_phase[i] = static_cast<char>((in_phase[i] | starts) & pushing);
@@ -178,7 +178,6 @@ void solve_run(const Scheme& sc, const State& st, Work& w, int a, int n) {
       was_active[i] = 1;
     }
   }
-  t.impacts += impacts;
   t.phases += phases;
 }
 

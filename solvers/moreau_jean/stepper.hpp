@@ -192,7 +192,10 @@ PB_MJ_INLINE bool step(const Scheme<NB, NC>& sc, State<NB, NC>& st, Tally& t, do
         approaching |= (st.rate(j) < 0.0 ? 1u : 0u) << j;
         pushing |= (impulse(j) > 0.0 ? 1u : 0u) << j;
       }
-      t.impacts += std::popcount(mask & ~st.active & approaching);
+      // Rare (a contact's first step): the time of the step's end, as the shell's (fixed_step.hpp).
+      if (const unsigned hits = mask & ~st.active & approaching)
+        for (int j = 0; j < NC; ++j)
+          if (hits >> j & 1u) t.impact(static_cast<double>(st.k + 1) * sc.h, st.rate(j));
       const unsigned starts = pushing & st.pushed & ~st.in_phase;
       t.phases += std::popcount(starts);
       st.in_phase = (st.in_phase | starts) & pushing;

@@ -164,7 +164,10 @@ Result run_event_driven(const System& sys, const Settings& set) {
       if (run.impulse(j) > 0.0) {
         ++pushed;
         last = j;
-        if (before.rate[jj] < 0.0) ++t.impacts;
+        if (before.rate[jj] < 0.0) {
+          ++t.impacts;
+          note_impact(res, now, before.rate[jj]);
+        }
       }
       const bool now_closed = run.closed(j);
       if (now_closed && !closed[jj]) ++t.phases;

@@ -129,7 +129,10 @@ Result run_newmark_alpha(const System& sys, const Settings& set) {
     }
     for (int j = 0; j < nc; ++j) {
       const auto jj = static_cast<std::size_t>(j);
-      if (run.impulse(j) > 0.0 && before.rate[jj] < 0.0) ++impacts;
+      if (run.impulse(j) > 0.0 && before.rate[jj] < 0.0) {
+        ++impacts;
+        note_impact(res, now, before.rate[jj]);
+      }
       force[jj] = run.force(j) * units.length / (units.time * units.time);
       g_min = std::min(g_min, st.g[jj]);
     }

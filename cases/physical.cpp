@@ -1,0 +1,73 @@
+#include "cases/physical.hpp"
+
+#include <numbers>
+
+#include "cases/record.hpp"
+#include "cases/system.hpp"
+
+namespace pb {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+bool given(double x) { return !std::isnan(x); }
+
+}  // namespace
+
+bool used_by(const PhysicalField& field, Scene scene) {
+  return field.body == 0 || (field.body == 1 ? uses_body1(scene) : uses_body2(scene));
+}
+
+bool physical(const Case& c) {
+  for (const PhysicalField& f : kPhysicalFields)
+    if (given(c.physical.*f.member)) return true;
+  return false;
+}
+
+std::optional<std::string> apply_physical(Case& c) {
+  const Physical& p = c.physical;
+  for (const PhysicalField& f : kPhysicalFields) {
+    const double x = p.*f.member;
+    const bool needed = f.name == "t0" || f.name == "gap" || f.name == "t1" || f.name == "t2";
+    if (!used_by(f, c.scene)) {
+      if (given(x)) return std::string(f.name) + ": not used by scene " + std::string(name(c.scene));
+      continue;
+    }
+    if (!given(x)) {
+      if (needed) return std::string(f.name) + ": required by a case in physical units";
+      continue;
+    }
+    // The gap may be 0 (bodies touching at rest, Pi3 = 0); periods and masses may not.
+    if (!std::isfinite(x) || x < 0.0 || (x == 0.0 && f.name != "gap"))
+      return std::string(f.name) + (f.name == "gap" ? ": must be finite and >= 0" : ": must be finite and > 0");
+  }
+  const double m0 = given(p.m0) ? p.m0 : 1.0;
+  const double w0 = kTwoPi / p.t0;
+  c.pi2 = w0 / c.w_p;
+  c.pi3 = p.gap * c.w_p * c.w_p / c.a_p;
+  if (uses_body1(c.scene)) {
+    c.pi5 = p.t1 / p.t0;  // w0 / w1
+    c.pi6 = given(p.m1) ? m0 / p.m1 : 1.0;
+  }
+  if (uses_body2(c.scene)) {
+    c.pi7 = p.t2 / p.t0;
+    c.pi8 = given(p.m2) ? m0 / p.m2 : 1.0;
+  }
+  return std::nullopt;
+}
+
+double default_w_p(const Case& c) {
+  if (c.pulse == PulseShape::record && c.samples) return kTwoPi / c.samples->t_m;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+double stiffness_pi_term(const Case& c, double k, bool hertz) {
+  // make_system's m0 is 1; the user's is the unit the masses were given in.
+  const System s = make_system(c);
+  const double m0 = given(c.physical.m0) ? c.physical.m0 : 1.0;
+  const double K = k / (m0 * s.bodies[static_cast<std::size_t>(s.ref)].k);
+  return hertz ? K * std::sqrt(s.contact_length_scale()) : K;
+}
+
+}  // namespace pb

@@ -1,0 +1,71 @@
+#pragma once
+// A case given by its physical quantities instead of its Pi terms (cases/README.md,
+// "Physical units"): natural periods in s, masses in kg, the gap in m; the pulse by a_p
+// (m/s^2) and w_p (or its period tp, s) as any case; a record in its file's units. This is
+// the one place that turns them into the Pi terms (make_system() then maps those back, so
+// a physical case and the Pi-term case it gives are one Case), and a physical contact
+// stiffness into the Pi term K.
+//
+// The fields are declared once, as kCaseFields are: their flags (--t0, --gap, ...), case-set
+// keys, JSON keys and row columns derive from kPhysicalFields. A value not given is NaN.
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "cases/case.hpp"
+
+namespace pb {
+
+// One physical field: the Pi term it gives (empty for m0, which only sets the unit of the
+// other masses), and which bodies use it (as CaseField::use).
+struct PhysicalField {
+  std::string_view name;
+  double Physical::* member;
+  std::string_view pi;  // the kCaseFields name it replaces
+  int body;             // 0, 1 (FieldUse::body1) or 2 (FieldUse::body2)
+  std::string_view help;
+};
+
+inline constexpr std::array<PhysicalField, 7> kPhysicalFields = {{
+    {"t0", &Physical::t0, "pi2", 0, "Physical units: natural period of body 0 (s), instead of --pi2"},
+    {"t1", &Physical::t1, "pi5", 1, "Physical units: natural period of body 1 (s; chain: the odd bodies), instead of --pi5"},
+    {"t2", &Physical::t2, "pi7", 2, "Physical units: natural period of body 2 (s, row3), instead of --pi7"},
+    {"m0", &Physical::m0, "", 0, "Physical units: mass of body 0 (kg; default 1, the other masses then ratios to it)"},
+    {"m1", &Physical::m1, "pi6", 1, "Physical units: mass of body 1 (kg; chain: the odd bodies; default m0), instead of --pi6"},
+    {"m2", &Physical::m2, "pi8", 2, "Physical units: mass of body 2 (kg, row3; default m0), instead of --pi8"},
+    {"gap", &Physical::gap, "pi3", 0, "Physical units: the gap delta (m) of every contact, instead of --pi3"},
+}};
+
+// Whether a scene has the body a physical field describes.
+bool used_by(const PhysicalField& field, Scene scene);
+
+// Whether the case was given in physical units (any physical field given).
+bool physical(const Case& c);
+
+// The Pi terms of c from c.physical and c's pulse scale (a_p, w_p, final), for the fields
+// its scene uses: Pi2 = w0 / w_p (w0 = 2 pi / t0), Pi3 = gap w_p^2 / a_p, Pi5 = w0 / w1,
+// Pi6 = m0 / m1, Pi7 = w0 / w2, Pi8 = m0 / m2. Returns "field: reason" for a value that is
+// missing (t0, gap; t1 where the scene has body 1, t2 where it has body 2), not finite or
+// not > 0.
+std::optional<std::string> apply_physical(Case& c);
+
+// Where a physical case's unit of frequency w_p comes from when neither w_p nor tp is
+// given: a record's mean frequency 2 pi / T_m (NaN for one without a mean period); every
+// other pulse has no default (its tp is the pulse's own period).
+double default_w_p(const Case& c);
+
+// The Pi term K of a physical contact stiffness k (N/m for a linear element, N/m^1.5 for the
+// Hertz family): K = k / (m0 w0^2), times sqrt(L) for the Hertz family, L the contact's
+// length (System::contact_length_scale()). k is in the case's own units, so c must be given
+// in physical units (its m0 the unit of mass, default 1 kg); the result is K whatever the
+// a_p and w_p of its Pi terms (tested).
+double stiffness_pi_term(const Case& c, double k, bool hertz);
+
+// The largest relative approach velocity at an impact (m/s) as a Pi term: over a_p / w_p.
+inline double velocity_pi_term(const Case& c, double v) { return v * c.w_p / c.a_p; }
+
+}  // namespace pb

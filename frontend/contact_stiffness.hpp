@@ -1,0 +1,22 @@
+#pragma once
+// `--k-contact`: a contact element's physical stiffness (N/m for a linear element, N/m^1.5
+// for the Hertz family), turned into the Pi term K that --stiffness gives
+// (cases/physical.hpp, stiffness_pi_term) for the solver and variant chosen.
+
+#include <string_view>
+
+#include "cases/case.hpp"
+#include "solvers/solver.hpp"
+
+namespace pb::app {
+
+// Whether the solver's contact element with these settings is of the Hertz family (force
+// k p^1.5: the compliant solver's elements but kelvin-voigt, Simbody's Hunt-Crossley).
+bool hertz_contact(std::string_view solver, const Settings& settings);
+
+// Sets settings.stiffness to the K of the physical stiffness k; throws BadInput (as
+// "--k-contact: why") for a case not in physical units, beside --stiffness, or a k that is
+// not finite and > 0. Whether the solver uses it, checked_solver says, as for --stiffness.
+void apply_k_contact(const Case& c, std::string_view solver, Settings& settings, double k, bool stiffness_given);
+
+}  // namespace pb::app
