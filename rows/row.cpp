@@ -115,6 +115,8 @@ constexpr std::array kTailColumns = {"wh",          "energy_excess",   "penetrat
 
 // The verdict (solvers/verdict.hpp), after everything else: the columns added last.
 constexpr std::array kVerdictColumns = {"resolved", "unresolved"};
+// The external solver's own timings (Result::solve_seconds, startup_seconds), after the verdict.
+constexpr std::array kOwnTimeColumns = {"solve_seconds", "startup_seconds"};
 
 // Where a field's column is: after the directivity (those of every scene's bodies), after
 // the message (the chain's, where they were added) or at the end (the pulses', added last).
@@ -190,6 +192,7 @@ std::string csv_header() {
   for (const CaseField& f : kCaseFields)
     if (group_of(f) == Group::pulse) line.text(f.name);
   for (const char* column : kVerdictColumns) line.text(column);
+  for (const char* column : kOwnTimeColumns) line.text(column);
   return line.take();
 }
 
@@ -231,6 +234,8 @@ std::string csv_line(const Row& row) {
   case_numbers(line, c, Group::pulse);
   line.text(resolved_text(r.resolved));
   line.text(r.unresolved);
+  line.number(r.solve_seconds);
+  line.number(r.startup_seconds);
   return line.take();
 }
 

@@ -198,6 +198,8 @@ Row parse_row(const Columns& columns, const std::vector<std::string>& fields) {
   row.repetitions = f.count<int>("repetitions", 1);  // a file from before repetitions: one timing
   r.resolved = f.named("resolved", &parse_resolved);  // a file from before the verdict: not judged
   r.unresolved = f.text("unresolved");
+  r.solve_seconds = f.number("solve_seconds");  // a file from before them, or not external: NaN
+  r.startup_seconds = f.number("startup_seconds");
   if (const std::string bad = row_problem(row); !bad.empty()) throw RowReadError(bad);
   return row;  // penetration is not read: it is made from min_gap
 }

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "cases/system.hpp"
+#include "solvers/external/process.hpp"
 #include "solvers/verdict.hpp"
 #include "sweep/stopwatch.hpp"
 
@@ -48,7 +49,8 @@ Timed timed_solve(const SolverInfo& solver, const System& system, const Settings
     t.result.message = describe_exception(std::current_exception());
   }
   const Elapsed spent = watch.elapsed();
-  t.seconds = spent.wall;
+  // A persistent program's start is the row's startup_seconds, not the solve's time.
+  t.seconds = spent.wall - (std::isfinite(t.result.startup_seconds) ? t.result.startup_seconds : 0.0);
   t.cpu_seconds = spent.cpu + t.result.child_cpu_seconds;
   return t;
 }
@@ -101,7 +103,7 @@ class PointDeadline {
 // timing columns the repetitions'.
 void time_solves(Row& row, const SolverInfo& solver, const System& system, Settings settings, int repetitions,
                  const PointDeadline& deadline) {
-  settings.monitor = false;
+  settings.monitor = solver.one_pass && settings.monitor;
   std::vector<double> wall, cpu;
   double spent = 0.0;
   for (int j = 0; j < repetitions && (j == 0 || spent < kRepetitionBudget); ++j) {
@@ -194,7 +196,7 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
 
   const PointDeadline deadline(settings.time_limit);
   time_solves(row, solver, system, settings, repetitions, deadline);
-  if (settings.monitor && !solver.reference && row.result.status != Status::time_limit)
+  if (settings.monitor && !solver.reference && !solver.one_pass && row.result.status != Status::time_limit)
     add_monitor(row, solver, system, settings, deadline);
 
   judge(system, row.result);
@@ -261,6 +263,8 @@ std::vector<Row> run_sweep(std::span<const Case> cases, std::span<const SweepRun
   const auto cancelled = [&] { return options.cancel && options.cancel->load(); };
   const auto stopped = [&] { return stop.load(std::memory_order_relaxed) || cancelled(); };
   const auto work = [&] {
+    // A worker's persistent programs (the external solver's) end with it: started once per worker.
+    const external::ThreadSessionsEnd sessions_end;
     while (!stopped()) {
       const std::optional<std::size_t> task = next_task();
       if (!task || *task >= total) return;

@@ -160,7 +160,7 @@ constexpr std::array kAnswerKeys = {"protocol",         "version",         "stat
                                     "pi1",              "t_max",           "history",          "impacts",
                                     "contact_phases",   "steps",           "isolated_impacts", "min_gap",
                                     "step",             "energy_excess",   "restitution_low",  "restitution_high",
-                                    "gap_rate_max"};
+                                    "gap_rate_max",     "solve_seconds"};
 
 struct U0History {
   std::vector<double> t, u0;
@@ -211,6 +211,10 @@ void fill_answer(const Json& doc, const System& s, const Settings& settings, Res
                             {"restitution_high", &r.restitution_high}, {"gap_rate_max", &r.gap_rate_max}})
     *value = maybe_number(doc, key).value_or(kNaN);
   r.min_gap = maybe_number(doc, "min_gap").value_or(std::numeric_limits<double>::infinity());
+  if (const auto solve = maybe_number(doc, "solve_seconds")) {
+    if (!(*solve >= 0.0 && std::isfinite(*solve))) bad("solve_seconds", "must be a number of seconds >= 0");
+    r.solve_seconds = *solve;
+  }
   if (const auto step = maybe_number(doc, "step")) {
     if (!(*step > 0.0 && *step <= s.t_end)) bad("step", "must be > 0 and at most t_end (a step of the run)");
     r.step = *step;
