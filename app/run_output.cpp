@@ -88,6 +88,9 @@ nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {
     j["point"] = chosen.point;
   }
   j.update(case_json(row.input));
+  // The external solver's own timings (rows/row.hpp), after everything else.
+  j["solve_seconds"] = number_or_null(r.solve_seconds);
+  j["startup_seconds"] = number_or_null(r.startup_seconds);
   return j;
 }
 

@@ -21,7 +21,10 @@
 
 #include <atomic>
 #include <chrono>
+#include <charconv>
 #include <climits>
+#include <cmath>
+#include <functional>
 #include <future>
 #include <optional>
 #include <string>
@@ -36,6 +39,12 @@
 #include "app/solver_flags.hpp"
 #include "cases/case_set.hpp"
 #include "cases/fields.hpp"
+#include "python/callable_solver.hpp"
+#include "python/settings_toml.hpp"
+#include "rows/row_read.hpp"
+#include "studies/settings_list.hpp"
+#include "studies/workprecision.hpp"
+#include "solvers/external/external.hpp"
 #include "solvers/settings_fields.hpp"
 #include "sweep/sweep.hpp"
 
@@ -54,6 +63,7 @@ struct Keywords {
   std::vector<std::string> given;  // the flags the keywords stand for ("--pi3")
   bool history = false;
   std::optional<long long> samples, threads;
+  py::object callable;  // solver=f: a Python callable, the external solver in process (callable_solver.hpp)
 
   bool has(std::string_view flag) const {
     for (const std::string& g : given)
@@ -178,8 +188,16 @@ Keywords read_keywords(const std::string& function, const py::kwargs& kwargs) {
     } else if (!for_run && key == "threads") {
       k.threads = whole(function, key, value);
       continue;
+    } else if (key == "solver" && !for_run && !py::isinstance<py::str>(value) && PyCallable_Check(value.ptr())) {
+      k.callable = py::reinterpret_borrow<py::object>(value);
+      k.solver_flags.solver = "external";
     } else if (key == "solver") {
       k.solver_flags.solver = text(function, key, value);
+    } else if (key == "persistent") {
+      if (!py::isinstance<py::bool_>(value)) type_error(function, key, "must be True or False");
+      if (value.cast<bool>()) settings.variant = std::string(external::kPersistent);
+      k.given.push_back("--variant");
+      continue;
     } else if (key == "variant") {
       settings.variant = text(function, key, value);
     } else if (setting) {
@@ -284,6 +302,8 @@ auto checked(Check&& check) {
     raise_value_error(e.what());
   } catch (const CaseSetError& e) {
     raise_value_error(e.what());
+  } catch (const SettingsListError& e) {
+    raise_value_error(e.what());
   }
 }
 
@@ -316,6 +336,15 @@ py::dict run(const py::kwargs& kwargs) {
 py::list spectrum(const py::object& case_set, const py::kwargs& kwargs) {
   const std::string file = text("spectrum", "case_set", case_set);
   Keywords k = checked([&] { return read_keywords("spectrum", kwargs); });
+  // A callable solver runs in process on one thread (callable_solver.hpp says why).
+  std::optional<std::function<std::string(const std::string&, double&)>> in_process;
+  if (k.callable) {
+    if (k.has("--command")) raise_value_error("--command: not with a Python callable as the solver");
+    in_process = CallableSolver(k.callable);
+    k.solver_flags.settings.in_process = &*in_process;
+    k.solver_flags.settings.command = "python " + std::string(py::str(py::getattr(k.callable, "__qualname__", py::repr(k.callable))));
+    k.threads = 1;
+  }
   const auto [set, solver] = checked([&] {
     CaseSet s = load_case_set(file);
     app::validate_case_set(s, file);
@@ -332,6 +361,111 @@ py::list spectrum(const py::object& case_set, const py::kwargs& kwargs) {
   py::list out;
   for (const Row& row : rows) out.append(to_python(app::row_json(row, {row.input, row.point, file})));
   return out;
+}
+
+// What a work-precision study's table is, as the CLI writes it (its CSV), a dict per line, with
+// numbers as numbers and empty fields as None.
+py::list table_dicts(const std::string& header, const std::vector<std::string>& lines) {
+  const std::vector<std::string> columns = split_csv(header);
+  py::list out;
+  for (const std::string& line : lines) {
+    const std::vector<std::string> fields = split_csv(line);
+    py::dict d;
+    for (std::size_t j = 0; j < columns.size() && j < fields.size(); ++j) {
+      const std::string& f = fields[j];
+      double x = 0.0;
+      const auto [end, error] = std::from_chars(f.data(), f.data() + f.size(), x);
+      if (f.empty())
+        d[py::str(columns[j])] = py::none();
+      else if (error == std::errc{} && end == f.data() + f.size())
+        d[py::str(columns[j])] = x == std::floor(x) && f.find_first_of(".eE") == std::string::npos
+                                     ? py::object(py::int_(static_cast<long long>(x)))
+                                     : py::object(py::float_(x));
+      else
+        d[py::str(columns[j])] = decoded(f);
+    }
+    out.append(d);
+  }
+  return out;
+}
+
+// The program a Python callable's [[run]] names while the settings list is parsed (an
+// executable that is there, so that the list's checks pass), followed by this and its name.
+constexpr std::string_view kCallableMark = " poundbench-callable:";
+
+py::list workprecision(const py::object& case_set, const py::kwargs& kwargs) {
+  const std::string file = text("workprecision", "case_set", case_set);
+  py::object runs;
+  py::dict callables;
+  std::optional<long long> threads, repetitions;
+  for (const auto& [key_object, value] : kwargs) {
+    const std::string key = utf8("workprecision", "name", key_object);
+    if (key == "settings") runs = py::reinterpret_borrow<py::object>(value);
+    else if (key == "solvers") {
+      if (!py::isinstance<py::dict>(value)) type_error("workprecision", key, "must be a dict of name: callable");
+      callables = value.cast<py::dict>();
+    } else if (key == "threads") threads = whole("workprecision", key, value);
+    else if (key == "repetitions") repetitions = whole("workprecision", key, value);
+    else throw py::type_error("workprecision() got an unexpected keyword argument '" + clip(key) + "'");
+  }
+  for (const auto& [name, f] : callables)
+    if (!py::isinstance<py::str>(name) || !PyCallable_Check(f.ptr()))
+      type_error("workprecision", "solvers", "must map names (str) to callables");
+  const std::string python = py::str(py::module_::import("sys").attr("executable"));
+  std::string toml, settings_file;
+  if (runs && py::isinstance<py::str>(runs)) {
+    settings_file = text("workprecision", "settings", runs);  // its runs name the registry's solvers
+  } else if (runs && (py::isinstance<py::list>(runs) || py::isinstance<py::tuple>(runs))) {
+    toml = "name = \"python\"\n";
+    for (const py::handle& run : runs) {
+      if (!py::isinstance<py::dict>(run)) type_error("workprecision", "settings", "must be a list of dicts, one per [[run]]");
+      toml += "[[run]]\n";
+      for (const auto& [k, v] : run.cast<py::dict>()) {
+        const std::string key = py::str(k);
+        if (key == "solver" && py::isinstance<py::str>(v) && callables.contains(v)) {
+          toml += "solver = \"external\"\ncommand = " +
+                  toml_value(py::str(python + std::string(kCallableMark) + std::string(py::str(v))), key) + "\n";
+        } else {
+          toml += key + " = " + toml_value(v, key) + "\n";
+        }
+      }
+    }
+  } else {
+    type_error("workprecision", "settings", "required: a settings-list file (str) or a list of dicts, one per [[run]]");
+  }
+  const auto [set, list] = checked([&] {
+    CaseSet s = load_case_set(file);
+    app::validate_case_set(s, file);
+    SettingsList l = settings_file.empty() ? parse_settings_list(toml, "settings") : load_settings_list(settings_file);
+    if (threads && *threads <= 0) throw app::BadInput("threads: must be >= 1");
+    if (repetitions && (*repetitions < 1 || *repetitions > kMaxRepetitions))
+      throw app::BadInput("repetitions: must be from 1 to " + std::to_string(kMaxRepetitions));
+    return std::pair<CaseSet, SettingsList>(std::move(s), std::move(l));
+  });
+  // The callables' runs: in process, on one thread (callable_solver.hpp says why).
+  std::vector<std::function<std::string(const std::string&, double&)>> in_process;
+  in_process.reserve(list.runs.size());
+  SettingsList study_list = list;
+  for (SweepRun& run : study_list.runs) {
+    const std::size_t mark = run.settings.command.find(kCallableMark);
+    if (mark == std::string::npos || run.settings.command.compare(0, mark, python) != 0) continue;
+    const std::string name = run.settings.command.substr(mark + kCallableMark.size());
+    in_process.emplace_back(CallableSolver(callables[py::str(name)]));
+    run.settings.in_process = &in_process.back();
+    run.settings.command = "python " + name;
+    threads = 1;
+  }
+  std::atomic<bool> stop{false};
+  SweepOptions options;
+  options.threads = threads ? static_cast<unsigned>(std::min<long long>(*threads, 4096)) : 0;
+  options.cancel = &stop;
+  StudyOptions study{.model_references = true};
+  if (repetitions) study.repetitions = static_cast<int>(*repetitions);
+  WorkPrecision wp;
+  run_interruptibly(stop, [&] { wp = run_work_precision(set.cases, study_list, options, study); });
+  std::vector<std::string> lines;
+  for (const WorkPrecisionRow& row : wp.table) lines.push_back(work_precision_csv_line(row));
+  return table_dicts(work_precision_csv_header(), lines);
 }
 
 // "name: help" lines of a field table, for the docstrings.
@@ -365,9 +499,20 @@ PYBIND11_MODULE(poundbench, m) {
       "Solves every point of a case-set file (TOML, cases/README.md) with one solver, as `poundbench\n"
       "spectrum`: one dict per point, in point order, with the keys of run()'s result (and case_file,\n"
       "point); pandas.DataFrame(rows) makes the table. Keywords: solver, variant, threads (default: every\n"
-      "core), and\n" +
-      python::keyword_lines(kSettingFields);
+      "core), persistent (True: the external solver's persistent mode), and\n" +
+      python::keyword_lines(kSettingFields) +
+      "solver may be a Python callable f(case: dict) -> dict, run in process on one thread: it gets the\n"
+      "external protocol's case document and returns its answer (docs/external.md; 'version' may be left\n"
+      "out). Each row's solve_seconds is the call, timed around it; what f raises is that point's failed\n"
+      "row, with the exception's type and message; Ctrl-C stops the sweep.\n";
   m.def("spectrum", &python::spectrum, py::arg("case_set"), spectrum_doc.c_str());
+  m.def("workprecision", &python::workprecision, py::arg("case_set"),
+        "workprecision(case_set, settings=[...], solvers={}, threads=None, repetitions=None) -> list of dict\n\n"
+        "A work-precision study, as `poundbench workprecision`: the table it writes (its CSV), one dict per\n"
+        "line. settings: a settings-list file, or a list of dicts, one per [[run]] (studies/settings_list.hpp:\n"
+        "{'solver': 'moreau-jean', 'steps': [64, 256]}). solvers: names of Python callables, each usable as\n"
+        "a run's solver ({'solver': 'mine', 'steps': [64, 256]}), run in process as spectrum's solver=f;\n"
+        "their rows' cost (cpu_median_s, column cost = solve_seconds) is the calls' own time.");
   m.def(
       "solvers",
       [] {
