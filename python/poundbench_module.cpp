@@ -3,6 +3,11 @@
 //   poundbench.run(scene="pair", pulse="cosine", directivity="normal", pi2=0.8, pi3=0.5,
 //                  eps=0.5, pi5=0.5, pi6=1.0, solver="moreau-jean", steps=64)
 //   poundbench.spectrum("cases/sets/smoke.toml", solver="moreau-jean", steps=64)
+//   poundbench.spectrum("cases/sets/smoke.toml", solver=f)          # f(case: dict) -> dict, in process
+//   poundbench.workprecision("cases/sets/smoke.toml", settings=[{"solver": "mine", "steps": [64, 256]}],
+//                            solvers={"mine": f})
+//
+// NumPy is needed for histories alone (run(history=True)), imported there.
 //
 // Its keywords are the command line's flags, with '_' for '-' (n_free for --n-free), made
 // from the same tables (cases/fields.hpp, solvers/settings_fields.hpp), and they are checked
@@ -26,6 +31,7 @@
 #include <cmath>
 #include <functional>
 #include <future>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -42,7 +48,10 @@
 #include "python/callable_solver.hpp"
 #include "python/settings_toml.hpp"
 #include "rows/row_read.hpp"
+#include "rows/minimal_rows.hpp"
+#include "studies/baseline.hpp"
 #include "studies/settings_list.hpp"
+#include "studies/stress.hpp"
 #include "studies/workprecision.hpp"
 #include "solvers/external/external.hpp"
 #include "solvers/settings_fields.hpp"
@@ -250,8 +259,17 @@ py::object to_python(const nlohmann::ordered_json& j) {
   }
 }
 
-// The history as one NumPy array per column, named as `run --history`'s CSV columns.
+// The history as one NumPy array per column, named as `run --history`'s CSV columns. NumPy is
+// needed here alone (Debian: python3-numpy); without it, one line naming the package.
 py::dict history_arrays(const Row& row) {
+  try {
+    py::module_::import("numpy");
+  } catch (py::error_already_set& e) {
+    if (!e.matches(PyExc_ImportError)) throw;
+    PyErr_SetString(PyExc_ImportError,
+                    "poundbench: a history needs NumPy, which is not installed (Debian: python3-numpy; pip: numpy)");
+    throw py::error_already_set();
+  }
   const std::vector<std::string> columns = app::history_columns(row.input);
   const History& h = row.result.history;
   const std::size_t rows = h.rows(), width = static_cast<std::size_t>(h.row_size());
@@ -393,32 +411,47 @@ py::list table_dicts(const std::string& header, const std::vector<std::string>& 
 // executable that is there, so that the list's checks pass), followed by this and its name.
 constexpr std::string_view kCallableMark = " poundbench-callable:";
 
-py::list workprecision(const py::object& case_set, const py::kwargs& kwargs) {
-  const std::string file = text("workprecision", "case_set", case_set);
+// What a study from Python runs: its case set, its settings list (the callables' runs pointing
+// at their in-process solvers, which live here), the sweep's options.
+struct StudyInput {
+  CaseSet set;
+  SettingsList list;
+  std::vector<std::function<std::string(const std::string&, double&)>> in_process;
+  std::optional<long long> threads, repetitions;
+  bool has_list = false;
+};
+
+// The keywords of workprecision, stress and baseline: settings (a settings-list file, or a list of
+// dicts, one per [[run]]), solvers (names of callables a run may name as its solver), threads,
+// repetitions (not for baseline). settings is optional for baseline alone.
+std::unique_ptr<StudyInput> read_study(const std::string& function, const py::object& case_set,
+                                       const py::kwargs& kwargs) {
+  auto in = std::make_unique<StudyInput>();
+  const std::string file = text(function, "case_set", case_set);
   py::object runs;
   py::dict callables;
-  std::optional<long long> threads, repetitions;
   for (const auto& [key_object, value] : kwargs) {
-    const std::string key = utf8("workprecision", "name", key_object);
+    const std::string key = utf8(function, "name", key_object);
+    if (value.is_none()) continue;
     if (key == "settings") runs = py::reinterpret_borrow<py::object>(value);
     else if (key == "solvers") {
-      if (!py::isinstance<py::dict>(value)) type_error("workprecision", key, "must be a dict of name: callable");
+      if (!py::isinstance<py::dict>(value)) type_error(function, key, "must be a dict of name: callable");
       callables = value.cast<py::dict>();
-    } else if (key == "threads") threads = whole("workprecision", key, value);
-    else if (key == "repetitions") repetitions = whole("workprecision", key, value);
-    else throw py::type_error("workprecision() got an unexpected keyword argument '" + clip(key) + "'");
+    } else if (key == "threads") in->threads = whole(function, key, value);
+    else if (key == "repetitions" && function != "baseline") in->repetitions = whole(function, key, value);
+    else throw py::type_error(function + "() got an unexpected keyword argument '" + clip(key) + "'");
   }
   for (const auto& [name, f] : callables)
     if (!py::isinstance<py::str>(name) || !PyCallable_Check(f.ptr()))
-      type_error("workprecision", "solvers", "must map names (str) to callables");
+      type_error(function, "solvers", "must map names (str) to callables");
   const std::string python = py::str(py::module_::import("sys").attr("executable"));
   std::string toml, settings_file;
   if (runs && py::isinstance<py::str>(runs)) {
-    settings_file = text("workprecision", "settings", runs);  // its runs name the registry's solvers
+    settings_file = text(function, "settings", runs);  // its runs name the registry's solvers
   } else if (runs && (py::isinstance<py::list>(runs) || py::isinstance<py::tuple>(runs))) {
     toml = "name = \"python\"\n";
     for (const py::handle& run : runs) {
-      if (!py::isinstance<py::dict>(run)) type_error("workprecision", "settings", "must be a list of dicts, one per [[run]]");
+      if (!py::isinstance<py::dict>(run)) type_error(function, "settings", "must be a list of dicts, one per [[run]]");
       toml += "[[run]]\n";
       for (const auto& [k, v] : run.cast<py::dict>()) {
         const std::string key = py::str(k);
@@ -430,42 +463,122 @@ py::list workprecision(const py::object& case_set, const py::kwargs& kwargs) {
         }
       }
     }
-  } else {
-    type_error("workprecision", "settings", "required: a settings-list file (str) or a list of dicts, one per [[run]]");
+  } else if (runs || function != "baseline") {
+    type_error(function, "settings", "required: a settings-list file (str) or a list of dicts, one per [[run]]");
   }
-  const auto [set, list] = checked([&] {
-    CaseSet s = load_case_set(file);
-    app::validate_case_set(s, file);
-    SettingsList l = settings_file.empty() ? parse_settings_list(toml, "settings") : load_settings_list(settings_file);
-    if (threads && *threads <= 0) throw app::BadInput("threads: must be >= 1");
-    if (repetitions && (*repetitions < 1 || *repetitions > kMaxRepetitions))
+  in->has_list = !settings_file.empty() || !toml.empty();
+  checked([&] {
+    in->set = load_case_set(file);
+    app::validate_case_set(in->set, file);
+    if (in->has_list)
+      in->list = settings_file.empty() ? parse_settings_list(toml, "settings") : load_settings_list(settings_file);
+    if (in->threads && *in->threads <= 0) throw app::BadInput("threads: must be >= 1");
+    if (in->repetitions && (*in->repetitions < 1 || *in->repetitions > kMaxRepetitions))
       throw app::BadInput("repetitions: must be from 1 to " + std::to_string(kMaxRepetitions));
-    return std::pair<CaseSet, SettingsList>(std::move(s), std::move(l));
+    return 0;
   });
   // The callables' runs: in process, on one thread (callable_solver.hpp says why).
-  std::vector<std::function<std::string(const std::string&, double&)>> in_process;
-  in_process.reserve(list.runs.size());
-  SettingsList study_list = list;
-  for (SweepRun& run : study_list.runs) {
+  in->in_process.reserve(in->list.runs.size());
+  for (SweepRun& run : in->list.runs) {
     const std::size_t mark = run.settings.command.find(kCallableMark);
     if (mark == std::string::npos || run.settings.command.compare(0, mark, python) != 0) continue;
     const std::string name = run.settings.command.substr(mark + kCallableMark.size());
-    in_process.emplace_back(CallableSolver(callables[py::str(name)]));
-    run.settings.in_process = &in_process.back();
+    in->in_process.emplace_back(CallableSolver(callables[py::str(name)]));
+    run.settings.in_process = &in->in_process.back();
     run.settings.command = "python " + name;
-    threads = 1;
+    in->threads = 1;
   }
-  std::atomic<bool> stop{false};
+  return in;
+}
+
+SweepOptions sweep_options(const StudyInput& in, std::atomic<bool>& stop) {
   SweepOptions options;
-  options.threads = threads ? static_cast<unsigned>(std::min<long long>(*threads, 4096)) : 0;
+  options.threads = in.threads ? static_cast<unsigned>(std::min<long long>(*in.threads, 4096)) : 0;
   options.cancel = &stop;
+  return options;
+}
+
+py::list workprecision(const py::object& case_set, const py::kwargs& kwargs) {
+  const std::unique_ptr<StudyInput> in = read_study("workprecision", case_set, kwargs);
+  std::atomic<bool> stop{false};
   StudyOptions study{.model_references = true};
-  if (repetitions) study.repetitions = static_cast<int>(*repetitions);
+  if (in->repetitions) study.repetitions = static_cast<int>(*in->repetitions);
   WorkPrecision wp;
-  run_interruptibly(stop, [&] { wp = run_work_precision(set.cases, study_list, options, study); });
+  run_interruptibly(stop, [&] { wp = run_work_precision(in->set.cases, in->list, sweep_options(*in, stop), study); });
   std::vector<std::string> lines;
   for (const WorkPrecisionRow& row : wp.table) lines.push_back(work_precision_csv_line(row));
   return table_dicts(work_precision_csv_header(), lines);
+}
+
+py::list stress(const py::object& case_set, const py::kwargs& kwargs) {
+  const std::unique_ptr<StudyInput> in = read_study("stress", case_set, kwargs);
+  std::atomic<bool> stop{false};
+  Stress st;
+  run_interruptibly(stop, [&] {
+    st = run_stress(in->set.cases, in->list, sweep_options(*in, stop),
+                    in->repetitions ? static_cast<int>(*in->repetitions) : kStudyRepetitions);
+  });
+  std::vector<std::string> lines;
+  for (const StressRow& row : st.table) lines.push_back(stability_csv_line(row));
+  return table_dicts(stability_csv_header(), lines);
+}
+
+// The rows a baseline file holds, as `poundbench baseline --out` writes them (a dict per row).
+py::list baseline(const py::object& case_set, const py::kwargs& kwargs) {
+  const std::unique_ptr<StudyInput> in = read_study("baseline", case_set, kwargs);
+  std::atomic<bool> stop{false};
+  std::vector<Row> rows;
+  run_interruptibly(stop, [&] {
+    rows = run_baseline(in->set.cases, in->has_list ? &in->list : nullptr, sweep_options(*in, stop));
+  });
+  std::vector<std::string> lines;
+  for (const Row& row : rows) lines.push_back(csv_line(row));
+  return table_dicts(csv_header(), lines);
+}
+
+// `poundbench compare ROWS --baseline FILE`: a dict per comparison line.
+py::list compare(const py::object& rows_file, const py::kwargs& kwargs) {
+  const std::string file = text("compare", "rows", rows_file);
+  std::string baseline_file;
+  std::optional<double> tolerance;
+  bool same_setting = false;
+  for (const auto& [key_object, value] : kwargs) {
+    const std::string key = utf8("compare", "name", key_object);
+    if (value.is_none()) continue;
+    if (key == "baseline") baseline_file = text("compare", key, value);
+    else if (key == "tolerance") tolerance = number("compare", key, value);
+    else if (key == "same_setting") same_setting = value.cast<bool>();
+    else throw py::type_error("compare() got an unexpected keyword argument '" + clip(key) + "'");
+  }
+  const auto [rows, stored] = checked([&] {
+    if (baseline_file.empty()) throw app::BadInput("--baseline: required");
+    if (!same_setting && !tolerance) throw app::BadInput("--tolerance: required (or --same-setting)");
+    if (tolerance && !(*tolerance >= 0.0 && std::isfinite(*tolerance))) throw app::BadInput("--tolerance: must be finite and >= 0");
+    try {
+      return std::pair(read_minimal_csv_file(file), read_csv_file(baseline_file));
+    } catch (const RowReadError& e) {
+      throw app::BadInput(e.what());
+    }
+  });
+  const Match match = same_setting ? Match::same_setting : Match::reference;
+  py::list out;
+  for (const Comparison& c : compare_rows(rows.rows, stored.rows, match, tolerance.value_or(std::nan("")))) {
+    py::dict d;
+    d["family"] = decoded(c.family);
+    d["solver"] = decoded(c.solver);
+    d["variant"] = decoded(c.variant);
+    d["settings"] = decoded(c.settings);
+    d["tolerance"] = c.tolerance;
+    d["compared"] = c.compared;
+    d["failed"] = c.failed;
+    d["unmatched"] = c.unmatched;
+    d["missing"] = c.missing;
+    d["max_difference"] = c.max_difference;
+    d["worst_point"] = c.worst_point;
+    d["passed"] = c.passed(match);
+    out.append(d);
+  }
+  return out;
 }
 
 // "name: help" lines of a field table, for the docstrings.
@@ -513,6 +626,18 @@ PYBIND11_MODULE(poundbench, m) {
         "{'solver': 'moreau-jean', 'steps': [64, 256]}). solvers: names of Python callables, each usable as\n"
         "a run's solver ({'solver': 'mine', 'steps': [64, 256]}), run in process as spectrum's solver=f;\n"
         "their rows' cost (cpu_median_s, column cost = solve_seconds) is the calls' own time.");
+  m.def("stress", &python::stress, py::arg("case_set"),
+        "stress(case_set, settings=[...], solvers={}, threads=None, repetitions=None) -> list of dict\n\n"
+        "The stress study, as `poundbench stress`: its table (the stability CSV), one dict per line; settings\n"
+        "and solvers as workprecision's.");
+  m.def("baseline", &python::baseline, py::arg("case_set"),
+        "baseline(case_set, settings=None, solvers={}, threads=None) -> list of dict\n\n"
+        "The rows `poundbench baseline CASESET --settings LIST --out FILE` stores, one dict per row (its CSV's\n"
+        "columns); settings and solvers as workprecision's, settings optional (the reference alone).");
+  m.def("compare", &python::compare, py::arg("rows"),
+        "compare(rows, baseline=FILE, tolerance=None, same_setting=False) -> list of dict\n\n"
+        "`poundbench compare ROWS --baseline FILE`: a dict per comparison line (family, solver, variant,\n"
+        "settings, tolerance, compared, failed, unmatched, missing, max_difference, worst_point, passed).");
   m.def(
       "solvers",
       [] {
