@@ -400,6 +400,7 @@ class Session {
       startup = seconds_since(start);
       run.out.clear();
     }
+    pending_.clear();  // a line past the last answer (a program that answered twice) is not this case's
     std::string input(line);
     input += '\n';
     if (converse(input, run, limits, start, sigpipe)) {
