@@ -8,7 +8,8 @@ tests/external/persistent_program.py:
   again for the next point;
 - a program that exits is a failed row with its exit code and stderr, and is started again;
 - a program that does not write the ready line fails every point, saying so;
-- Ctrl-C (SIGINT to poundbench) ends the sweep and its program within a second.
+- Ctrl-C (SIGINT to poundbench) ends the sweep and its program within a second;
+- `poundbench adapter --persistent` gives the wrapped solver's rows, Pi1 bit for bit.
 
     python3 tests/external_persistent_test.py POUNDBENCH SOURCE_DIR
 """
@@ -85,6 +86,20 @@ class Persistent(unittest.TestCase):
         # The 0.3 s sleep before the ready line is the start's, not the point's (0.1 s: a loaded machine's slack).
         self.assertGreaterEqual(float(first[0]["startup_seconds"]), 0.3)
         self.assertLess(float(first[0]["seconds"]), 0.2)
+
+    def test_poundbench_adapter_persistent_gives_the_wrapped_solvers_rows(self):
+        flags = ["--threads", "2", "--steps", "64"]
+        direct = subprocess.run([POUNDBENCH, "spectrum", SMOKE, "--solver", "moreau-jean", *flags],
+                                capture_output=True, text=True, check=True).stdout
+        wrapped = subprocess.run([POUNDBENCH, "spectrum", SMOKE, "--solver", "external", "--persistent", *flags,
+                                  "--command", f"{POUNDBENCH} adapter --solver moreau-jean --persistent"],
+                                 capture_output=True, text=True, check=True).stdout
+        direct, wrapped = (list(csv.DictReader(io.StringIO(t))) for t in (direct, wrapped))
+        self.assertEqual(len(wrapped), 40)
+        for a, b in zip(direct, wrapped):
+            for column in ("status", "pi1", "impacts", "contact_phases", "steps", "min_gap", "wh"):
+                self.assertEqual(a[column], b[column], f"point {a['point']}: {column}")
+            self.assertGreater(float(b["solve_seconds"]), 0.0)
 
     def test_ctrl_c_ends_the_sweep_and_its_program(self):
         command = f"{sys.executable} {PROGRAM} hang {self.starts}"

@@ -627,6 +627,7 @@ std::string answer_document(const Result& r, const System& s) {
   j["restitution_low"] = number_or_null(r.restitution_low);
   j["restitution_high"] = number_or_null(r.restitution_high);
   j["gap_rate_max"] = number_or_null(r.gap_rate_max);
+  j["solve_seconds"] = number_or_null(r.solve_seconds);
   const History& h = r.history;
   if (h.rows() > 0 && h.n_bodies == s.n_bodies()) {
     Ordered t = Ordered::array(), u0 = Ordered::array();
