@@ -514,13 +514,14 @@ TEST(Csv, NumbersReadBackToTheSameDouble) {
 
 TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   const std::vector<std::string> header = split_csv(csv_header());
-  ASSERT_EQ(header.size(), 47u);
+  ASSERT_EQ(header.size(), 49u);
   EXPECT_EQ(header.front(), "family");
   EXPECT_EQ(header[28], "message");  // the columns after it were appended later
   EXPECT_EQ(header[37], "penetration_steps");
   EXPECT_EQ(header[40], "repetitions");
   EXPECT_EQ(header[44], "record");  // the loads' columns (issue 21)
-  EXPECT_EQ(header.back(), "unresolved");  // the verdict's came last (issue 32)
+  EXPECT_EQ(header[46], "unresolved");  // the verdict's (issue 32)
+  EXPECT_EQ(header.back(), "startup_seconds");  // the external solver's own timings came last (issue 37)
 
   Row row;
   row.input.family = "odd, \"name\"";
@@ -573,12 +574,13 @@ TEST(Csv, TheVerdictReadsBackAndAFileFromBeforeItStillReads) {
   }
   std::string header = csv_header(), line = csv_line(row);
   header.erase(header.rfind(",resolved"));
+  line.erase(line.size() - 2);  // the own timings' two empty fields (issue 37, after the verdict)
   line.erase(line.rfind(",,"));  // both verdict fields are empty for a row not judged
   std::istringstream old(header + "\n" + line + "\n");
   const RowFile file = read_csv(old, "old.csv");
   ASSERT_EQ(file.rows.size(), 1u);
   EXPECT_FALSE(file.rows[0].result.resolved.has_value());
-  std::istringstream bad(csv_header() + "\n" + csv_line(row).substr(0, csv_line(row).size() - 2) + ",maybe,\n");
+  std::istringstream bad(csv_header() + "\n" + csv_line(row).substr(0, csv_line(row).size() - 4) + ",maybe,,,\n");
   EXPECT_THROW(read_csv(bad, "bad.csv"), RowReadError);
 }
 
