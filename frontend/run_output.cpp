@@ -103,6 +103,9 @@ nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {
   for (const PhysicalField& field : kPhysicalFields)
     if (!std::isnan(row.input.physical.*field.member)) j[std::string(field.name)] = row.input.physical.*field.member;
   for (const PhysicalResult& x : physical_results(row)) j[std::string(x.name)] = number_or_null(x.value);
+  // The external solver's own timings (rows/row.hpp), after everything else.
+  j["solve_seconds"] = number_or_null(r.solve_seconds);
+  j["startup_seconds"] = number_or_null(r.startup_seconds);
   return j;
 }
 

@@ -8,6 +8,7 @@
 #include "cases/system.hpp"
 #include "cases/text.hpp"
 #include "frontend/errors.hpp"
+#include "solvers/external/external.hpp"
 #include "solvers/settings_fields.hpp"
 
 namespace pb::app {
@@ -29,7 +30,13 @@ void add_solver_flags(CLI::App& command, SolverFlags& flags) {
   Settings& s = flags.settings;
   command.add_option("--solver", flags.solver, "Solver: " + solver_names() + " (see `poundbench solvers`)")
       ->capture_default_str();
-  command.add_option("--variant", s.variant, "Solver variant (default: the solver's own)");
+  CLI::Option* variant = command.add_option("--variant", s.variant, "Solver variant (default: the solver's own)");
+  command
+      .add_flag_callback(
+          "--persistent", [&s] { s.variant = std::string(external::kPersistent); },
+          "External: start the program once per worker and send it every case, a line each way "
+          "(--variant persistent; docs/external.md)")
+      ->excludes(variant);
   for (const SettingField& f : kSettingFields) {
     const std::string flag = flag_of(f.name), help(f.help);
     CLI::Option* option = f.number    ? command.add_option(flag, s.*f.number, help)

@@ -3,6 +3,11 @@
 //   poundbench.run(scene="pair", pulse="cosine", directivity="normal", pi2=0.8, pi3=0.5,
 //                  eps=0.5, pi5=0.5, pi6=1.0, solver="moreau-jean", steps=64)
 //   poundbench.spectrum("cases/sets/smoke.toml", solver="moreau-jean", steps=64)
+//   poundbench.spectrum("cases/sets/smoke.toml", solver=f)          # f(case: dict) -> dict, in process
+//   poundbench.workprecision("cases/sets/smoke.toml", settings=[{"solver": "mine", "steps": [64, 256]}],
+//                            solvers={"mine": f})
+//
+// NumPy is needed for histories alone (run(history=True)), imported there.
 //
 // Its keywords are the command line's flags, with '_' for '-' (n_free for --n-free), made
 // from the same tables (cases/fields.hpp, solvers/settings_fields.hpp), and they are checked
@@ -20,9 +25,14 @@
 
 #include <atomic>
 #include <chrono>
+#include <charconv>
 #include <climits>
+#include <cmath>
 #include <csignal>
 #include <exception>
+#include <functional>
+#include <future>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -39,6 +49,15 @@
 #include "frontend/solver_flags.hpp"
 #include "cases/physical.hpp"
 #include "frontend/contact_stiffness.hpp"
+#include "python/callable_solver.hpp"
+#include "python/settings_toml.hpp"
+#include "rows/row_read.hpp"
+#include "rows/minimal_rows.hpp"
+#include "studies/baseline.hpp"
+#include "studies/settings_list.hpp"
+#include "studies/stress.hpp"
+#include "studies/workprecision.hpp"
+#include "solvers/external/external.hpp"
 #include "solvers/settings_fields.hpp"
 #include "sweep/sweep.hpp"
 
@@ -58,6 +77,7 @@ struct Keywords {
   bool history = false;
   std::optional<long long> samples, threads;
   double k_contact = 0.0;
+  py::object callable;  // solver=f: a Python callable, the external solver in process (callable_solver.hpp)
 
   bool has(std::string_view flag) const {
     for (const std::string& g : given)
@@ -191,8 +211,16 @@ Keywords read_keywords(const std::string& function, const py::kwargs& kwargs) {
     } else if (key == "monitor") {
       if (!py::isinstance<py::bool_>(value)) type_error(function, key, "must be True or False");
       settings.monitor = value.cast<bool>();
+    } else if (key == "solver" && !for_run && !py::isinstance<py::str>(value) && PyCallable_Check(value.ptr())) {
+      k.callable = py::reinterpret_borrow<py::object>(value);
+      k.solver_flags.solver = "external";
     } else if (key == "solver") {
       k.solver_flags.solver = text(function, key, value);
+    } else if (key == "persistent") {
+      if (!py::isinstance<py::bool_>(value)) type_error(function, key, "must be True or False");
+      if (value.cast<bool>()) settings.variant = std::string(external::kPersistent);
+      k.given.push_back("--variant");
+      continue;
     } else if (key == "variant") {
       settings.variant = text(function, key, value);
     } else if (setting) {
@@ -245,8 +273,17 @@ py::object to_python(const nlohmann::ordered_json& j) {
   }
 }
 
-// The history as one NumPy array per column, named as `run --history`'s CSV columns.
+// The history as one NumPy array per column, named as `run --history`'s CSV columns. NumPy is
+// needed here alone (Debian: python3-numpy); without it, one line naming the package.
 py::dict history_arrays(const Row& row) {
+  try {
+    py::module_::import("numpy");
+  } catch (py::error_already_set& e) {
+    if (!e.matches(PyExc_ImportError)) throw;
+    PyErr_SetString(PyExc_ImportError,
+                    "poundbench: a history needs NumPy, which is not installed (Debian: python3-numpy; pip: numpy)");
+    throw py::error_already_set();
+  }
   const std::vector<std::string> columns = app::history_columns(row.input);
   const History& h = row.result.history;
   const std::size_t rows = h.rows(), width = static_cast<std::size_t>(h.row_size());
@@ -321,6 +358,8 @@ auto checked(Check&& check) {
     raise_value_error(e.what());
   } catch (const CaseSetError& e) {
     raise_value_error(e.what());
+  } catch (const SettingsListError& e) {
+    raise_value_error(e.what());
   }
 }
 
@@ -362,6 +401,15 @@ py::dict run(const py::kwargs& kwargs) {
 py::list spectrum(const py::object& case_set, const py::kwargs& kwargs) {
   const std::string file = text("spectrum", "case_set", case_set);
   Keywords k = checked([&] { return read_keywords("spectrum", kwargs); });
+  // A callable solver runs in process on one thread (callable_solver.hpp says why).
+  std::optional<std::function<std::string(const std::string&, double&)>> in_process;
+  if (k.callable) {
+    if (k.has("--command")) raise_value_error("--command: not with a Python callable as the solver");
+    in_process = CallableSolver(k.callable);
+    k.solver_flags.settings.in_process = &*in_process;
+    k.solver_flags.settings.command = "python " + std::string(py::str(py::getattr(k.callable, "__qualname__", py::repr(k.callable))));
+    k.threads = 1;
+  }
   const auto [set, solver] = checked([&] {
     CaseSet s = load_case_set(file);
     app::validate_case_set(s, file);
@@ -377,6 +425,206 @@ py::list spectrum(const py::object& case_set, const py::kwargs& kwargs) {
   run_interruptibly(stop, [&] { rows = run_sweep(set.cases, *solver, k.solver_flags.settings, options); });
   py::list out;
   for (const Row& row : rows) out.append(to_python(app::row_json(row, {row.input, row.point, file})));
+  return out;
+}
+
+// What a work-precision study's table is, as the CLI writes it (its CSV), a dict per line, with
+// numbers as numbers and empty fields as None.
+py::list table_dicts(const std::string& header, const std::vector<std::string>& lines) {
+  const std::vector<std::string> columns = split_csv(header);
+  py::list out;
+  for (const std::string& line : lines) {
+    const std::vector<std::string> fields = split_csv(line);
+    py::dict d;
+    for (std::size_t j = 0; j < columns.size() && j < fields.size(); ++j) {
+      const std::string& f = fields[j];
+      double x = 0.0;
+      const auto [end, error] = std::from_chars(f.data(), f.data() + f.size(), x);
+      if (f.empty())
+        d[py::str(columns[j])] = py::none();
+      else if (error == std::errc{} && end == f.data() + f.size())
+        d[py::str(columns[j])] = x == std::floor(x) && f.find_first_of(".eE") == std::string::npos
+                                     ? py::object(py::int_(static_cast<long long>(x)))
+                                     : py::object(py::float_(x));
+      else
+        d[py::str(columns[j])] = decoded(f);
+    }
+    out.append(d);
+  }
+  return out;
+}
+
+// The program a Python callable's [[run]] names while the settings list is parsed (an
+// executable that is there, so that the list's checks pass), followed by this and its name.
+constexpr std::string_view kCallableMark = " poundbench-callable:";
+
+// What a study from Python runs: its case set, its settings list (the callables' runs pointing
+// at their in-process solvers, which live here), the sweep's options.
+struct StudyInput {
+  CaseSet set;
+  SettingsList list;
+  std::vector<std::function<std::string(const std::string&, double&)>> in_process;
+  std::optional<long long> threads, repetitions;
+  bool has_list = false;
+};
+
+// The keywords of workprecision, stress and baseline: settings (a settings-list file, or a list of
+// dicts, one per [[run]]), solvers (names of callables a run may name as its solver), threads,
+// repetitions (not for baseline). settings is optional for baseline alone.
+std::unique_ptr<StudyInput> read_study(const std::string& function, const py::object& case_set,
+                                       const py::kwargs& kwargs) {
+  auto in = std::make_unique<StudyInput>();
+  const std::string file = text(function, "case_set", case_set);
+  py::object runs;
+  py::dict callables;
+  for (const auto& [key_object, value] : kwargs) {
+    const std::string key = utf8(function, "name", key_object);
+    if (value.is_none()) continue;
+    if (key == "settings") runs = py::reinterpret_borrow<py::object>(value);
+    else if (key == "solvers") {
+      if (!py::isinstance<py::dict>(value)) type_error(function, key, "must be a dict of name: callable");
+      callables = value.cast<py::dict>();
+    } else if (key == "threads") in->threads = whole(function, key, value);
+    else if (key == "repetitions" && function != "baseline") in->repetitions = whole(function, key, value);
+    else throw py::type_error(function + "() got an unexpected keyword argument '" + clip(key) + "'");
+  }
+  for (const auto& [name, f] : callables)
+    if (!py::isinstance<py::str>(name) || !PyCallable_Check(f.ptr()))
+      type_error(function, "solvers", "must map names (str) to callables");
+  const std::string python = py::str(py::module_::import("sys").attr("executable"));
+  std::string toml, settings_file;
+  if (runs && py::isinstance<py::str>(runs)) {
+    settings_file = text(function, "settings", runs);  // its runs name the registry's solvers
+  } else if (runs && (py::isinstance<py::list>(runs) || py::isinstance<py::tuple>(runs))) {
+    toml = "name = \"python\"\n";
+    for (const py::handle& run : runs) {
+      if (!py::isinstance<py::dict>(run)) type_error(function, "settings", "must be a list of dicts, one per [[run]]");
+      toml += "[[run]]\n";
+      for (const auto& [k, v] : run.cast<py::dict>()) {
+        const std::string key = py::str(k);
+        if (key == "solver" && py::isinstance<py::str>(v) && callables.contains(v)) {
+          toml += "solver = \"external\"\ncommand = " +
+                  toml_value(py::str(python + std::string(kCallableMark) + std::string(py::str(v))), key) + "\n";
+        } else {
+          toml += key + " = " + toml_value(v, key) + "\n";
+        }
+      }
+    }
+  } else if (runs || function != "baseline") {
+    type_error(function, "settings", "required: a settings-list file (str) or a list of dicts, one per [[run]]");
+  }
+  in->has_list = !settings_file.empty() || !toml.empty();
+  checked([&] {
+    in->set = load_case_set(file);
+    app::validate_case_set(in->set, file);
+    if (in->has_list)
+      in->list = settings_file.empty() ? parse_settings_list(toml, "settings") : load_settings_list(settings_file);
+    if (in->threads && *in->threads <= 0) throw app::BadInput("threads: must be >= 1");
+    if (in->repetitions && (*in->repetitions < 1 || *in->repetitions > kMaxRepetitions))
+      throw app::BadInput("repetitions: must be from 1 to " + std::to_string(kMaxRepetitions));
+    return 0;
+  });
+  // The callables' runs: in process, on one thread (callable_solver.hpp says why).
+  in->in_process.reserve(in->list.runs.size());
+  for (SweepRun& run : in->list.runs) {
+    const std::size_t mark = run.settings.command.find(kCallableMark);
+    if (mark == std::string::npos || run.settings.command.compare(0, mark, python) != 0) continue;
+    const std::string name = run.settings.command.substr(mark + kCallableMark.size());
+    in->in_process.emplace_back(CallableSolver(callables[py::str(name)]));
+    run.settings.in_process = &in->in_process.back();
+    run.settings.command = "python " + name;
+    in->threads = 1;
+  }
+  return in;
+}
+
+SweepOptions sweep_options(const StudyInput& in, std::atomic<bool>& stop) {
+  SweepOptions options;
+  options.threads = in.threads ? static_cast<unsigned>(std::min<long long>(*in.threads, 4096)) : 0;
+  options.cancel = &stop;
+  return options;
+}
+
+py::list workprecision(const py::object& case_set, const py::kwargs& kwargs) {
+  const std::unique_ptr<StudyInput> in = read_study("workprecision", case_set, kwargs);
+  std::atomic<bool> stop{false};
+  StudyOptions study{.model_references = true};
+  if (in->repetitions) study.repetitions = static_cast<int>(*in->repetitions);
+  WorkPrecision wp;
+  run_interruptibly(stop, [&] { wp = run_work_precision(in->set.cases, in->list, sweep_options(*in, stop), study); });
+  std::vector<std::string> lines;
+  for (const WorkPrecisionRow& row : wp.table) lines.push_back(work_precision_csv_line(row));
+  return table_dicts(work_precision_csv_header(), lines);
+}
+
+py::list stress(const py::object& case_set, const py::kwargs& kwargs) {
+  const std::unique_ptr<StudyInput> in = read_study("stress", case_set, kwargs);
+  std::atomic<bool> stop{false};
+  Stress st;
+  run_interruptibly(stop, [&] {
+    st = run_stress(in->set.cases, in->list, sweep_options(*in, stop),
+                    in->repetitions ? static_cast<int>(*in->repetitions) : kStudyRepetitions);
+  });
+  std::vector<std::string> lines;
+  for (const StressRow& row : st.table) lines.push_back(stability_csv_line(row));
+  return table_dicts(stability_csv_header(), lines);
+}
+
+// The rows a baseline file holds, as `poundbench baseline --out` writes them (a dict per row).
+py::list baseline(const py::object& case_set, const py::kwargs& kwargs) {
+  const std::unique_ptr<StudyInput> in = read_study("baseline", case_set, kwargs);
+  std::atomic<bool> stop{false};
+  std::vector<Row> rows;
+  run_interruptibly(stop, [&] {
+    rows = run_baseline(in->set.cases, in->has_list ? &in->list : nullptr, sweep_options(*in, stop));
+  });
+  std::vector<std::string> lines;
+  for (const Row& row : rows) lines.push_back(csv_line(row));
+  return table_dicts(csv_header(), lines);
+}
+
+// `poundbench compare ROWS --baseline FILE`: a dict per comparison line.
+py::list compare(const py::object& rows_file, const py::kwargs& kwargs) {
+  const std::string file = text("compare", "rows", rows_file);
+  std::string baseline_file;
+  std::optional<double> tolerance;
+  bool same_setting = false;
+  for (const auto& [key_object, value] : kwargs) {
+    const std::string key = utf8("compare", "name", key_object);
+    if (value.is_none()) continue;
+    if (key == "baseline") baseline_file = text("compare", key, value);
+    else if (key == "tolerance") tolerance = number("compare", key, value);
+    else if (key == "same_setting") same_setting = value.cast<bool>();
+    else throw py::type_error("compare() got an unexpected keyword argument '" + clip(key) + "'");
+  }
+  const auto [rows, stored] = checked([&] {
+    if (baseline_file.empty()) throw app::BadInput("--baseline: required");
+    if (!same_setting && !tolerance) throw app::BadInput("--tolerance: required (or --same-setting)");
+    if (tolerance && !(*tolerance >= 0.0 && std::isfinite(*tolerance))) throw app::BadInput("--tolerance: must be finite and >= 0");
+    try {
+      return std::pair(read_minimal_csv_file(file), read_csv_file(baseline_file));
+    } catch (const RowReadError& e) {
+      throw app::BadInput(e.what());
+    }
+  });
+  const Match match = same_setting ? Match::same_setting : Match::reference;
+  py::list out;
+  for (const Comparison& c : compare_rows(rows.rows, stored.rows, match, tolerance.value_or(std::nan("")))) {
+    py::dict d;
+    d["family"] = decoded(c.family);
+    d["solver"] = decoded(c.solver);
+    d["variant"] = decoded(c.variant);
+    d["settings"] = decoded(c.settings);
+    d["tolerance"] = c.tolerance;
+    d["compared"] = c.compared;
+    d["failed"] = c.failed;
+    d["unmatched"] = c.unmatched;
+    d["missing"] = c.missing;
+    d["max_difference"] = c.max_difference;
+    d["worst_point"] = c.worst_point;
+    d["passed"] = c.passed(match);
+    out.append(d);
+  }
   return out;
 }
 
@@ -417,9 +665,32 @@ PYBIND11_MODULE(poundbench, m) {
       "Solves every point of a case-set file (TOML, cases/README.md) with one solver, as `poundbench\n"
       "spectrum`: one dict per point, in point order, with the keys of run()'s result (and case_file,\n"
       "point); pandas.DataFrame(rows) makes the table. Keywords: solver, variant, threads (default: every\n"
-      "core), monitor (as run()), and\n" +
-      python::keyword_lines(kSettingFields);
+      "core), monitor (as run()), persistent (True: the external solver's persistent mode), and\n" +
+      python::keyword_lines(kSettingFields) +
+      "solver may be a Python callable f(case: dict) -> dict, run in process on one thread: it gets the\n"
+      "external protocol's case document and returns its answer (docs/external.md; 'version' may be left\n"
+      "out). Each row's solve_seconds is the call, timed around it; what f raises is that point's failed\n"
+      "row, with the exception's type and message; Ctrl-C stops the sweep.\n";
   m.def("spectrum", &python::spectrum, py::arg("case_set"), spectrum_doc.c_str());
+  m.def("workprecision", &python::workprecision, py::arg("case_set"),
+        "workprecision(case_set, settings=[...], solvers={}, threads=None, repetitions=None) -> list of dict\n\n"
+        "A work-precision study, as `poundbench workprecision`: the table it writes (its CSV), one dict per\n"
+        "line. settings: a settings-list file, or a list of dicts, one per [[run]] (studies/settings_list.hpp:\n"
+        "{'solver': 'moreau-jean', 'steps': [64, 256]}). solvers: names of Python callables, each usable as\n"
+        "a run's solver ({'solver': 'mine', 'steps': [64, 256]}), run in process as spectrum's solver=f;\n"
+        "their rows' cost (cpu_median_s, column cost = solve_seconds) is the calls' own time.");
+  m.def("stress", &python::stress, py::arg("case_set"),
+        "stress(case_set, settings=[...], solvers={}, threads=None, repetitions=None) -> list of dict\n\n"
+        "The stress study, as `poundbench stress`: its table (the stability CSV), one dict per line; settings\n"
+        "and solvers as workprecision's.");
+  m.def("baseline", &python::baseline, py::arg("case_set"),
+        "baseline(case_set, settings=None, solvers={}, threads=None) -> list of dict\n\n"
+        "The rows `poundbench baseline CASESET --settings LIST --out FILE` stores, one dict per row (its CSV's\n"
+        "columns); settings and solvers as workprecision's, settings optional (the reference alone).");
+  m.def("compare", &python::compare, py::arg("rows"),
+        "compare(rows, baseline=FILE, tolerance=None, same_setting=False) -> list of dict\n\n"
+        "`poundbench compare ROWS --baseline FILE`: a dict per comparison line (family, solver, variant,\n"
+        "settings, tolerance, compared, failed, unmatched, missing, max_difference, worst_point, passed).");
   m.def(
       "solvers",
       [] {

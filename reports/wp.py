@@ -107,6 +107,14 @@ def panel_rank(panel):
     return (order.index(panel) if panel in order else len(order), panel)
 
 
+
+def cost_label(rows):
+    """The cost axis: CPU time, or the solver's own time for a setting whose runs report it
+    (the table's cost column, studies/stats.hpp: an external program's solve_seconds, a Python
+    callable timed around its call)."""
+    own = {r.get("cost") for r in rows} - {None, "", "cpu_seconds"}
+    return "CPU time per run (us)" if not own else "cost per run (us): CPU time; a solver's own solve time where it reports one"
+
 def wp_diagram(family, panel, labels, lines, rows, out_dir):
     """One family's diagram for one panel's configurations: the median and the 95th percentile
     of the error side by side, the other solvers in grey and the Pareto front over every solver
@@ -149,7 +157,7 @@ def wp_diagram(family, panel, labels, lines, rows, out_dir):
         ax.set_yscale("log")
         ax.grid(True, which="major", alpha=0.3)
         ax.set_title(f"{title} over the points")
-        ax.set_xlabel("CPU time per run (us)")
+        ax.set_xlabel(cost_label(rows))
     axes[0].set_ylabel("relative Pi1 error")
     handles = [Line2D([], [], ls=styles[lb]["ls"], marker=styles[lb]["marker"], color=styles[lb]["color"], ms=5,
                       label=lb) for lb in labels]

@@ -123,6 +123,8 @@ constexpr std::array kTailColumns = {"wh",          "energy_excess",   "penetrat
 
 // The verdict (solvers/verdict.hpp), after everything else: the columns added last.
 constexpr std::array kVerdictColumns = {"resolved", "unresolved"};
+// The external solver's own timings (Result::solve_seconds, startup_seconds), after the verdict.
+constexpr std::array kOwnTimeColumns = {"solve_seconds", "startup_seconds"};
 
 // Where a field's column is: after the directivity (those of every scene's bodies), after
 // the message (the chain's, where they were added), after the tail (the pulses') or at the
@@ -208,6 +210,7 @@ std::string csv_header() {
   for (const char* column : kYieldColumns) line.text(column);
   for (const PhysicalField& f : kPhysicalFields) line.text(f.name);
   for (std::string_view column : kPhysicalResultNames) line.text(column);
+  for (const char* column : kOwnTimeColumns) line.text(column);
   return line.take();
 }
 
@@ -255,6 +258,8 @@ std::string csv_line(const Row& row) {
   line.number(r.hysteretic);
   for (const PhysicalField& f : kPhysicalFields) line.number(c.physical.*f.member);
   for (const PhysicalResult& x : physical_results(row)) line.number(x.value);
+  line.number(r.solve_seconds);
+  line.number(r.startup_seconds);
   return line.take();
 }
 

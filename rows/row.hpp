@@ -9,7 +9,8 @@
 //   contact_phases, steps, min_gap, seconds, cpu_seconds, message, bodies, kick, wh,
 //   energy_excess, penetration, isolated_impacts, restitution_low, restitution_high,
 //   penetration_steps, cpu_seconds_low, cpu_seconds_high, repetitions, cycles, mp_gamma,
-//   mp_nu, record, resolved, unresolved, pi_y0, pi_y1, pi_y2, pi_y, alpha, mu, residual, hysteretic
+//   mp_nu, record, resolved, unresolved, pi_y0, pi_y1, pi_y2, pi_y, alpha, mu, residual, hysteretic,
+//   t0, ... (the physical values and results), solve_seconds, startup_seconds
 // pi5/pi6 are empty for the wall scene and pi7/pi8 for every scene but row3; bodies and
 // kick are empty except for chain; cycles, mp_gamma, mp_nu and record except for the pulse
 // that uses them (makris-c, mp, record: the record's file as the case named it); the fields
@@ -19,7 +20,9 @@
 // empty field. The columns after message came later; they are appended so that scripts
 // reading columns by position keep working. resolved is the verdict of solvers/verdict.hpp,
 // true or false for a run that ended ok and empty otherwise (and in a file from before it),
-// unresolved its reasons.
+// unresolved its reasons. solve_seconds is the external solver's own time for its solve (the
+// answer's, or a Python callable's call timed around it; docs/external.md), empty when it gave
+// none; startup_seconds a persistent program's start, on the one row whose point started it.
 //
 // Timing: the solve alone, with the monitor off, the clocks' own cost taken off (about 0.37 us
 // of CPU: the thread's CPU clock is a system call; sweep/stopwatch.hpp), repeated

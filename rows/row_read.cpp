@@ -209,6 +209,8 @@ Row parse_row(const Columns& columns, const std::vector<std::string>& fields) {
   r.first_impact = f.number("first_impact_s");
   r.impact_velocity_max = f.number("impact_velocity");
   r.contact_force_max = f.number("contact_force_max") / mass_unit(c);
+  r.solve_seconds = f.number("solve_seconds");  // a file from before them, or not external: NaN
+  r.startup_seconds = f.number("startup_seconds");
   if (const std::string bad = row_problem(row); !bad.empty()) throw RowReadError(bad);
   return row;  // penetration is not read: it is made from min_gap
 }

@@ -26,7 +26,7 @@ packages=(
   libmujoco-dev libgl-dev libglx-dev libopengl-dev libqhull-dev
   libdart-dev libsimbody-dev
   libopenmpi-dev openmpi-bin
-  python3 python3-matplotlib python3-numpy
+  python3 python3-matplotlib python3-numpy python3-jsonschema
   python3-scipy python3-dev pybind11-dev
   chromium chromium-driver python3-selenium
 )

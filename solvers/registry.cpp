@@ -94,8 +94,10 @@ const std::array kSolvers = {
     // Another program, run once per point (docs/external.md): what it computes is its own; a
     // deterministic program gives its Pi1 again bit for bit, and 1e-9 lets another build of it
     // round differently, as the reference's.
+    // Solved once per point (one_pass): a second, monitored pass would run the user's program twice.
     SolverInfo{"external", "another program, run per point: the case as JSON on its stdin, its answer on stdout (--command)",
-               &external::solve, &external::describe, &check_all<&external::check>, &external::variant_list, 1e-9},
+               &external::solve, &external::describe, &check_all<&external::check>, &external::variant_list, 1e-9,
+               false, nullptr, true},
 };
 
 // The row whose check this is finds its describe() in the table, so that a row added as

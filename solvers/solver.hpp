@@ -57,6 +57,11 @@ struct Settings {
   bool monitor = true;   // time-steppers: measure the energy balance and restitution (StepMonitor)
   int history_samples = 0;  // > 0: record the state at this many equally spaced times
                             // (event-driven) or at every step (time-steppers)
+  // The external solver in process (a Python callable, `poundbench.spectrum(set, solver=f)`):
+  // given the case document, returns the answer document and sets its second argument to the
+  // wall seconds of the call alone. Set by the Python module; like stop, never part of
+  // describe(). Null: the external solver runs Settings::command.
+  const std::function<std::string(const std::string& case_document, double& call_seconds)>* in_process = nullptr;
 };
 
 // State samples, one row per time: t, u[0..n), v[0..n), g[0..c), lambda[0..c), bodies
@@ -142,6 +147,14 @@ struct Result {
   double first_impact = std::numeric_limits<double>::quiet_NaN();
   double impact_velocity_max = std::numeric_limits<double>::quiet_NaN();
   double contact_force_max = std::numeric_limits<double>::quiet_NaN();
+  // The external solver's: the program's own time for its solve (the answer's solve_seconds; a
+  // Python callable's call, timed around it), beside the sweep's timing of the whole exchange.
+  // NaN: not reported.
+  double solve_seconds = std::numeric_limits<double>::quiet_NaN();
+  // The wall seconds a persistent program took to start, from its spawn to its ready line, on
+  // the one point whose solve started it (NaN on every other): the sweep takes it off that
+  // point's seconds, so the start-up is reported once, apart from any solve.
+  double startup_seconds = std::numeric_limits<double>::quiet_NaN();
 };
 
 // An impact at time t approaching at -rate > 0: what every solver's impact count notes.
@@ -231,6 +244,10 @@ struct SolverInfo {
   // The reference of a setting's own model (nullopt: the rigid reference is its model's, or
   // the setting is its model's reference itself); null: nullopt for every setting.
   std::optional<ModelReference> (*model_reference)(const Settings&) = nullptr;
+  // Solved once per point: the timed solve carries Settings::monitor as the run asks and is
+  // the row's measurement too, with no monitored pass more (the external solver: a second
+  // pass ran the user's program twice per point; it measures what it can either way).
+  bool one_pass = false;
 };
 
 std::span<const SolverInfo> solvers();

@@ -9,6 +9,7 @@
 #include "cases/case.hpp"
 #include "cases/text.hpp"
 #include "cases/toml_input.hpp"
+#include "solvers/external/external.hpp"
 #include "solvers/settings_fields.hpp"
 
 namespace pb {
@@ -160,6 +161,12 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
         solver_node = &v;
       } else if (k == "variant") {
         variants = r.strings(v, f);
+      } else if (k == "persistent") {
+        // The external solver's persistent variant (docs/external.md), as `--persistent`.
+        const auto* b = v.as_boolean();
+        if (!b) r.fail(&v, f, "must be true or false");
+        if (t->contains("variant")) r.fail(&v, f, "give persistent or variant, not both");
+        if (b->get()) variants = {std::string(external::kPersistent)};
       } else if (k == "monitor") {
         const auto* b = v.as_boolean();
         if (!b) r.fail(&v, f, "must be true or false");

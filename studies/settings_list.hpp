@@ -16,7 +16,8 @@
 //   wh = [0.5, 2, 10, 100]            # the step as w_max h instead of steps (not both)
 //   time_limit = 10                   # seconds of wall time per run
 //
-// Keys of [[run]]: solver (required), variant, monitor (true/false, true by default: the
+// Keys of [[run]]: solver (required), variant, persistent (true: the external solver's
+// persistent variant, as `--persistent`; not with variant), monitor (true/false, true by default: the
 // stress study gives the run one more, untimed solve per point with the time-steppers'
 // monitor on, for its energy, gap and restitution checks; no solve is timed with it on, and
 // the work-precision study has no such solve: StudyOptions::monitor), and every number of a

@@ -140,7 +140,7 @@ WorkPrecision run_work_precision(std::span<const Case> cases, const SettingsList
 std::string work_precision_csv_header() {
   return "family,solver,variant,settings,points,failed,err_median,err_p95,err_max,cpu_median_s,cpu_mean_s,"
          "cpu_median_low_s,cpu_median_high_s,repetitions,model_reference,int_err_median,int_err_p95,int_err_max,"
-         "unresolved";
+         "unresolved,cost";
 }
 
 std::string work_precision_csv_line(const WorkPrecisionRow& row) {
@@ -153,7 +153,7 @@ std::string work_precision_csv_line(const WorkPrecisionRow& row) {
   line << ',' << s.cpu.repetitions << ',' << csv_field(row.model_reference);
   for (double x : {row.integration.err_median, row.integration.err_p95, row.integration.err_max})
     line << ',' << format_number(x);
-  line << ',' << s.unresolved;
+  line << ',' << s.unresolved << ',' << s.cpu.axis;
   return line.str();
 }
 

@@ -14,6 +14,7 @@
 
 #include "cases/system.hpp"
 #include "cases/text.hpp"
+#include "solvers/external/process.hpp"
 #include "solvers/verdict.hpp"
 #include "sweep/stopwatch.hpp"
 
@@ -49,7 +50,8 @@ Timed timed_solve(const SolverInfo& solver, const System& system, const Settings
     t.result.message = describe_exception(std::current_exception());
   }
   const Elapsed spent = watch.elapsed();
-  t.seconds = spent.wall;
+  // A persistent program's start is the row's startup_seconds, not the solve's time.
+  t.seconds = spent.wall - (std::isfinite(t.result.startup_seconds) ? t.result.startup_seconds : 0.0);
   t.cpu_seconds = spent.cpu + t.result.child_cpu_seconds;
   return t;
 }
@@ -102,7 +104,8 @@ class PointDeadline {
 // timing columns the repetitions'.
 void time_solves(Row& row, const SolverInfo& solver, const System& system, Settings settings, int repetitions,
                  const PointDeadline& deadline, bool monitor_timed) {
-  if (!monitor_timed) settings.monitor = false;
+  // One pass (the external programs): the timed solve is the monitored one when asked.
+  settings.monitor = settings.monitor && (monitor_timed || solver.one_pass);
   std::vector<double> wall, cpu;
   double spent = 0.0;
   for (int j = 0; j < repetitions && (j == 0 || spent < kRepetitionBudget); ++j) {
@@ -195,7 +198,8 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
 
   const PointDeadline deadline(settings.time_limit);
   time_solves(row, solver, system, settings, repetitions, deadline, monitor_timed);
-  if (settings.monitor && !monitor_timed && !solver.reference && row.result.status != Status::time_limit)
+  if (settings.monitor && !monitor_timed && !solver.one_pass && !solver.reference &&
+      row.result.status != Status::time_limit)
     add_monitor(row, solver, system, settings, deadline);
 
   judge(system, row.result);
@@ -263,6 +267,8 @@ std::vector<Row> run_sweep(std::span<const Case> cases, std::span<const SweepRun
   const auto cancelled = [&] { return options.cancel && options.cancel->load(); };
   const auto stopped = [&] { return stop.load(std::memory_order_relaxed) || cancelled(); };
   const auto work = [&] {
+    // A worker's persistent programs (the external solver's) end with it: started once per worker.
+    const external::ThreadSessionsEnd sessions_end;
     while (!stopped()) {
       const std::optional<std::size_t> task = next_task();
       if (!task || *task >= total) return;

@@ -49,6 +49,9 @@ namespace pb {
 // deterministic). A later repetition cut short by the time limit or the stop flag is not
 // a timing of the same run: the repetitions end there without it; a monitored solve cut
 // short leaves the row unmeasured, its message saying so.
+// A solver solved in one pass (SolverInfo::one_pass: the external solver, whose program a second
+// pass would run twice per point) has no monitored pass: its timed solve carries the run's
+// Settings::monitor, and its own measurements are the row's.
 inline constexpr int kMaxRepetitions = 1000;
 inline constexpr double kRepetitionBudget = 0.01;  // CPU seconds per point, over its repetitions
 

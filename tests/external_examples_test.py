@@ -125,6 +125,21 @@ class ExternalExamples(unittest.TestCase):
             self.assertEqual(int(row["contact_phases"]) > 0, int(ref["contact_phases"]) > 0, what)
             self.assertEqual(row["settings"], '{"command":"%s"}' % SCIPY)
         print(f"worst relative Pi1 error of scipy_adapter.py: {worst:.1e}")
+        # Persistent (one Python per worker): the same answers, bit for bit, each with the
+        # program's own solve time, and the start reported once per worker.
+        with tempfile.TemporaryDirectory() as tmp:
+            cases = os.path.join(tmp, "cases.toml")
+            with open(cases, "w") as f:
+                f.write(CASES)
+            persistent = rows(poundbench("spectrum", cases, "--threads", "2", "--solver", "external", "--persistent",
+                                         "--command", SCIPY + " --persistent"))
+        self.assertEqual([r["pi1"] for r in persistent], [r["pi1"] for r in scipy])
+        self.assertTrue(all(float(r["solve_seconds"]) > 0 for r in persistent))
+        self.assertTrue(all(float(r["solve_seconds"]) <= float(r["seconds"]) for r in persistent))
+        self.assertIn(sum(1 for r in persistent if r["startup_seconds"]), (1, 2))
+        one_shot = sorted(float(r["seconds"]) for r in scipy)[9]
+        kept = sorted(float(r["seconds"]) for r in persistent)[9]
+        print(f"scipy_adapter.py per point, medians: one-shot {1e3 * one_shot:.1f} ms, persistent {1e3 * kept:.1f} ms")
 
     def test_poundbench_adapter_gives_the_wrapped_solvers_rows(self):
         smoke = f"{SOURCE}/cases/sets/smoke.toml"

@@ -532,7 +532,7 @@ TEST(Csv, NumbersReadBackToTheSameDouble) {
 
 TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   const std::vector<std::string> header = split_csv(csv_header());
-  ASSERT_EQ(header.size(), 69u);  // 47, the yielding columns, then the physical values and results
+  ASSERT_EQ(header.size(), 71u);  // 47, the yielding, the physical, the own timings
   EXPECT_EQ(header.front(), "family");
   EXPECT_EQ(header[28], "message");  // the columns after it were appended later
   EXPECT_EQ(header[37], "penetration_steps");
@@ -540,8 +540,8 @@ TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   EXPECT_EQ(header[44], "record");  // the loads' columns (issue 21)
   EXPECT_EQ(header[46], "unresolved");  // then the verdict's (issue 32)
   EXPECT_EQ(header[47], "pi_y0");  // yielding's fields and responses (issue 39)
-  EXPECT_EQ(header[55], "t0");     // the physical values and results last (issue 35)
-  EXPECT_EQ(header.back(), "penetration_m");
+  EXPECT_EQ(header[55], "t0");     // the physical values and results (issue 35)
+  EXPECT_EQ(header.back(), "startup_seconds");  // the external solver's own timings last (issue 37)
 
   Row row;
   row.input.family = "odd, \"name\"";

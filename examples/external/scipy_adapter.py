@@ -5,7 +5,10 @@
         --scene pair --pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 0.5 --pi5 0.5 --pi6 1
 
 It reads one case document on stdin and writes one answer document on stdout
-(docs/external.md). Between events, scipy.integrate.solve_ivp (DOP853) integrates
+(docs/external.md); with --persistent it answers a stream of cases, one line each way, after
+a ready line (docs/external.md, "Persistent mode"), so that Python's start and SciPy's import
+are paid once per sweep worker. Every answer carries solve_seconds: the time from the case
+read to its answer made, the program's own cost of the solve. Between events, scipy.integrate.solve_ivp (DOP853) integrates
 
     m_i u_i'' = -c_i u_i' - k_i u_i - m_i a_g(t) + sum_j W_ij lambda_j
 
@@ -30,14 +33,26 @@ import math
 import sys
 import time
 
-START = time.monotonic()
+START = time.monotonic()  # of the case being solved: its time_limit counts from it
 
 
-def answer(doc):
+class Answered(Exception):
+    """answer()'s document, for respond() to write."""
+
+    def __init__(self, doc):
+        super().__init__()
+        self.doc = doc
+
+
+def write(doc):
     doc.setdefault("version", 1)
     json.dump(doc, sys.stdout, allow_nan=False)
     sys.stdout.write("\n")
-    sys.exit(0)
+    sys.stdout.flush()
+
+
+def answer(doc):
+    raise Answered(doc)
 
 
 def refuse(message):
@@ -47,8 +62,9 @@ def refuse(message):
 try:
     import numpy as np
     from scipy.integrate import solve_ivp
-except ImportError as e:  # the answer says why, rather than a traceback
-    refuse(f"scipy_adapter.py needs NumPy and SciPy (Debian: python3-numpy python3-scipy): {e}")
+except ImportError as e:  # the answer says why, rather than a traceback (in persistent mode: its first line)
+    write({"status": "failed", "message": f"scipy_adapter.py needs NumPy and SciPy (Debian: python3-numpy python3-scipy): {e}"})
+    sys.exit(0)
 
 
 class Stop(Exception):
@@ -307,13 +323,10 @@ class Run:
         return {"t": times.tolist(), "u0": u0.tolist()}
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--rtol", type=float, default=1e-10, help="solve_ivp's relative tolerance")
-    parser.add_argument("--method", default="DOP853", help="solve_ivp's method (an explicit one: RK45, DOP853)")
-    args = parser.parse_args()
+def solve_case(text, args):
+    """Raises Answered with the answer to one case document."""
     try:
-        case = json.load(sys.stdin)
+        case = json.loads(text)
     except ValueError as e:
         refuse(f"stdin: not JSON: {e}")
     if case.get("version") != 1:
@@ -338,6 +351,32 @@ def main():
     if case.get("history_samples"):
         doc["history"] = run.history(case["history_samples"])
     answer(doc)
+
+
+def respond(text, args):
+    global START
+    START = time.monotonic()
+    try:
+        solve_case(text, args)
+    except Answered as a:
+        doc = a.doc
+    doc["solve_seconds"] = time.monotonic() - START
+    write(doc)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--rtol", type=float, default=1e-10, help="solve_ivp's relative tolerance")
+    parser.add_argument("--method", default="DOP853", help="solve_ivp's method (an explicit one: RK45, DOP853)")
+    parser.add_argument("--persistent", action="store_true",
+                        help="answer a stream of cases, one line each way (poundbench --persistent)")
+    args = parser.parse_args()
+    if not args.persistent:
+        respond(sys.stdin.read(), args)
+        return
+    write({"ready": True})
+    for line in sys.stdin:
+        respond(line, args)
 
 
 if __name__ == "__main__":

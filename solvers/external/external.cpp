@@ -18,7 +18,11 @@ namespace pb::external {
 
 namespace {
 
-bool known_variant(std::string_view v) { return v.empty() || v == kPerPoint; }
+bool known_variant(std::string_view v) { return v.empty() || v == kPerPoint || v == kPersistent; }
+
+std::string known_variants() {
+  return std::string(kPerPoint) + " (default), " + std::string(kPersistent);
+}
 
 std::string seconds_text(double s) {
   std::ostringstream out;
@@ -80,9 +84,9 @@ Result solve(const System& system, const Settings& settings) {
     return r;
   };
   if (!known_variant(settings.variant))
-    return finish(Status::failed, "variant: unknown '" + clip(settings.variant) + "' (known: " +
-                                      std::string(kPerPoint) + " (default))");
-  const CommandWords command = split_command(settings.command);
+    return finish(Status::failed, "variant: unknown '" + clip(settings.variant) + "' (known: " + known_variants() + ")");
+  const CommandWords command =
+      settings.in_process ? CommandWords{{"(in process)"}, {}} : split_command(settings.command);
   if (!command.error.empty()) return finish(Status::failed, command.error);
   if (settings.stop && settings.stop->load(std::memory_order_relaxed))
     return finish(Status::time_limit, "stopped (the sweep was interrupted) before the program started");
@@ -105,7 +109,19 @@ Result solve(const System& system, const Settings& settings) {
                                                 : std::chrono::steady_clock::time_point::max();
   limits.stop = settings.stop;
   limits.max_output = kMaxAnswerBytes;
-  const ProgramRun run = run_program(command.words, document.text, limits);
+  ProgramRun run;
+  double startup = std::numeric_limits<double>::quiet_NaN(), call_seconds = startup;
+  if (settings.in_process) {
+    // The answer of a Python callable; what it throws is the point's failed row (the sweep's).
+    run.out = (*settings.in_process)(document.text, call_seconds);
+    run.exited = true;
+    run.exit_code = 0;
+  } else if (settings.variant == kPersistent) {
+    run = exchange(command.words, std::string_view(document.text).substr(0, document.text.size() - 1), limits,
+                   startup);
+  } else {
+    run = run_program(command.words, document.text, limits);
+  }
   const double cpu = run.cpu_seconds;
   std::string why;
   if (const Status status = outcome(run, settings, why); !why.empty()) {
@@ -114,6 +130,8 @@ Result solve(const System& system, const Settings& settings) {
     // Past the deadline the answer was cut off by the limit, whatever else it lacked.
     finish(std::chrono::steady_clock::now() > deadline ? Status::time_limit : Status::failed, bad + stderr_note(run));
   }
+  r.startup_seconds = startup;
+  if (settings.in_process) r.solve_seconds = call_seconds;  // timed around the call, whatever it says
   r.child_cpu_seconds = cpu;
   return r;
 }
@@ -130,16 +148,18 @@ std::string describe(const Settings& settings) {
 
 std::string check(const Settings& settings) {
   if (!known_variant(settings.variant))
-    return "variant: unknown '" + settings.variant + "' (known: " + std::string(kPerPoint) + " (default))";
-  if (settings.command.empty())
-    return "command: required by solver external (the program and its arguments, e.g. \"python3 adapter.py\")";
-  const CommandWords command = split_command(settings.command);
-  if (!command.error.empty()) return command.error;
-  const std::string& program = command.words.front();
-  if (find_program(program).empty())
-    return "command: " + (program.find('/') == std::string::npos
-                              ? "program '" + clip(program) + "' not found in PATH"
-                              : "'" + clip(program) + "' is not an executable file");
+    return "variant: unknown '" + settings.variant + "' (known: " + known_variants() + ")";
+  if (!settings.in_process) {  // a Python callable has no command
+    if (settings.command.empty())
+      return "command: required by solver external (the program and its arguments, e.g. \"python3 adapter.py\")";
+    const CommandWords command = split_command(settings.command);
+    if (!command.error.empty()) return command.error;
+    const std::string& program = command.words.front();
+    if (find_program(program).empty())
+      return "command: " + (program.find('/') == std::string::npos
+                                ? "program '" + clip(program) + "' not found in PATH"
+                                : "'" + clip(program) + "' is not an executable file");
+  }
   if (settings.steps < 0) return "steps: must be >= 1 (0: the program's own step)";
   if (!(settings.wh >= 0.0) || !std::isfinite(settings.wh)) return "wh: must be finite and > 0 (0: use steps)";
   if (settings.wh > 0.0 && settings.steps > 0) return "wh: give steps or wh, not both";
@@ -148,7 +168,9 @@ std::string check(const Settings& settings) {
 
 std::vector<VariantInfo> variant_list() {
   return {{kPerPoint, "a process per point: the case as JSON on its stdin, the answer as JSON on its stdout "
-                      "(docs/external.md)"}};
+                      "(docs/external.md)"},
+          {kPersistent, "one program per sweep worker, started once, answering a stream of cases: one JSON "
+                        "document per line each way, after a ready line (--persistent; docs/external.md)"}};
 }
 
 }  // namespace pb::external

@@ -4,13 +4,15 @@
 // one on its stdout (solvers/external/protocol.hpp, docs/external.md), so that a solver
 // enters poundbench without being linked into it: an OpenSees model, a Python script.
 //
-// Why a process per point, and not a long-lived server speaking the same documents: a
+// Why a process per point by default, and a long-lived program only when asked: a
 // process that crashes, hangs or leaks takes one point with it and nothing else, a sweep's
 // threads need no locking between them, and the program stays a plain filter that a user
 // tries by hand (`program < case.json`). Its cost, measured by wrapping poundbench itself
 // (`poundbench adapter`, docs/external.md), is a few milliseconds per point: for the
 // compiled solvers it dominates (they take microseconds), for the programs this is for
-// (a Python integrator, an FE model) it does not.
+// (a Python integrator, an FE model) it does not, except for the start of Python with its
+// imports (85 to 90 % of a SciPy point: issue 37), which the persistent variant pays once per
+// worker, its program answering a stream of cases, one line each way (process.hpp, exchange).
 //
 // Everything that can go wrong with a program is a row, never a stopped sweep: it cannot
 // be started (failed), it exits with a code other than 0 or is ended by a signal (failed,
@@ -26,8 +28,10 @@
 
 namespace pb::external {
 
-// The one variant: a process per point.
+// The variants: a process per point (the default), or one program per sweep worker that
+// answers a stream of cases, a line each way (`--persistent`, `persistent = true`).
 inline constexpr std::string_view kPerPoint = "per-point";
+inline constexpr std::string_view kPersistent = "persistent";
 
 // A program asked to stop at Settings::time_limit gets this much longer to write its
 // answer before it is ended (a Python program's start alone takes 0.1 to 0.3 s of it).

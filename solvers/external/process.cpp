@@ -13,6 +13,8 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <mutex>
 #include <set>
 #include <system_error>
@@ -347,5 +349,223 @@ ProgramRun run_program(const std::vector<std::string>& argv, std::string_view in
   run.err_tail = std::move(err);
   return run;
 }
+
+}  // namespace pb::external
+
+namespace pb::external {
+
+namespace {
+
+// Waits kDrainAfterExit at most for `child` to exit by itself, in naps from kFirstNap: true
+// once it is reaped.
+bool wait_for_exit(Child& child) {
+  const Clock::time_point from = Clock::now();
+  double nap = kFirstNap;
+  while (!child.wait(WNOHANG)) {
+    if (seconds_since(from) >= kDrainAfterExit) return false;
+    const timespec pause{0, static_cast<long>(nap * 1e9)};
+    nanosleep(&pause, nullptr);
+    nap = std::min(2.0 * nap, kPollSeconds);
+  }
+  return true;
+}
+
+// A program kept running between points: its pipes, what it wrote past the last line read, the
+// tail of its stderr. Owned by one thread (a sweep's worker), so nothing here is locked.
+class Session {
+ public:
+  explicit Session(std::vector<std::string> argv) : argv_(std::move(argv)) {}
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+  ~Session() { close(); }
+  const std::vector<std::string>& argv() const { return argv_; }
+
+  ProgramRun exchange(std::string_view line, const ProgramLimits& limits, double& startup) {
+    ProgramRun run;
+    startup = std::numeric_limits<double>::quiet_NaN();
+    const Clock::time_point start = Clock::now();
+    SigpipeBlock sigpipe;
+    err_.clear();
+    if (!child_) {
+      if (!spawn_program(run)) return run;
+      // The ready line, within the point's limit: a start that hangs is this point's time-limit.
+      if (!converse({}, run, limits, start, sigpipe)) return run;
+      if (run.out.find("\"ready\"") == std::string::npos) {
+        const std::string first = run.out.substr(0, 200);
+        end(run);
+        run.spawn_error = argv_[0] + ": its first line must be {\"version\": 1, \"ready\": true} (persistent mode), not '" +
+                          first + "'";
+        return run;
+      }
+      startup = seconds_since(start);
+      run.out.clear();
+    }
+    pending_.clear();  // a line past the last answer (a program that answered twice) is not this case's
+    std::string input(line);
+    input += '\n';
+    if (converse(input, run, limits, start, sigpipe)) {
+      run.exited = true;  // answered, as a program of run_program that exits with 0 (it goes on running)
+      run.exit_code = 0;
+    }
+    run.seconds = seconds_since(start);
+    return run;
+  }
+
+  // Ends the program: its stdin closed (a program that reads to its end exits), kDrainAfterExit
+  // to exit, then SIGKILL to its group.
+  void close() {
+    if (!child_) return;
+    in_.reset();
+    wait_for_exit(*child_);
+    child_.reset();  // its destructor ends and reaps what is left
+    out_.reset();
+    err_read_.reset();
+    pending_.clear();
+  }
+
+ private:
+  bool spawn_program(ProgramRun& run) {
+    Fd in_read, out_write, err_write;
+    if (!make_pipe(in_read, in_) || !make_pipe(out_, out_write) || !make_pipe(err_read_, err_write)) {
+      run.spawn_error = "cannot make a pipe: " + error_text(errno);
+      return false;
+    }
+    int error = 0;
+    const pid_t pid = spawn(argv_, in_read, out_write, err_write, error);
+    if (pid < 0) {
+      run.spawn_error = argv_[0] + ": " + error_text(error);
+      in_.reset();
+      out_.reset();
+      err_read_.reset();
+      return false;
+    }
+    child_ = std::make_unique<Child>(pid);
+    set_nonblocking(in_);
+    set_nonblocking(out_);
+    set_nonblocking(err_read_);
+    return true;
+  }
+
+  // Writes `input`, then reads until a whole line is there (into run.out, without its end):
+  // true. Else the program is ended and run says why: false.
+  bool converse(std::string_view input, ProgramRun& run, const ProgramLimits& limits, Clock::time_point start,
+                SigpipeBlock& sigpipe) {
+    std::size_t written = 0;
+    for (;;) {
+      if (const std::size_t end_of_line = pending_.find('\n'); end_of_line != std::string::npos) {
+        if (written == input.size()) {
+          run.out.assign(pending_, 0, end_of_line);
+          pending_.erase(0, end_of_line + 1);
+          return true;
+        }
+      }
+      if (limits.stop && limits.stop->load(std::memory_order_relaxed)) return end(run, run.stopped);
+      const double elapsed = seconds_since(start);
+      if (limits.kill_after > 0.0 && elapsed > limits.kill_after) return end(run, run.timed_out);
+      if (limits.max_output > 0 && pending_.size() > limits.max_output) return end(run, run.output_cut);
+      if (!out_.open()) return ended_by_itself(run);
+
+      pollfd fds[3];
+      nfds_t n = 0;
+      const bool writing = written < input.size();
+      if (writing) fds[n++] = {in_.get(), POLLOUT, 0};
+      fds[n++] = {out_.get(), POLLIN, 0};
+      if (err_read_.open()) fds[n++] = {err_read_.get(), POLLIN, 0};
+      double wait = kPollSeconds;
+      if (limits.kill_after > 0.0) wait = std::clamp(limits.kill_after - elapsed + 1e-4, 1e-4, wait);
+      const timespec timeout{0, static_cast<long>(wait * 1e9)};
+      if (ppoll(fds, n, &timeout, nullptr) < 0) {
+        if (errno == EINTR) continue;
+        return end(run, run.stopped);
+      }
+      for (nfds_t k = 0; k < n; ++k) {
+        if (!fds[k].revents) continue;
+        if (writing && fds[k].fd == in_.get()) {
+          const ssize_t w = ::write(in_.get(), input.data() + written, std::min(kChunk, input.size() - written));
+          if (w > 0) written += static_cast<std::size_t>(w);
+          if (w < 0 && errno == EPIPE) sigpipe.raised();
+          // A program that closed its stdin will not read the case: its answer (or end) says why.
+          if (w < 0 && errno != EAGAIN && errno != EINTR) {
+            run.input_refused = true;
+            written = input.size();
+          }
+        } else if (fds[k].fd == out_.get()) {
+          if (!read_some(out_, pending_)) out_.reset();
+        } else if (fds[k].fd == err_read_.get()) {
+          if (!read_some(err_read_, err_)) err_read_.reset();
+          if (err_.size() > 2 * kErrTail) err_.erase(0, err_.size() - kErrTail);
+        }
+      }
+    }
+  }
+
+  // Ends the program for the reason `why` (a flag of run): false, for converse to return.
+  bool end(ProgramRun& run, bool& why) {
+    why = true;
+    end(run);
+    return false;
+  }
+  void end(ProgramRun& run) {
+    if (child_) {
+      child_->end_group();
+      child_->wait(0);
+    }
+    finish(run);
+  }
+  // Its stdout ended: it exited, or is about to. Given kDrainAfterExit, then ended.
+  bool ended_by_itself(ProgramRun& run) {
+    if (!wait_for_exit(*child_)) {
+      child_->end_group();
+      child_->wait(0);
+    }
+    const int status = child_->status();
+    run.exited = WIFEXITED(status);
+    run.exit_code = run.exited ? WEXITSTATUS(status) : -1;
+    run.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+    finish(run);
+    return false;
+  }
+  // Whatever is left of stderr read into the tail, and the program forgotten: the next
+  // exchange starts it again.
+  void finish(ProgramRun& run) {
+    while (err_read_.open() && read_some(err_read_, err_) && err_.size() < 2 * kErrTail) {
+    }
+    if (err_.size() > kErrTail) err_.erase(0, err_.size() - kErrTail);
+    run.err_tail = err_;
+    child_.reset();
+    in_.reset();
+    out_.reset();
+    err_read_.reset();
+    pending_.clear();
+  }
+
+  std::vector<std::string> argv_;
+  std::unique_ptr<Child> child_;
+  Fd in_, out_, err_read_;
+  std::string pending_, err_;
+};
+
+// The calling thread's sessions, one per command (a settings list may run several).
+thread_local std::vector<std::unique_ptr<Session>> sessions;
+
+}  // namespace
+
+ProgramRun exchange(const std::vector<std::string>& argv, std::string_view line, const ProgramLimits& limits,
+                    double& startup_seconds) {
+  auto found = std::find_if(sessions.begin(), sessions.end(), [&](const auto& s) { return s->argv() == argv; });
+  if (found == sessions.end()) {
+    if (argv.empty()) {
+      ProgramRun run;
+      run.spawn_error = "no program";
+      startup_seconds = std::numeric_limits<double>::quiet_NaN();
+      return run;
+    }
+    sessions.push_back(std::make_unique<Session>(argv));
+    found = std::prev(sessions.end());
+  }
+  return (*found)->exchange(line, limits, startup_seconds);
+}
+
+void end_thread_sessions() { sessions.clear(); }
 
 }  // namespace pb::external

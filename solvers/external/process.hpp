@@ -55,6 +55,29 @@ ProgramRun run_program(const std::vector<std::string>& argv, std::string_view in
 // terminal's signal does not reach and no destructor will end.
 void end_running_programs();
 
+// A persistent program (docs/external.md, "Persistent mode"): started once per thread and
+// command, it answers a stream of cases, one line each way. After its start it writes one ready
+// line ({"version": 1, "ready": true}) so that its start-up is timed apart from any solve.
+// Each exchange writes `line` (one line, without its end) and reads one line back into
+// ProgramRun::out; every other field says, as run_program's do, why there was no answer
+// (spawn_error, timed_out, stopped, output_cut; exited or signal when it ended by itself),
+// and then the program has been ended, with its group, and the next exchange starts it again.
+// kill_after counts from the exchange's start (the program's start included, on the first).
+// `startup_seconds` is set to the start's wall seconds on the exchange that started it, NaN on
+// the others. cpu_seconds is 0: the program's CPU is known only once it is reaped.
+ProgramRun exchange(const std::vector<std::string>& argv, std::string_view line, const ProgramLimits& limits,
+                    double& startup_seconds);
+// Ends the calling thread's persistent programs: their stdin closed, each given kDrainAfterExit
+// to exit, then ended with its group. A sweep's worker calls it as it ends (ThreadSessionsEnd);
+// a thread that never does ends them as it exits.
+void end_thread_sessions();
+struct ThreadSessionsEnd {
+  ThreadSessionsEnd() = default;
+  ThreadSessionsEnd(const ThreadSessionsEnd&) = delete;
+  ThreadSessionsEnd& operator=(const ThreadSessionsEnd&) = delete;
+  ~ThreadSessionsEnd() { end_thread_sessions(); }
+};
+
 // The last `lines` lines of text (without a trailing line end), each line end as " | ", for
 // a one-line message.
 std::string last_lines(std::string_view text, int lines);

@@ -160,7 +160,8 @@ constexpr std::array kAnswerKeys = {"protocol",         "version",         "stat
                                     "pi1",              "t_max",           "history",          "impacts",
                                     "contact_phases",   "steps",           "isolated_impacts", "min_gap",
                                     "step",             "energy_excess",   "restitution_low",  "restitution_high",
-                                    "gap_rate_max",     "residual",        "hysteretic"};
+                                    "gap_rate_max",     "residual",        "hysteretic",
+                                    "solve_seconds"};
 
 struct U0History {
   std::vector<double> t, u0;
@@ -218,6 +219,10 @@ void fill_answer(const Json& doc, const System& s, const Settings& settings, Res
   if (s.yields() && r.status == Status::ok && (std::isnan(r.residual) || std::isnan(r.hysteretic)))
     bad("residual", "a yielding case (bodies[].u_y) needs residual and hysteretic with status ok; a program that "
                     "does not apply the bilinear law answers status failed");
+  if (const auto solve = maybe_number(doc, "solve_seconds")) {
+    if (!(*solve >= 0.0 && std::isfinite(*solve))) bad("solve_seconds", "must be a number of seconds >= 0");
+    r.solve_seconds = *solve;
+  }
   if (const auto step = maybe_number(doc, "step")) {
     if (!(*step > 0.0 && *step <= s.t_end)) bad("step", "must be > 0 and at most t_end (a step of the run)");
     r.step = *step;
@@ -642,6 +647,7 @@ std::string answer_document(const Result& r, const System& s) {
     j["residual"] = number_or_null(r.residual);
     j["hysteretic"] = number_or_null(r.hysteretic);
   }
+  j["solve_seconds"] = number_or_null(r.solve_seconds);
   const History& h = r.history;
   if (h.rows() > 0 && h.n_bodies == s.n_bodies()) {
     Ordered t = Ordered::array(), u0 = Ordered::array();

@@ -1,0 +1,68 @@
+"""Every case document poundbench sends an external program is valid against
+docs/external/case.schema.json: the documents of every family of the shipped case sets
+(cases/sets/*.toml), sent through the persistent external protocol to a program that checks
+them with jsonschema (tests/external/schema_checker.py). Every document of most sets; in the
+paper sets (27,000 points of the paper's pulses) and the records set, the first of each shape
+of document (each record's file apart) and one in 20 of the others, and every family has
+documents checked. The one-shot protocol's documents (the same text) are checked over the
+smoke set.
+
+    python3 tests/case_schema_test.py POUNDBENCH SOURCE_DIR
+"""
+import csv
+import glob
+import io
+import os
+import subprocess
+import sys
+import unittest
+
+POUNDBENCH, SOURCE = sys.argv[1], sys.argv[2]
+try:
+    import jsonschema  # noqa: F401
+except ImportError as e:
+    print(f"skipped: {e} (Debian: python3-jsonschema; scripts/setup.sh installs it)")
+    sys.exit(77)
+SCHEMA = os.path.join(SOURCE, "docs/external/case.schema.json")
+CHECKER = f"{sys.executable} {SOURCE}/tests/external/schema_checker.py {SCHEMA}"
+# The sets sampled (schema_checker.py --sample: 0.44 ms a document), and how.
+SAMPLED, ONE_IN = {"paper.toml", "paper-report.toml", "records.toml"}, 20
+
+
+def rows(case_set, persistent):
+    command = CHECKER + (" --persistent" if persistent else "")
+    if persistent and os.path.basename(case_set) in SAMPLED:
+        command += f" --sample {ONE_IN}"
+    flags = ["--persistent"] if persistent else []
+    out = subprocess.run([POUNDBENCH, "spectrum", case_set, "--solver", "external", "--command", command,
+                          "--threads", "2", *flags], capture_output=True, text=True, check=True).stdout
+    return list(csv.DictReader(io.StringIO(out)))
+
+
+class CaseSchema(unittest.TestCase):
+    def test_every_family_of_every_shipped_set_sends_valid_documents(self):
+        sets = sorted(glob.glob(os.path.join(SOURCE, "cases/sets/*.toml")))
+        self.assertGreater(len(sets), 3)
+        kinds = set()
+        for case_set in sets:
+            with self.subTest(case_set=os.path.basename(case_set)):
+                got = rows(case_set, True)
+                self.assertTrue(got)
+                for r in got:
+                    self.assertRegex(r["message"], "^(valid|unchecked): ", f"{r['family']} point {r['point']}")
+                    kinds.add(r["message"].split()[1])
+                # Every family has documents checked, not only sampled past.
+                checked = {r["family"] for r in got if r["message"].startswith("valid: ")}
+                self.assertEqual(checked, {r["family"] for r in got})
+        # The three kinds of load a shipped set has: a program that validates its input takes them all.
+        self.assertEqual(kinds, {"pulse", "sinusoids", "record"})
+
+    def test_one_shot_documents_are_the_persistent_ones(self):
+        got = rows(os.path.join(SOURCE, "cases/sets/smoke.toml"), False)
+        self.assertTrue(got)
+        for r in got:
+            self.assertTrue(r["message"].startswith("valid: "), r["message"])
+
+
+if __name__ == "__main__":
+    unittest.main(argv=sys.argv[:1])

@@ -1,0 +1,118 @@
+"""The external solver's persistent mode (docs/external.md, "Persistent mode"), through
+`poundbench spectrum --persistent` on the smoke set (40 points) and a program of
+tests/external/persistent_program.py:
+
+- a program is started once per worker: two threads, two starts, 40 rows; its answers' Pi1
+  and solve_seconds are in the rows; startup_seconds is on exactly one row per start;
+- a program that stops answering is ended at the time limit, its point time-limit, and started
+  again for the next point;
+- a program that exits is a failed row with its exit code and stderr, and is started again;
+- a program that does not write the ready line fails every point, saying so;
+- Ctrl-C (SIGINT to poundbench) ends the sweep and its program within a second;
+- `poundbench adapter --persistent` gives the wrapped solver's rows, Pi1 bit for bit.
+
+    python3 tests/external_persistent_test.py POUNDBENCH SOURCE_DIR
+"""
+import csv
+import io
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+POUNDBENCH, SOURCE = sys.argv[1], sys.argv[2]
+SMOKE = os.path.join(SOURCE, "cases/sets/smoke.toml")
+PROGRAM = os.path.join(SOURCE, "tests/external/persistent_program.py")
+
+
+class Persistent(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.starts = os.path.join(self.dir.name, "starts")
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def spectrum(self, mode, *flags):
+        command = f"{sys.executable} {PROGRAM} {mode} {self.starts}"
+        out = subprocess.run([POUNDBENCH, "spectrum", SMOKE, "--solver", "external", "--persistent",
+                              "--command", command, *flags], capture_output=True, text=True, timeout=300)
+        self.assertEqual(out.returncode, 0, out.stderr)
+        return list(csv.DictReader(io.StringIO(out.stdout)))
+
+    def started(self):
+        with open(self.starts) as f:
+            return len(f.read().split())
+
+    def test_one_program_per_worker_answers_every_point(self):
+        rows = self.spectrum("answer", "--threads", "2")
+        self.assertEqual(len(rows), 40)
+        self.assertEqual(self.started(), 2)
+        for r in rows:
+            self.assertEqual(r["status"], "ok", r["message"])
+            self.assertEqual(float(r["pi1"]), 1.0 + float(r["eps"]))
+            self.assertEqual(float(r["solve_seconds"]), 0.001)
+            self.assertEqual(r["variant"], "persistent")
+        self.assertEqual(sum(1 for r in rows if r["startup_seconds"]), 2)
+
+    def test_a_program_that_stops_answering_is_ended_and_started_again(self):
+        rows = self.spectrum("hang", "--threads", "1", "--time-limit", "0.2")
+        # Every other point: the first answer of a start, then a point that hangs and is ended.
+        statuses = [r["status"] for r in sorted(rows, key=lambda r: int(r["point"]))]
+        self.assertEqual(statuses[:4], ["ok", "time-limit", "ok", "time-limit"])
+        self.assertEqual(self.started(), 20)
+
+    def test_a_program_that_exits_fails_its_point_and_is_started_again(self):
+        rows = sorted(self.spectrum("die", "--threads", "1"), key=lambda r: int(r["point"]))
+        self.assertEqual(rows[0]["status"], "ok")
+        self.assertEqual(rows[1]["status"], "failed")
+        self.assertIn("exited with code 3", rows[1]["message"])
+        self.assertIn("dying on purpose", rows[1]["message"])
+        self.assertEqual(rows[2]["status"], "ok")
+        self.assertEqual(self.started(), 20)
+
+    def test_a_program_without_its_ready_line_fails_saying_so(self):
+        rows = self.spectrum("noready", "--threads", "1")
+        self.assertTrue(all(r["status"] == "failed" for r in rows))
+        self.assertIn("ready", rows[0]["message"])
+
+    def test_start_up_is_reported_apart_from_the_solve(self):
+        rows = self.spectrum("late", "--threads", "1")
+        first = [r for r in rows if r["startup_seconds"]]
+        self.assertEqual(len(first), 1)
+        # The 0.3 s sleep before the ready line is the start's, not the point's (0.1 s: a loaded machine's slack).
+        self.assertGreaterEqual(float(first[0]["startup_seconds"]), 0.3)
+        self.assertLess(float(first[0]["seconds"]), 0.2)
+
+    def test_poundbench_adapter_persistent_gives_the_wrapped_solvers_rows(self):
+        flags = ["--threads", "2", "--steps", "64"]
+        direct = subprocess.run([POUNDBENCH, "spectrum", SMOKE, "--solver", "moreau-jean", *flags],
+                                capture_output=True, text=True, check=True).stdout
+        wrapped = subprocess.run([POUNDBENCH, "spectrum", SMOKE, "--solver", "external", "--persistent", *flags,
+                                  "--command", f"{POUNDBENCH} adapter --solver moreau-jean --persistent"],
+                                 capture_output=True, text=True, check=True).stdout
+        direct, wrapped = (list(csv.DictReader(io.StringIO(t))) for t in (direct, wrapped))
+        self.assertEqual(len(wrapped), 40)
+        for a, b in zip(direct, wrapped):
+            for column in ("status", "pi1", "impacts", "contact_phases", "steps", "min_gap", "wh"):
+                self.assertEqual(a[column], b[column], f"point {a['point']}: {column}")
+            self.assertGreater(float(b["solve_seconds"]), 0.0)
+
+    def test_ctrl_c_ends_the_sweep_and_its_program(self):
+        command = f"{sys.executable} {PROGRAM} hang {self.starts}"
+        p = subprocess.Popen([POUNDBENCH, "spectrum", SMOKE, "--solver", "external", "--persistent", "--command",
+                              command, "--threads", "1", "--out", os.path.join(self.dir.name, "rows.csv")],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        time.sleep(2.0)  # the program's start, one answer, then it hangs
+        p.send_signal(signal.SIGINT)
+        p.communicate(timeout=5)
+        self.assertNotEqual(p.returncode, 0)
+        gone = subprocess.run(["pgrep", "-f", f"persistent_program.py hang {self.starts}"], capture_output=True)
+        self.assertNotEqual(gone.returncode, 0, "the program outlived the sweep")
+
+
+if __name__ == "__main__":
+    unittest.main(argv=sys.argv[:1])
