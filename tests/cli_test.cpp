@@ -834,7 +834,9 @@ TEST_F(Cli, SolversListsEveryVariantAndRunAcceptsEachOne) {
       if (name.empty()) continue;  // no option takes an empty value
       // The external solver needs its program: poundbench itself.
       const std::string command =
-          solver.name == "external" ? " --command '" POUNDBENCH_EXE " adapter --solver moreau-jean'" : "";
+          solver.name != "external" ? ""
+          : name == "persistent"    ? " --command '" POUNDBENCH_EXE " adapter --persistent --solver moreau-jean'"
+                                    : " --command '" POUNDBENCH_EXE " adapter --solver moreau-jean'";
       const Outcome o = run(std::string("run ") + kPairCase + " --solver " + std::string(solver.name) + " --variant " +
                             name + command + " --json");
       EXPECT_NE(o.exit_code, 2) << name << ": " << o.err;

@@ -41,6 +41,9 @@ Result run(const System& sys, const Settings& set, const Config& config) {
 Result solve(const System& system, const Settings& settings) {
   const std::optional<Config> config = find_variant(settings.variant);
   if (!config) return fail("unknown variant '" + settings.variant + "'");
+  if (system.yields())
+    return yielding_refused("dart's bodies have linear springs (explicit, or the joints' own in its default); the "
+                            "bilinear law is not applied (moreau-jean, ode and bullet apply it)");
   try {
     return run(system, settings, *config);
   } catch (const std::exception& e) {

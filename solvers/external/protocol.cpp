@@ -414,10 +414,10 @@ void only_keys(const Json& object, const std::string& field, std::initializer_li
 void check_case_keys(const Json& doc) {
   only_keys(doc, "", {"protocol", "version", "bodies", "reference", "contacts", "eps", "xi", "load", "a_p",
                       "length_scale", "t_end", "t_min", "step", "steps_per_period", "step_cap", "time_limit",
-                      "history_samples", "monitor"});
+                      "history_samples", "monitor", "alpha"});
   if (const auto b = doc.find("bodies"); b != doc.end() && b->is_array())
     for (std::size_t i = 0; i < b->size(); ++i)
-      only_keys((*b)[i], "bodies[" + std::to_string(i) + "]", {"m", "k", "c", "w", "u", "v"});
+      only_keys((*b)[i], "bodies[" + std::to_string(i) + "]", {"m", "k", "c", "w", "u", "v", "u_y"});
   if (const auto c = doc.find("contacts"); c != doc.end() && c->is_array())
     for (std::size_t i = 0; i < c->size(); ++i)
       only_keys((*c)[i], "contacts[" + std::to_string(i) + "]", {"left", "right", "gap"});

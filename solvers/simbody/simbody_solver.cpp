@@ -193,6 +193,9 @@ Result run(const System& sys, const Settings& set, const Config& config) {
 Result solve(const System& system, const Settings& settings) {
   const std::optional<Config> config = find_variant(settings.variant);
   if (!config) return fail("unknown variant '" + settings.variant + "'");
+  if (system.yields())
+    return yielding_refused("simbody's MobilityLinearSpring is linear; the bilinear law is not applied (moreau-jean, "
+                            "ode and bullet apply it)");
   try {
     return run(system, settings, *config);
   } catch (const std::exception& e) {
