@@ -83,9 +83,12 @@ class Persistent(unittest.TestCase):
         rows = self.spectrum("late", "--threads", "1")
         first = [r for r in rows if r["startup_seconds"]]
         self.assertEqual(len(first), 1)
-        # The 0.3 s sleep before the ready line is the start's, not the point's (0.1 s: a loaded machine's slack).
-        self.assertGreaterEqual(float(first[0]["startup_seconds"]), 0.3)
-        self.assertLess(float(first[0]["seconds"]), 0.2)
+        # The 0.3 s sleep before the ready line is the start's, not the point's: the point, answered
+        # at once, costs less than it (no absolute bound on the point: a loaded machine's exchange
+        # took 0.2 s once in a full ctest -j2).
+        startup = float(first[0]["startup_seconds"])
+        self.assertGreaterEqual(startup, 0.3)
+        self.assertLess(float(first[0]["seconds"]), startup)
 
     def test_poundbench_adapter_persistent_gives_the_wrapped_solvers_rows(self):
         flags = ["--threads", "2", "--steps", "64"]
