@@ -39,7 +39,8 @@ class Persistent(unittest.TestCase):
     def spectrum(self, mode, *flags):
         command = f"{sys.executable} {PROGRAM} {mode} {self.starts}"
         out = subprocess.run([POUNDBENCH, "spectrum", SMOKE, "--solver", "external", "--persistent",
-                              "--command", command, *flags], capture_output=True, text=True, timeout=300)
+                              "--command", command, *flags],
+                             capture_output=True, text=True, timeout=300, cwd=self.dir.name)
         self.assertEqual(out.returncode, 0, out.stderr)
         return list(csv.DictReader(io.StringIO(out.stdout)))
 
@@ -93,10 +94,10 @@ class Persistent(unittest.TestCase):
     def test_poundbench_adapter_persistent_gives_the_wrapped_solvers_rows(self):
         flags = ["--threads", "2", "--steps", "64"]
         direct = subprocess.run([POUNDBENCH, "spectrum", SMOKE, "--solver", "moreau-jean", *flags],
-                                capture_output=True, text=True, check=True).stdout
+                                capture_output=True, text=True, check=True, cwd=self.dir.name).stdout
         wrapped = subprocess.run([POUNDBENCH, "spectrum", SMOKE, "--solver", "external", "--persistent", *flags,
                                   "--command", f"{POUNDBENCH} adapter --solver moreau-jean --persistent"],
-                                 capture_output=True, text=True, check=True).stdout
+                                 capture_output=True, text=True, check=True, cwd=self.dir.name).stdout
         direct, wrapped = (list(csv.DictReader(io.StringIO(t))) for t in (direct, wrapped))
         self.assertEqual(len(wrapped), 40)
         for a, b in zip(direct, wrapped):
@@ -108,7 +109,7 @@ class Persistent(unittest.TestCase):
         command = f"{sys.executable} {PROGRAM} hang {self.starts}"
         p = subprocess.Popen([POUNDBENCH, "spectrum", SMOKE, "--solver", "external", "--persistent", "--command",
                               command, "--threads", "1", "--out", os.path.join(self.dir.name, "rows.csv")],
-                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=self.dir.name)
         time.sleep(2.0)  # the program's start, one answer, then it hangs
         p.send_signal(signal.SIGINT)
         p.communicate(timeout=5)
