@@ -595,6 +595,20 @@ Wave oscillator(double t0, double x0, double v0, double m, double c, double k, d
   return x;
 }
 
+// The particular solution P sin(w t) + Q cos(w t) of x'' + c_m x' + k_m x = (fs sin(w t) +
+// fc cos(w t)) / m, as a Sine (s0, c0 left to prepare()); every oscillator form shares it.
+namespace {
+Sine particular_sine(double w, double fs, double fc, double m, double k_m, double c_m) {
+  const double a = k_m - w * w, b = c_m * w;
+  const double det = a * a + b * b;
+  Sine sine;
+  sine.w = w;
+  sine.ps = (a * fs / m + b * fc / m) / det;
+  sine.pc = (a * fc / m - b * fs / m) / det;
+  return sine;
+}
+}  // namespace
+
 void oscillator_into(Wave& x, double t0, double x0, double v0, double m, double c, double k, double f_const,
                      double fs, double fc, double w, double horizon) {
   start_oscillator(x, t0, x0, horizon, 1, m, c, k);
@@ -620,12 +634,10 @@ void oscillator_into(Wave& x, double t0, double x0, double v0, double m, double 
   // Particular solution: f_const / k + P sin(w t) + Q cos(w t).
   double p = 0.0, q = 0.0;
   if (forced) {
-    const double a = wn2 - w * w, b = two_zeta_wn * w;
-    const double det = a * a + b * b;
-    p = (a * fs / m + b * fc / m) / det;
-    q = (a * fc / m - b * fs / m) / det;
     x.n_sines = 1;
-    x.sine[0] = {w, p, q};
+    x.sine[0] = particular_sine(w, fs, fc, m, wn2, two_zeta_wn);
+    p = x.sine[0].ps;
+    q = x.sine[0].pc;
   }
   double sn, cs;
   sin_cos(forced ? w : 0.0, t0, sn, cs);
@@ -665,12 +677,8 @@ void oscillator_into(Wave& x, double t0, double x0, double v0, double m, double 
       resonant_rate += r.real();
       continue;
     }
-    const double a = wn2 - w * w, b = two_zeta_wn * w;
-    const double det = a * a + b * b;
-    const double p = (a * fs / m + b * fc / m) / det;
-    const double q = (a * fc / m - b * fs / m) / det;
-    x.sine[j].ps = p;
-    x.sine[j].pc = q;
+    x.sine[j] = particular_sine(w, fs, fc, m, wn2, two_zeta_wn);
+    const double p = x.sine[j].ps, q = x.sine[j].pc;
     const double sn = std::sin(w * t0), cs = std::cos(w * t0);
     xp += p * sn + q * cs;
     vp += w * (p * cs - q * sn);
@@ -714,12 +722,8 @@ void general_oscillator_into(Wave& x, double t0, double x0, double v0, double m,
     x.sine[j] = Sine{};
     x.sine[j].w = w;
     if (fs == 0.0 && fc == 0.0) continue;
-    const double a = k_m - w * w, b = (c / m) * w;
-    const double det = a * a + b * b;
-    const double p = (a * fs / m + b * fc / m) / det;
-    const double q = (a * fc / m - b * fs / m) / det;
-    x.sine[j].ps = p;
-    x.sine[j].pc = q;
+    x.sine[j] = particular_sine(w, fs, fc, m, k_m, c / m);
+    const double p = x.sine[j].ps, q = x.sine[j].pc;
     const double sn = std::sin(w * t0), cs = std::cos(w * t0);
     xp += p * sn + q * cs;
     vp += w * (p * cs - q * sn);
