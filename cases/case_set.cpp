@@ -263,8 +263,8 @@ std::string unknown_key_reason(std::string_view key, const std::vector<std::stri
     }
   }
   // Still too long for one line beside the file, the family and the echoed key (clipped to
-  // kMaxEchoed): cut at a key at 160 characters, the rest in the docs.
-  constexpr std::size_t kMaxList = 160;
+  // kMaxEchoed): cut at a key at 140 characters, the rest in the docs.
+  constexpr std::size_t kMaxList = 140;
   if (list.size() > kMaxList) list = list.substr(0, list.rfind(", ", kMaxList)) + ", ... (cases/README.md)";
   return "unknown key (expected one of " + list + ")";
 }
