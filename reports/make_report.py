@@ -217,7 +217,9 @@ def report(args):
              "solvers are double precision.",
              "* **N** is the number of steps per shortest period (`h = T_min / N`).", ""]
     text += ["The studies to explore in a browser (the answer for any scene and target, the diagrams and spectra "
-             "with every value on hover): [report.html](report.html), one file that works offline.", ""]
+             "with every value on hover): [report.html](report.html), one file that works offline, written "
+             "by the main job beside this page and not kept in the repository (it carries the data and "
+             "`page.js`/`page.css` inline, whose sources are here).", ""]
     if wp_study:
         write_families(wp_study.points, os.path.join(args.out, readme.FAMILIES))
         for section in report_of.SECTIONS["workprecision"]:

@@ -23,11 +23,8 @@ using test::make_case;
 using test::sci;
 using Row = test::HistoryRow;
 
-Result run(const System& s, std::string_view variant, int n = 0, bool history = false) {
-  return test::run_variant(&dart::solve, s, variant, n, history);
-}
-
-using test::free_mass_at_wall;
+// run(system, variant, N = the default, history = false): dart::solve with those settings.
+const auto run = [](const auto&... args) { return test::run_variant(&dart::solve, args...); };
 
 // The six cases of the agreement: wall, pair and symmetric row3 under both pulses, Pi2 = 1,
 // Pi5 = 0.5, eps = 0.5 (impacts in every one).
@@ -82,25 +79,14 @@ TEST(Dart, FaithfulMatchesOdeDantzigFaithfulToRoundOffOnSixCases) {
 TEST(Dart, FaithfulVariantsReverseAFreeApproachByExactlyEps) {
   for (std::string_view variant : {"dantzig-faithful", "pgs-faithful"})
     for (double eps : {0.0, 0.5, 1.0}) {
-      const Result wall = run(free_mass_at_wall(0.033, eps, -1.0), variant, 64, true);
+      const Result wall = run(test::free_mass_at_wall(0.033, eps, -1.0), variant, 64, true);
       ASSERT_EQ(wall.status, Status::ok) << wall.message;
       EXPECT_EQ(wall.impacts, 1);
       const Row last{wall.history, wall.history.rows() - 1};
       // 1e-14: one LCP solve of O(1) numbers.
       EXPECT_NEAR(last.v(0), eps, 1e-14) << variant << " eps=" << eps;
 
-      System pair = free_mass_at_wall(0.033, eps, 1.0);
-      pair.wall = false;
-      pair.bodies = {Body{3.0, 1.0, 0.0, 0.0}, Body{1.0, 1.0, 0.0, 0.0}};
-      pair.ref = 1;
-      pair.u_start = {0.0, 0.0};
-      pair.v_start = {1.0, -1.0};
-      const Result r = run(pair, variant, 64, true);
-      ASSERT_EQ(r.status, Status::ok) << r.message;
-      EXPECT_EQ(r.impacts, 1);
-      const Row end{r.history, r.history.rows() - 1};
-      EXPECT_NEAR(end.v(1) - end.v(0), 2.0 * eps, 1e-14) << variant << " eps=" << eps;
-      EXPECT_NEAR(3.0 * end.v(0) + end.v(1), 2.0, 1e-14);
+      test::expect_free_pair_restituted(run(test::free_pair(eps), variant, 64, true), eps, variant);
     }
 }
 
@@ -134,7 +120,7 @@ TEST(Dart, DefaultRestitutesTheProductOfTheShapesAndNothingBelowTheBounceThresho
   };
   for (const Shot& shot : {Shot{0.5, -1.0, 0.25, 1e-3}, Shot{1.0, -0.3, 1.0, 1e-2 / 0.3},
                            Shot{0.5, -0.3, 0.0, 1.5e-3 / 0.3}, Shot{1.0, -0.09, 0.0, 1.5e-3 / 0.09}}) {
-    const Result r = run(free_mass_at_wall(0.0305, shot.eps, shot.v0), "default", 64, true);
+    const Result r = run(test::free_mass_at_wall(0.0305, shot.eps, shot.v0), "default", 64, true);
     ASSERT_EQ(r.status, Status::ok) << r.message;
     EXPECT_GE(r.impacts, 1);
     const Row last{r.history, r.history.rows() - 1};

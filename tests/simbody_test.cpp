@@ -28,11 +28,8 @@ using test::make_case;
 using test::sci;
 using Row = test::HistoryRow;
 
-Result run(const System& s, std::string_view variant, int n = 0, bool history = false) {
-  return test::run_variant(&simbody::solve, s, variant, n, history);
-}
-
-using test::free_mass_at_wall;
+// run(system, variant, N = the default, history = false): simbody::solve with those settings.
+const auto run = [](const auto&... args) { return test::run_variant(&simbody::solve, args...); };
 
 // With no other force the stepper's impact alone acts: an approach leaves at exactly eps
 // times its speed (Poisson's and Newton's laws agree on one contact), and the momentum
@@ -40,7 +37,7 @@ using test::free_mass_at_wall;
 TEST(Simbody, FaithfulVariantsReverseAFreeApproachByExactlyEps) {
   for (std::string_view variant : {"plus-faithful", "pgs-faithful"})
     for (double eps : {0.0, 0.5, 1.0}) {
-      const Result wall = run(free_mass_at_wall(0.033, eps, -1.0), variant, 64, true);
+      const Result wall = run(test::free_mass_at_wall(0.033, eps, -1.0), variant, 64, true);
       ASSERT_EQ(wall.status, Status::ok) << wall.message;
       EXPECT_EQ(wall.impacts, 1);
       const Row last{wall.history, wall.history.rows() - 1};
@@ -50,18 +47,7 @@ TEST(Simbody, FaithfulVariantsReverseAFreeApproachByExactlyEps) {
       for (std::size_t k = 1; k < wall.history.rows(); ++k) impulse += Row{wall.history, k}.lambda(0) * 0.01;
       EXPECT_NEAR(impulse, 2.0 * (1.0 + eps), 1e-12) << variant << " eps=" << eps;
 
-      System pair = free_mass_at_wall(0.033, eps, 1.0);
-      pair.wall = false;
-      pair.bodies = {Body{3.0, 1.0, 0.0, 0.0}, Body{1.0, 1.0, 0.0, 0.0}};
-      pair.ref = 1;
-      pair.u_start = {0.0, 0.0};
-      pair.v_start = {1.0, -1.0};
-      const Result r = run(pair, variant, 64, true);
-      ASSERT_EQ(r.status, Status::ok) << r.message;
-      EXPECT_EQ(r.impacts, 1);
-      const Row end{r.history, r.history.rows() - 1};
-      EXPECT_NEAR(end.v(1) - end.v(0), 2.0 * eps, 1e-14) << variant << " eps=" << eps;
-      EXPECT_NEAR(3.0 * end.v(0) + end.v(1), 2.0, 1e-14);
+      test::expect_free_pair_restituted(run(test::free_pair(eps), variant, 64, true), eps, variant);
     }
 }
 
@@ -70,7 +56,7 @@ TEST(Simbody, FaithfulVariantsReverseAFreeApproachByExactlyEps) {
 // closing: a free approach at 1.5e-3 a_p / w_p stops dead (eps = 1), where the faithful
 // variants (tolerance 1e-12) restitute it.
 TEST(Simbody, DefaultCapturesSlowImpactsAndFaithfulRestitutesThem) {
-  const System slow = free_mass_at_wall(1.5e-5, 1.0, -1.5e-3);
+  const System slow = test::free_mass_at_wall(1.5e-5, 1.0, -1.5e-3);
   const Result d = run(slow, "default", 64, true);
   ASSERT_EQ(d.status, Status::ok) << d.message;
   EXPECT_NEAR((Row{d.history, d.history.rows() - 1}.v(0)), 0.0, 1e-15);
@@ -133,7 +119,7 @@ TEST(Simbody, ASimultaneousImpactFollowsTheReferencesPoissonLawWhereTheStepperTa
 TEST(Simbody, HuntCrossleyRestitutionVariesWithTheImpactSpeedAsCalibrated) {
   const double chi = compliant::hunt_crossley_chi(0.5);
   for (double v : {0.01, 0.1, 0.3, 1.0, 3.0}) {
-    System s = free_mass_at_wall(0.02, 0.5, -v);
+    System s = test::free_mass_at_wall(0.02, 0.5, -v);
     s.t_end = 0.02 / v + 1.0;  // past the contact's end
     const Result r = run(s, "hunt-crossley");
     ASSERT_EQ(r.status, Status::ok) << r.message;
@@ -245,7 +231,7 @@ TEST(Simbody, CheckAndDescribeNameEverySetting) {
   EXPECT_EQ(simbody::check(st), "");
   st.variant = "pgs-faithful";
   EXPECT_EQ(simbody::check(st).rfind("gamma:", 0), 0u);
-  const System s = free_mass_at_wall(0.033, 0.0, -1.0);
+  const System s = test::free_mass_at_wall(0.033, 0.0, -1.0);
   const Result r = run(s, "hunt-crossley");
   EXPECT_EQ(r.status, Status::failed);
   EXPECT_EQ(r.message.rfind("eps:", 0), 0u) << r.message;

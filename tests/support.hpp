@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "cases/record.hpp"
 #include "cases/system.hpp"
 #include "solvers/solver.hpp"
@@ -140,6 +142,18 @@ inline System free_mass_at_wall(double g0, double eps, double v0) {
   return s;
 }
 
+// Two free masses 3:1 (no spring, damper or load) closing at relative speed 2 from a gap of
+// 0.033, body 0 at 1 and body 1 at -1: free_mass_at_wall's set-up between two bodies.
+inline System free_pair(double eps) {
+  System pair = free_mass_at_wall(0.033, eps, 1.0);
+  pair.wall = false;
+  pair.bodies = {Body{3.0, 1.0, 0.0, 0.0}, Body{1.0, 1.0, 0.0, 0.0}};
+  pair.ref = 1;
+  pair.u_start = {0.0, 0.0};
+  pair.v_start = {1.0, -1.0};
+  return pair;
+}
+
 // solve(s) with a variant, N steps per shortest period (0: the default) and, if asked, every
 // step's history.
 inline Result run_variant(SolveFn solve, const System& s, std::string_view variant, int n = 0, bool history = false) {
@@ -163,6 +177,16 @@ struct HistoryRow {
   double g(int j) const { return at(1 + 2 * h.n_bodies + j); }
   double lambda(int j) const { return at(1 + 2 * h.n_bodies + h.n_contacts + j); }
 };
+
+// Newton's law on free_pair's one impact: the relative velocity reversed by exactly eps and
+// the momentum kept. 1e-14: one impulse of O(1) numbers.
+inline void expect_free_pair_restituted(const Result& r, double eps, std::string_view variant) {
+  ASSERT_EQ(r.status, Status::ok) << r.message;
+  EXPECT_EQ(r.impacts, 1);
+  const HistoryRow end{r.history, r.history.rows() - 1};
+  EXPECT_NEAR(end.v(1) - end.v(0), 2.0 * eps, 1e-14) << variant << " eps=" << eps;
+  EXPECT_NEAR(3.0 * end.v(0) + end.v(1), 2.0, 1e-14) << variant << " eps=" << eps;
+}
 
 // Gap rate g'_j = v[right] - v[left] of a history row.
 inline double gap_rate(const System& s, const HistoryRow& row, int j) {

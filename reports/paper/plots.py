@@ -75,6 +75,17 @@ def fig3(by_amplitude, by_duration, note, out_dir):
     return save(fig, out_dir, "fig3-self-similarity")
 
 
+def _save_grid(fig, axes, title, out_dir, stem):
+    """A 2 x 2 grid of spectra: Pi2 under the bottom row, Pi1 beside the left column, the title."""
+    for ax in axes[1]:
+        ax.set_xlabel(PI2)
+    for row in axes:
+        row[0].set_ylabel(PI1)
+    fig.suptitle(title, fontsize=11)
+    fig.tight_layout(rect=(0, 0, 1, 0.96))
+    return save(fig, out_dir, stem)
+
+
 def pi5_spectra(curve_list, title, stem, out_dir):
     """Figs 4, 5, 7: rows pulses, columns the flexible (Pi5 < 1) and the stiff (Pi5 > 1)
     body 0, a line per Pi5."""
@@ -89,13 +100,7 @@ def pi5_spectra(curve_list, title, stem, out_dir):
                 ax.plot(c.x, c.pi1, color=f"C{i}", lw=1.5, label=f"{float(c['pi5']):g}")
             _spectrum_axes(ax, f"{pulse} pulse, {name}")
             _legend(ax, r"$\Pi_5 = \omega_0/\omega_1$")
-            if row == 1:
-                ax.set_xlabel(PI2)
-            if col == 0:
-                ax.set_ylabel(PI1)
-    fig.suptitle(title, fontsize=11)
-    fig.tight_layout(rect=(0, 0, 1, 0.96))
-    return save(fig, out_dir, stem)
+    return _save_grid(fig, axes, title, out_dir, stem)
 
 
 def pi6_spectra(curve_list, title, stem, out_dir):
@@ -113,13 +118,7 @@ def pi6_spectra(curve_list, title, stem, out_dir):
                         label=f"{float(c['pi6']):g}")
             _spectrum_axes(ax, f"{pulse} pulse, {direc} directivity", yscale="linear")
             _legend(ax, r"$\Pi_6 = m_0/m_1$", loc="upper right")
-            if row == 1:
-                ax.set_xlabel(PI2)
-            if col == 0:
-                ax.set_ylabel(PI1)
-    fig.suptitle(title, fontsize=11)
-    fig.tight_layout(rect=(0, 0, 1, 0.96))
-    return save(fig, out_dir, stem)
+    return _save_grid(fig, axes, title, out_dir, stem)
 
 
 def histories(panels, out_dir):

@@ -206,6 +206,11 @@ void read_state(const Model& m, double* u, double* v) {
   }
 }
 
+// Contact j's multiplier at a level: 1 the impulse of an impact, 2 the force of a closed contact.
+double multiplier(const Model& m, int j, unsigned int level) {
+  return m.contacts[static_cast<std::size_t>(j)]->lambda(level)->getValue(0);
+}
+
 // Siconos' objects hold each other in cycles of shared pointers: a simulation's integrators
 // and one-step problems hold it, it holds the model, and the model's graph of dynamical
 // systems holds the integrators, which hold the graph. Left alone, the objects of a run are
@@ -509,12 +514,8 @@ void EventDrivenRun::process() {
 
 double EventDrivenRun::time() const { return impl_->sim->startingTime(); }
 void EventDrivenRun::state(double* u, double* v) const { read_state(impl_->model, u, v); }
-double EventDrivenRun::impulse(int j) const {
-  return impl_->model.contacts[static_cast<std::size_t>(j)]->lambda(1)->getValue(0);
-}
-double EventDrivenRun::force(int j) const {
-  return impl_->model.contacts[static_cast<std::size_t>(j)]->lambda(2)->getValue(0);
-}
+double EventDrivenRun::impulse(int j) const { return multiplier(impl_->model, j, 1); }
+double EventDrivenRun::force(int j) const { return multiplier(impl_->model, j, 2); }
 bool EventDrivenRun::closed(int j) const { return in_index_set(impl_->model, 2, j); }
 long EventDrivenRun::itol() const { return static_cast<long>(impl_->osi->intData(2)); }
 double EventDrivenRun::rtol() const { return impl_->osi->getRtol()[0]; }
@@ -620,12 +621,8 @@ void NewmarkAlphaRun::advance() {
 
 double NewmarkAlphaRun::time() const { return impl_->sim->startingTime(); }
 void NewmarkAlphaRun::state(double* u, double* v) const { read_state(impl_->model, u, v); }
-double NewmarkAlphaRun::impulse(int j) const {
-  return impl_->model.contacts[static_cast<std::size_t>(j)]->lambda(1)->getValue(0);
-}
-double NewmarkAlphaRun::force(int j) const {
-  return impl_->model.contacts[static_cast<std::size_t>(j)]->lambda(2)->getValue(0);
-}
+double NewmarkAlphaRun::impulse(int j) const { return multiplier(impl_->model, j, 1); }
+double NewmarkAlphaRun::force(int j) const { return multiplier(impl_->model, j, 2); }
 long NewmarkAlphaRun::newton_iterations() const { return impl_->osi->total(); }
 int NewmarkAlphaRun::changed_body(double& k, double& c) const {
   const Impl& s = *impl_;
