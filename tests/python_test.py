@@ -236,28 +236,25 @@ class Studies(unittest.TestCase):
                 if key not in TIMING:
                     self.assertTrue(same_field(row[key], text), f"{key}: {row[key]!r} against the CLI's {text!r}")
 
-    def test_stress_gives_the_rows_of_the_command_line(self):
+    def cli_study(self, command, *flags):
+        """The CSV rows `poundbench COMMAND SMOKE --settings (SETTINGS) --out FILE FLAGS` writes."""
         with tempfile.TemporaryDirectory() as d:
             settings = os.path.join(d, "settings.toml")
             with open(settings, "w") as f:
                 f.write(self.SETTINGS_TOML)
-            out = os.path.join(d, "stability.csv")
-            code, _, err = cli("stress", self.SMOKE, "--settings", settings, "--out", out, "--repetitions", "1")
+            out = os.path.join(d, "out.csv")
+            code, _, err = cli(command, self.SMOKE, "--settings", settings, "--out", out, *flags)
             self.assertEqual(code, 0, err)
-            expected = csv_rows(out)
+            return csv_rows(out)
+
+    def test_stress_gives_the_rows_of_the_command_line(self):
+        expected = self.cli_study("stress", "--repetitions", "1")
         rows = poundbench.stress(self.SMOKE, settings=self.SETTINGS, repetitions=1)
         self.assert_same_rows(rows, expected)
         self.assertTrue(any(r["accuracy"] == "fail" for r in rows))  # wh = 100 misses the impacts
 
     def test_baseline_gives_the_rows_the_command_line_stores(self):
-        with tempfile.TemporaryDirectory() as d:
-            settings = os.path.join(d, "settings.toml")
-            with open(settings, "w") as f:
-                f.write(self.SETTINGS_TOML)
-            out = os.path.join(d, "baseline.csv")
-            code, _, err = cli("baseline", self.SMOKE, "--settings", settings, "--out", out)
-            self.assertEqual(code, 0, err)
-            expected = csv_rows(out)
+        expected = self.cli_study("baseline")
         rows = poundbench.baseline(self.SMOKE, settings=self.SETTINGS)
         self.assert_same_rows(rows, expected)
         self.assertEqual({r["solver"] for r in rows}, {"event-driven", "moreau-jean"})
