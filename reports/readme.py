@@ -38,7 +38,7 @@ MEASURED = "measured.csv"
 PROVENANCE = "provenance.json"
 MPI = "mpi.csv"  # scripts/mpi_throughput.sh's medians, measured apart from the main job
 MPI_PROVENANCE = "mpi-provenance.json"
-PERSISTENT = "persistent.csv"  # scripts/persistent_overhead.py's medians, measured apart from the main job
+PERSISTENT = "persistent.csv"  # scripts/persistent_overhead.py's medians (scripts/main.sh runs it)
 PERSISTENT_PROVENANCE = "persistent-provenance.json"
 PHYSICAL = "physical-example.json"  # scripts/physical_example.sh: README's question in metres and seconds
 
