@@ -38,6 +38,8 @@ MEASURED = "measured.csv"
 PROVENANCE = "provenance.json"
 MPI = "mpi.csv"  # scripts/mpi_throughput.sh's medians, measured apart from the main job
 MPI_PROVENANCE = "mpi-provenance.json"
+PERSISTENT = "persistent.csv"  # scripts/persistent_overhead.py's medians (scripts/main.sh runs it)
+PERSISTENT_PROVENANCE = "persistent-provenance.json"
 PHYSICAL = "physical-example.json"  # scripts/physical_example.sh: README's question in metres and seconds
 
 
@@ -59,13 +61,17 @@ def committed(folder):
     if os.path.exists(os.path.join(folder, MPI)):
         with open(path(MPI_PROVENANCE)) as f:
             mpi = dict(rows=load([path(MPI)]), provenance=json.load(f))
+    persistent = None
+    if os.path.exists(os.path.join(folder, PERSISTENT)):
+        with open(path(PERSISTENT_PROVENANCE)) as f:
+            persistent = dict(rows=load([path(PERSISTENT)]), provenance=json.load(f))
     has_impacting = os.path.exists(os.path.join(folder, IMPACTING))
     has_records_wp = os.path.exists(os.path.join(folder, RECORDS_WP))
     physical = None
     if os.path.exists(os.path.join(folder, PHYSICAL)):
         with open(path(PHYSICAL)) as f:
             physical = json.load(f)
-    return dict(mpi=mpi, physical=physical, workprecision=load([path(WORKPRECISION)]),
+    return dict(mpi=mpi, persistent=persistent, physical=physical, workprecision=load([path(WORKPRECISION)]),
                 impacting=read_impacting(path(IMPACTING)) if has_impacting else None,
                 scenes={r["family"]: r["scene"] for r in load([path(FAMILIES)])},
                 stability=load([path(STABILITY)]), measured=load([path(MEASURED)]),
@@ -115,6 +121,24 @@ def mpi_lines(mpi):
     return lines
 
 
+def persistent_lines(persistent):
+    """What a point costs through the external protocol itself, persistent and one-shot: a
+    program that answers at once, through a sweep (scripts/persistent_overhead.py)."""
+    rows = {r["mode"]: r for r in persistent["rows"]}
+    p, one = rows["persistent"], rows.get("one-shot")
+    lines = [f"What the protocol itself costs a point through a sweep (`scripts/persistent_overhead.py`: "
+             f"`{p['set']}`, {p['points']} points on one thread through a program that answers at once; the "
+             f"exchange is the rows' `seconds`, medians of {p['sweeps']} sweeps): persistent, "
+             f"{float(p['exchange_us']):.1f} us a point (the target: under 50 us), the program's start "
+             f"({float(p['startup_us']):.0f} us) once per worker, in its `startup_seconds`"]
+    if one:
+        lines[0] += (f"; one-shot, {float(one['exchange_us']):.0f} us a point, a spawn each "
+                     f"({float(one['exchange_us']) / float(p['exchange_us']):.0f}x).")
+    else:
+        lines[0] += "."
+    return lines
+
+
 def physical_lines(example):
     """README's physical example: the two commands, and what each answered, in metres and
     seconds (the error against the first, the reference)."""
@@ -150,6 +174,11 @@ def blocks(folder):
             *mpi_lines(inputs["mpi"]), "",
             source_line(inputs, [MPI, MPI_PROVENANCE], inputs["mpi"]["provenance"]),
         ] if inputs["mpi"] else ["Not measured yet: `scripts/mpi_throughput.sh` writes these numbers."],
+        "persistent": [
+            *persistent_lines(inputs["persistent"]), "",
+            source_line(inputs, [PERSISTENT, PERSISTENT_PROVENANCE], inputs["persistent"]["provenance"]),
+        ] if inputs["persistent"] else ["Not measured yet: `scripts/persistent_overhead.py --out reports/persistent.csv` "
+                                        "writes these numbers."],
         "answer": [
             "For each scene of the work-precision study and each target error, the cheapest setting that meets "
             "it, and its cost; then for every scene at once, among every solver and among the time-steppers only "

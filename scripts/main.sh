@@ -127,6 +127,12 @@ echo "main: benchmarks"
 timed benchmarks build/bench/poundbench_bench --benchmark_repetitions=5 --benchmark_display_aggregates_only=true \
   --benchmark_min_time=0.01 --benchmark_out=results/bench.json --benchmark_out_format=json > /dev/null
 
+# What the external protocol itself costs a point, persistent and one-shot, through a sweep of a
+# program that answers at once (issue 37; a few seconds): README's persistent block.
+echo "main: the external protocol's own cost a point (scripts/persistent_overhead.py)"
+timed persistent /usr/bin/python3 scripts/persistent_overhead.py --poundbench $pb \
+  --answer build/bench/poundbench_instant_answer --out reports/persistent.csv > /dev/null
+
 # The report (reports/README.md, figures/, report.html), the result files it commits beside it
 # (reports/*.csv, provenance.json), and README's generated blocks written from those files (checked
 # by the readme_numbers test).

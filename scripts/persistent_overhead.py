@@ -1,23 +1,30 @@
 #!/usr/bin/env python3
-"""What a point costs through the persistent external protocol itself (docs/external.md):
-a sweep of a case set through a program that answers every case at once
-(bench/instant_answer.cpp), on one thread, a few times. Prints, as medians over the sweeps:
-the exchange per point (the rows' `seconds`: the case written, the answer read and checked),
-the whole sweep's wall time per point (poundbench's start, every point's case, no-contact Pi1,
-row and CSV included) beside the same sweep through the reference (its solve instead of the
-exchange: the difference bounds what the protocol adds to a point of a sweep, the program's
-own time included), and the program's start-up (`startup_seconds`, reported once per worker).
+"""What a point costs through the external protocol itself (docs/external.md): a sweep of a
+case set through a program that answers every case at once, on one thread, a few times, in
+both modes: persistent (bench/instant_answer.cpp: started once, a line each way) and one-shot
+(`cat` of a stored answer: a spawn per point). Prints, as medians over the sweeps, the
+exchange per point (the rows' `seconds`: the case written, the answer read and checked; one-shot,
+the spawn and the wait too) and the persistent program's start-up (`startup_seconds`, reported
+once per worker). The whole sweep's wall time is not the measure: over a hundred points it is
+mostly poundbench's own start.
+
+With --out FILE (scripts/main.sh: reports/persistent.csv) it also writes these medians, one row
+per mode, and the provenance of the build beside it (FILE's name with -provenance.json), from
+which reports/make_report.py writes README's block.
 
     scripts/persistent_overhead.py [--poundbench build/poundbench] [--answer build/bench/poundbench_instant_answer]
-                                   [--set cases/sets/workprecision.toml] [--sweeps 5]
+                                   [--set cases/sets/workprecision.toml] [--sweeps 5] [--out reports/persistent.csv]
 """
 import argparse
 import csv
 import io
+import os
 import statistics
 import subprocess
 import sys
-import time
+import tempfile
+
+COLUMNS = ["mode", "set", "points", "sweeps", "exchange_us", "startup_us"]
 
 
 def main():
@@ -26,30 +33,56 @@ def main():
     p.add_argument("--answer", default="build/bench/poundbench_instant_answer")
     p.add_argument("--set", default="cases/sets/workprecision.toml")
     p.add_argument("--sweeps", type=int, default=5)
+    p.add_argument("--out", help="write the medians to this CSV file (and its provenance beside it)")
     a = p.parse_args()
-    exchange, per_point, reference, startup = [], [], [], []
 
     def sweep(*flags):
-        start = time.perf_counter()
-        out = subprocess.run([a.poundbench, "spectrum", a.set, "--threads", "1", *flags],
+        out = subprocess.run([a.poundbench, "spectrum", a.set, "--threads", "1", "--solver", "external", *flags],
                              capture_output=True, text=True, check=True).stdout
-        return out, time.perf_counter() - start
-
-    for _ in range(a.sweeps):
-        out, wall = sweep()
-        reference.append(wall / len(list(csv.DictReader(io.StringIO(out)))))
-        out, wall = sweep("--solver", "external", "--persistent", "--command", a.answer)
         rows = list(csv.DictReader(io.StringIO(out)))
         if not rows or any(r["status"] != "ok" for r in rows):
-            sys.exit("persistent_overhead: a point did not answer ok: " + next(r["message"] for r in rows if r["status"] != "ok"))
-        exchange.append(statistics.median(float(r["seconds"]) for r in rows))
-        per_point.append(wall / len(rows))
-        startup += [float(r["startup_seconds"]) for r in rows if r["startup_seconds"]]
-    print(f"persistent protocol, {len(rows)} points of {a.set}, {a.sweeps} sweeps on one thread (medians):")
-    print(f"  exchange per point (rows' seconds): {1e6 * statistics.median(exchange):.1f} us")
-    print(f"  sweep wall time per point: {1e6 * statistics.median(per_point):.1f} us, "
-          f"through the reference {1e6 * statistics.median(reference):.1f} us")
-    print(f"  program start-up (startup_seconds, {len(startup)} starts): {1e6 * statistics.median(startup):.0f} us")
+            sys.exit("persistent_overhead: a point did not answer ok: " +
+                     next((r["message"] for r in rows if r["status"] != "ok"), "no rows"))
+        return rows
+
+    with tempfile.TemporaryDirectory() as work:
+        answer = os.path.join(work, "answer.json")
+        with open(answer, "w") as f:
+            f.write('{"version": 1, "status": "ok", "pi1": 1.0}\n')
+        modes = {"persistent": ["--persistent", "--command", a.answer], "one-shot": ["--command", f"cat {answer}"]}
+        measured = {m: dict(exchange=[], startup=[]) for m in modes}
+        for _ in range(a.sweeps):
+            for mode, flags in modes.items():
+                rows = sweep(*flags)
+                m = measured[mode]
+                m["exchange"].append(statistics.median(float(r["seconds"]) for r in rows))
+                m["startup"] += [float(r["startup_seconds"]) for r in rows if r["startup_seconds"]]
+
+    out = []
+    for mode, m in measured.items():
+        out.append(dict(mode=mode, set=a.set, points=len(rows), sweeps=a.sweeps,
+                        exchange_us=f"{1e6 * statistics.median(m['exchange']):.1f}",
+                        startup_us=f"{1e6 * statistics.median(m['startup']):.0f}" if m["startup"] else ""))
+    print(f"external protocol, {len(rows)} points of {a.set}, {a.sweeps} sweeps on one thread (medians):")
+    for r in out:
+        print(f"  {r['mode']}: exchange per point (rows' seconds) {r['exchange_us']} us"
+              + (f"; program start-up (startup_seconds) {r['startup_us']} us" if r["startup_us"] else ""))
+    if a.out:
+        build = os.path.dirname(os.path.abspath(a.poundbench))
+        provenance = subprocess.run([sys.executable, os.path.join(os.path.dirname(__file__), "..", "reports",
+                                                                  "provenance.py"), "--build-dir", build],
+                                    capture_output=True, text=True, check=True).stdout
+        # Written whole to a temporary name, then renamed: never a half-written results file.
+        for path, text in ((a.out, None), (os.path.splitext(a.out)[0] + "-provenance.json", provenance)):
+            with open(path + ".tmp", "w", newline="") as f:
+                if text is None:
+                    writer = csv.DictWriter(f, COLUMNS, lineterminator="\n")
+                    writer.writeheader()
+                    writer.writerows(out)
+                else:
+                    f.write(text)
+            os.replace(path + ".tmp", path)
+        print(f"persistent_overhead: wrote {a.out}")
 
 
 if __name__ == "__main__":

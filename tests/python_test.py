@@ -13,6 +13,7 @@ import sys
 import os
 import tempfile
 import unittest
+import xml.etree.ElementTree as ET
 
 POUNDBENCH, SOURCE = sys.argv[1], sys.argv[2]
 import numpy as np  # noqa: E402
@@ -42,6 +43,9 @@ class Run(unittest.TestCase):
             if key != "seconds":
                 self.assertEqual(result[key], expected[key], key)
         self.assertNotIn("history", result)
+        # Its no-contact Pi1 comes from the module's cache from the second call on: the same double.
+        self.assertEqual(poundbench.run(**CASE, solver="moreau-jean", steps=64)["pi1_no_contact"],
+                         expected["pi1_no_contact"])
 
     def test_the_verdict_is_in_the_dict(self):
         # Issue 32: a run that finished without resolving what it solved says so (Newmark at
@@ -189,6 +193,194 @@ class Spectrum(unittest.TestCase):
         self.assertEqual("poundbench: " + str(raised.exception) + "\n", err)
         with self.assertRaisesRegex(ValueError, "^--threads: must be >= 1$"):
             poundbench.spectrum(f"{SOURCE}/cases/sets/smoke.toml", threads=0)
+
+
+def same_field(value, text):
+    """A dict's value is the CLI's CSV field: an empty field is None, a number reads back to
+    the same double (both are the same row's text), text is text."""
+    if value is None:
+        return text == ""
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        try:
+            return float(text) == value
+        except ValueError:
+            return False
+    return str(value) == text
+
+
+# The timing columns: measured anew by every run, so never the same twice.
+TIMING = ("seconds", "cpu_seconds", "solve_seconds", "startup_seconds", "cpu_median_s", "cpu_median_low_s",
+          "cpu_median_high_s")
+
+
+def csv_rows(path):
+    """A CSV file's rows, without the comment lines a baseline file starts with."""
+    with open(path, newline="") as f:
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+class Studies(unittest.TestCase):
+    """stress, baseline and compare from Python return what the command writes for the same
+    input: the same rows, in the same order, field for field (the timing columns aside)."""
+
+    SMOKE = f"{SOURCE}/cases/sets/smoke.toml"
+    SETTINGS = [{"solver": "moreau-jean", "wh": [0.5, 100]}]
+    SETTINGS_TOML = 'name = "python"\n[[run]]\nsolver = "moreau-jean"\nwh = [0.5, 100]\n'
+
+    def assert_same_rows(self, rows, expected):
+        self.assertEqual(len(rows), len(expected))
+        self.assertGreater(len(rows), 0)
+        for row, line in zip(rows, expected):
+            self.assertEqual(list(row), list(line))  # the same columns, in the same order
+            for key, text in line.items():
+                if key not in TIMING:
+                    self.assertTrue(same_field(row[key], text), f"{key}: {row[key]!r} against the CLI's {text!r}")
+
+    def cli_study(self, command, *flags):
+        """The CSV rows `poundbench COMMAND SMOKE --settings (SETTINGS) --out FILE FLAGS` writes."""
+        with tempfile.TemporaryDirectory() as d:
+            settings = os.path.join(d, "settings.toml")
+            with open(settings, "w") as f:
+                f.write(self.SETTINGS_TOML)
+            out = os.path.join(d, "out.csv")
+            code, _, err = cli(command, self.SMOKE, "--settings", settings, "--out", out, *flags)
+            self.assertEqual(code, 0, err)
+            return csv_rows(out)
+
+    def test_stress_gives_the_rows_of_the_command_line(self):
+        expected = self.cli_study("stress", "--repetitions", "1")
+        rows = poundbench.stress(self.SMOKE, settings=self.SETTINGS, repetitions=1)
+        self.assert_same_rows(rows, expected)
+        self.assertTrue(any(r["accuracy"] == "fail" for r in rows))  # wh = 100 misses the impacts
+
+    def test_baseline_gives_the_rows_the_command_line_stores(self):
+        expected = self.cli_study("baseline")
+        rows = poundbench.baseline(self.SMOKE, settings=self.SETTINGS)
+        self.assert_same_rows(rows, expected)
+        self.assertEqual({r["solver"] for r in rows}, {"event-driven", "moreau-jean"})
+
+    def test_compare_gives_the_lines_of_the_command_line(self):
+        # Moreau-Jean's rows at N = 32 against the stored reference: some families pass 2e-2
+        # (pair-stiff-elastic 1.0e-2), some do not (wall-touching 6.6e-2), so both verdicts are compared.
+        stored = f"{SOURCE}/tests/baselines/smoke.csv"
+        with tempfile.TemporaryDirectory() as d:
+            rows_file = os.path.join(d, "rows.csv")
+            code, _, err = cli("spectrum", self.SMOKE, "--solver", "moreau-jean", "--steps", "32", "--out", rows_file)
+            self.assertEqual(code, 0, err)
+            junit = os.path.join(d, "compare.xml")
+            code, out, err = cli("compare", rows_file, "--baseline", stored, "--tolerance", "2e-2", "--junit", junit)
+            self.assertIn(code, (0, 1), err)
+            cases = ET.parse(junit).getroot().iter("testcase")
+            expected = [(c.get("name"), c.find("failure") is None) for c in cases]
+            lines = poundbench.compare(rows_file, baseline=stored, tolerance=2e-2)
+        self.assertEqual(len(lines), len(expected))
+        self.assertEqual({line["passed"] for line in lines}, {True, False})
+        text = out.splitlines()
+        for line, (name, passed) in zip(lines, expected):
+            self.assertEqual(line["passed"], passed, name)
+            self.assertIn(line["family"], name)
+            self.assertEqual(line["tolerance"], 2e-2)
+            # Its line of the printed table: the family, the counts, the verdict.
+            printed = next(t.split() for t in text if t.split()[:1] == [line["family"]])
+            self.assertEqual(printed[-1], "pass" if passed else "FAIL")
+            if line["compared"]:  # printed to 3 significant digits: within half a unit of the third
+                self.assertAlmostEqual(float(printed[-3]), line["max_difference"], delta=5e-3 * line["max_difference"])
+            self.assertEqual([int(x) for x in printed[-7:-3]],
+                             [line["compared"], line["failed"], line["unmatched"], line["missing"]])
+        self.assertEqual(code, 0 if all(line["passed"] for line in lines) else 1)
+
+
+class Callable(unittest.TestCase):
+    """A Python function as the solver, in process (issue 37)."""
+
+    SMOKE = f"{SOURCE}/cases/sets/smoke.toml"
+
+    def test_what_the_function_raises_is_that_points_failed_row_and_the_sweep_goes_on(self):
+        calls = []
+
+        def solver(case):
+            calls.append(case)
+            if len(calls) == 3:
+                return 1 / 0
+            return {"status": "ok", "pi1": 1.0 + len(calls)}
+
+        rows = poundbench.spectrum(self.SMOKE, solver=solver)
+        self.assertEqual(len(rows), 40)  # every point of the set, the ones after the failure too
+        self.assertEqual(len(calls), 40)
+        failed = [r for r in rows if r["status"] != "ok"]
+        self.assertEqual(len(failed), 1)
+        self.assertEqual(failed[0]["status"], "failed")
+        self.assertIn("ZeroDivisionError: division by zero", failed[0]["message"])
+        self.assertIsNone(failed[0]["pi1"])
+        self.assertTrue(all(r["pi1"] is not None and r["pi1"] >= 2.0 for r in rows if r["status"] == "ok"))
+        # The same in a study: the function's failed row counts as a failed run of its setting.
+        calls.clear()
+        table = poundbench.workprecision(self.SMOKE, settings=[{"solver": "mine", "steps": [16]}],
+                                         solvers={"mine": solver}, repetitions=1)
+        mine = [r for r in table if r["solver"] == "external"]
+        self.assertEqual(sum(r["points"] for r in mine), 40)
+        self.assertEqual(sum(r["failed"] for r in mine), 1)
+
+    def test_ctrl_c_stops_a_sweep_over_a_function_and_writes_nothing(self):
+        # A child process sweeps the smoke set (40 points) through a function that takes
+        # 0.2 s a call, 8 s in all; SIGINT after its first call must end it with
+        # KeyboardInterrupt within 3 s (the call under way finishes, 0.2 s; the rest is the
+        # sweep winding down and the interpreter's exit, on a busy machine), and leave no
+        # file behind in its working directory (no partial file, no lock).
+        import signal
+        import time
+        child = f"""
+import sys, time
+import poundbench
+def slow(case):
+    print("called", flush=True)
+    time.sleep(0.2)
+    return {{"status": "ok", "pi1": 1.0}}
+if sys.argv[1] == "spectrum":
+    poundbench.spectrum({self.SMOKE!r}, solver=slow)
+else:
+    poundbench.workprecision({self.SMOKE!r}, settings=[{{"solver": "slow", "steps": [16]}}], solvers={{"slow": slow}},
+                             repetitions=1)
+print("finished", flush=True)
+"""
+        for function in ("spectrum", "workprecision"):
+            with tempfile.TemporaryDirectory() as cwd:
+                process = subprocess.Popen([sys.executable, "-c", child, function], cwd=cwd, stdout=subprocess.PIPE,
+                                           stderr=subprocess.PIPE, text=True)
+                self.assertEqual(process.stdout.readline(), "called\n")
+                process.send_signal(signal.SIGINT)
+                sent = time.monotonic()
+                out, err = process.communicate(timeout=30)
+                elapsed = time.monotonic() - sent
+                self.assertNotEqual(process.returncode, 0, function)
+                self.assertIn("KeyboardInterrupt", err, function)
+                self.assertNotIn("finished", out, function)
+                self.assertLess(elapsed, 3.0, function)
+                self.assertEqual(os.listdir(cwd), [], function)
+
+
+class WithoutNumPy(unittest.TestCase):
+    def test_a_history_without_numpy_is_one_line_naming_the_package(self):
+        # NumPy hidden from the import (a None entry in sys.modules makes `import numpy` fail
+        # as when it is not installed): the module loads, a run without history works, and
+        # one with a history raises ImportError in one line that names the package.
+        child = f"""
+import sys
+sys.modules["numpy"] = None
+import poundbench
+case = {CASE!r}
+assert poundbench.run(**case)["status"] == "ok"
+try:
+    poundbench.run(**case, history=True)
+except ImportError as e:
+    print(e)
+"""
+        done = subprocess.run([sys.executable, "-c", child], capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        lines = done.stdout.splitlines()
+        self.assertEqual(len(lines), 1, done.stdout)
+        self.assertIn("NumPy", lines[0])
+        self.assertIn("python3-numpy", lines[0])
 
 
 if __name__ == "__main__":
