@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Sets up, builds (optimised, with debug info, warnings as errors) and runs every test.
+# Sets up, builds (optimised, without debug info: CMakeLists.txt's Test build type; warnings as errors)
+# and runs every test.
 #   scripts/test.sh             the test suite
 #   scripts/test.sh --sanitize  the same suite under AddressSanitizer + UBSan
 set -euo pipefail
@@ -26,7 +27,7 @@ if [ "${1:-}" = "--sanitize" ]; then
   ASAN_OPTIONS=detect_leaks=1:fast_unwind_on_malloc=0 UBSAN_OPTIONS=print_stacktrace=1 \
     LSAN_OPTIONS=suppressions=$PWD/../tests/lsan_openmpi.supp:print_suppressions=0 ctest --output-on-failure -j "$(nproc)" -R '^Mpi\.'
 else
-  scripts/setup.sh --build-dir build-test --build-type RelWithDebInfo --werror
+  scripts/setup.sh --build-dir build-test --build-type Test --werror
   cd build-test
   ctest --output-on-failure -j "$(nproc)"
 fi

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
+#include <typeinfo>
 
 extern char** environ;
 
@@ -163,6 +164,22 @@ std::string sanitizer_line(const std::string& err) {
                       (end == std::string::npos ? err.size() : end) - (begin == std::string::npos ? 0 : begin + 1));
   }
   return {};
+}
+
+ChildOutcome report_in_child(const std::function<std::string()>& body, const ChildLimits& limits) {
+  return run_in_child(
+      [&] {
+        std::string report;
+        try {
+          report = body();
+        } catch (const std::exception& e) {
+          report = std::string("EXC ") + typeid(e).name() + ": " + e.what();
+        } catch (...) {
+          report = "EXC (not a std::exception)";
+        }
+        std::fwrite(report.data(), 1, report.size(), stdout);
+      },
+      limits);
 }
 
 }  // namespace pb::fuzz

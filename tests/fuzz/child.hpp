@@ -33,6 +33,11 @@ struct ChildOutcome {
 // handlers: the parent's test framework must not run twice).
 ChildOutcome run_in_child(const std::function<void()>& body, const ChildLimits& limits);
 
+// run_in_child with the fuzz targets' report: the child writes what `body` returns on stdout,
+// or "EXC <type>: <what>" when it throws, so that the parent tells an exception no reader may
+// let out from a refusal the body reports itself.
+ChildOutcome report_in_child(const std::function<std::string()>& body, const ChildLimits& limits);
+
 // What a program gets besides its arguments: its stdin (a file's contents; empty: /dev/null,
 // so that no program ever waits on the test's terminal) and variables added to the
 // environment ("NAME=value").

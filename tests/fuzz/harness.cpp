@@ -11,7 +11,6 @@
 #include <fstream>
 #include <set>
 #include <sstream>
-#include <typeinfo>
 
 #include "cases/case_set.hpp"
 #include "studies/settings_list.hpp"
@@ -188,25 +187,19 @@ std::string args_text(const std::vector<std::string>& args) {
 }
 
 std::optional<std::string> check_reader(Reader reader, const std::string& text, const ChildLimits& limits) {
-  const ChildOutcome o = run_in_child(
-      [&] {
-        std::string report;
+  const ChildOutcome o = report_in_child(
+      [&]() -> std::string {
         try {
           const std::size_t n = reader == Reader::case_set ? parse_case_set(text, "fuzz.toml").cases.size()
                                                            : parse_settings_list(text, "fuzz.toml").runs.size();
-          report = "OK " + std::to_string(n);
+          return "OK " + std::to_string(n);
         } catch (const CaseSetError& e) {
-          report = reader == Reader::case_set ? std::string("ERR ") + e.what()
-                                              : std::string("EXC pb::CaseSetError: ") + e.what();
+          return reader == Reader::case_set ? std::string("ERR ") + e.what()
+                                            : std::string("EXC pb::CaseSetError: ") + e.what();
         } catch (const SettingsListError& e) {
-          report = reader == Reader::settings ? std::string("ERR ") + e.what()
-                                              : std::string("EXC pb::SettingsListError: ") + e.what();
-        } catch (const std::exception& e) {
-          report = std::string("EXC ") + typeid(e).name() + ": " + e.what();
-        } catch (...) {
-          report = "EXC (not a std::exception)";
+          return reader == Reader::settings ? std::string("ERR ") + e.what()
+                                            : std::string("EXC pb::SettingsListError: ") + e.what();
         }
-        std::fwrite(report.data(), 1, report.size(), stdout);
       },
       limits);
   if (!o.exited || o.exit_code != 0 || !sanitizer_line(o.err).empty())

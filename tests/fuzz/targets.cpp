@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
-#include <typeinfo>
 
 #include <nlohmann/json.hpp>
 
@@ -49,19 +48,7 @@ std::shared_ptr<const Record> short_record() {
 // What a child reports on stdout: "OK ...", "ERR <message>" or "EXC <what>".
 template <class Body>
 std::optional<std::string> in_child(const Body& body, const ChildLimits& limits) {
-  const ChildOutcome o = run_in_child(
-      [&] {
-        std::string report;
-        try {
-          report = body();
-        } catch (const std::exception& e) {
-          report = std::string("EXC ") + typeid(e).name() + ": " + e.what();
-        } catch (...) {
-          report = "EXC (not a std::exception)";
-        }
-        std::fwrite(report.data(), 1, report.size(), stdout);
-      },
-      limits);
+  const ChildOutcome o = report_in_child(body, limits);
   if (!o.exited || o.exit_code != 0 || !sanitizer_line(o.err).empty())
     return o.describe() + (o.err.empty() ? "" : "; stderr: " + o.err.substr(0, 300));
   if (o.out.rfind("EXC ", 0) == 0) return "threw: " + o.out.substr(4, 200);
