@@ -142,7 +142,7 @@ def commit_results(args):
         f.write("\n")
     for source, name in ((args.workprecision, readme.WORKPRECISION), (args.stress, readme.STABILITY),
                          (args.compliant, readme.COMPLIANT), (args.restitution, readme.RESTITUTION),
-                         (args.records_wp, readme.RECORDS_WP)):
+                         (args.records_wp, readme.RECORDS_WP), (args.yielding_wp, readme.YIELDING_WP)):
         if source and os.path.abspath(source) != os.path.abspath(target(name)):
             shutil.copyfile(source, target(name))
     return measured_on
@@ -241,6 +241,9 @@ def report(args):
     if args.records_wp:
         import records_wp
         text += records_wp.section(load([args.records_wp]))
+    if args.yielding_wp:
+        import yielding_wp
+        text += yielding_wp.section(load([args.yielding_wp]))
     text += paper_set_section(rows, args.out)
     text += ["## Where this ran", "", footer(measured_on), ""]
     out.page.provenance([f"- measured at: {provenance.describe(measured_on)}"])
@@ -273,6 +276,8 @@ def main():
                         "event-driven` (scripts/main.sh: results/real-records-event-driven.csv)")
     parser.add_argument("--records-wp", help="summary CSV of the time-steppers on the real record suite (`poundbench "
                         "workprecision cases/sets/workprecision-records.toml --settings cases/settings/records.toml`)")
+    parser.add_argument("--yielding-wp", help="summary CSV of the time-steppers on yielding bodies (`poundbench "
+                        "workprecision cases/sets/workprecision-yielding.toml --settings cases/settings/yielding.toml`)")
     parser.add_argument("--out", default=here, help="folder for README.md, figures/ and the committed result files")
     parser.add_argument("--readme", help="also write the generated blocks of this README (scripts/main.sh: README.md)")
     parser.add_argument("--check", action="store_true", help="write nothing: exit 1, with the diff, when README's "

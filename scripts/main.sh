@@ -119,6 +119,10 @@ echo "main: the time-steppers on real records (cases/sets/workprecision-records.
 timed workprecision-records $pb workprecision cases/sets/workprecision-records.toml \
   --settings cases/settings/records.toml --repetitions 1 \
   --out results/workprecision-records.csv --points results/workprecision-records-points.csv
+echo "main: the time-steppers on yielding bodies (cases/sets/workprecision-yielding.toml)"
+timed workprecision-yielding $pb workprecision cases/sets/workprecision-yielding.toml \
+  --settings cases/settings/yielding.toml --repetitions 1 \
+  --out results/workprecision-yielding.csv --points results/workprecision-yielding-points.csv
 
 echo "main: benchmarks"
 # 5 repetitions of at least 10 ms each: the 280 benchmarks took 139 s at 50 ms, the main
@@ -136,6 +140,7 @@ timed benchmarks build/bench/poundbench_bench --benchmark_repetitions=5 --benchm
   "${compliant[@]}" \
   --records results/records-*.csv --yielding results/yielding-*.csv \
   --records-real results/real-records-event-driven.csv --records-wp results/workprecision-records.csv \
+  --yielding-wp results/workprecision-yielding.csv \
   --out reports --readme README.md
 
 echo "main: the paper report (reports/paper/)"
