@@ -40,7 +40,10 @@ from study import InputError, Study, scope_of, spectrum_summary, write_impacting
 STRESS_ABOUT = ("Every case of the stress set (`cases/sets/stress.toml`: stiffness and mass contrasts of 1e-2 and "
                 "1e2, bodies touching at rest, eps = 0 and 1, pulse scales 1e-3 to 1e3, 100 free periods, chains of "
                 "up to 100 bodies, a Newton's cradle; and the recorded ground motion of "
-                "`cases/sets/stress-records.toml`) through every setting of `cases/settings/stress.toml`, the "
+                "`cases/sets/stress-records.toml`; and the yielding bodies of `cases/sets/stress-yielding.toml`: "
+                "elastic-perfectly plastic at large steps, yielding at t = 0+, a touching chain of yielding bodies, "
+                "where a solver that cannot take the bilinear law ends every run failed, saying why, and the energy "
+                "and gap checks have nothing to judge, as the monitor's energy is elastic) through every setting of `cases/settings/stress.toml`, the "
                 "time-steppers at w_max h from resolved to a hundred radians ({steps}).")
 STRESS_READING = [
     "Reading it: ODE and Bullet apply the ground load sampled at the start of each step, which makes energy to first "
