@@ -40,7 +40,10 @@ from study import InputError, Study, scope_of, spectrum_summary, write_impacting
 STRESS_ABOUT = ("Every case of the stress set (`cases/sets/stress.toml`: stiffness and mass contrasts of 1e-2 and "
                 "1e2, bodies touching at rest, eps = 0 and 1, pulse scales 1e-3 to 1e3, 100 free periods, chains of "
                 "up to 100 bodies, a Newton's cradle; and the recorded ground motion of "
-                "`cases/sets/stress-records.toml`) through every setting of `cases/settings/stress.toml`, the "
+                "`cases/sets/stress-records.toml`; and the yielding bodies of `cases/sets/stress-yielding.toml`: "
+                "elastic-perfectly plastic at large steps, yielding at t = 0+, a touching chain of yielding bodies, "
+                "where a solver that cannot take the bilinear law ends every run failed, saying why, and the energy "
+                "and gap checks have nothing to judge, as the monitor's energy is elastic) through every setting of `cases/settings/stress.toml`, the "
                 "time-steppers at w_max h from resolved to a hundred radians ({steps}).")
 STRESS_READING = [
     "Reading it: ODE and Bullet apply the ground load sampled at the start of each step, which makes energy to first "
@@ -142,7 +145,7 @@ def commit_results(args):
         f.write("\n")
     for source, name in ((args.workprecision, readme.WORKPRECISION), (args.stress, readme.STABILITY),
                          (args.compliant, readme.COMPLIANT), (args.restitution, readme.RESTITUTION),
-                         (args.records_wp, readme.RECORDS_WP)):
+                         (args.records_wp, readme.RECORDS_WP), (args.yielding_wp, readme.YIELDING_WP)):
         if source and os.path.abspath(source) != os.path.abspath(target(name)):
             shutil.copyfile(source, target(name))
     return measured_on
@@ -243,6 +246,9 @@ def report(args):
     if args.records_wp:
         import records_wp
         text += records_wp.section(load([args.records_wp]))
+    if args.yielding_wp:
+        import yielding_wp
+        text += yielding_wp.section(load([args.yielding_wp]))
     text += paper_set_section(rows, args.out)
     text += ["## Where this ran", "", footer(measured_on), ""]
     out.page.provenance([f"- measured at: {provenance.describe(measured_on)}"])
@@ -275,6 +281,8 @@ def main():
                         "event-driven` (scripts/main.sh: results/real-records-event-driven.csv)")
     parser.add_argument("--records-wp", help="summary CSV of the time-steppers on the real record suite (`poundbench "
                         "workprecision cases/sets/workprecision-records.toml --settings cases/settings/records.toml`)")
+    parser.add_argument("--yielding-wp", help="summary CSV of the time-steppers on yielding bodies (`poundbench "
+                        "workprecision cases/sets/workprecision-yielding.toml --settings cases/settings/yielding.toml`)")
     parser.add_argument("--out", default=here, help="folder for README.md, figures/ and the committed result files")
     parser.add_argument("--readme", help="also write the generated blocks of this README (scripts/main.sh: README.md)")
     parser.add_argument("--check", action="store_true", help="write nothing: exit 1, with the diff, when README's "

@@ -20,6 +20,7 @@ import compliant
 import measured
 import provenance as prov
 import records_wp
+import yielding_wp
 from rows import load
 from study import read_impacting
 
@@ -32,6 +33,7 @@ FAMILIES = "workprecision-families.csv"  # family -> scene of the work-precision
 IMPACTING = "workprecision-impacting.csv"  # its errors over the points where the reference has an impact
 STABILITY = "stability.csv"
 RECORDS_WP = "workprecision-records.csv"  # the time-steppers on real records (reports/records_wp.py)
+YIELDING_WP = yielding_wp.SUMMARY  # the time-steppers on yielding bodies (reports/yielding_wp.py)
 COMPLIANT = "compliant.csv"  # the compliant-contact study's summary
 RESTITUTION = "restitution.csv"  # what each compliant element restitutes (bench/restitution_table.cpp)
 MEASURED = "measured.csv"
@@ -67,6 +69,7 @@ def committed(folder):
             persistent = dict(rows=load([path(PERSISTENT)]), provenance=json.load(f))
     has_impacting = os.path.exists(os.path.join(folder, IMPACTING))
     has_records_wp = os.path.exists(os.path.join(folder, RECORDS_WP))
+    has_yielding_wp = os.path.exists(os.path.join(folder, YIELDING_WP))
     physical = None
     if os.path.exists(os.path.join(folder, PHYSICAL)):
         with open(path(PHYSICAL)) as f:
@@ -77,7 +80,8 @@ def committed(folder):
                 stability=load([path(STABILITY)]), measured=load([path(MEASURED)]),
                 compliant=load([path(COMPLIANT)]) if has_compliant else None,
                 restitution=load([path(RESTITUTION)]) if has_restitution else None, provenance=measured_on,
-                records_wp=load([path(RECORDS_WP)]) if has_records_wp else None)
+                records_wp=load([path(RECORDS_WP)]) if has_records_wp else None,
+                yielding_wp=load([path(YIELDING_WP)]) if has_yielding_wp else None)
 
 
 def source_line(inputs, files, provenance=None):
@@ -191,6 +195,10 @@ def blocks(folder):
             *records_wp.lines(inputs["records_wp"]), "",
             source_line(inputs, [RECORDS_WP, PROVENANCE]),
         ] if inputs["records_wp"] else ["Not measured yet: `scripts/main.sh` writes these numbers."],
+        "yielding": [
+            *yielding_wp.lines(inputs["yielding_wp"]), "",
+            source_line(inputs, [YIELDING_WP, PROVENANCE]),
+        ] if inputs["yielding_wp"] else ["Not measured yet: `scripts/main.sh` writes these numbers."],
         "compliant": [
             *compliant.answer_lines(inputs["compliant"]), "",
             source_line(inputs, [COMPLIANT, PROVENANCE]),

@@ -40,28 +40,35 @@ def needed(rows, key, target):
 
 
 def pct(x):
-    return f"{100 * x:.2g} %"
+    return f"{100 * x:.2g} %" if x == x else "–"  # NaN: no run of the setting finished
 
 
-def lines(summary):
-    """README's and the report's text: the defaults' errors, the N needed, the answer."""
+def lines(summary, intro=None, scope_of=lambda r: "pair records"):
+    """README's and the report's text: the defaults' errors, the N needed, the answer. `intro`
+    says what the study's families are (the real records' by default), `scope_of` gives a
+    summary row its row of the answer tables (a scope of its own, never a pulse scene's)."""
     family = summary[0]["family"]
     configs = _configs(summary)
     points = summary[0]["points"]
-    text = [f"The `{family}` family (`cases/sets/workprecision-records.toml`): {points} points, one record of each "
-            "earthquake of `cases/records/real/` on a flexible and a stiff pair at Pi2 = 0.5 and 2, each record's "
-            "Pi terms on its own peak and mean period; errors relative to the reference solved 100x tighter.", "",
-            "Each time-stepper at its default setting (its default variant, N = 64 steps per shortest period):", "",
+    intro = intro or [f"The `{family}` family (`cases/sets/workprecision-records.toml`): {points} points, one record "
+                      "of each earthquake of `cases/records/real/` on a flexible and a stiff pair at Pi2 = 0.5 and 2, "
+                      "each record's Pi terms on its own peak and mean period; errors relative to the reference "
+                      "solved 100x tighter."]
+    text = [*intro, "",
+            "Each time-stepper at its default setting (its default variant, N = 64 steps per shortest period; "
+            "`–`: no run finished):", "",
             "| setting | median error | 95th percentile | largest | CPU per run (us) | failed / unresolved |",
             "|---|---:|---:|---:|---:|---:|"]
+    families = list(dict.fromkeys(r["family"] for r in summary))
     for label, rows in configs.items():
-        r = next((r for r in rows if steps_of(r) == DEFAULT_N), None)
-        if r is None:
-            continue
-        text.append(f"| {label} | {pct(num(r, 'err_median'))} | {pct(num(r, 'err_p95'))} | {pct(num(r, 'err_max'))} "
-                    f"| {answer.us(num(r, 'cpu_median_s'))} | {r['failed']} / {r.get('unresolved') or 0} |")
+        # A setting with no step (CVODE chooses its own) is at its default as it stands.
+        for r in (r for r in rows if steps_of(r) in (DEFAULT_N, None)):
+            name = label if len(families) == 1 else f"{label}, `{r['family']}`"
+            text.append(f"| {name} | {pct(num(r, 'err_median'))} | {pct(num(r, 'err_p95'))} | {pct(num(r, 'err_max'))} "
+                        f"| {answer.us(num(r, 'cpu_median_s'))} | {r['failed']} / {r.get('unresolved') or 0} |")
     text += ["", "The least N from which every finer step of the study meets 1 % and 0.1 % (by the median and the "
-             "95th percentile of the error over the points; `beyond N` where the finest step run does not):", "",
+             "95th percentile of the error over the points" + (", on every family" if len(families) > 1 else "")
+             + "; `beyond N` where the finest step run does not):", "",
              "| setting | 1 %, median | 1 %, 95th | 0.1 %, median | 0.1 %, 95th |", "|---|---:|---:|---:|---:|"]
     for label, rows in configs.items():
         if len({steps_of(r) for r in rows}) < 2:
@@ -73,7 +80,7 @@ def lines(summary):
                 cells.append(f"N = {least}" if least else f"beyond {finest}")
         text.append(f"| {label} | " + " | ".join(cells) + " |")
     # One scope: the tables' rows for every scene at once would repeat it.
-    tables = answer.answer_tables(summary, {r["family"]: "pair records" for r in summary})
+    tables = answer.answer_tables(summary, {r["family"]: scope_of(r) for r in summary})
     text += ["", *(t for t in tables if not t.startswith(f"| **{answer.ALL}"))]
     return text
 

@@ -161,6 +161,19 @@ def section(rows, out_dir):
                  "pair, cosine pulse, `yield-pi6`): " +
                  ", ".join(f"{'elastic' if math.isinf(l) else f'Pi_y0 = {l:g}'}: {v:.3g}"
                            for l, v in sorted(mass.items())) + ".", ""]
+        elastic = mass.get(math.inf)
+        yielding = {l: v for l, v in mass.items() if not math.isinf(l)}
+        if elastic is not None and yielding:
+            same = [l for l, v in yielding.items() if (v > 1) == (elastic > 1)]
+            text += [f"  The elastic finding (body 0's Pi1 is {'higher' if elastic > 1 else 'lower'} beside a neighbour "
+                     f"half as heavy, Pi6 = m0 / m1 = 2, than beside one twice as heavy) {'survives' if len(same) == len(yielding) else 'does not survive'} yielding: the ratio "
+                     f"is on the same side of 1 at {len(same)} of {len(yielding)} yielding levels, and "
+                     + ("yielding strengthens the effect at every one" if all(abs(v - 1) > abs(elastic - 1)
+                                                                            for v in yielding.values())
+                        else "yielding weakens the effect at every one" if all(abs(v - 1) < abs(elastic - 1)
+                                                                              for v in yielding.values())
+                        else "yielding strengthens it at some and weakens it at others")
+                     + f" (elastic: {abs(elastic - 1):.2g} from 1).", ""]
     errs, failed = errors(rows)
     if errs or failed:
         text += ["### The time-steppers on yielding cases", "",

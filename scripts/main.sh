@@ -59,7 +59,7 @@ join_stress() {
   /usr/bin/python3 - "$1" <<'PY'
 import csv, sys
 extra = sys.argv[1]
-same_set = not extra.startswith("stability-records")
+same_set = not extra.startswith(("stability-records", "stability-yielding"))
 for study, name in (("stability", extra), ("stability-points", extra + "-points")):
     with open(f"results/{name}.csv", newline="") as f:
         rows = [r for r in csv.DictReader(f) if not (same_set and r["solver"] == "event-driven")]
@@ -89,6 +89,10 @@ fi
 timed stress-records $pb stress cases/sets/stress-records.toml --settings cases/settings/stress.toml \
   --out results/stability-records.csv --points results/stability-records-points.csv
 join_stress stability-records
+# And its yielding bodies, a set of its own too (cases/sets/stress-yielding.toml).
+timed stress-yielding $pb stress cases/sets/stress-yielding.toml --settings cases/settings/stress.toml \
+  --out results/stability-yielding.csv --points results/stability-yielding-points.csv
+join_stress stability-yielding
 
 echo "main: the example records and pulse models through the reference and the time-steppers"
 records() {  # the solvers of this build among those the report's records section compares
@@ -119,6 +123,10 @@ echo "main: the time-steppers on real records (cases/sets/workprecision-records.
 timed workprecision-records $pb workprecision cases/sets/workprecision-records.toml \
   --settings cases/settings/records.toml --repetitions 1 \
   --out results/workprecision-records.csv --points results/workprecision-records-points.csv
+echo "main: the time-steppers on yielding bodies (cases/sets/workprecision-yielding.toml)"
+timed workprecision-yielding $pb workprecision cases/sets/workprecision-yielding.toml \
+  --settings cases/settings/yielding.toml --repetitions 1 \
+  --out results/workprecision-yielding.csv --points results/workprecision-yielding-points.csv
 
 echo "main: benchmarks"
 # 5 repetitions of at least 10 ms each: the 280 benchmarks took 139 s at 50 ms, the main
@@ -142,6 +150,7 @@ timed persistent /usr/bin/python3 scripts/persistent_overhead.py --poundbench $p
   "${compliant[@]}" \
   --records results/records-*.csv --yielding results/yielding-*.csv \
   --records-real results/real-records-event-driven.csv --records-wp results/workprecision-records.csv \
+  --yielding-wp results/workprecision-yielding.csv \
   --out reports --readme README.md
 
 echo "main: the paper report (reports/paper/)"

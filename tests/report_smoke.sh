@@ -26,12 +26,17 @@ fi
 for s in event-driven moreau-jean; do
   "$pb" spectrum "$src/cases/sets/yielding.toml" --solver "$s" --out "$out/yielding-$s.csv"
 done
+# The time-steppers on yielding bodies (reports/yielding_wp.py: README's yielding block), about
+# 2 s of CPU.
+"$pb" workprecision "$src/cases/sets/workprecision-yielding.toml" --settings "$src/cases/settings/yielding.toml" \
+  --repetitions 1 --out "$out/workprecision-yielding.csv" --points "$out/workprecision-yielding-points.csv"
 /usr/bin/python3 "$src/reports/provenance.py" --build-dir "$(dirname "$pb")" > "$out/provenance.json"
 cp "$src/README.md" "$out/README.md"
 /usr/bin/python3 "$src/reports/make_report.py" "$out/smoke.csv" --workprecision "$out/wp.csv" \
   --points "$out/points.csv" --bench "$out/bench.json" --provenance "$out/provenance.json" \
   --stress "$out/stability.csv" --stress-points "$out/stability-points.csv" "${compliant[@]}" \
-  --yielding "$out/yielding-event-driven.csv" "$out/yielding-moreau-jean.csv" --out "$out/report" \
+  --yielding "$out/yielding-event-driven.csv" "$out/yielding-moreau-jean.csv" \
+  --yielding-wp "$out/workprecision-yielding.csv" --out "$out/report" \
   --readme "$out/README.md" > /dev/null
 if [ ${#compliant[@]} -gt 0 ]; then
   for ext in png svg; do
@@ -59,6 +64,12 @@ done
 grep -q '^\* \*\*Self-similarity (master curves).\*\* .* within [0-9.]*e-1[0-9] of each other' "$out/report/README.md" ||
   { echo "the yielding section does not find its spectra self-similar to round-off"; missing=1; }
 grep -q '^| moreau-jean theta=0.5 | ' "$out/report/README.md" || { echo "no Moreau-Jean row on yielding cases"; missing=1; }
+grep -q '^  The elastic finding (body 0.s Pi1 is .*) \(survives\|does not survive\) yielding' "$out/report/README.md" ||
+  { echo "the yielding section does not say whether Pi6's effect survives yielding"; missing=1; }
+for scope in "wall yielding" "pair yielding"; do
+  grep -q "^| $scope | 0.01 | " "$out/README.md" || { echo "README's yielding block has no $scope answer"; missing=1; }
+  grep -q "^| $scope | 0.01 | " "$out/report/README.md" || { echo "the report has no $scope answer"; missing=1; }
+done
 grep -q '<script type="application/json" id="report-data">' "$out/report/report.html" ||
   { echo "no report.html with its data"; missing=1; }
 for fig in stability-large-steps stability-verdicts; do

@@ -67,9 +67,6 @@ Result solve(const System& system, const Settings& settings) {
   for (const Body& b : system.bodies)
     if (!(b.m > 0.0 && std::isfinite(b.m) && std::isfinite(b.k) && std::isfinite(b.c)))
       return failed("every body needs a finite positive mass and a finite spring and dashpot");
-  if (system.yields() && !is_newmark(settings))
-    return yielding_refused("the cvode integrator has no roots on yield and unloading yet; "
-                            "--integrator newmark applies the bilinear law");
   try {
     return is_newmark(settings) ? run_newmark(system, settings, model, stiffness(settings))
                                 : run_cvode(system, settings, model, stiffness(settings), is_adams(settings));

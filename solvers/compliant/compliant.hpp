@@ -7,7 +7,8 @@
 //            --rtol), with root functions on every gap (the element starts and ends exactly
 //            there, and CVODE restarts, as the force may jump) and on body 0's velocity (the
 //            extremum of u0, so Pi1 is read at its root, not at a step). Pi1 = max |u0| over
-//            those roots, the steps' ends and the run's ends.
+//            those roots, the steps' ends and the run's ends. A yielding body's branch is a
+//            mode, switched at roots on yield and on unloading (cvode_run.cpp).
 //   newmark  average-acceleration Newmark (gamma 1/2, beta 1/4) at the fixed step
 //            h = T_min / N, with Newton iterations on the contact forces: what OpenSees runs
 //            by default (`integrator Newmark 0.5 0.25`, `algorithm Newton`). The contact's
