@@ -131,3 +131,44 @@ BENCHMARK(BM_EventDrivenChain)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
+
+namespace {
+
+// A touching chain (issue 36): the stress set's Newton's cradle (cases/sets/stress.toml,
+// family cradle: N equal bodies at rest in contact, Pi3 = 0, eps = 1, body 0 kicked at
+// a_p / w_p) at its costliest point, sine pulse and Pi2 = 0.1, and the alternating chain
+// touching at rest (Pi5 = 2, Pi6 = 0.5, the same kick and eps), whose events are mostly
+// one contact's impact. eager:1 advances every body and rebuilds the whole frame at every
+// event (event_driven::detail), as the reference did before its events rebuilt only the
+// clusters they change: the two side by side, in one run.
+void BM_EventDrivenTouchingChain(benchmark::State& state) {
+  pb::Case c;
+  c.scene = pb::Scene::chain;
+  c.bodies = static_cast<int>(state.range(0));
+  c.kick = 1.0;
+  c.pulse = pb::PulseShape::sine;
+  c.pi2 = state.range(1) ? 1.0 : 0.1;
+  c.pi3 = 0.0;
+  c.pi5 = state.range(1) ? 2.0 : 1.0;
+  c.pi6 = state.range(1) ? 0.5 : 1.0;
+  c.eps = 1.0;
+  const pb::System s = pb::make_system(c);
+  const auto solve = state.range(2) ? pb::event_driven::detail::solve_rebuilding_every_body : pb::event_driven::solve;
+  long events = 0;
+  for (auto _ : state) {
+    const pb::Result r = solve(s, {});
+    events = r.steps;
+    benchmark::DoNotOptimize(r.pi1);
+  }
+  state.counters["events"] = static_cast<double>(events);
+  state.counters["time_per_event"] = pb::bench::per_step(events);
+}
+BENCHMARK(BM_EventDrivenTouchingChain)
+    ->ArgNames({"N", "alternating", "eager"})
+    ->ArgsProduct({{100, 300, 1000}, {0}, {0, 1}})
+    // The alternating chain at N = 1000 (1.5 s a run lazily, 55 s eagerly: DERIVATION.md §9)
+    // would add 8 s to the main job's five repetitions.
+    ->ArgsProduct({{100, 300}, {1}, {0, 1}})
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace

@@ -211,7 +211,12 @@ TEST(YieldingReference, AFarYieldIsTheElasticAnswerBitForBit) {
           if (scene == Scene::row3) far.pi_y2 = 1e6;
         }
         far.alpha = 0.05;
-        const Result a = event_driven::solve(make_system(elastic), {});
+        // A chain of yielding bodies is solved eagerly (every body advanced and the frame
+        // rebuilt at every event), an elastic one lazily (DERIVATION.md §9): the same answer
+        // to round-off, the eager one's to the bit.
+        const auto elastic_solve =
+            scene == Scene::chain ? event_driven::detail::solve_rebuilding_every_body : event_driven::solve;
+        const Result a = elastic_solve(make_system(elastic), {});
         const Result b = event_driven::solve(make_system(far), {});
         const std::string what = label(elastic);
         ASSERT_EQ(a.status, Status::ok) << what;

@@ -43,6 +43,9 @@ namespace detail {
 // For tests: solve() with every contact searched again at every event, as before the
 // searches were kept across events (DERIVATION.md §9).
 Result solve_searching_every_contact(const System& system, const Settings& settings);
+// solve() with every body advanced, and the whole frame rebuilt, at every event, as before
+// an event rebuilt only the clusters it changed (DERIVATION.md §9).
+Result solve_rebuilding_every_body(const System& system, const Settings& settings);
 }  // namespace detail
 
 }  // namespace pb::event_driven

@@ -209,13 +209,17 @@ void build_frame(const System& s, const State& st, int from, int to, Frame& fr) 
       if (s.bodies[ix(i)].yields()) yield_functions(s, st, i, fr);
   for (int j = first_contact(s, from); j <= last_contact(s, to); ++j) {
     if (st.active[ix(j)]) continue;
-    Wave& g = fr.contact[ix(j)];
-    reset(g, st.t, 0.0);
-    add_scaled(g, fr.body[ix(s.right(j))], 1.0);
-    if (s.left(j) != kWall) add_scaled(g, fr.body[ix(s.left(j))], -1.0);
-    g.f0 = st.g[ix(j)];
-    g.prepare();
+    build_gap(st, j, fr.body[ix(s.right(j))], s.left(j) != kWall ? &fr.body[ix(s.left(j))] : nullptr,
+              fr.contact[ix(j)]);
   }
+}
+
+void build_gap(const State& st, int j, const Wave& right, const Wave* left, Wave& g) {
+  reset(g, st.t, 0.0);
+  add_scaled(g, right, 1.0);
+  if (left) add_scaled(g, *left, -1.0);
+  g.f0 = st.g[ix(j)];
+  g.prepare();
 }
 
 void close_gaps(const System& s, const std::vector<char>& joined, std::vector<double>& u) {

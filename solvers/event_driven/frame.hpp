@@ -67,6 +67,12 @@ inline bool adjacent(const System& s, int j, int k) { return s.right(j) == s.lef
 // st.t. fr must hold one wave per body and per contact of s; the others are left alone.
 void build_frame(const System& s, const State& st, int first, int last, Frame& fr);
 
+// Rebuilds the wave of open contact j from st.g[j] at st.t and its bodies' waves from st.t
+// (`left` null at the wall). build_frame does this for the contacts between the bodies it
+// rebuilds; the reference's lazy events (DERIVATION.md §9) for a contact between a rebuilt
+// body and one it keeps, whose wave is rebuilt at st.t for this alone.
+void build_gap(const State& st, int j, const Wave& right, const Wave* left, Wave& g);
+
 // Moves the bodies of each cluster that `joined` (per contact) makes so that its gaps are
 // exactly closed, keeping its centre of mass (a cluster at the wall goes to it).
 void close_gaps(const System& s, const std::vector<char>& joined, std::vector<double>& u);
