@@ -232,6 +232,17 @@ pi6 = 1
   EXPECT_NE(error(family + "t0 = 1\ngap = 0.1\npi2 = 1\n").find("pi2: not with"), std::string::npos);
   EXPECT_NE(error(family + "t0 = 1\n").find("gap: required by a family in physical units"), std::string::npos);
   EXPECT_NE(error(family + "t0 = 1\ngap = -0.1\n").find("gap"), std::string::npos);
+  // Yield displacements (m) as keys too: Pi_y = u_y w_p^2 / a_p (here w_p = 2 pi, a_p = 1),
+  // never beside their Pi terms; a symmetric row3's uy2 is its uy1.
+  const CaseSet yielding = parse_case_set(family + "t0 = 1\ngap = 0.1\nuy0 = 0.02\nuy1 = [0.01, 0.03]\n", "y.toml");
+  ASSERT_EQ(yielding.cases.size(), 2u);
+  const double to_pi = 4.0 * std::numbers::pi * std::numbers::pi;
+  EXPECT_EQ(yielding.cases[0].physical.uy0, 0.02);
+  EXPECT_NEAR(yielding.cases[0].pi_y0, 0.02 * to_pi, 1e-15 * 0.02 * to_pi);
+  EXPECT_NEAR(yielding.cases[1].pi_y1, 0.03 * to_pi, 1e-15 * 0.03 * to_pi);
+  EXPECT_TRUE(std::isinf(yielding.cases[0].pi_y2));
+  EXPECT_NE(error(family + "t0 = 1\ngap = 0.1\npi_y0 = 1\n").find("pi_y0: not with"), std::string::npos);
+  EXPECT_NE(error(family + "t0 = 1\ngap = 0.1\nuy = 1\n").find("uy"), std::string::npos);  // a chain's key
 }
 
 // Rows carry the physical values given and the results in them, after every older column, and
@@ -264,6 +275,38 @@ TEST(PhysicalRows, PhysicalValuesAndResultsReadBack) {
   EXPECT_DOUBLE_EQ(y[5].value, 14.0);         // force times m0
   EXPECT_DOUBLE_EQ(y[6].value, 0.075);        // penetration_m
   EXPECT_DOUBLE_EQ(y[4].value, 0.3 * 2.0 / 3.0);
+}
+
+// Issue 39's yielding in physical units: --uy0 (m) is Pi_y0 = u_y0 w_p^2 / a_p, the case
+// its Pi twin (pi2, pi3, pi5, pi6 and pi_y0 typed as the numbers they map to). The same
+// Case, so the reference's Pi1 equals to round-off (1e-9, its baseline tolerance, as the
+// elastic twin above); the yield displacement is stored as given, and mixing is refused.
+TEST_F(PhysicalCli, AYieldDisplacementInMetresEqualsItsPiTwin) {
+  const std::string buildings = " --scene pair --pulse sine --a-p 3 --tp 1 --t0 0.5 --t1 1 --gap 0.02 --eps 0.6"
+                                " --alpha 0.1";
+  const nlohmann::json phys = run_json(buildings + " --uy0 0.01");
+  ASSERT_FALSE(phys.empty());
+  EXPECT_EQ(num(phys, "uy0"), 0.01);
+  const double w_p = num(phys, "w_p"), a_p = num(phys, "a_p");
+  EXPECT_NEAR(num(phys, "pi_y0"), 0.01 * w_p * w_p / a_p, 1e-15 * num(phys, "pi_y0"));
+  std::ostringstream pi;
+  pi << std::setprecision(17) << " --scene pair --directivity normal --pulse sine --a-p 3 --tp 1 --eps 0.6 --alpha 0.1"
+     << " --pi2 " << num(phys, "pi2") << " --pi3 " << num(phys, "pi3") << " --pi5 " << num(phys, "pi5")
+     << " --pi6 " << num(phys, "pi6") << " --pi-y0 " << num(phys, "pi_y0");
+  const nlohmann::json twin = run_json(pi.str());
+  ASSERT_FALSE(twin.empty());
+  EXPECT_GT(num(phys, "pi1"), 0.01 * w_p * w_p / a_p);  // it yields: the bilinear law is in play
+  EXPECT_NEAR(num(phys, "pi1"), num(twin, "pi1"), 1e-9 * num(twin, "pi1"));
+  const Outcome mixed = run("run" + buildings + " --pi-y0 1");
+  EXPECT_EQ(mixed.exit_code, 2);
+  EXPECT_NE(mixed.err.find("--pi-y0: not with --t0"), std::string::npos) << mixed.err;
+  const Outcome bad = run("run" + buildings + " --uy0 -1");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--uy0: must be > 0"), std::string::npos) << bad.err;
+  const Outcome chain = run("run --scene chain --bodies 3 --pulse sine --a-p 3 --tp 1 --t0 0.5 --t1 1 --gap 0.02"
+                            " --eps 0.6 --uy0 0.01");
+  EXPECT_EQ(chain.exit_code, 2);
+  EXPECT_NE(chain.err.find("--uy0: not used by scene chain"), std::string::npos) << chain.err;
 }
 
 // The engineer's search (issue 35): `workprecision` over the one case run's flags give, with
