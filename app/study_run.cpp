@@ -76,7 +76,7 @@ SettingsList read_settings_list(const std::string& file, bool say) {
 CLI::App* add_study_command(CLI::App& app, StudyFlags& flags, std::string_view name, std::string_view summary,
                             std::string_view points_help, std::string_view check_help) {
   CLI::App* command = app.add_subcommand(std::string(name), std::string(summary));
-  command->add_option("CASESET", flags.case_set, "Case-set file (TOML, see cases/README.md)")->required();
+  command->add_option("CASESET", flags.case_set, "Case-set file (TOML, see cases/README.md)");
   command->add_option("--settings", flags.settings, "Settings-list file (TOML, see cases/settings/)")->required();
   command->add_option("--out", flags.out, "Write the summary CSV to this file (default: stdout)");
   command->add_option("--points", flags.points, std::string(points_help));
@@ -88,21 +88,31 @@ CLI::App* add_study_command(CLI::App& app, StudyFlags& flags, std::string_view n
 }
 
 Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_view name, StudyOptions options,
-                const Processes& processes) {
+                const Processes& processes, const std::function<CaseSet()>& case_from_flags) {
   options.repetitions = flags.repetitions;
   Study study;
   std::vector<SweepRun> runs;
   std::vector<Row> earlier;
   study.partial = partial_file_name(flags.out, name);
   processes.agree([&] {
-    study.set = load_case_set(flags.case_set);
+    if (!flags.case_set.empty())
+      study.set = load_case_set(flags.case_set);
+    else if (case_from_flags)
+      study.set = case_from_flags();
+    else
+      throw BadInput("CASESET: required (the case-set file)");
     if (study.set.cases.empty()) throw BadInput(flags.case_set + ": no cases");
     study.list = read_settings_list(flags.settings, processes.leader());
+    try {
+      resolve_physical_settings(study.list, study.set.cases, flags.settings);
+    } catch (const SettingsListError& e) {
+      throw BadInput(e.what());
+    }
     if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
     runs = study_runs(study.list, options);
     if (!processes.leader()) return;
     std::vector<NamedFile> inputs = record_files(study.set.cases);
-    inputs.push_back({"CASESET", flags.case_set});
+    if (!flags.case_set.empty()) inputs.push_back({"CASESET", flags.case_set});
     inputs.push_back({"--settings", flags.settings});
     check_outputs_apart({{"--out", flags.out}, {"--points", flags.points}}, inputs, study.partial,
                         lock_file_name(flags.out, name));

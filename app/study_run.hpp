@@ -54,8 +54,11 @@ struct Study {
 
 // `name` names the partial file when the output is stdout; `options` says what the study
 // asks of its runs (StudyOptions; its repetitions come from the flags).
+// Without CASESET, the cases are `case_from_flags()`'s (`workprecision`'s one case given by
+// run's case flags), or none given is an error. A list's runs in physical units are mapped
+// to their Pi forms over the cases (studies/physical_settings.hpp).
 Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_view name, StudyOptions options,
-                const Processes& processes);
+                const Processes& processes, const std::function<CaseSet()>& case_from_flags = {});
 
 // Writes a finished study's outputs, whole or not at all: the rows of every run to
 // --points when asked, then the summary table to --out or stdout; the partial file goes

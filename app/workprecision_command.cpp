@@ -90,6 +90,10 @@ CLI::App* add_workprecision_command(CLI::App& app, WorkPrecisionFlags& flags) {
                       "With --check: the largest err_median a setting may have in a family (relative)");
   command->add_option("--max-error-p95", flags.max_error_p95,
                       "With --check: the largest err_p95 (95th percentile) a setting may have in a family (relative)");
+  const std::size_t before = command->get_options().size();
+  add_case_flags(*command, flags.case_flags);
+  const std::vector<CLI::Option*> options = command->get_options();
+  flags.case_options.assign(options.begin() + static_cast<std::ptrdiff_t>(before), options.end());
   return command;
 }
 
@@ -102,7 +106,17 @@ int workprecision_command(const CLI::App& command, const WorkPrecisionFlags& fla
       if (!flags.check) throw BadInput(std::string(flag) + ": needs --check");
     }
   }, exit_code_of);
-  Study study = run_study(command, flags, "workprecision", {.model_references = true}, processes);
+  const auto case_from_flags = [&] {
+    CaseSet set{"case", "the case given by flags", {chosen_case(command, flags.case_flags).input}};
+    set.cases.front().family = "case";
+    return set;
+  };
+  processes.agree([&] {
+    for (const CLI::Option* option : flags.case_options)
+      if (option->count() && !flags.case_set.empty())
+        throw BadInput(option->get_name() + ": not with CASESET (give the case by a case-set file or by flags)");
+  }, exit_code_of);
+  Study study = run_study(command, flags, "workprecision", {.model_references = true}, processes, case_from_flags);
   if (!study.rows) return kInterrupted;
   if (!processes.leader()) return 0;
   const WorkPrecision wp = work_precision_of(study.set.cases, study.list, std::move(*study.rows), true);

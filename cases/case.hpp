@@ -56,6 +56,9 @@ struct Physical {
   double t0 = kNone, t1 = kNone, t2 = kNone;
   double m0 = kNone, m1 = kNone, m2 = kNone;
   double gap = kNone;
+  // The yield displacements (m) of bodies 0, 1, 2 and of a chain's bodies, instead of
+  // pi_y0 .. pi_y2, pi_y (cases/physical.hpp).
+  double uy0 = kNone, uy1 = kNone, uy2 = kNone, uy = kNone;
 };
 
 struct Case {

@@ -97,7 +97,7 @@ bool is_number(Key k) {
 // Which scenes use a key: symmetric speaks of body 2, as pi7 and pi8 do.
 FieldUse use_of(Key k) {
   if (const CaseField* f = number_field(k)) return f->use;
-  if (const PhysicalField* f = physical_of(k)) return f->body == 1 ? FieldUse::body1 : f->body == 2 ? FieldUse::body2 : FieldUse::every;
+  if (const PhysicalField* f = physical_of(k)) return f->use;
   return k == kSymmetric ? FieldUse::body2 : FieldUse::every;
 }
 bool is_body1(Key k) { return use_of(k) == FieldUse::body1; }
@@ -155,6 +155,10 @@ Key body1_twin(Key body2_key) {
   const auto at = std::find(twos.begin(), twos.end(), body2_key) - twos.begin();
   return ones.at(static_cast<std::size_t>(at));
 }
+
+// The body-1 key a symmetric row3 copies into a physical body-2 key (t2 from t1, m2 from m1,
+// uy2 from uy1).
+std::string physical_twin(std::string_view body2_name) { return std::string(body2_name.substr(0, body2_name.size() - 1)) + "1"; }
 
 // The bodies a kind of use describes, as a message says it.
 std::string bodies_of(FieldUse use) {
@@ -668,7 +672,7 @@ class Reader {
           fail(o.line, o.field,
                "not allowed with symmetric = true (line " + std::to_string(sym.line) + "), which sets " +
                    std::string(is_physical(k) ? physical_of(k)->name : key_name(k)) + " = " +
-                   (is_physical(k) ? std::string(physical_of(k)->name == "t2" ? "t1" : "m1")
+                   (is_physical(k) ? physical_twin(physical_of(k)->name)
                                    : std::string(key_name(body1_twin(k)))));
         eff[index(k)] = Entry{};  // a default gives way to the family's symmetry
       }
@@ -789,6 +793,7 @@ class Reader {
     if (symmetric && uses_body2(c.scene)) {
       c.physical.t2 = c.physical.t1;
       c.physical.m2 = c.physical.m1;
+      c.physical.uy2 = c.physical.uy1;
     }
     if (c.pulse == PulseShape::record && eff[index(key_of("w_p"))].builtin) {
       c.w_p = default_w_p(c);
@@ -832,7 +837,7 @@ class Reader {
     const std::size_t colon = bad.find(':');
     const std::string reason = colon == std::string::npos ? bad : bad.substr(colon + 1);
     std::optional<Key> k = parse_key(bad.substr(0, colon));
-    if (k && symmetric && is_body2(*k)) k = is_physical(*k) ? key_of(physical_of(*k)->name == "t2" ? "t1" : "m1") : body1_twin(*k);
+    if (k && symmetric && is_body2(*k)) k = is_physical(*k) ? key_of(physical_twin(physical_of(*k)->name)) : body1_twin(*k);
     const auto pos = k ? std::find(axes.begin(), axes.end(), *k) : axes.end();
     if (pos == axes.end()) fail(0, "", bad);  // validate checked a field this file does not set
     const Entry& s = eff[index(*k)];

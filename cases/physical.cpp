@@ -16,7 +16,7 @@ bool given(double x) { return !std::isnan(x); }
 }  // namespace
 
 bool used_by(const PhysicalField& field, Scene scene) {
-  return field.body == 0 || (field.body == 1 ? uses_body1(scene) : uses_body2(scene));
+  return scene_uses(field.use, scene);
 }
 
 bool physical(const Case& c) {
@@ -38,9 +38,12 @@ std::optional<std::string> apply_physical(Case& c) {
       if (needed) return std::string(f.name) + ": required by a case in physical units";
       continue;
     }
-    // The gap may be 0 (bodies touching at rest, Pi3 = 0); periods and masses may not.
-    if (!std::isfinite(x) || x < 0.0 || (x == 0.0 && f.name != "gap"))
-      return std::string(f.name) + (f.name == "gap" ? ": must be finite and >= 0" : ": must be finite and > 0");
+    // The gap may be 0 (bodies touching at rest, Pi3 = 0); periods and masses may not; a
+    // yield displacement may be inf (elastic), as its Pi term.
+    const bool yield = !f.pi.empty() && f.pi.starts_with("pi_y");
+    if (yield ? !(x > 0.0) : (!std::isfinite(x) || x < 0.0 || (x == 0.0 && f.name != "gap")))
+      return std::string(f.name) + (yield ? ": must be > 0 (inf: elastic)"
+                                   : f.name == "gap" ? ": must be finite and >= 0" : ": must be finite and > 0");
   }
   const double m0 = given(p.m0) ? p.m0 : 1.0;
   const double w0 = kTwoPi / p.t0;
@@ -54,6 +57,11 @@ std::optional<std::string> apply_physical(Case& c) {
     c.pi7 = p.t2 / p.t0;
     c.pi8 = given(p.m2) ? m0 / p.m2 : 1.0;
   }
+  // Not given: elastic (Case's own default, infinity).
+  const double to_pi = c.w_p * c.w_p / c.a_p;
+  for (const auto& [uy, pi_y] : {std::pair{p.uy0, &Case::pi_y0}, {p.uy1, &Case::pi_y1}, {p.uy2, &Case::pi_y2},
+                                 {p.uy, &Case::pi_y}})
+    if (given(uy)) c.*pi_y = uy * to_pi;
   return std::nullopt;
 }
 

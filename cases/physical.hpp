@@ -17,27 +17,33 @@
 #include <string_view>
 
 #include "cases/case.hpp"
+#include "cases/fields.hpp"
 
 namespace pb {
 
 // One physical field: the Pi term it gives (empty for m0, which only sets the unit of the
-// other masses), and which bodies use it (as CaseField::use).
+// other masses), and which scenes use it (as CaseField::use).
 struct PhysicalField {
   std::string_view name;
   double Physical::* member;
   std::string_view pi;  // the kCaseFields name it replaces
-  int body;             // 0, 1 (FieldUse::body1) or 2 (FieldUse::body2)
+  FieldUse use;
   std::string_view help;
 };
 
-inline constexpr std::array<PhysicalField, 7> kPhysicalFields = {{
-    {"t0", &Physical::t0, "pi2", 0, "Physical units: natural period of body 0 (s), instead of --pi2"},
-    {"t1", &Physical::t1, "pi5", 1, "Physical units: natural period of body 1 (s; chain: the odd bodies), instead of --pi5"},
-    {"t2", &Physical::t2, "pi7", 2, "Physical units: natural period of body 2 (s, row3), instead of --pi7"},
-    {"m0", &Physical::m0, "", 0, "Physical units: mass of body 0 (kg; default 1, the other masses then ratios to it)"},
-    {"m1", &Physical::m1, "pi6", 1, "Physical units: mass of body 1 (kg; chain: the odd bodies; default m0), instead of --pi6"},
-    {"m2", &Physical::m2, "pi8", 2, "Physical units: mass of body 2 (kg, row3; default m0), instead of --pi8"},
-    {"gap", &Physical::gap, "pi3", 0, "Physical units: the gap delta (m) of every contact, instead of --pi3"},
+inline constexpr std::array<PhysicalField, 11> kPhysicalFields = {{
+    {"t0", &Physical::t0, "pi2", FieldUse::every, "Physical units: natural period of body 0 (s), instead of --pi2"},
+    {"t1", &Physical::t1, "pi5", FieldUse::body1, "Physical units: natural period of body 1 (s; chain: the odd bodies), instead of --pi5"},
+    {"t2", &Physical::t2, "pi7", FieldUse::body2, "Physical units: natural period of body 2 (s, row3), instead of --pi7"},
+    {"m0", &Physical::m0, "", FieldUse::every, "Physical units: mass of body 0 (kg; default 1, the other masses then ratios to it)"},
+    {"m1", &Physical::m1, "pi6", FieldUse::body1, "Physical units: mass of body 1 (kg; chain: the odd bodies; default m0), instead of --pi6"},
+    {"m2", &Physical::m2, "pi8", FieldUse::body2, "Physical units: mass of body 2 (kg, row3; default m0), instead of --pi8"},
+    {"gap", &Physical::gap, "pi3", FieldUse::every, "Physical units: the gap delta (m) of every contact, instead of --pi3"},
+    // Issue 39's yielding: Pi_y = u_y w_p^2 / a_p; not given (or inf), elastic.
+    {"uy0", &Physical::uy0, "pi_y0", FieldUse::not_chain, "Physical units: yield displacement of body 0 (m; inf: elastic), instead of --pi-y0"},
+    {"uy1", &Physical::uy1, "pi_y1", FieldUse::pair_row3, "Physical units: yield displacement of body 1 (m, pair, row3), instead of --pi-y1"},
+    {"uy2", &Physical::uy2, "pi_y2", FieldUse::body2, "Physical units: yield displacement of body 2 (m, row3), instead of --pi-y2"},
+    {"uy", &Physical::uy, "pi_y", FieldUse::chain, "Physical units: yield displacement of every chain body (m), instead of --pi-y"},
 }};
 
 // Whether a scene has the body a physical field describes.
@@ -48,7 +54,7 @@ bool physical(const Case& c);
 
 // The Pi terms of c from c.physical and c's pulse scale (a_p, w_p, final), for the fields
 // its scene uses: Pi2 = w0 / w_p (w0 = 2 pi / t0), Pi3 = gap w_p^2 / a_p, Pi5 = w0 / w1,
-// Pi6 = m0 / m1, Pi7 = w0 / w2, Pi8 = m0 / m2. Returns "field: reason" for a value that is
+// Pi6 = m0 / m1, Pi7 = w0 / w2, Pi8 = m0 / m2, Pi_y = u_y w_p^2 / a_p (uy0 .. uy). Returns "field: reason" for a value that is
 // missing (t0, gap; t1 where the scene has body 1, t2 where it has body 2), not finite or
 // not > 0.
 std::optional<std::string> apply_physical(Case& c);

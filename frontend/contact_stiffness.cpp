@@ -5,17 +5,8 @@
 
 #include "frontend/errors.hpp"
 #include "cases/physical.hpp"
-#include "solvers/contact_elements/contact_law.hpp"
 
 namespace pb::app {
-
-bool hertz_contact(std::string_view solver, const Settings& settings) {
-  if (solver == "compliant") {
-    const auto model = compliant::parse_model(settings.variant);
-    return model && *model != compliant::Model::kelvin_voigt;
-  }
-  return solver == "simbody";
-}
 
 void apply_k_contact(const Case& c, std::string_view solver, Settings& settings, double k, bool stiffness_given) {
   if (stiffness_given) throw BadInput("--k-contact: not with --stiffness (give the stiffness one way)");

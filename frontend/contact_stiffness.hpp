@@ -7,12 +7,9 @@
 
 #include "cases/case.hpp"
 #include "solvers/solver.hpp"
+#include "studies/physical_settings.hpp"  // hertz_contact
 
 namespace pb::app {
-
-// Whether the solver's contact element with these settings is of the Hertz family (force
-// k p^1.5: the compliant solver's elements but kelvin-voigt, Simbody's Hunt-Crossley).
-bool hertz_contact(std::string_view solver, const Settings& settings);
 
 // Sets settings.stiffness to the K of the physical stiffness k; throws BadInput (as
 // "--k-contact: why") for a case not in physical units, beside --stiffness, or a k that is

@@ -128,6 +128,11 @@ timed workprecision-yielding $pb workprecision cases/sets/workprecision-yielding
   --settings cases/settings/yielding.toml --repetitions 1 \
   --out results/workprecision-yielding.csv --points results/workprecision-yielding-points.csv
 
+# README's physical example (issue 35): the reference and the model/stiffness/step search over one
+# case in metres and seconds (3 s of CPU measured under `nice` on a busy machine).
+echo "main: README's physical example (scripts/physical_example.sh)"
+timed physical-example scripts/physical_example.sh build
+
 echo "main: benchmarks"
 # 5 repetitions of at least 10 ms each: the 280 benchmarks took 139 s at 50 ms, the main
 # job's largest step, and 64 s at 20 ms. Below a microsecond an iteration, 10 ms is still

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 #include "cases/case.hpp"
 #include "cases/text.hpp"
@@ -151,6 +152,9 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
     const auto axis_size = [&](std::size_t j) { return kSettingFields[j].text ? names[j].size() : values[j].size(); };
     bool monitor = Settings{}.monitor;
     const toml::node* solver_node = &rn;
+    // The physical forms (studies/physical_settings.hpp): 0, not given.
+    std::vector<double> h_s = {0.0}, k_contact = {0.0};
+    const toml::node *h_s_node = nullptr, *k_contact_node = nullptr;
     for (auto&& [key, v] : *t) {
       const std::string k(key.str()), f = field + "." + k;
       const auto j = setting_field_index(k);
@@ -167,6 +171,13 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
         if (!b) r.fail(&v, f, "must be true or false");
         if (t->contains("variant")) r.fail(&v, f, "give persistent or variant, not both");
         if (b->get()) variants = {std::string(external::kPersistent)};
+      } else if (k == "h_s" || k == "k_contact") {
+        std::vector<double>& physical = k == "h_s" ? h_s : k_contact;
+        physical = r.numbers(v, f);
+        for (double x : physical)
+          if (!(x > 0.0))
+            r.fail(&v, f, k == "h_s" ? "must be > 0 (the step in seconds)" : "must be > 0 (N/m; N/m^1.5 for the Hertz family)");
+        (k == "h_s" ? h_s_node : k_contact_node) = &v;
       } else if (k == "monitor") {
         const auto* b = v.as_boolean();
         if (!b) r.fail(&v, f, "must be true or false");
@@ -206,6 +217,14 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
     if (!info) r.fail(solver_node, field + ".solver", "unknown solver '" + clip(solver) + "'");
     const std::size_t steps = *setting_field_index("steps"), wh = *setting_field_index("wh");
     if (given[steps] && given[wh]) r.fail(given[wh], field + ".wh", "give steps or wh, not both (one [[run]] each)");
+    const std::size_t stiffness = *setting_field_index("stiffness");
+    for (const auto& [node, key, pi_node, pi_key] :
+         {std::tuple{h_s_node, "h_s", given[steps] ? given[steps] : given[wh], given[steps] ? "steps" : "wh"},
+          std::tuple{k_contact_node, "k_contact", given[stiffness], "stiffness"}})
+      if (node && pi_node)
+        r.fail(node, field + "." + key,
+               "not with " + std::string(pi_key) +
+                   " (a [[run]] gives its step and stiffness in physical units or in Pi terms, not both)");
     // The order of the product: variant outermost, then the numbers in the table's order,
     // the step (steps or w_max h) innermost, so that one setting's step sizes are adjacent.
     std::vector<std::size_t> axes;
@@ -216,7 +235,7 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
     // Counted before anything is expanded; the product so far is at most kMaxSettings
     // when the next list's length (bounded by the file's size) multiplies it, so it
     // cannot overflow.
-    std::size_t product = variants.size();
+    std::size_t product = variants.size() * h_s.size() * k_contact.size();
     for (std::size_t j : axes) {
       product *= axis_size(j);
       if (list.runs.size() + product > kMaxSettings)
@@ -224,27 +243,47 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
                                " settings (the product of its lists' lengths); split the study");
     }
     std::vector<std::size_t> at(axes.size(), 0);
+    // k_contact beside the variant, h_s innermost: it is the step.
+    const std::size_t numbers = product / (variants.size() * h_s.size() * k_contact.size());
     for (const std::string& variant : variants)
-      for (std::size_t n = 0; n < product / variants.size(); ++n) {
-        SweepRun spec{info, {}};
-        spec.settings.variant = variant;
-        spec.settings.monitor = monitor;
-        for (std::size_t a = 0; a < axes.size(); ++a) {
-          const SettingField& sf = kSettingFields[axes[a]];
-          if (sf.text) spec.settings.*sf.text = names[axes[a]][at[a]];
-          else sf.set(spec.settings, values[axes[a]][at[a]]);
+      for (double k : k_contact)
+        for (std::size_t n = 0; n < numbers; ++n) {
+          SweepRun spec{info, {}};
+          spec.settings.variant = variant;
+          spec.settings.monitor = monitor;
+          for (std::size_t a = 0; a < axes.size(); ++a) {
+            const SettingField& sf = kSettingFields[axes[a]];
+            if (sf.text) spec.settings.*sf.text = names[axes[a]][at[a]];
+            else sf.set(spec.settings, values[axes[a]][at[a]]);
+          }
+          for (std::size_t a = axes.size(); a-- > 0;) {  // odometer: the last axis turns fastest
+            if (++at[a] < axis_size(axes[a])) break;
+            at[a] = 0;
+          }
+          // The check refuses a key the variant does not use, by its value (pb::unused_setting):
+          // a [[run]]'s key applies to each variant of its list, and at its default it changes
+          // nothing for those that do not use it (theta 1/2 beside d1-minus-linear).
+          if (const std::string bad = info->check(spec.settings); !bad.empty())
+            r.fail(&rn, field, clip(bad, kMaxEchoedReason));  // it may echo the file's own values
+          for (double h : h_s) {
+            // A physical value is mapped per case (resolve_physical_settings); here its Pi form
+            // stands in as a valid one (w_max h = 1, K = 1), so that the check says whether
+            // the variant uses it at all.
+            Settings probe = spec.settings;
+            if (h > 0.0) probe.wh = 1.0;
+            if (k > 0.0) probe.stiffness = 1.0;
+            if (std::string bad = info->check(probe); !bad.empty()) {
+              const bool step = h > 0.0 && (k == 0.0 || bad.rfind("wh: ", 0) == 0);
+              // The reason names the Pi form the value stood in for: the field says which it is.
+              const std::string_view pi_form = step ? "wh: " : "stiffness: ";
+              if (bad.rfind(pi_form, 0) == 0) bad.erase(0, pi_form.size());
+              r.fail(step ? h_s_node : k_contact_node, field + (step ? ".h_s" : ".k_contact"),
+                     clip(bad, kMaxEchoedReason));
+            }
+            list.runs.push_back(spec);
+            list.physical.push_back({h, k});
+          }
         }
-        for (std::size_t a = axes.size(); a-- > 0;) {  // odometer: the last axis turns fastest
-          if (++at[a] < axis_size(axes[a])) break;
-          at[a] = 0;
-        }
-        // The check refuses a key the variant does not use, by its value (pb::unused_setting):
-        // a [[run]]'s key applies to each variant of its list, and at its default it changes
-        // nothing for those that do not use it (theta 1/2 beside d1-minus-linear).
-        if (const std::string bad = info->check(spec.settings); !bad.empty())
-          r.fail(&rn, field, clip(bad, kMaxEchoedReason));  // it may echo the file's own values
-        list.runs.push_back(std::move(spec));
-      }
   }
   if (list.runs.empty())
     r.fail(nullptr, "run", "every [[run]] names an engine this build left out: " + list.left_out.front());

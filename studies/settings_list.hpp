@@ -24,6 +24,11 @@
 // solver's Settings as solvers/settings_fields.hpp declares it (steps or wh, theta, gamma,
 // tol_scale, step_cap, time_limit in seconds per run): a list, or one value; step_cap and
 // time_limit take one value.
+// In physical units (studies/physical_settings.hpp), never beside their Pi forms in one
+// [[run]]: h_s, the fixed step in seconds, instead of steps or wh; k_contact, the contact
+// stiffness in N/m (N/m^1.5 for the Hertz family), instead of stiffness; a list, or one
+// value each. Mapped to wh and stiffness per case when a study has its cases
+// (resolve_physical_settings); stored as given in SettingsList::physical.
 // Limits: steps from 1 to 1e9; at most 10,000 settings in the whole list (settings_list.cpp
 // says why), counted before expansion.
 // The shipped lists are in cases/settings/.
@@ -35,6 +40,7 @@
 #include <vector>
 
 #include "solvers/solver.hpp"
+#include "studies/physical_settings.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb {
@@ -51,6 +57,9 @@ struct SettingsList {
   double reference_tol_scale = 0.01;
   double reference_time_limit = 0;  // seconds of wall time per truth run; 0 = none
   std::vector<SweepRun> runs;  // each with one timed solve; a study sets its repetitions
+  // What each run was given in physical units, beside runs (a list built in code may leave
+  // it short: a run past its end was given none).
+  std::vector<PhysicalSetting> physical;
   // "[[run]] 3: siconos (needs libsiconos-kernel-dev)": the runs of engines this build left
   // out, skipped (a study without them still runs; the caller says so).
   std::vector<std::string> left_out;

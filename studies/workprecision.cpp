@@ -115,7 +115,8 @@ WorkPrecision work_precision_of(std::span<const Case> cases, const SettingsList&
         if (own[k] >= 0) model.push_back(rows_of(static_cast<std::size_t>(own[k]))[r.point].result.pi1);
       }
       WorkPrecisionRow row{family, std::string(run.solver->name), run.settings.variant,
-                           run.solver->describe(run.settings), summarize(mine, ref), {}, {}};
+                           run.solver->describe(run.settings), summarize(mine, ref), {}, {}, {}};
+      if (k < list.physical.size()) row.physical = list.physical[k];
       if (own[k] >= 0) {
         const SweepRun& m = all[static_cast<std::size_t>(own[k])];
         row.model_reference = std::string(m.solver->name) + " " + m.solver->describe(m.settings);
@@ -140,7 +141,7 @@ WorkPrecision run_work_precision(std::span<const Case> cases, const SettingsList
 std::string work_precision_csv_header() {
   return "family,solver,variant,settings,points,failed,err_median,err_p95,err_max,cpu_median_s,cpu_mean_s,"
          "cpu_median_low_s,cpu_median_high_s,repetitions,model_reference,int_err_median,int_err_p95,int_err_max,"
-         "unresolved,cost";
+         "unresolved,cost,h_s,k_contact";
 }
 
 std::string work_precision_csv_line(const WorkPrecisionRow& row) {
@@ -154,6 +155,7 @@ std::string work_precision_csv_line(const WorkPrecisionRow& row) {
   for (double x : {row.integration.err_median, row.integration.err_p95, row.integration.err_max})
     line << ',' << format_number(x);
   line << ',' << s.unresolved << ',' << s.cpu.axis;
+  for (double x : {row.physical.h_s, row.physical.k_contact}) line << ',' << (x > 0.0 ? format_number(x) : "");
   return line.str();
 }
 

@@ -30,6 +30,7 @@ struct WorkPrecisionRow {
   // together, against the rigid reference). Empty model_reference: none.
   std::string model_reference;  // "solver settings" of that reference
   Summary integration;
+  PhysicalSetting physical;  // the setting's step (s) and stiffness (N/m) as the list gave them
 };
 
 struct WorkPrecision {

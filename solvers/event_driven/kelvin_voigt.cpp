@@ -570,7 +570,12 @@ class KelvinVoigt {
     const double u = std::abs(w_.row(nc_).dot(yb));
     if (u > best_u_) best_u_ = u, t_max_ = t_ + h;
     for (int j = 0; j < nc_; ++j)
-      if (elements_.closed(j)) min_gap_ = std::min(min_gap_, w_.row(j).dot(yb));
+      if (elements_.closed(j)) {
+        min_gap_ = std::min(min_gap_, w_.row(j).dot(yb));
+        // The element's force from its gap and rate (the state's first 2 nc_ coordinates), at
+        // the stretch's end, as CVODE's at its accepted steps (compliant/cvode_run.cpp).
+        force_max_ = std::max(force_max_, elements_.law(j).force(-yb(j), -yb(n_ + j), elements_.v_minus(j)));
+      }
     y_ = yb;
     t_ += h;
   }
@@ -624,6 +629,7 @@ class KelvinVoigt {
     result_.steps = stretches_;
     result_.impacts = elements_.impacts();
     result_.min_gap = min_gap_ < 0.0 ? min_gap_ : std::numeric_limits<double>::infinity();
+    result_.contact_force_max = force_max_;
     elements_.finish(result_);
     result_.message = std::to_string(events_) + " contact changes";
   }
@@ -665,7 +671,7 @@ class KelvinVoigt {
   std::string key_;
   int level_ = 0;
   bool halved_ = false, easy_ = false;
-  double t_ = 0.0, t_max_ = 0.0, best_u_ = 0.0, min_gap_ = 0.0;
+  double t_ = 0.0, t_max_ = 0.0, best_u_ = 0.0, min_gap_ = 0.0, force_max_ = 0.0;
   long events_ = 0, stretches_ = 0;
   Result result_;
 };
