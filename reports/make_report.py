@@ -243,6 +243,11 @@ def report(args):
     if args.records_wp:
         import records_wp
         text += records_wp.section(load([args.records_wp]))
+    if args.records_step:
+        import records_step
+        runs = records_step.compact(load([args.records_step]))
+        records_step.write(os.path.join(args.out, records_step.SUMMARY), runs)
+        text += records_step.section(runs)
     text += paper_set_section(rows, args.out)
     text += ["## Where this ran", "", footer(measured_on), ""]
     out.page.provenance([f"- measured at: {provenance.describe(measured_on)}"])
@@ -275,6 +280,9 @@ def main():
                         "event-driven` (scripts/main.sh: results/real-records-event-driven.csv)")
     parser.add_argument("--records-wp", help="summary CSV of the time-steppers on the real record suite (`poundbench "
                         "workprecision cases/sets/workprecision-records.toml --settings cases/settings/records.toml`)")
+    parser.add_argument("--records-step", help="points CSV of the step rules on real records (`poundbench "
+                        "workprecision cases/sets/records-step.toml --settings cases/settings/records-step.toml --points`; "
+                        "reduced to reports/records-step.csv)")
     parser.add_argument("--out", default=here, help="folder for README.md, figures/ and the committed result files")
     parser.add_argument("--readme", help="also write the generated blocks of this README (scripts/main.sh: README.md)")
     parser.add_argument("--check", action="store_true", help="write nothing: exit 1, with the diff, when README's "

@@ -20,6 +20,7 @@ import compliant
 import measured
 import provenance as prov
 import records_wp
+import records_step
 from rows import load
 from study import read_impacting
 
@@ -32,6 +33,7 @@ FAMILIES = "workprecision-families.csv"  # family -> scene of the work-precision
 IMPACTING = "workprecision-impacting.csv"  # its errors over the points where the reference has an impact
 STABILITY = "stability.csv"
 RECORDS_WP = "workprecision-records.csv"  # the time-steppers on real records (reports/records_wp.py)
+RECORDS_STEP = records_step.SUMMARY  # the step rules on real records (reports/records_step.py)
 COMPLIANT = "compliant.csv"  # the compliant-contact study's summary
 RESTITUTION = "restitution.csv"  # what each compliant element restitutes (bench/restitution_table.cpp)
 MEASURED = "measured.csv"
@@ -67,6 +69,7 @@ def committed(folder):
             persistent = dict(rows=load([path(PERSISTENT)]), provenance=json.load(f))
     has_impacting = os.path.exists(os.path.join(folder, IMPACTING))
     has_records_wp = os.path.exists(os.path.join(folder, RECORDS_WP))
+    has_records_step = os.path.exists(os.path.join(folder, RECORDS_STEP))
     physical = None
     if os.path.exists(os.path.join(folder, PHYSICAL)):
         with open(path(PHYSICAL)) as f:
@@ -77,7 +80,8 @@ def committed(folder):
                 stability=load([path(STABILITY)]), measured=load([path(MEASURED)]),
                 compliant=load([path(COMPLIANT)]) if has_compliant else None,
                 restitution=load([path(RESTITUTION)]) if has_restitution else None, provenance=measured_on,
-                records_wp=load([path(RECORDS_WP)]) if has_records_wp else None)
+                records_wp=load([path(RECORDS_WP)]) if has_records_wp else None,
+                records_step=records_step.read(path(RECORDS_STEP)) if has_records_step else None)
 
 
 def source_line(inputs, files, provenance=None):
@@ -189,7 +193,8 @@ def blocks(folder):
         ],
         "records": [
             *records_wp.lines(inputs["records_wp"]), "",
-            source_line(inputs, [RECORDS_WP, PROVENANCE]),
+            *([*records_step.lines(inputs["records_step"]), ""] if inputs["records_step"] else []),
+            source_line(inputs, [RECORDS_WP] + ([RECORDS_STEP] if inputs["records_step"] else []) + [PROVENANCE]),
         ] if inputs["records_wp"] else ["Not measured yet: `scripts/main.sh` writes these numbers."],
         "compliant": [
             *compliant.answer_lines(inputs["compliant"]), "",

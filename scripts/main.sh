@@ -119,6 +119,12 @@ echo "main: the time-steppers on real records (cases/sets/workprecision-records.
 timed workprecision-records $pb workprecision cases/sets/workprecision-records.toml \
   --settings cases/settings/records.toml --repetitions 1 \
   --out results/workprecision-records.csv --points results/workprecision-records-points.csv
+# The step on real records: each time-stepper at T_min / N and under the step rule `record` over the
+# same N (reports/records_step.py; 80 points, 3520 runs: 24 s of CPU measured, beside a build).
+echo "main: the step rules on real records (cases/settings/records-step.toml)"
+timed records-step $pb workprecision cases/sets/records-step.toml \
+  --settings cases/settings/records-step.toml --repetitions 1 \
+  --out results/records-step.csv --points results/records-step-points.csv
 
 echo "main: benchmarks"
 # 5 repetitions of at least 10 ms each: the 280 benchmarks took 139 s at 50 ms, the main
@@ -142,6 +148,7 @@ timed persistent /usr/bin/python3 scripts/persistent_overhead.py --poundbench $p
   "${compliant[@]}" \
   --records results/records-*.csv --yielding results/yielding-*.csv \
   --records-real results/real-records-event-driven.csv --records-wp results/workprecision-records.csv \
+  --records-step results/records-step-points.csv \
   --out reports --readme README.md
 
 echo "main: the paper report (reports/paper/)"
