@@ -120,6 +120,20 @@ def lines(runs):
                      *_cells(rules.get("record", {}).get(n, []))]
             cells += _cells(apart.get("T_min / N", {}).get(n, []))[:2] + _cells(apart.get("record", {}).get(n, []))[:2]
             text.append("| " + " | ".join(cells) + " |")
+    text += ["", "At about equal cost: each N of the rule `record` beside the N of `T_min / N` whose median step "
+             "count is nearest (by ratio):", "",
+             "| setting | record: N | steps | median | 95th | T_min / N: N | steps | median | 95th |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for (free, label), rules in t.items():
+        plain, rec = rules.get("T_min / N", {}), rules.get("record", {})
+        if free or not plain or not rec:
+            continue
+        steps = {n: median([s for _, _, s in runs]) for n, runs in plain.items()}
+        for n in sorted(rec):
+            cost = median([s for _, _, s in rec[n]])
+            match = min(plain, key=lambda m: abs(math.log(steps[m] / cost)))
+            text.append(f"| {label} | {n} | " + " | ".join(_cells(rec[n])[2:] + _cells(rec[n])[:2]) + f" | {match} | "
+                        + " | ".join(_cells(plain[match])[2:] + _cells(plain[match])[:2]) + " |")
     text += ["", "The least N from which every finer step meets 1 % and 0.1 % (median and 95th percentile of the "
              "error over the points), with the median step count of a run there:", "",
              "| setting | rule | 1 %, median | 1 %, 95th | 0.1 %, median | 0.1 %, 95th |", "|---|---|---:|---:|---:|---:|"]
