@@ -108,7 +108,7 @@ TEST_F(RecordStepCli, ThePulseRefusesTheRuleInOneLine) {
       << o.err;
   EXPECT_EQ(line_count(o.err), 1u) << o.err;
   const Outcome negative = run("run --scene pair --pulse record --record '" + kElCentro +
-                               "' --pi2 1 --pi3 0.5 --eps 0.5 --pi5 0.5 --pi6 1 --solver moreau-jean "
+                               "' --directivity normal --pi2 1 --pi3 0.5 --eps 0.5 --pi5 0.5 --pi6 1 --solver moreau-jean "
                                "--steps-per-sample -1");
   EXPECT_EQ(negative.exit_code, 2);
   EXPECT_NE(negative.err.find("--steps-per-sample: must be >= 1"), std::string::npos) << negative.err;
@@ -132,7 +132,7 @@ TEST_F(RecordStepCli, RunPrintsHOverDtAndTheRowCarriesIt) {
   EXPECT_NEAR(m, std::round(m), 1e-12 * m);
   EXPECT_GE(std::round(m), 2.0);
   EXPECT_LE(w.at("h_s").get<double>(), d.at("h_s").get<double>());
-  X
+  EXPECT_DOUBLE_EQ(w.at("h_s").get<double>(), 0.005 / std::round(m));  // this file DT: 0.005 s
 }
 
 // The same buildings in seconds and metres and as Pi terms: the same step to the bit (T_min
