@@ -102,7 +102,15 @@ void print_summary(std::ostream& out, const Row& row) {
   out << "impacts  " << r.impacts << ", contact phases " << r.contact_phases << ", steps/events " << r.steps << '\n';
   const double gap = min_gap_ratio(row);
   out << "min gap  " << (std::isinf(gap) ? std::string("never below zero") : brief(gap) + " a_p/w_p^2") << '\n';
-  if (std::isfinite(row.wh)) out << "step     w_max h = " << brief(row.wh) << '\n';
+  if (std::isfinite(row.wh)) {
+    out << "step     w_max h = " << brief(row.wh);
+    // On a record: the step against the sampling interval, and the rule that set it if any.
+    if (c.samples && std::isfinite(r.step))
+      out << ", h = " << brief(r.step) << " s, h / DT = " << brief(h_over_dt(row)) << " (DT "
+          << brief(c.samples->interval()) << " s"
+          << (row.settings.find("\"steps_per_sample\"") != std::string::npos ? ", step rule record" : "") << ')';
+    out << '\n';
+  }
   if (std::isfinite(r.energy_excess)) out << "energy   largest excess " << brief(r.energy_excess) << " of the energy scale\n";
   out << "penetr.  " << brief(penetration(row)) << " a_p/w_p^2";
   if (std::isfinite(row.penetration_steps)) out << ", " << brief(row.penetration_steps) << " steps of travel (h max|g'|)";

@@ -348,6 +348,13 @@ Record parse_record(std::string_view text, std::string_view source) {
   return r;
 }
 
+double record_step(const Record& r, double h_max, int k) {
+  const double dt = r.interval();
+  // 1e-9: DT / h_max whole up to round-off (h_max = DT / m given) keeps that m.
+  const double m = std::max(static_cast<double>(k), std::ceil(dt / h_max - 1e-9));
+  return dt / m;
+}
+
 double Record::mean_frequency() const { return 2.0 * std::numbers::pi / t_m; }
 
 std::string no_mean_period_reason() {

@@ -66,7 +66,17 @@ struct Record {
   // 2 pi / T_m: a length of the ground motion that the a_p and w_p of its Pi terms, a unit
   // of the user's choosing, do not move (a Hertz-type contact's, cases/README.md).
   double length_scale() const;
+  // The sampling interval DT: the mean spacing (t_n-1 - t_0) / (n - 1), an AT2 file's DT.
+  double interval() const { return (t.back() - t.front()) / static_cast<double>(t.size() - 1); }
 };
+
+// The step rule `record` (Settings::steps_per_sample = k, cases/README.md "Records"): the
+// step h = DT / m, m the least whole number >= k with DT / m <= h_max (the step the other
+// settings give: T_min / N, or wh's). So a step is never longer than T_min / N, takes at
+// least k steps per sample, and m steps span a sample interval exactly: on a record evenly
+// sampled from t = 0 (every AT2 file) every sample is a step's end, and no step straddles
+// a kink of the piecewise-linear load.
+double record_step(const Record& r, double h_max, int k);
 
 // Why a record without a mean period (T_m NaN) needs its w_p given: one phrase, for the
 // CLI's and the case sets' errors.

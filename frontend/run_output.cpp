@@ -78,6 +78,7 @@ nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {
   j["min_gap"] = number_or_null(min_gap_ratio(row));
   j["seconds"] = row.seconds;
   j["wh"] = number_or_null(row.wh);
+  j["h_over_dt"] = number_or_null(h_over_dt(row));
   j["energy_excess"] = number_or_null(r.energy_excess);
   j["penetration"] = number_or_null(penetration(row));
   j["isolated_impacts"] = r.isolated_impacts;

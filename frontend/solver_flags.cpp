@@ -77,8 +77,9 @@ const SolverInfo& checked_solver(const SolverFlags& flags, const GivenSolverFlag
 }
 
 void check_step_bound(const Case& c, const Settings& settings) {
-  if (!(settings.wh > 0.0)) return;  // N steps per shortest period always meet it
+  if (!(settings.wh > 0.0) && settings.steps_per_sample <= 0) return;  // N steps per shortest period always meet it
   const System system = make_system(c);
+  if (std::string bad = step_rule_problem(system, settings); !bad.empty()) throw BadInput(as_flag_message(bad));
   if (std::string bad = step_problem(system, time_step(system, settings, 1)); !bad.empty())
     throw BadInput("--wh: " + bad);
 }

@@ -36,7 +36,8 @@ const SolverInfo& checked_solver(const SolverFlags& flags, const CLI::App& comma
 
 // Throws BadInput ("--wh: step: h = ... is longer than the pulse period ...") when the step
 // the settings give is beyond pb::step_problem's bound for this case: `run` refuses it before
-// running, where a sweep's row says failed.
+// running, where a sweep's row says failed. Likewise --steps-per-sample on a pulse
+// (pb::step_rule_problem: the rule needs a record's samples).
 void check_step_bound(const Case& c, const Settings& settings);
 
 // "field: reason" from a check() with the field turned into its flag, e.g. "--tol-scale: ...".

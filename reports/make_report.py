@@ -249,6 +249,11 @@ def report(args):
     if args.yielding_wp:
         import yielding_wp
         text += yielding_wp.section(load([args.yielding_wp]))
+    if args.records_step:
+        import records_step
+        runs = records_step.compact(load([args.records_step]))
+        records_step.write(os.path.join(args.out, records_step.SUMMARY), runs)
+        text += records_step.section(runs)
     text += paper_set_section(rows, args.out)
     text += ["## Where this ran", "", footer(measured_on), ""]
     out.page.provenance([f"- measured at: {provenance.describe(measured_on)}"])
@@ -283,6 +288,9 @@ def main():
                         "workprecision cases/sets/workprecision-records.toml --settings cases/settings/records.toml`)")
     parser.add_argument("--yielding-wp", help="summary CSV of the time-steppers on yielding bodies (`poundbench "
                         "workprecision cases/sets/workprecision-yielding.toml --settings cases/settings/yielding.toml`)")
+    parser.add_argument("--records-step", help="points CSV of the step rules on real records (`poundbench "
+                        "workprecision cases/sets/records-step.toml --settings cases/settings/records-step.toml --points`; "
+                        "reduced to reports/records-step.csv)")
     parser.add_argument("--out", default=here, help="folder for README.md, figures/ and the committed result files")
     parser.add_argument("--readme", help="also write the generated blocks of this README (scripts/main.sh: README.md)")
     parser.add_argument("--check", action="store_true", help="write nothing: exit 1, with the diff, when README's "

@@ -20,6 +20,7 @@ import compliant
 import measured
 import provenance as prov
 import records_wp
+import records_step
 import yielding_wp
 from rows import load, settings_fields
 from study import read_impacting
@@ -34,6 +35,7 @@ IMPACTING = "workprecision-impacting.csv"  # its errors over the points where th
 STABILITY = "stability.csv"
 RECORDS_WP = "workprecision-records.csv"  # the time-steppers on real records (reports/records_wp.py)
 YIELDING_WP = yielding_wp.SUMMARY  # the time-steppers on yielding bodies (reports/yielding_wp.py)
+RECORDS_STEP = records_step.SUMMARY  # the step rules on real records (reports/records_step.py)
 COMPLIANT = "compliant.csv"  # the compliant-contact study's summary
 RESTITUTION = "restitution.csv"  # what each compliant element restitutes (bench/restitution_table.cpp)
 MEASURED = "measured.csv"
@@ -70,6 +72,7 @@ def committed(folder):
     has_impacting = os.path.exists(os.path.join(folder, IMPACTING))
     has_records_wp = os.path.exists(os.path.join(folder, RECORDS_WP))
     has_yielding_wp = os.path.exists(os.path.join(folder, YIELDING_WP))
+    has_records_step = os.path.exists(os.path.join(folder, RECORDS_STEP))
     physical = None
     if os.path.exists(os.path.join(folder, PHYSICAL)):
         with open(path(PHYSICAL)) as f:
@@ -81,7 +84,8 @@ def committed(folder):
                 compliant=load([path(COMPLIANT)]) if has_compliant else None,
                 restitution=load([path(RESTITUTION)]) if has_restitution else None, provenance=measured_on,
                 records_wp=load([path(RECORDS_WP)]) if has_records_wp else None,
-                yielding_wp=load([path(YIELDING_WP)]) if has_yielding_wp else None)
+                yielding_wp=load([path(YIELDING_WP)]) if has_yielding_wp else None,
+                records_step=records_step.read(path(RECORDS_STEP)) if has_records_step else None)
 
 
 def source_line(inputs, files, provenance=None):
@@ -227,7 +231,8 @@ def blocks(folder):
         ],
         "records": [
             *records_wp.lines(inputs["records_wp"]), "",
-            source_line(inputs, [RECORDS_WP, PROVENANCE]),
+            *([*records_step.lines(inputs["records_step"]), ""] if inputs["records_step"] else []),
+            source_line(inputs, [RECORDS_WP] + ([RECORDS_STEP] if inputs["records_step"] else []) + [PROVENANCE]),
         ] if inputs["records_wp"] else ["Not measured yet: `scripts/main.sh` writes these numbers."],
         "yielding": [
             *yielding_wp.lines(inputs["yielding_wp"]), "",

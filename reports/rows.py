@@ -58,6 +58,8 @@ def config_label(row):
         label += " " + row["variant"]
     if "theta" in fields:  # moreau-jean, and siconos' Moreau-Jean variants
         label += f" theta={fields['theta']}"
+    if "steps_per_sample" in fields:  # the step rule `record` (issue 34): h = DT / m, m >= k
+        label += f" rule=record k={fields['steps_per_sample']}"
     if "tol_scale" in fields:  # the reference, and siconos' event-driven variant
         label += f" tol_scale={fields['tol_scale']}"
     if "contact" in fields:  # the reference solving a compliant model exactly

@@ -125,6 +125,8 @@ constexpr std::array kTailColumns = {"wh",          "energy_excess",   "penetrat
 constexpr std::array kVerdictColumns = {"resolved", "unresolved"};
 // The external solver's own timings (Result::solve_seconds, startup_seconds), after the verdict.
 constexpr std::array kOwnTimeColumns = {"solve_seconds", "startup_seconds"};
+// A record's step over its sampling interval, h / DT (the step rule `record`, issue 34), last.
+constexpr std::array kRecordStepColumns = {"h_over_dt"};
 
 // Where a field's column is: after the directivity (those of every scene's bodies), after
 // the message (the chain's, where they were added), after the tail (the pulses') or at the
@@ -193,6 +195,10 @@ void case_numbers(LineBuilder& line, const Case& c, Group group) {
 
 }  // namespace
 
+double h_over_dt(const Row& row) {
+  return row.input.samples ? row.result.step / row.input.samples->interval() : std::numeric_limits<double>::quiet_NaN();
+}
+
 std::string csv_header() {
   LineBuilder line;
   for (const char* column : kLeadColumns) line.text(column);
@@ -211,6 +217,7 @@ std::string csv_header() {
   for (const PhysicalField& f : kPhysicalFields) line.text(f.name);
   for (std::string_view column : kPhysicalResultNames) line.text(column);
   for (const char* column : kOwnTimeColumns) line.text(column);
+  for (const char* column : kRecordStepColumns) line.text(column);
   return line.take();
 }
 
@@ -260,6 +267,7 @@ std::string csv_line(const Row& row) {
   for (const PhysicalResult& x : physical_results(row)) line.number(x.value);
   line.number(r.solve_seconds);
   line.number(r.startup_seconds);
+  line.number(h_over_dt(row));
   return line.take();
 }
 

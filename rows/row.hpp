@@ -10,7 +10,7 @@
 //   energy_excess, penetration, isolated_impacts, restitution_low, restitution_high,
 //   penetration_steps, cpu_seconds_low, cpu_seconds_high, repetitions, cycles, mp_gamma,
 //   mp_nu, record, resolved, unresolved, pi_y0, pi_y1, pi_y2, pi_y, alpha, mu, residual, hysteretic,
-//   t0, ... (the physical values and results), solve_seconds, startup_seconds
+//   t0, ... (the physical values and results), solve_seconds, startup_seconds, h_over_dt
 // pi5/pi6 are empty for the wall scene and pi7/pi8 for every scene but row3; bodies and
 // kick are empty except for chain; cycles, mp_gamma, mp_nu and record except for the pulse
 // that uses them (makris-c, mp, record: the record's file as the case named it); the fields
@@ -23,6 +23,8 @@
 // unresolved its reasons. solve_seconds is the external solver's own time for its solve (the
 // answer's, or a Python callable's call timed around it; docs/external.md), empty when it gave
 // none; startup_seconds a persistent program's start, on the one row whose point started it.
+// h_over_dt is a record's step over its sampling interval DT (empty for a pulse or a solver
+// with no fixed step): the step rule `record` (Settings::steps_per_sample) makes it 1/m.
 //
 // Timing: the solve alone, with the monitor off, the clocks' own cost taken off (about 0.37 us
 // of CPU: the thread's CPU clock is a system call; sweep/stopwatch.hpp), repeated
@@ -79,6 +81,9 @@ double min_gap_ratio(const Row& row);
 // (0 if none). It was over delta, or over a_p / w_p^2 where delta = 0: one overlap of
 // Moreau-Jean at N = 16 read 0.138 at Pi3 = 0 and 138 094 at Pi3 = 1e-6 (issue 32).
 double penetration(const Row& row);
+
+// A record's step over its sampling interval, h / DT (the column h_over_dt); NaN for a pulse.
+double h_over_dt(const Row& row);
 
 // Body 0's ductility demand mu = max |u0| / u_y0: Pi1 over its Pi_y (NaN where body 0 does
 // not yield or Pi1 is not known).

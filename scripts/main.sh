@@ -133,6 +133,13 @@ timed workprecision-yielding $pb workprecision cases/sets/workprecision-yielding
 echo "main: README's physical example (scripts/physical_example.sh)"
 timed physical-example scripts/physical_example.sh build
 
+# The step on real records: each time-stepper at T_min / N and under the step rule `record` over the
+# same N (reports/records_step.py; 80 points, 3520 runs: 24 s of CPU measured, beside a build).
+echo "main: the step rules on real records (cases/settings/records-step.toml)"
+timed records-step $pb workprecision cases/sets/records-step.toml \
+  --settings cases/settings/records-step.toml --repetitions 1 \
+  --out results/records-step.csv --points results/records-step-points.csv
+
 echo "main: benchmarks"
 # 5 repetitions of at least 10 ms each: the 280 benchmarks took 139 s at 50 ms, the main
 # job's largest step, and 64 s at 20 ms. Below a microsecond an iteration, 10 ms is still
@@ -157,6 +164,7 @@ timed persistent /usr/bin/python3 scripts/persistent_overhead.py --poundbench $p
   --records results/records-*.csv --yielding results/yielding-*.csv \
   --records-real results/real-records-event-driven.csv --records-wp results/workprecision-records.csv \
   --yielding-wp results/workprecision-yielding.csv \
+  --records-step results/records-step-points.csv \
   --out reports --readme README.md
 
 echo "main: the paper report (reports/paper/)"

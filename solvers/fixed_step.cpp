@@ -103,6 +103,7 @@ Result plan_steps(const System& sys, const Settings& set, int default_steps, lon
                    "step: h = " + std::to_string(h) + " is not a usable step for t_end = " + std::to_string(sys.t_end),
                    h);
   if (std::string bad = step_problem(sys, h); !bad.empty()) return stopped(Status::failed, bad, h);
+  if (std::string bad = step_rule_problem(sys, set); !bad.empty()) return stopped(Status::failed, bad, h);
   const long n = step_count(sys.t_end, h);
   const long cap = set.step_cap > 0 ? set.step_cap : default_cap;
   if (n > cap)
@@ -119,6 +120,7 @@ void add_step(NamedValues& out, const Settings& set, int default_steps) {
     out.add("wh", set.wh);
   else
     out.add("steps", set.steps > 0 ? set.steps : default_steps);
+  if (set.steps_per_sample > 0) out.add("steps_per_sample", set.steps_per_sample);
 }
 
 void add_activation(NamedValues& out, std::string_view key, Activation rule, const Settings& set) {

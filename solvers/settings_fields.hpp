@@ -36,7 +36,7 @@ struct SettingField {
   }
 };
 
-inline constexpr std::array<SettingField, 16> kSettingFields = {{
+inline constexpr std::array<SettingField, 17> kSettingFields = {{
     {"steps", nullptr, &Settings::steps, nullptr,
      "Time-steppers: steps per shortest period N, h = T_min/N (0: default)"},
     {"wh", &Settings::wh, nullptr, nullptr,
@@ -66,6 +66,9 @@ inline constexpr std::array<SettingField, 16> kSettingFields = {{
      "Siconos, a scheme whose variant does not name its LCP solver: lemke or enum (default: lemke)", &Settings::lcp},
     {"projection_tol", &Settings::projection_tol, nullptr, nullptr,
      "Siconos projections: tolerance on a violated gap, over a_p/w_p^2 (0: default 1e-10)"},
+    {"steps_per_sample", nullptr, &Settings::steps_per_sample, nullptr,
+     "Time-steppers on a record: the step rule `record`, h = DT/m, m the least whole number >= k with "
+     "h <= T_min/N (DT the record's sampling interval; 0: T_min/N alone)"},
 }};
 
 // The index of a field in kSettingFields by its name, if there is one.

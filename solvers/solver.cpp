@@ -39,7 +39,14 @@ std::string check_step(const Settings& settings, int default_steps) {
   if (settings.steps < 0) return "steps: must be >= 1 (0: the default " + std::to_string(default_steps) + ")";
   if (!(settings.wh >= 0.0) || !std::isfinite(settings.wh)) return "wh: must be finite and > 0 (0: use steps)";
   if (settings.wh > 0.0 && settings.steps > 0) return "wh: give steps or wh, not both";
+  if (settings.steps_per_sample < 0) return "steps_per_sample: must be >= 1 (0: the step T_min / N alone)";
   return {};
+}
+
+std::string step_rule_problem(const System& system, const Settings& settings) {
+  if (settings.steps_per_sample <= 0 || system.pulse.record) return {};
+  return "steps_per_sample: the step rule `record` needs a record's samples, and this case's load is a pulse "
+         "(its step is T_min / N: leave it out)";
 }
 
 std::string step_problem(const System& system, double h) {

@@ -37,6 +37,7 @@ struct Settings {
   std::string variant;   // solver-specific variant; empty = the solver's default
   int steps = 0;         // time-steppers: steps per shortest period N (h = t_min / N); 0 = default
   double wh = 0;         // time-steppers: the step as w_max h (w_max = 2 pi / t_min); > 0 replaces steps
+  int steps_per_sample = 0;  // time-steppers on a record: the step rule `record` (record_step); 0 = T_min / N alone
   double theta = 0.5;    // Moreau-Jean theta
   double gamma = 0.5;    // activation look-ahead of the faithful time-steppers (fixed_step.hpp, Activation)
   double tol_scale = 1;  // event-driven: multiplies every internal tolerance
@@ -169,10 +170,16 @@ inline constexpr double kRestitutionFloor = 1e-3;
 
 // The fixed step of a time-stepper: w_max h = settings.wh if given, else t_min / N with
 // N = settings.steps or the solver's default.
+// With Settings::steps_per_sample = k > 0 on a record, that step becomes record_step's.
 inline double time_step(const System& s, const Settings& settings, int default_steps) {
-  if (settings.wh > 0.0) return settings.wh * s.t_min / (2.0 * std::numbers::pi);
-  return s.step(settings.steps > 0 ? settings.steps : default_steps);
+  const double h = settings.wh > 0.0 ? settings.wh * s.t_min / (2.0 * std::numbers::pi)
+                                     : s.step(settings.steps > 0 ? settings.steps : default_steps);
+  return settings.steps_per_sample > 0 && s.pulse.record ? record_step(*s.pulse.record, h, settings.steps_per_sample) : h;
 }
+
+// Settings::steps_per_sample on a case whose load is not a record: the reason it is refused
+// ("" when it is fine). A pulse has no samples: its step stays T_min / N.
+std::string step_rule_problem(const System& system, const Settings& settings);
 
 // The step bound of every fixed step (issue 33): a step may be at most the pulse period
 // T_p = 2 pi / w_p (w_p h <= 2 pi), so that a run takes at least one step per pulse. A

@@ -261,7 +261,7 @@ TEST(RowReader, BadInputNamesFileLineColumnAndReason) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message(text), "rows.csv:2: 77 fields, the header has 75");
+  EXPECT_EQ(message(text), "rows.csv:2: 78 fields, the header has 76");
   std::string bad_status = good;
   bad_status.replace(bad_status.find(",ok,"), 4, ",fine,");
   EXPECT_EQ(message(bad_status), "rows.csv:2: status: unknown name (\"fine\")");

@@ -846,10 +846,10 @@ TEST_F(Cli, SolversListsEveryVariantAndRunAcceptsEachOne) {
     }
   }
   // What each uses, as the settings column of its rows shows it.
-  EXPECT_NE(text.out.find("    settings: --steps --wh --theta --gamma\n"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("    settings: --steps --wh --theta --gamma --steps-per-sample\n"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("    settings: --tol-scale --contact\n"), std::string::npos) << text.out;
   EXPECT_EQ(settings_used(*find_solver("moreau-jean"), "end-samples"),
-            (std::vector<std::string_view>{"steps", "wh", "theta", "gamma"}));
+            (std::vector<std::string_view>{"steps", "wh", "theta", "gamma", "steps_per_sample"}));
   EXPECT_EQ(settings_used(reference_solver(), ""), (std::vector<std::string_view>{"tol_scale", "contact"}));
 }
 
