@@ -82,14 +82,14 @@ ChosenCase case_from_flags(const GivenFlag& given, const CaseFlags& flags) {
   for (const CaseField& field : kCaseFields) {
     const std::string flag = flag_of(field);
     const bool used = used_by(field, c);
-    const std::string user = pulse_use(field.use) ? "pulse " + std::string(name(c.pulse)) : "scene " + scene;
+    const auto user = [&] { return pulse_use(field.use) ? "pulse " + std::string(name(c.pulse)) : "scene " + scene; };
     if (replaced(field)) {
       if (given(flag)) throw BadInput(flag + ": not with " + physical_flag + " (a case is given in Pi terms or in physical units, not both)");
       continue;
     }
     if (used && field.required && !given(flag))
-      throw BadInput(flag + (field.use == FieldUse::every ? ": required (or give --case-file)" : ": required by " + user));
-    if (!used && given(flag)) throw BadInput(flag + ": not used by " + user);
+      throw BadInput(flag + (field.use == FieldUse::every ? ": required (or give --case-file)" : ": required by " + user()));
+    if (!used && given(flag)) throw BadInput(flag + ": not used by " + user());
     if (!used) continue;
     if (field.number)
       c.*field.number = flags.numbers.*field.number;

@@ -28,8 +28,7 @@ std::vector<std::string> body_labels(const Case& c) {
   return {};
 }
 
-nlohmann::ordered_json case_json(const Case& c) {
-  nlohmann::ordered_json j;
+void case_fields(const Case& c, RowFields& j) {
   j["family"] = c.family;
   j["scene"] = name(c.scene);
   j["pulse"] = name(c.pulse);
@@ -43,13 +42,23 @@ nlohmann::ordered_json case_json(const Case& c) {
     else
       j[std::string(field.name)] = c.*field.number;
   }
-  return j;
 }
 
-// NaN and infinity have no JSON spelling; null says "no value".
-nlohmann::ordered_json number_or_null(double x) {
-  return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr);
-}
+// NaN and infinity have no JSON spelling; null says "no value" (RowFields writes every
+// number that way).
+double number_or_null(double x) { return x; }
+
+// --json's object, as nlohmann's JSON.
+class JsonSink final : public FieldSink {
+ public:
+  nlohmann::ordered_json j;
+  void null(std::string_view key) override { j[std::string(key)] = nullptr; }
+  void boolean(std::string_view key, bool x) override { j[std::string(key)] = x; }
+  void integer(std::string_view key, long long x) override { j[std::string(key)] = x; }
+  void number(std::string_view key, double x) override { j[std::string(key)] = x; }
+  void text(std::string_view key, std::string_view x) override { j[std::string(key)] = x; }
+  void object(std::string_view key, const std::string& json) override { j[std::string(key)] = nlohmann::json::parse(json); }
+};
 
 // A history is held in memory, then written as CSV (about 20 bytes a value), so its size
 // is bounded before the run: 1e6 samples resolve a run of the longest allowed length
@@ -61,12 +70,12 @@ constexpr long long kMaxHistoryValues = 20'000'000;
 
 }  // namespace
 
-nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {
+void row_fields(const Row& row, const ChosenCase& chosen, FieldSink& sink) {
   const Result& r = row.result;
-  nlohmann::ordered_json j;
+  RowFields j{sink};
   j["status"] = name(r.status);
   // The verdict (solvers/verdict.hpp): true or false for a run that ended ok, null otherwise.
-  j["resolved"] = r.resolved ? nlohmann::ordered_json(*r.resolved) : nlohmann::ordered_json(nullptr);
+  j["resolved"] = r.resolved;
   j["unresolved"] = r.unresolved;
   j["message"] = r.message;
   j["pi1"] = number_or_null(r.pi1);
@@ -89,12 +98,12 @@ nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {
   j["hysteretic"] = number_or_null(r.hysteretic);
   j["solver"] = row.solver;
   j["variant"] = row.variant;
-  j["settings"] = nlohmann::json::parse(row.settings);
+  j["settings"] = RowFields::Object{row.settings};
   if (!chosen.case_file.empty()) {
     j["case_file"] = chosen.case_file;
     j["point"] = chosen.point;
   }
-  j.update(case_json(row.input));
+  case_fields(row.input, j);
   if (const std::string source = w_p_source(row.input); !source.empty()) {
     j["record_peak"] = row.input.samples->peak;
     j["record_t_m"] = number_or_null(row.input.samples->t_m);
@@ -107,7 +116,12 @@ nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {
   // The external solver's own timings (rows/row.hpp), after everything else.
   j["solve_seconds"] = number_or_null(r.solve_seconds);
   j["startup_seconds"] = number_or_null(r.startup_seconds);
-  return j;
+}
+
+nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {
+  JsonSink sink;
+  row_fields(row, chosen, sink);
+  return std::move(sink.j);
 }
 
 std::string w_p_source(const Case& c) {

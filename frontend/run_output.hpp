@@ -3,7 +3,11 @@
 // (python/): the object `run --json` prints, the columns of `run --history`, and the check of
 // `--samples`.
 
+#include <cmath>
+#include <optional>
 #include <string>
+#include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -13,7 +17,48 @@
 
 namespace pb::app {
 
-// The JSON object of `run --json` (docs/cli.md); a row of a case file names it and its point.
+// Where the fields of `run --json`'s object go, in order: nlohmann's JSON for the command
+// line, a dict for the Python module, which builds it without JSON between (a trip through
+// JSON was a third of poundbench.run's fixed cost). A key given again keeps its first place.
+class FieldSink {
+ public:
+  virtual ~FieldSink() = default;
+  virtual void null(std::string_view key) = 0;
+  virtual void boolean(std::string_view key, bool x) = 0;
+  virtual void integer(std::string_view key, long long x) = 0;
+  virtual void number(std::string_view key, double x) = 0;  // finite
+  virtual void text(std::string_view key, std::string_view x) = 0;
+  // A flat JSON object's text (a row's settings, NamedValues): names to numbers, strings, booleans.
+  virtual void object(std::string_view key, const std::string& json) = 0;
+};
+
+// `fields[key] = value` into a FieldSink: a number that is not finite is null (JSON has no
+// spelling for it), an empty optional<bool> null.
+struct RowFields {
+  struct Object {
+    const std::string& json;
+  };
+  struct Field {
+    FieldSink& sink;
+    std::string_view key;
+    template <class T>
+    void operator=(const T& x) {
+      if constexpr (std::is_same_v<T, bool>) sink.boolean(key, x);
+      else if constexpr (std::is_integral_v<T>) sink.integer(key, static_cast<long long>(x));
+      else if constexpr (std::is_floating_point_v<T>) std::isfinite(x) ? sink.number(key, x) : sink.null(key);
+      else if constexpr (std::is_same_v<T, std::optional<bool>>) x ? sink.boolean(key, *x) : sink.null(key);
+      else if constexpr (std::is_same_v<T, Object>) sink.object(key, x.json);
+      else sink.text(key, std::string_view(x));
+    }
+  };
+  FieldSink& sink;
+  Field operator[](std::string_view key) { return {sink, key}; }
+};
+
+// The fields of `run --json`'s object (docs/cli.md), in order; a row of a case file names it
+// and its point.
+void row_fields(const Row& row, const ChosenCase& chosen, FieldSink& sink);
+// That object as JSON.
 nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen);
 
 // What a record case's w_p is: "mean period" when it is the record's 2 pi / T_m (the default,

@@ -97,6 +97,9 @@ struct Keywords {
 // read with (os.fsdecode's surrogateescape) given back, as os.fsencode does; a lone
 // surrogate is not text (ValueError).
 std::string utf8(const std::string& function, const std::string& key, const py::handle& value) {
+  Py_ssize_t size = 0;
+  if (const char* text = PyUnicode_AsUTF8AndSize(value.ptr(), &size)) return std::string(text, static_cast<std::size_t>(size));
+  PyErr_Clear();  // a surrogate: through the codec, which gives back the bytes it stands for
   PyObject* bytes = PyUnicode_AsEncodedString(value.ptr(), "utf-8", "surrogateescape");
   if (bytes == nullptr) {
     PyErr_Clear();
@@ -245,32 +248,76 @@ Keywords read_keywords(const std::string& function, const py::kwargs& kwargs) {
 
 // Text that may hold bytes that are not UTF-8 (a file name, an external program's message),
 // each such byte as U+FFFD, as --json writes them: the answer comes out whatever the bytes.
-py::str decoded(const std::string& text) {
+py::str decoded(std::string_view text) {
   PyObject* s = PyUnicode_DecodeUTF8(text.data(), static_cast<Py_ssize_t>(text.size()), "replace");
   if (s == nullptr) throw py::error_already_set();
   return py::reinterpret_steal<py::str>(s);
 }
 
-py::object to_python(const nlohmann::ordered_json& j) {
+py::object to_python(const nlohmann::json& j) {
   switch (j.type()) {
-    case nlohmann::ordered_json::value_t::null: return py::none();
-    case nlohmann::ordered_json::value_t::boolean: return py::bool_(j.get<bool>());
-    case nlohmann::ordered_json::value_t::number_integer: return py::int_(j.get<long long>());
-    case nlohmann::ordered_json::value_t::number_unsigned: return py::int_(j.get<unsigned long long>());
-    case nlohmann::ordered_json::value_t::number_float: return py::float_(j.get<double>());
-    case nlohmann::ordered_json::value_t::string: return decoded(j.get_ref<const std::string&>());
-    case nlohmann::ordered_json::value_t::array: {
-      py::list list;
-      for (const auto& item : j) list.append(to_python(item));
-      return list;
-    }
-    case nlohmann::ordered_json::value_t::object: {
-      py::dict dict;
-      for (const auto& [key, item] : j.items()) dict[decoded(key)] = to_python(item);
-      return dict;
-    }
-    default: return py::none();
+    case nlohmann::json::value_t::boolean: return py::bool_(j.get<bool>());
+    case nlohmann::json::value_t::number_integer: return py::int_(j.get<long long>());
+    case nlohmann::json::value_t::number_unsigned: return py::int_(j.get<unsigned long long>());
+    case nlohmann::json::value_t::number_float: return py::float_(j.get<double>());
+    case nlohmann::json::value_t::string: return decoded(j.get_ref<const std::string&>());
+    default: return py::none();  // a row's settings are flat (NamedValues): nothing else
   }
+}
+
+// The object `run --json` prints, built as a dict directly (app::row_fields): the JSON object
+// and its conversion cost 101 k instructions a call (callgrind, see run()).
+class DictSink final : public app::FieldSink {
+ public:
+  py::dict dict;
+  void null(std::string_view key) override { set(key, py::none()); }
+  void boolean(std::string_view key, bool x) override { set(key, py::bool_(x)); }
+  void integer(std::string_view key, long long x) override { set(key, py::int_(x)); }
+  void number(std::string_view key, double x) override { set(key, py::float_(x)); }
+  void text(std::string_view key, std::string_view x) override { set(key, decoded(x)); }
+  // A row's settings: the last one parsed is kept (a loop of calls gives the same settings
+  // again), and each row gets a copy of its own.
+  void object(std::string_view key, const std::string& json) override {
+    static std::string last_json;
+    static py::dict* last = nullptr;
+    if (!last || json != last_json) {
+      py::dict d;
+      const nlohmann::json parsed = nlohmann::json::parse(json);
+      for (const auto& [name, value] : parsed.items()) d[decoded(name)] = to_python(value);
+      if (!last) last = new py::dict();  // never freed: it would outlive the interpreter
+      *last = std::move(d);
+      last_json = json;
+    }
+    const py::object copy = py::reinterpret_steal<py::object>(PyDict_Copy(last->ptr()));
+    if (!copy) throw py::error_already_set();
+    set(key, copy);
+  }
+
+ private:
+  void set(std::string_view key, const py::object& value) {
+    if (PyDict_SetItem(dict.ptr(), key_object(key), value.ptr()) != 0) throw py::error_already_set();
+  }
+  // The keys as Python strings, made once (they are the names of --json's fields, a few dozen):
+  // a row's keys come in the same order every time, so the one after the last is tried first.
+  static PyObject* key_object(std::string_view key) {
+    static auto* keys = new std::vector<std::pair<std::string, py::str>>();  // never freed, as `last`
+    static std::size_t next = 0;
+    for (std::size_t tried = 0; tried < keys->size(); ++tried, next = (next + 1) % keys->size())
+      if ((*keys)[next].first == key) {
+        PyObject* found = (*keys)[next].second.ptr();
+        next = (next + 1) % keys->size();
+        return found;
+      }
+    keys->emplace_back(std::string(key), decoded(key));
+    next = 0;
+    return keys->back().second.ptr();
+  }
+};
+
+py::dict row_dict(const Row& row, const app::ChosenCase& chosen) {
+  DictSink sink;
+  app::row_fields(row, chosen, sink);
+  return std::move(sink.dict);
 }
 
 // The history as one NumPy array per column, named as `run --history`'s CSV columns. NumPy is
@@ -401,7 +448,7 @@ py::dict run(const py::kwargs& kwargs) {
   run_interruptibly(stop, [&] {
     row = run_point(chosen.input, chosen.point, *solver, settings, 1, &no_contact, !second_pass);
   });
-  py::dict out = to_python(app::row_json(row, chosen));
+  py::dict out = row_dict(row, chosen);
   if (history) out["history"] = history_arrays(row);
   return out;
 }
@@ -432,7 +479,7 @@ py::list spectrum(const py::object& case_set, const py::kwargs& kwargs) {
   std::vector<Row> rows;
   run_interruptibly(stop, [&] { rows = run_sweep(set.cases, *solver, k.solver_flags.settings, options); });
   py::list out;
-  for (const Row& row : rows) out.append(to_python(app::row_json(row, {row.input, row.point, file})));
+  for (const Row& row : rows) out.append(row_dict(row, {row.input, row.point, file}));
   return out;
 }
 

@@ -275,7 +275,8 @@ std::vector<std::string_view> settings_used(const SolverInfo& solver, std::strin
 // says so, or, without `given`, a value other than Settings{}'s (NaN included). The limits
 // (step_cap, time_limit) are every solver's. Every check of the registry applies it with
 // values alone (a settings list, the library); the command line and the Python module
-// apply it to the flags given too. Returns "field: not used by ..." or "".
+// apply it to the flags given too, after that check: with `given`, only a field given at its
+// default value is looked at (the check saw the others). Returns "field: not used by ..." or "".
 using GivenSetting = std::function<bool(std::string_view field)>;
 std::string unused_setting(const SolverInfo& solver, const Settings& settings, const GivenSetting& given = {});
 // Pi1 of body 0 with every contact removed, by the reference; only the time limit and stop

@@ -47,6 +47,43 @@ class Run(unittest.TestCase):
         self.assertEqual(poundbench.run(**CASE, solver="moreau-jean", steps=64)["pi1_no_contact"],
                          expected["pi1_no_contact"])
 
+    def test_the_dict_is_run_jsons_object_key_for_key_in_its_order(self):
+        # Issue 36: run() builds its dict without JSON between; it must stay --json's object: the
+        # same keys in the same order, each value equal and of the same type (an int stays an
+        # int, null None), the settings too. seconds alone is the run's own clock.
+        record = os.path.join(SOURCE, "cases", "records", "real", "B-ELC000.AT2")
+        calls = [
+            (dict(CASE, solver="moreau-jean", steps=64), [*FLAGS, "--solver", "moreau-jean", "--steps", "64"]),
+            (dict(CASE), [*FLAGS]),
+            (dict(scene="wall", pulse="cosine", directivity="normal", pi2=1.0, pi3=0.5, eps=0.5, solver="compliant",
+                  integrator="newmark"),
+             ["--scene", "wall", "--pulse", "cosine", "--directivity", "normal", "--pi2", "1", "--pi3", "0.5",
+              "--eps", "0.5", "--solver", "compliant", "--integrator", "newmark"]),
+            (dict(scene="pair", pulse="record", record=record, t0=0.5, t1=1, gap=0.01, eps=0.6, m0=2e6,
+                  solver="compliant", k_contact=5e9),
+             ["--scene", "pair", "--pulse", "record", "--record", record, "--t0", "0.5", "--t1", "1", "--gap", "0.01",
+              "--eps", "0.6", "--m0", "2e6", "--solver", "compliant", "--k-contact", "5e9"]),
+            (dict(scene="chain", bodies=4, pulse="sine", directivity="reverse", pi2=1.5, pi3=0.2, eps=0.8,
+                  pi5=1.2, pi6=0.8, kick=0.0, solver="moreau-jean", wh=0.05),
+             ["--scene", "chain", "--bodies", "4", "--pulse", "sine", "--directivity", "reverse", "--pi2", "1.5",
+              "--pi3", "0.2", "--eps", "0.8", "--pi5", "1.2", "--pi6", "0.8", "--kick", "0", "--solver", "moreau-jean", "--wh", "0.05"]),
+        ]
+        for keywords, flags in calls:
+            with self.subTest(flags=" ".join(flags)):
+                for _ in range(2):  # the second call: the module's kept keys and settings
+                    result = poundbench.run(**keywords)
+                    code, out, err = cli("run", *flags, "--json")
+                    self.assertEqual(code, 0, err)
+                    expected = json.loads(out)
+                    self.assertEqual(list(result), list(expected))
+                    for key in expected:
+                        if key != "seconds":
+                            self.assertEqual(result[key], expected[key], key)
+                            self.assertIs(type(result[key]), type(expected[key]), key)
+                    self.assertEqual(list(result["settings"]), list(expected["settings"]))
+                    result["settings"]["steps"] = -1  # a row's settings are its own
+                    self.assertNotEqual(poundbench.run(**keywords)["settings"], result["settings"])
+
     def test_the_verdict_is_in_the_dict(self):
         # Issue 32: a run that finished without resolving what it solved says so (Newmark at
         # its defaults on the issue's wall case), as run --json does; the reference's resolves.
