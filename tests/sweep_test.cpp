@@ -532,7 +532,7 @@ TEST(Csv, NumbersReadBackToTheSameDouble) {
 
 TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   const std::vector<std::string> header = split_csv(csv_header());
-  ASSERT_EQ(header.size(), 72u);  // 47, the yielding, the physical, the own timings, h_over_dt
+  ASSERT_EQ(header.size(), 76u);  // 47, the yielding, the physical, the own timings, h_over_dt
   EXPECT_EQ(header.front(), "family");
   EXPECT_EQ(header[28], "message");  // the columns after it were appended later
   EXPECT_EQ(header[37], "penetration_steps");
@@ -541,7 +541,7 @@ TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   EXPECT_EQ(header[46], "unresolved");  // then the verdict's (issue 32)
   EXPECT_EQ(header[47], "pi_y0");  // yielding's fields and responses (issue 39)
   EXPECT_EQ(header[55], "t0");     // the physical values and results (issue 35)
-  EXPECT_EQ(header[70], "startup_seconds");  // the external solver's own timings (issue 37)
+  EXPECT_EQ(header[74], "startup_seconds");  // the external solver's own timings (issue 37)
   EXPECT_EQ(header.back(), "h_over_dt");      // a record's step over its sampling interval last (issue 34)
 
   Row row;
