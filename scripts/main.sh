@@ -73,7 +73,7 @@ for study, name in (("stability", extra), ("stability-points", extra + "-points"
         csv.DictWriter(f, header, extrasaction="ignore").writerows(rows)
 PY
 }
-if [ "${1:-}" = "--full" ]; then
+if [ -n "$full" ]; then
   # The resolved cells (w_max h = 0.5; Siconos' MoreauJeanOSI at 2 too): minutes, for what
   # the work-precision study measures (cases/settings/stress.toml says why).
   echo "main: the stress set's resolved cells"

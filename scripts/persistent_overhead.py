@@ -2,7 +2,9 @@
 """What a point costs through the external protocol itself (docs/external.md): a sweep of a
 case set through a program that answers every case at once, on one thread, a few times, in
 both modes: persistent (bench/instant_answer.cpp: started once, a line each way) and one-shot
-(`cat` of a stored answer: a spawn per point). Prints, as medians over the sweeps, the
+(`cat` of a stored answer: a spawn per point), and persistent again with poundbench and the
+program pinned to one core (persistent-one-core: no message waits for an idle CPU to wake,
+which on this project's 2-vCPU machine was most of the unpinned cost). Prints, as medians over the sweeps, the
 exchange per point (the rows' `seconds`: the case written, the answer read and checked; one-shot,
 the spawn and the wait too) and the persistent program's start-up (`startup_seconds`, reported
 once per worker). The whole sweep's wall time is not the measure: over a hundred points it is
