@@ -137,18 +137,14 @@ def persistent_lines(persistent):
     lines = [f"What the protocol itself costs a point through a sweep (`scripts/persistent_overhead.py`: "
              f"`{p['set']}`, {p['points']} points on one thread through a program that answers at once; the "
              f"exchange is the rows' `seconds`, medians of {p['sweeps']} sweeps): persistent, "
-             f"{float(p['exchange_us']):.1f} us a point (the target: under 50 us), the program's start "
+             f"{float(p['exchange_us']):.1f} us a point (the target: under 50 us; the sweep runs a worker and "
+             f"its program on one core, `sweep/worker_cores.hpp`), the program's start "
              f"({float(p['startup_us']):.0f} us) once per worker, in its `startup_seconds`"]
     if one:
         lines[0] += (f"; one-shot, {float(one['exchange_us']):.0f} us a point, a spawn each "
                      f"({float(one['exchange_us']) / float(p['exchange_us']):.0f}x).")
     else:
         lines[0] += "."
-    pinned = rows.get("persistent-one-core")
-    if pinned:
-        lines[0] += (f" With poundbench and the program pinned to one core, persistent costs "
-                     f"{float(pinned['exchange_us']):.1f} us a point: the rest of the unpinned cost is the wake-up of "
-                     f"the other, idle, virtual CPU at every message (the unpinned figure misses the target).")
     return lines
 
 

@@ -2,9 +2,10 @@
 """What a point costs through the external protocol itself (docs/external.md): a sweep of a
 case set through a program that answers every case at once, on one thread, a few times, in
 both modes: persistent (bench/instant_answer.cpp: started once, a line each way) and one-shot
-(`cat` of a stored answer: a spawn per point), and persistent again with poundbench and the
-program pinned to one core (persistent-one-core: no message waits for an idle CPU to wake,
-which on this project's 2-vCPU machine was most of the unpinned cost). Prints, as medians over the sweeps, the
+(`cat` of a stored answer: a spawn per point). The sweep runs its worker and the worker's
+persistent program on one core (sweep/worker_cores.hpp): no message waits for an idle virtual CPU
+to wake, which on this project's 2-vCPU machine was most of the cost (74 us a point unpinned on
+the idle machine, 16 us on one core). Prints, as medians over the sweeps, the
 exchange per point (the rows' `seconds`: the case written, the answer read and checked; one-shot,
 the spawn and the wait too) and the persistent program's start-up (`startup_seconds`, reported
 once per worker). The whole sweep's wall time is not the measure: over a hundred points it is
@@ -38,15 +39,9 @@ def main():
     p.add_argument("--out", help="write the medians to this CSV file (and its provenance beside it)")
     a = p.parse_args()
 
-    one_core = {min(os.sched_getaffinity(0))}
-
-    def sweep(*flags, pinned=False):
-        # pinned: poundbench and its program on one core (the program inherits the affinity), so
-        # that no message waits for an idle virtual CPU to be woken (measured here: 17 us a point
-        # pinned, 76 us unpinned on an idle machine, 25 us unpinned with both cores busy).
+    def sweep(*flags):
         out = subprocess.run([a.poundbench, "spectrum", a.set, "--threads", "1", "--solver", "external", *flags],
-                             capture_output=True, text=True, check=True,
-                             preexec_fn=(lambda: os.sched_setaffinity(0, one_core)) if pinned else None).stdout
+                             capture_output=True, text=True, check=True).stdout
         rows = list(csv.DictReader(io.StringIO(out)))
         if not rows or any(r["status"] != "ok" for r in rows):
             sys.exit("persistent_overhead: a point did not answer ok: " +
@@ -58,12 +53,11 @@ def main():
         with open(answer, "w") as f:
             f.write('{"version": 1, "status": "ok", "pi1": 1.0}\n')
         persistent = ["--persistent", "--command", a.answer]
-        modes = {"persistent": (persistent, False), "persistent-one-core": (persistent, True),
-                 "one-shot": (["--command", f"cat {answer}"], False)}
+        modes = {"persistent": persistent, "one-shot": ["--command", f"cat {answer}"]}
         measured = {m: dict(exchange=[], startup=[]) for m in modes}
         for _ in range(a.sweeps):
-            for mode, (flags, pinned) in modes.items():
-                rows = sweep(*flags, pinned=pinned)
+            for mode, flags in modes.items():
+                rows = sweep(*flags)
                 m = measured[mode]
                 m["exchange"].append(statistics.median(float(r["seconds"]) for r in rows))
                 m["startup"] += [float(r["startup_seconds"]) for r in rows if r["startup_seconds"]]

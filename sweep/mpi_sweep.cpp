@@ -160,6 +160,7 @@ std::vector<Row> lead(const Job& job, std::span<const Case> cases, std::span<con
   SweepOptions local;
   local.threads = options.threads;
   local.cancel = options.cancel;
+  local.pin_persistent = false;  // ranks share a node's cores (sweep/worker_cores.hpp)
   local.next_task = [&] { return dispenser.take_one(); };
   local.on_row = report;
   local.keep_rows = options.keep_rows;
@@ -236,6 +237,7 @@ void follow(std::span<const Case> cases, std::span<const SweepRun> runs, const S
   SweepOptions local;
   local.threads = threads;
   local.cancel = options.cancel;
+  local.pin_persistent = false;  // ranks share a node's cores (sweep/worker_cores.hpp)
   local.keep_rows = false;  // each row leaves as its line (the outbox below)
   local.next_task = [&]() -> std::optional<std::size_t> {
     std::unique_lock lock(mutex);

@@ -17,6 +17,7 @@
 #include "solvers/external/process.hpp"
 #include "solvers/verdict.hpp"
 #include "sweep/stopwatch.hpp"
+#include "sweep/worker_cores.hpp"
 
 namespace pb {
 
@@ -266,7 +267,13 @@ std::vector<Row> run_sweep(std::span<const Case> cases, std::span<const SweepRun
   }
   const auto cancelled = [&] { return options.cancel && options.cancel->load(); };
   const auto stopped = [&] { return stop.load(std::memory_order_relaxed) || cancelled(); };
+  unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
+  threads = static_cast<unsigned>(std::clamp<std::size_t>(threads, 1, std::max<std::size_t>(total, 1)));
+  const std::vector<int> cores = worker_cores(runs, threads, options.pin_persistent);
+  std::atomic<unsigned> workers{0};
   const auto work = [&] {
+    const unsigned worker = workers.fetch_add(1);
+    const PinnedThread pinned(worker < cores.size() ? cores[worker] : -1);
     // A worker's persistent programs (the external solver's) end with it: started once per worker.
     const external::ThreadSessionsEnd sessions_end;
     while (!stopped()) {
@@ -292,8 +299,6 @@ std::vector<Row> run_sweep(std::span<const Case> cases, std::span<const SweepRun
     }
   };
 
-  unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
-  threads = static_cast<unsigned>(std::clamp<std::size_t>(threads, 1, std::max<std::size_t>(total, 1)));
   if (threads == 1) {
     work();
   } else {

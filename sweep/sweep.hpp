@@ -108,6 +108,10 @@ struct SweepOptions {
   // million points held 1.5 KB a point until its end (issue 36); `spectrum` streams its rows
   // to the partial file and builds its output from there (app/partial_output.hpp).
   bool keep_rows = true;
+  // Where a run is the external solver's persistent mode and the workers are no more than the
+  // cores: worker k and its program on core k (sweep/worker_cores.hpp says why). Off for an
+  // MPI job's ranks, which share a node's cores.
+  bool pin_persistent = true;
 };
 
 // Rows sorted by run, then point: one per task run (every task unless next_task says

@@ -4,6 +4,8 @@ tests/external/persistent_program.py:
 
 - a program is started once per worker: two threads, two starts, 40 rows; its answers' Pi1
   and solve_seconds are in the rows; startup_seconds is on exactly one row per start;
+- with no more workers than poundbench's cores, each program runs on a core of its own (its
+  worker's, sweep/worker_cores.hpp), and with more, on every core poundbench may use;
 - a program that stops answering is ended at the time limit, its point time-limit, and started
   again for the next point;
 - a program that exits is a failed row with its exit code and stderr, and is started again;
@@ -36,17 +38,22 @@ class Persistent(unittest.TestCase):
     def tearDown(self):
         self.dir.cleanup()
 
-    def spectrum(self, mode, *flags):
+    def spectrum(self, mode, *flags, cores=None):
         command = f"{sys.executable} {PROGRAM} {mode} {self.starts}"
         out = subprocess.run([POUNDBENCH, "spectrum", SMOKE, "--solver", "external", "--persistent",
                               "--command", command, *flags],
-                             capture_output=True, text=True, timeout=300, cwd=self.dir.name)
+                             capture_output=True, text=True, timeout=300, cwd=self.dir.name,
+                             preexec_fn=(lambda: os.sched_setaffinity(0, cores)) if cores else None)
         self.assertEqual(out.returncode, 0, out.stderr)
         return list(csv.DictReader(io.StringIO(out.stdout)))
 
-    def started(self):
+    def starts_cores(self):
+        """The cores each start of the program could run on, one set per start."""
         with open(self.starts) as f:
-            return len(f.read().split())
+            return [set(map(int, line.split()[1].split(","))) for line in f]
+
+    def started(self):
+        return len(self.starts_cores())
 
     def test_one_program_per_worker_answers_every_point(self):
         rows = self.spectrum("answer", "--threads", "2")
@@ -58,6 +65,18 @@ class Persistent(unittest.TestCase):
             self.assertEqual(float(r["solve_seconds"]), 0.001)
             self.assertEqual(r["variant"], "persistent")
         self.assertEqual(sum(1 for r in rows if r["startup_seconds"]), 2)
+
+    @unittest.skipIf(len(os.sched_getaffinity(0)) < 2, "needs two cores")
+    def test_each_workers_program_runs_on_its_workers_core(self):
+        two = set(sorted(os.sched_getaffinity(0))[:2])
+        self.spectrum("answer", "--threads", "2", cores=two)
+        self.assertEqual(sorted(map(sorted, self.starts_cores())), sorted([c] for c in two))
+        os.remove(self.starts)
+        # Three workers on two cores: none pinned, every program free to run on both.
+        self.spectrum("answer", "--threads", "3", cores=two)
+        self.assertTrue(self.starts_cores())
+        for started_on in self.starts_cores():
+            self.assertEqual(started_on, two)
 
     def test_a_program_that_stops_answering_is_ended_and_started_again(self):
         rows = self.spectrum("hang", "--threads", "1", "--time-limit", "0.2")

@@ -8,16 +8,17 @@ case is its first argument:
     late     sleeps 0.3 s before its ready line
     noready  writes an answer where the ready line belongs
 
-It appends "start" to the file in its second argument each time it starts, so that the test
-counts its starts.
+It appends a line to the file in its second argument each time it starts, so that the test
+counts its starts: "start" and the cores it may run on (its affinity, as it started).
 """
+import os
 import json
 import sys
 import time
 
 mode, starts = sys.argv[1], sys.argv[2]
 with open(starts, "a") as f:
-    f.write("start\n")
+    f.write("start " + ",".join(map(str, sorted(os.sched_getaffinity(0)))) + "\n")
 if mode == "late":
     time.sleep(0.3)
 if mode == "noready":
