@@ -33,9 +33,11 @@ bool written(const CaseField& field, const Case& c) {
 
 double period_to_frequency(double tp) { return 2.0 * std::numbers::pi / tp; }
 
+// Written in place: called some 65 times a poundbench.run call (every case and setting field
+// asked whether its flag was given), "--" + name and a replace cost 230 instructions each there.
 std::string flag_of(std::string_view name) {
-  std::string flag = "--" + std::string(name);
-  std::replace(flag.begin(), flag.end(), '_', '-');
+  std::string flag(name.size() + 2, '-');
+  std::replace_copy(name.begin(), name.end(), flag.begin() + 2, '_', '-');
   return flag;
 }
 

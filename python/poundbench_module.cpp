@@ -18,7 +18,8 @@
 // than columns: each row keeps its types, and pandas.DataFrame(rows) makes the table).
 //
 // A solve runs with the GIL released on the calling thread: Ctrl-C stops the sweep (its stop
-// flag, set by a SIGINT handler held for the call) and raises KeyboardInterrupt.
+// flag, set by a SIGINT handler of the module's, installed on the first call and kept) and raises
+// KeyboardInterrupt.
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -169,16 +170,18 @@ int as_int(const std::string& key, long long value) {
 Keywords read_keywords(const std::string& function, const py::kwargs& kwargs) {
   Keywords k;
   Settings& settings = k.solver_flags.settings;
+  const bool for_run = function == "run";
+  k.given.reserve(kwargs.size());
   for (const auto& [key_object, value] : kwargs) {
     const std::string key = utf8(function, "name", key_object);
+    const std::string_view name = key;  // compared by length first: 58 compares a call
     if (value.is_none()) continue;
     const std::string flag = flag_of(key);
     const auto case_field = std::find_if(kCaseFields.begin(), kCaseFields.end(),
                                          [&](const CaseField& f) { return f.name == key; });
     const std::optional<std::size_t> setting = setting_field_index(key);
-    const bool for_run = function == "run";
-    if (for_run && (key == "scene" || key == "pulse" || key == "directivity")) {
-      (key == "scene" ? k.case_flags.scene : key == "pulse" ? k.case_flags.pulse : k.case_flags.directivity) =
+    if (for_run && (name == "scene" || name == "pulse" || name == "directivity")) {
+      (name == "scene" ? k.case_flags.scene : name == "pulse" ? k.case_flags.pulse : k.case_flags.directivity) =
           text(function, key, value);
     } else if (for_run && case_field != kCaseFields.end()) {
       if (case_field->number)
@@ -195,36 +198,36 @@ Keywords read_keywords(const std::string& function, const py::kwargs& kwargs) {
                                                   [&](const PhysicalField& x) { return x.name == key; });
                for_run && physical != kPhysicalFields.end()) {
       k.case_flags.numbers.physical.*physical->member = number(function, key, value);
-    } else if (for_run && key == "k_contact") {
+    } else if (for_run && name == "k_contact") {
       k.k_contact = number(function, key, value);
-    } else if (for_run && key == "case_file") {
+    } else if (for_run && name == "case_file") {
       k.case_flags.case_file = text(function, key, value);
-    } else if (for_run && key == "point") {
+    } else if (for_run && name == "point") {
       k.case_flags.point = whole(function, key, value);
-    } else if (for_run && key == "history") {
+    } else if (for_run && name == "history") {
       if (!py::isinstance<py::bool_>(value)) type_error(function, key, "must be True or False");
       k.history = value.cast<bool>();
       continue;
-    } else if (for_run && key == "samples") {
+    } else if (for_run && name == "samples") {
       k.samples = whole(function, key, value);
       continue;
-    } else if (!for_run && key == "threads") {
+    } else if (!for_run && name == "threads") {
       k.threads = whole(function, key, value);
       continue;
-    } else if (key == "monitor") {
+    } else if (name == "monitor") {
       if (!py::isinstance<py::bool_>(value)) type_error(function, key, "must be True or False");
       settings.monitor = value.cast<bool>();
-    } else if (key == "solver" && !for_run && !py::isinstance<py::str>(value) && PyCallable_Check(value.ptr())) {
+    } else if (name == "solver" && !for_run && !py::isinstance<py::str>(value) && PyCallable_Check(value.ptr())) {
       k.callable = py::reinterpret_borrow<py::object>(value);
       k.solver_flags.solver = "external";
-    } else if (key == "solver") {
+    } else if (name == "solver") {
       k.solver_flags.solver = text(function, key, value);
-    } else if (key == "persistent") {
+    } else if (name == "persistent") {
       if (!py::isinstance<py::bool_>(value)) type_error(function, key, "must be True or False");
       if (value.cast<bool>()) settings.variant = std::string(external::kPersistent);
       k.given.push_back("--variant");
       continue;
-    } else if (key == "variant") {
+    } else if (name == "variant") {
       settings.variant = text(function, key, value);
     } else if (setting) {
       const SettingField& f = kSettingFields[*setting];
@@ -265,11 +268,18 @@ py::object to_python(const nlohmann::json& j) {
   }
 }
 
+py::dict presized_dict(Py_ssize_t entries) {
+  PyObject* d = _PyDict_NewPresized(entries);
+  if (d == nullptr) throw py::error_already_set();
+  return py::reinterpret_steal<py::dict>(d);
+}
+
 // The object `run --json` prints, built as a dict directly (app::row_fields): the JSON object
 // and its conversion cost 101 k instructions a call (callgrind, see run()).
 class DictSink final : public app::FieldSink {
  public:
-  py::dict dict;
+  // Sized for a row's fields (about 50) at once: grown from empty, it was resized four times.
+  py::dict dict = presized_dict(64);
   void null(std::string_view key) override { set(key, py::none()); }
   void boolean(std::string_view key, bool x) override { set(key, py::bool_(x)); }
   void integer(std::string_view key, long long x) override { set(key, py::int_(x)); }
@@ -345,29 +355,49 @@ py::dict history_arrays(const Row& row) {
 }
 
 // Runs `work` on the calling thread with the GIL released, with SIGINT caught by a handler of
-// our own that sets `stop` (its solvers see the flag within milliseconds); Python's handler is
-// put back afterwards and, when Ctrl-C came, the signal handed to it (KeyboardInterrupt, or
-// whatever the program's handler does). A thread started per call (std::async, polling Python's
-// signals every 50 ms) cost tens of microseconds a call, more than a Moreau-Jean solve.
-// Where SIGINT is ignored, or the call is not on the main thread (which alone runs Python's
-// handlers), the work runs without the handler.
+// our own that sets `stop` (its solvers see the flag within milliseconds); when Ctrl-C came,
+// the signal is handed to Python's handler afterwards (KeyboardInterrupt, or whatever the
+// program's handler does). A thread started per call (std::async, polling Python's signals
+// every 50 ms) cost tens of microseconds a call, more than a Moreau-Jean solve; installing
+// the handler and putting Python's back per call, three rt_sigaction calls. So ours, once
+// installed, stays: between calls it hands a SIGINT to the handler it replaced, and each call
+// asks only whether it is still the one installed (one rt_sigaction): where Python's
+// signal.signal() installed another, ours replaces that one in turn. Where SIGINT is ignored,
+// or the call is not on the main thread (which alone runs Python's handlers), the work runs
+// without it.
 std::atomic<bool>* interrupt_target = nullptr;
+struct sigaction replaced {};  // the handler ours replaced: Python's, unless the program set another
 unsigned long main_thread = 0;  // threading.main_thread().ident, read when the module loads
-extern "C" void on_interrupt(int) {
-  if (std::atomic<bool>* stop = interrupt_target) stop->store(true);
+extern "C" void on_interrupt(int signal, siginfo_t* info, void* context) {
+  if (std::atomic<bool>* stop = interrupt_target) {
+    stop->store(true);
+  } else if (replaced.sa_flags & SA_SIGINFO) {
+    replaced.sa_sigaction(signal, info, context);
+  } else if (replaced.sa_handler == SIG_DFL) {
+    // As if ours had never been there: the default action, once this handler returns.
+    sigaction(SIGINT, &replaced, nullptr);
+    raise(SIGINT);
+  } else if (replaced.sa_handler != SIG_IGN) {
+    replaced.sa_handler(signal);
+  }
 }
 
 template <class Work>
 void run_interruptibly(std::atomic<bool>& stop, Work&& work) {
-  struct sigaction ours {}, python {};
-  sigaction(SIGINT, nullptr, &python);
-  const bool catching = python.sa_handler != SIG_IGN && PyThread_get_thread_ident() == main_thread;
+  struct sigaction now {};
+  sigaction(SIGINT, nullptr, &now);
+  const bool ours = (now.sa_flags & SA_SIGINFO) && now.sa_sigaction == on_interrupt;
+  const bool catching = (ours || now.sa_handler != SIG_IGN) && PyThread_get_thread_ident() == main_thread;
   if (catching) {
     interrupt_target = &stop;
-    ours.sa_handler = on_interrupt;
-    ours.sa_flags = SA_RESTART;
-    sigemptyset(&ours.sa_mask);
-    sigaction(SIGINT, &ours, nullptr);
+    if (!ours) {
+      struct sigaction handler {};
+      handler.sa_sigaction = on_interrupt;
+      handler.sa_flags = SA_RESTART | SA_SIGINFO;
+      sigemptyset(&handler.sa_mask);
+      replaced = now;
+      sigaction(SIGINT, &handler, nullptr);
+    }
   }
   std::exception_ptr error;
   {
@@ -378,10 +408,7 @@ void run_interruptibly(std::atomic<bool>& stop, Work&& work) {
       error = std::current_exception();
     }
   }
-  if (catching) {
-    sigaction(SIGINT, &python, nullptr);
-    interrupt_target = nullptr;
-  }
+  if (catching) interrupt_target = nullptr;
   if (catching && stop.load()) {
     PyErr_SetInterrupt();
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();

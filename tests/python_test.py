@@ -122,6 +122,26 @@ class Run(unittest.TestCase):
         self.assertLess(time.monotonic() - started, 5.0)
         self.assertIs(signal.getsignal(signal.SIGINT), signal.default_int_handler)
 
+    def test_ctrl_c_between_calls_goes_to_pythons_handler(self):
+        # The module's SIGINT handler stays installed after a call and hands a SIGINT that comes
+        # between calls to the handler it replaced (KeyboardInterrupt); a handler the program
+        # sets afterwards gets the next one.
+        import signal
+        import time
+        poundbench.run(**CASE)
+        with self.assertRaises(KeyboardInterrupt):
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(2)  # Python runs its handler at the next instruction
+        got = []
+        previous = signal.signal(signal.SIGINT, lambda *_: got.append(True))
+        try:
+            poundbench.run(**CASE)
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.1)
+            self.assertEqual(got, [True])
+        finally:
+            signal.signal(signal.SIGINT, previous)
+
     def test_history_is_one_numpy_array_per_column_of_run_history(self):
         result = poundbench.run(**CASE, samples=101)
         history = result["history"]
