@@ -122,6 +122,20 @@ class Run(unittest.TestCase):
         self.assertLess(time.monotonic() - started, 5.0)
         self.assertIs(signal.getsignal(signal.SIGINT), signal.default_int_handler)
 
+    def test_a_loop_over_the_case_checks_each_calls_solver_keywords(self):
+        # run() keeps its last call's solver checks while only the case's numbers change (a loop
+        # over Pi2); a solver keyword changed or added is checked again.
+        for pi2 in (0.5, 0.8, 2.0):
+            self.assertEqual(poundbench.run(**dict(CASE, pi2=pi2), solver="moreau-jean", steps=64)["status"], "ok")
+        with self.assertRaisesRegex(ValueError, "--steps: must be >= 1"):
+            poundbench.run(**CASE, solver="moreau-jean", steps=-1)
+        with self.assertRaisesRegex(ValueError, "--stiffness: not used by moreau-jean"):
+            poundbench.run(**CASE, solver="moreau-jean", steps=64, stiffness=10.0)
+        self.assertEqual(poundbench.run(**CASE, solver="moreau-jean", steps=64, theta=1.0)["status"], "ok")
+        with self.assertRaisesRegex(ValueError, "--theta: must be in"):
+            poundbench.run(**CASE, solver="moreau-jean", steps=64, theta=0.25)
+        self.assertEqual(poundbench.run(**CASE, solver="moreau-jean", steps=64)["status"], "ok")
+
     def test_ctrl_c_between_calls_goes_to_pythons_handler(self):
         # The module's SIGINT handler stays installed after a call and hands a SIGINT that comes
         # between calls to the handler it replaced (KeyboardInterrupt); a handler the program
