@@ -106,8 +106,8 @@ class Run(unittest.TestCase):
         self.assertEqual(result["energy_excess"], json.loads(out)["energy_excess"])
 
     def test_ctrl_c_stops_a_call_with_keyboard_interrupt(self):
-        # The solve runs on the calling thread; SIGINT sets its stop flag (a handler held for
-        # the call) and is then handed to Python's handler. The paper set at N = 4096 on one
+        # The solve runs on the calling thread; SIGINT sets its stop flag (the module's handler,
+        # installed on the first call) and is then handed to Python's handler. The paper set at N = 4096 on one
         # thread takes many seconds: the call must end long before.
         import signal
         import threading
