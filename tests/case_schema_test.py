@@ -58,10 +58,16 @@ def rows(case_set, persistent, reduced=False):
     command = CHECKER + (" --persistent" if persistent else "")
     if persistent and os.path.basename(case_set) in SAMPLED:
         command += f" --sample {ONE_IN}"
+    # A sampled set on one thread: the checker samples per process, and two families whose
+    # documents have one shape share its first check, so which family gets a check depended on
+    # how the sweep's dynamic schedule split the points between two programs (CI failed on it).
+    threads = "1" if persistent and os.path.basename(case_set) in SAMPLED else "2"
     flags = ["--persistent"] if persistent else []
-    out = subprocess.run([POUNDBENCH, "spectrum", case_set, "--solver", "external", "--command", command,
-                          "--threads", "2", *flags], capture_output=True, text=True, check=True).stdout
-    return list(csv.DictReader(io.StringIO(out)))
+    run = subprocess.run([POUNDBENCH, "spectrum", case_set, "--solver", "external", "--command", command,
+                          "--threads", threads, *flags], capture_output=True, text=True)
+    if run.returncode != 0:
+        raise AssertionError(f"{os.path.basename(case_set)}: exit {run.returncode}: {run.stderr[-2000:]}")
+    return list(csv.DictReader(io.StringIO(run.stdout)))
 
 
 class CaseSchema(unittest.TestCase):
@@ -78,7 +84,7 @@ class CaseSchema(unittest.TestCase):
                     kinds.add(r["message"].split()[1])
                 # Every family has documents checked, not only sampled past.
                 checked = {r["family"] for r in got if r["message"].startswith("valid: ")}
-                self.assertEqual(checked, {r["family"] for r in got})
+                self.assertEqual({r["family"] for r in got} - checked, set(), "families with no document checked")
         # The three kinds of load a shipped set has: a program that validates its input takes them all.
         self.assertEqual(kinds, {"pulse", "sinusoids", "record"})
 
