@@ -60,6 +60,18 @@ std::optional<std::string> read_regular_file(const std::filesystem::path& file, 
   return why;
 }
 
+std::optional<std::string> regular_file_problem(const std::filesystem::path& file) {
+  if (file.empty()) return "empty file name";
+  const int fd = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return std::string(std::strerror(errno));
+  struct stat st {};
+  std::optional<std::string> why;
+  if (::fstat(fd, &st) != 0) why = std::strerror(errno);
+  else if (!S_ISREG(st.st_mode)) why = kind_of(st.st_mode);
+  ::close(fd);
+  return why;
+}
+
 std::string cannot_read(const std::filesystem::path& file, const std::string& why) {
   return clip(file.string(), kMaxEchoedReason) + ": cannot read: " + why;
 }

@@ -30,7 +30,7 @@ std::size_t take_run(std::vector<std::string>& fields) {
 // Checks each record against the task it names, field for field as csv_line writes them.
 class TaskCheck {
  public:
-  TaskCheck(std::span<const Case> cases, std::span<const SweepRun> runs) : cases_(cases), runs_(runs) {
+  TaskCheck(const CaseList& cases, std::span<const SweepRun> runs) : cases_(cases), runs_(runs) {
     const std::vector<std::string> header = split_csv(csv_header());
     for (const char* column : kTaskColumns)
       columns_.push_back(static_cast<std::size_t>(std::find(header.begin(), header.end(), column) - header.begin()));
@@ -63,7 +63,7 @@ class TaskCheck {
   }
 
  private:
-  std::span<const Case> cases_;
+  const CaseList& cases_;
   std::span<const SweepRun> runs_;
   std::vector<std::size_t> columns_;   // of kTaskColumns in the header
   std::vector<std::string> settings_;  // describe() of each run
@@ -85,8 +85,16 @@ Row parse_partial_line(std::string_view record, bool with_run) {
   return row;
 }
 
-std::vector<Row> read_partial_rows(std::istream& in, std::string_view file, std::span<const Case> cases,
+std::vector<Row> read_partial_rows(std::istream& in, std::string_view file, const CaseList& cases,
                                    std::span<const SweepRun> runs) {
+  std::vector<Row> rows;
+  for_each_partial_row(in, file, cases, runs, [&](Row&& row) { rows.push_back(std::move(row)); });
+  std::sort(rows.begin(), rows.end(), task_order);
+  return rows;
+}
+
+void for_each_partial_row(std::istream& in, std::string_view file, const CaseList& cases,
+                          std::span<const SweepRun> runs, const std::function<void(Row&&)>& each) {
   const bool with_run = runs.size() > 1;
   const std::string afresh = " (remove the file to start afresh)";
   std::string record;
@@ -94,12 +102,11 @@ std::vector<Row> read_partial_rows(std::istream& in, std::string_view file, std:
   const auto fail = [&](const std::string& reason) -> PartialRowsError {
     return PartialRowsError(std::string(file) + ":" + std::to_string(line) + ": " + reason);
   };
-  if (!read_csv_record(in, record)) return {};  // empty, or cut within the header
+  if (!read_csv_record(in, record)) return;  // empty, or cut within the header
   if (record != partial_header(with_run))
     throw fail("not the partial file of this sweep: its header is not this sweep's" + afresh);
 
   const TaskCheck check(cases, runs);
-  std::vector<Row> rows;
   std::vector<std::size_t> seen(cases.size() * runs.size(), 0);  // each task's line; 0: none yet
   for (line += 1; read_csv_record(in, record); line += 1 + static_cast<std::size_t>(std::ranges::count(record, '\n'))) {
     Row row;
@@ -120,10 +127,8 @@ std::vector<Row> read_partial_rows(std::istream& in, std::string_view file, std:
                  ": a second row (the first is on line " + std::to_string(first) + "); delete one of the two lines");
     first = line;
     row.input = cases[row.point];  // exactly the case, also in the columns the CSV leaves empty
-    rows.push_back(std::move(row));
+    each(std::move(row));
   }
-  std::sort(rows.begin(), rows.end(), task_order);
-  return rows;
 }
 
 std::vector<std::size_t> missing_tasks(std::span<const Row> done, std::size_t cases, std::size_t runs) {
