@@ -46,7 +46,7 @@ namespace {
 // order, read as a stream; BadInput when it cannot be read or is another sweep's. Nothing
 // when it does not exist.
 void each_partial_row(const std::string& partial, const CaseList& cases, std::span<const SweepRun> runs,
-                      const std::function<void(Row&&)>& each) {
+                      const std::function<void(Row&&)>& each, PartialFileShape* shape = nullptr) {
   std::error_code ec;
   if (!std::filesystem::exists(std::filesystem::symlink_status(partial, ec))) return;
   if (const std::optional<std::string> why = regular_file_problem(partial))
@@ -54,7 +54,7 @@ void each_partial_row(const std::string& partial, const CaseList& cases, std::sp
   std::ifstream in(partial, std::ios::binary);
   if (!in) throw BadInput("partial file: " + cannot_read(partial, std::strerror(errno)));
   try {
-    for_each_partial_row(in, partial, cases, runs, each);
+    for_each_partial_row(in, partial, cases, runs, each, shape);
   } catch (const PartialRowsError& e) {
     throw BadInput(e.what());
   }
@@ -72,7 +72,7 @@ EarlierRows read_earlier_rows(const std::string& partial, const CaseList& cases,
     earlier.done[row.run * cases.size() + row.point] = true;
     ++earlier.count;
     if (keep) earlier.rows.push_back(std::move(row));
-  });
+  }, &earlier.file);
   std::sort(earlier.rows.begin(), earlier.rows.end(), task_order);
   return earlier;
 }
@@ -90,15 +90,21 @@ std::optional<std::vector<Row>> run_resumable(std::string_view command, const Pr
     for (std::size_t t = 0; t < total; ++t)
       if (earlier.done.empty() || !earlier.done[t]) todo.push_back(t);
     std::vector<bool>().swap(earlier.done);
-    // Rewritten from the rows read (a torn last line dropped): the ones kept, or else the file's
-    // own, streamed in its order (the output is copied in point order from it either way).
-    write_atomically(partial, [&](std::ostream& out) {
-      out << partial_header(with_run) << '\n';
-      if (earlier.rows.size() == earlier.count)
-        for (const Row& row : earlier.rows) out << partial_line(row, with_run) << '\n';
-      else
-        each_partial_row(partial, cases, runs, [&](Row&& row) { out << partial_line(row, with_run) << '\n'; });
-    });
+    // The rows read, a torn last line dropped: rewritten from the ones kept; else, when the
+    // file holds each as it would be written, cut after its last whole record; else rewritten
+    // from the file's own rows, streamed in its order (the output is copied in point order
+    // from the file either way).
+    if (earlier.rows.size() != earlier.count && earlier.file.as_printed) {
+      std::filesystem::resize_file(partial, earlier.file.whole_bytes);
+    } else {
+      write_atomically(partial, [&](std::ostream& out) {
+        out << partial_header(with_run) << '\n';
+        if (earlier.rows.size() == earlier.count)
+          for (const Row& row : earlier.rows) out << partial_line(row, with_run) << '\n';
+        else
+          each_partial_row(partial, cases, runs, [&](Row&& row) { out << partial_line(row, with_run) << '\n'; });
+      });
+    }
     if (!keep_rows) std::vector<Row>().swap(earlier.rows);  // in the file now, which is where the output comes from
     if (lines) lines->assign(total, std::string());
     file.emplace(partial, with_run, cases.size(), lines, threads ? threads : processes.default_threads(),

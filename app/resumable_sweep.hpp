@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "app/output_lock.hpp"
+#include "sweep/partial_rows.hpp"
 #include "sweep/processes.hpp"
 #include "cases/case.hpp"
 #include "cases/case_list.hpp"
@@ -43,6 +44,7 @@ struct EarlierRows {
   std::vector<Row> rows;   // sorted by task; none unless kept
   std::vector<bool> done;  // by task (run * cases + point); empty: none done
   std::size_t count = 0;   // the rows the file holds
+  PartialFileShape file;   // as read (sweep/partial_rows.hpp)
 };
 
 // Leader only, while checking inputs: throws BadInput unless the partial file can be

@@ -10,12 +10,16 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "app/partial_writer.hpp"
 #include "cases/case_set.hpp"
 #include "rows/row.hpp"
+#include "rows/row_read.hpp"
 #include "solvers/solver.hpp"
+#include "sweep/partial_rows.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb {
@@ -137,6 +141,42 @@ TEST(PartialWriter, QueuesAtMostItsCapOfRowsWhateverTheSweepsLength) {
   }
   EXPECT_EQ(lines, set.cases.size());
   fs::remove(file);
+}
+
+// A resumed spectrum cuts its partial file after the last whole record instead of rewriting
+// it, when every record is the line poundbench writes for its row: the shape says whether
+// they are and where the whole records end, before a torn last line. An edit that the checks
+// accept (a trailing zero in pi2) makes the file one to rewrite.
+TEST(PartialRows, TheShapeSaysWhetherEveryRowIsAsWrittenAndWhereTheWholeRecordsEnd) {
+  const CaseListSet set = parse_case_list(spectrum_set(1, 20), "flat.toml");
+  Settings settings;
+  settings.steps = 8;
+  const SweepRun run{find_solver("moreau-jean"), settings};
+  const std::vector<Row> rows = run_sweep(set.cases, std::span(&run, 1));
+  std::string text = partial_header(false) + "\n";
+  for (const Row& row : rows) text += partial_line(row, false) + "\n";
+  const auto shape_of = [&](const std::string& file) {
+    std::istringstream in(file);
+    PartialFileShape shape;
+    std::size_t count = 0;
+    for_each_partial_row(in, "p.csv", set.cases, std::span(&run, 1), [&](Row&&) { ++count; }, &shape);
+    EXPECT_EQ(count, rows.size());
+    return shape;
+  };
+  PartialFileShape shape = shape_of(text);
+  EXPECT_TRUE(shape.as_printed);
+  EXPECT_EQ(shape.whole_bytes, text.size());
+  shape = shape_of(text + partial_line(rows[0], false).substr(0, 40));  // a torn last line
+  EXPECT_TRUE(shape.as_printed);
+  EXPECT_EQ(shape.whole_bytes, text.size());
+
+  const std::string line = partial_line(rows[3], false);
+  const std::string pi2 = split_csv(line)[5];
+  std::string edited = text;
+  edited.replace(edited.find(line), line.size(), std::string(line).replace(line.find(pi2), pi2.size(), pi2 + "0"));
+  shape = shape_of(edited);
+  EXPECT_FALSE(shape.as_printed);
+  EXPECT_EQ(shape.whole_bytes, edited.size());
 }
 
 }  // namespace
