@@ -225,10 +225,10 @@ void check_outputs_apart(const std::vector<NamedFile>& outputs, const std::vecto
   }
 }
 
-std::vector<NamedFile> record_files(std::span<const Case> cases) {
+std::vector<NamedFile> record_files(const CaseList& cases) {
   std::vector<NamedFile> files;
-  for (const Case& c : cases)
-    if (!c.record.empty() && (files.empty() || files.back().path != c.record) &&
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    if (const Case c = cases[i]; !c.record.empty() && (files.empty() || files.back().path != c.record) &&
         std::none_of(files.begin(), files.end(), [&](const NamedFile& f) { return f.path == c.record; }))
       files.push_back({"record", c.record});
   return files;

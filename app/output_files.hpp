@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cases/case.hpp"
+#include "cases/case_list.hpp"
 
 namespace pb::app {
 
@@ -45,7 +46,7 @@ void check_outputs_apart(const std::vector<NamedFile>& outputs, const std::vecto
                          std::string_view partial = {}, std::string_view lock = {});
 
 // The record files of `cases`, each once, as inputs named "record".
-std::vector<NamedFile> record_files(std::span<const Case> cases);
+std::vector<NamedFile> record_files(const CaseList& cases);
 
 // Writes `file` through "<file>.tmp" and a rename; throws std::runtime_error on failure
 // naming the reason (the temporary is removed then). A device or a pipe (/dev/null) is

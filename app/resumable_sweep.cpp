@@ -1,19 +1,19 @@
 #include "app/resumable_sweep.hpp"
 
 #include <algorithm>
-#include <chrono>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
-#include <sstream>
-#include <mutex>
+#include <fstream>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "app/cost_left.hpp"
 #include "app/output_files.hpp"
+#include "app/partial_writer.hpp"
 #include "app/sweep_watch.hpp"
 #include "cases/input_file.hpp"
 #include "frontend/errors.hpp"
@@ -21,122 +21,6 @@
 #include "sweep/partial_rows.hpp"
 
 namespace pb::app {
-
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-// How long a finished row may wait in memory before it is written to the partial file. A
-// row reaches the file at most kPartialDelay plus one tick of the watcher (100 ms,
-// app/sweep_watch.cpp) after it reached the leader; an interrupt by signal loses nothing
-// finished (the rows queued are written as the sweep stops, and before the process ends on
-// a second signal), and a kill or a crash the rows of the last 0.6 s at most.
-constexpr auto kPartialDelay = std::chrono::milliseconds(500);
-
-// The partial file's writer. Each row used to be formatted and written, flushed, by the
-// worker that finished it, under the sweep's lock (sweep/sweep.hpp: the callbacks are
-// serialised): on the paper set, 23 820 writes and 6 426 contended locks. Now a worker only
-// queues a copy of its row; the watcher's thread formats the queued rows and writes them in
-// one batch (BatchedFile) once the oldest has waited kPartialDelay, and the caller writes
-// what is left when the sweep has ended. One thread writes at a time: the watcher while the
-// sweep runs (its ticks and its abandon are one thread), the caller after watch.finish().
-// A failed write is kept and thrown to the next row's worker, which stops the sweep, and at
-// write_all().
-class PartialWriter {
- public:
-  // `expected`: the rows the sweep will queue; the queue takes room for those still to come
-  // at each batch. Grown row by row, it was copied as it doubled, under the sweep's lock.
-  PartialWriter(const std::string& partial, bool with_run, std::size_t cases, std::vector<std::string>* lines,
-                unsigned threads, std::size_t expected)
-      : file_(partial, BatchedFile::Mode::append, Clock::duration::max()),
-        with_run_(with_run),
-        cases_(cases),
-        lines_(lines),
-        threads_(std::max(threads, 1u)),
-        to_come_(expected) {
-    queued_.reserve(room());
-  }
-
-  // A finished row, from the sweep's callback (any thread, serialised).
-  void queue(const Row& row) {
-    const std::lock_guard hold(mutex_);
-    if (!error_.empty()) throw std::runtime_error(error_);
-    if (queued_.empty()) oldest_ = Clock::now();
-    queued_.push_back(row);
-  }
-  // The watcher's tick: writes the queued rows once the oldest has waited long enough.
-  void write_due() {
-    try {
-      write(false);
-    } catch (const std::exception&) {
-      // Kept in error_ for the next row's worker.
-    }
-  }
-  // Every queued row, now; throws a failed write's error.
-  void write_all() { write(true); }
-  void close() { file_.close(); }
-
- private:
-  void write(bool all) {
-    std::vector<Row> rows;
-    {
-      const std::lock_guard hold(mutex_);
-      if (!error_.empty()) throw std::runtime_error(error_);
-      if (queued_.empty() || (!all && Clock::now() - oldest_ < kPartialDelay && queued_.size() < kBatchRows)) return;
-      rows.swap(queued_);
-      to_come_ -= std::min(to_come_, rows.size());
-      queued_.reserve(room());
-    }
-    try {
-      std::vector<std::string> text = format(rows);
-      for (std::size_t i = 0; i < rows.size(); ++i) {
-        file_.add_line(text[i]);
-        if (lines_) (*lines_)[rows[i].run * cases_ + rows[i].point] = std::move(text[i]);
-      }
-      file_.flush();
-    } catch (const std::exception& e) {
-      const std::lock_guard hold(mutex_);
-      error_ = e.what();
-      throw;
-    }
-  }
-
-  // The rows' lines, on the sweep's threads when there are many: a sweep shorter than
-  // kPartialDelay (the paper set through the reference, 0.3 s) leaves every row to the last
-  // batch, written after the workers have stopped, and its 23 820 lines took 0.1 s on one.
-  std::vector<std::string> format(const std::vector<Row>& rows) const {
-    std::vector<std::string> text(rows.size());
-    const std::size_t n = rows.size(), ways = n < 1024 ? 1 : threads_;
-    const auto part = [&](std::size_t first) {
-      for (std::size_t i = first; i < n; i += ways) text[i] = partial_line(rows[i], with_run_);
-    };
-    {
-      std::vector<std::jthread> pool;
-      for (std::size_t w = 1; w < ways; ++w) pool.emplace_back(part, w);
-      part(0);
-    }  // the jthreads join here, before text is returned
-    return text;
-  }
-
-  // A batch is written at the watcher's next tick once it holds kBatchRows rows, whatever their
-  // age, and the queue takes room for no more than that at a time: with room for every row to
-  // come, a million-point sweep reserved 1.5 GB up front.
-  static constexpr std::size_t kBatchRows = 4096;
-  std::size_t room() const { return std::min(to_come_, 2 * kBatchRows); }
-
-  BatchedFile file_;  // written in batches: its own size limit only (1 MiB), never its delay
-  bool with_run_;
-  std::size_t cases_;
-  std::vector<std::string>* lines_;
-  unsigned threads_;
-  std::mutex mutex_;  // guards what follows
-  std::vector<Row> queued_;
-  std::size_t to_come_;  // rows not queued yet
-  Clock::time_point oldest_{};
-  std::string error_;  // a failed write's
-};
-
-}  // namespace
 
 std::string partial_file_name(const std::string& out, std::string_view command) {
   return out.empty() ? "poundbench-" + std::string(command) + ".partial.csv" : out + ".partial";
@@ -156,38 +40,72 @@ OutputLock take_output_lock(const std::string& out, std::string_view command, co
   return OutputLock(lock_file, out.empty() ? "partial file: " + partial : "--out: " + out);
 }
 
-std::vector<Row> read_earlier_rows(const std::string& partial, std::span<const Case> cases,
-                                   std::span<const SweepRun> runs) {
-  check_output_target(partial, "partial file");
+namespace {
+
+// The rows of the partial file, checked (sweep/partial_rows.hpp), to `each` in the file's
+// order, read as a stream; BadInput when it cannot be read or is another sweep's. Nothing
+// when it does not exist.
+void each_partial_row(const std::string& partial, const CaseList& cases, std::span<const SweepRun> runs,
+                      const std::function<void(Row&&)>& each, PartialFileShape* shape = nullptr) {
   std::error_code ec;
-  if (!std::filesystem::exists(std::filesystem::symlink_status(partial, ec))) return {};
-  std::string text;
-  if (const std::optional<std::string> why = read_regular_file(partial, text))
+  if (!std::filesystem::exists(std::filesystem::symlink_status(partial, ec))) return;
+  if (const std::optional<std::string> why = regular_file_problem(partial))
     throw BadInput("partial file: " + cannot_read(partial, *why));
-  std::istringstream in(std::move(text));
+  std::ifstream in(partial, std::ios::binary);
+  if (!in) throw BadInput("partial file: " + cannot_read(partial, std::strerror(errno)));
   try {
-    return read_partial_rows(in, partial, cases, runs);
+    for_each_partial_row(in, partial, cases, runs, each, shape);
   } catch (const PartialRowsError& e) {
     throw BadInput(e.what());
   }
+  if (in.bad()) throw BadInput("partial file: " + cannot_read(partial, "read error"));
+}
+
+}  // namespace
+
+EarlierRows read_earlier_rows(const std::string& partial, const CaseList& cases, std::span<const SweepRun> runs,
+                              bool keep) {
+  check_output_target(partial, "partial file");
+  EarlierRows earlier;
+  earlier.done.assign(cases.size() * runs.size(), false);
+  each_partial_row(partial, cases, runs, [&](Row&& row) {
+    earlier.done[row.run * cases.size() + row.point] = true;
+    ++earlier.count;
+    if (keep) earlier.rows.push_back(std::move(row));
+  }, &earlier.file);
+  std::sort(earlier.rows.begin(), earlier.rows.end(), task_order);
+  return earlier;
 }
 
 std::optional<std::vector<Row>> run_resumable(std::string_view command, const Processes& processes,
-                                              std::span<const Case> cases, std::span<const SweepRun> runs,
-                                              const std::string& partial, OutputLock& lock, std::vector<Row> earlier,
+                                              const CaseList& cases, std::span<const SweepRun> runs,
+                                              const std::string& partial, OutputLock& lock, EarlierRows earlier,
                                               unsigned threads, std::vector<std::string>* lines, bool keep_rows) {
   const std::size_t total = cases.size() * runs.size();
   const bool with_run = runs.size() > 1;
-  const std::size_t resumed = earlier.size();
+  const std::size_t resumed = earlier.count;
   std::vector<std::size_t> todo;
   std::optional<PartialWriter> file;
   if (processes.leader()) {
-    todo = missing_tasks(earlier, cases.size(), runs.size());
-    write_atomically(partial, [&](std::ostream& out) {
-      out << partial_header(with_run) << '\n';
-      for (const Row& row : earlier) out << partial_line(row, with_run) << '\n';
-    });
-    if (!keep_rows) std::vector<Row>().swap(earlier);  // in the file now, which is where the output comes from
+    for (std::size_t t = 0; t < total; ++t)
+      if (earlier.done.empty() || !earlier.done[t]) todo.push_back(t);
+    std::vector<bool>().swap(earlier.done);
+    // The rows read, a torn last line dropped: rewritten from the ones kept; else, when the
+    // file holds each as it would be written, cut after its last whole record; else rewritten
+    // from the file's own rows, streamed in its order (the output is copied in point order
+    // from the file either way).
+    if (earlier.rows.size() != earlier.count && earlier.file.as_printed) {
+      std::filesystem::resize_file(partial, earlier.file.whole_bytes);
+    } else {
+      write_atomically(partial, [&](std::ostream& out) {
+        out << partial_header(with_run) << '\n';
+        if (earlier.rows.size() == earlier.count)
+          for (const Row& row : earlier.rows) out << partial_line(row, with_run) << '\n';
+        else
+          each_partial_row(partial, cases, runs, [&](Row&& row) { out << partial_line(row, with_run) << '\n'; });
+      });
+    }
+    if (!keep_rows) std::vector<Row>().swap(earlier.rows);  // in the file now, which is where the output comes from
     if (lines) lines->assign(total, std::string());
     file.emplace(partial, with_run, cases.size(), lines, threads ? threads : processes.default_threads(),
                  todo.size());
@@ -251,7 +169,7 @@ std::optional<std::vector<Row>> run_resumable(std::string_view command, const Pr
   file->write_all();
   file->close();
 
-  rows.insert(rows.end(), std::make_move_iterator(earlier.begin()), std::make_move_iterator(earlier.end()));
+  rows.insert(rows.end(), std::make_move_iterator(earlier.rows.begin()), std::make_move_iterator(earlier.rows.end()));
   std::sort(rows.begin(), rows.end(), task_order);
   if (finished < total) {
     std::fprintf(stderr, "poundbench: interrupted after %zu of %zu %s; the finished rows are in %s\n", finished,

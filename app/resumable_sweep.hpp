@@ -1,7 +1,7 @@
 #pragma once
 // The sweep that `spectrum`, `workprecision` and `stress` share: resumed from its partial
 // file, run on every process of the job (sweep/processes.hpp), each new row appended to the
-// partial file within 0.6 s of reaching the leader (in batches: resumable_sweep.cpp says
+// partial file within 0.6 s of reaching the leader (in batches: app/partial_writer.hpp says
 // why and what an interrupt loses).
 //
 // The partial file is named after the output (partial_file_name). A rerun with the same
@@ -19,8 +19,10 @@
 #include <vector>
 
 #include "app/output_lock.hpp"
+#include "sweep/partial_rows.hpp"
 #include "sweep/processes.hpp"
 #include "cases/case.hpp"
+#include "cases/case_list.hpp"
 #include "rows/row.hpp"
 #include "sweep/sweep.hpp"
 
@@ -35,11 +37,21 @@ std::string partial_file_name(const std::string& out, std::string_view command);
 // sweep holds it.
 OutputLock take_output_lock(const std::string& out, std::string_view command, const std::string& partial);
 
+// The rows a partial file holds: kept (the studies summarise them), or only which tasks
+// they are (`spectrum`, whose output is copied from the file: the rows of a million points
+// are 1.5 GB held, and 450 MB of file, which the whole-file reader refuses past 256 MB).
+struct EarlierRows {
+  std::vector<Row> rows;   // sorted by task; none unless kept
+  std::vector<bool> done;  // by task (run * cases + point); empty: none done
+  std::size_t count = 0;   // the rows the file holds
+  PartialFileShape file;   // as read (sweep/partial_rows.hpp)
+};
+
 // Leader only, while checking inputs: throws BadInput unless the partial file can be
-// written and holds nothing but rows of this sweep; returns them (none if it does not
-// exist). Creates nothing.
-std::vector<Row> read_earlier_rows(const std::string& partial, std::span<const Case> cases,
-                                   std::span<const SweepRun> runs);
+// written and holds nothing but rows of this sweep; returns them, streamed through and
+// checked one at a time (none if it does not exist). Creates nothing.
+EarlierRows read_earlier_rows(const std::string& partial, const CaseList& cases, std::span<const SweepRun> runs,
+                              bool keep = true);
 
 // Runs the tasks that `earlier` (the leader's) lacks, on `threads` threads per process
 // (0: Processes::default_threads), with progress and interrupts as SweepWatch has them
@@ -53,10 +65,11 @@ std::vector<Row> read_earlier_rows(const std::string& partial, std::span<const C
 // a sweep of one run writes its output from them instead of formatting every row again.
 // keep_rows false: no row is held in memory, on any process (SweepOptions::keep_rows); the
 // leader returns an empty list once every task is done, and its output is built from the
-// partial file (app/partial_output.hpp).
+// partial file (app/partial_output.hpp). `earlier` then holds no rows, and the partial file's
+// are streamed as it is rewritten.
 std::optional<std::vector<Row>> run_resumable(std::string_view command, const Processes& processes,
-                                              std::span<const Case> cases, std::span<const SweepRun> runs,
-                                              const std::string& partial, OutputLock& lock, std::vector<Row> earlier,
+                                              const CaseList& cases, std::span<const SweepRun> runs,
+                                              const std::string& partial, OutputLock& lock, EarlierRows earlier,
                                               unsigned threads, std::vector<std::string>* lines = nullptr,
                                               bool keep_rows = true);
 

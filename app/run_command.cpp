@@ -160,7 +160,7 @@ int run_command(const CLI::App& command, RunFlags flags) {
   });
   check_step_bound(chosen.input, flags.solver_flags.settings);
   if (history) {
-    std::vector<NamedFile> inputs = record_files({&chosen.input, 1});
+    std::vector<NamedFile> inputs = record_files(std::span<const Case>(&chosen.input, 1));
     if (!chosen.case_file.empty()) inputs.push_back({"--case-file", chosen.case_file});
     check_outputs_apart({{"--history", flags.history}}, inputs);
     check_output_target(flags.history, "--history");

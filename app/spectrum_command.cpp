@@ -102,14 +102,14 @@ CLI::App* add_spectrum_command(CLI::App& app, SpectrumFlags& flags) {
 
 int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const Processes& processes) {
   // Everything is checked before the first file is created.
-  CaseSet set;
+  CaseListSet set;  // built on demand: a million points held 320 MB of cases
   std::vector<SweepRun> runs(1);
-  std::vector<Row> earlier;
+  EarlierRows earlier;  // which points are done: the rows stay in the partial file
   const std::string partial = partial_file_name(flags.out, "spectrum");
   OutputLock lock;  // held until the output is written and the partial file removed
   processes.agree([&] {
-    set = load_case_set(flags.case_set);
-    validate_case_set(set, flags.case_set);
+    set = load_case_list(flags.case_set);
+    validate_case_set(set.cases, flags.case_set);
     runs[0] = {&checked_solver(flags.solver_flags, command), flags.solver_flags.settings, flags.repetitions};
     if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
     if (!processes.leader()) return;
@@ -119,7 +119,7 @@ int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const 
     if (!flags.out.empty()) check_sweep_output(flags.out, "--out");
     check_junit_target(flags.junit, flags.check);
     lock = take_output_lock(flags.out, "spectrum", partial);
-    earlier = read_earlier_rows(partial, set.cases, runs);
+    earlier = read_earlier_rows(partial, set.cases, runs, false);
   }, exit_code_of);
 
   const auto rows = run_resumable("spectrum", processes, set.cases, runs, partial, lock, std::move(earlier),

@@ -92,7 +92,7 @@ Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_vi
   options.repetitions = flags.repetitions;
   Study study;
   std::vector<SweepRun> runs;
-  std::vector<Row> earlier;
+  EarlierRows earlier;
   study.partial = partial_file_name(flags.out, name);
   processes.agree([&] {
     if (!flags.case_set.empty())

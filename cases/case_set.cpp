@@ -6,9 +6,14 @@
 // checks. Errors carry the line of the value that caused them, so the value rules stay
 // in one place (validate) and this file only maps a field back to where it was written.
 //
+// A family expands into one Expansion per scene (its axes and their values); a case is
+// built from its point's place on those axes (Reader::build), so that load_case_list can
+// build each case on demand and hold no list (a million-point set held 320 MB of Cases:
+// issue 36). Every case is still built and checked once as the file loads, so a lazy set
+// and a held one refuse a file with the same error.
+//
 // Rejected: letting toml++'s node_view do lookups (it hides which keys were never read,
-// so unknown keys would pass silently); expanding families lazily (a sweep wants the
-// whole list, and the expansion limits below keep it small enough to hold).
+// so unknown keys would pass silently).
 
 #include "cases/case_set.hpp"
 
@@ -295,7 +300,9 @@ class Reader {
     throw CaseSetError(msg);
   }
 
-  CaseSet read(const toml::table& root) const {
+  // hold: the cases into set.cases; otherwise each is built, checked and dropped, and
+  // case_at builds it again on demand.
+  CaseSet read(const toml::table& root, bool hold) {
     CaseSet set;
     const toml::node* families = nullptr;
     std::uint32_t families_line = 0;
@@ -348,13 +355,35 @@ class Reader {
           fail(nm.line, nm.field, "duplicate family name \"" + clip(nm.text) + "\" (first used at line " +
                                       std::to_string(other_line) + ")");
       seen.emplace_back(nm.text, nm.line);
-      expand(resolve(own, defaults, prefix, line_of(*t)), nm.text, set.cases);
+      expand(resolve(own, defaults, prefix, line_of(*t)), nm.text, hold ? &set.cases : nullptr);
     }
     return set;
   }
 
+  std::size_t size() const { return points_; }
+
+  // Point i of the set, as read() built it (the file was checked then: nothing here fails).
+  Case case_at(std::size_t i) const {
+    const auto e = std::upper_bound(expansions_.begin(), expansions_.end(), i,
+                                    [](std::size_t p, const Expansion& x) { return p < x.first; }) - 1;
+    return build(*e, i - e->first, false);
+  }
+
  private:
+  // One scene of one family: its axes (expansion_order), the values of each in `eff`, and the
+  // points it holds, first .. first + count - 1 of the set.
+  struct Expansion {
+    std::shared_ptr<const Entries> eff;
+    std::string family;
+    Scene scene = Scene::pair;
+    std::vector<Key> axes;
+    bool symmetric = false, physical = false;
+    std::size_t first = 0, count = 0;
+  };
+
   std::string file_;
+  std::vector<Expansion> expansions_;  // in point order
+  std::size_t points_ = 0;
   // The records the file names, by their path (relative to the working directory), read once.
   mutable std::map<std::string, std::shared_ptr<const Record>> records_;
 
@@ -737,24 +766,24 @@ class Reader {
 
   // The cartesian product, in Key order (scene outermost, pi2 innermost). Keys a scene
   // does not use are left out of its product, so mixing scenes in one family does not
-  // repeat cases.
-  void expand(const Entries& eff, const std::string& family, std::vector<Case>& out) const {
+  // repeat cases. Each case is built and checked here; `out`, when given, keeps them.
+  void expand(const Entries& resolved, const std::string& family, std::vector<Case>* out) {
+    const auto eff_ptr = std::make_shared<const Entries>(resolved);
+    const Entries& eff = *eff_ptr;
     const bool symmetric = eff[index(kSymmetric)].given && eff[index(kSymmetric)].flag;
     bool physical = false;
     for (Key k = kFirstPhysical; k < kKeyCount; ++k) physical = physical || eff[index(k)].given;
     for (int scene_value : eff[index(kScene)].choices) {
-      const auto scene = static_cast<Scene>(scene_value);
-      std::vector<Key> axes;
+      Expansion e{eff_ptr, family, static_cast<Scene>(scene_value), {}, symmetric, physical, points_, 1};
       for (Key k : expansion_order()) {
-        if (!is_pulse_key(k) && !scene_uses(use_of(k), scene)) continue;
+        if (!is_pulse_key(k) && !scene_uses(use_of(k), e.scene)) continue;
         if (is_body2(k) && symmetric) continue;
         if (!eff[index(k)].given) continue;  // a pulse's key for other pulses, a Pi term in physical units
-        axes.push_back(k);
+        e.axes.push_back(k);
       }
-      std::size_t count = 1;
-      for (Key k : axes) {
-        count *= eff[index(k)].size();
-        if (count + out.size() > kMaxCases)
+      for (Key k : e.axes) {
+        e.count *= eff[index(k)].size();
+        if (e.count + points_ > kMaxCases)
           fail(eff[index(kScene)].line, "family \"" + clip(family) + "\"",
                "expands to more than " + std::to_string(kMaxCases) + " cases in this file");
       }
@@ -762,32 +791,46 @@ class Reader {
       // Room for the family at once (and at least doubled, for a set of many families): grown
       // point by point, a 1e6-point family's vector (320 bytes a Case) was copied 20 times, and
       // 1,048,576 of them were held.
-      if (out.capacity() < out.size() + count) out.reserve(std::max(out.size() + count, 2 * out.capacity()));
-      std::vector<std::size_t> at(axes.size(), 0);
-      Case c;
-      c.family = family;
-      c.scene = scene;
-      for (std::size_t n = 0; n < count; ++n) {
-        for (std::size_t a = 0; a < axes.size(); ++a) set(c, axes[a], eff[index(axes[a])], at[a]);
-        if (symmetric && uses_body2(scene))
-          for (Key k = kFirstNumber; k < kSymmetric; ++k)
-            if (is_body2(k)) c.*(number_field(k)->number) = c.*(number_field(body1_twin(k))->number);
-        // A record's a_p defaults to its peak (cases/README.md, "Records"),
-        // and its w_p to its mean frequency 2 pi / T_m.
-        if (c.pulse == PulseShape::record && c.samples && eff[index(key_of("a_p"))].builtin) c.a_p = c.samples->peak;
-        if (c.pulse == PulseShape::record && c.samples && eff[index(key_of("w_p"))].builtin) {
-          if (!std::isfinite(c.samples->t_m)) report_record(eff, axes, at, no_mean_period_reason());
-          c.w_p = c.samples->mean_frequency();
-        }
-        if (physical) to_pi_terms(c, eff, axes, at, symmetric);
-        if (auto bad = validate(c)) report_invalid(*bad, eff, axes, at, symmetric);
-        out.push_back(c);
-        for (std::size_t a = axes.size(); a-- > 0;) {  // odometer: the last axis turns fastest
-          if (++at[a] < eff[index(axes[a])].size()) break;
-          at[a] = 0;
-        }
+      if (out && out->capacity() < out->size() + e.count)
+        out->reserve(std::max(out->size() + e.count, 2 * out->capacity()));
+      for (std::size_t n = 0; n < e.count; ++n) {
+        Case c = build(e, n, true);
+        if (out) out->push_back(std::move(c));
       }
+      points_ += e.count;
+      expansions_.push_back(std::move(e));
     }
+  }
+
+  // Case n of an expansion: its place on each axis (the last axis turns fastest), then what
+  // the values imply (a record's defaults, the Pi terms of physical units). check: validate
+  // it, failing at the value that made it invalid.
+  Case build(const Expansion& e, std::size_t n, bool check) const {
+    const Entries& eff = *e.eff;
+    std::vector<std::size_t> at(e.axes.size(), 0);
+    for (std::size_t a = e.axes.size(); a-- > 0;) {
+      const std::size_t size = eff[index(e.axes[a])].size();
+      at[a] = n % size;
+      n /= size;
+    }
+    Case c;
+    c.family = e.family;
+    c.scene = e.scene;
+    for (std::size_t a = 0; a < e.axes.size(); ++a) set(c, e.axes[a], eff[index(e.axes[a])], at[a]);
+    if (e.symmetric && uses_body2(e.scene))
+      for (Key k = kFirstNumber; k < kSymmetric; ++k)
+        if (is_body2(k)) c.*(number_field(k)->number) = c.*(number_field(body1_twin(k))->number);
+    // A record's a_p defaults to its peak (cases/README.md, "Records"),
+    // and its w_p to its mean frequency 2 pi / T_m.
+    if (c.pulse == PulseShape::record && c.samples && eff[index(key_of("a_p"))].builtin) c.a_p = c.samples->peak;
+    if (c.pulse == PulseShape::record && c.samples && eff[index(key_of("w_p"))].builtin) {
+      if (!std::isfinite(c.samples->t_m)) report_record(eff, e.axes, at, no_mean_period_reason());
+      c.w_p = c.samples->mean_frequency();
+    }
+    if (e.physical) to_pi_terms(c, eff, e.axes, at, e.symmetric);
+    if (check)
+      if (auto bad = validate(c)) report_invalid(*bad, eff, e.axes, at, e.symmetric);
+    return c;
   }
 
   // A case in physical units: its Pi terms, in the unit of a record's mean frequency unless
@@ -858,11 +901,22 @@ class Reader {
 }  // namespace
 
 CaseSet parse_case_set(std::string_view toml_text, std::string_view source_name) {
-  return Reader(source_name).read(parse_toml<CaseSetError>(toml_text, source_name));
+  return Reader(source_name).read(parse_toml<CaseSetError>(toml_text, source_name), true);
 }
 
 CaseSet load_case_set(const std::filesystem::path& file) {
   return parse_case_set(read_input_file<CaseSetError>(file), file.string());
+}
+
+CaseListSet parse_case_list(std::string_view toml_text, std::string_view source_name) {
+  const auto reader = std::make_shared<Reader>(source_name);
+  CaseSet read = reader->read(parse_toml<CaseSetError>(toml_text, source_name), false);
+  return {std::move(read.name), std::move(read.description),
+          CaseList(reader->size(), [reader](std::size_t i) { return reader->case_at(i); })};
+}
+
+CaseListSet load_case_list(const std::filesystem::path& file) {
+  return parse_case_list(read_input_file<CaseSetError>(file), file.string());
 }
 
 }  // namespace pb

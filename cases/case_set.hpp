@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cases/case.hpp"
+#include "cases/case_list.hpp"
 
 namespace pb {
 
@@ -26,5 +27,17 @@ struct CaseSet {
 
 CaseSet parse_case_set(std::string_view toml_text, std::string_view source_name);
 CaseSet load_case_set(const std::filesystem::path& file);
+
+// The same set with its cases built on demand (cases/case_list.hpp), for a sweep that must
+// not hold them (`spectrum`: a million points held 320 MB). The file is checked as fully as
+// load_case_set checks it, every case built once and dropped; the list keeps what the file
+// gave (each family's values and the records it names).
+struct CaseListSet {
+  std::string name;
+  std::string description;
+  CaseList cases;
+};
+CaseListSet parse_case_list(std::string_view toml_text, std::string_view source_name);
+CaseListSet load_case_list(const std::filesystem::path& file);
 
 }  // namespace pb

@@ -22,19 +22,28 @@ std::string kind_of(mode_t mode) {
   return "not a regular file";
 }
 
+// Opens `file` to read and says why it is not a regular file (nullopt when it is); fd is -1
+// when it could not be opened.
+std::optional<std::string> open_regular(const std::filesystem::path& file, int& fd, struct stat& st) {
+  fd = -1;
+  if (file.empty()) return "empty file name";
+  // O_NONBLOCK: a FIFO with no writer opens at once (and is then refused) instead of waiting.
+  fd = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return std::string(std::strerror(errno));
+  if (::fstat(fd, &st) != 0) return std::string(std::strerror(errno));
+  if (!S_ISREG(st.st_mode)) return kind_of(st.st_mode);
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<std::string> read_regular_file(const std::filesystem::path& file, std::string& text) {
   text.clear();
-  if (file.empty()) return "empty file name";
-  // O_NONBLOCK: a FIFO with no writer opens at once (and is then refused) instead of waiting.
-  const int fd = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) return std::string(std::strerror(errno));
+  int fd = -1;
   struct stat st {};
-  std::optional<std::string> why;
-  if (::fstat(fd, &st) != 0) why = std::strerror(errno);
-  else if (!S_ISREG(st.st_mode)) why = kind_of(st.st_mode);
-  else if (static_cast<unsigned long long>(st.st_size) > kMaxInputBytes)
+  std::optional<std::string> why = open_regular(file, fd, st);
+  if (fd < 0) return why;
+  if (!why && static_cast<unsigned long long>(st.st_size) > kMaxInputBytes)
     why = "larger than " + std::to_string(kMaxInputBytes >> 20) + " MB (" + std::to_string(st.st_size) + " bytes)";
   if (!why) {
     text.reserve(static_cast<std::size_t>(st.st_size));
@@ -57,6 +66,14 @@ std::optional<std::string> read_regular_file(const std::filesystem::path& file, 
   }
   ::close(fd);
   if (why) text.clear();
+  return why;
+}
+
+std::optional<std::string> regular_file_problem(const std::filesystem::path& file) {
+  int fd = -1;
+  struct stat st {};
+  const std::optional<std::string> why = open_regular(file, fd, st);
+  if (fd >= 0) ::close(fd);
   return why;
 }
 

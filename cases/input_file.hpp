@@ -22,6 +22,11 @@ inline constexpr std::size_t kMaxInputBytes = std::size_t{256} << 20;
 // FIFO)", "larger than 256 MB", strerror's reason); `text` is left empty then.
 std::optional<std::string> read_regular_file(const std::filesystem::path& file, std::string& text);
 
+// Why `file` is not a regular file that can be opened, as read_regular_file says it, or
+// nullopt; no size limit. For a reader that streams a file too large to hold: a sweep's
+// partial file, 450 MB at a million points.
+std::optional<std::string> regular_file_problem(const std::filesystem::path& file);
+
 // The file's text; throws Error("<file>: cannot read: <why>") (the name clipped).
 template <class Error>
 std::string read_input_file(const std::filesystem::path& file);

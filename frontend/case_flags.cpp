@@ -176,10 +176,10 @@ ChosenCase chosen_case(const CLI::App& command, const CaseFlags& flags) {
   return chosen_case([&](std::string_view flag) { return command.count(std::string(flag)) > 0; }, flags);
 }
 
-void validate_case_set(const CaseSet& set, const std::string& file) {
-  if (set.cases.empty()) throw BadInput(file + ": no cases");
-  for (std::size_t i = 0; i < set.cases.size(); ++i)
-    if (auto bad = validate(set.cases[i])) throw BadInput(file + ": point " + std::to_string(i) + ": " + *bad);
+void validate_case_set(const CaseList& cases, const std::string& file) {
+  if (cases.empty()) throw BadInput(file + ": no cases");
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    if (auto bad = validate(cases[i])) throw BadInput(file + ": point " + std::to_string(i) + ": " + *bad);
 }
 
 std::string case_flag_message(const std::string& field_reason) {

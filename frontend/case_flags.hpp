@@ -40,7 +40,8 @@ using GivenFlag = std::function<bool(std::string_view flag)>;
 ChosenCase chosen_case(const GivenFlag& given, const CaseFlags& flags);
 
 // Every case of a case-set file validated ("FILE: point K: field: reason"); throws BadInput.
-void validate_case_set(const CaseSet& set, const std::string& file);
+void validate_case_set(const CaseList& cases, const std::string& file);
+inline void validate_case_set(const CaseSet& set, const std::string& file) { validate_case_set(set.cases, file); }
 
 // "field: reason" from pb::validate with the field turned into its flag ("--n-free: ...").
 std::string case_flag_message(const std::string& field_reason);

@@ -144,7 +144,7 @@ class Outgoing {
   std::list<Send> sends_;  // a list: MPI holds the address of each request and buffer until it is done
 };
 
-std::vector<Row> lead(const Job& job, std::span<const Case> cases, std::span<const SweepRun> runs,
+std::vector<Row> lead(const Job& job, const CaseList& cases, std::span<const SweepRun> runs,
                       std::span<const std::size_t> todo, const SweepOptions& options) {
   const std::size_t total = cases.size() * runs.size();
   Dispenser dispenser(todo, job.size());
@@ -226,7 +226,7 @@ std::vector<Row> lead(const Job& job, std::span<const Case> cases, std::span<con
   return rows;
 }
 
-void follow(std::span<const Case> cases, std::span<const SweepRun> runs, const SweepOptions& options) {
+void follow(const CaseList& cases, std::span<const SweepRun> runs, const SweepOptions& options) {
   const unsigned threads = thread_count(options);
   std::mutex mutex;  // guards the three below
   std::condition_variable arrived;
@@ -326,7 +326,7 @@ void follow(std::span<const Case> cases, std::span<const SweepRun> runs, const S
 
 }  // namespace
 
-std::vector<Row> run_sweep(const Job& job, std::span<const Case> cases, std::span<const SweepRun> runs,
+std::vector<Row> run_sweep(const Job& job, const CaseList& cases, std::span<const SweepRun> runs,
                            std::span<const std::size_t> todo, const SweepOptions& options) {
   if (job.rank() == 0) return lead(job, cases, runs, todo, options);
   follow(cases, runs, options);

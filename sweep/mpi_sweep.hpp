@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "cases/case.hpp"
+#include "cases/case_list.hpp"
 #include "sweep/mpi_job.hpp"
 #include "rows/row.hpp"
 #include "sweep/sweep.hpp"
@@ -43,7 +44,7 @@ namespace pb::mpi {
 // options.threads, cancel: each rank's own; on_row, on_progress: rank 0's (over the rows of
 // every rank); next_task: not used. Rank 0 returns every row (sorted by run, then point),
 // the other ranks none.
-std::vector<Row> run_sweep(const Job& job, std::span<const Case> cases, std::span<const SweepRun> runs,
+std::vector<Row> run_sweep(const Job& job, const CaseList& cases, std::span<const SweepRun> runs,
                            std::span<const std::size_t> todo, const SweepOptions& options);
 
 }  // namespace pb::mpi

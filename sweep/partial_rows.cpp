@@ -30,7 +30,7 @@ std::size_t take_run(std::vector<std::string>& fields) {
 // Checks each record against the task it names, field for field as csv_line writes them.
 class TaskCheck {
  public:
-  TaskCheck(std::span<const Case> cases, std::span<const SweepRun> runs) : cases_(cases), runs_(runs) {
+  TaskCheck(const CaseList& cases, std::span<const SweepRun> runs) : cases_(cases), runs_(runs) {
     const std::vector<std::string> header = split_csv(csv_header());
     for (const char* column : kTaskColumns)
       columns_.push_back(static_cast<std::size_t>(std::find(header.begin(), header.end(), column) - header.begin()));
@@ -38,8 +38,8 @@ class TaskCheck {
   }
 
   // "" when the row is the task's; otherwise why not. A row read back prints the line it
-  // was read from, so its fields are compared as printed.
-  std::string mismatch(const Row& row) const {
+  // was read from, so its fields are compared as printed (`printed`: csv_line(row)).
+  std::string mismatch(const Row& row, const std::string& printed) const {
     const std::string which =
         "point " + std::to_string(row.point) + (runs_.size() > 1 ? " of run " + std::to_string(row.run) : "");
     if (row.run >= runs_.size()) return "run " + std::to_string(row.run) + ": this sweep has " +
@@ -52,7 +52,7 @@ class TaskCheck {
     expected.solver = std::string(run.solver->name);
     expected.variant = run.settings.variant;
     expected.settings = settings_[row.run];
-    const std::vector<std::string> fields = split_csv(csv_line(row));
+    const std::vector<std::string> fields = split_csv(printed);
     const std::vector<std::string> want = split_csv(csv_line(expected));
     for (std::size_t k = 0; k < columns_.size(); ++k) {
       const std::size_t i = columns_[k];
@@ -63,7 +63,7 @@ class TaskCheck {
   }
 
  private:
-  std::span<const Case> cases_;
+  const CaseList& cases_;
   std::span<const SweepRun> runs_;
   std::vector<std::size_t> columns_;   // of kTaskColumns in the header
   std::vector<std::string> settings_;  // describe() of each run
@@ -85,8 +85,26 @@ Row parse_partial_line(std::string_view record, bool with_run) {
   return row;
 }
 
-std::vector<Row> read_partial_rows(std::istream& in, std::string_view file, std::span<const Case> cases,
+std::vector<Row> read_partial_rows(std::istream& in, std::string_view file, const CaseList& cases,
                                    std::span<const SweepRun> runs) {
+  std::vector<Row> rows;
+  for_each_partial_row(in, file, cases, runs, [&](Row&& row) { rows.push_back(std::move(row)); });
+  std::sort(rows.begin(), rows.end(), task_order);
+  return rows;
+}
+
+void for_each_partial_row(std::istream& in, std::string_view file, const CaseList& cases,
+                          std::span<const SweepRun> runs, const std::function<void(Row&&)>& each,
+                          PartialFileShape* shape) {
+  PartialFileShape seen_shape;
+  if (!shape) shape = &seen_shape;
+  *shape = PartialFileShape{};
+  // Where the stream is: past the last whole record. A stream that cannot say is rewritten.
+  const auto mark = [&] {
+    const std::streamoff at = in.tellg();
+    if (at < 0) shape->as_printed = false;
+    else shape->whole_bytes = static_cast<std::uint64_t>(at);
+  };
   const bool with_run = runs.size() > 1;
   const std::string afresh = " (remove the file to start afresh)";
   std::string record;
@@ -94,12 +112,12 @@ std::vector<Row> read_partial_rows(std::istream& in, std::string_view file, std:
   const auto fail = [&](const std::string& reason) -> PartialRowsError {
     return PartialRowsError(std::string(file) + ":" + std::to_string(line) + ": " + reason);
   };
-  if (!read_csv_record(in, record)) return {};  // empty, or cut within the header
+  if (!read_csv_record(in, record)) return;  // empty, or cut within the header
   if (record != partial_header(with_run))
     throw fail("not the partial file of this sweep: its header is not this sweep's" + afresh);
+  mark();
 
   const TaskCheck check(cases, runs);
-  std::vector<Row> rows;
   std::vector<std::size_t> seen(cases.size() * runs.size(), 0);  // each task's line; 0: none yet
   for (line += 1; read_csv_record(in, record); line += 1 + static_cast<std::size_t>(std::ranges::count(record, '\n'))) {
     Row row;
@@ -110,7 +128,8 @@ std::vector<Row> read_partial_rows(std::istream& in, std::string_view file, std:
       // same check. Refused rather than rerun, so that nothing is recomputed unasked.
       throw fail(std::string("not a row: ") + e.what() + " (delete the line to run that point again, or remove the file to start afresh)");
     }
-    if (const std::string why = check.mismatch(row); !why.empty())
+    const std::string printed = csv_line(row);
+    if (const std::string why = check.mismatch(row, printed); !why.empty())
       throw fail(why + ": the file is from another sweep" + afresh);
     // Two rows of one task (files joined, or two sweeps on one output) may differ, and
     // keeping either would be a silent choice.
@@ -120,10 +139,11 @@ std::vector<Row> read_partial_rows(std::istream& in, std::string_view file, std:
                  ": a second row (the first is on line " + std::to_string(first) + "); delete one of the two lines");
     first = line;
     row.input = cases[row.point];  // exactly the case, also in the columns the CSV leaves empty
-    rows.push_back(std::move(row));
+    // The line a rewrite would write (the case's columns printed from the case itself).
+    shape->as_printed = shape->as_printed && record == partial_line(row, with_run);
+    each(std::move(row));
+    mark();
   }
-  std::sort(rows.begin(), rows.end(), task_order);
-  return rows;
 }
 
 std::vector<std::size_t> missing_tasks(std::span<const Row> done, std::size_t cases, std::size_t runs) {

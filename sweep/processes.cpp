@@ -77,7 +77,7 @@ void Processes::agree(const std::function<void()>& check, ExitCodeOf exit_code) 
 #endif
 }
 
-std::vector<Row> Processes::sweep(std::span<const Case> cases, std::span<const SweepRun> runs,
+std::vector<Row> Processes::sweep(const CaseList& cases, std::span<const SweepRun> runs,
                                   std::span<const std::size_t> todo, SweepOptions options) const {
 #ifdef POUNDBENCH_HAVE_MPI
   if (job_) return mpi::run_sweep(*job_, cases, runs, todo, options);

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "cases/case.hpp"
+#include "cases/case_list.hpp"
 #include "rows/row.hpp"
 #include "sweep/sweep.hpp"
 
@@ -66,7 +67,7 @@ class Processes {
 
   // Runs the sweep's tasks `todo` (the leader's list) on every process: run_sweep alone,
   // mpi::run_sweep in a job. The leader gets every new row, the other processes none.
-  std::vector<Row> sweep(std::span<const Case> cases, std::span<const SweepRun> runs,
+  std::vector<Row> sweep(const CaseList& cases, std::span<const SweepRun> runs,
                          std::span<const std::size_t> todo, SweepOptions options) const;
 
   // After a failure of this process alone: in a job, ends every rank (MPI_Abort) so that

@@ -237,7 +237,7 @@ TaskSource tasks_from(std::span<const std::size_t> tasks) {
   };
 }
 
-std::vector<Row> run_sweep(std::span<const Case> cases, std::span<const SweepRun> runs,
+std::vector<Row> run_sweep(const CaseList& cases, std::span<const SweepRun> runs,
                            const SweepOptions& options) {
   const std::size_t n = cases.size();
   const std::size_t total = n * runs.size();
@@ -312,7 +312,7 @@ std::vector<Row> run_sweep(std::span<const Case> cases, std::span<const SweepRun
   return rows;
 }
 
-std::vector<Row> run_sweep(std::span<const Case> cases, const SolverInfo& solver, const Settings& settings,
+std::vector<Row> run_sweep(const CaseList& cases, const SolverInfo& solver, const Settings& settings,
                            const SweepOptions& options) {
   const SweepRun run{&solver, settings};
   return run_sweep(cases, std::span(&run, 1), options);

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "cases/case.hpp"
+#include "cases/case_list.hpp"
 #include "solvers/solver.hpp"
 #include "rows/row.hpp"
 #include "sweep/no_contact_cache.hpp"
@@ -116,10 +117,10 @@ struct SweepOptions {
 
 // Rows sorted by run, then point: one per task run (every task unless next_task says
 // otherwise or the sweep was cancelled). Row::run is the index into `runs`.
-std::vector<Row> run_sweep(std::span<const Case> cases, std::span<const SweepRun> runs,
+std::vector<Row> run_sweep(const CaseList& cases, std::span<const SweepRun> runs,
                            const SweepOptions& options = {});
 // A sweep of one run.
-std::vector<Row> run_sweep(std::span<const Case> cases, const SolverInfo& solver, const Settings& settings,
+std::vector<Row> run_sweep(const CaseList& cases, const SolverInfo& solver, const Settings& settings,
                            const SweepOptions& options = {});
 
 }  // namespace pb
