@@ -71,7 +71,7 @@ Result solve_with(const System& system, const Settings& settings, const Config& 
 }
 
 Result solve(const System& system, const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
+  const std::optional<Config> config = kVariants.find(settings.variant);
   if (!config) {
     Result res;
     res.status = Status::failed;
@@ -82,11 +82,11 @@ Result solve(const System& system, const Settings& settings) {
 }
 
 std::string describe(const Settings& settings) {
-  return describe_variant(find_variant(settings.variant), settings, kDefaultSteps);
+  return describe_variant(kVariants, settings, kDefaultSteps);
 }
 
 std::string check(const Settings& settings) {
-  return check_variant("bullet", find_variant(settings.variant), variants(), settings, kDefaultSteps);
+  return check_variant("bullet", kVariants, settings, kDefaultSteps);
 }
 
 }  // namespace pb::bullet

@@ -1,29 +1,10 @@
 #include "solvers/bullet/variants.hpp"
 
-#include <array>
-
 #include "solvers/bullet/engine.hpp"
-#include "solvers/variant_table.hpp"
 
 namespace pb::bullet {
 
 namespace {
-
-constexpr Activation kPredicted = Activation::predicted, kOverlap = Activation::overlap;
-
-// si-overlap keeps what Bullet's own contact generation gives a user (a point once the
-// shapes touch) with the faithful solver settings: the one difference from si-faithful is
-// when a contact starts. Only for si: the three faithful solvers agree to the bit on single
-// contacts, so MLCP twins would show the same difference again.
-constexpr std::array kVariants = {
-    Config{"si-faithful", Engine::si, true, kPredicted},
-    Config{"si-overlap", Engine::si, true, kOverlap},
-    Config{"si-default", Engine::si, false, kOverlap},
-    Config{"mlcp-dantzig-faithful", Engine::mlcp_dantzig, true, kPredicted},
-    Config{"mlcp-dantzig-default", Engine::mlcp_dantzig, false, kOverlap},
-    Config{"mlcp-lemke-faithful", Engine::mlcp_lemke, true, kPredicted},
-    Config{"mlcp-lemke-default", Engine::mlcp_lemke, false, kOverlap},
-};
 
 std::string_view solver_name(Engine e) {
   switch (e) {
@@ -35,12 +16,6 @@ std::string_view solver_name(Engine e) {
 }
 
 }  // namespace
-
-std::span<const Config> variants() { return kVariants; }
-
-std::optional<Config> find_variant(std::string_view name) {
-  return find_named(std::span<const Config>(kVariants), name, kDefaultVariant);
-}
 
 void add_config(NamedValues& out, const Config& config, const Settings& settings) {
   // The step does not change any of these settings; 1 stands for it.
@@ -57,7 +32,7 @@ void add_config(NamedValues& out, const Config& config, const Settings& settings
 
 std::vector<VariantInfo> variant_list() {
   std::vector<VariantInfo> out;
-  for (const Config& c : kVariants) {
+  for (const Config& c : kVariants.configs) {
     std::string line;
     switch (c.engine) {
       case Engine::si:

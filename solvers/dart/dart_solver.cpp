@@ -39,7 +39,7 @@ Result run(const System& sys, const Settings& set, const Config& config) {
 }  // namespace
 
 Result solve(const System& system, const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
+  const std::optional<Config> config = kVariants.find(settings.variant);
   if (!config) return fail("unknown variant '" + settings.variant + "'");
   if (system.yields())
     return yielding_refused("dart's bodies have linear springs (explicit, or the joints' own in its default); the "
@@ -52,11 +52,11 @@ Result solve(const System& system, const Settings& settings) {
 }
 
 std::string describe(const Settings& settings) {
-  return describe_variant(find_variant(settings.variant), settings, kDefaultSteps);
+  return describe_variant(kVariants, settings, kDefaultSteps);
 }
 
 std::string check(const Settings& settings) {
-  return check_variant("dart", find_variant(settings.variant), variants(), settings, kDefaultSteps);
+  return check_variant("dart", kVariants, settings, kDefaultSteps);
 }
 
 }  // namespace pb::dart

@@ -150,7 +150,7 @@ Result guarded(const System& sys, const Settings& set, const Config& config) {
 }  // namespace
 
 Result solve(const System& system, const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
+  const std::optional<Config> config = kVariants.find(settings.variant);
   if (!config) return fail(Status::failed, "unknown variant '" + settings.variant + "'");
   if (system.yields())
     return yielding_refused("mujoco's slide joints own the bodies' springs (a linear joint stiffness); "
@@ -159,13 +159,11 @@ Result solve(const System& system, const Settings& settings) {
 }
 
 std::string describe(const Settings& settings) {
-  return describe_variant(find_variant(settings.variant), settings, kDefaultSteps);
+  return describe_variant(kVariants, settings, kDefaultSteps);
 }
 
 std::string check(const Settings& settings) {
-  if (std::string bad = check_variant("mujoco", find_variant(settings.variant), variants(), settings, kDefaultSteps);
-      !bad.empty())
-    return bad;
+  if (std::string bad = check_variant("mujoco", kVariants, settings, kDefaultSteps); !bad.empty()) return bad;
   const double m = settings.contact_steps;
   if (!(m == 0.0 || (m >= kMinContactSteps && m <= kMaxContactSteps)))
     return "contact_steps: must be in [1, 1e6] (0: the default 2)";

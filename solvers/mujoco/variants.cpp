@@ -1,28 +1,8 @@
 #include "solvers/mujoco/variants.hpp"
 
-#include <array>
-
 #include "solvers/mujoco/contact.hpp"
-#include "solvers/variant_table.hpp"
 
 namespace pb::mujoco {
-
-namespace {
-
-constexpr std::array kVariants = {
-    Config{"euler-faithful", Integrator::euler, true},
-    Config{"implicit-faithful", Integrator::implicit, true},
-    Config{"rk4-faithful", Integrator::rk4, true},
-    Config{"default", Integrator::euler, false},
-};
-
-}  // namespace
-
-std::span<const Config> variants() { return kVariants; }
-
-std::optional<Config> find_variant(std::string_view name) {
-  return find_named(std::span<const Config>(kVariants), name, kDefaultVariant);
-}
 
 double contact_steps(const Settings& settings) {
   return settings.contact_steps > 0.0 ? settings.contact_steps : kDefaultContactSteps;
@@ -53,7 +33,7 @@ void add_config(NamedValues& out, const Config& config, const Settings& settings
 
 std::vector<VariantInfo> variant_list() {
   std::vector<VariantInfo> out;
-  for (const Config& c : kVariants) {
+  for (const Config& c : kVariants.configs) {
     std::string line = c.integrator == Integrator::euler      ? "semi-implicit Euler (damping implicit)"
                        : c.integrator == Integrator::implicit ? "Euler implicit in velocity"
                                                               : "4th-order Runge-Kutta";

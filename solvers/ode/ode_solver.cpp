@@ -74,12 +74,7 @@ class Engine : public StepEngine {
       out_.v[i] = dBodyGetLinearVel(bodies_[i])[0];
     }
     for (std::size_t j = 0; j < joint_.size(); ++j) out_.force[j] = joint_[j] ? feedback_[j].f1[0] : 0.0;
-    if (lcp_failures() != lcp_failures_before_) {
-      res.status = Status::failed;
-      res.message = "ODE's Dantzig LCP gave up (degenerate pivot) at step " + std::to_string(k + 1) +
-                    ": the contact forces of that step are wrong";
-      return StepOutcome::taken_then_stop;
-    }
+    if (lcp_failures() != lcp_failures_before_) return dantzig_gave_up("ODE", k, "forces", res);
     return StepOutcome::taken;
   }
 
@@ -228,7 +223,7 @@ Result guarded(const System& sys, const Settings& set, const Config& config) {
 }  // namespace
 
 Result solve(const System& system, const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
+  const std::optional<Config> config = kVariants.find(settings.variant);
   if (!config) return fail(Status::failed, "unknown variant " + settings.variant);
   return guarded(system, settings, *config);
 }
@@ -238,11 +233,11 @@ Result solve_with(const System& system, const Settings& settings, const Config& 
 }
 
 std::string describe(const Settings& settings) {
-  return describe_variant(find_variant(settings.variant), settings, kDefaultSteps);
+  return describe_variant(kVariants, settings, kDefaultSteps);
 }
 
 std::string check(const Settings& settings) {
-  return check_variant("ode", find_variant(settings.variant), variants(), settings, kDefaultSteps);
+  return check_variant("ode", kVariants, settings, kDefaultSteps);
 }
 
 }  // namespace pb::ode

@@ -191,7 +191,7 @@ Result run(const System& sys, const Settings& set, const Config& config) {
 }  // namespace
 
 Result solve(const System& system, const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
+  const std::optional<Config> config = kVariants.find(settings.variant);
   if (!config) return fail("unknown variant '" + settings.variant + "'");
   if (system.yields())
     return yielding_refused("simbody's MobilityLinearSpring is linear; the bilinear law is not applied (moreau-jean, "
@@ -204,12 +204,12 @@ Result solve(const System& system, const Settings& settings) {
 }
 
 std::string describe(const Settings& settings) {
-  return describe_variant(find_variant(settings.variant), settings, kDefaultSteps);
+  return describe_variant(kVariants, settings, kDefaultSteps);
 }
 
 std::string check(const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
-  if (std::string bad = check_variant("simbody", config, variants(), settings, kDefaultSteps); !bad.empty()) return bad;
+  const std::optional<Config> config = kVariants.find(settings.variant);
+  if (std::string bad = check_variant("simbody", kVariants, settings, kDefaultSteps); !bad.empty()) return bad;
   if (!config->time_stepper()) {
     if (settings.steps != 0) return "steps: hunt-crossley's integrator chooses its own steps (--rtol)";
     if (settings.wh != 0.0) return "wh: hunt-crossley's integrator chooses its own steps (--rtol)";
