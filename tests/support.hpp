@@ -207,6 +207,14 @@ auto config_named(const Table& table, std::string_view name) {
   return config.value_or(typename decltype(config)::value_type{});
 }
 
+// check(settings) refuses `base` changed by `change`, naming `field` first ("field: why").
+template <class Check, class Change>
+void expect_refused(Check check, Settings base, std::string_view field, Change change) {
+  change(base);
+  const std::string message = check(base);
+  EXPECT_EQ(message.rfind(std::string(field) + ":", 0), 0u) << "expected " << field << ": " << message;
+}
+
 // solve(s) with a variant, N steps per shortest period (0: the default) and, if asked, every
 // step's history.
 inline Result run_variant(SolveFn solve, const System& s, std::string_view variant, int n = 0, bool history = false) {

@@ -63,21 +63,13 @@ Result solve_with(const System& system, const Settings& settings, const Config& 
   try {
     return run(system, settings, config);
   } catch (const std::exception& e) {
-    Result res;
-    res.status = Status::failed;
-    res.message = e.what();
-    return res;
+    return failed(e.what());
   }
 }
 
 Result solve(const System& system, const Settings& settings) {
   const std::optional<Config> config = kVariants.find(settings.variant);
-  if (!config) {
-    Result res;
-    res.status = Status::failed;
-    res.message = "unknown variant '" + settings.variant + "'";
-    return res;
-  }
+  if (!config) return failed("unknown variant '" + settings.variant + "'");
   return solve_with(system, settings, *config);
 }
 

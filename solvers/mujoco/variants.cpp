@@ -8,17 +8,17 @@ double contact_steps(const Settings& settings) {
   return settings.contact_steps > 0.0 ? settings.contact_steps : kDefaultContactSteps;
 }
 
-std::string_view integrator_name(Integrator i) {
+IntegratorWords words(Integrator i) {
   switch (i) {
-    case Integrator::euler: return "euler";
-    case Integrator::implicit: return "implicit";
-    case Integrator::rk4: return "rk4";
+    case Integrator::euler: return {"euler", "semi-implicit Euler (damping implicit)"};
+    case Integrator::implicit: return {"implicit", "Euler implicit in velocity"};
+    case Integrator::rk4: return {"rk4", "4th-order Runge-Kutta"};
   }
-  return "?";
+  return {"?", "?"};
 }
 
 void add_config(NamedValues& out, const Config& config, const Settings& settings) {
-  out.add("integrator", integrator_name(config.integrator));
+  out.add("integrator", words(config.integrator).name);
   if (config.calibrated) {
     out.add("contact_steps", contact_steps(settings));
     out.add("solref", "direct, calibrated to eps").add("solimp", kImpedance);
@@ -34,9 +34,7 @@ void add_config(NamedValues& out, const Config& config, const Settings& settings
 std::vector<VariantInfo> variant_list() {
   std::vector<VariantInfo> out;
   for (const Config& c : kVariants.configs) {
-    std::string line = c.integrator == Integrator::euler      ? "semi-implicit Euler (damping implicit)"
-                       : c.integrator == Integrator::implicit ? "Euler implicit in velocity"
-                                                              : "4th-order Runge-Kutta";
+    std::string line(words(c.integrator).summary);
     line += c.calibrated ? "; contacts spring-dampers calibrated to eps, time constant --contact-steps steps"
                          : "; MuJoCo's default contacts (solref 0.02 1, solimp 0.9 0.95), eps not used";
     out.push_back({c.name, line});

@@ -50,7 +50,11 @@ inline constexpr double kMaxContactSteps = 1e6;
 // Settings::contact_steps, or the default when it is 0.
 double contact_steps(const Settings& settings);
 
-std::string_view integrator_name(Integrator i);
+// An integrator's name in describe() and its words in `poundbench solvers`.
+struct IntegratorWords {
+  std::string_view name, summary;
+};
+IntegratorWords words(Integrator i);
 
 // Every setting of the configuration, for describe() after the variant and the step.
 void add_config(NamedValues& out, const Config& config, const Settings& settings);
