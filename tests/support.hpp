@@ -1,8 +1,9 @@
 #pragma once
 // What the solver tests share: the paper's standard pair/row3 case, reading a time-stepper's
 // History one row at a time, by column meaning, the measured-number format, the observed
-// order of a list of errors, the cradle start, the stress monitor's cases and the
-// convergence set.
+// order of a list of errors, the cradle start, the stress monitor's cases and what it
+// measures on them, the convergence set, free bodies at the wall and in a pair, an engine's
+// variant by name, and check()'s refusal of one changed setting.
 
 #include <algorithm>
 #include <cmath>
