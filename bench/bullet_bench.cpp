@@ -54,7 +54,7 @@ void moreau_jean_solve(benchmark::State& state, pb::Scene scene) {
 const bool registered = [] {
   for (pb::Scene scene : {pb::Scene::wall, pb::Scene::pair, pb::Scene::row3}) {
     const std::string scene_name(pb::name(scene));
-    for (const pb::bullet::Config& config : pb::bullet::variants())
+    for (const pb::bullet::Config& config : pb::bullet::kVariants.configs)
       pb::bench::at_each_n(
           benchmark::RegisterBenchmark(("BM_Bullet/" + std::string(config.name) + "/" + scene_name).c_str(),
                                        [config, scene](benchmark::State& st) { bullet_solve(st, config, scene); }));

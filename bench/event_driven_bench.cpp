@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "bench/support.hpp"
@@ -90,6 +91,22 @@ BENCHMARK(BM_EventDrivenFig4FamilyPerPoint)->Unit(benchmark::kMillisecond);
 
 namespace {
 
+// A chain of n bodies, odd ones with Pi5 = 2 and Pi6 = 0.5, gaps pi3, restitution eps, under
+// the sine pulse at Pi2 = 1, body 0 kicked at kick a_p / w_p.
+pb::Case alternating_chain(std::int64_t n, double kick, double pi3, double eps) {
+  pb::Case c;
+  c.scene = pb::Scene::chain;
+  c.bodies = static_cast<int>(n);
+  c.kick = kick;
+  c.pulse = pb::PulseShape::sine;
+  c.pi2 = 1.0;
+  c.pi3 = pi3;
+  c.pi5 = 2.0;
+  c.pi6 = 0.5;
+  c.eps = eps;
+  return c;
+}
+
 // Cost of one reference run of the N-body chain against N: alternating bodies (odd ones
 // with Pi5 = 2, Pi6 = 0.5), a gap (Pi3 = 0.5), eps = 0.5, sine pulse, Pi2 = 1. Without a
 // kick even and odd bodies move alike and impacts come in simultaneous rows; a kick of
@@ -100,16 +117,7 @@ namespace {
 // (event_driven::detail), as before a contact kept its last search's answer while no event
 // moved its bodies: the two side by side, in one run.
 void BM_EventDrivenChain(benchmark::State& state) {
-  pb::Case c;
-  c.scene = pb::Scene::chain;
-  c.bodies = static_cast<int>(state.range(0));
-  c.kick = static_cast<double>(state.range(1));
-  c.pulse = pb::PulseShape::sine;
-  c.pi2 = 1.0;
-  c.pi3 = 0.5;
-  c.pi5 = 2.0;
-  c.pi6 = 0.5;
-  c.eps = 0.5;
+  const pb::Case c = alternating_chain(state.range(0), static_cast<double>(state.range(1)), 0.5, 0.5);
   const pb::System s = pb::make_system(c);
   const auto solve = state.range(2) ? pb::event_driven::detail::solve_searching_every_contact : pb::event_driven::solve;
   long events = 0, impacts = 0;
@@ -142,16 +150,12 @@ namespace {
 // event (event_driven::detail), as the reference did before its events rebuilt only the
 // clusters they change: the two side by side, in one run.
 void BM_EventDrivenTouchingChain(benchmark::State& state) {
-  pb::Case c;
-  c.scene = pb::Scene::chain;
-  c.bodies = static_cast<int>(state.range(0));
-  c.kick = 1.0;
-  c.pulse = pb::PulseShape::sine;
-  c.pi2 = state.range(1) ? 1.0 : 0.1;
-  c.pi3 = 0.0;
-  c.pi5 = state.range(1) ? 2.0 : 1.0;
-  c.pi6 = state.range(1) ? 0.5 : 1.0;
-  c.eps = 1.0;
+  pb::Case c = alternating_chain(state.range(0), 1.0, 0.0, 1.0);
+  if (!state.range(1)) {  // the cradle
+    c.pi2 = 0.1;
+    c.pi5 = 1.0;
+    c.pi6 = 1.0;
+  }
   const pb::System s = pb::make_system(c);
   const auto solve = state.range(2) ? pb::event_driven::detail::solve_rebuilding_every_body : pb::event_driven::solve;
   long events = 0;

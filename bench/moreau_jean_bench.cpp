@@ -37,15 +37,10 @@ constexpr int kStepsPerPeriod = 1024;
 // A chain under the pulse: alternating masses and frequencies (odd bodies half the mass
 // and twice the frequency of body 0), gap Pi3 = 0.5 (or pi3), eps = 0.5, the Fig. 4 pulse.
 pb::System chain_point(int bodies, double pi3 = 0.5) {
-  pb::Case c;
-  c.scene = pb::Scene::chain;
+  pb::Case c = pb::bench::fig4_case(pb::Scene::chain);
   c.bodies = bodies;
-  c.pulse = pb::PulseShape::cosine;
-  c.pi2 = 1.0;
   c.pi3 = pi3;
-  c.pi5 = 0.5;
   c.pi6 = 2.0;
-  c.eps = 0.5;
   return pb::make_system(c);
 }
 

@@ -30,7 +30,7 @@ const bool registered = pb::bench::register_vs_moreau_jean(
 
 void BM_MujocoCompile(benchmark::State& state, pb::Scene scene) {
   const pb::System s = pb::bench::fig4_point(scene);
-  const pb::mujoco::Config config = *pb::mujoco::find_variant("euler-faithful");
+  const pb::mujoco::Config config = *pb::mujoco::kVariants.find("euler-faithful");
   const pb::mujoco::Units units = pb::mujoco::units_of(s, config);
   const double h = s.step(64) / units.time;
   pb::mujoco::prepare_process();

@@ -207,6 +207,17 @@ def physical_lines(example):
                         "(`scripts/physical_example.sh`). Not edited by hand.*"]
 
 
+NO_SUNDIALS = "Not measured: this build left the compliant solver out (SUNDIALS missing)."
+
+
+def study_block(inputs, key, lines, path, missing):
+    """A block written from one study's committed file, inputs[key] read from `path`: its
+    lines, then the line naming its sources; `missing` where the study wrote none."""
+    if not inputs[key]:
+        return [missing]
+    return [*lines(inputs[key]), "", source_line(inputs, [path, PROVENANCE])]
+
+
 def blocks(folder):
     """Every generated block of README, by name, as lines."""
     inputs = committed(folder)
@@ -235,18 +246,10 @@ def blocks(folder):
             *([*records_step.lines(inputs["records_step"]), ""] if inputs["records_step"] else []),
             source_line(inputs, [RECORDS_WP] + ([RECORDS_STEP] if inputs["records_step"] else []) + [PROVENANCE]),
         ] if inputs["records_wp"] else ["Not measured yet: `scripts/main.sh` writes these numbers."],
-        "yielding": [
-            *yielding_wp.lines(inputs["yielding_wp"]), "",
-            source_line(inputs, [YIELDING_WP, PROVENANCE]),
-        ] if inputs["yielding_wp"] else ["Not measured yet: `scripts/main.sh` writes these numbers."],
-        "compliant": [
-            *compliant.answer_lines(inputs["compliant"]), "",
-            source_line(inputs, [COMPLIANT, PROVENANCE]),
-        ] if inputs["compliant"] else ["Not measured: this build left the compliant solver out (SUNDIALS missing)."],
-        "restitution": [
-            *compliant.restitution_lines(inputs["restitution"]), "",
-            source_line(inputs, [RESTITUTION, PROVENANCE]),
-        ] if inputs["restitution"] else ["Not measured: this build left the compliant solver out (SUNDIALS missing)."],
+        "yielding": study_block(inputs, "yielding_wp", yielding_wp.lines, YIELDING_WP,
+                                "Not measured yet: `scripts/main.sh` writes these numbers."),
+        "compliant": study_block(inputs, "compliant", compliant.answer_lines, COMPLIANT, NO_SUNDIALS),
+        "restitution": study_block(inputs, "restitution", compliant.restitution_lines, RESTITUTION, NO_SUNDIALS),
         "external": [
             *measured.external_lines(inputs["measured"]), "",
             source_line(inputs, [MEASURED, PROVENANCE]),

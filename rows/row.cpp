@@ -178,6 +178,12 @@ class LineBuilder {
   bool first_ = true;
 };
 
+// The names of the case fields of one group: the header of case_numbers' columns.
+void case_names(LineBuilder& line, Group group) {
+  for (const CaseField& f : kCaseFields)
+    if (group_of(f) == group) line.text(f.name);
+}
+
 // A case's fields of one group: empty where the scene and pulse do not use them.
 void case_numbers(LineBuilder& line, const Case& c, Group group) {
   for (const CaseField& f : kCaseFields) {
@@ -202,17 +208,13 @@ double h_over_dt(const Row& row) {
 std::string csv_header() {
   LineBuilder line;
   for (const char* column : kLeadColumns) line.text(column);
-  for (const CaseField& f : kCaseFields)
-    if (group_of(f) == Group::body) line.text(f.name);
+  case_names(line, Group::body);
   for (const char* column : kMiddleColumns) line.text(column);
-  for (const CaseField& f : kCaseFields)
-    if (group_of(f) == Group::chain) line.text(f.name);
+  case_names(line, Group::chain);
   for (const char* column : kTailColumns) line.text(column);
-  for (const CaseField& f : kCaseFields)
-    if (group_of(f) == Group::pulse) line.text(f.name);
+  case_names(line, Group::pulse);
   for (const char* column : kVerdictColumns) line.text(column);
-  for (const CaseField& f : kCaseFields)
-    if (group_of(f) == Group::yielding) line.text(f.name);
+  case_names(line, Group::yielding);
   for (const char* column : kYieldColumns) line.text(column);
   for (const PhysicalField& f : kPhysicalFields) line.text(f.name);
   for (std::string_view column : kPhysicalResultNames) line.text(column);

@@ -33,22 +33,10 @@ class FieldReader {
     return field ? *field : empty_;
   }
   // An empty field is `missing` (NaN unless the column says otherwise).
-  double number(const std::string& column, double missing = kNaN) {
-    const std::string& field = text(column);
-    if (field.empty()) return missing;
-    double x = 0.0;
-    const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), x);
-    if (error != std::errc{} || end != field.data() + field.size()) fail(field, "not a number");
-    return x;
-  }
+  double number(const std::string& column, double missing = kNaN) { return parsed(column, missing, "not a number"); }
   template <typename Int>
   Int count(const std::string& column, Int missing = 0) {
-    const std::string& field = text(column);
-    if (field.empty()) return missing;
-    Int n = 0;
-    const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), n);
-    if (error != std::errc{} || end != field.data() + field.size()) fail(field, "not an integer");
-    return n;
+    return parsed(column, missing, "not an integer");
   }
   template <typename T>
   T named(const std::string& column, std::optional<T> (*parse)(std::string_view)) {
@@ -59,6 +47,17 @@ class FieldReader {
   }
 
  private:
+  // The whole field read by std::from_chars as a T, `missing` where it is empty.
+  template <typename T>
+  T parsed(const std::string& column, T missing, std::string_view not_a_t) {
+    const std::string& field = text(column);
+    if (field.empty()) return missing;
+    T x{};
+    const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), x);
+    if (error != std::errc{} || end != field.data() + field.size()) fail(field, not_a_t);
+    return x;
+  }
+
   [[noreturn]] void fail(const std::string& field, std::string_view reason) const {
     throw RowReadError(column_ + ": " + std::string(reason) + " (\"" + field + "\")");
   }

@@ -218,6 +218,13 @@ Result run_steps(const System& sys, const Settings& set, const StepPlan& plan, S
   return res;
 }
 
+StepOutcome dantzig_gave_up(std::string_view engine, long k, std::string_view unknowns, Result& res) {
+  res.status = Status::failed;
+  res.message = std::string(engine) + "'s Dantzig LCP gave up (degenerate pivot) at step " + std::to_string(k + 1) +
+                ": the contact " + std::string(unknowns) + " of that step are wrong";
+  return StepOutcome::taken_then_stop;
+}
+
 void finish_steps(const System& sys, const StepTally& tally, long k, double h, const char* why, Result& res) {
   res.steps = k;
   res.impacts = tally.impacts;

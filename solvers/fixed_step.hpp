@@ -117,6 +117,11 @@ struct StepOutput {
 // used: the run stops at t_k+1). When it stops, the engine has set res.status and message.
 enum class StepOutcome { taken, refused, taken_then_stop };
 
+// Step k (0-based) of `engine` happened, but its Dantzig LCP (ODE's dLCP, which DART carries
+// too) gave up on a degenerate pivot: the step's contact `unknowns` ("forces", "impulses")
+// are wrong, and the run fails there.
+StepOutcome dantzig_gave_up(std::string_view engine, long k, std::string_view unknowns, Result& res);
+
 class StepEngine {
  public:
   virtual ~StepEngine() = default;

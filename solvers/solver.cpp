@@ -28,12 +28,14 @@ std::optional<Status> parse_status(std::string_view text) {
   return std::nullopt;
 }
 
-Result yielding_refused(std::string_view why) {
+Result failed(std::string message) {
   Result r;
   r.status = Status::failed;
-  r.message = "yielding: " + std::string(why);
+  r.message = std::move(message);
   return r;
 }
+
+Result yielding_refused(std::string_view why) { return failed("yielding: " + std::string(why)); }
 
 std::string check_step(const Settings& settings, int default_steps) {
   if (settings.steps < 0) return "steps: must be >= 1 (0: the default " + std::to_string(default_steps) + ")";

@@ -227,6 +227,9 @@ struct ModelReference {
   Settings settings;
 };
 
+// A run that failed before it had an answer, and why.
+Result failed(std::string message);
+
 // The run of a yielding system (System::yields) by a solver whose engine owns the bodies'
 // springs and cannot take the bilinear law: failed, with "yielding: " and why in its
 // message, never an elastic answer in place of the yielding one.

@@ -3,6 +3,8 @@
 // Bullet, MuJoCo, DART, Simbody) look theirs up by name, list the names in their messages,
 // and describe and check a run's settings the same way.
 
+#include <array>
+#include <cstddef>
 #include <optional>
 #include <span>
 #include <string>
@@ -14,20 +16,30 @@
 
 namespace pb {
 
-// The configuration called `name` ("" is `default_name`), if the table has one.
-template <class Config>
-std::optional<Config> find_named(std::span<const Config> table, std::string_view name, std::string_view default_name) {
-  if (name.empty()) name = default_name;
-  for (const Config& c : table)
-    if (c.name == name) return c;
-  return std::nullopt;
-}
+// An engine's named configurations (kVariants in its variants.hpp) and the name of the one a
+// run without --variant gets.
+template <class Config, std::size_t N>
+struct VariantTable {
+  std::array<Config, N> configs;
+  std::string_view default_name;
+
+  // The configuration called `name` ("" is the default), if the table has one.
+  std::optional<Config> find(std::string_view name) const {
+    if (name.empty()) name = default_name;
+    for (const Config& c : configs)
+      if (c.name == name) return c;
+    return std::nullopt;
+  }
+};
+
+template <class Config, std::size_t N>
+VariantTable(std::array<Config, N>, std::string_view) -> VariantTable<Config, N>;
 
 // The table's names, comma-separated, for a message.
-template <class Config>
-std::string names_of(std::span<const Config> table) {
+template <class Config, std::size_t N>
+std::string names_of(const VariantTable<Config, N>& table) {
   std::string out;
-  for (const Config& c : table) {
+  for (const Config& c : table.configs) {
     if (!out.empty()) out += ", ";
     out += c.name;
   }
@@ -47,8 +59,9 @@ bool takes_steps(const Config& config) {
 // describe() of an engine with a variant table: the variant's name, the step (steps = N or
 // wh = X) where it takes one, then its configuration's own settings, as the engine's
 // add_config(NamedValues&, const Config&, const Settings&) writes them (found beside Config).
-template <class Config>
-std::string describe_variant(const std::optional<Config>& config, const Settings& settings, int default_steps) {
+template <class Config, std::size_t N>
+std::string describe_variant(const VariantTable<Config, N>& table, const Settings& settings, int default_steps) {
+  const std::optional<Config> config = table.find(settings.variant);
   NamedValues out;
   out.add("variant", config ? std::string_view(config->name) : std::string_view(settings.variant));
   if (!config) return out.add("unknown", true).json();
@@ -59,9 +72,10 @@ std::string describe_variant(const std::optional<Config>& config, const Settings
 
 // What every such engine's check() asks first: a known variant, and where it steps, a valid
 // step and contact activation rule. "" when they are fine; the engine checks its own after.
-template <class Config>
-std::string check_variant(std::string_view solver, const std::optional<Config>& config, std::span<const Config> table,
-                          const Settings& settings, int default_steps) {
+template <class Config, std::size_t N>
+std::string check_variant(std::string_view solver, const VariantTable<Config, N>& table, const Settings& settings,
+                          int default_steps) {
+  const std::optional<Config> config = table.find(settings.variant);
   if (!config)
     return "variant: unknown " + std::string(solver) + " variant '" + settings.variant + "' (one of " +
            names_of(table) + ")";

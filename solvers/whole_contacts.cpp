@@ -1,7 +1,5 @@
 #include "solvers/whole_contacts.hpp"
 
-#include <algorithm>
-
 namespace pb {
 
 namespace {
@@ -26,12 +24,7 @@ void WholeContacts::step(int j, bool touched, const double* v) {
     closed_[jj] = 1;
     ++n_closed_;
   } else if (!touched && closed_[jj]) {
-    if (isolated_[jj]) {
-      const double e = -rate / onset_[jj];
-      low_ = std::min(low_, e);
-      high_ = std::max(high_, e);
-      ++isolated_count_;
-    }
+    if (isolated_[jj]) restitution_.add(-rate / onset_[jj]);
     isolated_[jj] = 0;
     closed_[jj] = 0;
     --n_closed_;
@@ -42,9 +35,7 @@ void WholeContacts::finish(Result& r) const {
   r.impacts = impacts_;
   r.contact_phases = 0;
   r.restitution_over_contacts = true;
-  r.isolated_impacts = isolated_count_;
-  r.restitution_low = isolated_count_ > 0 ? low_ : std::numeric_limits<double>::quiet_NaN();
-  r.restitution_high = isolated_count_ > 0 ? high_ : std::numeric_limits<double>::quiet_NaN();
+  restitution_.write(r);
 }
 
 }  // namespace pb

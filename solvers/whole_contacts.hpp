@@ -6,10 +6,10 @@
 // contact closed from its onset to its end, approaching faster than kRestitutionFloor
 // a_p / w_p. A soft contact has no persistent phase of its own: contact_phases stays 0.
 
-#include <limits>
 #include <vector>
 
 #include "cases/system.hpp"
+#include "solvers/isolated_restitution.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb {
@@ -29,9 +29,8 @@ class WholeContacts {
   std::vector<double> onset_;
   int n_closed_ = 0;
   long impacts_ = 0;
-  long isolated_count_ = 0;
   double floor_;
-  double low_ = std::numeric_limits<double>::infinity(), high_ = -std::numeric_limits<double>::infinity();
+  IsolatedRestitution restitution_;
 };
 
 }  // namespace pb

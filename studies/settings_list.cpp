@@ -42,29 +42,27 @@ class Reader {
 
   // One value or a list of them, as doubles.
   std::vector<double> numbers(const toml::node& n, const std::string& field) const {
-    std::vector<double> out;
-    auto one = [&](const toml::node& v) {
+    std::vector<double> out = one_or_list<double>(n, field, [&](const toml::node& v) {
       if (const auto* i = v.as_integer()) return static_cast<double>(i->get());
       if (const auto* f = v.as_floating_point()) return f->get();
       fail(&v, field, "must be a number");
-    };
-    if (const auto* a = n.as_array()) {
-      for (const toml::node& v : *a) out.push_back(one(v));
-      if (out.empty()) fail(&n, field, "empty list");
-    } else {
-      out.push_back(one(n));
-    }
+    });
     for (double x : out)
       if (!std::isfinite(x)) fail(&n, field, "must be finite");
     return out;
   }
 
   std::vector<std::string> strings(const toml::node& n, const std::string& field) const {
-    std::vector<std::string> out;
-    auto one = [&](const toml::node& v) {
+    return one_or_list<std::string>(n, field, [&](const toml::node& v) {
       if (const auto* s = v.as_string()) return s->get();
       fail(&v, field, "must be a string");
-    };
+    });
+  }
+
+  // One value or a non-empty list of them, each read by `one`.
+  template <typename T, typename One>
+  std::vector<T> one_or_list(const toml::node& n, const std::string& field, One one) const {
+    std::vector<T> out;
     if (const auto* a = n.as_array()) {
       for (const toml::node& v : *a) out.push_back(one(v));
       if (out.empty()) fail(&n, field, "empty list");

@@ -32,15 +32,11 @@
 namespace pb {
 namespace {
 
-bullet::Config variant(std::string_view name) {
-  const std::optional<bullet::Config> c = bullet::find_variant(name);
-  EXPECT_TRUE(c.has_value()) << name;
-  return c.value_or(bullet::Config{});
-}
+bullet::Config variant(std::string_view name) { return test::config_named(bullet::kVariants, name); }
 
 std::vector<bullet::Config> variants_of(bool faithful) {
   std::vector<bullet::Config> out;
-  for (const bullet::Config& c : bullet::variants())
+  for (const bullet::Config& c : bullet::kVariants.configs)
     if (c.faithful == faithful) out.push_back(c);
   return out;
 }
@@ -60,19 +56,10 @@ Result run(const System& s, const bullet::Config& config, int n, bool history = 
 using Row = test::HistoryRow;
 using test::gap_rate;
 
-// A free body (no spring, no damper, no pulse) of mass m in front of the wall at gap
-// delta: its only force is the contact. Steps of h = 1 / n.
+// A free body of mass m in front of the wall at gap delta, run for steps_total steps of
+// h = 1 / n.
 System free_body_at_wall(double m, double delta, double eps, double steps_total, int n) {
-  System s;
-  s.bodies = {Body{m, 0.0, 0.0, 0.0}};
-  s.wall = true;
-  s.delta = delta;
-  s.eps = eps;
-  s.a_p = 1.0;
-  s.pulse.amplitude = 0.0;
-  s.t_min = 1.0;
-  s.t_end = steps_total / n;
-  return s;
+  return test::free_body_at_wall(m, delta, eps, 1.0, steps_total / n);
 }
 
 Result run_from(System s, const bullet::Config& config, int n, std::vector<double> u, std::vector<double> v) {
@@ -89,7 +76,7 @@ Result run_from(System s, const bullet::Config& config, int n, std::vector<doubl
 TEST(Bullet, CheckRejectsUnknownVariantsAndNegativeSteps) {
   Settings st;
   EXPECT_EQ(bullet::check(st), "");
-  for (const bullet::Config& c : bullet::variants()) {
+  for (const bullet::Config& c : bullet::kVariants.configs) {
     st.variant = std::string(c.name);
     EXPECT_EQ(bullet::check(st), "") << c.name;
   }
@@ -102,12 +89,12 @@ TEST(Bullet, CheckRejectsUnknownVariantsAndNegativeSteps) {
   st.step_cap = -5;  // the limits are every solver's: the registry's check applies them
   EXPECT_EQ(bullet::check(st), "");
   EXPECT_NE(find_solver("bullet")->check(st).find("step_cap"), std::string::npos);
-  EXPECT_EQ(bullet::find_variant("")->name, "si-faithful");
+  EXPECT_EQ(bullet::kVariants.find("")->name, "si-faithful");
   // gamma is the look-ahead of the faithful variants' rule, checked as moreau-jean checks
   // it; si-overlap and the defaults make points at overlap and have none.
   st.step_cap = 0;
   st.gamma = -0.1;
-  for (const bullet::Config& c : bullet::variants()) {
+  for (const bullet::Config& c : bullet::kVariants.configs) {
     st.variant = std::string(c.name);
     EXPECT_EQ(bullet::check(st).rfind("gamma:", 0) == 0, c.activation == Activation::predicted) << c.name;
   }
@@ -711,26 +698,10 @@ TEST(BulletFaithful, SequentialImpulseReachesTheCradleOutcomeOnlyWithinItsSweeps
 // and the energy excess is the scheme's first-order error (loads sampled at the step
 // start against the exact work of the step-mean pulse).
 TEST(BulletFaithful, MonitorMeasuresRestitutionEpsToSinglePrecisionAndAFirstOrderEnergyExcess) {
-  const std::vector<System> systems = test::monitor_systems();
   for (std::string_view name : {"si-faithful", "mlcp-dantzig-faithful"}) {
     const bullet::Config config = variant(name);
-    long isolated = 0;
-    double worst_e = 0.0, worst_excess = 0.0, least_drop = std::numeric_limits<double>::infinity();
-    for (const System& s : systems) {
-      const Result r = run(s, config, 64);
-      ASSERT_EQ(r.status, Status::ok) << r.message;
-      isolated += r.isolated_impacts;
-      if (r.isolated_impacts > 0)
-        worst_e = std::max({worst_e, std::abs(r.restitution_low - 0.5), std::abs(r.restitution_high - 0.5)});
-      EXPECT_GE(r.energy_excess, 0.0);
-      worst_excess = std::max(worst_excess, r.energy_excess);
-      if (name == "si-faithful" && r.energy_excess > 1e-3)
-        least_drop = std::min(least_drop, r.energy_excess / run(s, config, 1024).energy_excess);
-    }
-    RecordProperty(std::string(name) + "_isolated", std::to_string(isolated));
-    RecordProperty(std::string(name) + "_restitution_error", sci(worst_e));
-    RecordProperty(std::string(name) + "_excess_N64", sci(worst_excess));
-    if (name == "si-faithful") RecordProperty("least_drop_N64_to_N1024", sci(least_drop));
+    const auto [isolated, worst_e, worst_excess, least_drop] = test::monitor_summary(
+        name, [&](const System& s, int n) { return run(s, config, n); }, name == "si-faithful");
     // Measured 122 isolated impacts, |e - eps| <= 1.7e-6: float velocities of order a_p / w_p
     // (relative round-off 6e-8) against approach speeds down to a few percent of that.
     EXPECT_GT(isolated, 40);

@@ -402,20 +402,17 @@ TEST(Loads, ACaseSetRefusesBadLoadKeysNamingTheLine) {
   };
   // A record without w_p or tp is no error: its w_p is its mean frequency (record_default_wp_test.cpp).
   EXPECT_EQ(error("pulse = \"record\"\nrecord = \"../records/mp-noise-20s.csv\"\n"), "(accepted)");
-  EXPECT_NE(error("pulse = \"record\"\nrecord = \"nope.csv\"\ntp = 1\n").find("x.toml:10: family[0].record: "), std::string::npos)
-      << error("pulse = \"record\"\nrecord = \"nope.csv\"\ntp = 1\n");
-  EXPECT_NE(error("pulse = \"sine\"\ncycles = 2\n").find("x.toml:10: family[0].cycles: not used by pulse sine"), std::string::npos)
-      << error("pulse = \"sine\"\ncycles = 2\n");
-  EXPECT_NE(error("pulse = [\"sine\", \"mp\"]\nmp_gamma = 2\nmp_nu = 0\n").find("used by pulse mp but not by sine"), std::string::npos)
-      << error("pulse = [\"sine\", \"mp\"]\nmp_gamma = 2\nmp_nu = 0\n");
-  EXPECT_NE(error("pulse = \"mp\"\nmp_gamma = 1\nmp_nu = 0\n").find("x.toml:10: family[0].mp_gamma: must be in (1, 100] (got 1)"), std::string::npos)
-      << error("pulse = \"mp\"\nmp_gamma = 1\nmp_nu = 0\n");
-  EXPECT_NE(error("pulse = \"makris-c\"\n").find("family[0].cycles: required by pulse makris-c"), std::string::npos)
-      << error("pulse = \"makris-c\"\n");
-  EXPECT_NE(error("pulse = \"sine\"\ntp = 1\nw_p = 2\n").find("family[0].tp: not with w_p (line 11)"), std::string::npos)
-      << error("pulse = \"sine\"\ntp = 1\nw_p = 2\n");
-  EXPECT_NE(error("pulse = \"sine\"\ntp = -1\n").find("x.toml:10: family[0].tp: must be finite and > 0"), std::string::npos)
-      << error("pulse = \"sine\"\ntp = -1\n");
+  const auto expect_refused = [&](const std::string& family, std::string_view says) {
+    const std::string message = error(family);
+    EXPECT_NE(message.find(says), std::string::npos) << message;
+  };
+  expect_refused("pulse = \"record\"\nrecord = \"nope.csv\"\ntp = 1\n", "x.toml:10: family[0].record: ");
+  expect_refused("pulse = \"sine\"\ncycles = 2\n", "x.toml:10: family[0].cycles: not used by pulse sine");
+  expect_refused("pulse = [\"sine\", \"mp\"]\nmp_gamma = 2\nmp_nu = 0\n", "used by pulse mp but not by sine");
+  expect_refused("pulse = \"mp\"\nmp_gamma = 1\nmp_nu = 0\n", "x.toml:10: family[0].mp_gamma: must be in (1, 100] (got 1)");
+  expect_refused("pulse = \"makris-c\"\n", "family[0].cycles: required by pulse makris-c");
+  expect_refused("pulse = \"sine\"\ntp = 1\nw_p = 2\n", "family[0].tp: not with w_p (line 11)");
+  expect_refused("pulse = \"sine\"\ntp = -1\n", "x.toml:10: family[0].tp: must be finite and > 0");
 }
 
 }  // namespace

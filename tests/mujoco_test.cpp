@@ -56,7 +56,7 @@ WallModel wall_model(const mujoco::ContactParameters& contact, double mass) {
   Case c = make_case(Scene::wall, PulseShape::sine, 1.0, 1.0, 0.5);
   System sys = make_system(c);
   sys.bodies[0].m = mass;
-  const mujoco::Config config = *mujoco::find_variant("euler-faithful");
+  const mujoco::Config config = *mujoco::kVariants.find("euler-faithful");
   std::string error;
   WallModel w;
   w.model = mujoco::compile(mujoco::scene_xml(sys, config, mujoco::units_of(sys, config), 0.01, &contact), error);
@@ -263,7 +263,7 @@ TEST(MujocoWarnings, MixedSolrefWarnsEveryStepCountedNotPrintedNorLogged) {
 TEST(MujocoVariants, DefaultVariantHasMujocosOwnContactParameters) {
   mujoco::prepare_process();
   const System sys = make_system(make_case(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5));
-  const mujoco::Config config = *mujoco::find_variant("default");
+  const mujoco::Config config = *mujoco::kVariants.find("default");
   std::string error;
   const mujoco::ModelPtr m = mujoco::compile(mujoco::scene_xml(sys, config, mujoco::units_of(sys, config), 0.01, nullptr), error);
   ASSERT_TRUE(m) << error;

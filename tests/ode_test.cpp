@@ -27,11 +27,7 @@
 namespace pb {
 namespace {
 
-ode::Config variant(std::string_view name) {
-  const std::optional<ode::Config> c = ode::find_variant(name);
-  EXPECT_TRUE(c.has_value()) << name;
-  return c.value_or(ode::Config{});
-}
+ode::Config variant(std::string_view name) { return test::config_named(ode::kVariants, name); }
 
 using test::make_case;
 using test::cradle;
@@ -49,20 +45,9 @@ Result run(const System& s, std::string_view name, int n, bool history = false) 
 using Row = test::HistoryRow;
 using test::gap_rate;
 
-// A free mass (no spring, no damper, no pulse) moving at v0 towards the wall from a gap g0,
-// with h = 0.01 (t_min 0.64, N = 64).
-System free_mass_at_wall(double g0, double eps) {
-  System s;
-  s.bodies = {Body{2.0, 0.0, 0.0, 0.0}};
-  s.wall = true;
-  s.delta = g0;
-  s.eps = eps;
-  s.a_p = 1.0;
-  s.pulse.amplitude = 0.0;
-  s.t_min = 0.64;
-  s.t_end = 0.1;
-  return s;
-}
+// A free mass of 2 at gap g0 from the wall (its speed is free_run's), with h = 0.01 (t_min
+// 0.64, N = 64), until t = 0.1.
+System free_mass_at_wall(double g0, double eps) { return test::free_body_at_wall(2.0, g0, eps, 0.64, 0.1); }
 
 Result free_run(System s, const ode::Config& config, const std::vector<double>& v0) {
   Settings st;
@@ -106,11 +91,7 @@ TEST(Ode, FaithfulVariantsReverseAFreeApproachByExactlyEps) {
 
       // Two free masses 3:1 closing at 2 (relative): Newton on the relative velocity,
       // momentum kept.
-      System pair = free_mass_at_wall(0.033, eps);
-      pair.wall = false;
-      pair.bodies = {Body{3.0, 0.0, 0.0, 0.0}, Body{1.0, 0.0, 0.0, 0.0}};
-      pair.ref = 1;
-      const Result r = free_run(pair, variant(name), {1.0, -1.0});
+      const Result r = free_run(test::free_pair(eps), variant(name), {1.0, -1.0});
       ASSERT_EQ(r.status, Status::ok) << r.message;
       EXPECT_EQ(r.impacts, 1);
       const Row end{r.history, r.history.rows() - 1};
@@ -420,7 +401,7 @@ TEST(Ode, FaithfulPi1IsBitIdenticalUnderPulseScalingAndDefaultIsNot) {
 // The forces in the history are the ones ODE applied: every step keeps
 // m (v_k+1 - v_k) = h (spring + dashpot + ground load at t_k + contact forces).
 TEST(Ode, HistoryForcesAreWhatODEAppliedWithLoadsAtTheStepStart) {
-  for (const ode::Config& c : ode::variants()) {
+  for (const ode::Config& c : ode::kVariants.configs) {
     const System s = make_system(make_case(Scene::row3, PulseShape::cosine, 1.0, 0.5, 0.5));
     const Result r = run(s, c.name, 64, true);
     ASSERT_EQ(r.status, Status::ok) << r.message;
@@ -490,7 +471,7 @@ TEST(Ode, CheckAndDescribeNameEverySetting) {
   EXPECT_EQ(ode::check(st).rfind("steps:", 0), 0u);
   st.steps = 1;
   EXPECT_EQ(ode::check(st), "");
-  EXPECT_EQ(ode::variants().size(), 4u);
+  EXPECT_EQ(ode::kVariants.configs.size(), 4u);
   // A step given as w_max h replaces steps in the description.
   st.steps = 0;
   st.wh = 10.0;
@@ -614,26 +595,9 @@ TEST(Ode, QuickStepReachesTheCradleOutcomeOnlyOnShortChains) {
 // the energy excess is the scheme's first-order error (loads sampled at the step start
 // against the exact work of the step-mean pulse), not a restitution defect.
 TEST(Ode, MonitorMeasuresRestitutionEpsToRoundOffAndAFirstOrderEnergyExcess) {
-  const std::vector<System> systems = test::monitor_systems();
   for (std::string_view name : {"dantzig-faithful", "quickstep-faithful"}) {
-    long isolated = 0;
-    double worst_e = 0.0, worst_excess = 0.0, least_drop = std::numeric_limits<double>::infinity();
-    for (const System& s : systems) {
-      const Result r = run(s, name, 64);
-      ASSERT_EQ(r.status, Status::ok) << r.message;
-      isolated += r.isolated_impacts;
-      if (r.isolated_impacts > 0) {
-        worst_e = std::max({worst_e, std::abs(r.restitution_low - 0.5), std::abs(r.restitution_high - 0.5)});
-      }
-      EXPECT_GE(r.energy_excess, 0.0);
-      worst_excess = std::max(worst_excess, r.energy_excess);
-      if (name == "dantzig-faithful" && r.energy_excess > 1e-3)
-        least_drop = std::min(least_drop, r.energy_excess / run(s, name, 1024).energy_excess);
-    }
-    RecordProperty(std::string(name) + "_isolated", std::to_string(isolated));
-    RecordProperty(std::string(name) + "_excess_N64", sci(worst_excess));
-    RecordProperty(std::string(name) + "_restitution_error", sci(worst_e));
-    if (name == "dantzig-faithful") RecordProperty("least_drop_N64_to_N1024", sci(least_drop));
+    const auto [isolated, worst_e, worst_excess, least_drop] = test::monitor_summary(
+        name, [&](const System& s, int n) { return run(s, name, n); }, name == "dantzig-faithful");
     // Measured 122 isolated impacts; |e - eps| 6.6e-15 (dantzig) and 5.4e-15 (quickstep's
     // 50 sweeps), i.e. 1.3e-14 and 1.1e-14 of eps.
     EXPECT_GT(isolated, 50);
@@ -648,7 +612,7 @@ TEST(Ode, MonitorMeasuresRestitutionEpsToRoundOffAndAFirstOrderEnergyExcess) {
   }
   Settings off;
   off.monitor = false;
-  EXPECT_TRUE(std::isnan(ode::solve(systems.front(), off).energy_excess));
+  EXPECT_TRUE(std::isnan(ode::solve(test::monitor_systems().front(), off).energy_excess));
 }
 
 }  // namespace

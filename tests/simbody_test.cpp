@@ -217,16 +217,10 @@ TEST(Simbody, CheckAndDescribeNameEverySetting) {
   EXPECT_EQ(simbody::describe(st),
             R"({"variant":"hunt-crossley","stiffness":10000,"rtol":1e-06,"integrator":"runge-kutta-merson",)"
             R"("calibration_speed":1,"reports":64,"units":"a_p = w_p = m0 = 1"})");
-  st.steps = 64;
-  EXPECT_EQ(simbody::check(st).rfind("steps:", 0), 0u);
-  st.steps = 0;
-  st.rtol = 2.0;
-  EXPECT_EQ(simbody::check(st).rfind("rtol:", 0), 0u);
-  st.rtol = 0.0;
-  st.stiffness = -1.0;
-  EXPECT_EQ(simbody::check(st).rfind("stiffness:", 0), 0u);
+  test::expect_refused(simbody::check, st, "steps", [](Settings& s) { s.steps = 64; });
+  test::expect_refused(simbody::check, st, "rtol", [](Settings& s) { s.rtol = 2.0; });
+  test::expect_refused(simbody::check, st, "stiffness", [](Settings& s) { s.stiffness = -1.0; });
   st.variant = "default";
-  st.stiffness = 0.0;
   st.gamma = 2.0;  // not used by the default variant
   EXPECT_EQ(simbody::check(st), "");
   st.variant = "pgs-faithful";

@@ -683,11 +683,7 @@ TEST_P(SolverContract, EveryLoadReachesTheSolverRecordsAndPulseModelsIncluded) {
 // above and its residual and hysteretic share there too, or refuses by name ("yielding: why"),
 // never giving the elastic answer (which has no residual).
 TEST_P(SolverContract, AYieldingCaseIsSolvedOrRefusedByName) {
-  Case c = make_case(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5);
-  c.pi_y0 = 0.5;
-  c.pi_y1 = 1.0;
-  c.alpha = 0.05;
-  const System s = make_system(c);
+  const System s = make_system(test::yielding_case(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5, 0.5, 0.05));
   const Result r = solve(s);
   if (r.status == Status::failed && r.message.rfind("yielding: ", 0) == 0) {
     expect_no_pi1(r);

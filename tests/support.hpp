@@ -1,12 +1,16 @@
 #pragma once
 // What the solver tests share: the paper's standard pair/row3 case, reading a time-stepper's
 // History one row at a time, by column meaning, the measured-number format, the observed
-// order of a list of errors, the cradle start, the stress monitor's cases and the
-// convergence set.
+// order of a list of errors, the cradle start, the stress monitor's cases and what it
+// measures on them, the convergence set, free bodies at the wall and in a pair, an engine's
+// variant by name, and check()'s refusal of one changed setting.
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -112,6 +116,40 @@ inline std::vector<System> monitor_systems() {
   return systems;
 }
 
+// What the StepMonitor of a faithful time-stepper measures over monitor_systems() at N = 64
+// (eps = 0.5): its isolated impacts, their worst |e - eps|, the worst energy excess and, where
+// asked, the least ratio of a case's excess at N = 64 to that at N = 1024 (over the cases
+// with an excess above 1e-3: the first-order error's drop). Recorded as properties of the
+// test under `name`; run(system, N) solves.
+struct MonitorSummary {
+  long isolated = 0;
+  double worst_e = 0.0, worst_excess = 0.0, least_drop = std::numeric_limits<double>::infinity();
+};
+inline MonitorSummary monitor_summary(std::string_view name, const std::function<Result(const System&, int)>& run,
+                                      bool with_drop) {
+  MonitorSummary out;
+  for (const System& s : monitor_systems()) {
+    const Result r = run(s, 64);
+    if (r.status != Status::ok) {
+      ADD_FAILURE() << name << ": " << r.message;
+      continue;
+    }
+    out.isolated += r.isolated_impacts;
+    if (r.isolated_impacts > 0)
+      out.worst_e = std::max({out.worst_e, std::abs(r.restitution_low - 0.5), std::abs(r.restitution_high - 0.5)});
+    EXPECT_GE(r.energy_excess, 0.0);
+    out.worst_excess = std::max(out.worst_excess, r.energy_excess);
+    if (with_drop && r.energy_excess > 1e-3)
+      out.least_drop = std::min(out.least_drop, r.energy_excess / run(s, 1024).energy_excess);
+  }
+  const std::string key(name);
+  ::testing::Test::RecordProperty(key + "_isolated", std::to_string(out.isolated));
+  ::testing::Test::RecordProperty(key + "_restitution_error", sci(out.worst_e));
+  ::testing::Test::RecordProperty(key + "_excess_N64", sci(out.worst_excess));
+  if (with_drop) ::testing::Test::RecordProperty("least_drop_N64_to_N1024", sci(out.least_drop));
+  return out;
+}
+
 // The convergence set of the time-stepper tests: pair and symmetric row3 cases of the Fig. 4
 // and Fig. 7 families (Pi3 = 0.5, Pi6 = 1, eps = 0.5) under both pulses, Pi5 = 0.5 and 2,
 // Pi2 = 0.5, 1 and 2. Those without impacts in the reference tell nothing of the contacts.
@@ -124,19 +162,26 @@ inline std::vector<System> convergence_systems() {
   return systems;
 }
 
-// A free mass (m = 2 and w = 1, but no spring, damper or load) coasting at v0 towards the wall
-// from a gap g0: t_min 0.64 (h = 0.01 at N = 64), a_p = w_p = 1, so that a model built in the
-// pulse's units is built in the case's; t_end 0.1 past the time it reaches the wall.
-inline System free_mass_at_wall(double g0, double eps, double v0) {
+// A free body of mass m (w = 1, but no spring, damper or load) at gap g0 from the wall, at
+// rest, a_p = w_p = 1 (so that a model built in the pulse's units is built in the case's):
+// its only force is the contact's. t_min sets the step (h = t_min / N).
+inline System free_body_at_wall(double m, double g0, double eps, double t_min, double t_end) {
   System s;
-  s.bodies = {Body{2.0, 1.0, 0.0, 0.0}};
+  s.bodies = {Body{m, 1.0, 0.0, 0.0}};
   s.wall = true;
   s.delta = g0;
   s.eps = eps;
   s.a_p = 1.0;
   s.pulse.amplitude = 0.0;
-  s.t_min = 0.64;
-  s.t_end = 0.1 + g0 / std::abs(v0);
+  s.t_min = t_min;
+  s.t_end = t_end;
+  return s;
+}
+
+// A free mass of 2 coasting at v0 towards the wall from a gap g0: t_min 0.64 (h = 0.01 at
+// N = 64); t_end 0.1 past the time it reaches the wall.
+inline System free_mass_at_wall(double g0, double eps, double v0) {
+  System s = free_body_at_wall(2.0, g0, eps, 0.64, 0.1 + g0 / std::abs(v0));
   s.u_start = {0.0};
   s.v_start = {v0};
   return s;
@@ -152,6 +197,23 @@ inline System free_pair(double eps) {
   pair.u_start = {0.0, 0.0};
   pair.v_start = {1.0, -1.0};
   return pair;
+}
+
+// The configuration called `name` in an engine's variant table (solvers/variant_table.hpp),
+// failing the test where there is none.
+template <class Table>
+auto config_named(const Table& table, std::string_view name) {
+  const auto config = table.find(name);
+  EXPECT_TRUE(config.has_value()) << name;
+  return config.value_or(typename decltype(config)::value_type{});
+}
+
+// check(settings) refuses `base` changed by `change`, naming `field` first ("field: why").
+template <class Check, class Change>
+void expect_refused(Check check, Settings base, std::string_view field, Change change) {
+  change(base);
+  const std::string message = check(base);
+  EXPECT_EQ(message.rfind(std::string(field) + ":", 0), 0u) << "expected " << field << ": " << message;
 }
 
 // solve(s) with a variant, N steps per shortest period (0: the default) and, if asked, every

@@ -25,6 +25,7 @@
 #include "sweep/no_contact_cache.hpp"
 #include "sweep/stopwatch.hpp"
 #include "sweep/sweep.hpp"
+#include "tests/support.hpp"
 
 namespace pb {
 namespace {
@@ -207,16 +208,8 @@ TEST(NoContactCache, GivesEveryPointItsOwnSolvesValueAndSolvesSharedProblemsOnce
 // The key holds every value of the one-body system the no-contact solve reads, and nothing
 // of the other bodies.
 TEST(NoContactKey, ChangesWithEveryValueOfBodyZerosProblemAndWithNoOtherBody) {
-  Case c;
-  c.scene = Scene::row3;
-  c.pulse = PulseShape::cosine;
-  c.pi2 = 0.8;
-  c.pi3 = 0.5;
-  c.pi5 = 0.5;
-  c.pi6 = 1.0;
+  Case c = test::make_case(Scene::row3, PulseShape::cosine, 0.8, 0.5, 0.5);
   c.pi7 = 2.0;
-  c.pi8 = 1.0;
-  c.eps = 0.5;
   const System s = make_system(c);
   const NoContactKey key = no_contact_key(s);
   const auto changed = [&](auto&& change) {

@@ -20,11 +20,7 @@
 namespace pb {
 namespace {
 
-Result moreau_jean_at(const System& s, int steps) {
-  Settings set;
-  set.steps = steps;
-  return moreau_jean::solve(s, set);
-}
+Result moreau_jean_at(const System& s, int steps) { return test::run_variant(&moreau_jean::solve, s, "", steps); }
 
 // A yielding family: every scene, alpha 0, 0.05 and 0.2, both pulses.
 std::vector<Case> family() {

@@ -63,30 +63,22 @@ Result solve_with(const System& system, const Settings& settings, const Config& 
   try {
     return run(system, settings, config);
   } catch (const std::exception& e) {
-    Result res;
-    res.status = Status::failed;
-    res.message = e.what();
-    return res;
+    return failed(e.what());
   }
 }
 
 Result solve(const System& system, const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
-  if (!config) {
-    Result res;
-    res.status = Status::failed;
-    res.message = "unknown variant '" + settings.variant + "'";
-    return res;
-  }
+  const std::optional<Config> config = kVariants.find(settings.variant);
+  if (!config) return failed("unknown variant '" + settings.variant + "'");
   return solve_with(system, settings, *config);
 }
 
 std::string describe(const Settings& settings) {
-  return describe_variant(find_variant(settings.variant), settings, kDefaultSteps);
+  return describe_variant(kVariants, settings, kDefaultSteps);
 }
 
 std::string check(const Settings& settings) {
-  return check_variant("bullet", find_variant(settings.variant), variants(), settings, kDefaultSteps);
+  return check_variant("bullet", kVariants, settings, kDefaultSteps);
 }
 
 }  // namespace pb::bullet

@@ -17,13 +17,6 @@ bool is_newmark(const Settings& s) { return s.integrator == "newmark"; }
 bool is_adams(const Settings& s) { return s.method == "adams"; }
 double stiffness(const Settings& s) { return s.stiffness > 0.0 ? s.stiffness : kDefaultStiffness; }
 
-Result failed(std::string message) {
-  Result r;
-  r.status = Status::failed;
-  r.message = std::move(message);
-  return r;
-}
-
 }  // namespace
 
 std::vector<VariantInfo> variant_list() {

@@ -139,13 +139,6 @@ struct Cvode {
   }
 };
 
-Result failure(Status status, std::string message) {
-  Result r;
-  r.status = status;
-  r.message = std::move(message);
-  return r;
-}
-
 }  // namespace
 
 Result run_cvode(const System& sys, const Settings& set, Model model, double K, bool adams) {
@@ -164,7 +157,7 @@ Result run_cvode(const System& sys, const Settings& set, Model model, double K, 
     pr.offset = pr.u;  // every body starts at z = 0
   }
   Cvode cv;
-  if (SUNContext_Create(nullptr, &cv.context) != 0) return failure(Status::failed, "SUNDIALS: no context");
+  if (SUNContext_Create(nullptr, &cv.context) != 0) return failed("SUNDIALS: no context");
   cv.y = N_VNew_Serial(neq, cv.context);
   cv.dky = N_VNew_Serial(neq, cv.context);
   N_Vector atol = N_VNew_Serial(neq, cv.context);
@@ -193,7 +186,7 @@ Result run_cvode(const System& sys, const Settings& set, Model model, double K, 
   const int n_roots = nc + 1 + (yields ? n : 0);
   if (flag == CV_SUCCESS) flag = CVodeRootInit(cv.mem, n_roots, roots);
   if (flag == CV_SUCCESS) flag = CVodeSetNoInactiveRootWarn(cv.mem);
-  if (flag != CV_SUCCESS) return failure(Status::failed, "CVODE set-up: " + flag_name(flag));
+  if (flag != CV_SUCCESS) return failed("CVODE set-up: " + flag_name(flag));
 
   Result res;
   double u_max = std::abs(pr.u[ix(sys.ref)]), t_max = 0.0, g_min = 0.0, f_max = 0.0;

@@ -56,21 +56,14 @@ void Elements::open(int j, double q) {
   if (!closed(j)) return;
   closed_[ix(j)] = 0;
   --n_closed_;
-  if (isolated_[ix(j)]) {
-    const double e = -q / v_minus_[ix(j)];
-    e_low_ = std::min(e_low_, e);
-    e_high_ = std::max(e_high_, e);
-    ++n_isolated_;
-  }
+  if (isolated_[ix(j)]) restitution_.add(-q / v_minus_[ix(j)]);
   isolated_[ix(j)] = 0;
 }
 
 void Elements::finish(Result& r) const {
   r.restitution_over_contacts = true;
   if (first_impact_ >= 0.0) note_impact(r, first_impact_, -fastest_impact_);
-  r.isolated_impacts = n_isolated_;
-  r.restitution_low = n_isolated_ > 0 ? e_low_ : std::numeric_limits<double>::quiet_NaN();
-  r.restitution_high = n_isolated_ > 0 ? e_high_ : std::numeric_limits<double>::quiet_NaN();
+  restitution_.write(r);
 }
 
 }  // namespace pb::compliant

@@ -10,6 +10,7 @@
 
 #include "cases/system.hpp"
 #include "solvers/contact_elements/contact_law.hpp"
+#include "solvers/isolated_restitution.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb::compliant {
@@ -64,9 +65,8 @@ class Elements {
   std::vector<double> v_minus_;
   int n_closed_ = 0;
   long impacts_ = 0;
-  long n_isolated_ = 0;
   double floor_;
-  double e_low_ = std::numeric_limits<double>::infinity(), e_high_ = -std::numeric_limits<double>::infinity();
+  IsolatedRestitution restitution_;
 };
 
 }  // namespace pb::compliant

@@ -13,22 +13,15 @@ namespace pb::dart {
 
 namespace {
 
-Result fail(std::string message) {
-  Result r;
-  r.status = Status::failed;
-  r.message = std::move(message);
-  return r;
-}
-
 Result run(const System& sys, const Settings& set, const Config& config) {
   for (const Body& b : sys.bodies)
     if (!(b.m > 0.0 && std::isfinite(b.m)) || !std::isfinite(b.k) || !std::isfinite(b.c))
-      return fail("every body needs a finite positive mass and a finite stiffness and damping");
+      return failed("every body needs a finite positive mass and a finite stiffness and damping");
   // Debian's DART asserts (and so aborts the process) on a joint spring or damper below zero.
   if (!config.faithful)
     for (const Body& b : sys.bodies)
       if (b.k < 0.0 || b.c < 0.0)
-        return fail("the default variant's joint springs and dampers must be >= 0: DART's joints take no unstable spring");
+        return failed("the default variant's joint springs and dampers must be >= 0: DART's joints take no unstable spring");
   StepPlan plan;
   if (Result r = plan_steps(sys, set, kDefaultSteps, kDefaultStepCap, plan); r.status != Status::ok) return r;
   std::unique_ptr<StepEngine> engine =
@@ -39,24 +32,24 @@ Result run(const System& sys, const Settings& set, const Config& config) {
 }  // namespace
 
 Result solve(const System& system, const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
-  if (!config) return fail("unknown variant '" + settings.variant + "'");
+  const std::optional<Config> config = kVariants.find(settings.variant);
+  if (!config) return failed("unknown variant '" + settings.variant + "'");
   if (system.yields())
     return yielding_refused("dart's bodies have linear springs (explicit, or the joints' own in its default); the "
                             "bilinear law is not applied (moreau-jean, ode and bullet apply it)");
   try {
     return run(system, settings, *config);
   } catch (const std::exception& e) {
-    return fail(std::string("DART: ") + e.what());
+    return failed(std::string("DART: ") + e.what());
   }
 }
 
 std::string describe(const Settings& settings) {
-  return describe_variant(find_variant(settings.variant), settings, kDefaultSteps);
+  return describe_variant(kVariants, settings, kDefaultSteps);
 }
 
 std::string check(const Settings& settings) {
-  return check_variant("dart", find_variant(settings.variant), variants(), settings, kDefaultSteps);
+  return check_variant("dart", kVariants, settings, kDefaultSteps);
 }
 
 }  // namespace pb::dart

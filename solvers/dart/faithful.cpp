@@ -89,12 +89,7 @@ class Faithful : public StepEngine {
       out_.v[i] = joints_[i]->getVelocity(0);
     }
     for (std::size_t j = 0; j < gaps_.size(); ++j) out_.force[j] = gaps_[j]->impulse() / h_;
-    if (lcp_.dantzig && lcp_.dantzig->failures != failures_before) {
-      res.status = Status::failed;
-      res.message = "DART's Dantzig LCP gave up (degenerate pivot) at step " + std::to_string(k + 1) +
-                    ": the contact impulses of that step are wrong";
-      return StepOutcome::taken_then_stop;
-    }
+    if (lcp_.dantzig && lcp_.dantzig->failures != failures_before) return dantzig_gave_up("DART", k, "impulses", res);
     return StepOutcome::taken;
   }
 

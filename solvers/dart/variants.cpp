@@ -1,18 +1,8 @@
 #include "solvers/dart/variants.hpp"
 
-#include <array>
-
-#include "solvers/variant_table.hpp"
-
 namespace pb::dart {
 
 namespace {
-
-constexpr std::array kVariants = {
-    Config{"dantzig-faithful", true, Lcp::dantzig, Activation::predicted},
-    Config{"pgs-faithful", true, Lcp::pgs, Activation::predicted},
-    Config{"default", false, Lcp::dantzig_then_pgs, Activation::overlap},
-};
 
 std::string_view lcp_name(Lcp lcp) {
   switch (lcp) {
@@ -24,12 +14,6 @@ std::string_view lcp_name(Lcp lcp) {
 }
 
 }  // namespace
-
-std::span<const Config> variants() { return kVariants; }
-
-std::optional<Config> find_variant(std::string_view name) {
-  return find_named(std::span<const Config>(kVariants), name, kDefaultVariant);
-}
 
 void add_config(NamedValues& out, const Config& config, const Settings& settings) {
   out.add("lcp", lcp_name(config.lcp));

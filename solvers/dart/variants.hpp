@@ -16,6 +16,7 @@
 #include "solvers/fixed_step.hpp"
 #include "solvers/named_values.hpp"
 #include "solvers/solver.hpp"
+#include "solvers/variant_table.hpp"
 
 namespace pb::dart {
 
@@ -36,18 +37,19 @@ struct Config {
   Activation activation = Activation::predicted;
 };
 
-inline constexpr std::string_view kDefaultVariant = "dantzig-faithful";
+inline constexpr VariantTable kVariants{
+    std::array{
+        Config{"dantzig-faithful", true, Lcp::dantzig, Activation::predicted},
+        Config{"pgs-faithful", true, Lcp::pgs, Activation::predicted},
+        Config{"default", false, Lcp::dantzig_then_pgs, Activation::overlap},
+    },
+    "dantzig-faithful"};
 
 // PGS sweeps of pgs-faithful. Its sweeps are Gauss-Seidel without over-relaxation: a
 // double contact of row3 contracts by 1 / ((1 + m0/m1)(1 + m0/m2)) per sweep, 0.83 with
 // outer bodies ten times heavier than body 0, so 200 sweeps reach round-off there
 // (0.83^200 ~ 1e-16); it stops earlier once a sweep changes nothing (tolerances 0).
 inline constexpr int kFaithfulPgsSweeps = 200;
-
-// dantzig-faithful, pgs-faithful, default.
-std::span<const Config> variants();
-// The variant of that name; the empty name is kDefaultVariant.
-std::optional<Config> find_variant(std::string_view name);
 
 // Every setting of the configuration, for describe() after the variant and the step.
 void add_config(NamedValues& out, const Config& config, const Settings& settings);

@@ -986,12 +986,7 @@ namespace {
 
 Result solve_rigid(const System& system, const Settings& settings, bool keep_searches, bool lazy) {
   // A variant it does not have fails the run, as every solver's does (the contract).
-  if (!known_variant(settings.variant)) {
-    Result r;
-    r.status = Status::failed;
-    r.message = "variant: unknown '" + clip(settings.variant) + "'";
-    return r;
-  }
+  if (!known_variant(settings.variant)) return failed("variant: unknown '" + clip(settings.variant) + "'");
   if (kelvin_voigt(settings)) {
     if (!system.yields()) return solve_kelvin_voigt(system, settings);
     return yielding_refused("the Kelvin-Voigt reference's motion is one linear system; "
@@ -1000,10 +995,7 @@ Result solve_rigid(const System& system, const Settings& settings, bool keep_sea
   try {
     return Solver(system, settings, keep_searches, lazy).run();
   } catch (const std::exception& e) {
-    Result r;
-    r.status = Status::failed;
-    r.message = e.what();
-    return r;
+    return failed(e.what());
   }
 }
 

@@ -459,6 +459,24 @@ double Wave::mean() const {
   return m;
 }
 
+namespace {
+
+// Gives a fresh mode (no coefficients) the oscillator of `from`: its rates and, for a
+// general mode, its stiffness and roots. A sum or a derivative of a mode keeps these.
+void take_oscillator(Mode& to, const Mode& from) {
+  to.sigma = from.sigma;
+  to.omega = from.omega;
+  to.rate = from.rate;
+  if (!from.general) return;
+  to.general = true;
+  to.k_m = from.k_m;
+  to.w2 = from.w2;
+  to.slow = from.slow;
+  to.fast = from.fast;
+}
+
+}  // namespace
+
 void add_scaled(Wave& acc, const Wave& x, double s) {
   assert(acc.t0 == x.t0);
   acc.f0 += s * x.f0;
@@ -493,16 +511,7 @@ void add_scaled(Wave& acc, const Wave& x, double s) {
     Mode& am = acc.mode[static_cast<std::size_t>(k)];
     if (k == acc.n_modes) {
       am = Mode{};
-      am.sigma = xm.sigma;
-      am.omega = xm.omega;
-      am.rate = xm.rate;
-      if (xm.general) {
-        am.general = true;
-        am.k_m = xm.k_m;
-        am.w2 = xm.w2;
-        am.slow = xm.slow;
-        am.fast = xm.fast;
-      }
+      take_oscillator(am, xm);
       ++acc.n_modes;
     }
     am.a += s * xm.a;
@@ -538,15 +547,8 @@ Wave derivative(const Wave& x) {
   for (int m = 0; m < x.n_modes; ++m) {
     const Mode& xm = x.mode[static_cast<std::size_t>(m)];
     Mode& dm = d.mode[static_cast<std::size_t>(m)];
-    dm.sigma = xm.sigma;
-    dm.omega = xm.omega;
-    dm.rate = xm.rate;
+    take_oscillator(dm, xm);
     if (xm.general) {
-      dm.general = true;
-      dm.k_m = xm.k_m;
-      dm.w2 = xm.w2;
-      dm.slow = xm.slow;
-      dm.fast = xm.fast;
       dm.a = xm.re[1];
       dm.b = xm.im[1];
       dm.c2 = xm.c3;

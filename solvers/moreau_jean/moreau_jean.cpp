@@ -117,12 +117,7 @@ Result run_dynamic(const System& sys, const Settings& set, double h, long n, Res
 }
 
 Result dispatch(const System& sys, const Settings& set, bool force_dynamic) {
-  if (!known_variant(set.variant)) {
-    Result res;
-    res.status = Status::failed;
-    res.message = "variant: unknown '" + clip(set.variant) + "'";
-    return res;
-  }
+  if (!known_variant(set.variant)) return failed("variant: unknown '" + clip(set.variant) + "'");
   try {
     StepPlan plan;
     Result res = plan_steps(sys, set, kDefaultSteps, kDefaultStepCap, plan);
@@ -139,10 +134,7 @@ Result dispatch(const System& sys, const Settings& set, bool force_dynamic) {
     }
     return run_dynamic(sys, set, h, n, std::move(res));
   } catch (const std::exception& e) {
-    Result res;
-    res.status = Status::failed;
-    res.message = e.what();
-    return res;
+    return failed(e.what());
   }
 }
 

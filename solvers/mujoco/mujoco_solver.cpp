@@ -17,13 +17,6 @@ namespace {
 
 std::size_t ix(int i) { return static_cast<std::size_t>(i); }
 
-Result fail(Status status, std::string message) {
-  Result r;
-  r.status = status;
-  r.message = std::move(message);
-  return r;
-}
-
 // The geom of each body's sphere is the right end of at most one contact: its index, or -1.
 std::vector<int> contacts_by_geom(const System& sys, const mjModel* m) {
   std::vector<int> out(ix(m->ngeom), -1);
@@ -119,7 +112,7 @@ std::string check_bodies(const System& sys) {
 }
 
 Result run(const System& sys, const Settings& set, const Config& config) {
-  if (std::string bad = check_bodies(sys); !bad.empty()) return fail(Status::failed, bad);
+  if (std::string bad = check_bodies(sys); !bad.empty()) return failed(bad);
   StepPlan plan;
   if (Result r = plan_steps(sys, set, kDefaultSteps, kDefaultStepCap, plan); r.status != Status::ok) return r;
   prepare_process();
@@ -129,9 +122,9 @@ Result run(const System& sys, const Settings& set, const Config& config) {
   if (config.calibrated) contact = calibrated_contact(sys.eps, contact_steps(set), h_model);
   std::string error;
   ModelPtr model = compile(scene_xml(sys, config, units, h_model, contact ? &*contact : nullptr), error);
-  if (!model) return fail(Status::failed, "MuJoCo could not compile the model: " + error);
+  if (!model) return failed("MuJoCo could not compile the model: " + error);
   DataPtr data(mj_makeData(model.get()));
-  if (!data) return fail(Status::failed, "MuJoCo could not make its data");
+  if (!data) return failed("MuJoCo could not make its data");
   (void)take_warnings();  // only this run's steps count
   Engine engine(sys, config, units, h_model, std::move(model), std::move(data));
   Result res = run_steps(sys, set, plan, engine);
@@ -143,15 +136,15 @@ Result guarded(const System& sys, const Settings& set, const Config& config) {
     return run(sys, set, config);
   } catch (const std::exception& e) {
     (void)take_warnings();
-    return fail(Status::failed, e.what());
+    return failed(e.what());
   }
 }
 
 }  // namespace
 
 Result solve(const System& system, const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
-  if (!config) return fail(Status::failed, "unknown variant '" + settings.variant + "'");
+  const std::optional<Config> config = kVariants.find(settings.variant);
+  if (!config) return failed("unknown variant '" + settings.variant + "'");
   if (system.yields())
     return yielding_refused("mujoco's slide joints own the bodies' springs (a linear joint stiffness); "
                             "the bilinear law is not applied");
@@ -159,13 +152,11 @@ Result solve(const System& system, const Settings& settings) {
 }
 
 std::string describe(const Settings& settings) {
-  return describe_variant(find_variant(settings.variant), settings, kDefaultSteps);
+  return describe_variant(kVariants, settings, kDefaultSteps);
 }
 
 std::string check(const Settings& settings) {
-  if (std::string bad = check_variant("mujoco", find_variant(settings.variant), variants(), settings, kDefaultSteps);
-      !bad.empty())
-    return bad;
+  if (std::string bad = check_variant("mujoco", kVariants, settings, kDefaultSteps); !bad.empty()) return bad;
   const double m = settings.contact_steps;
   if (!(m == 0.0 || (m >= kMinContactSteps && m <= kMaxContactSteps)))
     return "contact_steps: must be in [1, 1e6] (0: the default 2)";

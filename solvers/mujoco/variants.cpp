@@ -1,44 +1,24 @@
 #include "solvers/mujoco/variants.hpp"
 
-#include <array>
-
 #include "solvers/mujoco/contact.hpp"
-#include "solvers/variant_table.hpp"
 
 namespace pb::mujoco {
-
-namespace {
-
-constexpr std::array kVariants = {
-    Config{"euler-faithful", Integrator::euler, true},
-    Config{"implicit-faithful", Integrator::implicit, true},
-    Config{"rk4-faithful", Integrator::rk4, true},
-    Config{"default", Integrator::euler, false},
-};
-
-}  // namespace
-
-std::span<const Config> variants() { return kVariants; }
-
-std::optional<Config> find_variant(std::string_view name) {
-  return find_named(std::span<const Config>(kVariants), name, kDefaultVariant);
-}
 
 double contact_steps(const Settings& settings) {
   return settings.contact_steps > 0.0 ? settings.contact_steps : kDefaultContactSteps;
 }
 
-std::string_view integrator_name(Integrator i) {
+IntegratorWords words(Integrator i) {
   switch (i) {
-    case Integrator::euler: return "euler";
-    case Integrator::implicit: return "implicit";
-    case Integrator::rk4: return "rk4";
+    case Integrator::euler: return {"euler", "semi-implicit Euler (damping implicit)"};
+    case Integrator::implicit: return {"implicit", "Euler implicit in velocity"};
+    case Integrator::rk4: return {"rk4", "4th-order Runge-Kutta"};
   }
-  return "?";
+  return {"?", "?"};
 }
 
 void add_config(NamedValues& out, const Config& config, const Settings& settings) {
-  out.add("integrator", integrator_name(config.integrator));
+  out.add("integrator", words(config.integrator).name);
   if (config.calibrated) {
     out.add("contact_steps", contact_steps(settings));
     out.add("solref", "direct, calibrated to eps").add("solimp", kImpedance);
@@ -53,10 +33,8 @@ void add_config(NamedValues& out, const Config& config, const Settings& settings
 
 std::vector<VariantInfo> variant_list() {
   std::vector<VariantInfo> out;
-  for (const Config& c : kVariants) {
-    std::string line = c.integrator == Integrator::euler      ? "semi-implicit Euler (damping implicit)"
-                       : c.integrator == Integrator::implicit ? "Euler implicit in velocity"
-                                                              : "4th-order Runge-Kutta";
+  for (const Config& c : kVariants.configs) {
+    std::string line(words(c.integrator).summary);
     line += c.calibrated ? "; contacts spring-dampers calibrated to eps, time constant --contact-steps steps"
                          : "; MuJoCo's default contacts (solref 0.02 1, solimp 0.9 0.95), eps not used";
     out.push_back({c.name, line});

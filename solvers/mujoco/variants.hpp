@@ -13,6 +13,7 @@
 
 #include "solvers/named_values.hpp"
 #include "solvers/solver.hpp"
+#include "solvers/variant_table.hpp"
 
 namespace pb::mujoco {
 
@@ -27,7 +28,14 @@ struct Config {
   bool calibrated = true;
 };
 
-inline constexpr std::string_view kDefaultVariant = "euler-faithful";
+inline constexpr VariantTable kVariants{
+    std::array{
+        Config{"euler-faithful", Integrator::euler, true},
+        Config{"implicit-faithful", Integrator::implicit, true},
+        Config{"rk4-faithful", Integrator::rk4, true},
+        Config{"default", Integrator::euler, false},
+    },
+    "euler-faithful"};
 
 // The contact time constant 1/w_c in steps when Settings::contact_steps is 0. Measured on
 // the wall cases (README, "Calibration"): a stiffer contact (M = 1) scatters the
@@ -39,14 +47,14 @@ inline constexpr double kDefaultContactSteps = 2.0;
 inline constexpr double kMinContactSteps = 1.0;
 inline constexpr double kMaxContactSteps = 1e6;
 
-// euler-faithful, implicit-faithful, rk4-faithful, default.
-std::span<const Config> variants();
-// The variant of that name; the empty name is kDefaultVariant.
-std::optional<Config> find_variant(std::string_view name);
 // Settings::contact_steps, or the default when it is 0.
 double contact_steps(const Settings& settings);
 
-std::string_view integrator_name(Integrator i);
+// An integrator's name in describe() and its words in `poundbench solvers`.
+struct IntegratorWords {
+  std::string_view name, summary;
+};
+IntegratorWords words(Integrator i);
 
 // Every setting of the configuration, for describe() after the variant and the step.
 void add_config(NamedValues& out, const Config& config, const Settings& settings);

@@ -29,13 +29,6 @@ std::string check_config(const Config& c) {
   return {};
 }
 
-Result fail(Status status, std::string message) {
-  Result r;
-  r.status = status;
-  r.message = std::move(message);
-  return r;
-}
-
 // ODE behind the shared step loop (solvers/fixed_step.hpp): each step applies the springs,
 // dashpots and ground load of its start, makes the contact joints its activation rule asks
 // for from the gaps and rates there, and lets ODE step.
@@ -74,12 +67,7 @@ class Engine : public StepEngine {
       out_.v[i] = dBodyGetLinearVel(bodies_[i])[0];
     }
     for (std::size_t j = 0; j < joint_.size(); ++j) out_.force[j] = joint_[j] ? feedback_[j].f1[0] : 0.0;
-    if (lcp_failures() != lcp_failures_before_) {
-      res.status = Status::failed;
-      res.message = "ODE's Dantzig LCP gave up (degenerate pivot) at step " + std::to_string(k + 1) +
-                    ": the contact forces of that step are wrong";
-      return StepOutcome::taken_then_stop;
-    }
+    if (lcp_failures() != lcp_failures_before_) return dantzig_gave_up("ODE", k, "forces", res);
     return StepOutcome::taken;
   }
 
@@ -206,14 +194,14 @@ class Engine : public StepEngine {
 };
 
 Result run(const System& sys, const Settings& set, const Config& config) {
-  if (std::string bad = check_config(config); !bad.empty()) return fail(Status::failed, "config: " + bad);
+  if (std::string bad = check_config(config); !bad.empty()) return failed("config: " + bad);
   for (const Body& b : sys.bodies)
-    if (!(b.m > 0.0 && std::isfinite(b.m))) return fail(Status::failed, "every body needs a finite positive mass");
+    if (!(b.m > 0.0 && std::isfinite(b.m))) return failed("every body needs a finite positive mass");
   StepPlan plan;
   if (Result r = plan_steps(sys, set, kDefaultSteps, kDefaultStepCap, plan); r.status != Status::ok) return r;
-  if (!prepare_thread()) return fail(Status::failed, "ODE could not be initialised on this thread");
+  if (!prepare_thread()) return failed("ODE could not be initialised on this thread");
   Engine engine(sys, config, plan.h, set.gamma);
-  if (!engine.start()) return fail(Status::failed, "ODE could not create a world");
+  if (!engine.start()) return failed("ODE could not create a world");
   return run_steps(sys, set, plan, engine);
 }
 
@@ -221,15 +209,15 @@ Result guarded(const System& sys, const Settings& set, const Config& config) {
   try {
     return run(sys, set, config);
   } catch (const std::exception& e) {
-    return fail(Status::failed, e.what());
+    return failed(e.what());
   }
 }
 
 }  // namespace
 
 Result solve(const System& system, const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
-  if (!config) return fail(Status::failed, "unknown variant " + settings.variant);
+  const std::optional<Config> config = kVariants.find(settings.variant);
+  if (!config) return failed("unknown variant " + settings.variant);
   return guarded(system, settings, *config);
 }
 
@@ -238,11 +226,11 @@ Result solve_with(const System& system, const Settings& settings, const Config& 
 }
 
 std::string describe(const Settings& settings) {
-  return describe_variant(find_variant(settings.variant), settings, kDefaultSteps);
+  return describe_variant(kVariants, settings, kDefaultSteps);
 }
 
 std::string check(const Settings& settings) {
-  return check_variant("ode", find_variant(settings.variant), variants(), settings, kDefaultSteps);
+  return check_variant("ode", kVariants, settings, kDefaultSteps);
 }
 
 }  // namespace pb::ode

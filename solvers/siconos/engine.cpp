@@ -38,6 +38,7 @@
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 namespace pb::siconos::engine {
 
@@ -301,12 +302,19 @@ void TimeStepper::Impl::build(const ModelSpec& spec) {
   // SICONOS_MLCP_LCP_LEMKE aborts (lcp_lexicolemke: assertion dim > 0). Enumeration tries up to
   // 2^n active sets: siconos_solver.cpp keeps it to kMaxEnumerationContacts contacts.
   const int mlcp_solver = SICONOS_MLCP_ENUM;
-  const auto projection = [&] {
+  // A projecting scheme's simulation (combined or direct) on s.osi, with its MLCP projection
+  // and the run's projection iterations and tolerance.
+  const auto projecting = [&](auto& stepping) {
+    using Stepping = typename std::decay_t<decltype(stepping)>::element_type;
     auto mlcp = SP::SolverOptions(solver_options_create(mlcp_solver), [](SolverOptions* p) {
       solver_options_delete(p);
       std::free(p);
     });
-    return std::make_shared<ProjectionMlcp>(mlcp);
+    stepping = std::make_shared<Stepping>(s.model.nsds, td, s.osi, s.lcp, std::make_shared<ProjectionMlcp>(mlcp));
+    stepping->setProjectionMaxIteration(static_cast<unsigned int>(o.projection_iterations));
+    stepping->setConstraintTolUnilateral(o.projection_tol);
+    stepping->setConstraintTol(o.projection_tol);
+    s.sim = stepping;
   };
   switch (o.integrator) {
     case Integrator::moreau_jean:
@@ -333,20 +341,12 @@ void TimeStepper::Impl::build(const ModelSpec& spec) {
     case Integrator::combined_projection: {
       s.level = -1;
       s.osi = std::make_shared<MoreauJeanCombinedProjectionOSI>(o.theta);
-      s.combined = std::make_shared<TimeSteppingCombinedProjection>(s.model.nsds, td, s.osi, s.lcp, projection());
-      s.combined->setProjectionMaxIteration(static_cast<unsigned int>(o.projection_iterations));
-      s.combined->setConstraintTolUnilateral(o.projection_tol);
-      s.combined->setConstraintTol(o.projection_tol);
-      s.sim = s.combined;
+      projecting(s.combined);
       break;
     }
     case Integrator::direct_projection: {
       s.osi = std::make_shared<MoreauJeanDirectProjectionOSI>(o.theta, o.gamma);
-      s.direct = std::make_shared<TimeSteppingDirectProjection>(s.model.nsds, td, s.osi, s.lcp, projection());
-      s.direct->setProjectionMaxIteration(static_cast<unsigned int>(o.projection_iterations));
-      s.direct->setConstraintTolUnilateral(o.projection_tol);
-      s.direct->setConstraintTol(o.projection_tol);
-      s.sim = s.direct;
+      projecting(s.direct);
       break;
     }
     case Integrator::bilbao:

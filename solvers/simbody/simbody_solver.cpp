@@ -19,13 +19,6 @@ namespace {
 
 std::size_t ix(int i) { return static_cast<std::size_t>(i); }
 
-Result fail(std::string message) {
-  Result r;
-  r.status = Status::failed;
-  r.message = std::move(message);
-  return r;
-}
-
 // The model's units: the pulse's length a_p / w_p^2, time 1 / w_p, and body 0's mass.
 struct Units {
   double length, time, mass;
@@ -174,11 +167,11 @@ class Engine : public StepEngine {
 Result run(const System& sys, const Settings& set, const Config& config) {
   for (const Body& b : sys.bodies)
     if (!(b.m > 0.0 && std::isfinite(b.m)) || !std::isfinite(b.k) || !std::isfinite(b.c))
-      return fail("every body needs a finite positive mass and a finite stiffness and damping");
+      return failed("every body needs a finite positive mass and a finite stiffness and damping");
   Settings stepping = set;
   if (config.kind == Kind::hunt_crossley) {
     if (std::string_view bad = compliant::eps_problem(compliant::Model::hunt_crossley, sys.eps); !bad.empty())
-      return fail("eps: " + std::string(bad));
+      return failed("eps: " + std::string(bad));
     stepping.steps = kHuntCrossleyReports;
   }
   StepPlan plan;
@@ -191,25 +184,25 @@ Result run(const System& sys, const Settings& set, const Config& config) {
 }  // namespace
 
 Result solve(const System& system, const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
-  if (!config) return fail("unknown variant '" + settings.variant + "'");
+  const std::optional<Config> config = kVariants.find(settings.variant);
+  if (!config) return failed("unknown variant '" + settings.variant + "'");
   if (system.yields())
     return yielding_refused("simbody's MobilityLinearSpring is linear; the bilinear law is not applied (moreau-jean, "
                             "ode and bullet apply it)");
   try {
     return run(system, settings, *config);
   } catch (const std::exception& e) {
-    return fail(e.what());
+    return failed(e.what());
   }
 }
 
 std::string describe(const Settings& settings) {
-  return describe_variant(find_variant(settings.variant), settings, kDefaultSteps);
+  return describe_variant(kVariants, settings, kDefaultSteps);
 }
 
 std::string check(const Settings& settings) {
-  const std::optional<Config> config = find_variant(settings.variant);
-  if (std::string bad = check_variant("simbody", config, variants(), settings, kDefaultSteps); !bad.empty()) return bad;
+  const std::optional<Config> config = kVariants.find(settings.variant);
+  if (std::string bad = check_variant("simbody", kVariants, settings, kDefaultSteps); !bad.empty()) return bad;
   if (!config->time_stepper()) {
     if (settings.steps != 0) return "steps: hunt-crossley's integrator chooses its own steps (--rtol)";
     if (settings.wh != 0.0) return "wh: hunt-crossley's integrator chooses its own steps (--rtol)";

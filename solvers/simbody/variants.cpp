@@ -1,29 +1,10 @@
 #include "solvers/simbody/variants.hpp"
 
-#include <array>
 #include <cmath>
 
 #include "solvers/simbody/simbody_solver.hpp"
-#include "solvers/variant_table.hpp"
 
 namespace pb::simbody {
-
-namespace {
-
-constexpr std::array kVariants = {
-    Config{"plus-faithful", Kind::faithful_plus, Activation::predicted},
-    Config{"pgs-faithful", Kind::faithful_pgs, Activation::predicted},
-    Config{"default", Kind::stepper_default, Activation::overlap},
-    Config{"hunt-crossley", Kind::hunt_crossley, Activation::overlap},
-};
-
-}  // namespace
-
-std::span<const Config> variants() { return kVariants; }
-
-std::optional<Config> find_variant(std::string_view name) {
-  return find_named(std::span<const Config>(kVariants), name, kDefaultVariant);
-}
 
 double stiffness(const Settings& settings) { return settings.stiffness > 0.0 ? settings.stiffness : kDefaultStiffness; }
 

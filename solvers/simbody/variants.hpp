@@ -17,6 +17,7 @@
 #include "solvers/named_values.hpp"
 #include "solvers/simbody/model.hpp"
 #include "solvers/solver.hpp"
+#include "solvers/variant_table.hpp"
 
 namespace pb::simbody {
 
@@ -29,7 +30,14 @@ struct Config {
   bool time_stepper() const { return kind != Kind::hunt_crossley; }
 };
 
-inline constexpr std::string_view kDefaultVariant = "plus-faithful";
+inline constexpr VariantTable kVariants{
+    std::array{
+        Config{"plus-faithful", Kind::faithful_plus, Activation::predicted},
+        Config{"pgs-faithful", Kind::faithful_pgs, Activation::predicted},
+        Config{"default", Kind::stepper_default, Activation::overlap},
+        Config{"hunt-crossley", Kind::hunt_crossley, Activation::overlap},
+    },
+    "plus-faithful"};
 
 // The faithful variants' constraint tolerance, in the pulse's units (a_p / w_p^2, a_p / w_p):
 // the stepper's impact capture speed is twice it, and a contact observes (takes no impact)
@@ -49,11 +57,6 @@ inline constexpr double kCalibrationSpeed = 1.0;
 // the counts and the restitution of whole contacts are read at every internal step of the
 // integrator (simbody_solver.cpp), which the reports do not limit.
 inline constexpr int kHuntCrossleyReports = 64;
-
-// plus-faithful, pgs-faithful, default, hunt-crossley.
-std::span<const Config> variants();
-// The variant of that name; the empty name is kDefaultVariant.
-std::optional<Config> find_variant(std::string_view name);
 
 double stiffness(const Settings& settings);
 double accuracy(const Settings& settings);

@@ -34,21 +34,6 @@ std::string numbers(double from, double to, std::size_t count) {
   return out;
 }
 
-std::vector<std::string> split_lines(std::string_view text) {
-  std::vector<std::string> lines;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t end = text.find('\n', start);
-    if (end == std::string_view::npos) {
-      if (start < text.size()) lines.emplace_back(text.substr(start));
-      break;
-    }
-    lines.emplace_back(text.substr(start, end - start));
-    start = end + 1;
-  }
-  return lines;
-}
-
 std::string join_lines(const std::vector<std::string>& lines) {
   std::string out;
   for (const std::string& line : lines) out += line + '\n';
@@ -83,6 +68,21 @@ const std::vector<std::string>& headers() {
 }
 
 }  // namespace
+
+std::vector<std::string> split_lines(std::string_view text) {
+  std::vector<std::string> lines;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) {
+      if (start < text.size()) lines.emplace_back(text.substr(start));
+      break;
+    }
+    lines.emplace_back(text.substr(start, end - start));
+    start = end + 1;
+  }
+  return lines;
+}
 
 const std::vector<std::string>& toml_values() {
   static const std::vector<std::string> values = [] {
@@ -162,10 +162,7 @@ std::string expand_generators(std::string_view text) {
 
 std::string mutate_toml(std::string_view seed, const std::vector<std::string>& all_seeds, Rng& rng) {
   std::vector<std::string> lines = split_lines(seed);
-  const std::size_t mutations = 1 + rng.below(4);
-  bool truncate = false;
-  for (std::size_t m = 0; m < mutations; ++m) {
-    const std::size_t where = lines.empty() ? 0 : rng.below(lines.size() + 1);
+  const bool truncate = mutate_lines(lines, rng, [&](std::size_t where) {
     switch (rng.below(10)) {
       case 0:
       case 1:
@@ -216,9 +213,10 @@ std::string mutate_toml(std::string_view seed, const std::vector<std::string>& a
         break;
       }
       default:  // cut short, as a half-written file is
-        truncate = true;
+        return true;
     }
-  }
+    return false;
+  });
   std::string text = join_lines(lines);
   if (truncate && !text.empty()) text.resize(rng.below(text.size()));
   return text;

@@ -38,6 +38,23 @@ std::uint64_t input_seed(std::uint64_t campaign_seed, std::string_view target, s
 // Anything else is copied as written.
 std::string expand_generators(std::string_view text);
 
+// The lines of a text (a last line without its newline included).
+std::vector<std::string> split_lines(std::string_view text);
+
+// One to four mutations of `lines`, each mutate(where) with `where` a place to insert a line
+// at; returns whether one of them asked for the text to be cut short (as a half-written
+// file is), which the caller does once the lines are text again.
+template <class Mutation>
+bool mutate_lines(std::vector<std::string>& lines, Rng& rng, Mutation mutate) {
+  const std::size_t mutations = 1 + rng.below(4);
+  bool truncate = false;
+  for (std::size_t m = 0; m < mutations; ++m) {
+    const std::size_t where = lines.empty() ? 0 : rng.below(lines.size() + 1);
+    if (mutate(where)) truncate = true;
+  }
+  return truncate;
+}
+
 // TOML text (a case set or a settings list) changed by one to four mutations: a value
 // replaced by an interesting one (empty, 0, -1, nan, inf, 1e308, 1e-320, 2^63-1, 2^40,
 // huge strings, 3000-value lists, extreme grids), keys added (known ones and huge

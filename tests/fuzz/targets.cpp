@@ -134,23 +134,9 @@ const std::vector<std::string>& record_lines() {
   return v;
 }
 
-std::vector<std::string> split(std::string_view text) {
-  std::vector<std::string> lines;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    const std::size_t end = std::min(text.find('\n', start), text.size());
-    lines.emplace_back(text.substr(start, end - start));
-    start = end + 1;
-  }
-  return lines;
-}
-
 std::string mutate_record(std::string_view seed, const std::vector<std::string>& seeds, Rng& rng) {
-  std::vector<std::string> lines = split(seed);
-  const std::size_t mutations = 1 + rng.below(4);
-  bool truncate = false;
-  for (std::size_t m = 0; m < mutations; ++m) {
-    const std::size_t where = lines.empty() ? 0 : rng.below(lines.size() + 1);
+  std::vector<std::string> lines = split_lines(seed);
+  const bool truncate = mutate_lines(lines, rng, [&](std::size_t where) {
     switch (rng.below(8)) {
       case 0:
       case 1:
@@ -180,7 +166,7 @@ std::string mutate_record(std::string_view seed, const std::vector<std::string>&
         break;
       case 6: {  // bytes, or a line from another seed
         if (rng.one_in(2)) {
-          const std::vector<std::string> other = split(rng.pick(seeds));
+          const std::vector<std::string> other = split_lines(rng.pick(seeds));
           if (!other.empty()) lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(where), rng.pick(other));
         } else if (!lines.empty()) {
           std::string& line = lines[rng.below(lines.size())];
@@ -191,9 +177,10 @@ std::string mutate_record(std::string_view seed, const std::vector<std::string>&
         break;
       }
       default:
-        truncate = true;
+        return true;
     }
-  }
+    return false;
+  });
   std::string text;
   const std::string end = rng.one_in(4) ? "\r\n" : rng.one_in(8) ? "\r\r\n" : "\n";
   for (const std::string& line : lines) text += line + end;
