@@ -389,18 +389,66 @@ class KelvinVoigt {
     Eigen::EigenSolver<MatrixXd> eigen(md.balanced);
     double fastest = w_scale;
     if (eigen.info() == Eigen::Success) {
-      const MatrixXcd v = eigen.eigenvectors();
-      md.v_inv = v.inverse();
-      const double condition = v.cwiseAbs().rowwise().sum().maxCoeff() * md.v_inv.cwiseAbs().rowwise().sum().maxCoeff();
-      if (std::isfinite(condition) && condition < kMaxModalCondition) {
-        md.modal = true;
-        const VectorXcd lambda = eigen.eigenvalues();
-        md.g = wb.cast<std::complex<double>>() * v;
-        md.modal_bound = md.g.cwiseAbs() * lambda.cwiseAbs2().cwiseAbs2().asDiagonal();  // |g| |lambda|^4
-        md.modal_bound *= kBoundMargin;
-        md.modulus = lambda.cwiseAbs() * std::ldexp(1.0, -md.exponent);
-        pair_close_modes(lambda, md);
-        fastest = lambda.cwiseAbs().maxCoeff();
+      // The real basis (Re v, Im v of each complex pair), each column normalised on its own:
+      // a pair's complex eigenvectors are nearly parallel wherever a mode moves coordinates of
+      // different frequency scales (a slow mode's speeds over a stiff element's w: their
+      // imaginary parts are w_slow / w_c of the real ones), so the complex V's condition grew
+      // as sqrt(K) (3.6e5 at K = 1e10, 3.6e6 at 1e12 on a pair, past kMaxModalCondition: the
+      // plain bound, millions of stretches). Its real and imaginary parts are not parallel:
+      // normalised apart, the same pair's basis has condition 20 to 200 at every K measured.
+      // V^-1 D y is then solved in this basis and recombined per pair, c = (q1 - i q2) / 2,
+      // without a sum that cancels.
+      MatrixXd basis = eigen.pseudoEigenvectors();
+      const MatrixXd blocks = eigen.pseudoEigenvalueMatrix();
+      for (int k = 0; k + 1 < m_; ++k) {
+        if (blocks(k, k + 1) == 0.0) continue;
+        // v = p1 + i p2 times the phase e^(i phi) that makes v^T v real and positive: then
+        // Re v and Im v are orthogonal (Eigen's phase is arbitrary: both parts carried the
+        // slow pair's displacement, 1 and -1, and stayed parallel to 1e-5).
+        const VectorXcd v = basis.col(k).cast<std::complex<double>>() + std::complex<double>(0.0, 1.0) * basis.col(k + 1);
+        const VectorXcd turned = v * std::polar(1.0, -0.5 * std::arg((v.array() * v.array()).sum()));
+        basis.col(k) = turned.real();
+        basis.col(k + 1) = turned.imag();
+        ++k;
+      }
+      const VectorXd norms = basis.colwise().norm().transpose();
+      if (norms.minCoeff() > 0.0 && norms.allFinite()) {
+        const MatrixXd unit = basis * norms.cwiseInverse().asDiagonal();
+        const MatrixXd unit_inv = unit.inverse();
+        const double condition = unit.cwiseAbs().rowwise().sum().maxCoeff() * unit_inv.cwiseAbs().rowwise().sum().maxCoeff();
+        if (std::isfinite(condition) && condition < kMaxModalCondition) {
+          const MatrixXd q_of_y = norms.cwiseInverse().asDiagonal() * unit_inv;  // coefficients on the unnormalised basis
+          MatrixXcd v(m_, m_);
+          VectorXcd lambda(m_);
+          md.v_inv.resize(m_, m_);
+          const std::complex<double> i1(0.0, 1.0);
+          for (int k = 0; k < m_; ++k) {
+            const bool pair = k + 1 < m_ && blocks(k, k + 1) != 0.0;
+            if (!pair) {
+              v.col(k) = basis.col(k).cast<std::complex<double>>();
+              lambda(k) = blocks(k, k);
+              md.v_inv.row(k) = q_of_y.row(k).cast<std::complex<double>>();
+              continue;
+            }
+            // Columns p1, p2 with block [[s, w], [-w, s]]: v = p1 + i p2 has lambda = s + i w,
+            // and q1 p1 + q2 p2 = c v + conj(c v) with c = (q1 - i q2) / 2.
+            const auto p1 = basis.col(k), p2 = basis.col(k + 1);
+            v.col(k) = p1.cast<std::complex<double>>() + i1 * p2.cast<std::complex<double>>();
+            v.col(k + 1) = p1.cast<std::complex<double>>() - i1 * p2.cast<std::complex<double>>();
+            lambda(k) = {blocks(k, k), blocks(k, k + 1)};
+            lambda(k + 1) = std::conj(lambda(k));
+            md.v_inv.row(k) = 0.5 * (q_of_y.row(k).cast<std::complex<double>>() - i1 * q_of_y.row(k + 1).cast<std::complex<double>>());
+            md.v_inv.row(k + 1) = md.v_inv.row(k).conjugate();
+            ++k;
+          }
+          md.modal = true;
+          md.g = wb.cast<std::complex<double>>() * v;
+          md.modal_bound = md.g.cwiseAbs() * lambda.cwiseAbs2().cwiseAbs2().asDiagonal();  // |g| |lambda|^4
+          md.modal_bound *= kBoundMargin;
+          md.modulus = lambda.cwiseAbs() * std::ldexp(1.0, -md.exponent);
+          pair_close_modes(lambda, md);
+          fastest = lambda.cwiseAbs().maxCoeff();
+        }
       }
     }
     md.base = 2.0 * std::numbers::pi / std::max(fastest, s_.pulse.w) / kStretchesPerPeriod;
@@ -451,6 +499,25 @@ class KelvinVoigt {
     } else {
       b4_ = md.plain * (std::exp(md.norm * h) * md.scale.cwiseProduct(y_).cwiseAbs().maxCoeff());
     }
+  }
+
+  // A second bound on |f_j - H| over [t_, t_ + h] (after fourth_bounds: c_), mode by mode
+  // the smaller of the Hermite charge |g c| |lambda|^4 h^4 / 384 and |f_k| + |H_k| <=
+  // |g c| (2 + (8/27) |lambda| h) (|h00| + |h01| = 1, |h10|, |h11| <= 4/27), each times
+  // e^(growth h). A stiff element's mode, once damped out, keeps a coefficient of the
+  // eigenvectors' round-off (1e-15 of the state at K = 1e12: the inverse's small entries are
+  // known to an ulp of its large ones), which the Hermite charge multiplied by |lambda|^4
+  // (2.5e23): a pair pressed together for seconds with a gap of -1e-12 took 2e5 stretches of
+  // 1.8e-5. Charged at its amplitude it no longer shortens the stretch.
+  double amplitude_error(const Mode& md, int j, double h) const {
+    if (!md.modal) return std::numeric_limits<double>::infinity();
+    const double h4 = h * h * h * h / 384.0;
+    double e = 0.0;
+    for (int k = 0; k < m_; ++k) {
+      const double mu = std::abs(md.g(j, k)) * size_(k) * kBoundMargin, l = md.modulus(k) * std::ldexp(1.0, md.exponent);
+      e += mu * std::min(l * l * l * l * h4, 2.0 + (8.0 / 27.0) * l * h);
+    }
+    return e * std::exp(md.growth * h);
   }
 
   enum class Verdict { unproven, proven, proven_with_room };
@@ -525,7 +592,7 @@ class KelvinVoigt {
     bool room = true;
     for (int j = 0; j < nf_; ++j) {
       const Range r = hermite_range(fa_(j), fa_(nf_ + j), fb_(j), fb_(nf_ + j), h);
-      const double e = b4_(j) * h4, noise = kNoise * noise_(j);
+      const double e = std::min(b4_(j) * h4, amplitude_error(md, j, h)), noise = kNoise * noise_(j);
       range_[ix(j)] = r;
       error_[ix(j)] = e;
       if (!(e < std::numeric_limits<double>::infinity())) return Verdict::unproven;
