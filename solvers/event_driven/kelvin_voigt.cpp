@@ -52,13 +52,19 @@ constexpr int kMaxTaylorTerms = 24;
 constexpr double kMaxModalCondition = 1e6;
 // Every fourth-derivative bound is doubled: the modal one is computed in floating point.
 constexpr double kBoundMargin = 2.0;
+// Above this K a pressed contact's gap, about -F / K (1e-15 a_p/w_p^2 at K = 1e14), nears the
+// round-off that each stretch's increment leaves in the state (about 1e-16 of it): measured on
+// a pair (sine, Pi2 0.5, Pi3 1e-3, eps 0.5), K = 1e12 has the rigid reference's 24 impacts,
+// K = 1e13 24 898 at --tol-scale 1 and 68 965 at 0.01, and K = 1e14 a Pi1 2e-3 off the trend.
+// The run says so in its message.
+constexpr double kMostVouchedStiffness = 1e12;
 // Bodies whose displacements and speeds are all below this, over a_p / w_p^2 and a_p / w_p,
 // after the load's end, are at rest (at_rest()).
 constexpr double kAtRest = 1e-200;
 // The round-off of a tracked function's value, in ulps of the sum of its terms' sizes.
 constexpr double kNoise = 64 * std::numeric_limits<double>::epsilon();
-// A stretch proven with this factor of room in every check (as its bound would be at twice
-// the length, 2^4) lets the next one double.
+// A stretch proven with this factor of room in every check (as its Hermite bound would be at
+// twice the length, 2^4; the amplitude bound is evaluated there) lets the next one double.
 constexpr double kEasyRoom = 16.0;
 
 // The least and largest value on [0, h] of the cubic Hermite interpolant through (f0, d0)
@@ -160,6 +166,7 @@ class KelvinVoigt {
         nf_(s.n_contacts() + 1),
         m_(2 * s.n_bodies() + kLoadStates),
         elements_(s, compliant::Model::kelvin_voigt, K),
+        K_(K),
         L_(s.length_scale()),
         slack_(1e-13 * set.tol_scale * L_),
         floor_(std::max(1e-13 * set.tol_scale * s.t_min, 8.0 * std::numeric_limits<double>::epsilon() * s.t_end)),
@@ -615,6 +622,9 @@ class KelvinVoigt {
     for (int j = 0; j < nf_; ++j) {
       const Range r = hermite_range(fa_(j), fa_(nf_ + j), fb_(j), fb_(nf_ + j), h);
       const double e = std::min(b4_(j) * h4, amplitude_error(md, j, h)), noise = kNoise * noise_(j);
+      // The error at twice the length, for the room to double: 16 e for the Hermite charge, at
+      // most 2 e where the amplitude bound is the smaller (which grows about as h).
+      const double e2 = std::min(kEasyRoom * b4_(j) * h4, amplitude_error(md, j, 2.0 * h));
       range_[ix(j)] = r;
       error_[ix(j)] = e;
       if (!(e < std::numeric_limits<double>::infinity())) return Verdict::unproven;
@@ -622,13 +632,13 @@ class KelvinVoigt {
       if (j == nc_) {  // u0
         const double top = std::max(r.hi, -r.lo), slack = std::max(slack_, noise);
         if (e > slack && top + e > best_u_ + slack) return Verdict::unproven;
-        room = room && (kEasyRoom * e <= slack || top + kEasyRoom * e <= best_u_ + slack);
+        room = room && (e2 <= slack || top + e2 <= best_u_ + slack);
       } else if (!elements_.closed(j)) {
         if (r.lo - e + noise <= 0.0 &&
             hermite_range(fa_(j), fa_(nf_ + j), fb_(j), fb_(nf_ + j), h, -bend).lo + noise <= 0.0) {
           if (!at_zero_keeps_side(md, j, h, room)) return Verdict::unproven;
         } else {
-          room = room && r.lo - kEasyRoom * e > 0.0;
+          room = room && r.lo - e2 > 0.0;
         }
       } else {
         if (r.hi + e - noise >= 0.0 &&
@@ -637,7 +647,7 @@ class KelvinVoigt {
         }
         const double slack = std::max({slack_, 1e-9 * -min_gap_, noise});
         if (e > slack && r.lo - e < min_gap_ - slack) return Verdict::unproven;
-        room = room && r.hi + kEasyRoom * e < 0.0 && (kEasyRoom * e <= slack || r.lo - kEasyRoom * e >= min_gap_ - slack);
+        room = room && r.hi + e2 < 0.0 && (e2 <= slack || r.lo - e2 >= min_gap_ - slack);
       }
     }
     return room ? Verdict::proven_with_room : Verdict::proven;
@@ -735,6 +745,9 @@ class KelvinVoigt {
     elements_.finish(result_);
     result_.message = std::to_string(events_) + " contact changes";
     if (rest_ >= 0.0) result_.message += "; at rest (below 1e-200 a_p/w_p^2) from t = " + std::to_string(rest_);
+    if (K_ > kMostVouchedStiffness)
+      result_.message += "; K above 1e12: a pressed contact's gap (-F/K) nears the state's round-off and its sign "
+                         "may be round-off (impacts that change with --tol-scale; DERIVATION.md section 8)";
   }
 
   Result stopped(Status status, std::string message) {
@@ -756,6 +769,7 @@ class KelvinVoigt {
   const System& s_;
   const int n_, nc_, nf_, m_;
   compliant::Elements elements_;
+  const double K_;
   const double L_, slack_, floor_;
   const long cap_;
   Deadline deadline_;
