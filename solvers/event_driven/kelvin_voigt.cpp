@@ -134,6 +134,8 @@ struct Mode {
   };
   std::vector<Pair> pairs;
   MatrixXcd g;  // W D^-1 V
+  MatrixXd g_size;  // |g| kBoundMargin, and |lambda|, for the amplitude bound (amplitude_errors)
+  VectorXd speed;
   // The plain bound, |f_j''''(s)| <= plain(j) exp(norm s) |D y|_inf: where modal is false;
   // norm = |D a D^-1|_inf.
   VectorXd plain;
@@ -182,6 +184,9 @@ class KelvinVoigt {
         abs_y_(m_),
         bodies_(m_),
         body_y_(m_),
+        weight_(m_),
+        alt_(nf_),
+        alt2_(nf_),
         term_(m_),
         sum_(m_),
         scratch_(m_),
@@ -472,6 +477,8 @@ class KelvinVoigt {
           md.g = wb.cast<std::complex<double>>() * v;
           md.modal_bound = md.g.cwiseAbs() * lambda.cwiseAbs2().cwiseAbs2().asDiagonal();  // |g| |lambda|^4
           md.modal_bound *= kBoundMargin;
+          md.g_size = md.g.cwiseAbs() * kBoundMargin;
+          md.speed = lambda.cwiseAbs();
           md.modulus = lambda.cwiseAbs() * std::ldexp(1.0, -md.exponent);
           pair_close_modes(lambda, md);
           fastest = lambda.cwiseAbs().maxCoeff();
@@ -530,23 +537,26 @@ class KelvinVoigt {
     }
   }
 
-  // A second bound on |f_j - H| over [t_, t_ + h] (after fourth_bounds: c_), mode by mode
-  // the smaller of the Hermite charge |g c| |lambda|^4 h^4 / 384 and |f_k| + |H_k| <=
-  // |g c| (2 + (8/27) |lambda| h) (|h00| + |h01| = 1, |h10|, |h11| <= 4/27), each times
-  // e^(growth h). A stiff element's mode, once damped out, keeps a coefficient of the
-  // eigenvectors' round-off (1e-15 of the state at K = 1e12: the inverse's small entries are
-  // known to an ulp of its large ones), which the Hermite charge multiplied by |lambda|^4
-  // (2.5e23): a pair pressed together for seconds with a gap of -1e-12 took 2e5 stretches of
-  // 1.8e-5. Charged at its amplitude it no longer shortens the stretch.
-  double amplitude_error(const Mode& md, int j, double h) const {
-    if (!md.modal) return std::numeric_limits<double>::infinity();
-    const double h4 = h * h * h * h / 384.0;
-    double e = 0.0;
-    for (int k = 0; k < m_; ++k) {
-      const double mu = std::abs(md.g(j, k)) * size_(k) * kBoundMargin, l = md.modulus(k) * std::ldexp(1.0, md.exponent);
-      e += mu * std::min(l * l * l * l * h4, 2.0 + (8.0 / 27.0) * l * h);
+  // A second bound on |f_j - H| over [t_, t_ + h] for every tracked function, into out
+  // (after fourth_bounds: size_): mode by mode the smaller of the Hermite charge
+  // |g c| |lambda|^4 h^4 / 384 and |f_k| + |H_k| <= |g c| (2 + (8/27) |lambda| h) (|h00| + |h01|
+  // = 1, |h10|, |h11| <= 4/27), times e^(growth h). A stiff element's mode, once damped out,
+  // keeps a coefficient of the eigenvectors' round-off (1e-15 of the state at K = 1e12: the
+  // inverse's small entries are known to an ulp of its large ones), which the Hermite charge
+  // multiplied by |lambda|^4 (2.5e23): a pair pressed together for seconds with a gap of -1e-12
+  // took 2e5 stretches of 1.8e-5. Charged at its amplitude it no longer shortens the stretch.
+  void amplitude_errors(const Mode& md, double h, VectorXd& out) {
+    if (!md.modal) {
+      out.setConstant(std::numeric_limits<double>::infinity());
+      return;
     }
-    return e * std::exp(md.growth * h);
+    const double h4 = h * h * h * h / 384.0;
+    for (int k = 0; k < m_; ++k) {
+      const double l = md.speed(k);
+      weight_(k) = size_(k) * std::min(l * l * l * l * h4, 2.0 + (8.0 / 27.0) * l * h);
+    }
+    out.noalias() = md.g_size * weight_;
+    out *= std::exp(md.growth * h);
   }
 
   enum class Verdict { unproven, proven, proven_with_room };
@@ -615,16 +625,18 @@ class KelvinVoigt {
     fa_.noalias() = md.rows * y_;
     fb_.noalias() = md.rows * yb;
     fourth_bounds(md, h);
+    amplitude_errors(md, h, alt_);
+    amplitude_errors(md, 2.0 * h, alt2_);
     abs_y_ = y_.cwiseAbs();
     noise_.noalias() = w_abs_ * abs_y_;
     const double h4 = h * h * h * h / 384.0;
     bool room = true;
     for (int j = 0; j < nf_; ++j) {
       const Range r = hermite_range(fa_(j), fa_(nf_ + j), fb_(j), fb_(nf_ + j), h);
-      const double e = std::min(b4_(j) * h4, amplitude_error(md, j, h)), noise = kNoise * noise_(j);
+      const double e = std::min(b4_(j) * h4, alt_(j)), noise = kNoise * noise_(j);
       // The error at twice the length, for the room to double: 16 e for the Hermite charge, at
       // most 2 e where the amplitude bound is the smaller (which grows about as h).
-      const double e2 = std::min(kEasyRoom * b4_(j) * h4, amplitude_error(md, j, 2.0 * h));
+      const double e2 = std::min(kEasyRoom * b4_(j) * h4, alt2_(j));
       range_[ix(j)] = r;
       error_[ix(j)] = e;
       if (!(e < std::numeric_limits<double>::infinity())) return Verdict::unproven;
@@ -779,7 +791,7 @@ class KelvinVoigt {
   MatrixXd to_gaps_, to_bodies_;  // bodies' coordinates to the gaps', and back
   MatrixXd w_, w_abs_;
   // Scratch, sized once: judging a stretch allocates nothing.
-  VectorXd fa_, fb_, b4_, noise_, size_, abs_y_, bodies_, body_y_, term_, sum_, scratch_, deriv_;
+  VectorXd fa_, fb_, b4_, noise_, size_, abs_y_, bodies_, body_y_, weight_, alt_, alt2_, term_, sum_, scratch_, deriv_;
   VectorXcd yc_, c_;
   std::vector<Range> range_;
   std::vector<double> error_;
