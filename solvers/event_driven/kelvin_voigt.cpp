@@ -52,10 +52,19 @@ constexpr int kMaxTaylorTerms = 24;
 constexpr double kMaxModalCondition = 1e6;
 // Every fourth-derivative bound is doubled: the modal one is computed in floating point.
 constexpr double kBoundMargin = 2.0;
+// Above this K a pressed contact's gap, about -F / K (1e-15 a_p/w_p^2 at K = 1e14), nears the
+// round-off that each stretch's increment leaves in the state (about 1e-16 of it): measured on
+// a pair (sine, Pi2 0.5, Pi3 1e-3, eps 0.5), K = 1e12 has the rigid reference's 24 impacts,
+// K = 1e13 24 898 at --tol-scale 1 and 68 965 at 0.01, and K = 1e14 a Pi1 2e-3 off the trend.
+// The run says so in its message.
+constexpr double kMostVouchedStiffness = 1e12;
+// Bodies whose displacements and speeds are all below this, over a_p / w_p^2 and a_p / w_p,
+// after the load's end, are at rest (at_rest()).
+constexpr double kAtRest = 1e-200;
 // The round-off of a tracked function's value, in ulps of the sum of its terms' sizes.
 constexpr double kNoise = 64 * std::numeric_limits<double>::epsilon();
-// A stretch proven with this factor of room in every check (as its bound would be at twice
-// the length, 2^4) lets the next one double.
+// A stretch proven with this factor of room in every check (as its Hermite bound would be at
+// twice the length, 2^4; the amplitude bound is evaluated there) lets the next one double.
 constexpr double kEasyRoom = 16.0;
 
 // The least and largest value on [0, h] of the cubic Hermite interpolant through (f0, d0)
@@ -125,10 +134,18 @@ struct Mode {
   };
   std::vector<Pair> pairs;
   MatrixXcd g;  // W D^-1 V
+  MatrixXd g_size;  // |g| kBoundMargin, and |lambda|, for the amplitude bound (amplitude_errors)
+  VectorXd speed;
   // The plain bound, |f_j''''(s)| <= plain(j) exp(norm s) |D y|_inf: where modal is false;
   // norm = |D a D^-1|_inf.
   VectorXd plain;
   double norm = 0;
+  // The same in the bodies' coordinates (y_b = to_bodies y), used where smaller: there a wide
+  // open gap is not a large state (Pi3 = 1e4 on a record, a Jordan block and so the plain
+  // bound: |D y| was the gap's 1e4 where the bodies moved by 4, and a run without a contact
+  // took 1.1 million stretches instead of 76 000).
+  VectorXd plain_bodies;
+  double norm_bodies = 0;
   // For a gap at exactly zero (a touching start, bodies that move alike), the first of its
   // derivatives W a^p y that does not vanish decides its side (sides()): a scaled by 2^-e
   // (exactly: a power of two, so a zero stays a zero and no entry overflows when raised to
@@ -151,6 +168,7 @@ class KelvinVoigt {
         nf_(s.n_contacts() + 1),
         m_(2 * s.n_bodies() + kLoadStates),
         elements_(s, compliant::Model::kelvin_voigt, K),
+        K_(K),
         L_(s.length_scale()),
         slack_(1e-13 * set.tol_scale * L_),
         floor_(std::max(1e-13 * set.tol_scale * s.t_min, 8.0 * std::numeric_limits<double>::epsilon() * s.t_end)),
@@ -165,6 +183,10 @@ class KelvinVoigt {
         size_(m_),
         abs_y_(m_),
         bodies_(m_),
+        body_y_(m_),
+        weight_(m_),
+        alt_(nf_),
+        alt2_(nf_),
         term_(m_),
         sum_(m_),
         scratch_(m_),
@@ -252,6 +274,12 @@ class KelvinVoigt {
       }
       const bool finite = y_.allFinite();
       if (finite) bodies_.noalias() = to_bodies_ * y_;
+      if (finite && at_rest()) {
+        rest_ = t_;
+        t_ = s_.t_end;
+        record_samples(t_, y_, *mode, true);
+        break;
+      }
       std::string why;
       if (const Status end = state_end(s_, finite, bodies_.data(), bodies_.data() + n_, t_, why); end != Status::ok)
         return stopped(end, std::move(why));
@@ -364,6 +392,7 @@ class KelvinVoigt {
     double w2 = 0.0;
     for (int i = 0; i < n; ++i) w2 = std::max(w2, a.block(n + i, 0, 1, n).cwiseAbs().sum());
     const double w_scale = std::max(s_.pulse.w, std::sqrt(w2));
+    const MatrixXd a_bodies = a;
     a = to_gaps_ * a * to_bodies_;
     VectorXd& d = md.scale;
     d = VectorXd::Ones(m_);
@@ -381,6 +410,9 @@ class KelvinVoigt {
     const MatrixXd b2 = md.balanced * md.balanced;
     md.plain = (wb * (b2 * b2)).cwiseAbs().rowwise().sum() * kBoundMargin;
     md.norm = md.balanced.cwiseAbs().rowwise().sum().maxCoeff();
+    const MatrixXd bb = d.asDiagonal() * a_bodies * d.cwiseInverse().asDiagonal(), bb2 = bb * bb;
+    md.plain_bodies = ((w_ * to_gaps_ * d.cwiseInverse().asDiagonal()) * (bb2 * bb2)).cwiseAbs().rowwise().sum() * kBoundMargin;
+    md.norm_bodies = bb.cwiseAbs().rowwise().sum().maxCoeff();
     md.modulus = VectorXd::Constant(m_, std::ldexp(md.norm, -md.exponent));  // the plain bound's, unless modal
 
     // The modal bound: the eigenvectors of the whole motion, the load's states included (their
@@ -389,18 +421,68 @@ class KelvinVoigt {
     Eigen::EigenSolver<MatrixXd> eigen(md.balanced);
     double fastest = w_scale;
     if (eigen.info() == Eigen::Success) {
-      const MatrixXcd v = eigen.eigenvectors();
-      md.v_inv = v.inverse();
-      const double condition = v.cwiseAbs().rowwise().sum().maxCoeff() * md.v_inv.cwiseAbs().rowwise().sum().maxCoeff();
-      if (std::isfinite(condition) && condition < kMaxModalCondition) {
-        md.modal = true;
-        const VectorXcd lambda = eigen.eigenvalues();
-        md.g = wb.cast<std::complex<double>>() * v;
-        md.modal_bound = md.g.cwiseAbs() * lambda.cwiseAbs2().cwiseAbs2().asDiagonal();  // |g| |lambda|^4
-        md.modal_bound *= kBoundMargin;
-        md.modulus = lambda.cwiseAbs() * std::ldexp(1.0, -md.exponent);
-        pair_close_modes(lambda, md);
-        fastest = lambda.cwiseAbs().maxCoeff();
+      // The real basis (Re v, Im v of each complex pair), each column normalised on its own:
+      // a pair's complex eigenvectors are nearly parallel wherever a mode moves coordinates of
+      // different frequency scales (a slow mode's speeds over a stiff element's w: their
+      // imaginary parts are w_slow / w_c of the real ones), so the complex V's condition grew
+      // as sqrt(K) (3.6e5 at K = 1e10, 3.6e6 at 1e12 on a pair, past kMaxModalCondition: the
+      // plain bound, millions of stretches). Its real and imaginary parts, turned orthogonal
+      // (below) and normalised apart, are not: condition 8 on that pair at K = 1e10, 1e12 and
+      // 1e14. V^-1 D y is then solved in this basis and recombined per pair,
+      // c = (q1 - i q2) / 2, without a sum that cancels.
+      MatrixXd basis = eigen.pseudoEigenvectors();
+      const MatrixXd blocks = eigen.pseudoEigenvalueMatrix();
+      for (int k = 0; k + 1 < m_; ++k) {
+        if (blocks(k, k + 1) == 0.0) continue;
+        // v = p1 + i p2 times the phase e^(i phi) that makes v^T v real and positive: then
+        // Re v and Im v are orthogonal (Eigen's phase is arbitrary: both parts carried the
+        // slow pair's displacement, 1 and -1, and stayed parallel to 1e-5).
+        const VectorXcd v = basis.col(k).cast<std::complex<double>>() + std::complex<double>(0.0, 1.0) * basis.col(k + 1);
+        const VectorXcd turned = v * std::polar(1.0, -0.5 * std::arg((v.array() * v.array()).sum()));
+        basis.col(k) = turned.real();
+        basis.col(k + 1) = turned.imag();
+        ++k;
+      }
+      const VectorXd norms = basis.colwise().norm().transpose();
+      if (norms.minCoeff() > 0.0 && norms.allFinite()) {
+        const MatrixXd unit = basis * norms.cwiseInverse().asDiagonal();
+        const MatrixXd unit_inv = unit.inverse();
+        const double condition = unit.cwiseAbs().rowwise().sum().maxCoeff() * unit_inv.cwiseAbs().rowwise().sum().maxCoeff();
+        if (std::isfinite(condition) && condition < kMaxModalCondition) {
+          const MatrixXd q_of_y = norms.cwiseInverse().asDiagonal() * unit_inv;  // coefficients on the unnormalised basis
+          MatrixXcd v(m_, m_);
+          VectorXcd lambda(m_);
+          md.v_inv.resize(m_, m_);
+          const std::complex<double> i1(0.0, 1.0);
+          for (int k = 0; k < m_; ++k) {
+            const bool pair = k + 1 < m_ && blocks(k, k + 1) != 0.0;
+            if (!pair) {
+              v.col(k) = basis.col(k).cast<std::complex<double>>();
+              lambda(k) = blocks(k, k);
+              md.v_inv.row(k) = q_of_y.row(k).cast<std::complex<double>>();
+              continue;
+            }
+            // Columns p1, p2 with block [[s, w], [-w, s]]: v = p1 + i p2 has lambda = s + i w,
+            // and q1 p1 + q2 p2 = c v + conj(c v) with c = (q1 - i q2) / 2.
+            const auto p1 = basis.col(k), p2 = basis.col(k + 1);
+            v.col(k) = p1.cast<std::complex<double>>() + i1 * p2.cast<std::complex<double>>();
+            v.col(k + 1) = p1.cast<std::complex<double>>() - i1 * p2.cast<std::complex<double>>();
+            lambda(k) = {blocks(k, k), blocks(k, k + 1)};
+            lambda(k + 1) = std::conj(lambda(k));
+            md.v_inv.row(k) = 0.5 * (q_of_y.row(k).cast<std::complex<double>>() - i1 * q_of_y.row(k + 1).cast<std::complex<double>>());
+            md.v_inv.row(k + 1) = md.v_inv.row(k).conjugate();
+            ++k;
+          }
+          md.modal = true;
+          md.g = wb.cast<std::complex<double>>() * v;
+          md.modal_bound = md.g.cwiseAbs() * lambda.cwiseAbs2().cwiseAbs2().asDiagonal();  // |g| |lambda|^4
+          md.modal_bound *= kBoundMargin;
+          md.g_size = md.g.cwiseAbs() * kBoundMargin;
+          md.speed = lambda.cwiseAbs();
+          md.modulus = lambda.cwiseAbs() * std::ldexp(1.0, -md.exponent);
+          pair_close_modes(lambda, md);
+          fastest = lambda.cwiseAbs().maxCoeff();
+        }
       }
     }
     md.base = 2.0 * std::numbers::pi / std::max(fastest, s_.pulse.w) / kStretchesPerPeriod;
@@ -450,7 +532,31 @@ class KelvinVoigt {
       if (md.growth > 0.0) b4_ *= std::exp(md.growth * h);
     } else {
       b4_ = md.plain * (std::exp(md.norm * h) * md.scale.cwiseProduct(y_).cwiseAbs().maxCoeff());
+      body_y_.noalias() = to_bodies_ * y_;
+      b4_ = b4_.cwiseMin(md.plain_bodies * (std::exp(md.norm_bodies * h) * md.scale.cwiseProduct(body_y_).cwiseAbs().maxCoeff()));
     }
+  }
+
+  // A second bound on |f_j - H| over [t_, t_ + h] for every tracked function, into out
+  // (after fourth_bounds: size_): mode by mode the smaller of the Hermite charge
+  // |g c| |lambda|^4 h^4 / 384 and |f_k| + |H_k| <= |g c| (2 + (8/27) |lambda| h) (|h00| + |h01|
+  // = 1, |h10|, |h11| <= 4/27), times e^(growth h). A stiff element's mode, once damped out,
+  // keeps a coefficient of the eigenvectors' round-off (1e-15 of the state at K = 1e12: the
+  // inverse's small entries are known to an ulp of its large ones), which the Hermite charge
+  // multiplied by |lambda|^4 (2.5e23): a pair pressed together for seconds with a gap of -1e-12
+  // took 2e5 stretches of 1.8e-5. Charged at its amplitude it no longer shortens the stretch.
+  void amplitude_errors(const Mode& md, double h, VectorXd& out) {
+    if (!md.modal) {
+      out.setConstant(std::numeric_limits<double>::infinity());
+      return;
+    }
+    const double h4 = h * h * h * h / 384.0;
+    for (int k = 0; k < m_; ++k) {
+      const double l = md.speed(k);
+      weight_(k) = size_(k) * std::min(l * l * l * l * h4, 2.0 + (8.0 / 27.0) * l * h);
+    }
+    out.noalias() = md.g_size * weight_;
+    out *= std::exp(md.growth * h);
   }
 
   enum class Verdict { unproven, proven, proven_with_room };
@@ -519,13 +625,18 @@ class KelvinVoigt {
     fa_.noalias() = md.rows * y_;
     fb_.noalias() = md.rows * yb;
     fourth_bounds(md, h);
+    amplitude_errors(md, h, alt_);
+    amplitude_errors(md, 2.0 * h, alt2_);
     abs_y_ = y_.cwiseAbs();
     noise_.noalias() = w_abs_ * abs_y_;
     const double h4 = h * h * h * h / 384.0;
     bool room = true;
     for (int j = 0; j < nf_; ++j) {
       const Range r = hermite_range(fa_(j), fa_(nf_ + j), fb_(j), fb_(nf_ + j), h);
-      const double e = b4_(j) * h4, noise = kNoise * noise_(j);
+      const double e = std::min(b4_(j) * h4, alt_(j)), noise = kNoise * noise_(j);
+      // The error at twice the length, for the room to double: 16 e for the Hermite charge, at
+      // most 2 e where the amplitude bound is the smaller (which grows about as h).
+      const double e2 = std::min(kEasyRoom * b4_(j) * h4, alt2_(j));
       range_[ix(j)] = r;
       error_[ix(j)] = e;
       if (!(e < std::numeric_limits<double>::infinity())) return Verdict::unproven;
@@ -533,13 +644,13 @@ class KelvinVoigt {
       if (j == nc_) {  // u0
         const double top = std::max(r.hi, -r.lo), slack = std::max(slack_, noise);
         if (e > slack && top + e > best_u_ + slack) return Verdict::unproven;
-        room = room && (kEasyRoom * e <= slack || top + kEasyRoom * e <= best_u_ + slack);
+        room = room && (e2 <= slack || top + e2 <= best_u_ + slack);
       } else if (!elements_.closed(j)) {
         if (r.lo - e + noise <= 0.0 &&
             hermite_range(fa_(j), fa_(nf_ + j), fb_(j), fb_(nf_ + j), h, -bend).lo + noise <= 0.0) {
           if (!at_zero_keeps_side(md, j, h, room)) return Verdict::unproven;
         } else {
-          room = room && r.lo - kEasyRoom * e > 0.0;
+          room = room && r.lo - e2 > 0.0;
         }
       } else {
         if (r.hi + e - noise >= 0.0 &&
@@ -548,7 +659,7 @@ class KelvinVoigt {
         }
         const double slack = std::max({slack_, 1e-9 * -min_gap_, noise});
         if (e > slack && r.lo - e < min_gap_ - slack) return Verdict::unproven;
-        room = room && r.hi + kEasyRoom * e < 0.0 && (kEasyRoom * e <= slack || r.lo - kEasyRoom * e >= min_gap_ - slack);
+        room = room && r.hi + e2 < 0.0 && (e2 <= slack || r.lo - e2 >= min_gap_ - slack);
       }
     }
     return room ? Verdict::proven_with_room : Verdict::proven;
@@ -607,14 +718,27 @@ class KelvinVoigt {
     return first >= 0 ? first : stretch(md, level + 1, depth + 1, clip);
   }
 
-  // History rows at the sample times in (t0, t_] (and t = 0), from the state y0 at t0.
-  void record_samples(double t0, const VectorXd& y0, const Mode& md) {
+  // Whether the bodies are at rest to within kAtRest of the pulse's scales with no load left
+  // (DERIVATION.md §8). On a touching wall with eps = 0 at K >= 1e10 the gap decays under a
+  // critically damped element into denormals and stops at a floating-point fixed point (gap
+  // -4.9e-324, rate 9.8e-320) that no stretch longer than 1.6e-5 can prove negative: 2 s of
+  // wall time reached t = 14 of 33 (K = 1e10). From there the motion is a decaying linear
+  // one of that size: it cannot change Pi1, the deepest penetration or an impact's speed.
+  bool at_rest() const {
+    if (t_ < s_.pulse.duration() || y_(2 * n_ + 1) != 0.0 || y_(2 * n_ + 2) != 0.0) return false;
+    return bodies_.head(n_).cwiseAbs().maxCoeff() <= kAtRest * L_ &&
+           bodies_.segment(n_, n_).cwiseAbs().maxCoeff() <= kAtRest * L_ * s_.pulse.w;
+  }
+
+  // History rows at the sample times in (t0, t_] (and t = 0), from the state y0 at t0 (held
+  // there at rest).
+  void record_samples(double t0, const VectorXd& y0, const Mode& md, bool hold = false) {
     auto& rows = result_.history.data;
     while (next_sample_ < samples_) {
       const double ts = samples_ > 1 ? s_.t_end * next_sample_ / (samples_ - 1) : 0.0;
       if (ts > t_) break;
       ++next_sample_;
-      const VectorXd y = y0 + increment(md, ts - t0) * y0;
+      const VectorXd y = hold ? y0 : VectorXd(y0 + increment(md, ts - t0) * y0);
       const VectorXd bodies = to_bodies_ * y;
       rows.push_back(ts);
       for (int i = 0; i < 2 * n_; ++i) rows.push_back(bodies(i));
@@ -632,6 +756,10 @@ class KelvinVoigt {
     result_.contact_force_max = force_max_;
     elements_.finish(result_);
     result_.message = std::to_string(events_) + " contact changes";
+    if (rest_ >= 0.0) result_.message += "; at rest (below 1e-200 a_p/w_p^2) from t = " + std::to_string(rest_);
+    if (K_ > kMostVouchedStiffness)
+      result_.message += "; K above 1e12: a pressed contact's gap (-F/K) nears the state's round-off and its sign "
+                         "may be round-off (impacts that change with --tol-scale; DERIVATION.md section 8)";
   }
 
   Result stopped(Status status, std::string message) {
@@ -653,6 +781,7 @@ class KelvinVoigt {
   const System& s_;
   const int n_, nc_, nf_, m_;
   compliant::Elements elements_;
+  const double K_;
   const double L_, slack_, floor_;
   const long cap_;
   Deadline deadline_;
@@ -662,7 +791,7 @@ class KelvinVoigt {
   MatrixXd to_gaps_, to_bodies_;  // bodies' coordinates to the gaps', and back
   MatrixXd w_, w_abs_;
   // Scratch, sized once: judging a stretch allocates nothing.
-  VectorXd fa_, fb_, b4_, noise_, size_, abs_y_, bodies_, term_, sum_, scratch_, deriv_;
+  VectorXd fa_, fb_, b4_, noise_, size_, abs_y_, bodies_, body_y_, weight_, alt_, alt2_, term_, sum_, scratch_, deriv_;
   VectorXcd yc_, c_;
   std::vector<Range> range_;
   std::vector<double> error_;
@@ -671,6 +800,7 @@ class KelvinVoigt {
   std::string key_;
   int level_ = 0;
   bool halved_ = false, easy_ = false;
+  double rest_ = -1.0;  // when the bodies came to rest (at_rest()), or -1
   double t_ = 0.0, t_max_ = 0.0, best_u_ = 0.0, min_gap_ = 0.0, force_max_ = 0.0;
   long events_ = 0, stretches_ = 0;
   Result result_;
