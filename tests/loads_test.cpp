@@ -10,7 +10,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -338,19 +337,15 @@ TEST(Loads, ARampRecordFollowsTheMotionDerivedByHand) {
 
 // A record's reference costs one event per sample, each a few microseconds: the shipped 40 s
 // record at 0.005 s (8001 samples) on a pair with impacts takes milliseconds (measured 4.7 to
-// 8.4 ms in RelWithDebInfo). Here: its events, and a bound
-// of 0.5 s that only a per-sample cost gone wrong (or the sanitizer's 20x) could approach.
+// 8.4 ms in RelWithDebInfo; bench/ times it). Here its work: one event per sample, plus the
+// impacts. (A bound on its seconds failed CI under the sanitizers beside other tests: 0.52 s.)
 TEST(Loads, TheReferenceOnAFortySecondRecordTakesOneEventPerSample) {
   Case c = record_case(read_record(kRecords + "mp-noise-40s.csv"), 0.0, 2.0 * std::numbers::pi);
   c.a_p = c.samples->peak;
-  const auto start = std::chrono::steady_clock::now();
   const Result r = reference(c);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_EQ(r.status, Status::ok) << r.message;
   EXPECT_GE(r.steps, 8001);
   EXPECT_LT(r.steps, 8001 + 100);
-  EXPECT_LT(seconds, 0.5);
-  RecordProperty("seconds", sci(seconds));
 }
 
 // A case-set family over records: paths relative to the case file, a_p the record's peak,
