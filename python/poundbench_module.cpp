@@ -369,11 +369,19 @@ class DictSink final : public app::FieldSink {
  public:
   // Sized for a row's fields (about 50) at once: grown from empty, it was resized four times.
   py::dict dict = presized_dict(64);
-  void null(std::string_view key) override { set(key, py::none()); }
-  void boolean(std::string_view key, bool x) override { set(key, py::bool_(x)); }
-  void integer(std::string_view key, long long x) override { set(key, py::int_(x)); }
-  void number(std::string_view key, double x) override { set(key, py::float_(x)); }
-  void text(std::string_view key, std::string_view x) override { set(key, decoded(x)); }
+  void null(std::string_view key) override { add(key, py::none()); }
+  void boolean(std::string_view key, bool x) override { add(key, py::bool_(x)); }
+  void integer(std::string_view key, long long x) override { add(key, py::int_(x)); }
+  void number(std::string_view key, double x) override { add(key, py::float_(x)); }
+  // A key's text is often its last one ("ok", the solver's and the scene's names): kept, as a str.
+  void text(std::string_view key, std::string_view x) override {
+    Key& k = key_of(key);
+    if (!k.last_text || k.text != x) {
+      k.last_text = decoded(x);
+      k.text = x;
+    }
+    set(k.name.ptr(), k.last_text);
+  }
   // A row's settings: the last one parsed is kept (a loop of calls gives the same settings
   // again), and each row gets a copy of its own.
   void object(std::string_view key, const std::string& json) override {
@@ -389,27 +397,33 @@ class DictSink final : public app::FieldSink {
     }
     const py::object copy = py::reinterpret_steal<py::object>(PyDict_Copy(last->ptr()));
     if (!copy) throw py::error_already_set();
-    set(key, copy);
+    add(key, copy);
   }
 
  private:
-  void set(std::string_view key, const py::object& value) {
-    if (PyDict_SetItem(dict.ptr(), key_object(key), value.ptr()) != 0) throw py::error_already_set();
-  }
-  // The keys as Python strings, made once (they are the names of --json's fields, a few dozen):
-  // a row's keys come in the same order every time, so the one after the last is tried first.
-  static PyObject* key_object(std::string_view key) {
-    static auto* keys = new std::vector<std::pair<std::string, py::str>>();  // never freed, as `last`
+  struct Key {
+    std::string key;
+    py::str name;
+    std::string text;  // the key's last text value, and that as a str
+    py::object last_text;
+  };
+  // The keys as Python strings, made once (they are the names of --json's fields, a few dozen,
+  // and live as long as the module: never freed, they would outlive the interpreter): a row's
+  // keys come in the same order every time, so the one after the last is tried first.
+  static Key& key_of(std::string_view key) {
+    static auto* keys = new std::vector<Key>();
     static std::size_t next = 0;
-    for (std::size_t tried = 0; tried < keys->size(); ++tried, next = (next + 1) % keys->size())
-      if ((*keys)[next].first == key) {
-        PyObject* found = (*keys)[next].second.ptr();
-        next = (next + 1) % keys->size();
-        return found;
-      }
-    keys->emplace_back(std::string(key), decoded(key));
+    for (std::size_t tried = 0; tried < keys->size(); ++tried) {
+      if (next >= keys->size()) next = 0;
+      if (Key& k = (*keys)[next++]; k.key == key) return k;
+    }
+    keys->push_back({std::string(key), decoded(key), {}, {}});
     next = 0;
-    return keys->back().second.ptr();
+    return keys->back();
+  }
+  void add(std::string_view key, const py::object& value) { set(key_of(key).name.ptr(), value); }
+  void set(PyObject* key, const py::object& value) {
+    if (PyDict_SetItem(dict.ptr(), key, value.ptr()) != 0) throw py::error_already_set();
   }
 };
 
