@@ -98,14 +98,14 @@ struct Keywords {
   }
 };
 
-[[noreturn]] void type_error(const std::string& function, const std::string& key, const std::string& why) {
+[[noreturn]] void type_error(const std::string& function, std::string_view key, const std::string& why) {
   throw py::type_error(function + "() keyword " + clip(key) + ": " + why);
 }
 
 // A str as the bytes it stands for: UTF-8, with the bytes a file name that is not UTF-8 was
 // read with (os.fsdecode's surrogateescape) given back, as os.fsencode does; a lone
 // surrogate is not text (ValueError).
-std::string utf8(const std::string& function, const std::string& key, const py::handle& value) {
+std::string utf8(const std::string& function, std::string_view key, const py::handle& value) {
   Py_ssize_t size = 0;
   if (const char* text = PyUnicode_AsUTF8AndSize(value.ptr(), &size)) return std::string(text, static_cast<std::size_t>(size));
   PyErr_Clear();  // a surrogate: through the codec, which gives back the bytes it stands for
@@ -119,7 +119,7 @@ std::string utf8(const std::string& function, const std::string& key, const py::
   return out;
 }
 
-std::string text(const std::string& function, const std::string& key, const py::handle& value) {
+std::string text(const std::string& function, std::string_view key, const py::handle& value) {
   if (py::isinstance<py::str>(value)) return utf8(function, key, value);
   if (py::hasattr(value, "__fspath__")) {
     const py::object path = py::module_::import("os").attr("fspath")(value);
@@ -131,7 +131,7 @@ std::string text(const std::string& function, const std::string& key, const py::
 
 // A whole number (an int, or anything with __index__ such as NumPy's integers, never a bool):
 // one outside a long long's range is out of range for every keyword, a ValueError.
-long long whole(const std::string& function, const std::string& key, const py::handle& value) {
+long long whole(const std::string& function, std::string_view key, const py::handle& value) {
   if (py::isinstance<py::bool_>(value) || !PyIndex_Check(value.ptr())) type_error(function, key, "must be an int");
   const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
   if (!index) throw py::error_already_set();
@@ -145,7 +145,7 @@ long long whole(const std::string& function, const std::string& key, const py::h
 
 // A number: a float (NumPy's float64 is one), or a whole number as whole() takes it; an int
 // too large for a double is out of range, a ValueError.
-double number(const std::string& function, const std::string& key, const py::handle& value) {
+double number(const std::string& function, std::string_view key, const py::handle& value) {
   if (py::isinstance<py::bool_>(value)) type_error(function, key, "must be a number");
   if (PyFloat_Check(value.ptr())) return PyFloat_AS_DOUBLE(value.ptr());
   if (!PyIndex_Check(value.ptr())) {
@@ -169,7 +169,7 @@ double number(const std::string& function, const std::string& key, const py::han
   return x;
 }
 
-int as_int(const std::string& key, long long value) {
+int as_int(std::string_view key, long long value) {
   if (value < INT_MIN || value > INT_MAX) throw app::BadInput(flag_of(key) + ": " + std::to_string(value) + " is out of range");
   return static_cast<int>(value);
 }
@@ -582,14 +582,7 @@ app::ChosenCase case_of(const Keywords& k) {
   if (last && k.by_name_alone && k.given == last->given && flags.scene == last->scene &&
       flags.pulse == last->pulse && flags.directivity == last->directivity) {
     Case c = last->input;
-    for (const CaseField& field : kCaseFields) {
-      if (field.number)
-        c.*field.number = flags.numbers.*field.number;
-      else if (field.integer)
-        c.*field.integer = flags.numbers.*field.integer;
-      else
-        c.*field.text = flags.numbers.*field.text;
-    }
+    for (const CaseField& field : kCaseFields) copy_field(field, flags.numbers, c);
     if (auto bad = validate(c)) throw app::BadInput(app::case_flag_message(*bad));
     return {std::move(c), 0, {}};
   }
