@@ -92,6 +92,16 @@ inline constexpr std::array<CaseField, 22> kCaseFields = {{
      nullptr, true},
 }};
 
+// A field's value from one case into another (a number, a whole number or text).
+inline void copy_field(const CaseField& field, const Case& from, Case& to) {
+  if (field.number)
+    to.*field.number = from.*field.number;
+  else if (field.integer)
+    to.*field.integer = from.*field.integer;
+  else
+    to.*field.text = from.*field.text;
+}
+
 // Whether a field is written for a case (a row's column, a JSON key, a part of the row's
 // key): the case uses it and, for a field of yielding, it is not at its default.
 bool written(const CaseField& field, const Case& c);

@@ -90,13 +90,7 @@ ChosenCase case_from_flags(const GivenFlag& given, const CaseFlags& flags) {
     if (used && field.required && !given(flag))
       throw BadInput(flag + (field.use == FieldUse::every ? ": required (or give --case-file)" : ": required by " + user()));
     if (!used && given(flag)) throw BadInput(flag + ": not used by " + user());
-    if (!used) continue;
-    if (field.number)
-      c.*field.number = flags.numbers.*field.number;
-    else if (field.integer)
-      c.*field.integer = flags.numbers.*field.integer;
-    else
-      c.*field.text = flags.numbers.*field.text;
+    if (used) copy_field(field, flags.numbers, c);
   }
   // An alias gives its field (--tp gives --w-p), never beside it.
   for (std::size_t a = 0; a < kCaseAliases.size(); ++a) {

@@ -36,11 +36,11 @@ void case_fields(const Case& c, RowFields& j) {
   for (const CaseField& field : kCaseFields) {
     if (!written(field, c)) continue;
     if (field.text)
-      j[std::string(field.name)] = c.*field.text;
+      j[field.name] = c.*field.text;
     else if (field.integer)
-      j[std::string(field.name)] = c.*field.integer;
+      j[field.name] = c.*field.integer;
     else
-      j[std::string(field.name)] = c.*field.number;
+      j[field.name] = c.*field.number;
   }
 }
 
@@ -111,8 +111,8 @@ void row_fields(const Row& row, const ChosenCase& chosen, FieldSink& sink) {
   }
   // A case in physical units: the values it was given (the Pi terms above follow from them).
   for (const PhysicalField& field : kPhysicalFields)
-    if (!std::isnan(row.input.physical.*field.member)) j[std::string(field.name)] = row.input.physical.*field.member;
-  for (const PhysicalResult& x : physical_results(row)) j[std::string(x.name)] = number_or_null(x.value);
+    if (!std::isnan(row.input.physical.*field.member)) j[field.name] = row.input.physical.*field.member;
+  for (const PhysicalResult& x : physical_results(row)) j[x.name] = number_or_null(x.value);
   // The external solver's own timings (rows/row.hpp), after everything else.
   j["solve_seconds"] = number_or_null(r.solve_seconds);
   j["startup_seconds"] = number_or_null(r.startup_seconds);

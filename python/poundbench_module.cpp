@@ -84,6 +84,9 @@ struct Keywords {
   // What app::checked_solver's answer depends on: every keyword, name then value, but for the
   // case's own fields (kCaseFields), whose names alone count. run() keeps its last answer.
   py::list solver_key;
+  // No keyword of a case file, an alias or physical units: the case's checks by name (case_of)
+  // depend on the names given and the scene, pulse and directivity alone.
+  bool by_name_alone = true;
 
   bool has(std::string_view flag) const {
     for (const std::string& g : given)
@@ -95,14 +98,14 @@ struct Keywords {
   }
 };
 
-[[noreturn]] void type_error(const std::string& function, const std::string& key, const std::string& why) {
+[[noreturn]] void type_error(const std::string& function, std::string_view key, const std::string& why) {
   throw py::type_error(function + "() keyword " + clip(key) + ": " + why);
 }
 
 // A str as the bytes it stands for: UTF-8, with the bytes a file name that is not UTF-8 was
 // read with (os.fsdecode's surrogateescape) given back, as os.fsencode does; a lone
 // surrogate is not text (ValueError).
-std::string utf8(const std::string& function, const std::string& key, const py::handle& value) {
+std::string utf8(const std::string& function, std::string_view key, const py::handle& value) {
   Py_ssize_t size = 0;
   if (const char* text = PyUnicode_AsUTF8AndSize(value.ptr(), &size)) return std::string(text, static_cast<std::size_t>(size));
   PyErr_Clear();  // a surrogate: through the codec, which gives back the bytes it stands for
@@ -116,7 +119,7 @@ std::string utf8(const std::string& function, const std::string& key, const py::
   return out;
 }
 
-std::string text(const std::string& function, const std::string& key, const py::handle& value) {
+std::string text(const std::string& function, std::string_view key, const py::handle& value) {
   if (py::isinstance<py::str>(value)) return utf8(function, key, value);
   if (py::hasattr(value, "__fspath__")) {
     const py::object path = py::module_::import("os").attr("fspath")(value);
@@ -128,7 +131,7 @@ std::string text(const std::string& function, const std::string& key, const py::
 
 // A whole number (an int, or anything with __index__ such as NumPy's integers, never a bool):
 // one outside a long long's range is out of range for every keyword, a ValueError.
-long long whole(const std::string& function, const std::string& key, const py::handle& value) {
+long long whole(const std::string& function, std::string_view key, const py::handle& value) {
   if (py::isinstance<py::bool_>(value) || !PyIndex_Check(value.ptr())) type_error(function, key, "must be an int");
   const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
   if (!index) throw py::error_already_set();
@@ -142,7 +145,7 @@ long long whole(const std::string& function, const std::string& key, const py::h
 
 // A number: a float (NumPy's float64 is one), or a whole number as whole() takes it; an int
 // too large for a double is out of range, a ValueError.
-double number(const std::string& function, const std::string& key, const py::handle& value) {
+double number(const std::string& function, std::string_view key, const py::handle& value) {
   if (py::isinstance<py::bool_>(value)) type_error(function, key, "must be a number");
   if (PyFloat_Check(value.ptr())) return PyFloat_AS_DOUBLE(value.ptr());
   if (!PyIndex_Check(value.ptr())) {
@@ -166,9 +169,81 @@ double number(const std::string& function, const std::string& key, const py::han
   return x;
 }
 
-int as_int(const std::string& key, long long value) {
+int as_int(std::string_view key, long long value) {
   if (value < INT_MIN || value > INT_MAX) throw app::BadInput(flag_of(key) + ": " + std::to_string(value) + " is out of range");
   return static_cast<int>(value);
+}
+
+// What a keyword is in run() or spectrum() (`for_run`); the order of the tests is each name's
+// precedence (a case's field before a setting of the same name).
+enum class Slot : unsigned char {
+  unexpected, scene, pulse, directivity, case_field, alias, physical, k_contact, case_file, point,
+  history, samples, threads, monitor, solver, persistent, variant, setting
+};
+struct Kind {
+  Slot slot = Slot::unexpected;
+  std::size_t index = 0;  // in kCaseFields, kCaseAliases, kPhysicalFields or kSettingFields
+};
+
+Kind classify(bool for_run, std::string_view name) {
+  const auto in = [&](const auto& table) -> std::optional<std::size_t> {
+    for (std::size_t j = 0; j < table.size(); ++j)
+      if (table[j].name == name) return j;
+    return std::nullopt;
+  };
+  if (for_run && name == "scene") return {Slot::scene};
+  if (for_run && name == "pulse") return {Slot::pulse};
+  if (for_run && name == "directivity") return {Slot::directivity};
+  if (const auto j = in(kCaseFields); for_run && j) return {Slot::case_field, *j};
+  if (const auto j = in(kCaseAliases); for_run && j) return {Slot::alias, *j};
+  if (const auto j = in(kPhysicalFields); for_run && j) return {Slot::physical, *j};
+  if (for_run && name == "k_contact") return {Slot::k_contact};
+  if (for_run && name == "case_file") return {Slot::case_file};
+  if (for_run && name == "point") return {Slot::point};
+  if (for_run && name == "history") return {Slot::history};
+  if (for_run && name == "samples") return {Slot::samples};
+  if (!for_run && name == "threads") return {Slot::threads};
+  if (name == "monitor") return {Slot::monitor};
+  if (name == "solver") return {Slot::solver};
+  if (name == "persistent") return {Slot::persistent};
+  if (name == "variant") return {Slot::variant};
+  if (const auto j = setting_field_index(name)) return {Slot::setting, *j};
+  return {};
+}
+
+// Every keyword either function takes, classified once per module: a call looks its names up
+// in a dict (their hashes are the strs' own, kept by Python). Classifying each name and writing
+// its flag per call, read_keywords was 11.6 k of a call's 53 k instructions besides the solve,
+// 7.5 k so (callgrind, BM_PythonRun's call).
+struct KnownKeyword {
+  std::string flag;  // what it stands for in `given` ("--pi3"; persistent: "--variant")
+  Kind run, spectrum;
+};
+struct KeywordTable {
+  std::vector<KnownKeyword> keywords;
+  py::dict index;  // name -> its place in keywords
+};
+const KeywordTable& keyword_table() {
+  static const KeywordTable* table = [] {
+    auto* t = new KeywordTable();  // never freed: its dict would outlive the interpreter
+    std::vector<std::string_view> names = {"scene",   "pulse",      "directivity", "k_contact", "case_file",
+                                           "point",   "history",    "samples",     "threads",   "monitor",
+                                           "solver",  "persistent", "variant"};
+    for (const auto& f : kCaseFields) names.push_back(f.name);
+    for (const auto& f : kCaseAliases) names.push_back(f.name);
+    for (const auto& f : kPhysicalFields) names.push_back(f.name);
+    for (const auto& f : kSettingFields) names.push_back(f.name);
+    for (const std::string_view name : names) {
+      // Interned, as the names of a call's keywords written in Python source are: found by identity.
+      py::str key(name.data(), name.size());
+      PyUnicode_InternInPlace(&key.ptr());
+      if (t->index.contains(key)) continue;
+      t->index[key] = t->keywords.size();
+      t->keywords.push_back({name == "persistent" ? "--variant" : flag_of(name), classify(true, name), classify(false, name)});
+    }
+    return t;
+  }();
+  return *table;
 }
 
 // The keywords of `function` ("run" or "spectrum"); a None value counts as not given.
@@ -176,81 +251,88 @@ Keywords read_keywords(const std::string& function, const py::kwargs& kwargs) {
   Keywords k;
   Settings& settings = k.solver_flags.settings;
   const bool for_run = function == "run";
+  const KeywordTable& table = keyword_table();
   k.given.reserve(kwargs.size());
   for (const auto& [key_object, value] : kwargs) {
     const std::string key = utf8(function, "name", key_object);
-    const std::string_view name = key;  // compared by length first: 58 compares a call
     if (value.is_none()) continue;
-    const std::string flag = flag_of(key);
-    const auto case_field = std::find_if(kCaseFields.begin(), kCaseFields.end(),
-                                         [&](const CaseField& f) { return f.name == key; });
-    const std::optional<std::size_t> setting = setting_field_index(key);
+    PyObject* place = PyDict_GetItemWithError(table.index.ptr(), key_object.ptr());
+    if (place == nullptr && PyErr_Occurred()) throw py::error_already_set();
+    const KnownKeyword* known = place ? &table.keywords[PyLong_AsSize_t(place)] : nullptr;
+    const Kind kind = known ? (for_run ? known->run : known->spectrum) : Kind{};
     if (PyList_Append(k.solver_key.ptr(), key_object.ptr()) != 0 ||
-        PyList_Append(k.solver_key.ptr(), (for_run && case_field != kCaseFields.end() ? py::none() : value).ptr()) != 0)
+        PyList_Append(k.solver_key.ptr(), (kind.slot == Slot::case_field ? py::none() : value).ptr()) != 0)
       throw py::error_already_set();
-    if (for_run && (name == "scene" || name == "pulse" || name == "directivity")) {
-      (name == "scene" ? k.case_flags.scene : name == "pulse" ? k.case_flags.pulse : k.case_flags.directivity) =
-          text(function, key, value);
-    } else if (for_run && case_field != kCaseFields.end()) {
-      if (case_field->number)
-        k.case_flags.numbers.*case_field->number = number(function, key, value);
-      else if (case_field->text)
-        k.case_flags.numbers.*case_field->text = text(function, key, value);
-      else
-        k.case_flags.numbers.*case_field->integer = as_int(key, whole(function, key, value));
-    } else if (const auto alias = std::find_if(kCaseAliases.begin(), kCaseAliases.end(),
-                                               [&](const CaseAlias& x) { return x.name == key; });
-               for_run && alias != kCaseAliases.end()) {
-      k.case_flags.aliases[static_cast<std::size_t>(alias - kCaseAliases.begin())] = number(function, key, value);
-    } else if (const auto physical = std::find_if(kPhysicalFields.begin(), kPhysicalFields.end(),
-                                                  [&](const PhysicalField& x) { return x.name == key; });
-               for_run && physical != kPhysicalFields.end()) {
-      k.case_flags.numbers.physical.*physical->member = number(function, key, value);
-    } else if (for_run && name == "k_contact") {
-      k.k_contact = number(function, key, value);
-    } else if (for_run && name == "case_file") {
-      k.case_flags.case_file = text(function, key, value);
-    } else if (for_run && name == "point") {
-      k.case_flags.point = whole(function, key, value);
-    } else if (for_run && name == "history") {
-      if (!py::isinstance<py::bool_>(value)) type_error(function, key, "must be True or False");
-      k.history = value.cast<bool>();
-      continue;
-    } else if (for_run && name == "samples") {
-      k.samples = whole(function, key, value);
-      continue;
-    } else if (!for_run && name == "threads") {
-      k.threads = whole(function, key, value);
-      continue;
-    } else if (name == "monitor") {
-      if (!py::isinstance<py::bool_>(value)) type_error(function, key, "must be True or False");
-      settings.monitor = value.cast<bool>();
-    } else if (name == "solver" && !for_run && !py::isinstance<py::str>(value) && PyCallable_Check(value.ptr())) {
-      k.callable = py::reinterpret_borrow<py::object>(value);
-      k.solver_flags.solver = "external";
-    } else if (name == "solver") {
-      k.solver_flags.solver = text(function, key, value);
-    } else if (name == "persistent") {
-      if (!py::isinstance<py::bool_>(value)) type_error(function, key, "must be True or False");
-      if (value.cast<bool>()) settings.variant = std::string(external::kPersistent);
-      k.given.push_back("--variant");
-      continue;
-    } else if (name == "variant") {
-      settings.variant = text(function, key, value);
-    } else if (setting) {
-      const SettingField& f = kSettingFields[*setting];
-      if (f.text)
-        settings.*f.text = text(function, key, value);
-      else if (f.number)
-        settings.*f.number = number(function, key, value);
-      else if (f.integer)
-        settings.*f.integer = as_int(key, whole(function, key, value));
-      else
-        settings.*f.count = static_cast<long>(whole(function, key, value));
-    } else {
-      throw py::type_error(function + "() got an unexpected keyword argument '" + clip(key) + "'");
+    switch (kind.slot) {
+      case Slot::scene: k.case_flags.scene = text(function, key, value); break;
+      case Slot::pulse: k.case_flags.pulse = text(function, key, value); break;
+      case Slot::directivity: k.case_flags.directivity = text(function, key, value); break;
+      case Slot::case_field: {
+        const CaseField& f = kCaseFields[kind.index];
+        if (f.number)
+          k.case_flags.numbers.*f.number = number(function, key, value);
+        else if (f.text)
+          k.case_flags.numbers.*f.text = text(function, key, value);
+        else
+          k.case_flags.numbers.*f.integer = as_int(key, whole(function, key, value));
+        break;
+      }
+      case Slot::alias:
+        k.case_flags.aliases[kind.index] = number(function, key, value);
+        k.by_name_alone = false;
+        break;
+      case Slot::physical:
+        k.case_flags.numbers.physical.*kPhysicalFields[kind.index].member = number(function, key, value);
+        k.by_name_alone = false;
+        break;
+      case Slot::k_contact: k.k_contact = number(function, key, value); break;
+      case Slot::case_file:
+        k.case_flags.case_file = text(function, key, value);
+        k.by_name_alone = false;
+        break;
+      case Slot::point:
+        k.case_flags.point = whole(function, key, value);
+        k.by_name_alone = false;
+        break;
+      case Slot::history:
+        if (!py::isinstance<py::bool_>(value)) type_error(function, key, "must be True or False");
+        k.history = value.cast<bool>();
+        continue;
+      case Slot::samples: k.samples = whole(function, key, value); continue;
+      case Slot::threads: k.threads = whole(function, key, value); continue;
+      case Slot::monitor:
+        if (!py::isinstance<py::bool_>(value)) type_error(function, key, "must be True or False");
+        settings.monitor = value.cast<bool>();
+        break;
+      case Slot::solver:
+        if (!for_run && !py::isinstance<py::str>(value) && PyCallable_Check(value.ptr())) {
+          k.callable = py::reinterpret_borrow<py::object>(value);
+          k.solver_flags.solver = "external";
+        } else {
+          k.solver_flags.solver = text(function, key, value);
+        }
+        break;
+      case Slot::persistent:
+        if (!py::isinstance<py::bool_>(value)) type_error(function, key, "must be True or False");
+        if (value.cast<bool>()) settings.variant = std::string(external::kPersistent);
+        break;
+      case Slot::variant: settings.variant = text(function, key, value); break;
+      case Slot::setting: {
+        const SettingField& f = kSettingFields[kind.index];
+        if (f.text)
+          settings.*f.text = text(function, key, value);
+        else if (f.number)
+          settings.*f.number = number(function, key, value);
+        else if (f.integer)
+          settings.*f.integer = as_int(key, whole(function, key, value));
+        else
+          settings.*f.count = static_cast<long>(whole(function, key, value));
+        break;
+      }
+      case Slot::unexpected:
+        throw py::type_error(function + "() got an unexpected keyword argument '" + clip(key) + "'");
     }
-    k.given.push_back(flag);
+    k.given.push_back(known->flag);
   }
   return k;
 }
@@ -288,11 +370,19 @@ class DictSink final : public app::FieldSink {
  public:
   // Sized for a row's fields (about 50) at once: grown from empty, it was resized four times.
   py::dict dict = presized_dict(64);
-  void null(std::string_view key) override { set(key, py::none()); }
-  void boolean(std::string_view key, bool x) override { set(key, py::bool_(x)); }
-  void integer(std::string_view key, long long x) override { set(key, py::int_(x)); }
-  void number(std::string_view key, double x) override { set(key, py::float_(x)); }
-  void text(std::string_view key, std::string_view x) override { set(key, decoded(x)); }
+  void null(std::string_view key) override { add(key, py::none()); }
+  void boolean(std::string_view key, bool x) override { add(key, py::bool_(x)); }
+  void integer(std::string_view key, long long x) override { add(key, py::int_(x)); }
+  void number(std::string_view key, double x) override { add(key, py::float_(x)); }
+  // A key's text is often its last one ("ok", the solver's and the scene's names): kept, as a str.
+  void text(std::string_view key, std::string_view x) override {
+    Key& k = key_of(key);
+    if (!k.last_text || k.text != x) {
+      k.last_text = decoded(x);
+      k.text = x;
+    }
+    set(k.name.ptr(), k.last_text);
+  }
   // A row's settings: the last one parsed is kept (a loop of calls gives the same settings
   // again), and each row gets a copy of its own.
   void object(std::string_view key, const std::string& json) override {
@@ -308,27 +398,33 @@ class DictSink final : public app::FieldSink {
     }
     const py::object copy = py::reinterpret_steal<py::object>(PyDict_Copy(last->ptr()));
     if (!copy) throw py::error_already_set();
-    set(key, copy);
+    add(key, copy);
   }
 
  private:
-  void set(std::string_view key, const py::object& value) {
-    if (PyDict_SetItem(dict.ptr(), key_object(key), value.ptr()) != 0) throw py::error_already_set();
-  }
-  // The keys as Python strings, made once (they are the names of --json's fields, a few dozen):
-  // a row's keys come in the same order every time, so the one after the last is tried first.
-  static PyObject* key_object(std::string_view key) {
-    static auto* keys = new std::vector<std::pair<std::string, py::str>>();  // never freed, as `last`
+  struct Key {
+    std::string key;
+    py::str name;
+    std::string text;  // the key's last text value, and that as a str
+    py::object last_text;
+  };
+  // The keys as Python strings, made once (they are the names of --json's fields, a few dozen,
+  // and live as long as the module: never freed, they would outlive the interpreter): a row's
+  // keys come in the same order every time, so the one after the last is tried first.
+  static Key& key_of(std::string_view key) {
+    static auto* keys = new std::vector<Key>();
     static std::size_t next = 0;
-    for (std::size_t tried = 0; tried < keys->size(); ++tried, next = (next + 1) % keys->size())
-      if ((*keys)[next].first == key) {
-        PyObject* found = (*keys)[next].second.ptr();
-        next = (next + 1) % keys->size();
-        return found;
-      }
-    keys->emplace_back(std::string(key), decoded(key));
+    for (std::size_t tried = 0; tried < keys->size(); ++tried) {
+      if (next >= keys->size()) next = 0;
+      if (Key& k = (*keys)[next++]; k.key == key) return k;
+    }
+    keys->push_back({std::string(key), decoded(key), {}, {}});
     next = 0;
-    return keys->back().second.ptr();
+    return keys->back();
+  }
+  void add(std::string_view key, const py::object& value) { set(key_of(key).name.ptr(), value); }
+  void set(PyObject* key, const py::object& value) {
+    if (PyDict_SetItem(dict.ptr(), key, value.ptr()) != 0) throw py::error_already_set();
   }
 };
 
@@ -469,12 +565,46 @@ bool same_objects(const py::list& a, const py::list& b) {
 
 // ---------------------------------------------------------------- the functions
 
+// The case run()'s keywords give, as app::chosen_case gives it. Its checks by name (which
+// fields the scene and pulse use, which they require, which must not be given) depend on the
+// names given and the scene, pulse and directivity alone: where those are the last call's, in
+// Pi terms (not a record's case, whose file is read each time), the case is the last one with
+// this call's kCaseFields values (a field not given keeps Case's default in both), validated as
+// chosen_case validates it. A loop over Pi terms takes this path: chosen_case was 11 k of a
+// call's 53 k instructions besides the solve (callgrind), mostly its flags' strings and lookups.
+app::ChosenCase case_of(const Keywords& k) {
+  struct Last {
+    std::vector<std::string> given;
+    std::string scene, pulse, directivity;
+    Case input;
+  };
+  static Last* last = nullptr;  // the last case checked by name, if it may be reused
+  const app::CaseFlags& flags = k.case_flags;
+  if (last && k.by_name_alone && k.given == last->given && flags.scene == last->scene &&
+      flags.pulse == last->pulse && flags.directivity == last->directivity) {
+    Case c = last->input;
+    for (const CaseField& field : kCaseFields) copy_field(field, flags.numbers, c);
+    if (auto bad = validate(c)) throw app::BadInput(app::case_flag_message(*bad));
+    return {std::move(c), 0, {}};
+  }
+  app::ChosenCase chosen = app::chosen_case([&](std::string_view flag) { return k.has(flag); }, flags);
+  if (k.by_name_alone && chosen.input.pulse != PulseShape::record) {
+    if (!last) last = new Last();
+    *last = {k.given, flags.scene, flags.pulse, flags.directivity, chosen.input};
+  } else if (last) {
+    delete last;
+    last = nullptr;
+  }
+  return chosen;
+}
+
+
 py::dict run(const py::kwargs& kwargs) {
   Keywords k = checked([&] { return read_keywords("run", kwargs); });
   const bool history = k.history || k.samples.has_value();
   const int samples = k.samples ? static_cast<int>(std::clamp<long long>(*k.samples, INT_MIN, INT_MAX)) : 2000;
   const auto [chosen, solver] = checked([&] {
-    const app::ChosenCase c = app::chosen_case([&](std::string_view flag) { return k.has(flag); }, k.case_flags);
+    const app::ChosenCase c = case_of(k);
     if (history) {
       app::check_samples(samples, c.input);
       k.solver_flags.settings.history_samples = samples;

@@ -136,6 +136,25 @@ class Run(unittest.TestCase):
             poundbench.run(**CASE, solver="moreau-jean", steps=64, theta=0.25)
         self.assertEqual(poundbench.run(**CASE, solver="moreau-jean", steps=64)["status"], "ok")
 
+    def test_a_loop_over_pi_terms_gives_each_calls_case(self):
+        # run() keeps its last case's checks by name while the names, scene, pulse and directivity
+        # stay (a loop over Pi terms): each call's case is still its own values, bit for bit as
+        # the command line's, and a bad value is still the command line's error.
+        for pi2, eps, pi6 in ((0.5, 0.5, 1.0), (2.0, 0.8, 0.5), (0.8, 0.0, 2.0)):
+            case = dict(CASE, pi2=pi2, eps=eps, pi6=pi6)
+            result = poundbench.run(**case, solver="moreau-jean", steps=64)
+            flags = [f for key, value in case.items() for f in ("--" + key, str(value))]
+            code, out, err = cli("run", *flags, "--solver", "moreau-jean", "--steps", "64", "--json")
+            self.assertEqual(code, 0, err)
+            expected = json.loads(out)
+            for key in expected:
+                if key != "seconds":
+                    self.assertEqual(result[key], expected[key], (pi2, eps, key))
+        for bad, message in ((dict(eps=1.5), "--eps: "), (dict(pi2=float("nan")), "--pi2: "), (dict(scene="wall"), "--pi5: ")):
+            with self.assertRaisesRegex(ValueError, "^" + message):
+                poundbench.run(**dict(CASE, **bad), solver="moreau-jean", steps=64)
+        self.assertEqual(poundbench.run(**CASE, solver="moreau-jean", steps=64)["pi2"], CASE["pi2"])
+
     def test_ctrl_c_between_calls_goes_to_pythons_handler(self):
         # The module's SIGINT handler stays installed after a call and hands a SIGINT that comes
         # between calls to the handler it replaced (KeyboardInterrupt); a handler the program
