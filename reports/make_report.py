@@ -258,6 +258,8 @@ def report(args):
     text += ["## Where this ran", "", footer(measured_on), ""]
     out.page.provenance([f"- measured at: {provenance.describe(measured_on)}"])
     out.page.write(os.path.join(args.out, "report.html"))
+    from figure import finish
+    finish()  # every figure drawn before the page that shows them
     write_page(args.out, text, "make_report.py")
 
 

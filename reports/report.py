@@ -295,6 +295,8 @@ def write(study, out_dir, title=None, made_by="poundbench report"):
     text += provenance_lines(study, made_by)
     out.page.provenance(text[text.index("## Provenance") + 2:])
     out.page.write(os.path.join(out_dir, "report.html"))
+    from figure import finish
+    finish()  # every figure drawn before the page that shows them
     from rows import write_page
     write_page(out_dir, text, "poundbench: report")
     figures = sum(line.startswith("![") for line in text)
