@@ -138,6 +138,9 @@ struct Result {
   // Result straight from a solver's solve). `unresolved` says why not, criterion by criterion.
   std::optional<bool> resolved;
   std::string unresolved;
+  // A solver's own reason it cannot vouch for an answer it finished (the exact Kelvin-Voigt
+  // reference above the stiffness its round-off allows): the verdict counts it as unresolved.
+  std::string doubt;
   History history;
   // The pounding itself, measured where impacts are counted (note_impact): the time of the
   // first impact and the largest relative approach velocity -g' at one (the gap rate before

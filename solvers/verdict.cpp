@@ -39,6 +39,7 @@ void judge(const System& system, Result& r) {
            brief(r.restitution_high) + " for eps " + brief(system.eps) + " (off by more than " +
            brief(kRestitutionMargin) + ")");
   }
+  if (!r.doubt.empty()) fail(r.doubt);
   r.resolved = why.empty();
   r.unresolved = std::move(why);
 }

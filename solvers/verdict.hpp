@@ -39,6 +39,9 @@
 //                compliant elements, MuJoCo), which carry the model's response to the springs
 //                and the load during a contact: a resolved Kelvin-Voigt run at K = 1e2 is 1.2
 //                off on slow impacts, and so is the element's exact solution.
+//   doubt        the solver's own reason it cannot vouch for a run it finished (Result::doubt):
+//                the exact Kelvin-Voigt reference above K = 1e12, where a pressed contact's gap
+//                nears its state's round-off (its impacts change with --tol-scale).
 //
 // A criterion the run did not measure (NaN) is not judged. The reference's own checks turn
 // its failures into statuses (penetration, energy), so its ok runs pass; CVODE chooses its own

@@ -56,7 +56,7 @@ constexpr double kBoundMargin = 2.0;
 // round-off that each stretch's increment leaves in the state (about 1e-16 of it): measured on
 // a pair (sine, Pi2 0.5, Pi3 1e-3, eps 0.5), K = 1e12 has the rigid reference's 24 impacts,
 // K = 1e13 24 898 at --tol-scale 1 and 68 965 at 0.01, and K = 1e14 a Pi1 2e-3 off the trend.
-// The run says so in its message.
+// The run says so in its message and is unresolved (Result::doubt).
 constexpr double kMostVouchedStiffness = 1e12;
 // Bodies whose displacements and speeds are all below this, over a_p / w_p^2 and a_p / w_p,
 // after the load's end, are at rest (at_rest()).
@@ -757,9 +757,11 @@ class KelvinVoigt {
     elements_.finish(result_);
     result_.message = std::to_string(events_) + " contact changes";
     if (rest_ >= 0.0) result_.message += "; at rest (below 1e-200 a_p/w_p^2) from t = " + std::to_string(rest_);
-    if (K_ > kMostVouchedStiffness)
-      result_.message += "; K above 1e12: a pressed contact's gap (-F/K) nears the state's round-off and its sign "
-                         "may be round-off (impacts that change with --tol-scale; DERIVATION.md section 8)";
+    if (K_ > kMostVouchedStiffness) {
+      result_.doubt = "K above 1e12: a pressed contact's gap (-F/K) nears the state's round-off and its sign "
+                      "may be round-off (impacts that change with --tol-scale; DERIVATION.md section 8)";
+      result_.message += "; " + result_.doubt;
+    }
   }
 
   Result stopped(Status status, std::string message) {
