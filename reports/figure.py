@@ -63,7 +63,8 @@ def legend_below(fig, handles, labels=None, columns=2):
 # child process forked when it is saved, as many at once as this process may use cores, while
 # the report goes on to the next. finish() waits for them; it runs at exit too.
 _DRAWERS = len(os.sched_getaffinity(0))
-_drawing = {}  # pid -> the figure's stem
+_drawing = {}  # pid -> the figure's stem, oldest first
+_failed = []  # the stems whose drawing failed
 
 
 def _write(fig, path, vector):
@@ -72,20 +73,19 @@ def _write(fig, path, vector):
         os.replace(f"{path}.tmp.{ext}", f"{path}.{ext}")
 
 
-def _wait_one(failed):
-    pid, status = os.wait()
-    stem = _drawing.pop(pid, None)
-    if stem is not None and os.waitstatus_to_exitcode(status) != 0:
-        failed.append(stem)
-
-
-_failed = []  # the stems whose drawing failed
+def _wait_oldest():
+    # Its own pid, never any child: os.wait() could reap a subprocess the report runs.
+    pid = next(iter(_drawing))
+    _, status = os.waitpid(pid, 0)
+    stem = _drawing.pop(pid)
+    if os.waitstatus_to_exitcode(status) != 0:
+        _failed.append(stem)
 
 
 def finish():
     """Waits until every figure saved so far is written; raises if one could not be."""
     while _drawing:
-        _wait_one(_failed)
+        _wait_oldest()
     if _failed:
         stems = ", ".join(_failed)
         _failed.clear()
@@ -111,7 +111,7 @@ def save(fig, out_dir, stem, vector=True):
         _write(fig, path, vector)
     else:
         while len(_drawing) >= _DRAWERS:
-            _wait_one(_failed)
+            _wait_oldest()
         sys.stdout.flush()
         sys.stderr.flush()
         pid = os.fork()
