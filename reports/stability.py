@@ -101,7 +101,8 @@ def large_step_figure(points, out_dir):
 
 def chain_cost_figure(points, out_dir, wh=2.0):
     """Median CPU time per run and per step against the chain's body count N: the reference,
-    and every time-stepper configuration at one w_max h."""
+    and every time-stepper configuration at one w_max h (the stress study times its solves with
+    the monitor on: docs/cli.md, "Timing")."""
     runs = [r for r in points if r["scene"] == "chain" and r["status"] == "ok" and r.get("bodies")
             and (r["solver"] == "event-driven" or float(settings_fields(r).get("wh", "nan")) == wh)]
     if not runs:
@@ -128,8 +129,8 @@ def chain_cost_figure(points, out_dir, wh=2.0):
         ax.set_xlabel("bodies in the chain, N")
         ax.grid(True, which="both", alpha=0.25)
     legend_below(fig, *axes[0].get_legend_handles_labels())
-    fig.suptitle(f"Chain: cost against the number of bodies\n(finished runs of the chain families; time-steppers at "
-                 f"w_max h = {wh:g})")
+    fig.suptitle(f"Chain: cost against the number of bodies\n(finished runs of the chain families, time-steppers "
+                 f"at w_max h = {wh:g}, their monitor on)")
     return save(fig, out_dir, "stability-chain-cost")
 
 CHECKS = ("finite", "energy", "gap", "restitution", "accuracy")  # the verdict columns, where the CSV has them

@@ -48,8 +48,11 @@ inline constexpr int kStudyRepetitions = 5;
 struct StudyOptions {
   int repetitions = kStudyRepetitions;  // timed solves per point, at most (run_point)
   // true: each run's Settings::monitor is the list's `monitor` (on unless switched off), so
-  // its rows carry the monitor's measurements, from one untimed pass more (the stress
-  // checks judge them). false: off for every run: a work-precision study judges none of them.
+  // its rows carry the monitor's measurements (the stress checks judge them), measured by the
+  // timed solves themselves: their cost includes the monitor's, and a point is solved once per
+  // repetition, where an untimed monitored pass more was 44 % of the stress study's CPU time
+  // at one repetition (the same verdicts in every row).
+  // false: off for every run: a work-precision study judges none of them.
   bool monitor = false;
   // true: the list's runs are followed by the references of their own models
   // (model_reference_runs), and the table measures each run against its model's too.

@@ -281,7 +281,8 @@ std::vector<Row> run_sweep(const CaseList& cases, std::span<const SweepRun> runs
       if (!task || *task >= total) return;
       const std::size_t r = *task / n;
       Row row =
-          run_point(cases[*task % n], *task % n, *runs[r].solver, settings[r], runs[r].repetitions, &no_contact);
+          run_point(cases[*task % n], *task % n, *runs[r].solver, settings[r], runs[r].repetitions, &no_contact,
+                    runs[r].monitor_timed);
       row.run = r;
       if (cancelled()) return;  // the run may have been cut short by the stop: not a result
 

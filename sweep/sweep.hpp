@@ -68,11 +68,13 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
               int repetitions = 1, NoContactCache* no_contact = nullptr, bool monitor_timed = false);
 
 // One solver with its settings, run over every case of a sweep. settings.monitor: the rows
-// carry the monitor's measurements, from one untimed pass more (run_point).
+// carry the monitor's measurements, from one untimed pass more (run_point), or, with
+// monitor_timed, from the timed solves themselves (their cost then includes the monitor's).
 struct SweepRun {
   const SolverInfo* solver = nullptr;
   Settings settings;
-  int repetitions = 1;  // timed solves per point, at most (run_point)
+  int repetitions = 1;         // timed solves per point, at most (run_point)
+  bool monitor_timed = false;  // run_point's monitor_timed
 };
 
 // Hands out the task a thread solves next; nullopt when there is none left. It is called

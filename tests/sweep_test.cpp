@@ -24,6 +24,7 @@
 #include "solvers/solver.hpp"
 #include "sweep/no_contact_cache.hpp"
 #include "sweep/stopwatch.hpp"
+#include "studies/workprecision.hpp"
 #include "sweep/sweep.hpp"
 #include "tests/support.hpp"
 
@@ -436,6 +437,32 @@ TEST(RunPoint, TimesTheSolveWithoutTheMonitorAndTakesItsMeasurementsFromOneMoreP
   const Row without = timed_row({1e-4}, 3, false);
   EXPECT_EQ(g_monitored, 0);
   EXPECT_TRUE(std::isnan(without.result.energy_excess));
+}
+
+// A study that judges the monitor (stress) times the monitored solves themselves: each point is
+// solved once per repetition, never once more, and its rows carry the monitor's measurements.
+TEST(RunSweep, AStudyThatJudgesTheMonitorTimesTheMonitoredSolvesAlone) {
+  Settings monitored;
+  monitored.monitor = true;
+  SettingsList list;
+  list.runs = {{&kCostly, monitored, 1}};
+  const std::vector<SweepRun> runs = study_runs(list, {.repetitions = 2, .monitor = true});
+  ASSERT_EQ(runs.size(), 2u);  // the truth, then the list's run
+  EXPECT_TRUE(runs[1].monitor_timed);
+  EXPECT_FALSE(study_runs(list, {.repetitions = 2}).back().monitor_timed);
+
+  g_monitored = g_unmonitored = 0;
+  const std::vector<Case> cases = smoke_cases();
+  SweepOptions one_thread;
+  one_thread.threads = 1;
+  const std::vector<Row> rows = run_sweep(CaseList(std::span(cases).first(3)), std::span(runs).subspan(1), one_thread);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(g_monitored, 6);
+  EXPECT_EQ(g_unmonitored, 0);
+  for (const Row& row : rows) {
+    EXPECT_EQ(row.repetitions, 2);
+    EXPECT_EQ(row.result.energy_excess, -0.25);
+  }
 }
 
 std::atomic<int> g_calls{0};
