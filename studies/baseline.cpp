@@ -168,7 +168,7 @@ double baseline_tolerance(std::string_view solver) {
 std::vector<Row> run_baseline(std::span<const Case> cases, const SettingsList* list, const SweepOptions& options) {
   SettingsList runs = list ? *list : SettingsList{};
   runs.reference_tol_scale = 1.0;  // the reference as users run it
-  // One timing (not stored); the rows carry the monitor's measurements, as the list says.
+  // One solve a point, with the monitor on where the list says so (its timing is not stored).
   WorkPrecision wp = run_work_precision(cases, runs, options, {1, true});
   if (!wp.complete) return {};
   std::vector<Row> rows = std::move(wp.reference);
