@@ -37,10 +37,11 @@ void bullet_solve(benchmark::State& state, const pb::bullet::Config& config, pb:
   const int n = static_cast<int>(state.range(0));
   const double started = pb::bench::thread_seconds();
   pb::bench::time_variant(state, &pb::bullet::solve, std::string(config.name).c_str(), scene, n);
-  const double bullet_seconds = (pb::bench::thread_seconds() - started) / static_cast<double>(state.iterations());
+  const double own = pb::bench::thread_seconds() - started;
+  const double bullet_seconds = own / static_cast<double>(state.iterations());
   pb::Settings mj;
   mj.steps = n;
-  const double mj_seconds = pb::bench::seconds_per_run(&pb::moreau_jean::solve, pb::bench::fig4_point(scene), mj);
+  const double mj_seconds = pb::bench::seconds_per_run(&pb::moreau_jean::solve, pb::bench::fig4_point(scene), mj, own);
   state.counters["vs_moreau_jean"] = mj_seconds > 0.0 ? bullet_seconds / mj_seconds : 0.0;
 }
 

@@ -60,12 +60,12 @@ void BM_SiconosChain(benchmark::State& state) {
 }
 
 void BM_SiconosScheme(benchmark::State& state, const char* variant, pb::Scene scene) {
-  pb::bench::time_vs_moreau_jean(state, &pb::siconos::solve, variant, scene);
+  const double own = pb::bench::time_vs_moreau_jean(state, &pb::siconos::solve, variant, scene);
   pb::Settings lemke;
   lemke.variant = "moreau-jean-lemke";
   lemke.steps = static_cast<int>(state.range(0));
   state.counters["x_siconos_moreau_jean"] =
-      ratio_to(seconds_per_run(&pb::siconos::solve, pb::bench::fig4_point(scene), lemke));
+      ratio_to(seconds_per_run(&pb::siconos::solve, pb::bench::fig4_point(scene), lemke, own));
 }
 
 const bool schemes_registered = [] {

@@ -5,6 +5,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <ctime>
 #include <initializer_list>
@@ -93,15 +94,18 @@ inline double thread_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-// CPU seconds per run of solve(s, timed(settings)), over >= 20 ms: the baseline of a ratio,
-// measured right after the timed loop so that both see the same machine load. The clock is
+// CPU seconds per run of solve(s, timed(settings)), over at least `seconds` of CPU time (20 ms
+// at most): the baseline of a ratio, measured right after the timed loop so that both see the
+// same machine load, for as long as that loop ran (its CPU time, passed as `seconds`). The
+// library calls a benchmark function a few times to size its loop, then once per repetition:
+// a fixed 20 ms baseline on every call was most of the engines' benchmarks' time. The clock is
 // read once per batch, the batches doubling, so its 0.37 us a reading is spread over them.
-inline double seconds_per_run(SolveFn solve, const System& s, const Settings& settings) {
+inline double seconds_per_run(SolveFn solve, const System& s, const Settings& settings, double seconds = 0.02) {
   const Settings unmonitored = timed(settings);
   long runs = 0;
   const double start = thread_seconds();
   double elapsed = 0.0;
-  for (long batch = 1; elapsed < 0.02; batch *= 2) {
+  for (long batch = 1; elapsed < std::min(seconds, 0.02); batch *= 2) {
     for (long k = 0; k < batch; ++k) {
       const Result r = solve(s, unmonitored);
       benchmark::DoNotOptimize(r.pi1);
@@ -176,13 +180,16 @@ inline benchmark::internal::Benchmark* at_each_n(benchmark::internal::Benchmark*
 }
 
 // time_variant at N = state.range(0), and x_moreau_jean: the CPU time of a run over
-// moreau_jean::solve's on the same case and N.
-inline void time_vs_moreau_jean(benchmark::State& state, SolveFn solve, const char* variant, Scene scene) {
+// moreau_jean::solve's on the same case and N. Returns the CPU time of time_variant's loop.
+inline double time_vs_moreau_jean(benchmark::State& state, SolveFn solve, const char* variant, Scene scene) {
   const int steps = static_cast<int>(state.range(0));
+  const double start = thread_seconds();
   time_variant(state, solve, variant, scene, steps);
+  const double own = thread_seconds() - start;
   Settings in_house;
   in_house.steps = steps;
-  state.counters["x_moreau_jean"] = ratio_to(seconds_per_run(&moreau_jean::solve, fig4_point(scene), in_house));
+  state.counters["x_moreau_jean"] = ratio_to(seconds_per_run(&moreau_jean::solve, fig4_point(scene), in_house, own));
+  return own;
 }
 
 // A variant of an engine, and what its benchmark names call it.
