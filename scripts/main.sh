@@ -156,11 +156,12 @@ if [ -n "$full" ]; then
 fi
 
 echo "main: benchmarks"
-# 5 repetitions of at least 10 ms each: the 280 benchmarks took 139 s at 50 ms, the main
-# job's largest step, and 64 s at 20 ms. Below a microsecond an iteration, 10 ms is still
-# 10 000 iterations a repetition, and the spread of the 5 is reported with every median. The
-# benchmarks over the whole paper set take 3 (a sweep of 23,820 points an iteration: bench/sweep_bench.cpp).
-timed benchmarks build/bench/poundbench_bench --benchmark_repetitions=5 --benchmark_display_aggregates_only=true \
+# 3 repetitions of at least 10 ms each: the 280 benchmarks took 139 s at 50 ms, the main
+# job's largest step, and 64 s at 20 ms; the 330 of today 51 s at five repetitions. Below a
+# microsecond an iteration, 10 ms is still 10 000 iterations a repetition, and the spread of
+# the 3 is reported with every median. The benchmarks over the whole paper set take 3 too (a
+# sweep of 23,820 points an iteration: bench/sweep_bench.cpp).
+timed benchmarks build/bench/poundbench_bench --benchmark_repetitions=3 --benchmark_display_aggregates_only=true \
   --benchmark_min_time=0.01 --benchmark_out=results/bench.json --benchmark_out_format=json > /dev/null
 
 # What the external protocol itself costs a point, persistent and one-shot, through a sweep of a

@@ -113,6 +113,15 @@ TEST(RowRead, AFileWithoutTheRepetitionColumnsReadsAsOneTiming) {
   EXPECT_EQ(cost.repetitions, 1);
 }
 
+// RFC 4180 as the rows are written: a separator inside quotes is text, a doubled quote there is
+// one quote, and empty fields count (at the end too).
+TEST(RowRead, SplitCsvKeepsQuotedSeparatorsAndDoubledQuotes) {
+  EXPECT_EQ(split_csv(R"(a,"b,""c""",,d,)"), (std::vector<std::string>{"a", R"(b,"c")", "", "d", ""}));
+  EXPECT_EQ(split_csv(R"("{""steps"":64}")"), (std::vector<std::string>{R"({"steps":64})"}));
+  EXPECT_EQ(split_csv(""), (std::vector<std::string>{""}));
+  EXPECT_EQ(split_csv(R"(x,"",y)"), (std::vector<std::string>{"x", "", "y"}));
+}
+
 TEST(RowRead, ABadFieldIsRefusedNamingItsColumn) {
   std::vector<std::string> fields = split_csv(csv_line(Row{}));
   fields[20] = "1.5x";  // pi1
