@@ -36,9 +36,9 @@ bool point_of(std::string_view line, std::size_t& point) {
 
 }  // namespace
 
-const std::string& PartialRecord::field(std::string_view column) const {
-  for (std::size_t k = 0; k < columns.size() && k < fields.size(); ++k)
-    if (columns[k] == column) return fields[k];
+std::string PartialRecord::field(std::string_view column) const {
+  for (std::size_t k = 0; k < columns.size(); ++k)
+    if (columns[k] == column) return csv_field(line, k);
   throw std::runtime_error("partial file: no column " + std::string(column));
 }
 
@@ -82,10 +82,7 @@ void write_from_partial(const std::string& partial, std::size_t points, std::ost
     }
     const std::string_view line = std::string_view(window).substr(start[p] - window_at, length[p]);
     out << line;
-    if (each) {
-      const std::vector<std::string> fields = split_csv(line.substr(0, line.size() - 1));  // without the line end
-      each(PartialRecord{columns, fields});
-    }
+    if (each) each(PartialRecord{columns, line.substr(0, line.size() - 1)});  // without the line end
   }
 }
 

@@ -29,6 +29,9 @@ struct RowReadError : std::runtime_error {
 
 // The fields of one CSV record, unquoted as RFC 4180 says.
 std::vector<std::string> split_csv(std::string_view record);
+// Field k of one CSV record (split_csv(record)[k]), read without splitting the others out;
+// empty past the record's last field.
+std::string csv_field(std::string_view record, std::size_t k);
 
 // Reads one record (several lines when a quoted field holds a line break) into `record`,
 // without its final '\n'. Returns false at the end of the input, and also for a last

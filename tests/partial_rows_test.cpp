@@ -120,6 +120,9 @@ TEST(RowRead, SplitCsvKeepsQuotedSeparatorsAndDoubledQuotes) {
   EXPECT_EQ(split_csv(R"("{""steps"":64}")"), (std::vector<std::string>{R"({"steps":64})"}));
   EXPECT_EQ(split_csv(""), (std::vector<std::string>{""}));
   EXPECT_EQ(split_csv(R"(x,"",y)"), (std::vector<std::string>{"x", "", "y"}));
+  const std::string record = R"(a,"b,""c""",,d)";
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_EQ(csv_field(record, k), split_csv(record)[k]) << k;
+  EXPECT_EQ(csv_field(record, 4), "");
 }
 
 TEST(RowRead, ABadFieldIsRefusedNamingItsColumn) {
