@@ -19,7 +19,7 @@ while [ $# -gt 0 ]; do
 done
 
 packages=(
-  g++ cmake make pkg-config
+  g++ cmake make ninja-build pkg-config
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   libode-dev libbullet-dev libsiconos-kernel-dev libsundials-dev
@@ -43,5 +43,8 @@ if [ ${#missing[@]} -gt 0 ]; then
   $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" > /dev/null
 fi
 
+# Ninja for a new build directory (one already configured keeps its generator): it compiles any
+# target's files while others link, where make builds one target at a time.
+[ -f "$build_dir/CMakeCache.txt" ] || extra+=(-G Ninja)
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" "${extra[@]}" > /dev/null
 cmake --build "$build_dir" -j "$(nproc)"
