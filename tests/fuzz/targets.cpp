@@ -153,21 +153,17 @@ std::string mutate_record(std::string_view seed, const std::vector<std::string>&
         break;
       }
       case 3:
-        lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(where), rng.pick(record_lines()));
+        insert_line(lines, where, rng.pick(record_lines()));
         break;
       case 4:
-        if (!lines.empty()) lines.erase(lines.begin() + static_cast<std::ptrdiff_t>(rng.below(lines.size())));
+        remove_line(lines, rng);
         break;
       case 5:
-        if (!lines.empty()) {
-          const std::string copy = rng.pick(lines);
-          lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(where), copy);
-        }
+        repeat_line(lines, where, rng);
         break;
       case 6: {  // bytes, or a line from another seed
         if (rng.one_in(2)) {
-          const std::vector<std::string> other = split_lines(rng.pick(seeds));
-          if (!other.empty()) lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(where), rng.pick(other));
+          splice_line(lines, where, seeds, rng);
         } else if (!lines.empty()) {
           std::string& line = lines[rng.below(lines.size())];
           const std::size_t pos = line.empty() ? 0 : rng.below(line.size());
