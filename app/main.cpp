@@ -128,6 +128,16 @@ std::string flag_error(const CLI::App& app, const CLI::ParseError& e, int argc, 
   return sub->get_name() + ": " + line + "; `poundbench help " + sub->get_name() + "` lists its flags";
 }
 
+// A subcommand and the flags its options write into (so neither is copied or moved).
+template <class Flags>
+struct Command {
+  Flags flags;
+  CLI::App* app;
+  Command(CLI::App& parent, CLI::App* (*add)(CLI::App&, Flags&)) : app(add(parent, flags)) {}
+  Command(const Command&) = delete;
+  Command& operator=(const Command&) = delete;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -145,24 +155,15 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("poundbench ") + pb::app::kVersion + ", commit " + pb::app::kCommit,
                        "Print the version and the commit it was built from");
   app.footer("`poundbench help SUBCOMMAND` is `poundbench SUBCOMMAND --help`.");
-  pb::app::RunFlags run_flags;
-  pb::app::SpectrumFlags spectrum_flags;
-  CLI::App* run = pb::app::add_run_command(app, run_flags);
-  CLI::App* spectrum = pb::app::add_spectrum_command(app, spectrum_flags);
-  pb::app::WorkPrecisionFlags workprecision_flags;
-  CLI::App* workprecision = pb::app::add_workprecision_command(app, workprecision_flags);
-  pb::app::StressFlags stress_flags;
-  CLI::App* stress = pb::app::add_stress_command(app, stress_flags);
-  pb::app::BaselineFlags baseline_flags;
-  CLI::App* baseline = pb::app::add_baseline_command(app, baseline_flags);
-  pb::app::CompareFlags compare_flags;
-  CLI::App* compare = pb::app::add_compare_command(app, compare_flags);
-  pb::app::SolversFlags solvers_flags;
-  CLI::App* solvers = pb::app::add_solvers_command(app, solvers_flags);
-  pb::app::AdapterFlags adapter_flags;
-  CLI::App* adapter = pb::app::add_adapter_command(app, adapter_flags);
-  pb::app::ReportFlags report_flags;
-  CLI::App* report = pb::app::add_report_command(app, report_flags);
+  Command run(app, &pb::app::add_run_command);
+  Command spectrum(app, &pb::app::add_spectrum_command);
+  Command workprecision(app, &pb::app::add_workprecision_command);
+  Command stress(app, &pb::app::add_stress_command);
+  Command baseline(app, &pb::app::add_baseline_command);
+  Command compare(app, &pb::app::add_compare_command);
+  Command solvers(app, &pb::app::add_solvers_command);
+  Command adapter(app, &pb::app::add_adapter_command);
+  Command report(app, &pb::app::add_report_command);
   refuse_empty_values(app);
 
   // Every rank parses the same words, so every rank ends here alike.
@@ -185,17 +186,18 @@ int main(int argc, char** argv) {
     return code;
   };
   try {
-    if (*spectrum) return pb::app::spectrum_command(*spectrum, spectrum_flags, *processes);
-    if (*workprecision) return pb::app::workprecision_command(*workprecision, workprecision_flags, *processes);
-    if (*stress) return pb::app::stress_command(*stress, stress_flags, *processes);
+    if (*spectrum.app) return pb::app::spectrum_command(*spectrum.app, spectrum.flags, *processes);
+    if (*workprecision.app)
+      return pb::app::workprecision_command(*workprecision.app, workprecision.flags, *processes);
+    if (*stress.app) return pb::app::stress_command(*stress.app, stress.flags, *processes);
     // The other commands are not shared out: the leader alone runs them.
     if (!leader) return 0;
-    if (*run) return pb::app::run_command(*run, run_flags);
-    if (*baseline) return pb::app::baseline_command(*baseline, baseline_flags);
-    if (*compare) return pb::app::compare_command(*compare, compare_flags);
-    if (*solvers) return pb::app::solvers_command(solvers_flags);
-    if (*adapter) return pb::app::adapter_command(*adapter, adapter_flags);
-    if (*report) return pb::app::report_command(report_flags);
+    if (*run.app) return pb::app::run_command(*run.app, run.flags);
+    if (*baseline.app) return pb::app::baseline_command(*baseline.app, baseline.flags);
+    if (*compare.app) return pb::app::compare_command(*compare.app, compare.flags);
+    if (*solvers.app) return pb::app::solvers_command(solvers.flags);
+    if (*adapter.app) return pb::app::adapter_command(*adapter.app, adapter.flags);
+    if (*report.app) return pb::app::report_command(report.flags);
   } catch (const pb::SharedFailure& e) {
     return leader ? fail(e.what(), e.code) : e.code;
   } catch (const std::exception& e) {

@@ -61,8 +61,10 @@ struct Physical {
   double uy0 = kNone, uy1 = kNone, uy2 = kNone, uy = kNone;
 };
 
+// Every member has a default, so that a case can be written as designated initializers
+// (`Case{.scene = Scene::wall}`) without -Wmissing-field-initializers.
 struct Case {
-  std::string family;  // name of the sweep it belongs to; a label only
+  std::string family{};  // name of the sweep it belongs to; a label only
   Scene scene = Scene::pair;
   PulseShape pulse = PulseShape::sine;
   Directivity directivity = Directivity::normal;
@@ -91,8 +93,8 @@ struct Case {
   int cycles = 0;
   double mp_gamma = 0.0;
   double mp_nu = 0.0;
-  std::string record;
-  std::shared_ptr<const Record> samples;
+  std::string record{};
+  std::shared_ptr<const Record> samples{};
   // Yielding (cases/README.md, "Yielding"): a body's restoring force is bilinear with
   // kinematic hardening, elastic up to its yield displacement u_y = Pi_y a_p / w_p^2, then
   // of stiffness alpha k. pi_y0, pi_y1, pi_y2 are those of bodies 0, 1, 2 (wall, pair,
@@ -103,7 +105,7 @@ struct Case {
   double pi_y2 = std::numeric_limits<double>::infinity();
   double pi_y = std::numeric_limits<double>::infinity();
   double alpha = 0.0;
-  Physical physical;  // what a physical case was given as; its Pi terms above follow from it
+  Physical physical{};  // what a physical case was given as; its Pi terms above follow from it
 };
 
 // Whether any body of the case yields (a finite Pi_y the scene uses).

@@ -39,6 +39,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -800,42 +801,42 @@ SweepOptions sweep_options(const StudyInput& in, std::atomic<bool>& stop) {
   return options;
 }
 
+// A study's table, run by run(sweep options) until it finishes or Ctrl-C stops it, as dicts of
+// the CSV its command writes (`header`, and line(row) a row).
+template <class Run, class Line>
+py::list study_dicts(const StudyInput& in, Run run, const std::string& header, Line line) {
+  std::atomic<bool> stop{false};
+  std::invoke_result_t<Run, const SweepOptions&> rows;
+  run_interruptibly(stop, [&] { rows = run(sweep_options(in, stop)); });
+  std::vector<std::string> lines;
+  for (const auto& row : rows) lines.push_back(line(row));
+  return table_dicts(header, lines);
+}
+
 py::list workprecision(const py::object& case_set, const py::kwargs& kwargs) {
   const std::unique_ptr<StudyInput> in = read_study("workprecision", case_set, kwargs);
-  std::atomic<bool> stop{false};
   StudyOptions study{.model_references = true};
   if (in->repetitions) study.repetitions = static_cast<int>(*in->repetitions);
-  WorkPrecision wp;
-  run_interruptibly(stop, [&] { wp = run_work_precision(in->set.cases, in->list, sweep_options(*in, stop), study); });
-  std::vector<std::string> lines;
-  for (const WorkPrecisionRow& row : wp.table) lines.push_back(work_precision_csv_line(row));
-  return table_dicts(work_precision_csv_header(), lines);
+  return study_dicts(
+      *in, [&](const SweepOptions& options) { return run_work_precision(in->set.cases, in->list, options, study).table; },
+      work_precision_csv_header(), &work_precision_csv_line);
 }
 
 py::list stress(const py::object& case_set, const py::kwargs& kwargs) {
   const std::unique_ptr<StudyInput> in = read_study("stress", case_set, kwargs);
-  std::atomic<bool> stop{false};
-  Stress st;
-  run_interruptibly(stop, [&] {
-    st = run_stress(in->set.cases, in->list, sweep_options(*in, stop),
-                    in->repetitions ? static_cast<int>(*in->repetitions) : kStudyRepetitions);
-  });
-  std::vector<std::string> lines;
-  for (const StressRow& row : st.table) lines.push_back(stability_csv_line(row));
-  return table_dicts(stability_csv_header(), lines);
+  const int repetitions = in->repetitions ? static_cast<int>(*in->repetitions) : kStudyRepetitions;
+  return study_dicts(
+      *in, [&](const SweepOptions& options) { return run_stress(in->set.cases, in->list, options, repetitions).table; },
+      stability_csv_header(), &stability_csv_line);
 }
 
 // The rows a baseline file holds, as `poundbench baseline --out` writes them (a dict per row).
 py::list baseline(const py::object& case_set, const py::kwargs& kwargs) {
   const std::unique_ptr<StudyInput> in = read_study("baseline", case_set, kwargs);
-  std::atomic<bool> stop{false};
-  std::vector<Row> rows;
-  run_interruptibly(stop, [&] {
-    rows = run_baseline(in->set.cases, in->has_list ? &in->list : nullptr, sweep_options(*in, stop));
-  });
-  std::vector<std::string> lines;
-  for (const Row& row : rows) lines.push_back(csv_line(row));
-  return table_dicts(csv_header(), lines);
+  const SettingsList* list = in->has_list ? &in->list : nullptr;
+  return study_dicts(
+      *in, [&](const SweepOptions& options) { return run_baseline(in->set.cases, list, options); }, csv_header(),
+      &csv_line);
 }
 
 // `poundbench compare ROWS --baseline FILE`: a dict per comparison line.

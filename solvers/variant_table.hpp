@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstddef>
+#include <exception>
 #include <optional>
 #include <span>
 #include <string>
@@ -83,6 +84,24 @@ std::string check_variant(std::string_view solver, const VariantTable<Config, N>
   if (std::string bad = check_step(settings, default_steps); !bad.empty()) return bad;
   if constexpr (requires { config->activation; }) return check_activation(config->activation, settings);
   return {};
+}
+
+// solve() of such an engine whose bodies' springs are linear (MuJoCo, DART, Simbody): a failed
+// run for an unknown variant, a yielding system refused saying `why_linear`, else
+// run(system, settings, config), an exception out of the engine a failed run with its message
+// (after `error_prefix`).
+template <class Config, std::size_t N>
+Result solve_linear_variant(const VariantTable<Config, N>& table, const System& system, const Settings& settings,
+                            std::string_view why_linear, Result (*run)(const System&, const Settings&, const Config&),
+                            std::string_view error_prefix = {}) {
+  const std::optional<Config> config = table.find(settings.variant);
+  if (!config) return failed("unknown variant '" + settings.variant + "'");
+  if (system.yields()) return yielding_refused(why_linear);
+  try {
+    return run(system, settings, *config);
+  } catch (const std::exception& e) {
+    return failed(std::string(error_prefix) + e.what());
+  }
 }
 
 }  // namespace pb

@@ -79,13 +79,8 @@ TEST(Dart, FaithfulMatchesOdeDantzigFaithfulToRoundOffOnSixCases) {
 TEST(Dart, FaithfulVariantsReverseAFreeApproachByExactlyEps) {
   for (std::string_view variant : {"dantzig-faithful", "pgs-faithful"})
     for (double eps : {0.0, 0.5, 1.0}) {
-      const Result wall = run(test::free_mass_at_wall(0.033, eps, -1.0), variant, 64, true);
-      ASSERT_EQ(wall.status, Status::ok) << wall.message;
-      EXPECT_EQ(wall.impacts, 1);
-      const Row last{wall.history, wall.history.rows() - 1};
-      // 1e-14: one LCP solve of O(1) numbers.
-      EXPECT_NEAR(last.v(0), eps, 1e-14) << variant << " eps=" << eps;
-
+      test::expect_free_wall_restituted(run(test::free_mass_at_wall(0.033, eps, -1.0), variant, 64, true), eps,
+                                        variant);
       test::expect_free_pair_restituted(run(test::free_pair(eps), variant, 64, true), eps, variant);
     }
 }

@@ -35,17 +35,7 @@ WRAPPER = f"sh {SOURCE}/examples/external/poundbench_adapter.sh"
 SCIPY_TOLERANCE = 1e-7
 
 CASES = """name = "external-examples"
-[[family]]
-name = "wall"
-scene = "wall"
-pulse = ["sine", "cosine"]
-directivity = "reverse"
-pi3 = [0, 1]
-eps = [0, 1]
-pi2 = 1
-[[family]]
-name = "pair"
-scene = "pair"
+[defaults]
 pulse = ["sine", "cosine"]
 directivity = "reverse"
 pi3 = 0.5
@@ -54,10 +44,17 @@ pi5 = 0.5
 pi6 = 1
 pi2 = 1
 [[family]]
+name = "wall"
+scene = "wall"
+pi3 = [0, 1]
+eps = [0, 1]
+[[family]]
+name = "pair"
+scene = "pair"
+[[family]]
 name = "accumulation"
 scene = "pair"
 pulse = "cosine"
-directivity = "reverse"
 pi3 = 0.1
 eps = 0.5
 pi5 = 4
@@ -66,15 +63,8 @@ pi2 = 2
 [[family]]
 name = "row3"
 scene = "row3"
-pulse = ["sine", "cosine"]
-directivity = "reverse"
-pi3 = 0.5
-eps = [0, 0.5]
-pi5 = 0.5
-pi6 = 1
 pi7 = 0.5
 pi8 = 1
-pi2 = 1
 [[family]]
 name = "chain"
 scene = "chain"
@@ -84,8 +74,6 @@ directivity = "normal"
 pi3 = 0.1
 eps = 0.8
 pi5 = 1
-pi6 = 1
-pi2 = 1
 """
 
 

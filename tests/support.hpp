@@ -240,6 +240,14 @@ struct HistoryRow {
   double lambda(int j) const { return at(1 + 2 * h.n_bodies + h.n_contacts + j); }
 };
 
+// The one impact of free_mass_at_wall(g0, eps, -1): the approach left at exactly eps times its
+// speed. 1e-14: one impulse of O(1) numbers.
+inline void expect_free_wall_restituted(const Result& r, double eps, std::string_view variant) {
+  ASSERT_EQ(r.status, Status::ok) << r.message;
+  EXPECT_EQ(r.impacts, 1);
+  EXPECT_NEAR((HistoryRow{r.history, r.history.rows() - 1}.v(0)), eps, 1e-14) << variant << " eps=" << eps;
+}
+
 // Newton's law on free_pair's one impact: the relative velocity reversed by exactly eps and
 // the momentum kept. 1e-14: one impulse of O(1) numbers.
 inline void expect_free_pair_restituted(const Result& r, double eps, std::string_view variant) {

@@ -1,8 +1,6 @@
 #include "solvers/dart/dart_solver.hpp"
 
-#include <exception>
 #include <memory>
-#include <optional>
 
 #include "solvers/dart/engines.hpp"
 #include "solvers/dart/variants.hpp"
@@ -32,16 +30,10 @@ Result run(const System& sys, const Settings& set, const Config& config) {
 }  // namespace
 
 Result solve(const System& system, const Settings& settings) {
-  const std::optional<Config> config = kVariants.find(settings.variant);
-  if (!config) return failed("unknown variant '" + settings.variant + "'");
-  if (system.yields())
-    return yielding_refused("dart's bodies have linear springs (explicit, or the joints' own in its default); the "
-                            "bilinear law is not applied (moreau-jean, ode and bullet apply it)");
-  try {
-    return run(system, settings, *config);
-  } catch (const std::exception& e) {
-    return failed(std::string("DART: ") + e.what());
-  }
+  return solve_linear_variant(kVariants, system, settings,
+                              "dart's bodies have linear springs (explicit, or the joints' own in its default); the "
+                              "bilinear law is not applied (moreau-jean, ode and bullet apply it)",
+                              &run, "DART: ");
 }
 
 std::string describe(const Settings& settings) {

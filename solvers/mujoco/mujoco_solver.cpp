@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <optional>
 
@@ -131,24 +130,13 @@ Result run(const System& sys, const Settings& set, const Config& config) {
   return res;
 }
 
-Result guarded(const System& sys, const Settings& set, const Config& config) {
-  try {
-    return run(sys, set, config);
-  } catch (const std::exception& e) {
-    (void)take_warnings();
-    return failed(e.what());
-  }
-}
-
 }  // namespace
 
 Result solve(const System& system, const Settings& settings) {
-  const std::optional<Config> config = kVariants.find(settings.variant);
-  if (!config) return failed("unknown variant '" + settings.variant + "'");
-  if (system.yields())
-    return yielding_refused("mujoco's slide joints own the bodies' springs (a linear joint stiffness); "
-                            "the bilinear law is not applied");
-  return guarded(system, settings, *config);
+  return solve_linear_variant(kVariants, system, settings,
+                              "mujoco's slide joints own the bodies' springs (a linear joint stiffness); "
+                              "the bilinear law is not applied",
+                              &run);
 }
 
 std::string describe(const Settings& settings) {

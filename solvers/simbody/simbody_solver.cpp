@@ -184,16 +184,10 @@ Result run(const System& sys, const Settings& set, const Config& config) {
 }  // namespace
 
 Result solve(const System& system, const Settings& settings) {
-  const std::optional<Config> config = kVariants.find(settings.variant);
-  if (!config) return failed("unknown variant '" + settings.variant + "'");
-  if (system.yields())
-    return yielding_refused("simbody's MobilityLinearSpring is linear; the bilinear law is not applied (moreau-jean, "
-                            "ode and bullet apply it)");
-  try {
-    return run(system, settings, *config);
-  } catch (const std::exception& e) {
-    return failed(e.what());
-  }
+  return solve_linear_variant(kVariants, system, settings,
+                              "simbody's MobilityLinearSpring is linear; the bilinear law is not applied (moreau-jean, "
+                              "ode and bullet apply it)",
+                              &run);
 }
 
 std::string describe(const Settings& settings) {

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <stdexcept>
+#include <utility>
 
 namespace pb::fuzz {
 
@@ -82,6 +83,23 @@ std::vector<std::string> split_lines(std::string_view text) {
     start = end + 1;
   }
   return lines;
+}
+
+void insert_line(std::vector<std::string>& lines, std::size_t where, std::string line) {
+  lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(where), std::move(line));
+}
+
+void repeat_line(std::vector<std::string>& lines, std::size_t where, Rng& rng) {
+  if (!lines.empty()) insert_line(lines, where, rng.pick(lines));
+}
+
+void remove_line(std::vector<std::string>& lines, Rng& rng) {
+  if (!lines.empty()) lines.erase(lines.begin() + static_cast<std::ptrdiff_t>(rng.below(lines.size())));
+}
+
+void splice_line(std::vector<std::string>& lines, std::size_t where, const std::vector<std::string>& seeds, Rng& rng) {
+  const std::vector<std::string> other = split_lines(rng.pick(seeds));
+  if (!other.empty()) insert_line(lines, where, rng.pick(other));
 }
 
 const std::vector<std::string>& toml_values() {
@@ -176,26 +194,20 @@ std::string mutate_toml(std::string_view seed, const std::vector<std::string>& a
       case 3: {  // a key added: known (so maybe duplicated or out of place) or a huge unknown one
         const std::string key =
             rng.one_in(4) ? std::string(1 + rng.below(100'000), 'k') : rng.pick(toml_keys());
-        lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(where), key + " = " + rng.pick(toml_values()));
+        insert_line(lines, where, key + " = " + rng.pick(toml_values()));
         break;
       }
       case 4:  // a line duplicated (a duplicate key, or a table header twice)
-        if (!lines.empty()) {
-          const std::string copy = rng.pick(lines);
-          lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(where), copy);
-        }
+        repeat_line(lines, where, rng);
         break;
       case 5:  // a line removed (a required key gone)
-        if (!lines.empty()) lines.erase(lines.begin() + static_cast<std::ptrdiff_t>(rng.below(lines.size())));
+        remove_line(lines, rng);
         break;
-      case 6: {  // a line spliced in from another seed (a settings key in a case set, and so on)
-        const std::vector<std::string> other = split_lines(rng.pick(all_seeds));
-        if (!other.empty())
-          lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(where), rng.pick(other));
+      case 6:  // a line spliced in from another seed (a settings key in a case set, and so on)
+        splice_line(lines, where, all_seeds, rng);
         break;
-      }
       case 7:  // a table header added
-        lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(where), rng.pick(headers()));
+        insert_line(lines, where, rng.pick(headers()));
         break;
       case 8: {  // bytes: one flipped, or a TOML-significant character inserted, or a few deleted
         if (lines.empty()) break;

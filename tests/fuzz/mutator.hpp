@@ -55,6 +55,14 @@ bool mutate_lines(std::vector<std::string>& lines, Rng& rng, Mutation mutate) {
   return truncate;
 }
 
+// The line mutations of both text mutators (mutate_toml, the record files'), `where` from
+// mutate_lines: `line` put in at where; a line repeated at where; a line removed; a line of
+// another of `seeds` put in at where. Each draws from rng what it needs, in that order.
+void insert_line(std::vector<std::string>& lines, std::size_t where, std::string line);
+void repeat_line(std::vector<std::string>& lines, std::size_t where, Rng& rng);
+void remove_line(std::vector<std::string>& lines, Rng& rng);
+void splice_line(std::vector<std::string>& lines, std::size_t where, const std::vector<std::string>& seeds, Rng& rng);
+
 // TOML text (a case set or a settings list) changed by one to four mutations: a value
 // replaced by an interesting one (empty, 0, -1, nan, inf, 1e308, 1e-320, 2^63-1, 2^40,
 // huge strings, 3000-value lists, extreme grids), keys added (known ones and huge

@@ -153,21 +153,17 @@ std::string mutate_record(std::string_view seed, const std::vector<std::string>&
         break;
       }
       case 3:
-        lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(where), rng.pick(record_lines()));
+        insert_line(lines, where, rng.pick(record_lines()));
         break;
       case 4:
-        if (!lines.empty()) lines.erase(lines.begin() + static_cast<std::ptrdiff_t>(rng.below(lines.size())));
+        remove_line(lines, rng);
         break;
       case 5:
-        if (!lines.empty()) {
-          const std::string copy = rng.pick(lines);
-          lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(where), copy);
-        }
+        repeat_line(lines, where, rng);
         break;
       case 6: {  // bytes, or a line from another seed
         if (rng.one_in(2)) {
-          const std::vector<std::string> other = split_lines(rng.pick(seeds));
-          if (!other.empty()) lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(where), rng.pick(other));
+          splice_line(lines, where, seeds, rng);
         } else if (!lines.empty()) {
           std::string& line = lines[rng.below(lines.size())];
           const std::size_t pos = line.empty() ? 0 : rng.below(line.size());
@@ -328,33 +324,12 @@ std::vector<std::string> document_seeds(Document kind) {
     settings.history_samples = steps > 0 ? 0 : 10;
     seeds.push_back(external::case_document(make_system(c), settings).text);
   };
-  Case c;
-  c.scene = Scene::wall;
-  add(c, 0);
-  c.scene = Scene::pair;
-  c.pulse = PulseShape::cosine;
-  c.pi3 = 0.0;
-  add(c, 64);
-  c.scene = Scene::row3;
-  c.pulse = PulseShape::makris_c;
-  c.cycles = 2;
-  c.pi3 = 0.5;
-  add(c, 32);
-  c.scene = Scene::chain;
-  c.bodies = 4;
-  c.pulse = PulseShape::mp;
-  c.cycles = 0;
-  c.mp_gamma = 2.5;
-  add(c, 0);
-  c.scene = Scene::pair;
-  c.bodies = 0;
-  c.pulse = PulseShape::record;
-  c.mp_gamma = 0.0;
-  c.samples = short_record();
-  c.record = "short.at2";
-  c.a_p = c.samples->peak;
-  c.w_p = 10.0;
-  add(c, 16);
+  add({.scene = Scene::wall}, 0);
+  add({.scene = Scene::pair, .pulse = PulseShape::cosine, .pi3 = 0.0}, 64);
+  add({.scene = Scene::row3, .pulse = PulseShape::makris_c, .cycles = 2}, 32);
+  add({.scene = Scene::chain, .pulse = PulseShape::mp, .bodies = 4, .mp_gamma = 2.5}, 0);
+  const std::shared_ptr<const Record> record = short_record();
+  add({.pulse = PulseShape::record, .a_p = record->peak, .w_p = 10.0, .record = "short.at2", .samples = record}, 16);
   return seeds;
 }
 
