@@ -36,11 +36,13 @@ bool point_of(std::string_view line, std::size_t& point) {
 
 }  // namespace
 
-std::string PartialRecord::field(std::string_view column) const {
+std::size_t PartialRecord::index(std::string_view column) const {
   for (std::size_t k = 0; k < columns.size(); ++k)
-    if (columns[k] == column) return csv_field(line, k);
+    if (columns[k] == column) return k;
   throw std::runtime_error("partial file: no column " + std::string(column));
 }
+
+std::string PartialRecord::field(std::size_t k) const { return csv_field(line, k); }
 
 void write_from_partial(const std::string& partial, std::size_t points, std::ostream& out,
                         const std::function<void(const PartialRecord&)>& each) {

@@ -19,7 +19,10 @@ namespace pb::app {
 struct PartialRecord {
   const std::vector<std::string>& columns;
   std::string_view line;
-  std::string field(std::string_view column) const;
+  // The index of a column (std::runtime_error if the header has none), and field k.
+  std::size_t index(std::string_view column) const;
+  std::string field(std::size_t k) const;
+  std::string field(std::string_view column) const { return field(index(column)); }
 };
 
 // Writes csv_header() and the line of every point 0 .. points-1 of `partial` in point order
