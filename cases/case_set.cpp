@@ -767,8 +767,8 @@ class Reader {
   // The cartesian product, in Key order (scene outermost, pi2 innermost). Keys a scene
   // does not use are left out of its product, so mixing scenes in one family does not
   // repeat cases. Each case is built and checked here; `out`, when given, keeps them.
-  void expand(const Entries& resolved, const std::string& family, std::vector<Case>* out) {
-    const auto eff_ptr = std::make_shared<const Entries>(resolved);
+  void expand(Entries resolved, const std::string& family, std::vector<Case>* out) {
+    const auto eff_ptr = std::make_shared<const Entries>(std::move(resolved));
     const Entries& eff = *eff_ptr;
     const bool symmetric = eff[index(kSymmetric)].given && eff[index(kSymmetric)].flag;
     bool physical = false;

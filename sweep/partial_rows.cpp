@@ -99,12 +99,6 @@ void for_each_partial_row(std::istream& in, std::string_view file, const CaseLis
   PartialFileShape seen_shape;
   if (!shape) shape = &seen_shape;
   *shape = PartialFileShape{};
-  // Where the stream is: past the last whole record. A stream that cannot say is rewritten.
-  const auto mark = [&] {
-    const std::streamoff at = in.tellg();
-    if (at < 0) shape->as_printed = false;
-    else shape->whole_bytes = static_cast<std::uint64_t>(at);
-  };
   const bool with_run = runs.size() > 1;
   const std::string afresh = " (remove the file to start afresh)";
   std::string record;
@@ -115,7 +109,10 @@ void for_each_partial_row(std::istream& in, std::string_view file, const CaseLis
   if (!read_csv_record(in, record)) return;  // empty, or cut within the header
   if (record != partial_header(with_run))
     throw fail("not the partial file of this sweep: its header is not this sweep's" + afresh);
-  mark();
+  // Past the last whole record: the header's end, then each record and its line end counted (a
+  // tellg() per record was a system call each). A stream that cannot say is rewritten.
+  if (const std::streamoff at = in.tellg(); at < 0) shape->as_printed = false;
+  else shape->whole_bytes = static_cast<std::uint64_t>(at);
 
   const TaskCheck check(cases, runs);
   std::vector<std::size_t> seen(cases.size() * runs.size(), 0);  // each task's line; 0: none yet
@@ -142,17 +139,8 @@ void for_each_partial_row(std::istream& in, std::string_view file, const CaseLis
     // The line a rewrite would write (the case's columns printed from the case itself).
     shape->as_printed = shape->as_printed && record == partial_line(row, with_run);
     each(std::move(row));
-    mark();
+    shape->whole_bytes += record.size() + 1;  // exact where as_printed holds: the lines end in '\n' alone
   }
-}
-
-std::vector<std::size_t> missing_tasks(std::span<const Row> done, std::size_t cases, std::size_t runs) {
-  std::vector<bool> have(cases * runs, false);
-  for (const Row& row : done) have[row.run * cases + row.point] = true;
-  std::vector<std::size_t> missing;
-  for (std::size_t t = 0; t < have.size(); ++t)
-    if (!have[t]) missing.push_back(t);
-  return missing;
 }
 
 }  // namespace pb

@@ -64,7 +64,4 @@ void for_each_partial_row(std::istream& in, std::string_view file, const CaseLis
                           std::span<const SweepRun> runs, const std::function<void(Row&&)>& each,
                           PartialFileShape* shape = nullptr);
 
-// The tasks (run * cases + point) of the sweep that `done` (sorted by task) does not hold.
-std::vector<std::size_t> missing_tasks(std::span<const Row> done, std::size_t cases, std::size_t runs);
-
 }  // namespace pb
