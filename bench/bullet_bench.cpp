@@ -52,7 +52,7 @@ void moreau_jean_solve(benchmark::State& state, pb::Scene scene) {
   pb::bench::time_solve(state, &pb::moreau_jean::solve, scene);
 }
 
-const bool registered = [] {
+const bool bullet_registered = [] {
   for (pb::Scene scene : {pb::Scene::wall, pb::Scene::pair, pb::Scene::row3}) {
     const std::string scene_name(pb::name(scene));
     for (const pb::bullet::Config& config : pb::bullet::kVariants.configs)

@@ -18,7 +18,7 @@
 
 namespace {
 
-const bool registered = pb::bench::register_vs_moreau_jean(
+const bool dart_registered = pb::bench::register_vs_moreau_jean(
     "BM_Dart", &pb::dart::solve,
     {{"dantzig_faithful", "dantzig-faithful"}, {"pgs_faithful", "pgs-faithful"}, {"default", "default"}}, {64});
 

@@ -23,7 +23,7 @@
 
 namespace {
 
-const bool registered = pb::bench::register_vs_moreau_jean(
+const bool mujoco_registered = pb::bench::register_vs_moreau_jean(
     "BM_Mujoco", &pb::mujoco::solve,
     {{"euler_faithful", "euler-faithful"}, {"implicit_faithful", "implicit-faithful"},
      {"rk4_faithful", "rk4-faithful"}, {"default", "default"}});

@@ -21,7 +21,7 @@
 
 namespace {
 
-const bool registered = pb::bench::register_vs_moreau_jean(
+const bool ode_registered = pb::bench::register_vs_moreau_jean(
     "BM_Ode", &pb::ode::solve,
     {{"dantzig_faithful", "dantzig-faithful"}, {"dantzig_default", "dantzig-default"},
      {"quickstep_faithful", "quickstep-faithful"}, {"quickstep_default", "quickstep-default"}});

@@ -44,7 +44,7 @@ namespace {
 using pb::bench::ratio_to;
 using pb::bench::seconds_per_run;
 
-const bool registered = pb::bench::register_vs_moreau_jean(
+const bool siconos_registered = pb::bench::register_vs_moreau_jean(
     "BM_Siconos", &pb::siconos::solve, {{"lemke", "moreau-jean-lemke"}, {"enum", "moreau-jean-enum"}});
 
 void BM_SiconosEventDriven(benchmark::State& state, pb::Scene scene) {

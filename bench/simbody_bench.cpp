@@ -22,7 +22,7 @@
 
 namespace {
 
-const bool registered = pb::bench::register_vs_moreau_jean(
+const bool simbody_registered = pb::bench::register_vs_moreau_jean(
     "BM_Simbody", &pb::simbody::solve,
     {{"plus_faithful", "plus-faithful"}, {"pgs_faithful", "pgs-faithful"}, {"default", "default"}}, {64});
 

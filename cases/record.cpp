@@ -24,7 +24,7 @@ namespace {
 }
 
 // A value in a message: six digits, never std::to_string's hundreds for -1e308.
-std::string shown(double x) {
+std::string six_digits(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%.6g", x);
   return text;
@@ -72,7 +72,7 @@ void for_each_line(std::string_view text, std::string_view source, F&& f) {
 void add_sample(Record& r, double t, double a, std::size_t line) {
   if (r.t.size() >= kMaxRecordSamples)
     fail(r.source, line, "more than " + std::to_string(kMaxRecordSamples) + " samples (the reference takes each as an event)");
-  if (!std::isfinite(t) || t < 0.0) fail(r.source, line, "t: must be finite and >= 0 (got " + shown(t) + ")");
+  if (!std::isfinite(t) || t < 0.0) fail(r.source, line, "t: must be finite and >= 0 (got " + six_digits(t) + ")");
   if (!r.t.empty() && !(t > r.t.back()))
     fail(r.source, line, std::string("t: ") + (t == r.t.back() ? "repeats" : "goes back from") +
                              " the time before it (times must rise strictly)");

@@ -33,6 +33,10 @@ struct Body {
 
 inline constexpr int kWall = -1;
 
+// Bodies and contacts are numbered by int, as a case numbers them; containers are indexed by
+// std::size_t.
+inline std::size_t ix(int i) { return static_cast<std::size_t>(i); }
+
 struct System {
   std::vector<Body> bodies;  // left to right
   bool wall = false;         // a wall (fixed to the ground) left of bodies[0]

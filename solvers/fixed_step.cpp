@@ -14,8 +14,6 @@ namespace pb {
 
 namespace {
 
-std::size_t ix(int i) { return static_cast<std::size_t>(i); }
-
 Result stopped(Status status, std::string message, double h) {
   Result r;
   r.status = status;

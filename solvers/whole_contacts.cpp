@@ -2,10 +2,6 @@
 
 namespace pb {
 
-namespace {
-std::size_t ix(int i) { return static_cast<std::size_t>(i); }
-}  // namespace
-
 WholeContacts::WholeContacts(const System& sys)
     : sys_(sys),
       closed_(ix(sys.n_contacts()), 0),

@@ -15,6 +15,13 @@ double percentile(std::vector<double> sample, double p) {
   return sample[lo] + (rank - static_cast<double>(lo)) * (sample[hi] - sample[lo]);
 }
 
+std::vector<std::string> families_in_order(std::span<const Case> cases) {
+  std::vector<std::string> out;
+  for (const Case& c : cases)
+    if (std::find(out.begin(), out.end(), c.family) == out.end()) out.push_back(c.family);
+  return out;
+}
+
 CpuCost cpu_cost(std::span<const Row* const> rows) {
   CpuCost c;
   if (rows.empty()) return c;

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <limits>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -14,6 +15,9 @@ namespace pb {
 // The p-th percentile (0 <= p <= 100) by linear interpolation between order statistics
 // (numpy's default); NaN for an empty sample.
 double percentile(std::vector<double> sample, double p);
+
+// The families of a case list, each once, in the order of its first case.
+std::vector<std::string> families_in_order(std::span<const Case> cases);
 
 // What a setting's runs cost: CPU seconds per run, the solve alone (rows/row.hpp), over
 // every run, failed or not.

@@ -24,13 +24,6 @@ Verdict within(double worst, double tolerance) {
   return worst <= tolerance ? Verdict::pass : Verdict::fail;
 }
 
-std::vector<std::string> families_in_order(std::span<const Case> cases) {
-  std::vector<std::string> out;
-  for (const Case& c : cases)
-    if (std::find(out.begin(), out.end(), c.family) == out.end()) out.push_back(c.family);
-  return out;
-}
-
 // One summary per family over a run's rows (one row per case, in point order).
 void summarize_run(std::span<const Row> rows, std::span<const TruthPoint> truth,
                    const std::vector<std::string>& families, std::vector<StressRow>& table) {

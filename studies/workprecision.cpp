@@ -6,19 +6,9 @@
 #include <tuple>
 
 #include "cases/text.hpp"
+#include "studies/stats.hpp"
 
 namespace pb {
-
-namespace {
-
-std::vector<std::string> families_in_order(std::span<const Case> cases) {
-  std::vector<std::string> out;
-  for (const Case& c : cases)
-    if (std::find(out.begin(), out.end(), c.family) == out.end()) out.push_back(c.family);
-  return out;
-}
-
-}  // namespace
 
 namespace {
 

@@ -57,14 +57,14 @@ Timed timed_solve(const SolverInfo& solver, const System& system, const Settings
   return t;
 }
 
-std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
-
 std::string status_and_pi1(const Result& r) {
   return std::string(name(r.status)) + " with Pi1 " + (std::isnan(r.pi1) ? "nan" : format_number(r.pi1));
 }
 
 // The same status and Pi1, bit for bit.
-bool same(const Result& a, const Result& b) { return a.status == b.status && bits(a.pi1) == bits(b.pi1); }
+bool same(const Result& a, const Result& b) {
+  return a.status == b.status && std::bit_cast<std::uint64_t>(a.pi1) == std::bit_cast<std::uint64_t>(b.pi1);
+}
 
 // The row's result replaced by a failure saying why (none of its values can be trusted).
 void fail(Row& row, const std::string& why) {

@@ -53,7 +53,7 @@ Result run(const System& s, const bullet::Config& config, int n, bool history = 
   return bullet::solve_with(s, st, config);
 }
 
-using Row = test::HistoryRow;
+using test::HistoryRow;
 using test::gap_rate;
 
 // A free body of mass m in front of the wall at gap delta, run for steps_total steps of
@@ -141,12 +141,12 @@ TEST(BulletFaithful, ImpactOnTheWallReversesTheApproachSpeedTimesEps) {
       const Result r = run_from(s, config, 100, {0.0}, {-1.0});
       ASSERT_EQ(r.status, Status::ok) << r.message;
       EXPECT_EQ(r.impacts, 1) << config.name;
-      const Row last{r.history, r.history.rows() - 1};
+      const HistoryRow last{r.history, r.history.rows() - 1};
       // 2^-23: one rounding of the float product eps * 1.
       EXPECT_NEAR(last.v(0), eps, 1.2e-7) << config.name << " eps=" << eps;
       // The impulse of the impact step, as lambda h: m (1 + eps) times the approach speed.
       double impulse = 0.0;
-      for (std::size_t k = 0; k < r.history.rows(); ++k) impulse += Row{r.history, k}.lambda(0) * s.step(100);
+      for (std::size_t k = 0; k < r.history.rows(); ++k) impulse += HistoryRow{r.history, k}.lambda(0) * s.step(100);
       EXPECT_NEAR(impulse, 2.0 * (1.0 + eps), 1e-6) << config.name << " eps=" << eps;
     }
   }
@@ -167,7 +167,7 @@ TEST(BulletFaithful, MeasuredRestitutionOfEveryImpactOfACaseIsEps) {
         long measured = 0;
         double worst = 0.0;
         for (std::size_t k = 1; k + 1 < r.history.rows(); ++k) {
-          const Row before{r.history, k}, after{r.history, k + 1};
+          const HistoryRow before{r.history, k}, after{r.history, k + 1};
           const double g_before = gap_rate(s, before, 0), g_after = gap_rate(s, after, 0);
           // An impact step: an impulse while approaching, after a step without one.
           if (!(after.lambda(0) > 0.0 && before.lambda(0) == 0.0 && g_before < 0.0)) continue;
@@ -201,7 +201,7 @@ TEST(BulletFaithful, SimultaneousImpactsFollowNewtonsLawOnBothContacts) {
       const Result r = run_from(s, config, 100, {0.0, 0.0, 0.0}, {1.0, 0.0, -1.0});
       ASSERT_EQ(r.status, Status::ok) << r.message;
       EXPECT_EQ(r.impacts, 2);
-      const Row after{r.history, 1};
+      const HistoryRow after{r.history, 1};
       // 2e-6: sequential impulse after 100 sweeps is within (10/11)^200 ~ 5e-9 of the
       // solution, the pivoting of the MLCP solvers exact; what is left is float
       // round-off (measured: 3.6e-7 for si, 6e-7 for the MLCP solvers).
@@ -315,11 +315,11 @@ TEST(BulletFaithful, ContactsPushInTheSameStepsAsInOdesFaithfulVariant) {
       ASSERT_EQ(late.status, Status::ok) << late.message;
       ASSERT_EQ(b.history.rows(), o.history.rows());
       for (std::size_t k = 1; k < b.history.rows(); ++k) {
-        const bool pushed = Row(b.history, k).lambda(0) > 0.0;
-        const bool ode_pushed = Row(o.history, k).lambda(0) > 0.0;
+        const bool pushed = HistoryRow(b.history, k).lambda(0) > 0.0;
+        const bool ode_pushed = HistoryRow(o.history, k).lambda(0) > 0.0;
         EXPECT_EQ(pushed, ode_pushed) << what << " step " << k;
         pushing += pushed ? 1 : 0;
-        moved += pushed != (Row(late.history, k).lambda(0) > 0.0) ? 1 : 0;
+        moved += pushed != (HistoryRow(late.history, k).lambda(0) > 0.0) ? 1 : 0;
       }
       EXPECT_EQ(b.impacts, o.impacts) << what;
       // 1e-5: float round-off over a few hundred steps (measured at most 1.3e-6 relative on
@@ -374,7 +374,7 @@ TEST(BulletFaithful, StepIsSemiImplicitEulerWithForcesAtTheStartOfTheStep) {
     const double t = static_cast<double>(k - 1) * h;
     v += h * (-b.k * u - b.c * v - b.m * s.pulse.accel(t)) / b.m;
     u += h * v;
-    worst = std::max(worst, std::abs(Row{r.history, k}.u(0) - u));
+    worst = std::max(worst, std::abs(HistoryRow{r.history, k}.u(0) - u));
     peak = std::max(peak, std::abs(u));
   }
   // 1e-5 of the peak: float round-off over 1101 steps (measured 7.2e-7).
@@ -508,7 +508,7 @@ TEST(BulletDefault, ContactLawHasAVelocityThresholdAProductRestitutionAndAnErpPu
         const double depth = -(delta - h * speed);  // the gap after the first step
         const double expected = (speed >= 0.2 ? eps * eps * speed : 0.0) + 0.2 * depth / h;
         // 1e-6 m/s: float round-off of the terms.
-        EXPECT_NEAR(Row(r.history, 2).v(0), expected, 1e-6) << config.name << " eps=" << eps << " v=" << speed;
+        EXPECT_NEAR(HistoryRow(r.history, 2).v(0), expected, 1e-6) << config.name << " eps=" << eps << " v=" << speed;
       }
     }
   }
@@ -524,7 +524,7 @@ TEST(BulletDefault, PenetrationIsPushedOutByPositionWhenDeepAndByVelocityWhenSha
       const System s = free_body_at_wall(1.0, 0.0, 0.0, 1, 100);
       const Result r = run_from(s, config, 100, {-depth}, {0.0});
       ASSERT_EQ(r.status, Status::ok) << r.message;
-      const Row after{r.history, 1};
+      const HistoryRow after{r.history, 1};
       if (depth > 0.04) {
         EXPECT_NEAR(after.v(0), 0.0, 1e-7) << config.name;
         EXPECT_NEAR(after.u(0), -depth * 0.8, 1e-7) << config.name;
@@ -551,9 +551,9 @@ TEST(BulletDefault, TenSweepsLeaveADoubleImpactOfHeavyNeighboursUnsolved) {
   ASSERT_EQ(si.status, Status::ok);
   // Measured (Bullet 3.24): v0 = -0.297, v1 = -0.673 instead of 0 and -1. The MLCP
   // solver has no sweeps to run short of.
-  EXPECT_NEAR(Row(si.history, 1).v(1), -0.297, 0.01);
-  EXPECT_NEAR(Row(si.history, 1).v(0), -0.673, 0.01);
-  EXPECT_NEAR(Row(mlcp.history, 1).v(1), 0.0, 1e-5);
+  EXPECT_NEAR(HistoryRow(si.history, 1).v(1), -0.297, 0.01);
+  EXPECT_NEAR(HistoryRow(si.history, 1).v(0), -0.673, 0.01);
+  EXPECT_NEAR(HistoryRow(mlcp.history, 1).v(1), 0.0, 1e-5);
 }
 
 // btLemkeSolver with frictionless contacts. Bullet gives every contact a friction row;
@@ -606,7 +606,7 @@ TEST(BulletDefault, LemkeReturnsPullingImpulsesOnFrictionlessDoubleContacts) {
     EXPECT_EQ(r.status, Status::ok) << name << ": " << r.message;
     double least = 0.0;
     for (std::size_t k = 0; k < r.history.rows(); ++k)
-      for (int j = 0; j < 2; ++j) least = std::min(least, Row(r.history, k).lambda(j));
+      for (int j = 0; j < 2; ++j) least = std::min(least, HistoryRow(r.history, k).lambda(j));
     return least / (s.bodies[static_cast<std::size_t>(s.ref)].m * s.a_p);
   };
   // Measured (Bullet 3.24): a pull of 0.97 m0 a_p; Dantzig none; faithful Lemke -3e-8
@@ -651,7 +651,7 @@ double cradle_error(int n, std::string_view name) {
   EXPECT_EQ(r.status, Status::ok) << r.message;
   EXPECT_EQ(r.history.rows(), 2u);
   if (r.history.rows() < 2) return 1.0;
-  const Row after{r.history, 1};
+  const HistoryRow after{r.history, 1};
   const double v0 = s.v_start[0];
   double error = 0.0, momentum = 0.0;
   for (int i = 0; i < n; ++i) {

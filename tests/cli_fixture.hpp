@@ -28,6 +28,8 @@ namespace pb {
 
 namespace fs = std::filesystem;
 
+inline const std::string kSource = POUNDBENCH_SOURCE_DIR;  // the project's source tree
+
 struct Outcome {
   int exit_code = -1;
   std::string out, err;

@@ -40,7 +40,7 @@ Result solve(const Case& c, const char* variant, double K, const char* integrato
   return compliant::solve(make_system(c), st);
 }
 
-double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
+using test::rel;
 
 TEST(CompliantLaw, KelvinVoigtDampingIsTheTextbookOneOfTheUnclampedElement) {
   EXPECT_NEAR(compliant::kelvin_voigt_zeta(0.5), 0.2155, 5e-5);

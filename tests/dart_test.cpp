@@ -21,7 +21,7 @@ namespace {
 
 using test::make_case;
 using test::sci;
-using Row = test::HistoryRow;
+using test::HistoryRow;
 
 // run(system, variant, N = the default, history = false): dart::solve with those settings.
 const auto run = [](const auto&... args) { return test::run_variant(&dart::solve, args...); };
@@ -64,8 +64,10 @@ TEST(Dart, FaithfulMatchesOdeDantzigFaithfulToRoundOffOnSixCases) {
         EXPECT_EQ(b.steps, a.steps);
         ASSERT_EQ(b.history.rows(), a.history.rows());
         for (std::size_t k = 0; k < a.history.rows(); ++k)
-          for (int i = 0; i < s.n_bodies(); ++i)
-            worst_u = std::max(worst_u, std::abs(Row{a.history, k}.u(i) - Row{b.history, k}.u(i)) / s.length_scale());
+          for (int i = 0; i < s.n_bodies(); ++i) {
+            const double du = HistoryRow{a.history, k}.u(i) - HistoryRow{b.history, k}.u(i);
+            worst_u = std::max(worst_u, std::abs(du) / s.length_scale());
+          }
         worst_pi1 = std::max(worst_pi1, std::abs(a.pi1 - b.pi1) / a.pi1);
       }
   RecordProperty("worst_u", sci(worst_u));
@@ -94,7 +96,7 @@ TEST(Dart, FaithfulSolvesNewtonsLawOnBothContactsOfACradle) {
   for (std::string_view variant : {"dantzig-faithful", "pgs-faithful"}) {
     const Result r = run(s, variant, 64, true);
     ASSERT_EQ(r.status, Status::ok) << variant << ": " << r.message;
-    const Row first{r.history, 1};
+    const HistoryRow first{r.history, 1};
     const double v0 = s.v_start[0];
     EXPECT_NEAR(first.v(0) / v0, -1.0 / 3.0, 1e-12) << variant;
     EXPECT_NEAR(first.v(1) / v0, 2.0 / 3.0, 1e-12) << variant;
@@ -118,7 +120,7 @@ TEST(Dart, DefaultRestitutesTheProductOfTheShapesAndNothingBelowTheBounceThresho
     const Result r = run(test::free_mass_at_wall(0.0305, shot.eps, shot.v0), "default", 64, true);
     ASSERT_EQ(r.status, Status::ok) << r.message;
     EXPECT_GE(r.impacts, 1);
-    const Row last{r.history, r.history.rows() - 1};
+    const HistoryRow last{r.history, r.history.rows() - 1};
     const double e = -last.v(0) / shot.v0;
     RecordProperty("e_eps" + std::to_string(shot.eps) + "_v" + std::to_string(-shot.v0), sci(e));
     EXPECT_NEAR(e, shot.e_expected, shot.tol) << "eps " << shot.eps << " v0 " << shot.v0;

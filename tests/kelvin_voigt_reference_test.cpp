@@ -28,7 +28,7 @@ Settings kelvin_voigt(double K) {
   return st;
 }
 
-double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
+using test::rel;
 
 // A body with neither spring nor dashpot, no load, thrown at the wall at speed v: one
 // contact with the element alone, half a damped oscillation, after which it leaves at

@@ -31,7 +31,7 @@ Result cvode(const System& s) {
   return compliant::solve(s, st);
 }
 
-double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
+using test::rel;
 
 // Body 0 alone in effect (pi3 = 1e3: the gap never closes), under makris-c and mp, with
 // damping and without it at exact and near resonance with mp's frequencies w_p (1 - 1/gamma),

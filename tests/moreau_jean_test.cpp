@@ -88,10 +88,10 @@ Result run(const System& s, int n, bool history = false) {
   return mj::solve(s, st);
 }
 
-using Row = test::HistoryRow;
+using test::HistoryRow;
 using test::gap_rate;
 
-double energy(const System& s, const Row& row) {
+double energy(const System& s, const HistoryRow& row) {
   double e = 0.0;
   for (int i = 0; i < s.n_bodies(); ++i) {
     const Body& b = s.bodies[static_cast<std::size_t>(i)];
@@ -182,7 +182,7 @@ TEST(MoreauJean, GroundLoadIsTheExactStepMeanOfThePulseAlsoAcrossItsEnd) {
       ASSERT_EQ(r.status, Status::ok) << r.message;
       double worst = 0.0;
       for (std::size_t k = 0; k < r.history.rows(); ++k) {
-        const Row row{r.history, k};
+        const HistoryRow row{r.history, k};
         const double t = std::min(row.t(), t_p), w = s.pulse.w, a = s.pulse.amplitude;
         const double exact = p == PulseShape::sine ? -a * (1.0 - std::cos(w * t)) / w : -a * std::sin(w * t) / w;
         worst = std::max(worst, std::abs(row.v(0) - exact));
@@ -224,7 +224,7 @@ double order_across_the_cosine_pulse_end(std::string_view variant) {
     EXPECT_EQ(r.status, Status::ok) << r.message;
     double worst = 0.0;
     for (std::size_t k = 0; k < r.history.rows(); ++k) {
-      const Row row{r.history, k};
+      const HistoryRow row{r.history, k};
       worst = std::max(worst, std::abs(row.u(0) - exact(row.t())));
     }
     errs.push_back(worst);
@@ -268,7 +268,7 @@ TEST(MoreauJean, EndSampledLoadIsTheThetaWeightOfTheSamplesAtTheStepEnds) {
         const double h = r.step;
         double worst = 0.0;
         for (std::size_t k = 0; k + 1 < r.history.rows(); ++k) {
-          const Row row{r.history, k}, next{r.history, k + 1};
+          const HistoryRow row{r.history, k}, next{r.history, k + 1};
           const double t0 = static_cast<double>(k) * h, t1 = static_cast<double>(k + 1) * h;
           const double load = (1.0 - theta) * s.pulse.sample(t0, h) + theta * s.pulse.sample(t1, h);
           worst = std::max(worst, std::abs((next.v(0) - row.v(0)) + h * load));
@@ -304,10 +304,10 @@ TEST(MoreauJean, ElasticImpactsAndFreeFlightKeepTheEnergyAtThetaOneHalf) {
     const Result r = run(s, 200, true);
     ASSERT_EQ(r.status, Status::ok) << r.message;
     ASSERT_GT(r.impacts, 3) << name(scene);
-    const double e0 = energy(s, Row{r.history, 0});
+    const double e0 = energy(s, HistoryRow{r.history, 0});
     double drift = 0.0;
     for (std::size_t k = 0; k < r.history.rows(); ++k)
-      drift = std::max(drift, std::abs(energy(s, Row{r.history, k}) - e0));
+      drift = std::max(drift, std::abs(energy(s, HistoryRow{r.history, k}) - e0));
     RecordProperty(std::string("relative_drift_") + std::string(name(scene)), scientific(drift / e0));
     // 1e-12: a few thousand steps of round-off on O(1) numbers.
     EXPECT_LT(drift, 1e-12 * e0) << name(scene);
@@ -321,15 +321,15 @@ TEST(MoreauJean, PlasticAndPartlyElasticImpactsNeverAddEnergy) {
       const Result r = run(s, 200, true);
       ASSERT_EQ(r.status, Status::ok) << r.message;
       ASSERT_GT(r.impacts, 0);
-      const double e0 = energy(s, Row{r.history, 0});
+      const double e0 = energy(s, HistoryRow{r.history, 0});
       double rise = -std::numeric_limits<double>::infinity();
       for (std::size_t k = 1; k < r.history.rows(); ++k)
-        rise = std::max(rise, energy(s, Row{r.history, k}) - energy(s, Row{r.history, k - 1}));
+        rise = std::max(rise, energy(s, HistoryRow{r.history, k}) - energy(s, HistoryRow{r.history, k - 1}));
       RecordProperty("relative_rise_" + std::string(name(scene)) + "_eps" + (eps == 0.0 ? "0" : "0.5"),
                      scientific(rise / e0));
       // Round-off of one step: 1e-14 of the energy.
       EXPECT_LT(rise, 1e-14 * e0) << name(scene) << " eps=" << eps;
-      EXPECT_LT(energy(s, Row{r.history, r.history.rows() - 1}), 0.9 * e0) << "impacts dissipate";
+      EXPECT_LT(energy(s, HistoryRow{r.history, r.history.rows() - 1}), 0.9 * e0) << "impacts dissipate";
     }
   }
 }
@@ -353,7 +353,7 @@ TEST(MoreauJean, PenetrationIsBelowOneStepOfTheFastestApproach) {
             double fastest = 0.0;
             for (std::size_t k = 0; k < r.history.rows(); ++k)
               for (int j = 0; j < s.n_contacts(); ++j)
-                fastest = std::max(fastest, std::abs(gap_rate(s, Row{r.history, k}, j)));
+                fastest = std::max(fastest, std::abs(gap_rate(s, HistoryRow{r.history, k}, j)));
             const double bound = (1.0 - 0.5 * eps) * s.step(n) * fastest;
             // 1e-9: the bound is exact in exact arithmetic; this is room for round-off.
             EXPECT_LE(-r.min_gap, bound * (1.0 + 1e-9))
@@ -388,7 +388,7 @@ TEST(MoreauJean, ImpactOnTheWallReversesTheApproachSpeedTimesEps) {
     const Result r = free_run(s, {-1.0});
     ASSERT_EQ(r.status, Status::ok);
     EXPECT_EQ(r.impacts, 1);
-    const Row last{r.history, r.history.rows() - 1};
+    const HistoryRow last{r.history, r.history.rows() - 1};
     EXPECT_NEAR(last.v(0), eps, 1e-15) << "eps=" << eps;
   }
 }
@@ -407,7 +407,7 @@ TEST(MoreauJean, SimultaneousImpactsFollowNewtonsLawOnEveryContact) {
     const Result r = free_run(s, {1.0, 0.0, -1.0});
     ASSERT_EQ(r.status, Status::ok);
     EXPECT_EQ(r.impacts, 2);
-    const Row after{r.history, 1};
+    const HistoryRow after{r.history, 1};
     EXPECT_NEAR(after.v(0), -eps, 1e-15);
     EXPECT_NEAR(after.v(1), 0.0, 1e-15);
     EXPECT_NEAR(after.v(2), eps, 1e-15);
@@ -614,14 +614,14 @@ TEST(MoreauJean, HistoryHasARowPerStepAndTheStart) {
   EXPECT_EQ(r.history.n_bodies, 3);
   EXPECT_EQ(r.history.n_contacts, 2);
   ASSERT_EQ(static_cast<long>(r.history.rows()), r.steps + 1);
-  const Row last{r.history, r.history.rows() - 1};
+  const HistoryRow last{r.history, r.history.rows() - 1};
   EXPECT_DOUBLE_EQ(last.t(), static_cast<double>(r.steps) * s.step(32));
   EXPECT_GE(last.t(), s.t_end * (1.0 - 1e-12));
   EXPECT_LT(last.t(), s.t_end + s.step(32));
   double u_max = 0.0;
   bool pushed = false;
   for (std::size_t k = 0; k < r.history.rows(); ++k) {
-    const Row row{r.history, k};
+    const HistoryRow row{r.history, k};
     u_max = std::max(u_max, std::abs(row.u(s.ref)));
     pushed = pushed || row.lambda(0) > 0.0 || row.lambda(1) > 0.0;
     EXPECT_NEAR(row.g(0), s.delta + row.u(1) - row.u(0), 1e-14);
@@ -850,7 +850,7 @@ TEST(MoreauJean, NewtonsCradleFollowsNewtonsLawOnEveryContactAtOnce) {
     s.t_end = 3.0 * h;
     const Result r = mj::solve(s, st);
     ASSERT_EQ(r.status, Status::ok) << r.message;
-    const Row after{r.history, 1};
+    const HistoryRow after{r.history, 1};
     const double v0 = s.v_start[0], nn = static_cast<double>(n);
     // Within the step, the smooth forces change body 0's velocity by h (c + h k / 2) v0 / m
     // at most, and every body's by h a_p (the load); the impact shares body 0's change out
@@ -878,7 +878,8 @@ TEST(MoreauJean, ChainKeepsThePenetrationBoundAndScalesExactly) {
       ASSERT_FALSE(std::isinf(r.min_gap));
       double fastest = 0.0;
       for (std::size_t k = 0; k < r.history.rows(); ++k)
-        for (int j = 0; j < s.n_contacts(); ++j) fastest = std::max(fastest, std::abs(gap_rate(s, Row{r.history, k}, j)));
+        for (int j = 0; j < s.n_contacts(); ++j)
+          fastest = std::max(fastest, std::abs(gap_rate(s, HistoryRow{r.history, k}, j)));
       // As in PenetrationIsBelowOneStepOfTheFastestApproach: exact up to round-off.
       EXPECT_LE(-r.min_gap, (1.0 - 0.5 * eps) * s.step(256) * fastest * (1.0 + 1e-9)) << name(p) << " eps=" << eps;
       // Self-similarity: powers of two in a_p and w_p change nothing but exact scales.

@@ -42,7 +42,7 @@ Result run(const System& s, std::string_view name, int n, bool history = false) 
   return ode::solve(s, st);
 }
 
-using Row = test::HistoryRow;
+using test::HistoryRow;
 using test::gap_rate;
 
 // A free mass of 2 at gap g0 from the wall (its speed is free_run's), with h = 0.01 (t_min
@@ -61,7 +61,7 @@ Result free_run(System s, const ode::Config& config, const std::vector<double>& 
 // The first row whose step carried a positive force on contact j.
 std::size_t first_push(const History& h, int j) {
   for (std::size_t k = 0; k < h.rows(); ++k)
-    if (Row{h, k}.lambda(j) > 0.0) return k;
+    if (HistoryRow{h, k}.lambda(j) > 0.0) return k;
   return h.rows();
 }
 
@@ -84,7 +84,7 @@ TEST(Ode, FaithfulVariantsReverseAFreeApproachByExactlyEps) {
       const Result wall = free_run(free_mass_at_wall(0.033, eps), variant(name), {-1.0});
       ASSERT_EQ(wall.status, Status::ok) << wall.message;
       EXPECT_EQ(wall.impacts, 1);
-      const Row last{wall.history, wall.history.rows() - 1};
+      const HistoryRow last{wall.history, wall.history.rows() - 1};
       // 1e-14: one LCP solve of O(1) numbers; quickstep's 50 SOR sweeps leave 0.3^50.
       EXPECT_NEAR(last.v(0), eps, 1e-14) << name << " eps=" << eps;
       EXPECT_TRUE(std::isinf(wall.min_gap)) << "the joint is made before the gap closes";
@@ -94,7 +94,7 @@ TEST(Ode, FaithfulVariantsReverseAFreeApproachByExactlyEps) {
       const Result r = free_run(test::free_pair(eps), variant(name), {1.0, -1.0});
       ASSERT_EQ(r.status, Status::ok) << r.message;
       EXPECT_EQ(r.impacts, 1);
-      const Row end{r.history, r.history.rows() - 1};
+      const HistoryRow end{r.history, r.history.rows() - 1};
       EXPECT_NEAR(end.v(1) - end.v(0), 2.0 * eps, 1e-14) << name << " eps=" << eps;
       EXPECT_NEAR(3.0 * end.v(0) + end.v(1), 2.0, 1e-14);
     }
@@ -150,7 +150,7 @@ TEST(Ode, EveryFaithfulTimeStepperActivatesAContactOnTheSamePredicate) {
         const Result r = info->solve(s, st);
         ASSERT_EQ(r.status, Status::ok) << what << ": " << r.message;
         EXPECT_EQ(r.impacts, 1) << what;
-        // Row k + 1 holds the force of the step from k.
+        // HistoryRow k + 1 holds the force of the step from k.
         EXPECT_EQ(first_push(r.history, 0), expected + 1) << what;
         ++compared;
       }
@@ -172,7 +172,7 @@ TEST(Ode, FaithfulRestitutionHoldsAtEveryImpactOfAPulseDrivenCase) {
       long checked = 0;
       double worst = 0.0;
       for (std::size_t k = 1; k < r.history.rows(); ++k) {
-        const Row before{r.history, k - 1}, after{r.history, k};
+        const HistoryRow before{r.history, k - 1}, after{r.history, k};
         const double approach = -gap_rate(s, before, 0);
         if (after.lambda(0) <= 0.0 || before.lambda(0) > 0.0 || approach <= 0.0) continue;
         ++checked;
@@ -295,18 +295,18 @@ TEST(Ode, DefaultPushOutGivesAPlasticImpactARebound) {
     ASSERT_EQ(r.status, Status::ok) << r.message;
     const std::size_t k = first_push(r.history, 0);
     ASSERT_EQ(k, 5u);
-    const double depth = -Row{r.history, k - 1}.g(0);
+    const double depth = -HistoryRow{r.history, k - 1}.g(0);
     EXPECT_NEAR(depth, 0.005, 1e-15);
-    const double lambda = Row{r.history, k}.lambda(0);
+    const double lambda = HistoryRow{r.history, k}.lambda(0);
     const double expected = 0.2 * depth / 0.01 - 1e-10 * lambda;
     // dantzig: 1e-12 is round-off; quickstep's 20 SOR sweeps leave 0.3^20 = 3.5e-11 of the
     // impulse (1.1 here) unconverged.
     const double tolerance = name == "dantzig-default" ? 1e-12 : 1e-10;
-    EXPECT_NEAR((Row{r.history, k}.v(0)), expected, tolerance) << name;
+    EXPECT_NEAR((HistoryRow{r.history, k}.v(0)), expected, tolerance) << name;
     EXPECT_NEAR(r.min_gap, -0.005, 1e-15);
   }
   const Result faithful = free_run(free_mass_at_wall(0.035, 0.0), variant("dantzig-faithful"), {-1.0});
-  const Row rest{faithful.history, faithful.history.rows() - 1};
+  const HistoryRow rest{faithful.history, faithful.history.rows() - 1};
   EXPECT_EQ(rest.v(0), 0.0) << "no push-out when faithful";
 }
 
@@ -316,7 +316,7 @@ TEST(Ode, DefaultCfmSoftensEveryImpactByCfmTimesTheForce) {
   const Result r = free_run(free_mass_at_wall(0.035, 0.5), variant("dantzig-default"), {-1.0});
   ASSERT_EQ(r.status, Status::ok) << r.message;
   const std::size_t k = first_push(r.history, 0);
-  const Row after{r.history, k};
+  const HistoryRow after{r.history, k};
   const double loss = 0.5 - after.v(0);
   // Measured loss 3.0e-8 = 1e-10 x 300 (m |dv| / h = 2 x 1.5 / 0.01); 1e-6 relative is the
   // round-off of a 3e-8 difference of O(1) numbers.
@@ -336,7 +336,7 @@ TEST(Ode, BounceVelocityThresholdMakesSlowImpactsPlastic) {
     const Result r = free_run(s, c, {-speed});
     ASSERT_EQ(r.impacts, 1);
     ASSERT_EQ(r.status, Status::ok) << r.message;
-    const double out = Row{r.history, r.history.rows() - 1}.v(0);
+    const double out = HistoryRow{r.history, r.history.rows() - 1}.v(0);
     EXPECT_NEAR(out, speed > 0.1 ? 0.5 * speed : 0.0, 1e-15) << "approach " << speed;
   }
 }
@@ -354,7 +354,7 @@ TEST(Ode, QuickStepDefaultLeavesCoupledImpactsUnconverged) {
     const Result r = free_run(s, variant(name), {1.0, 0.0, -1.0});
     EXPECT_EQ(r.status, Status::ok) << r.message;
     EXPECT_EQ(r.impacts, 2);
-    return Row{r.history, 1}.v(1);
+    return HistoryRow{r.history, 1}.v(1);
   };
   const double exact = middle("dantzig-faithful");
   // Newton on both contacts with eps = 0.5, solved by hand: v1 = 15/32.
@@ -410,7 +410,7 @@ TEST(Ode, HistoryForcesAreWhatODEAppliedWithLoadsAtTheStepStart) {
     double worst = 0.0;
     bool pushed = false;
     for (std::size_t k = 0; k + 1 < r.history.rows(); ++k) {
-      const Row a{r.history, k}, b{r.history, k + 1};
+      const HistoryRow a{r.history, k}, b{r.history, k + 1};
       for (int i = 0; i < s.n_bodies(); ++i) {
         const Body& body = s.bodies[static_cast<std::size_t>(i)];
         double f = -body.k * a.u(i) - body.c * a.v(i) - body.m * s.pulse.accel(a.t());
@@ -499,7 +499,7 @@ CradleStep first_step(const System& s, const Result& r) {
   const double v0 = s.v_start[0];
   EXPECT_EQ(r.history.rows(), 2u) << r.message;
   if (r.history.rows() < 2) return {1.0, 0.0};
-  const Row after{r.history, 1};
+  const HistoryRow after{r.history, 1};
   CradleStep out{0.0, 0.0};
   for (int i = 0; i < n; ++i) {
     const double newton = i == 0 ? (2.0 - n) / n : 2.0 / n;
@@ -548,7 +548,7 @@ TEST(Ode, DantzigGivesUpWhereTouchingBodiesMoveAlike) {
   // quickstep iterates instead and has no such trap: the mirror image of the left kick.
   r = run_cradle(mirrored, "quickstep-faithful");
   ASSERT_EQ(r.status, Status::ok) << r.message;
-  const Row after{r.history, 1};
+  const HistoryRow after{r.history, 1};
   const double kick = mirrored.v_start[2];
   EXPECT_NEAR(after.v(2) / kick, -1.0 / 3.0, 1e-14);
   EXPECT_NEAR(after.v(0) / kick, 2.0 / 3.0, 1e-14);

@@ -18,7 +18,6 @@
 namespace pb {
 namespace {
 
-const std::string kSource = POUNDBENCH_SOURCE_DIR;
 const std::string kPair = " --scene pair --directivity normal --pi2 1 --pi3 0.5 --eps 0.5 --pi5 0.5 --pi6 1";
 
 TEST(RecordDefaultWp, EveryCaseOfTheRealSuiteSetTakesItsRecordsMeanFrequency) {

@@ -21,7 +21,6 @@
 namespace pb {
 namespace {
 
-const std::string kSource = POUNDBENCH_SOURCE_DIR;
 const std::string kElCentro = kSource + "/cases/records/real/B-ELC000.AT2";
 
 // The least m >= k with DT / m <= T_min / N, by counting up: not the rule's own arithmetic.

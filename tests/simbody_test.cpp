@@ -26,7 +26,7 @@ namespace {
 
 using test::make_case;
 using test::sci;
-using Row = test::HistoryRow;
+using test::HistoryRow;
 
 // run(system, variant, N = the default, history = false): simbody::solve with those settings.
 const auto run = [](const auto&... args) { return test::run_variant(&simbody::solve, args...); };
@@ -40,7 +40,7 @@ TEST(Simbody, FaithfulVariantsReverseAFreeApproachByExactlyEps) {
       const Result wall = run(test::free_mass_at_wall(0.033, eps, -1.0), variant, 64, true);
       test::expect_free_wall_restituted(wall, eps, variant);
       double impulse = 0.0;
-      for (std::size_t k = 1; k < wall.history.rows(); ++k) impulse += Row{wall.history, k}.lambda(0) * 0.01;
+      for (std::size_t k = 1; k < wall.history.rows(); ++k) impulse += HistoryRow{wall.history, k}.lambda(0) * 0.01;
       EXPECT_NEAR(impulse, 2.0 * (1.0 + eps), 1e-12) << variant << " eps=" << eps;
 
       test::expect_free_pair_restituted(run(test::free_pair(eps), variant, 64, true), eps, variant);
@@ -55,10 +55,10 @@ TEST(Simbody, DefaultCapturesSlowImpactsAndFaithfulRestitutesThem) {
   const System slow = test::free_mass_at_wall(1.5e-5, 1.0, -1.5e-3);
   const Result d = run(slow, "default", 64, true);
   ASSERT_EQ(d.status, Status::ok) << d.message;
-  EXPECT_NEAR((Row{d.history, d.history.rows() - 1}.v(0)), 0.0, 1e-15);
+  EXPECT_NEAR((HistoryRow{d.history, d.history.rows() - 1}.v(0)), 0.0, 1e-15);
   const Result f = run(slow, "plus-faithful", 64, true);
   ASSERT_EQ(f.status, Status::ok) << f.message;
-  EXPECT_NEAR((Row{f.history, f.history.rows() - 1}.v(0)), 1.5e-3, 1e-15);
+  EXPECT_NEAR((HistoryRow{f.history, f.history.rows() - 1}.v(0)), 1.5e-3, 1e-15);
 }
 
 // A row3 impact with two contacts closed at once, one approaching and one separating:
@@ -88,19 +88,19 @@ TEST(Simbody, ASimultaneousImpactFollowsTheReferencesPoissonLawWhereTheStepperTa
   history.history_samples = 11;
   const Result ref = reference_solver().solve(s, history);
   ASSERT_EQ(ref.status, Status::ok) << ref.message;
-  const Row ref_end{ref.history, ref.history.rows() - 1};
+  const HistoryRow ref_end{ref.history, ref.history.rows() - 1};
   EXPECT_NEAR(ref_end.v(0), -1.0 / 3.0, 1e-8);
   EXPECT_NEAR(ref_end.v(1), 13.0 / 33.0, 1e-8);
   EXPECT_NEAR(ref_end.v(2), 13.0 / 33.0, 1e-8);
 
   const Result d = run(s, "default", 4096, true);
   ASSERT_EQ(d.status, Status::ok) << d.message;
-  const Row end{d.history, d.history.rows() - 1};
+  const HistoryRow end{d.history, d.history.rows() - 1};
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(end.v(i), ref_end.v(i), 1e-8) << "body " << i;
 
   const Result f = run(s, "plus-faithful", 4096, true);
   ASSERT_EQ(f.status, Status::ok) << f.message;
-  const Row fend{f.history, f.history.rows() - 1};
+  const HistoryRow fend{f.history, f.history.rows() - 1};
   RecordProperty("faithful_v_left", sci(fend.v(0)));
   EXPECT_GT(std::abs(fend.v(0) - ref_end.v(0)), 0.05) << "contact by contact, not Poisson's simultaneous law";
 }

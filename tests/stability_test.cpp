@@ -12,11 +12,12 @@
 
 #include "cases/case_set.hpp"
 #include "rows/row_read.hpp"
+#include "tests/support.hpp"
 
 namespace pb {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using test::kNaN;
 
 // A finished pair run with delta = 0.5 a_p / w_p^2 (length scale 1) that broke no check.
 Row good_row(double pi1 = 1.0) {

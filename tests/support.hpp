@@ -66,6 +66,11 @@ inline Case yielding_case(Scene scene, PulseShape pulse, double pi2, double pi5,
   return c;
 }
 
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// |a - b| relative to |b|.
+inline double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
+
 // A measured number for RecordProperty and messages, in scientific notation (std::to_string
 // would print 1e-13 as 0.000000).
 inline std::string sci(double x) {

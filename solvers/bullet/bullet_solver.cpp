@@ -14,12 +14,10 @@ namespace pb::bullet {
 
 namespace {
 
-std::size_t ix(int i) { return static_cast<std::size_t>(i); }
-
 // Bullet behind the shared step loop (solvers/fixed_step.hpp).
-class Engine : public StepEngine {
+class Stepper : public StepEngine {
  public:
-  Engine(const System& sys, const Config& config, double h, double gamma)
+  Stepper(const System& sys, const Config& config, double h, double gamma)
       : StepEngine(sys), sys_(sys), h_(h), world_(sys, config, h, gamma, out_.u, out_.v) {}
 
   StepOutcome step(long k, Result&) override {
@@ -53,7 +51,7 @@ class Engine : public StepEngine {
 Result run(const System& sys, const Settings& set, const Config& config) {
   StepPlan plan;
   if (Result r = plan_steps(sys, set, kDefaultSteps, kDefaultStepCap, plan); r.status != Status::ok) return r;
-  Engine engine(sys, config, plan.h, set.gamma);
+  Stepper engine(sys, config, plan.h, set.gamma);
   return run_steps(sys, set, plan, engine);
 }
 

@@ -73,8 +73,6 @@ class World {
   void finish_springs(Result& res);
 
  private:
-  static std::size_t ix(int i) { return static_cast<std::size_t>(i); }
-
   const System& system_;
   LoadCursor load_;  // a_g(t) of each step, O(1) on a record
   btContactSolverInfo info_;

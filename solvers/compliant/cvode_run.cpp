@@ -35,8 +35,6 @@ namespace pb::compliant {
 
 namespace {
 
-std::size_t ix(int i) { return static_cast<std::size_t>(i); }
-
 struct Problem {
   const System& sys;
   Elements& elements;

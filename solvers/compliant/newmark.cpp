@@ -42,8 +42,6 @@ namespace pb::compliant {
 
 namespace {
 
-std::size_t ix(int i) { return static_cast<std::size_t>(i); }
-
 // Iterations before a step is given up, and the correction (over a_p / w_p^2 plus the
 // largest |u|) below which an iterate counts as converged.
 constexpr int kNewtonIterations = 50;

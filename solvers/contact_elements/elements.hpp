@@ -55,8 +55,6 @@ class Elements {
   void finish(Result& r) const;
 
  private:
-  static std::size_t ix(int j) { return static_cast<std::size_t>(j); }
-
   const System& sys_;
   std::vector<Law> laws_;
   std::vector<char> closed_;

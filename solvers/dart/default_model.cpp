@@ -39,8 +39,6 @@ namespace pb::dart {
 
 namespace {
 
-std::size_t ix(int i) { return static_cast<std::size_t>(i); }
-
 using ::dart::dynamics::BodyNode;
 using ::dart::dynamics::BoxShape;
 using ::dart::dynamics::CollisionAspect;

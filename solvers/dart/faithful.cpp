@@ -30,8 +30,6 @@ namespace pb::dart {
 
 namespace {
 
-std::size_t ix(int i) { return static_cast<std::size_t>(i); }
-
 class Faithful : public StepEngine {
  public:
   Faithful(const System& sys, const Config& config, const Settings& set, double h)

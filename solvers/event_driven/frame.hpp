@@ -47,8 +47,6 @@ Spring spring(const System& s, const State& st, int i);
 // The hysteretic variable z of body i (its u for a body that does not yield).
 double hysteretic_z(const System& s, const State& st, int i);
 
-inline std::size_t ix(int i) { return static_cast<std::size_t>(i); }
-
 // The contacts whose bodies all lie in first..last (the wall contact belongs to body 0).
 inline int first_contact(const System& s, int first_body) {
   return s.wall && first_body == 0 ? 0 : first_body + (s.wall ? 1 : 0);

@@ -27,8 +27,6 @@ using Eigen::MatrixXd;
 using Eigen::VectorXcd;
 using Eigen::VectorXd;
 
-std::size_t ix(int i) { return static_cast<std::size_t>(i); }
-
 // Stretches per period of a mode's fastest motion at the start of a mode; then each stretch
 // proven with room to spare doubles the next, and each one halved halves it. Measured on the
 // work-precision set at K = 1e2 and 1e6: 8, 16 and 32 cost the same CPU to within 4% (32
@@ -106,7 +104,7 @@ Range hermite_range(double f0, double d0, double f1, double d1, double h, double
 // the round-off of its own size, not of the displacements it is made of. Without this a gap
 // that drifts at 2e-6 a_p / w_p past the hysteresis threshold moved by less than an ulp of u
 // per stretch, and the search for its crossing halved without end (K = 1e6, pair).
-struct Mode {
+struct ContactMode {
   MatrixXd rows;      // [W; W a]: the tracked functions' values and rates from y
   VectorXd scale;     // D: lengths over L, speeds over L w (w the mode's fastest frequency)
   MatrixXd balanced;  // D a D^-1, whose exponential loses no digits to mixed scales
@@ -237,7 +235,7 @@ class KelvinVoigt {
 
   Result run() {
     const double t_pulse = s_.pulse.duration();
-    Mode* mode = &mode_for_closed();
+    ContactMode* mode = &mode_for_closed();
     record_samples(0.0, y_, *mode);
     while (t_ < s_.t_end) {
       // Stretches end at the load's breakpoints: the pulse's end, a record's every sample.
@@ -301,11 +299,11 @@ class KelvinVoigt {
     std::vector<int> uses;
   };
 
-  static double length(const Mode& md, int level) { return std::ldexp(md.base, -level); }
+  static double length(const ContactMode& md, int level) { return std::ldexp(md.base, -level); }
 
   // exp(a h) - I, each entry to the round-off of its own size: from exp([[M, I], [0, 0]]) =
   // [[exp(M), phi1(M)], [0, I]] with M = D a D^-1 h, as M phi1(M), unbalanced.
-  static MatrixXd increment(const Mode& md, double h) {
+  static MatrixXd increment(const ContactMode& md, double h) {
     const Eigen::Index m = md.balanced.rows();
     MatrixXd big = MatrixXd::Zero(2 * m, 2 * m);
     big.topLeftCorner(m, m) = md.balanced * h;
@@ -319,7 +317,7 @@ class KelvinVoigt {
   // once it is used often, else, for a short stretch, by the Taylor series of the exponential
   // on the vector (a few products with D a D^-1, where the matrix would cost an exponential
   // of twice the size: a search for a contact change visits some 45 levels once each).
-  void advance(const Mode& md, std::vector<MatrixXd>& levels, std::vector<int>& uses, int k, double h,
+  void advance(const ContactMode& md, std::vector<MatrixXd>& levels, std::vector<int>& uses, int k, double h,
                VectorXd& out) {
     if (levels[ix(k)].size() == 0 && (++uses[ix(k)] < kCacheAfter && md.norm * h <= kTaylorNorm)) {
       term_ = md.scale.cwiseProduct(y_);
@@ -338,7 +336,7 @@ class KelvinVoigt {
   }
 
   // The mode of the elements closed now, built the first time it is needed.
-  Mode& mode_for_closed() {
+  ContactMode& mode_for_closed() {
     key_.assign(ix(nc_), '0');
     for (int j = 0; j < nc_; ++j)
       if (elements_.closed(j)) key_[ix(j)] = '1';
@@ -347,7 +345,7 @@ class KelvinVoigt {
     return it->second;
   }
 
-  void build(Mode& md) const {
+  void build(ContactMode& md) const {
     const int n = n_, c0 = 2 * n_, sn = c0 + 1, cs = c0 + 2;
     MatrixXd a = MatrixXd::Zero(m_, m_);  // in the bodies' coordinates, then the gaps'
 
@@ -491,8 +489,8 @@ class KelvinVoigt {
   }
 
   // Pairs each mode with its nearest unpaired neighbour when they lie within half the larger
-  // modulus of each other (Mode::Pair; the bound takes the smaller of alone and together).
-  static void pair_close_modes(const VectorXcd& lambda, Mode& md) {
+  // modulus of each other (ContactMode::Pair; the bound takes the smaller of alone and together).
+  static void pair_close_modes(const VectorXcd& lambda, ContactMode& md) {
     const int m = static_cast<int>(lambda.size());
     std::vector<char> paired(ix(m), 0);
     for (int k = 0; k < m; ++k) {
@@ -514,13 +512,13 @@ class KelvinVoigt {
   }
 
   // The fourth-derivative bounds of the tracked functions over [t_, t_ + h], into b4_.
-  void fourth_bounds(const Mode& md, double h) {
+  void fourth_bounds(const ContactMode& md, double h) {
     if (md.modal) {
       yc_ = md.scale.cwiseProduct(y_).cast<std::complex<double>>();
       c_.noalias() = md.v_inv * yc_;
       size_ = c_.cwiseAbs();
       b4_.noalias() = md.modal_bound * size_;
-      for (const Mode::Pair& pr : md.pairs) {
+      for (const ContactMode::Pair& pr : md.pairs) {
         const double m3 = pr.m * pr.m * pr.m, tail = pr.gap * (4.0 * m3 + m3 * pr.m * std::min(h, pr.reach));
         for (int j = 0; j < nf_; ++j) {
           const std::complex<double> one = md.g(j, pr.k1) * c_(pr.k1), two = md.g(j, pr.k2) * c_(pr.k2);
@@ -545,7 +543,7 @@ class KelvinVoigt {
   // inverse's small entries are known to an ulp of its large ones), which the Hermite charge
   // multiplied by |lambda|^4 (2.5e23): a pair pressed together for seconds with a gap of -1e-12
   // took 2e5 stretches of 1.8e-5. Charged at its amplitude it no longer shortens the stretch.
-  void amplitude_errors(const Mode& md, double h, VectorXd& out) {
+  void amplitude_errors(const ContactMode& md, double h, VectorXd& out) {
     if (!md.modal) {
       out.setConstant(std::numeric_limits<double>::infinity());
       return;
@@ -572,7 +570,7 @@ class KelvinVoigt {
   // identically zero is never proven positive, and one that starts as s^5 (bodies of unequal
   // frequency at rest, a sine pulse) has a negative interpolant near zero. After
   // fourth_bounds(md, h) (c_, size_).
-  Verdict sides(const Mode& md, int j, double h) {
+  Verdict sides(const ContactMode& md, int j, double h) {
     const double side = elements_.closed(j) ? -1.0 : 1.0;
     deriv_ = y_;
     for (int p = 1; p < m_; ++p) {
@@ -597,7 +595,7 @@ class KelvinVoigt {
 
   // Where the Hermite tests fail: true if gap j is at zero and sides() proves it (room
   // updated), false to halve.
-  bool at_zero_keeps_side(const Mode& md, int j, double h, bool& room) {
+  bool at_zero_keeps_side(const ContactMode& md, int j, double h, bool& room) {
     if (fa_(j) != 0.0) return false;
     const Verdict side = sides(md, j, h);
     room = room && side == Verdict::proven_with_room;
@@ -621,7 +619,7 @@ class KelvinVoigt {
   // <= (b4 h^2 / 24) s^2, which vanishes at the start. Each test allows for the round-off of
   // the function's own evaluation, else a function that hovers at its threshold to within it
   // would be halved down to the floor over its whole length.
-  Verdict judge(const Mode& md, double h, const VectorXd& yb) {
+  Verdict judge(const ContactMode& md, double h, const VectorXd& yb) {
     fa_.noalias() = md.rows * y_;
     fb_.noalias() = md.rows * yb;
     fourth_bounds(md, h);
@@ -694,7 +692,7 @@ class KelvinVoigt {
   // Advances y_, t_ over the stretch of `level` from t_ and returns -1, or stops at the first
   // element change and returns its contact. A stretch that is not proven is halved; at the
   // floor, a change at its end is located, and a stretch without one is a graze.
-  int stretch(Mode& md, int level, int depth, Clip* clip) {
+  int stretch(ContactMode& md, int level, int depth, Clip* clip) {
     if (deadline_.tick()) throw OutOfTime{};
     const double h = clip ? std::ldexp(clip->h, -level) : length(md, level);
     VectorXd& yb = buf_[ix(depth)];
@@ -732,7 +730,7 @@ class KelvinVoigt {
 
   // History rows at the sample times in (t0, t_] (and t = 0), from the state y0 at t0 (held
   // there at rest).
-  void record_samples(double t0, const VectorXd& y0, const Mode& md, bool hold = false) {
+  void record_samples(double t0, const VectorXd& y0, const ContactMode& md, bool hold = false) {
     auto& rows = result_.history.data;
     while (next_sample_ < samples_) {
       const double ts = samples_ > 1 ? s_.t_end * next_sample_ / (samples_ - 1) : 0.0;
@@ -798,7 +796,7 @@ class KelvinVoigt {
   std::vector<Range> range_;
   std::vector<double> error_;
   std::vector<VectorXd> buf_;
-  std::map<std::string, Mode> modes_;
+  std::map<std::string, ContactMode> modes_;
   std::string key_;
   int level_ = 0;
   bool halved_ = false, easy_ = false;

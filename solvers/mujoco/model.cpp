@@ -11,8 +11,6 @@ namespace pb::mujoco {
 
 namespace {
 
-std::size_t ix(int i) { return static_cast<std::size_t>(i); }
-
 thread_local Load* t_load = nullptr;
 thread_local Warnings t_warnings;
 

@@ -14,8 +14,6 @@ namespace pb::mujoco {
 
 namespace {
 
-std::size_t ix(int i) { return static_cast<std::size_t>(i); }
-
 // The geom of each body's sphere is the right end of at most one contact: its index, or -1.
 std::vector<int> contacts_by_geom(const System& sys, const mjModel* m) {
   std::vector<int> out(ix(m->ngeom), -1);

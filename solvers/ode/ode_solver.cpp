@@ -16,8 +16,6 @@ namespace pb::ode {
 
 namespace {
 
-std::size_t ix(int i) { return static_cast<std::size_t>(i); }
-
 std::string check_config(const Config& c) {
   if (c.stepper == Stepper::quickstep && c.iterations < 1) return "iterations: must be >= 1";
   if (c.stepper == Stepper::quickstep && !(c.sor > 0.0 && c.sor < 2.0)) return "sor: must be in (0, 2)";

@@ -19,7 +19,8 @@ if(POUNDBENCH_WITH_SICONOS AND SICONOS_KERNEL_INCLUDE_DIR AND SICONOS_NUMERICS_I
    AND EXISTS ${CMAKE_CURRENT_LIST_DIR}/engine.cpp)
   set(POUNDBENCH_HAVE_SICONOS ON)
   add_library(poundbench_siconos_engine OBJECT ${CMAKE_CURRENT_LIST_DIR}/engine.cpp)
-  set_target_properties(poundbench_siconos_engine PROPERTIES CXX_STANDARD 17 POSITION_INDEPENDENT_CODE ON)
+  # One file: a unity build (scripts/setup.sh) has nothing to merge here.
+  set_target_properties(poundbench_siconos_engine PROPERTIES CXX_STANDARD 17 POSITION_INDEPENDENT_CODE ON UNITY_BUILD OFF)
   target_include_directories(poundbench_siconos_engine PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
   target_include_directories(poundbench_siconos_engine SYSTEM PRIVATE ${SICONOS_KERNEL_INCLUDE_DIR}
                              ${SICONOS_NUMERICS_INCLUDE_DIR} ${SICONOS_CONFIG_INCLUDE_DIR}

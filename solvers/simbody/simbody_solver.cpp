@@ -17,8 +17,6 @@ namespace pb::simbody {
 
 namespace {
 
-std::size_t ix(int i) { return static_cast<std::size_t>(i); }
-
 // The model's units: the pulse's length a_p / w_p^2, time 1 / w_p, and body 0's mass.
 struct Units {
   double length, time, mass;

@@ -18,7 +18,8 @@ if(Simbody_FOUND AND TARGET SimTKsimbody AND POUNDBENCH_SIMBODY_SOURCES
    AND EXISTS ${CMAKE_CURRENT_LIST_DIR}/model.cpp)
   set(POUNDBENCH_HAVE_SIMBODY ON)
   add_library(poundbench_simbody_model OBJECT ${CMAKE_CURRENT_LIST_DIR}/model.cpp)
-  set_target_properties(poundbench_simbody_model PROPERTIES CXX_STANDARD 17 POSITION_INDEPENDENT_CODE ON)
+  # One file: a unity build (scripts/setup.sh) has nothing to merge here.
+  set_target_properties(poundbench_simbody_model PROPERTIES CXX_STANDARD 17 POSITION_INDEPENDENT_CODE ON UNITY_BUILD OFF)
   target_compile_options(poundbench_simbody_model PRIVATE -UNDEBUG)
   target_include_directories(poundbench_simbody_model PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
   target_link_libraries(poundbench_simbody_model PRIVATE SimTKsimbody poundbench_warnings)

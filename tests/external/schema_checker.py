@@ -9,7 +9,8 @@ tests/case_schema_test.py runs it over the shipped case sets.
 the first document of each shape of document (load kind and shape, the record's file, bodies,
 contacts, whether a step is given) and one in N of the others: Debian's jsonschema takes 0.44 ms
 a pulse's document and 50 ms a record's (its samples one by one): the paper sets' 27,000 points
-and the records set's 193 took 50 s of the test's 59.
+and the records set's 193 took 50 s of the test's 59. A record's samples are checked whole once
+(errors_of(), below).
 """
 import argparse
 import json
@@ -27,6 +28,23 @@ seen = set()
 count = 0
 
 
+# A record's samples, checked whole once: a later document with the same samples (most of a
+# record's points: the Pi terms change its w, not its t and a) is checked with the first two
+# of each, since the rest are items that were already valid under the same schema.
+checked_samples = set()
+
+
+def errors_of(case):
+    load = case["load"]
+    samples = (tuple(load["t"]), tuple(load["a"])) if load["kind"] == "record" else None
+    if samples in checked_samples:
+        case = {**case, "load": {**load, "t": load["t"][:2], "a": load["a"][:2]}}
+    errors = sorted(validator.iter_errors(case), key=lambda e: list(e.absolute_path))
+    if samples and not errors:
+        checked_samples.add(samples)
+    return errors
+
+
 def answer(text):
     global count
     case = json.loads(text)
@@ -38,7 +56,7 @@ def answer(text):
         message = f"unchecked: {what}"
     else:
         seen.add(shape)
-        errors = sorted(validator.iter_errors(case), key=lambda e: list(e.absolute_path))
+        errors = errors_of(case)
         if errors:
             where = "/".join(str(p) for p in errors[0].absolute_path)
             message = f"invalid: {where}: {errors[0].message[:300]}"
