@@ -28,6 +28,19 @@ import unittest
 POUNDBENCH, SOURCE = sys.argv[1], sys.argv[2]
 SMOKE = os.path.join(SOURCE, "cases/sets/smoke.toml")
 PROGRAM = os.path.join(SOURCE, "tests/external/persistent_program.py")
+# Two 3-point spectra of a pair: for the tests whose every point costs a restart.
+SIX_POINTS = """name = "six"
+[[family]]
+name = "pair"
+scene = "pair"
+pulse = ["sine", "cosine"]
+directivity = "normal"
+eps = 0.5
+pi3 = 0.5
+pi5 = 0.75
+pi6 = 1
+pi2 = { from = 0.5, to = 2, points = 3, spacing = "log" }
+"""
 
 
 class Persistent(unittest.TestCase):
@@ -83,9 +96,7 @@ class Persistent(unittest.TestCase):
         # program to exit before it is killed (0.4 s, with its restart 0.7 s).
         six = os.path.join(self.dir.name, "six.toml")
         with open(six, "w") as f:
-            f.write('name = "six"\n[[family]]\nname = "pair"\nscene = "pair"\npulse = ["sine", "cosine"]\n'
-                    'directivity = "normal"\neps = 0.5\npi3 = 0.5\npi5 = 0.75\npi6 = 1\n'
-                    'pi2 = { from = 0.5, to = 2, points = 3, spacing = "log" }\n')
+            f.write(SIX_POINTS)
         rows = self.spectrum("hang", "--threads", "1", "--time-limit", "0.2", case_set=six)
         # Every other point: the first answer of a start, then a point that hangs and is ended.
         statuses = [r["status"] for r in sorted(rows, key=lambda r: int(r["point"]))]
