@@ -4,14 +4,17 @@
 //
 // Each row used to be formatted and written, flushed, by the worker that finished it, under
 // the sweep's lock (sweep/sweep.hpp: the callbacks are serialised): on the paper set, 23 820
-// writes and 6 426 contended locks. Now a worker only queues a copy of its row; the watcher's
-// thread formats the queued rows and writes them in one batch (BatchedFile) once the oldest
-// has waited kPartialDelay or kBatchRows are queued, and the caller writes what is left when
-// the sweep has ended.
+// writes and 6 426 contended locks. Now the worker that finished a row formats its line
+// outside that lock (SweepOptions::on_finished), side by side with the other workers, and
+// queues the line; the watcher's thread writes the queued lines in one batch (BatchedFile)
+// once the oldest has waited kPartialDelay or kBatchRows are queued, and the caller writes
+// what is left when the sweep has ended. (The queue held copies of the rows, formatted in
+// batches: a row's copy, some 1.5 KB and its strings, was 5 % of the paper set's sweep
+// through the reference, the rows' copies and their page faults, perf's cpu-clock.)
 //
 // The queue is bounded: a worker whose row would make it hold more than kMaxQueued rows
 // writes the queue itself before it goes on, and the sweep's other workers wait for it at
-// their next row (the callbacks are serialised). Unbounded, a sweep whose points finish
+// their next row. Unbounded, a sweep whose points finish
 // faster than the watcher's ticks write them (Moreau-Jean at 8 steps a period: 40 000 points
 // a second on two threads) held rows at 1.5 KB each for as long as it outran the file (issue
 // 36: memory flat in the points).
@@ -40,18 +43,18 @@ inline constexpr auto kPartialDelay = std::chrono::milliseconds(500);
 class PartialWriter {
  public:
   // A batch is written at the watcher's next tick once it holds kBatchRows rows, whatever
-  // their age; a worker writes it at once at kMaxQueued (about 12 MB of rows).
+  // their age; a worker writes it at once at kMaxQueued (about 4 MB of lines).
   static constexpr std::size_t kBatchRows = 4096;
   static constexpr std::size_t kMaxQueued = 2 * kBatchRows;
 
   // with_run: the partial file's run column (sweep/partial_rows.hpp). lines, when given,
-  // receives each row's line by task (run * cases + point). threads: the ways a large batch
-  // is formatted. expected: the rows the sweep will queue, so that the queue takes room for
-  // no more than those still to come.
+  // receives each row's line by task (run * cases + point). expected: the rows the sweep will
+  // queue, so that the queue takes room for no more than those still to come.
   PartialWriter(const std::string& partial, bool with_run, std::size_t cases, std::vector<std::string>* lines,
-                unsigned threads, std::size_t expected);
+                std::size_t expected);
 
-  // A finished row, from the sweep's callback (any thread, serialised).
+  // A finished row, from the sweep's worker (several threads at once): its line is made on
+  // the calling thread and queued.
   void queue(const Row& row);
   // The watcher's tick: writes the queued rows once the oldest has waited long enough.
   void write_due();
@@ -65,17 +68,20 @@ class PartialWriter {
  private:
   using Clock = std::chrono::steady_clock;
   void write(bool all);
-  std::vector<std::string> format(const std::vector<Row>& rows) const;
   std::size_t room() const { return std::min(to_come_, kMaxQueued); }
+
+  struct Line {
+    std::string text;
+    std::size_t task;  // run * cases + point
+  };
 
   std::mutex writing_;  // held by the one thread that writes; taken before mutex_
   BatchedFile file_;    // written in batches: its own size limit only (1 MiB), never its delay
   bool with_run_;
   std::size_t cases_;
   std::vector<std::string>* lines_;
-  unsigned threads_;
   mutable std::mutex mutex_;  // guards what follows
-  std::vector<Row> queued_;
+  std::vector<Line> queued_;
   std::size_t to_come_;  // rows not queued yet
   std::size_t peak_ = 0;
   Clock::time_point oldest_{};

@@ -115,8 +115,7 @@ std::optional<std::vector<Row>> run_resumable(std::string_view command, const Pr
     }
     if (!keep_rows) std::vector<Row>().swap(earlier.rows);  // in the file now, which is where the output comes from
     if (lines) lines->assign(total, std::string());
-    file.emplace(partial, with_run, cases.size(), lines, threads ? threads : processes.default_threads(),
-                 todo.size());
+    file.emplace(partial, with_run, cases.size(), lines, todo.size());
   }
 
   const Progress progress = progress_on_stderr(processes.leader());
@@ -152,10 +151,8 @@ std::optional<std::vector<Row>> run_resumable(std::string_view command, const Pr
   options.keep_rows = keep_rows;
   std::size_t finished = resumed;
   if (file) {
-    options.on_row = [&](const Row& row) {
-      file->queue(row);
-      cost_left.add(row);
-    };
+    options.on_finished = [&](const Row& row) { file->queue(row); };
+    options.on_row = [&](const Row& row) { cost_left.add(row); };
     options.on_progress = [&](std::size_t done, std::size_t) { watch.set_done(finished = resumed + done); };
   }
 

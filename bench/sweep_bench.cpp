@@ -16,10 +16,13 @@
 //                           and `run` do since issue 36) or once more with the monitor on
 //                           (monitor:1, as they did before; `--monitor` still does)
 //   SpectrumCommand         `poundbench spectrum` on the paper set, 2 threads, to a file:
-//                           the command as the main job runs it (wall time, start included)
+//                           the command as the main job runs it (wall time, start included);
+//                           and on one thread, the command's CPU time against its solves'
+//                           (the rows' cpu_seconds): what a sweep adds to its solves (issue 46)
 
 #include <benchmark/benchmark.h>
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -30,6 +33,7 @@
 #include <vector>
 
 #include "app/output_files.hpp"
+#include "rows/row_read.hpp"
 #include "cases/case_set.hpp"
 #include "solvers/event_driven/event_driven.hpp"
 #include "solvers/solver.hpp"
@@ -206,5 +210,50 @@ void BM_SpectrumCommandPaperSet(benchmark::State& state) {
   std::filesystem::remove(out);
 }
 BENCHMARK(BM_SpectrumCommandPaperSet)->Repetitions(kWholeSetRepetitions)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The same command on one thread: the CPU time of the whole command (its start, the case set
+// read, the sweep, the partial file, the output pass) per point, against the CPU time of its
+// solves (the rows' cpu_seconds, summed) per point. Counters: cpu_per_point, solves_per_point
+// and their ratio, over_solves (issue 46: 2.9 on idle cores, the goal 1.65).
+void BM_SpectrumCommandPaperSetOneThread(benchmark::State& state) {
+  const std::string out =
+      (std::filesystem::temp_directory_path() / ("poundbench-bench-1-" + std::to_string(::getpid()) + ".csv")).string();
+  const std::string command = std::string("'") + POUNDBENCH_EXE + "' spectrum '" + POUNDBENCH_SOURCE_DIR +
+                              "/cases/sets/paper.toml' --solver event-driven --threads 1 --out '" + out +
+                              "' 2> /dev/null";
+  const auto children_cpu = [] {
+    rusage usage{};
+    getrusage(RUSAGE_CHILDREN, &usage);
+    const auto seconds = [](const timeval& t) {
+      return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
+    };
+    return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+  };
+  double cpu = 0.0, solves = 0.0;
+  std::size_t points = 0;
+  for (auto _ : state) {
+    const double before = children_cpu();
+    if (std::system(command.c_str()) != 0) {
+      state.SkipWithError("poundbench spectrum failed");
+      break;
+    }
+    cpu += children_cpu() - before;
+    for (const pb::Row& row : pb::read_csv_file(out).rows) {
+      solves += row.cpu_seconds;
+      ++points;
+    }
+  }
+  std::filesystem::remove(out);
+  if (points == 0) return;
+  const double n = static_cast<double>(points);
+  state.counters["cpu_per_point"] = cpu / n;
+  state.counters["solves_per_point"] = solves / n;
+  state.counters["over_solves"] = cpu / solves;
+}
+BENCHMARK(BM_SpectrumCommandPaperSetOneThread)
+    ->Iterations(1)
+    ->Repetitions(kWholeSetRepetitions)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace

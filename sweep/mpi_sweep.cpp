@@ -163,6 +163,7 @@ std::vector<Row> lead(const Job& job, const CaseList& cases, std::span<const Swe
   local.pin_persistent = false;  // ranks share a node's cores (sweep/worker_cores.hpp)
   local.next_task = [&] { return dispenser.take_one(); };
   local.on_row = report;
+  local.on_finished = options.on_finished;
   local.keep_rows = options.keep_rows;
   std::vector<Row> rows;  // rank 0's own, then those received
   std::atomic<bool> local_done{false};
@@ -207,6 +208,7 @@ std::vector<Row> lead(const Job& job, const CaseList& cases, std::span<const Swe
         for (std::string line; read_csv_record(lines, line);) {
           Row row = parse_partial_line(line, true);
           row.input = cases[row.point];  // exactly, also in the columns the CSV leaves empty
+          if (options.on_finished) options.on_finished(row);
           report(row);
           if (options.keep_rows) received.push_back(std::move(row));
         }

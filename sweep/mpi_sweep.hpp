@@ -13,8 +13,8 @@
 //     tasks, so that a chunk holds a fair sample of cheap and expensive points rather
 //     than one costly family, while a thread still solves neighbouring points in a row.
 // Rows travel as their partial-file line (sweep/partial_rows.hpp), which reads back bit
-// for bit; rank 0 passes each one to SweepOptions::on_row as it arrives, so its partial
-// file holds every row that reached it. A rank that dies takes only its queued and
+// for bit; rank 0 passes each one to SweepOptions::on_finished and on_row as it arrives, so
+// its partial file holds every row that reached it. A rank that dies takes only its queued and
 // running tasks with it (MPI then ends the job); a rerun resumes the rest.
 //
 // Cancelling on rank 0 (SweepOptions::cancel) stops the handing out and tells every rank
@@ -41,8 +41,8 @@
 namespace pb::mpi {
 
 // Collective. todo: the tasks to run (rank 0's list; the others' is not read).
-// options.threads, cancel: each rank's own; on_row, on_progress: rank 0's (over the rows of
-// every rank); next_task: not used. Rank 0 returns every row (sorted by run, then point),
+// options.threads, cancel: each rank's own; on_finished, on_row, on_progress: rank 0's (over
+// the rows of every rank); next_task: not used. Rank 0 returns every row (sorted by run, then point),
 // the other ranks none.
 std::vector<Row> run_sweep(const Job& job, const CaseList& cases, std::span<const SweepRun> runs,
                            std::span<const std::size_t> todo, const SweepOptions& options);

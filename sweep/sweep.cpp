@@ -285,9 +285,20 @@ std::vector<Row> run_sweep(const CaseList& cases, std::span<const SweepRun> runs
                     runs[r].monitor_timed);
       row.run = r;
       if (cancelled()) return;  // the run may have been cut short by the stop: not a result
+      std::exception_ptr finished_error;
+      try {
+        if (options.on_finished) options.on_finished(row);
+      } catch (...) {
+        finished_error = std::current_exception();
+      }
 
       const std::lock_guard lock(mutex);
       if (error) return;
+      if (finished_error) {
+        error = finished_error;
+        stop = true;
+        return;
+      }
       try {
         if (options.on_row) options.on_row(row);
         if (options.keep_rows) rows.push_back(std::move(row));

@@ -97,6 +97,12 @@ struct SweepOptions {
   // Called once per finished row, in completion order. An exception thrown here stops
   // the sweep (no new points start) and is rethrown by run_sweep.
   std::function<void(const Row&)> on_row;
+  // Called once per finished row before on_row by the worker that finished it, outside the
+  // lock that serialises the other callbacks: from several threads at once. Work that needs
+  // no order (the partial file's line of the row: app/partial_writer.hpp) goes here, so that
+  // the workers do it side by side and not one at a time. An exception thrown here stops
+  // the sweep as one from on_row does.
+  std::function<void(const Row&)> on_finished;
   // Called after on_row with the number of rows done so far and the number of tasks.
   std::function<void(std::size_t done, std::size_t total)> on_progress;
   // When set to true, no new point starts, and the points already running end at their

@@ -118,11 +118,11 @@ TEST(PartialWriter, QueuesAtMostItsCapOfRowsWhateverTheSweepsLength) {
   const SweepRun run{find_solver("moreau-jean"), settings};
   std::size_t peak = 0;
   {
-    app::PartialWriter writer(file.string(), false, set.cases.size(), nullptr, 2, set.cases.size());
+    app::PartialWriter writer(file.string(), false, set.cases.size(), nullptr, set.cases.size());
     SweepOptions options;
     options.threads = 2;
     options.keep_rows = false;
-    options.on_row = [&](const Row& row) { writer.queue(row); };
+    options.on_finished = [&](const Row& row) { writer.queue(row); };  // as run_resumable does
     EXPECT_TRUE(run_sweep(set.cases, std::span(&run, 1), options).empty());
     writer.write_all();
     writer.close();

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <limits>
+#include <mutex>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -81,6 +82,48 @@ TEST(Sweep, KeepingNoRowsHandsEveryRowToOnRowAlone) {
   EXPECT_TRUE(run_sweep(cases, reference_solver(), Settings{}, options).empty());
   EXPECT_EQ(last_done, cases.size());
   for (std::size_t i = 0; i < cases.size(); ++i) EXPECT_EQ(seen[i], line_without_time(kept[i])) << i;
+}
+
+// on_finished (the partial file's lines, made by the workers side by side) sees every row once,
+// before on_row sees it; an exception it throws stops the sweep and comes out of run_sweep as
+// one from on_row does.
+TEST(Sweep, OnFinishedSeesEveryRowOnceBeforeOnRowAndItsExceptionStopsTheSweep) {
+  const std::vector<Case> cases = smoke_cases();
+  SweepOptions options;
+  options.threads = 2;
+  options.keep_rows = false;
+  std::mutex mutex;
+  std::vector<int> finished(cases.size(), 0);
+  std::size_t out_of_order = 0;
+  options.on_finished = [&](const Row& row) {
+    const std::lock_guard lock(mutex);
+    ++finished.at(row.point);
+  };
+  options.on_row = [&](const Row& row) {
+    const std::lock_guard lock(mutex);
+    if (finished.at(row.point) != 1) ++out_of_order;
+  };
+  run_sweep(cases, reference_solver(), Settings{}, options);
+  EXPECT_EQ(std::count(finished.begin(), finished.end(), 1), static_cast<std::ptrdiff_t>(cases.size()));
+  EXPECT_EQ(out_of_order, 0u);
+
+  std::atomic<std::size_t> rows_seen{0};
+  options.on_finished = [&](const Row&) {
+    if (rows_seen.fetch_add(1) == 2) throw std::runtime_error("partial file: disk full");
+  };
+  options.on_row = nullptr;
+  EXPECT_THROW(
+      {
+        try {
+          run_sweep(cases, reference_solver(), Settings{}, options);
+        } catch (const std::runtime_error& e) {
+          EXPECT_STREQ(e.what(), "partial file: disk full");
+          throw;
+        }
+      },
+      std::runtime_error);
+  // Stopped: the two threads finish at most the points they were solving.
+  EXPECT_LT(rows_seen.load(), cases.size());
 }
 
 // The solvers are deterministic and reentrant, so the thread count must not change a

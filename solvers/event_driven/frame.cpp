@@ -115,6 +115,56 @@ double hysteretic_z(const System& s, const State& st, int i) {
   return branch == 0 ? st.u[ix(i)] - st.e[ix(i)] : branch * b.u_y;
 }
 
+namespace {
+
+// The motion x of the cluster of bodies first..last (fixed: held at the wall), the
+// displacement of its leftmost body (the others sit at fixed offsets: closed gaps), from st
+// at st.t over the load's piece.
+void cluster_motion(const System& s, const State& st, int first, int last, bool fixed, const LoadPiece& piece,
+                    Wave& x) {
+  if (fixed) {
+    x = constant(st.t, -s.delta);
+    return;
+  }
+  double m = 0.0, c = 0.0, k = 0.0, f_const = 0.0, mx = 0.0, mv = 0.0;
+  bool soft = false;  // a body of it yields: its stiffness is alpha k
+  for (int i = first; i <= last; ++i) {
+    const Body& b = s.bodies[ix(i)];
+    const Spring sp = spring(s, st, i);
+    m += b.m;
+    c += b.c;
+    k += sp.k;
+    f_const -= sp.k * offset(s, first, i);
+    if (sp.r0 != 0.0) f_const -= sp.r0;  // (x - 0.0 would turn a -0.0 into 0.0: no bit moves for elastic bodies)
+    soft = soft || (!st.branch.empty() && st.branch[ix(i)] != 0);
+    mx += b.m * (st.u[ix(i)] - offset(s, first, i));
+    mv += b.m * st.v[ix(i)];
+  }
+  if (soft) {
+    // A softened cluster may be critically or overdamped, or have no stiffness: the
+    // general mode (underdamped near a sinusoid's resonance, the forms below), whose
+    // growth without stiffness needs a finite horizon: t_end at most.
+    const Forcing load = load_of(s, st.t, m, f_const, piece);
+    if (!near_resonance(m, c, k, load)) {
+      const double end = s.pulse.paper() ? (pulse_on(s, st.t) ? s.pulse.duration() : s.t_end) : piece.end;
+      general_oscillator_into(x, st.t, mx / m, mv / m, m, c, k, load, std::min(end, s.t_end));
+      return;
+    }
+  }
+  if (!s.pulse.paper()) {
+    oscillator_into(x, st.t, mx / m, mv / m, m, c, k, cluster_load(st.t, m, f_const, piece), piece.end);
+  } else {
+    const bool on = pulse_on(s, st.t);
+    const double load = on ? -m * s.pulse.amplitude : 0.0;
+    const bool sine = s.pulse.shape == PulseShape::sine;
+    const double horizon = on ? s.pulse.duration() : std::numeric_limits<double>::infinity();
+    oscillator_into(x, st.t, mx / m, mv / m, m, c, k, f_const, sine ? load : 0.0, sine ? 0.0 : load, s.pulse.w,
+                    horizon);
+  }
+}
+
+}  // namespace
+
 // A cluster's coordinate x is the displacement of its leftmost body; the others sit at
 // fixed offsets (closed gaps).
 void build_frame(const System& s, const State& st, int from, int to, Frame& fr) {
@@ -122,49 +172,10 @@ void build_frame(const System& s, const State& st, int from, int to, Frame& fr) 
   const Wave ag = ground(s, st.t, piece);
   const int wall_shift = s.wall ? 1 : 0;
   for_each_cluster(s, st.active, from, to, [&](int first, int last, bool fixed) {
-    double m = 0.0, c = 0.0, k = 0.0, f_const = 0.0, mx = 0.0, mv = 0.0;
-    bool soft = false;  // a body of it yields: its stiffness is alpha k
-    for (int i = first; i <= last; ++i) {
-      const Body& b = s.bodies[ix(i)];
-      const Spring sp = spring(s, st, i);
-      m += b.m;
-      c += b.c;
-      k += sp.k;
-      f_const -= sp.k * offset(s, first, i);
-      if (sp.r0 != 0.0) f_const -= sp.r0;  // (x - 0.0 would turn a -0.0 into 0.0: no bit moves for elastic bodies)
-      soft = soft || (!st.branch.empty() && st.branch[ix(i)] != 0);
-      mx += b.m * (st.u[ix(i)] - offset(s, first, i));
-      mv += b.m * st.v[ix(i)];
-    }
     // The cluster's motion, written where it goes: a chain rebuilds every body at every
     // event, and clearing a Wave (some 650 bytes) and copying it cost as much as the maths.
-    const auto motion = [&](Wave& x) {
-      if (fixed) {
-        x = constant(st.t, -s.delta);
-        return;
-      }
-      if (soft) {
-        // A softened cluster may be critically or overdamped, or have no stiffness: the
-        // general mode (underdamped near a sinusoid's resonance, the forms below), whose
-        // growth without stiffness needs a finite horizon: t_end at most.
-        const Forcing load = load_of(s, st.t, m, f_const, piece);
-        if (!near_resonance(m, c, k, load)) {
-          const double end = s.pulse.paper() ? (pulse_on(s, st.t) ? s.pulse.duration() : s.t_end) : piece.end;
-          general_oscillator_into(x, st.t, mx / m, mv / m, m, c, k, load, std::min(end, s.t_end));
-          return;
-        }
-      }
-      if (!s.pulse.paper()) {
-        oscillator_into(x, st.t, mx / m, mv / m, m, c, k, cluster_load(st.t, m, f_const, piece), piece.end);
-      } else {
-        const bool on = pulse_on(s, st.t);
-        const double load = on ? -m * s.pulse.amplitude : 0.0;
-        const bool sine = s.pulse.shape == PulseShape::sine;
-        const double horizon = on ? s.pulse.duration() : std::numeric_limits<double>::infinity();
-        oscillator_into(x, st.t, mx / m, mv / m, m, c, k, f_const, sine ? load : 0.0, sine ? 0.0 : load, s.pulse.w,
-                        horizon);
-      }
-    };
+    const auto motion = [&](Wave& x) { cluster_motion(s, st, first, last, fixed, piece, x); };
+    if (!fr.motion.empty()) std::fill(fr.motion.begin() + first, fr.motion.begin() + last + 1, ++fr.motions);
     if (first == last && !fixed) {  // a free body: no force to build from x
       Wave& body = fr.body[ix(first)];
       motion(body);
@@ -214,6 +225,12 @@ void build_frame(const System& s, const State& st, int from, int to, Frame& fr) 
   }
 }
 
+void body_motion(const System& s, const State& st, int first, int last, int i, Wave& u) {
+  const bool fixed = s.wall && first == 0 && st.active[0];
+  cluster_motion(s, st, first, last, fixed, s.pulse.paper() ? LoadPiece{} : s.pulse.piece(st.t), u);
+  u.f0 += offset(s, first, i);
+}
+
 void build_gap(const State& st, int j, const Wave& right, const Wave* left, Wave& g) {
   reset(g, st.t, 0.0);
   add_scaled(g, right, 1.0);
@@ -222,8 +239,8 @@ void build_gap(const State& st, int j, const Wave& right, const Wave* left, Wave
   g.prepare();
 }
 
-void close_gaps(const System& s, const std::vector<char>& joined, std::vector<double>& u) {
-  for_each_cluster(s, joined, 0, s.n_bodies() - 1, [&](int first, int last, bool fixed) {
+void close_gaps(const System& s, const std::vector<char>& joined, std::vector<double>& u, int from, int to) {
+  for_each_cluster(s, joined, from, to, [&](int first, int last, bool fixed) {
     if (first == last && !fixed) return;
     double m = 0.0, mx = 0.0;
     for (int i = first; i <= last; ++i) {

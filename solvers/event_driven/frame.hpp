@@ -9,6 +9,7 @@
 // needs the motion of that run's bodies alone, once per candidate active set: rebuilding
 // the whole chain for each would cost O(N) per candidate.
 
+#include <cstdint>
 #include <vector>
 
 #include "cases/system.hpp"
@@ -29,6 +30,11 @@ struct State {
 
 struct Frame {
   std::vector<Wave> body;
+  // Per body (or empty: not kept), which cluster motion its wave is: build_frame gives every
+  // body of a cluster that motion plus its offset, so bodies with one number have waves
+  // equal but for f0 (WaveAt); 0: not known. `motions` numbers them.
+  std::vector<std::uint64_t> motion;
+  std::uint64_t motions = 0;
   std::vector<Wave> contact;  // gap (open contact) or force (persistent contact)
   // Per body that yields (2 i, 2 i + 1; empty for a system that does not): on the elastic
   // branch u_y - z and u_y + z, which fall to zero where it yields; yielding at z = s u_y,
@@ -65,14 +71,21 @@ inline bool adjacent(const System& s, int j, int k) { return s.right(j) == s.lef
 // st.t. fr must hold one wave per body and per contact of s; the others are left alone.
 void build_frame(const System& s, const State& st, int first, int last, Frame& fr);
 
+// Body i's wave as build_frame(s, st, first, last, fr) would write it, where first..last is
+// its cluster (a run of persistent contacts in st, whole), without the other bodies' waves,
+// the cluster's forces or its gaps: what a gap between a rebuilt body and one that keeps its
+// wave needs of the latter (DERIVATION.md §9), the same bits for O(1) waves, not O(cluster).
+void body_motion(const System& s, const State& st, int first, int last, int i, Wave& u);
+
 // Rebuilds the wave of open contact j from st.g[j] at st.t and its bodies' waves from st.t
 // (`left` null at the wall). build_frame does this for the contacts between the bodies it
 // rebuilds; the reference's lazy events (DERIVATION.md §9) for a contact between a rebuilt
 // body and one it keeps, whose wave is rebuilt at st.t for this alone.
 void build_gap(const State& st, int j, const Wave& right, const Wave* left, Wave& g);
 
-// Moves the bodies of each cluster that `joined` (per contact) makes so that its gaps are
-// exactly closed, keeping its centre of mass (a cluster at the wall goes to it).
-void close_gaps(const System& s, const std::vector<char>& joined, std::vector<double>& u);
+// Moves the bodies of each cluster that `joined` (per contact) makes among bodies from..to so
+// that its gaps are exactly closed, keeping its centre of mass (a cluster at the wall goes to
+// it). Every joined contact must lie among those bodies.
+void close_gaps(const System& s, const std::vector<char>& joined, std::vector<double>& u, int from, int to);
 
 }  // namespace pb::event_driven

@@ -246,8 +246,21 @@ namespace {
 // nd is a template argument so that the loops over derivatives unroll: the searches ask for
 // 2 or 3 values at a time, and eval is the reference's largest cost. The same operations in
 // the same order whatever nd is, so the same values.
-template <int nd, class Trig>
-void eval_wave(const Wave& wave, double t, double* out, Trig& trig) {
+// Each term eval adds to f0 passes through `term` (WaveAt keeps them; otherwise the term as
+// it is), which changes no value and no order of the additions.
+struct AsItIs {
+  double operator()(double x) const { return x; }
+};
+struct KeepTerms {
+  WaveAt& at;
+  double operator()(double x) {
+    at.term[static_cast<std::size_t>(at.n++)] = x;
+    return x;
+  }
+};
+
+template <int nd, class Trig, class Term = AsItIs>
+void eval_wave(const Wave& wave, double t, double* out, Trig& trig, Term term = {}) {
   const double t0 = wave.t0, f0 = wave.f0, lin = wave.lin;
   const int n_sines = wave.n_sines, n_modes = wave.n_modes;
   const auto& sine = wave.sine;
@@ -259,7 +272,7 @@ void eval_wave(const Wave& wave, double t, double* out, Trig& trig) {
   for (int d = 0; d < nd; ++d) out[d] = 0.0;
   out[0] = f0;
   if (lin != 0.0) {
-    out[0] += lin * tau;
+    out[0] += term(lin * tau);
     if (nd > 1) out[1] += lin;
   }
   for (int j = 0; j < n_sines; ++j) {
@@ -273,7 +286,7 @@ void eval_wave(const Wave& wave, double t, double* out, Trig& trig) {
       trig.sin_cos(0.5 * w * tau, sh, ch);
     }
     const double dc = -2.0 * sh * sh, ds = 2.0 * sh * ch;  // cos(w tau) - 1, sin(w tau)
-    out[0] += ps * (s0 * dc + c0 * ds) + pc * (c0 * dc - s0 * ds);
+    out[0] += term(ps * (s0 * dc + c0 * ds) + pc * (c0 * dc - s0 * ds));
     if (nd > 1) {
       const double s = s0 + (s0 * dc + c0 * ds);  // sin(w t)
       const double c = c0 + (c0 * dc - s0 * ds);  // cos(w t)
@@ -300,7 +313,7 @@ void eval_wave(const Wave& wave, double t, double* out, Trig& trig) {
         continue;
       }
       const GeneralBasis g = general_basis(md, tau, trig);
-      out[0] += md.a * g.h0m1 + md.b * g.h1 + md.c2 * g.h2 + md.c3 * g.h3;
+      out[0] += term(md.a * g.h0m1 + md.b * g.h1 + md.c2 * g.h2 + md.c3 * g.h3);
       if (nd > 1) out[1] += md.re[1] * g.h0 + md.im[1] * g.h1 + md.c3 * g.h2;
       for (int d = 2; d < nd; ++d) {
         const auto k = static_cast<std::size_t>(d);
@@ -316,7 +329,7 @@ void eval_wave(const Wave& wave, double t, double* out, Trig& trig) {
     const double e = em1 + 1.0;
     const double cs = 1.0 - 2.0 * sh * sh, sn = 2.0 * sh * ch;
     // e cs - 1 = expm1 cs - 2 sh^2, without cancellation near tau = 0.
-    out[0] += md.a * (em1 * cs - 2.0 * sh * sh) + md.b * e * sn;
+    out[0] += term(md.a * (em1 * cs - 2.0 * sh * sh) + md.b * e * sn);
     for (int d = 1; d < nd; ++d) {
       const auto k = static_cast<std::size_t>(d);
       out[d] += e * (md.re[k] * cs - md.im[k] * sn);
@@ -330,7 +343,8 @@ void eval_wave(const Wave& wave, double t, double* out, Trig& trig) {
       const Complex grown = start ? Complex(0.0) : grow(md.sigma, w - md.omega, tau);
       Complex a(md.rr[static_cast<std::size_t>(j)], md.ri[static_cast<std::size_t>(j)]), sum(0.0);  // r (i w)^d, r S_d
       for (int d = 0; d < nd; ++d) {
-        out[d] += (ez * (a * grown + sum)).real();
+        const double part = (ez * (a * grown + sum)).real();
+        out[d] += d == 0 ? term(part) : part;
         sum = sum * z + a;
         a *= iw;
       }
@@ -361,6 +375,19 @@ void Wave::eval(double t, double* out, int nd) const {
 void Wave::eval(double t, double* out, int nd, TrigCache& trig) const {
   assert(nd >= 1 && nd <= kMaxDerivative + 1);
   eval_any(*this, t, out, nd, trig);
+}
+
+void Wave::eval_at(double t, WaveAt& at, TrigCache& trig) const {
+  double out[2];
+  at.n = 0;
+  eval_wave<2>(*this, t, out, trig, KeepTerms{at});
+  at.rate = out[1];
+}
+
+double WaveAt::value(double f0) const {
+  double u = f0;
+  for (int k = 0; k < n; ++k) u += term[static_cast<std::size_t>(k)];
+  return u;
 }
 
 void Wave::decays(double t, double* decay) const {

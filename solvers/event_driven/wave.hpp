@@ -105,6 +105,19 @@ class TrigCache {
   int n_sc_ = 0, n_em_ = 0, next_sc_ = 0, next_em_ = 0;
 };
 
+// A wave's value and rate at one t, kept so that any wave that differs from it in f0 alone
+// (a cluster's bodies: build_frame gives each the cluster's motion plus its offset,
+// Frame::motion) has its value from a few additions instead of an evaluation: eval adds its
+// terms to f0 one by one, and value(f0) adds the same terms in the same order, so the bits
+// are eval's.
+inline constexpr int kMaxTerms = 1 + kMaxSines + kMaxModes * (1 + kMaxSines);
+struct WaveAt {
+  double rate = 0.0;
+  std::array<double, kMaxTerms> term{};
+  int n = 0;
+  double value(double f0) const;
+};
+
 struct Wave {
   double t0 = 0.0;
   double f0 = 0.0;
@@ -127,6 +140,8 @@ struct Wave {
   void eval(double t, double* out, int nd) const;
   // The same values, bit for bit, taking sin, cos and expm1 through `trig` (one t per cache).
   void eval(double t, double* out, int nd, TrigCache& trig) const;
+  // eval(t, out, 2, trig) kept as a WaveAt: at.value(f0), at.rate.
+  void eval_at(double t, WaveAt& at, TrigCache& trig) const;
   double value(double t) const {
     double v;
     eval(t, &v, 1);
