@@ -251,7 +251,7 @@ TEST(PythonKeywordFuzz, ReturnsOrRaisesValueErrorOrTypeError) {
 
 // Issue 46's report target (report_target.hpp): study outputs through `poundbench report`. A
 // report is a Python process with matplotlib (1 to 3 s of a core on the tiny studies): the
-// corpus is a few files, and the campaign a tenth of the command line's count.
+// corpus is what was found, and the campaign a twentieth of the command line's count.
 ChildLimits report_limits() { return {std::max(kReportSeconds, budget().cli_limits.seconds), 2UL << 30}; }
 
 class ReportCorpus : public ::testing::TestWithParam<fs::path> {};
@@ -264,9 +264,9 @@ INSTANTIATE_TEST_SUITE_P(Fuzz, ReportCorpus, ::testing::ValuesIn(corpus_files("r
 
 TEST(ReportInputFuzz, ExitsZeroOrTwoWithAWholeFolderOrNone) {
   const std::vector<std::string> seeds = report_seeds();
-  ASSERT_FALSE(seeds.empty()) << "no corpus/report/seed-*.csv";
+  ASSERT_FALSE(seeds.empty()) << "no corpus/report-seeds/*.csv";
   report(campaign(
-             "report", std::max<std::size_t>(budget().cli_runs / 10, 1), ".csv",
+             "report", std::max<std::size_t>(budget().cli_runs / 20, 1), ".csv",
              [&](Rng& rng) { return mutate_report(rng.pick(seeds), rng); },
              [&](const std::string& text) {
                auto problem = check_report(text, report_limits());

@@ -240,8 +240,7 @@ void place(ReportFiles& f, Rng& rng) {
 
 std::vector<std::string> report_seeds() {
   std::vector<std::string> seeds;
-  for (const fs::path& file : corpus_files("report"))
-    if (file.filename().string().rfind("seed-", 0) == 0) seeds.push_back(read_file(file));
+  for (const fs::path& file : corpus_files("report-seeds")) seeds.push_back(read_file(file));
   return seeds;
 }
 

@@ -43,7 +43,8 @@ inline constexpr double kReportSeconds = 120;
 
 // The property `text` (the form above) violates through `poundbench report`, or nothing.
 std::optional<std::string> check_report(const std::string& text, const ChildLimits& limits);
-// The seeds: corpus/report/seed-*.csv, poundbench's own outputs for a tiny case set.
+// The seeds: corpus/report-seeds/*.csv, poundbench's own outputs for a tiny case set (seeds,
+// not findings: the corpus replay leaves them to the campaign and to tests/report_smoke.sh).
 std::vector<std::string> report_seeds();
 // `seed` changed by one to four mutations.
 std::string mutate_report(std::string_view seed, Rng& rng);
