@@ -58,6 +58,8 @@ class Staging:
         self.out, self.inputs = out, inputs
         self.path = None
         self._made = []  # the folders above out this made (removed again if the report fails)
+        if not out:
+            raise OutputError("--out: an empty folder name")
         if os.path.exists(out) and not os.path.isdir(out):
             raise OutputError(f"--out: {_clip(out)}: not a directory")
         if os.path.isdir(out):
