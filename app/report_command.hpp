@@ -11,9 +11,11 @@
 //     scripts/setup.sh gives matplotlib; a python3 earlier in PATH, a pyenv one, may lack
 //     it), else python3 on PATH.
 //
-// Exit codes: the generator's (0 written, 2 a bad input file, one line naming it and
-// nothing written), 1 when no interpreter, no generator or no matplotlib is found (one
-// line saying which and how to get it).
+// Exit codes: the generator's (0 written; 2 a bad input file, or an input that the report
+// would overwrite in --out, one line naming it and nothing written; 1 an error of the
+// generator itself, one line saying where), 1 when no interpreter, no generator or no
+// matplotlib is found (one line saying which and how to get it). The generator writes the
+// report into a folder of its own and moves it into --out (reports/out_folder.py).
 
 #include <string>
 

@@ -2,9 +2,10 @@
 study that meets it, per scene and over every family. Read off the study's summary rows
 (workprecision.csv); no matplotlib, so README's check runs in a blink."""
 
+import heapq
 from collections import defaultdict
 
-from rows import config_label, num, setting_label, settings_fields, sound, steps_of
+from rows import by_family, config_label, md_cell, num, setting_label, settings_fields, sound, steps_of
 
 MIDDLE_N = 64  # the step count of the cost table and of the spectra drawn against the reference
 TARGETS = [1e-1, 1e-2, 1e-3, 1e-4]
@@ -52,28 +53,57 @@ def answer_label(row):
     return label + f" (the exact {CONTACT_NAMES.get(contact, contact)} solution: its model's own reference)"
 
 
-def settings_over(summary, families, time_steppers_only=False):
+def indexed_by_family(summary):
+    """Each family's rows with their places in the summary: (index, row), in the file's order."""
+    groups = defaultdict(list)
+    for i, r in enumerate(summary):
+        groups[r["family"]].append((i, r))
+    return groups
+
+
+def settings_over(groups, families, time_steppers_only=False):
     """The rows of each setting (solver, variant, settings) on the given families, for the
-    settings that ran on all of them."""
+    settings that ran on all of them; `groups` is indexed_by_family(summary). The settings
+    and each one's rows come in the summary's order (the rule's ties go to the first): only
+    the scope's rows are read, where a scan of the whole summary per scope, target and
+    measure cost a report of 1,000 families (100,000 rows) 8 x 10^8 row visits."""
+    rows = (groups.get(families[0], []) if len(families) == 1 else
+            heapq.merge(*(groups.get(f, []) for f in families), key=lambda p: p[0]))
     by_setting = defaultdict(dict)
-    for r in summary:
-        if r["family"] in families and not (time_steppers_only and is_event_driven(r)):
+    for _, r in rows:
+        if not (time_steppers_only and is_event_driven(r)):
             by_setting[(r["solver"], r["variant"], r["settings"])][r["family"]] = r
-    return [per_family for per_family in by_setting.values() if set(per_family) == set(families)]
+    return [per_family for per_family in by_setting.values() if len(per_family) == len(families)]
+
+
+def worst(rows, key):
+    """The largest error `key` over rows; NaN where one is missing (it meets no target)."""
+    values = [num(r, key) for r in rows]
+    return float("nan") if any(v != v for v in values) else max(values)
+
+
+def candidates(settings):
+    """What the rule reads of each setting (each its rows by family), once for every target:
+    its rows, whether they are all sound, its worst error by measure, its costliest row."""
+    out = []
+    for per_family in settings:
+        rows = list(per_family.values())
+        out.append(dict(rows=per_family, sound=all(sound(r) for r in rows),
+                        worst={key: worst(rows, key) for key, _ in ERRORS},
+                        costliest=max(rows, key=lambda r: num(r, "cpu_median_s"))))
+    return out
 
 
 def cheapest(settings, key, target):
-    """Among settings (each its rows by family), those with no failed or unresolved run and an
-    error `key` <= target on every family; the cheapest by its median CPU time per run on its
-    most expensive family. Returns that family's row, or None."""
+    """Among candidates(settings), those with no failed or unresolved run and an error `key`
+    <= target on every family; the cheapest by its median CPU time per run on its most
+    expensive family. Returns that candidate, or None."""
     best = None
-    for per_family in settings:
-        rows = list(per_family.values())
-        if any(not sound(r) or not num(r, key) <= target for r in rows):
+    for c in settings:
+        if not c["sound"] or not c["worst"][key] <= target:
             continue
-        costliest = max(rows, key=lambda r: num(r, "cpu_median_s"))
-        if best is None or num(costliest, "cpu_median_s") < num(best, "cpu_median_s"):
-            best = costliest
+        if best is None or num(c["costliest"], "cpu_median_s") < num(best["costliest"], "cpu_median_s"):
+            best = c
     return best
 
 
@@ -84,8 +114,9 @@ def scopes(summary, scenes):
     time_steppers_only."""
     families = list(dict.fromkeys(r["family"] for r in summary))
     groups = defaultdict(list)
+    known = all(f in scenes for f in families)
     for family in families:
-        groups[scenes.get(family, family) if all(f in scenes for f in families) else family].append(family)
+        groups[scenes[family] if known else family].append(family)
     return [dict(name=name, families=members, time_steppers_only=False) for name, members in groups.items()] + [
         dict(name=ALL, families=families, time_steppers_only=False),
         dict(name=ALL_TIME_STEPPERS, families=families, time_steppers_only=True)]
@@ -93,18 +124,6 @@ def scopes(summary, scenes):
 
 ALL = "all scenes"
 ALL_TIME_STEPPERS = "all scenes, time-steppers only"
-
-
-def choice(summary, scope, key, target):
-    """The answer for one scope, error measure and target: the cheapest setting's row on the
-    family that sets its cost, and that setting's rows on every family of the scope (None,
-    {} where no setting meets it)."""
-    settings = settings_over(summary, scope["families"], scope["time_steppers_only"])
-    best = cheapest(settings, key, target)
-    if best is None:
-        return None, {}
-    mine = next(per_family for per_family in settings if any(r is best for r in per_family.values()))
-    return best, mine
 
 
 def error_cell(per_family, key, impacting):
@@ -128,15 +147,18 @@ def answer_table(summary, scenes, key, impacting=None):
               else "every point")
     lines = [f"| scene | target | cheapest setting | CPU per run (us) | cost set by | error, worst family: {errors} |",
              "|---|---:|---|---:|---|---:|"]
+    groups = indexed_by_family(summary)
     for scope in scopes(summary, scenes):
+        settings = candidates(settings_over(groups, scope["families"], scope["time_steppers_only"]))
+        name = md_cell(scope["name"]) if scope["name"] not in (ALL, ALL_TIME_STEPPERS) else f"**{scope['name']}**"
         for target in TARGETS:
-            best, mine = choice(summary, scope, key, target)
-            name = scope["name"] if scope["name"] not in (ALL, ALL_TIME_STEPPERS) else f"**{scope['name']}**"
+            best = cheapest(settings, key, target)
             if best is None:
                 lines.append(f"| {name} | {target:g} | none | | | |")
                 continue
-            lines.append(f"| {name} | {target:g} | {answer_label(best)} | {cost_cell(best)} | {best['family']} | "
-                         f"{error_cell(mine, key, impacting)} |")
+            row = best["costliest"]
+            lines.append(f"| {name} | {target:g} | {md_cell(answer_label(row))} | {cost_cell(row)} | "
+                         f"{md_cell(row['family'])} | {error_cell(best['rows'], key, impacting)} |")
     return lines
 
 
@@ -178,8 +200,8 @@ def beats_table(summary, key="err_median"):
     configuration beats it, the row says so."""
     lines = ["| family | target | in-house Moreau-Jean: cheapest | its least N | beats it in CPU per run | "
              "beats it in steps (least N) |", "|---|---:|---|---:|---|---|"]
-    for family in dict.fromkeys(r["family"] for r in summary):
-        rows = [r for r in summary if r["family"] == family and not is_event_driven(r) and steps_of(r) is not None]
+    for family, frows in by_family(summary).items():
+        rows = [r for r in frows if not is_event_driven(r) and steps_of(r) is not None]
         configs = defaultdict(list)
         for r in rows:
             configs[(r["solver"], config_label(r))].append(r)
@@ -188,7 +210,7 @@ def beats_table(summary, key="err_median"):
                 return sound(r) and num(r, key) <= target
             mine = [r for r in rows if r["solver"] == IN_HOUSE and meets(r)]
             if not mine:
-                lines.append(f"| {family} | {target:g} | none | | | |")
+                lines.append(f"| {md_cell(family)} | {target:g} | none | | | |")
                 continue
             best = min(mine, key=lambda r: num(r, "cpu_median_s"))
             least_n = min(steps_of(r) for r in mine)
@@ -199,11 +221,12 @@ def beats_table(summary, key="err_median"):
                     continue
                 cheap = min(ok, key=lambda r: num(r, "cpu_median_s"))
                 if num(cheap, "cpu_median_s") < num(best, "cpu_median_s"):
-                    by_cpu.append(f"{label}, N = {steps_of(cheap)} ({us(num(cheap, 'cpu_median_s'))} us)")
+                    by_cpu.append(f"{md_cell(label)}, N = {steps_of(cheap)} ({us(num(cheap, 'cpu_median_s'))} us)")
                 n = min(steps_of(r) for r in ok)
                 if n < least_n:
-                    by_steps.append(f"{label} (N = {n})")
-            lines.append(f"| {family} | {target:g} | {setting_label(best)} ({us(num(best, 'cpu_median_s'))} us) | "
+                    by_steps.append(f"{md_cell(label)} (N = {n})")
+            lines.append(f"| {md_cell(family)} | {target:g} | {md_cell(setting_label(best))} "
+                         f"({us(num(best, 'cpu_median_s'))} us) | "
                          f"{least_n} | {'; '.join(by_cpu) or 'none'} | {'; '.join(by_steps) or 'none'} |")
     return lines
 
@@ -221,10 +244,10 @@ def failure_table(points):
     lines = ["| setting | family | failed | statuses | the first one's message |", "|---|---|---:|---|---|"]
     for key, frows in failed.items():
         statuses = ", ".join(sorted({r["status"] for r in frows}))
-        message = frows[0]["message"].replace("|", "/")
+        message = frows[0].get("message", "").replace("|", "/")
         message = message if len(message) <= 240 else message[:237] + "..."
-        lines.append(f"| {setting_label(frows[0])} | {key[3]} | {len(frows)} of {total[key]} | {statuses} | "
-                     f"{message} |")
+        lines.append(f"| {md_cell(setting_label(frows[0]))} | {md_cell(key[3])} | {len(frows)} of {total[key]} | "
+                     f"{md_cell(statuses)} | {md_cell(message)} |")
     return lines if failed else []
 
 
@@ -240,9 +263,15 @@ def unresolved_table(points):
             found[key].append(r)
     lines = ["| setting | family | unresolved | the first one's reasons |", "|---|---|---:|---|"]
     for key, urows in found.items():
-        why = urows[0]["unresolved"].replace("|", "/")
-        lines.append(f"| {setting_label(urows[0])} | {key[3]} | {len(urows)} of {total[key]} | {why} |")
+        why = urows[0].get("unresolved", "").replace("|", "/")
+        lines.append(f"| {md_cell(setting_label(urows[0]))} | {md_cell(key[3])} | {len(urows)} of {total[key]} | "
+                     f"{md_cell(why)} |")
     return lines if found else []
+
+
+def ratio(a, b):
+    """a / b to two decimals; '–' where b is 0 (a setting timed at 0 s: no ratio to it)."""
+    return f"{a / b:.2f}" if b != 0 else "–"
 
 
 def cost_table(summary):
@@ -250,15 +279,14 @@ def cost_table(summary):
     a ratio to the in-house Moreau-Jean stepper (theta = 1/2) on the same family."""
     lines = ["| family | solver setting | CPU per run, median (us) | ratio to moreau-jean theta=0.5 |",
              "|---|---|---:|---:|"]
-    for family in dict.fromkeys(r["family"] for r in summary):
-        rows = [r for r in summary if r["family"] == family]
+    for family, rows in by_family(summary).items():
         base = [r for r in rows if r["solver"] == "moreau-jean" and steps_of(r) == MIDDLE_N
-                and settings_fields(r)["theta"] == 0.5]
+                and settings_fields(r).get("theta") == 0.5]
         if not base:
             continue
         for r in rows:
             if steps_of(r) not in (None, MIDDLE_N) or (is_event_driven(r) and settings_fields(r).get("tol_scale") != 1):
                 continue
-            lines.append(f"| {family} | {setting_label(r)} | {cost_cell(r)} | "
-                         f"{num(r, 'cpu_median_s') / num(base[0], 'cpu_median_s'):.2f} |")
+            lines.append(f"| {md_cell(family)} | {md_cell(setting_label(r))} | {cost_cell(r)} | "
+                         f"{ratio(num(r, 'cpu_median_s'), num(base[0], 'cpu_median_s'))} |")
     return lines

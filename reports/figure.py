@@ -1,8 +1,10 @@
 """Saving a figure of the reports: matplotlib without a display, and reproducible SVGs."""
 
 import atexit
+import hashlib
 import math
 import os
+import re
 import sys
 import traceback
 from collections import defaultdict
@@ -100,6 +102,14 @@ def finish():
         raise RuntimeError(f"figure {stems}: drawing it failed (the error is above)")
 
 
+def abandon():
+    """Waits until every drawing child has ended, and forgets their failures: the report they
+    draw for is given up (its folder is removed next)."""
+    while _drawing:
+        _wait_oldest()
+    _failed.clear()
+
+
 def _finish_at_exit():
     try:
         finish()
@@ -111,9 +121,40 @@ def _finish_at_exit():
 atexit.register(_finish_at_exit)
 
 
+def clipped(text, most=60):
+    """A name as a figure shows it: one line of at most `most` characters (a legend entry of a
+    5,000-character family is wider than any figure)."""
+    text = " ".join(str(text).splitlines())
+    return text if len(text) <= most else text[:most - 1] + "…"
+
+
+def joined(lines):
+    """Lines, each (x, y), as the x and y of one artist with a NaN between two lines (where
+    matplotlib breaks a line): any number of lines drawn alike for the cost of one."""
+    lines = list(lines)
+    return [v for x, _ in lines for v in [*x, math.nan]], [v for _, y in lines for v in [*y, math.nan]]
+
+
+FILE_NAME = re.compile(r"[A-Za-z0-9._+=-]{1,100}")
+
+
+def file_stem(name):
+    """A figure's name as a file's: itself where it is made of letters, digits and ._+=- and
+    at most 100 characters (every name of the shipped studies); otherwise those characters of
+    it, others as '-', its first 60, then a hash of the whole name, so that names that differ
+    (a family "a/b" and one "a|b") never share a file, and a family's '/' or 5,000 characters
+    never make a path that cannot be created."""
+    if FILE_NAME.fullmatch(name) and not name.startswith("."):
+        return name
+    kept = re.sub(r"[^A-Za-z0-9._+=-]", "-", name)[:60].lstrip(".")
+    return f"{kept}-{hashlib.sha256(name.encode('utf-8', 'surrogatepass')).hexdigest()[:10]}"
+
+
 def save(fig, out_dir, stem, vector=True):
     """Writes figures/STEM.png, and .svg unless `vector` is false, under out_dir (drawn by a
-    child process: finish() waits for it); returns the PNG's path relative to it."""
+    child process: finish() waits for it), STEM made a file's name (file_stem); returns the
+    PNG's path relative to out_dir."""
+    stem = file_stem(stem)
     path = os.path.join(out_dir, "figures", stem)
     if _DRAWERS < 2:
         _write(fig, path, vector)

@@ -18,7 +18,7 @@ import re
 from collections import defaultdict
 
 import answer
-from rows import config_label, num, setting_label, steps_of
+from rows import by_family, config_label, num, setting_label, steps_of
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -38,13 +38,16 @@ def inline(text):
 def table_html(lines):
     """A markdown table (as report.py writes them) as an HTML table."""
     def cells(line):
-        return [c.strip() for c in line.strip().strip("|").split("|")]
+        # Split at the '|' that end cells, not at an escaped one (rows.md_cell), then unescape.
+        found = [c.strip() for c in re.findall(r"((?:\\.|[^|\\])*)\|", line.strip()[1:])]
+        return [re.sub(r"\\(.)", r"\1", c) for c in found]
 
     head, align = cells(lines[0]), cells(lines[1])
     right = [a.endswith(":") for a in align]
     out = ["<table><thead><tr>" + "".join(f"<th>{inline(c)}</th>" for c in head) + "</tr></thead><tbody>"]
     for line in lines[2:]:
-        tds = [("<td class=\"num\">" if right[i] else "<td>") + inline(c) + "</td>" for i, c in enumerate(cells(line))]
+        tds = [("<td class=\"num\">" if i < len(right) and right[i] else "<td>") + inline(c) + "</td>"
+               for i, c in enumerate(cells(line))]
         out.append("<tr>" + "".join(tds) + "</tr>")
     return "\n".join(out + ["</tbody></table>"])
 
@@ -77,6 +80,7 @@ class Page:
         # of its family and setting indices and the numbers the rule reads (ROW_FIELDS).
         settings, index = [], {}
         families = list(dict.fromkeys(r["family"] for r in summary))
+        family_index = {f: i for i, f in enumerate(families)}
         rows = []
         for r in summary:
             setting = (r["solver"], r["variant"], r["settings"])
@@ -84,7 +88,7 @@ class Page:
                 index[setting] = len(settings)
                 settings.append(dict(label=answer.answer_label(r), time_stepper=not answer.is_event_driven(r)))
             imp = (impacting or {}).get((r["family"], *setting), {})
-            rows.append([families.index(r["family"]), index[setting], int(r["failed"]),
+            rows.append([family_index[r["family"]], index[setting], int(r["failed"]),
                          number(num(r, "err_median")), number(num(r, "err_p95")), number(num(r, "cpu_median_s")),
                          answer.cost_cell(r), number(imp.get("err_median", float("nan"))),
                          number(imp.get("err_p95", float("nan")))])
@@ -111,8 +115,8 @@ class Page:
         """The work-precision diagrams: per family, a series per configuration (its settings
         over N, cheapest first), grouped and ordered as the figures' panels (wp.panels_of)."""
         families = {}
-        for family in dict.fromkeys(r["family"] for r in summary):
-            lines, panels = panels_of([r for r in summary if r["family"] == family])
+        for family, frows in by_family(summary).items():
+            lines, panels = panels_of(frows)
             out = []
             for group, label in ((g, lb) for g, labels in panels.items() for lb in labels):
                 srows = lines[label]
@@ -141,11 +145,13 @@ class Page:
         for r in points:
             truth.setdefault(r["point"], r)
         families = {}
-        for family in dict.fromkeys(r["family"] for r in points):
-            frows = [r for r in points if r["family"] == family]
+        for family, frows in by_family(points).items():
             panels = []
-            for pulse, pi5 in sorted({(r["pulse"], r["pi5"]) for r in frows}, reverse=True):
-                prows = [r for r in frows if r["pulse"] == pulse and r["pi5"] == pi5]
+            by_panel = defaultdict(list)
+            for r in frows:
+                by_panel[(r["pulse"], r.get("pi5", ""))].append(r)
+            for pulse, pi5 in sorted(by_panel, reverse=True):
+                prows = by_panel[(pulse, pi5)]
                 refs = sorted({r["point"]: truth[r["point"]] for r in prows}.values(), key=lambda r: num(r, "pi2"))
                 lines = [dict(name="reference", kind="reference", points=[[number(num(r, "pi2")), number(num(r, "pi1"))]
                                                                           for r in refs if r["status"] == "ok"]),
@@ -175,16 +181,17 @@ class Page:
         from rows import CASE_KEYS
 
         families = {}
-        for family in dict.fromkeys(r["family"] for r in rows):
-            frows = [r for r in rows if r["family"] == family]
+        for family, frows in by_family(rows).items():
             keys = [k for k in CASE_KEYS if k not in ("pulse", "directivity") and len({r.get(k) for r in frows}) > 1]
             panels = []
-            for pulse, directivity in sorted({(r["pulse"], r["directivity"]) for r in frows}, reverse=True):
-                prows = sorted((r for r in frows if r["pulse"] == pulse and r["directivity"] == directivity),
-                               key=lambda r: num(r, "pi2"))
+            by_panel = defaultdict(list)
+            for r in frows:
+                by_panel[(r["pulse"], r["directivity"])].append(r)
+            for pulse, directivity in sorted(by_panel, reverse=True):
+                prows = sorted(by_panel[(pulse, directivity)], key=lambda r: num(r, "pi2"))
                 by_case = defaultdict(list)
                 for r in prows:
-                    by_case[", ".join(f"{k}={r[k]}" for k in keys) or family].append(r)
+                    by_case[", ".join(f"{k}={r.get(k, '')}" for k in keys) or family].append(r)
                 lines = []
                 for label, crows in by_case.items():
                     lines.append(dict(name=label, kind="series", group=config_label(crows[0]), points=[

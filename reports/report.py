@@ -18,10 +18,12 @@ import hashlib
 import os
 import platform
 import sys
+import traceback
 
 import answer
 import page as html
-from rows import config_label, setting_label, steps_of
+from out_folder import OutputError, Staging
+from rows import by_family, config_label, md_cell, md_text, setting_label, steps_of
 from study import InputError, Study, impacting_errors, spectrum_summary
 
 
@@ -32,6 +34,28 @@ class Output:
         self.dir = out_dir
         self.page = html.Page(title)
         self.impacting = None  # the errors over impacting points, once computed
+
+
+# A report draws the figures of its first MAX_FAMILY_FIGURES families, in each section that
+# has a figure per family: a figure costs some 0.3 s of a core (the main job's 130: 39 s), so a
+# study of 1,000 families would spend most of an hour on figures that nobody pages through.
+# report.html draws every family from the study's rows.
+MAX_FAMILY_FIGURES = 40
+
+
+def figure_lines(family, figures):
+    """A family's figures in markdown: its heading, then each (panel, figure path)."""
+    lines = [f"### {md_text(family)}", ""]
+    for panel, figure in figures:
+        lines += [f"![{md_text(family)}: {md_text(panel)}]({figure})", ""]
+    return lines
+
+
+def left_out_lines(families):
+    """What a section says of the families past MAX_FAMILY_FIGURES, if any."""
+    left = len(families) - MAX_FAMILY_FIGURES
+    return [f"The figures above are the first {MAX_FAMILY_FIGURES} families'; report.html draws the other {left} "
+            "from the study's rows (choose a family there).", ""] if left > 0 else []
 
 
 # ---------------------------------------------------------------- work-precision studies
@@ -74,7 +98,8 @@ def failures_section(study, out):
     else:
         failed = [r for r in study.rows if int(r["failed"]) > 0]
         table = ["| setting | family | failed |", "|---|---|---:|"] + [
-            f"| {setting_label(r)} | {r['family']} | {r['failed']} of {r['points']} |" for r in failed] if failed else []
+            f"| {md_cell(setting_label(r))} | {md_cell(r['family'])} | {r['failed']} of {r['points']} |"
+            for r in failed] if failed else []
         why = "(the study's --points say why)"
     if not table:
         return ["## Failed runs", "", "Every run of the study finished ok.", ""]
@@ -110,10 +135,10 @@ def diagrams_section(study, out):
             f"{wp.ERROR_FLOOR:g} are round-off: they are drawn in the shaded band under it, one row per setting, so "
             "that none hides another." + (" Horizontal bars: the lowest and highest CPU time of the timing "
                                          "repetitions." if spread else ""), ""]
-    for family, figures in wp.wp_diagrams(summary, out.dir):
-        text += [f"### {family}", ""]
-        for panel, figure in figures:
-            text += [f"![{family}: {panel}]({figure})", ""]
+    families = list(dict.fromkeys(r["family"] for r in summary))
+    for family, figures in wp.wp_diagrams(summary, out.dir, set(families[:MAX_FAMILY_FIGURES])):
+        text += figure_lines(family, figures)
+    text += left_out_lines(families)
     out.page.diagrams(summary, wp.panels_of)
     table = answer.cost_table(summary)
     if len(table) > 2:
@@ -129,7 +154,8 @@ def spectra_section(study, out):
         return []
     import wp
 
-    figures = wp.wp_spectra(study.points, out.dir)
+    families = list(dict.fromkeys(r["family"] for r in study.points))
+    figures = wp.wp_spectra(study.points, out.dir, set(families[:MAX_FAMILY_FIGURES]))
     if not figures:
         return []
     n = figures[0][1]
@@ -139,9 +165,8 @@ def spectra_section(study, out):
             "a figure per family and solver family, a column per pulse and Pi5. A Pi1 axis is logarithmic where the "
             "reference spans more than one and a half decades.", ""]
     for family, _, panels in figures:
-        text += [f"### {family}", ""]
-        for panel, figure in panels:
-            text += [f"![{family}: {panel}]({figure})", ""]
+        text += figure_lines(family, panels)
+    text += left_out_lines(families)
     out.page.spectra(study.points, n, wp.panel_of, wp.panel_rank)
     return text
 
@@ -178,9 +203,13 @@ def stress_sections(study, out, about=None, reading=None):
                 "95th percentile of the Pi1 error shown)."] if "accuracy" in checks else []), "",
              "Energy, gap and restitution judge the finished runs only, so a diverged run counts once.", ""]
     lines += reading or []
+    figure, (settings_left, families_left) = stability.verdict_figure(summary, out.dir)
+    left = " and ".join(f"{n} more {what}" for n, what in ((settings_left, "settings"), (families_left, "families"))
+                        if n)
     lines += ["In short, per solver configuration over every family and step (worst values over the failing "
               "cells):", "", *stability.stability_summary(summary), "",
-              "Per family and setting:", "", f"![stress verdicts]({stability.verdict_figure(summary, out.dir)})", "",
+              "Per family and setting" + (f" (the first of them: the page report.html has the {left})" if left else "")
+              + ":", "", f"![stress verdicts]({figure})", "",
               f"The numbers behind every cell (runs, finished runs, worst energy excess, penetration and restitution "
               f"error, errors and cost): `{study.name}`, one line per family and setting"
               + ("; every run's row in `poundbench stress --points`." if about else
@@ -211,7 +240,8 @@ def spectrum_sections(study, out):
     table = ["| family | solver setting | points | failed | impacts (median) | CPU per point, median (us) | "
              "total CPU (s) |", "|---|---|---:|---:|---:|---:|---:|"]
     for s in spectrum_summary(rows):
-        table.append(f"| {s['family']} | {config_label(s) if steps_of(s) is None else setting_label(s)} | "
+        setting = config_label(s) if steps_of(s) is None else setting_label(s)
+        table.append(f"| {md_cell(s['family'])} | {md_cell(setting)} | "
                      f"{s['points']} | {s['failed']} | {s['impacts']:.0f} | {1e6 * s['cpu']:.1f} | "
                      f"{s['total_cpu']:.2f} |")
     out.page.table("Families", table)
@@ -222,12 +252,12 @@ def spectrum_sections(study, out):
         out.page.table("Failed points", failures)
     text += ["## Pi-spectra", "", "Pi1 of body 0 against Pi2, per family: a row of panels per pulse, a column per "
              "directivity; dashed grey, the same case with every contact removed.", ""]
-    for family in study.families:
-        frows = [r for r in rows if r["family"] == family]
+    for family, frows in list(by_family(rows).items())[:MAX_FAMILY_FIGURES]:
         if len({r["pi2"] for r in frows}) <= 1:
             continue  # not a spectrum over Pi2
         figure, note = spectra.plot_family(family, frows, out.dir)
-        text += [f"### {family}", "", f"![{family}]({figure})", ""] + ([note, ""] if note else [])
+        text += [f"### {md_text(family)}", "", f"![{md_text(family)}]({figure})", ""] + ([note, ""] if note else [])
+    text += left_out_lines(study.families)
     out.page.curves(rows)
     return text
 
@@ -272,7 +302,9 @@ def intro(study):
     families = len(study.families)
     if study.kind == "spectrum":
         solvers = sorted({config_label(r) for r in study.rows})
-        return (f"{len(study.rows)} points in {families} families through {', '.join(f'`{s}`' for s in solvers)}. "
+        named = ", ".join(f"`{' '.join(s.splitlines())}`" for s in solvers[:20]) + \
+            (f" and {len(solvers) - 20} more" if len(solvers) > 20 else "")
+        return (f"{len(study.rows)} points in {families} families through {named}. "
                 "Pi1 is the peak displacement of body 0 in Pi terms (cases/README.md).")
     settings = len({(r["solver"], r["variant"], r["settings"]) for r in study.rows})
     return (f"{families} families through {settings} solver settings. Errors are relative Pi1 errors "
@@ -283,11 +315,12 @@ def intro(study):
 
 
 def write(study, out_dir, title=None, made_by="poundbench report"):
-    """The whole report of one study into out_dir: README.md, figures/, report.html."""
+    """The whole report of one study into out_dir: README.md, figures/, report.html. Returns
+    how many figures README.md shows."""
     os.makedirs(os.path.join(out_dir, "figures"), exist_ok=True)
     title = title or f"{KIND_TITLES[study.kind]}: {study.name}"
     out = Output(out_dir, title)
-    text = [f"# {title}", "", intro(study), "",
+    text = [f"# {md_text(title)}", "", intro(study), "",
             "The same study to explore in a browser, hovering, filtering and choosing a target: "
             "[report.html](report.html) (one file, works offline).", ""]
     for section in SECTIONS[study.kind]:
@@ -298,10 +331,8 @@ def write(study, out_dir, title=None, made_by="poundbench report"):
     from figure import finish
     finish()  # every figure drawn before the page that shows them
     from rows import write_page
-    write_page(out_dir, text, "poundbench: report")
-    figures = sum(line.startswith("![") for line in text)
-    print(f"poundbench: report: wrote {os.path.join(out_dir, 'report.html')} and {figures} figures in "
-          f"{os.path.join(out_dir, 'figures')}")
+    write_page(out_dir, text)
+    return sum(line.startswith("![") for line in text)
 
 
 def need_matplotlib():
@@ -311,6 +342,41 @@ def need_matplotlib():
     except ImportError:
         sys.exit(f"poundbench: report: {sys.executable} has no matplotlib (Debian: python3-matplotlib; "
                  "scripts/setup.sh installs it)")
+
+
+def bug_line(e):
+    """An exception no input should cause, as one line saying where it was raised."""
+    where = traceback.extract_tb(e.__traceback__)[-1]
+    text = " ".join(str(e).splitlines())
+    return (f"poundbench: report: internal error at {os.path.basename(where.filename)}:{where.lineno}: "
+            f"{type(e).__name__}: {text[:160]} (a bug of the report; nothing was written to --out)")
+
+
+def report(args):
+    """Reads the study, writes its report into a folder of its own and moves it into --out
+    (out_folder.py). Returns the exit code: 0, 2 (a bad input or --out: one line), 1 (a bug:
+    one line)."""
+    staging = None
+    try:
+        study = Study(args.study, args.points)
+        staging = Staging(args.out, [("STUDY", args.study), ("--points", args.points)])
+        figures = write(study, staging.path, args.title, args.made_by)
+        staging.publish()
+    except (InputError, OutputError) as e:
+        print(f"poundbench: {e}", file=sys.stderr)
+        return 2
+    except Exception as e:  # noqa: BLE001: one line instead of a traceback, and --out left as it was
+        print(bug_line(e), file=sys.stderr)
+        return 1
+    finally:
+        if staging is not None and staging.path is not None:
+            if "figure" in sys.modules:
+                sys.modules["figure"].abandon()  # no drawing child may write into a removed folder
+            staging.remove()
+    print(f"poundbench: report: wrote {os.path.join(args.out, 'README.md')}")
+    print(f"poundbench: report: wrote {os.path.join(args.out, 'report.html')} and {figures} figures in "
+          f"{os.path.join(args.out, 'figures')}")
+    return 0
 
 
 def main():
@@ -324,20 +390,7 @@ def main():
     parser.add_argument("--made-by", default="reports/report.py", help=argparse.SUPPRESS)
     args = parser.parse_args()
     need_matplotlib()
-    try:
-        study = Study(args.study, args.points)
-    except InputError as e:
-        print(f"poundbench: {e}", file=sys.stderr)
-        sys.exit(2)
-    if os.path.exists(args.out) and not os.path.isdir(args.out):
-        print(f"poundbench: --out: {args.out}: not a directory", file=sys.stderr)
-        sys.exit(2)
-    try:
-        os.makedirs(os.path.join(args.out, "figures"), exist_ok=True)
-    except OSError as e:
-        print(f"poundbench: --out: {args.out}: cannot be created ({e.strerror})", file=sys.stderr)
-        sys.exit(2)
-    write(study, args.out, args.title, args.made_by)
+    sys.exit(report(args))
 
 
 if __name__ == "__main__":

@@ -8,6 +8,7 @@ import json
 import os
 import sys
 import types
+from collections import defaultdict
 
 # Columns that label a curve of a spectrum (everything that is neither the abscissa nor a result).
 CASE_KEYS = ["scene", "pulse", "directivity", "eps", "pi3", "pi5", "pi6", "pi7", "pi8", "xi", "n_free", "a_p", "w_p"]
@@ -106,10 +107,38 @@ def median(values):
     return values[mid] if len(values) % 2 else 0.5 * (values[mid - 1] + values[mid])
 
 
-def write_page(out_dir, lines, script):
-    """Writes out_dir/README.md through a temporary file, so a failed run leaves the old one."""
+def by_family(rows):
+    """The rows of each family, families in the order they first appear: one pass, where a
+    scan of every row per family made a report of F families and R rows cost F x R (1,000
+    families of a 100,000-row summary: 10^8 comparisons in each of five places)."""
+    families = defaultdict(list)
+    for r in rows:
+        families[r["family"]].append(r)
+    return families
+
+
+def md_text(text):
+    """A name (a family, a solver's variant: any text a study's rows hold) as one line of
+    markdown: line ends as spaces; backslashes, and the brackets of a link or an image's text,
+    escaped."""
+    return md_cell(text, "[]")
+
+
+def md_cell(text, escaped="|"):
+    """A name as a cell of a markdown table: one line, its backslashes and '|' escaped ('\\|',
+    which GitHub's tables and page.table_html read as the character, not a cell's end)."""
+    text = " ".join(str(text).replace("\\", "\\\\").splitlines())
+    for c in escaped:
+        text = text.replace(c, "\\" + c)
+    return text
+
+
+def write_page(out_dir, lines, script=None):
+    """Writes out_dir/README.md through a temporary file, so a failed run leaves the old one,
+    and says so on stdout when `script` names the writer."""
     path = os.path.join(out_dir, "README.md")
     with open(path + ".tmp", "w") as f:
         f.write("\n".join(lines))
     os.replace(path + ".tmp", path)
-    print(f"{script}: wrote {path}")
+    if script:
+        print(f"{script}: wrote {path}")

@@ -12,7 +12,7 @@ import numpy as np
 from matplotlib.colors import to_rgb
 from matplotlib.patches import Patch
 
-from figure import figure_width, legend_below, plt, save, solver_styles, with_legend_below
+from figure import clipped, figure_width, legend_below, plt, save, solver_styles, with_legend_below
 from rows import config_label as config, median, num, settings_fields
 
 FLOOR = 1e-17  # energy excesses and penetrations at or below this are drawn on the floor
@@ -148,12 +148,20 @@ def table_config(row):
     return config(row) + (f", {step}" if step else "")
 
 
+# The verdict grid's rows (settings) and column blocks (families) up to these many: a row is
+# 0.24 in, so 150 are a figure 37 in tall, and matplotlib refuses an image past 2^16 pixels a
+# side (a 100,000-setting stress summary asked for 2.4 million). The page's table has them all.
+MAX_VERDICT_SETTINGS, MAX_VERDICT_FAMILIES = 150, 40
+
+
 def verdict_figure(summary, out_dir):
     """The verdicts as a grid: a row per solver setting, a block of columns per stress family,
-    a column per check in it; green pass, red fail, grey nothing to judge."""
+    a column per check in it; green pass, red fail, grey nothing to judge. Returns the figure
+    and how many settings and families it leaves out (the first MAX_VERDICT_* are drawn)."""
     checks = checks_of(summary)
-    families = list(dict.fromkeys(r["family"] for r in summary))
-    settings = list(dict.fromkeys(table_config(r) for r in summary))
+    every_family = list(dict.fromkeys(r["family"] for r in summary))
+    every_setting = list(dict.fromkeys(table_config(r) for r in summary))
+    families, settings = every_family[:MAX_VERDICT_FAMILIES], every_setting[:MAX_VERDICT_SETTINGS]
     cells = {(table_config(r), r["family"]): r for r in summary}
     width = len(checks) + 1  # a blank column after each family
     image = np.ones((len(settings), len(families) * width - 1, 3))
@@ -165,14 +173,15 @@ def verdict_figure(summary, out_dir):
                     image[i, j * width + c] = to_rgb(VERDICT_COLOURS.get(r[check], NOT_JUDGED))
     fig, ax = plt.subplots(figsize=(3.5 + 0.26 * image.shape[1], 1.6 + 0.24 * len(settings)), layout="constrained")
     ax.imshow(image, aspect="auto", interpolation="nearest")
-    ax.set_yticks(range(len(settings)), settings, fontsize=8)
+    ax.set_yticks(range(len(settings)), [clipped(x) for x in settings], fontsize=8)
     ax.set_xticks([j * width + c for j in range(len(families)) for c in range(len(checks))],
                   [check[0].upper() for _ in families for check in checks], fontsize=7)
     top = ax.secondary_xaxis("top")
-    top.set_xticks([j * width + (len(checks) - 1) / 2 for j in range(len(families))], families, fontsize=8.5,
+    top.set_xticks([j * width + (len(checks) - 1) / 2 for j in range(len(families))],
+                   [clipped(f, 30) for f in families], fontsize=8.5,
                    rotation=30, ha="left")
     top.tick_params(length=0)
-    solvers = [s.split()[0] for s in settings]
+    solvers = [(s.split() or [""])[0] for s in settings]
     for i in range(1, len(settings)):  # a white line between two settings, a black one between two solvers
         ax.axhline(i - 0.5, color="k" if solvers[i] != solvers[i - 1] else "white", lw=0.8)
     for j in range(len(families)):  # white lines between the checks of a family
@@ -187,7 +196,8 @@ def verdict_figure(summary, out_dir):
     ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
     ax.set_title("Stress set: the verdict of every check per family (column blocks) and solver setting (rows)",
                  fontsize=10)
-    return save(fig, out_dir, "stability-verdicts")
+    return save(fig, out_dir, "stability-verdicts"), (len(every_setting) - len(settings),
+                                                      len(every_family) - len(families))
 
 
 def stability_summary(summary):
@@ -217,5 +227,6 @@ def stability_summary(summary):
             else:
                 worst = max(num(r, worst_key[check]) for r in failing)
                 parts.append(f"**{check} fails**{where} (worst {worst:.2g})")
-        lines.append(f"* `{label}`: " + "; ".join(parts) + ".")
+        code = " ".join(label.splitlines()).replace("`", "'")  # one line of markdown, one code span
+        lines.append(f"* `{code}`: " + "; ".join(parts) + ".")
     return lines

@@ -8,31 +8,58 @@ A bad file is an InputError naming the file, the line, the column and why (the r
 entry points print it as one line and exit 2), found before anything is written."""
 
 import csv
+import json
 import math
 import os
+import sys
 from collections import defaultdict
 
 from rows import median, num
 
-# What each kind of file is known by (its header has every one of these) and the numeric
-# columns checked on every row (an empty field is a value that does not exist).
+# What each kind of file is (what writes it) and is known by (its header has
+# every one of these columns, which the report reads on every row), and the domain of every
+# column it reads as a number (checked on every row where the file has the column; an empty
+# field is a value that does not exist, which poundbench writes for NaN). Domains (DOMAINS):
+# "count" a whole number >= 0, "error" a number >= 0 or inf (a relative error against a
+# reference of 0), "seconds" and "nonnegative" a finite number >= 0, "positive" a finite
+# number > 0, "number" a finite one.
 KINDS = {
     "workprecision": dict(
         what="a work-precision summary (`poundbench workprecision --out`)",
         columns=("family", "solver", "variant", "settings", "points", "failed", "err_median", "err_p95",
                  "cpu_median_s"),
-        counts=("points", "failed"),
-        numbers=("err_median", "err_p95", "err_max", "cpu_median_s", "cpu_median_low_s", "cpu_median_high_s")),
+        required=("points", "failed"),
+        domains=dict(points="count", failed="count", unresolved="count", err_median="error", err_p95="error",
+                     err_max="error", cpu_median_s="seconds", cpu_mean_s="seconds", cpu_median_low_s="seconds",
+                     cpu_median_high_s="seconds"),
+        at_most=(("failed", "points"), ("unresolved", "points"))),
     "stress": dict(
         what="a stress summary (`poundbench stress --out`)",
         columns=("family", "solver", "variant", "settings", "runs", "ok", "finite", "energy", "gap", "restitution"),
-        counts=("runs", "ok"),
-        numbers=("cpu_median_s",)),
+        required=("runs", "ok"),
+        domains=dict(runs="count", ok="count", cpu_median_s="seconds", cpu_median_low_s="seconds",
+                     cpu_median_high_s="seconds", energy_excess_max="number", penetration_max="nonnegative",
+                     penetration_steps_max="nonnegative", restitution_error_max="nonnegative", pi1_err_median="error",
+                     pi1_err_p95="error", pi1_err_max="error"),
+        at_most=(("ok", "runs"),)),
     "spectrum": dict(
-        what="result rows (`poundbench spectrum`, or a study's --points)",
-        columns=("family", "point", "scene", "pulse", "pi2", "solver", "variant", "settings", "status", "pi1"),
-        counts=("point",),
-        numbers=("pi2", "pi1", "pi1_no_contact", "cpu_seconds")),
+        what="per-run rows (`poundbench spectrum`, a study's --points)",
+        columns=("family", "point", "scene", "pulse", "directivity", "pi2", "solver", "variant", "settings", "status",
+                 "pi1"),
+        required=("point", "pi2"),
+        domains=dict(point="count", pi2="positive", pi1="error", pi1_no_contact="error", cpu_seconds="seconds",
+                     impacts="count", steps="count", bodies="count", impact_velocity_pi="error",
+                     energy_excess="number", penetration_steps="nonnegative", pi1_error="error"),
+        at_most=()),
+}
+
+DOMAINS = {
+    "count": ("a whole number >= 0", lambda text, x: text.isdigit()),
+    "error": ("a number >= 0 (or inf)", lambda text, x: x >= 0),
+    "seconds": ("a finite number >= 0", lambda text, x: 0 <= x < math.inf),
+    "nonnegative": ("a finite number >= 0", lambda text, x: 0 <= x < math.inf),
+    "positive": ("a finite number > 0", lambda text, x: 0 < x < math.inf),
+    "number": ("a finite number", lambda text, x: math.isfinite(x)),
 }
 
 
@@ -41,19 +68,44 @@ class InputError(Exception):
 
 
 def read_csv(path):
-    """The rows of a CSV file as dicts, and its header; InputError when it cannot be read."""
+    """The rows of a CSV file as dicts, its header, and the line each row ends on (a quoted
+    field may hold line ends); InputError when it cannot be read."""
     if not os.path.exists(path):
         raise InputError(f"{path}: no such file")
     if not os.path.isfile(path):
         raise InputError(f"{path}: " + ("is a directory" if os.path.isdir(path) else
                                         "not a regular file (a pipe or a device): give the file itself"))
+    csv.field_size_limit(sys.maxsize)  # a field as long as the file (a family's name): memory is the limit
     try:
         with open(path, newline="") as f:
             reader = csv.DictReader(f)
-            rows = list(reader)
-            return rows, reader.fieldnames or []
+            rows, lines = [], []
+            for row in reader:
+                rows.append(row)
+                lines.append(reader.line_num)
+            return rows, reader.fieldnames or [], lines
     except (OSError, UnicodeDecodeError, csv.Error) as e:
-        raise InputError(f"{path}: cannot be read as CSV: {e}") from None
+        raise InputError(f"{path}: cannot be read as CSV: {clip(str(e))}") from None
+
+
+def clip(text, most=40):
+    """A value as a message quotes it: at most `most` characters, on one line."""
+    text = text if len(text) <= most else text[:most] + "..."
+    return text.encode("unicode_escape").decode("ascii") if not text.isprintable() else text
+
+
+def header_problem(path, header, kinds=None):
+    """Why a header is none of `kinds`' (default: any kind's): the columns missing from the
+    kind it is closest to, where it has most of that kind's; else what a result file is."""
+    kinds = kinds or list(KINDS)
+    closest = max(kinds, key=lambda k: sum(c in header for c in KINDS[k]["columns"]))
+    columns = KINDS[closest]["columns"]
+    missing = [c for c in columns if c not in header]
+    if 2 * len(missing) < len(columns) or len(kinds) == 1:
+        return (f"{path}:1: header: no column {', '.join(missing)} (the columns of {KINDS[closest]['what']}: "
+                f"{', '.join(columns)})")
+    return (f"{path}:1: header: not a poundbench result file (a summary of `poundbench workprecision` or "
+            "`poundbench stress`, or the rows of `poundbench spectrum`)")
 
 
 def kind_of(header):
@@ -63,21 +115,68 @@ def kind_of(header):
     return None
 
 
-def check_rows(path, rows, kind):
-    """Every count a whole number >= 0 and every number a number (or empty), on every row."""
+def check_value(where, column, text, domain):
+    """InputError unless `text` (not empty) is in `domain` (DOMAINS)."""
+    what, holds = DOMAINS[domain]
+    try:
+        x = float(text)
+    except ValueError:
+        x = None
+    if x is None or math.isnan(x) or not holds(text, x):
+        raise InputError(f"{where}: {column}: must be {what} (it is '{clip(text)}')")
+
+
+# The fields of the `settings` column that the report reads, and what each must be.
+SETTING_FIELDS = {"steps": "count", "theta": "number", "tol_scale": "number", "stiffness": "number",
+                  "rtol": "number", "wh": "number", "projection_tol": "number", "steps_per_sample": "count",
+                  "contact_steps": "count"}
+SETTING_TEXTS = ("contact", "integrator", "method", "lcp")
+
+
+def settings_problem(text):
+    """Why a `settings` field is not a JSON object of the named values the report reads, or
+    None (an empty field is no settings)."""
+    try:
+        fields = json.loads(text or "{}", parse_constant=lambda c: float("nan"))
+    except (ValueError, RecursionError) as e:
+        return f"not a JSON object ({clip(str(e), 60)})"
+    if not isinstance(fields, dict):
+        return "not a JSON object"
+    for name, domain in SETTING_FIELDS.items():
+        value = fields.get(name)
+        if value is None:
+            continue
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or \
+                (domain == "count" and (value < 1 or value != int(value))):
+            return f"{name}: must be {'a whole number >= 1' if domain == 'count' else 'a finite number'} " \
+                   f"(it is {clip(json.dumps(value))})"
+    for name in SETTING_TEXTS:
+        if name in fields and not isinstance(fields[name], str):
+            return f"{name}: must be a string (it is {clip(json.dumps(fields[name]))})"
+    return None
+
+
+def check_rows(path, rows, lines, kind):
+    """Every column the report reads as a number in its domain on every row (KINDS), every
+    count no more than the count it is part of, every `settings` a JSON object."""
     spec = KINDS[kind]
-    for i, r in enumerate(rows, start=2):
+    present = [c for c in spec["domains"] if c in rows[0]] if rows else []
+    settings_seen = {}
+    for r, line in zip(rows, lines):
+        where = f"{path}:{line}"
         if None in r or any(v is None for v in r.values()):
-            raise InputError(f"{path}:{i}: the row has {'more' if None in r else 'fewer'} fields than the header")
-        for c in spec["counts"]:
-            if not r[c].isdigit():
-                raise InputError(f"{path}:{i}: {c}: must be a whole number >= 0 (it is '{r[c][:40]}')")
-        for c in spec["numbers"]:
-            if c in r and r[c] != "":
-                try:
-                    float(r[c])
-                except ValueError:
-                    raise InputError(f"{path}:{i}: {c}: not a number ('{r[c][:40]}')") from None
+            raise InputError(f"{where}: the row has {'more' if None in r else 'fewer'} fields than the header")
+        for c in present:
+            if r[c] != "" or c in spec["required"]:
+                check_value(where, c, r[c], spec["domains"][c])
+        for part, whole in spec["at_most"]:
+            if r.get(part) and r.get(whole) and int(r[part]) > int(r[whole]):
+                raise InputError(f"{where}: {part}: must be at most {whole} ({r[whole]}) (it is '{r[part]}')")
+        text = r["settings"]
+        if text not in settings_seen:
+            settings_seen[text] = settings_problem(text)
+        if settings_seen[text]:
+            raise InputError(f"{where}: settings: {settings_seen[text]}")
 
 
 def setting_key(r):
@@ -90,24 +189,22 @@ class Study:
 
     def __init__(self, path, points_path=None):
         self.path, self.points_path = path, points_path
-        self.rows, header = read_csv(path)
+        self.rows, header, lines = read_csv(path)
         self.kind = kind_of(header)
         if self.kind is None:
-            raise InputError(f"{path}:1: header: not a poundbench result file (expected "
-                             + "; or ".join(f"{k['what']}, with the columns {', '.join(k['columns'])}"
-                                            for k in KINDS.values()) + ")")
+            raise InputError(header_problem(path, header))
         if not self.rows:
             raise InputError(f"{path}: no rows after the header")
-        check_rows(path, self.rows, self.kind)
+        check_rows(path, self.rows, lines, self.kind)
+        self.lines = lines
         self.points = []
         if points_path:
             if self.kind == "spectrum":
                 raise InputError(f"--points: {points_path}: a spectrum's rows are its points already")
-            self.points, points_header = read_csv(points_path)
+            self.points, points_header, point_lines = read_csv(points_path)
             if kind_of(points_header) != "spectrum":
-                raise InputError(f"{points_path}:1: header: not per-run rows (expected the columns "
-                                 + ", ".join(KINDS['spectrum']['columns']) + ")")
-            check_rows(points_path, self.points, "spectrum")
+                raise InputError(header_problem(points_path, points_header, ["spectrum"]))
+            check_rows(points_path, self.points, point_lines, "spectrum")
             self._check_points_belong()
         self.families = list(dict.fromkeys(r["family"] for r in self.rows))
         runs = self.rows if self.kind == "spectrum" else self.points
@@ -121,10 +218,11 @@ class Study:
         """The points are this study's: every setting of the summary has runs there, and every
         run is of a family and setting the summary has (or is the truth, or a model's reference)."""
         have = {setting_key(r) for r in self.points}
-        for i, r in enumerate(self.rows, start=2):
+        for line, r in zip(self.lines, self.rows):
             if setting_key(r) not in have:
-                raise InputError(f"{self.points_path}: no runs of {self.path}:{i}'s family {r['family']} and setting "
-                                 f"{r['solver']} {r['variant']} {r['settings']}: not the points of this study")
+                raise InputError(f"{self.points_path}: no runs of {self.path}:{line}'s family {clip(r['family'])} and "
+                                 f"setting {clip(r['solver'])} {clip(r['variant'])} {clip(r['settings'], 80)}: not the "
+                                 "points of this study")
 
     @property
     def name(self):
@@ -201,7 +299,7 @@ def write_impacting(impacting, path):
 
 
 def read_impacting(path):
-    rows, _ = read_csv(path)
+    rows, _, _ = read_csv(path)
     return {setting_key(r): dict(points=int(r["impacting_points"]), err_median=num(r, "err_median"),
                                  err_p95=num(r, "err_p95"), vel_median=num(r, "vel_median"),
                                  vel_p95=num(r, "vel_p95")) for r in rows}

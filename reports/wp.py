@@ -10,8 +10,8 @@ from collections import defaultdict
 from matplotlib.lines import Line2D
 
 from answer import MIDDLE_N, has_spread
-from figure import MARKERS, colors, figure_width, legend_below, log_spans, save, with_legend_below
-from rows import config_label, num, sound, steps_of
+from figure import MARKERS, clipped, colors, figure_width, joined, legend_below, log_spans, save, with_legend_below
+from rows import by_family, config_label, num, sound, steps_of
 
 ERROR_FLOOR = 1e-13  # errors below this are round-off: drawn in a band under it, one row per setting
 FLOOR_ROW = 10 ** -0.6  # the factor between two rows of that band
@@ -58,20 +58,53 @@ def pareto_front(rows, key):
 def _draw_setting(ax, lrows, key, style, floor_y):
     """One configuration's line over its step counts; points under the floor in its own row
     of the floor band; hollow markers where some runs failed or did not resolve; the low-high of the timing
-    repetitions as horizontal bars where the rows have it."""
+    repetitions as horizontal bars where the rows have it. A few artists whatever the count of
+    points: an artist per point made a configuration of 7,500 step counts 30,000 artists."""
     above = [r for r in lrows if num(r, key) >= ERROR_FLOOR]
     ax.plot([1e6 * num(r, "cpu_median_s") for r in above], [num(r, key) for r in above], ls=style["ls"],
             color=style["color"], lw=1.3, zorder=3)
-    for r in lrows:
-        x = 1e6 * num(r, "cpu_median_s")
-        y = num(r, key) if num(r, key) >= ERROR_FLOOR else floor_y
-        hollow = not sound(r)
-        ax.plot([x], [y], marker=style["marker"], ms=4.5, color=style["color"], zorder=4,
-                markerfacecolor="white" if hollow else style["color"])
-        if has_spread(r):
-            lo, hi = 1e6 * num(r, "cpu_median_low_s"), 1e6 * num(r, "cpu_median_high_s")
-            ax.errorbar([x], [y], xerr=[[x - lo], [hi - x]], fmt="none", ecolor=style["color"], elinewidth=0.9,
-                        capsize=2, zorder=4)
+    x = [1e6 * num(r, "cpu_median_s") for r in lrows]
+    y = [num(r, key) if num(r, key) >= ERROR_FLOOR else floor_y for r in lrows]
+    for hollow in (False, True):
+        pick = [i for i, r in enumerate(lrows) if sound(r) != hollow]
+        if pick:
+            ax.plot([x[i] for i in pick], [y[i] for i in pick], ls="", marker=style["marker"], ms=4.5,
+                    color=style["color"], zorder=4, markerfacecolor="white" if hollow else style["color"])
+    bars = [i for i, r in enumerate(lrows) if has_spread(r)]
+    if bars:
+        lo = [x[i] - 1e6 * num(lrows[i], "cpu_median_low_s") for i in bars]
+        hi = [1e6 * num(lrows[i], "cpu_median_high_s") - x[i] for i in bars]
+        ax.errorbar([x[i] for i in bars], [y[i] for i in bars], xerr=[lo, hi], fmt="none", ecolor=style["color"],
+                    elinewidth=0.9, capsize=2, zorder=4)
+
+
+def diagram_line(lrows, key):
+    """A configuration's line of a diagram, (CPU time in us, error `key`), over its settings
+    with a finite error above the floor."""
+    ok = [r for r in lrows if ERROR_FLOOR <= num(r, key) < math.inf]
+    return [1e6 * num(r, "cpu_median_s") for r in ok], [num(r, key) for r in ok]
+
+
+# A panel of more configurations than this draws them as a crowd: one colour, every line and
+# point in three artists, no legend entry each; past 18 (figure.PAIRED) colours are shades of
+# one map that nobody tells apart, and a legend of thousands of entries is taller than the
+# figure. report.html names each setting on hover.
+MAX_LINES = 18
+
+
+def _draw_crowd(ax, labels, lines, key):
+    """A panel's configurations as a crowd: their lines in one light artist, their settings
+    as points (hollow where some runs failed or did not resolve), those under the floor on
+    the band's first row."""
+    ax.plot(*joined(diagram_line(lines[lb], key) for lb in labels), color="tab:blue", lw=0.6, alpha=0.35, zorder=3)
+    rows = [r for lb in labels for r in lines[lb] if math.isfinite(num(r, key))]
+    for hollow in (False, True):
+        pick = [r for r in rows if sound(r) != hollow]
+        if pick:
+            ax.plot([1e6 * num(r, "cpu_median_s") for r in pick],
+                    [num(r, key) if num(r, key) >= ERROR_FLOOR else ERROR_FLOOR * FLOOR_ROW for r in pick],
+                    ls="", marker="o", ms=2.5, color="tab:blue", zorder=4,
+                    markerfacecolor="white" if hollow else "tab:blue")
 
 
 SLUGS = {PANELS["moreau-jean"]: "in-house", PANELS["ode"]: "ode", PANELS["bullet"]: "bullet",
@@ -118,49 +151,55 @@ def cost_label(rows):
 def wp_diagram(family, panel, labels, lines, rows, out_dir):
     """One family's diagram for one panel's configurations: the median and the 95th percentile
     of the error side by side, the other solvers in grey and the Pareto front over every solver
-    behind them, the legend below at the size of the text."""
-    # The floor band: a row per configuration of the panel with a point under the floor; the
-    # Pareto front's points there of other panels' configurations on its first row.
-    under = [lb for lb in labels if any(num(r, k) < ERROR_FLOOR for r in lines[lb] for k, _ in ERRORS)]
+    behind them, the legend below at the size of the text. More than MAX_LINES configurations
+    are drawn as a crowd (_draw_crowd)."""
+    crowd = len(labels) > MAX_LINES
+    # The floor band: a row per configuration of the panel with a point under the floor (a
+    # crowd's on one row); the Pareto front's points there of other panels' configurations on its first row.
+    under = [] if crowd else [lb for lb in labels if any(num(r, k) < ERROR_FLOOR for r in lines[lb] for k, _ in ERRORS)]
     floor_rows = {lb: ERROR_FLOOR * FLOOR_ROW ** (i + 1) for i, lb in enumerate(under)}
     band = any(num(r, k) < ERROR_FLOOR for r in rows for k, _ in ERRORS)
     deepest = min(floor_rows.values(), default=ERROR_FLOOR * FLOOR_ROW)
-    spread = any(has_spread(r) for r in rows)
+    spread = not crowd and any(has_spread(r) for r in rows)
     hollow = any(not sound(r) for r in rows)
-    palette = colors(len(labels))
+    palette = colors(0 if crowd else len(labels))
     styles = {lb: dict(color=palette[i], marker=MARKERS[i % len(MARKERS)], ls=STYLE.get(lines[lb][0]["solver"], "-"))
-              for i, lb in enumerate(labels)}
+              for i, lb in enumerate(labels)} if not crowd else {}
 
-    entries = len(labels) + 2 + hollow + spread
-    fig, grid = with_legend_below(figure_width(2), 3.8, entries)
+    entries = (1 if crowd else len(labels)) + 2 + hollow + spread
+    columns = 1 if crowd else 2  # a crowd's one entry is a sentence
+    fig, grid = with_legend_below(figure_width(2), 3.8, entries, columns)
     axes = fig.subplots(1, 2, sharex=True, sharey=True, gridspec_kw=grid)
+    mine = set(labels)
     for col, (key, title) in enumerate(ERRORS):
         ax = axes[col]
-        for label, lrows in lines.items():  # the other solvers, for context
-            if label not in labels:
-                ok = [r for r in lrows if num(r, key) >= ERROR_FLOOR]
-                ax.plot([1e6 * num(r, "cpu_median_s") for r in ok], [num(r, key) for r in ok], color="0.85",
-                        lw=0.8, zorder=1)
+        ax.plot(*joined(diagram_line(lrows, key) for label, lrows in lines.items() if label not in mine),
+                color="0.85", lw=0.8, zorder=1)  # the other solvers, for context
         front = pareto_front(rows, key)
         ax.plot([1e6 * num(r, "cpu_median_s") for r in front],
                 [num(r, key) if num(r, key) >= ERROR_FLOOR else floor_rows.get(config_label(r), ERROR_FLOOR * FLOOR_ROW)
                  for r in front],
                 color="k", lw=7, alpha=0.12, solid_capstyle="round", zorder=2)
-        for label in labels:
+        if crowd:
+            _draw_crowd(ax, labels, lines, key)
+        for label in styles:
             _draw_setting(ax, [r for r in lines[label] if math.isfinite(num(r, key))], key, styles[label],
                           floor_rows.get(label, ERROR_FLOOR))
         if band:
             ax.axhspan(deepest * FLOOR_ROW ** 1.2, ERROR_FLOOR, color="0.93", zorder=0)
             ax.text(0.02, 0.02, f"below {ERROR_FLOOR:g}: round-off", transform=ax.transAxes, color="0.35")
-        ax.set_ylim(deepest * FLOOR_ROW ** 1.2 if band else None, 3)
-        ax.set_xscale("log")
+        ax.set_xscale("log")  # before the limits: a shared axis already log refuses a linear autoscale's bottom <= 0
         ax.set_yscale("log")
+        ax.set_ylim(deepest * FLOOR_ROW ** 1.2 if band else None, 3)
         ax.grid(True, which="major", alpha=0.3)
         ax.set_title(f"{title} over the points")
         ax.set_xlabel(cost_label(rows))
     axes[0].set_ylabel("relative Pi1 error")
     handles = [Line2D([], [], ls=styles[lb]["ls"], marker=styles[lb]["marker"], color=styles[lb]["color"], ms=5,
-                      label=lb) for lb in labels]
+                      label=clipped(lb)) for lb in styles]
+    if crowd:
+        handles.append(Line2D([], [], marker="o", ms=2.5, color="tab:blue", lw=0.6, label=(
+            f"{len(labels)} configurations, too many to tell apart: each point a setting (report.html names it)")))
     handles += [Line2D([], [], color="k", lw=7, alpha=0.12, label="Pareto front, every solver"),
                 Line2D([], [], color="0.85", lw=0.8, label="the other solvers")]
     if hollow:
@@ -168,16 +207,17 @@ def wp_diagram(family, panel, labels, lines, rows, out_dir):
                               label="hollow: some runs failed or did not resolve"))
     if spread:
         handles.append(Line2D([], [], ls="-", marker="|", color="0.3", label="bar: low–high of the repetitions"))
-    legend_below(fig, handles)
-    fig.suptitle(f"{family}: {panel}")
+    legend_below(fig, handles, columns=columns)
+    fig.suptitle(clipped(f"{family}: {panel}", 100))
     return save(fig, out_dir, f"wp-{family}-{slug(panel)}", vector=False)
 
 
-def wp_diagrams(summary, out_dir):
-    """Every family's diagrams: [(family, [(panel, figure path)])]."""
+def wp_diagrams(summary, out_dir, families=None):
+    """Every family's diagrams (of `families`, where given): [(family, [(panel, figure path)])]."""
     out = []
-    for family in dict.fromkeys(r["family"] for r in summary):
-        rows = [r for r in summary if r["family"] == family]
+    for family, rows in by_family(summary).items():
+        if families is not None and family not in families:
+            continue
         lines, panels = panels_of(rows)
         out.append((family, [(panel, wp_diagram(family, panel, labels, lines, rows, out_dir))
                              for panel, labels in panels.items()]))
@@ -204,39 +244,65 @@ def spectra_rows(points):
     return n, truth, chosen
 
 
+# A figure of spectra has a column per (pulse, Pi5) up to this many: a study's have two to four,
+# and past eight a column is too narrow to read at the page's width.
+MAX_PANELS = 8
+
+
 def spectrum_panels(rows):
     """The panels of a family's spectra: one per (pulse, Pi5), sine first."""
-    return sorted({(r["pulse"], r["pi5"]) for r in rows}, reverse=True)
+    return sorted({(r["pulse"], r.get("pi5", "")) for r in rows}, reverse=True)
 
 
-def wp_spectrum(family, panel, labels, frows, truth, n, out_dir):
-    """One family's spectra of one panel's configurations: Pi1 against Pi2 over the truth, a
-    column per (pulse, Pi5), their relative error below; the legend below at text size."""
+def spectrum_curve(crow, truth):
+    """A configuration's finished runs of one panel, by Pi2: its Pi1, and its relative error
+    against the truth where the truth's Pi1 is positive (at least ERROR_FLOOR)."""
+    crow = sorted((r for r in crow if r["status"] == "ok"), key=lambda r: num(r, "pi2"))
+    exact = [num(truth[r["point"]], "pi1") for r in crow]
+    pi1 = ([num(r, "pi2") for r in crow], [num(r, "pi1") for r in crow])
+    err = ([num(r, "pi2") for r, e in zip(crow, exact) if e > 0],
+           [max(abs(num(r, "pi1") - e) / e, ERROR_FLOOR) for r, e in zip(crow, exact) if e > 0])
+    return pi1, err
+
+
+def wp_spectrum(family, panel, labels, by_label, truth, n, out_dir):
+    """One family's spectra of one panel's configurations (by_label: each one's rows): Pi1
+    against Pi2 over the truth, a column per (pulse, Pi5), their relative error below; the
+    legend below at text size. More than MAX_LINES configurations are drawn as a crowd, in one
+    colour, without a legend entry each."""
+    frows = [r for lb in labels for r in by_label[lb]]
     panels = spectrum_panels(frows)
-    palette = colors(len(labels))  # a colour per configuration: a panel's are mostly one solver's
-    styles = {lb: dict(color=palette[i], ls=STYLE.get(next(r["solver"] for r in frows if config_label(r) == lb), "-"))
-              for i, lb in enumerate(labels)}
-    fig, grid = with_legend_below(figure_width(len(panels)), 5.6, len(labels) + 2, wspace=0.38, hspace=0.12)
-    axes = fig.subplots(2, len(panels), squeeze=False, sharex=True, gridspec_kw=dict(grid, height_ratios=[3, 2]))
-    for pi, (pulse, pi5) in enumerate(panels):
-        prows = [r for r in frows if r["pulse"] == pulse and r["pi5"] == pi5]
-        refs = sorted({r["point"]: truth[r["point"]] for r in prows}.values(), key=lambda r: num(r, "pi2"))
+    shown = panels[:MAX_PANELS]
+    crowd = len(labels) > MAX_LINES
+    palette = colors(0 if crowd else len(labels))  # a colour per configuration: a panel's are mostly one solver's
+    styles = {lb: dict(color=palette[i], ls=STYLE.get(by_label[lb][0]["solver"], "-"))
+              for i, lb in enumerate(labels)} if not crowd else {}
+    fig, grid = with_legend_below(figure_width(len(shown)), 5.6, (1 if crowd else len(labels)) + 2, wspace=0.38,
+                                  hspace=0.12)
+    axes = fig.subplots(2, len(shown), squeeze=False, sharex=True, gridspec_kw=dict(grid, height_ratios=[3, 2]))
+    for pi, (pulse, pi5) in enumerate(shown):
+        mine = defaultdict(list)
+        for r in frows:
+            if r["pulse"] == pulse and r.get("pi5", "") == pi5:
+                mine[config_label(r)].append(r)
+        refs = sorted({r["point"]: truth[r["point"]] for rows in mine.values() for r in rows}.values(),
+                      key=lambda r: num(r, "pi2"))
         refs = [r for r in refs if r["status"] == "ok"]
         top, bottom = axes[0][pi], axes[1][pi]
         x = [num(r, "pi2") for r in refs]
         top.plot(x, [num(r, "pi1_no_contact") for r in refs], color="0.6", lw=1, ls="--", label="no contact")
         top.plot(x, [num(r, "pi1") for r in refs], color="k", lw=2.4, label="reference (rigid, 100x tighter)")
-        for label in labels:
-            crow = sorted((r for r in prows if config_label(r) == label and r["status"] == "ok"),
-                          key=lambda r: num(r, "pi2"))
-            if not crow:
-                continue
-            style = dict(styles[label], marker=None, lw=1.3)
-            top.plot([num(r, "pi2") for r in crow], [num(r, "pi1") for r in crow], label=label, **style)
-            err = [max(abs(num(r, "pi1") - num(truth[r["point"]], "pi1")) / num(truth[r["point"]], "pi1"),
-                       ERROR_FLOOR) for r in crow if num(truth[r["point"]], "pi1") > 0]
-            bottom.plot([num(r, "pi2") for r in crow if num(truth[r["point"]], "pi1") > 0], err, **style)
-        top.set_title(f"{pulse}" + (f", Pi5 = {pi5}" if pi5 else ""))
+        curves = {label: spectrum_curve(mine[label], truth) for label in labels if mine.get(label)}
+        if crowd:
+            for ax, part in ((top, 0), (bottom, 1)):
+                ax.plot(*joined(c[part] for c in curves.values()), color="tab:blue", lw=0.6, alpha=0.35,
+                        label=f"{len(labels)} configurations, too many to tell apart (report.html names each)")
+        for label, (pi1, err) in curves.items():
+            if label in styles and pi1[0]:
+                style = dict(styles[label], marker=None, lw=1.3)
+                top.plot(*pi1, label=clipped(label), **style)
+                bottom.plot(*err, **style)
+        top.set_title(clipped(f"{pulse}" + (f", Pi5 = {pi5}" if pi5 else ""), 40))
         if log_spans([num(r, "pi1") for r in refs]):
             top.set_yscale("log")
         bottom.set_xscale("log")
@@ -252,22 +318,30 @@ def wp_spectrum(family, panel, labels, frows, truth, n, out_dir):
             if name not in names:
                 handles.append(h)
                 names.append(name)
-    legend_below(fig, handles, names)
-    fig.suptitle(f"{family}: {panel}, at N = {n}" if n else f"{family}: {panel}")
+    legend_below(fig, handles, names, columns=1 if crowd else 2)
+    title = f"{clipped(family)}: {panel}" + (f", at N = {n}" if n else "")
+    if len(panels) > len(shown):
+        title += f" (the first {len(shown)} of {len(panels)} pulse and Pi5 panels)"
+    fig.suptitle(title)
     return save(fig, out_dir, f"wp-spectra-{family}-{slug(panel)}", vector=False)
 
 
-def wp_spectra(points, out_dir):
-    """Each family's spectra, a figure per panel of configurations: [(family, N, [(panel, path)])]."""
+def wp_spectra(points, out_dir, families=None):
+    """Each family's spectra (of `families`, where given), a figure per panel of
+    configurations: [(family, N, [(panel, path)])]."""
     n, truth, chosen = spectra_rows(points)
     out = []
-    for family in dict.fromkeys(r["family"] for r in chosen):
-        frows = [r for r in chosen if r["family"] == family]
+    for family, frows in by_family(chosen).items():
+        if families is not None and family not in families:
+            continue
+        by_label = defaultdict(list)
+        for r in frows:
+            by_label[config_label(r)].append(r)
         panels = defaultdict(list)
-        for label in sorted({config_label(r) for r in frows}):
-            if any(r["status"] == "ok" for r in frows if config_label(r) == label):
-                panels[panel_of(next(r for r in frows if config_label(r) == label))].append(label)
+        for label in sorted(by_label):
+            if any(r["status"] == "ok" for r in by_label[label]):
+                panels[panel_of(by_label[label][0])].append(label)
         ordered = sorted(panels.items(), key=lambda p: panel_rank(p[0]))
-        out.append((family, n, [(panel, wp_spectrum(family, panel, labels, frows, truth, n, out_dir))
+        out.append((family, n, [(panel, wp_spectrum(family, panel, labels, by_label, truth, n, out_dir))
                                 for panel, labels in ordered]))
     return out

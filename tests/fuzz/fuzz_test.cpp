@@ -19,6 +19,7 @@
 
 #include "tests/fuzz/harness.hpp"
 #include "tests/fuzz/mutator.hpp"
+#include "tests/fuzz/report_target.hpp"
 #include "tests/fuzz/targets.hpp"
 
 namespace pb::fuzz {
@@ -246,6 +247,33 @@ TEST(PythonKeywordFuzz, ReturnsOrRaisesValueErrorOrTypeError) {
                return problem;
              }),
          "PythonKeywordFuzz.*");
+}
+
+// Issue 46's report target (report_target.hpp): study outputs through `poundbench report`. A
+// report is a Python process with matplotlib (1 to 3 s of a core on the tiny studies): the
+// corpus is what was found, and the campaign a twentieth of the command line's count.
+ChildLimits report_limits() { return {std::max(kReportSeconds, budget().cli_limits.seconds), 2UL << 30}; }
+
+class ReportCorpus : public ::testing::TestWithParam<fs::path> {};
+
+TEST_P(ReportCorpus, ExitsZeroOrTwoWithAWholeFolderOrNone) {
+  if (auto problem = check_report(read_file(GetParam()), report_limits())) ADD_FAILURE() << GetParam() << ": " << *problem;
+}
+
+INSTANTIATE_TEST_SUITE_P(Fuzz, ReportCorpus, ::testing::ValuesIn(corpus_files("report")), cli_test_name);
+
+TEST(ReportInputFuzz, ExitsZeroOrTwoWithAWholeFolderOrNone) {
+  const std::vector<std::string> seeds = report_seeds();
+  ASSERT_FALSE(seeds.empty()) << "no corpus/report-seeds/*.csv";
+  report(campaign(
+             "report", std::max<std::size_t>(budget().cli_runs / 20, 1), ".csv",
+             [&](Rng& rng) { return mutate_report(rng.pick(seeds), rng); },
+             [&](const std::string& text) {
+               auto problem = check_report(text, report_limits());
+               if (problem) *problem += "\n  input: " + excerpt(text, 400);
+               return problem;
+             }),
+         "ReportInputFuzz.*");
 }
 
 // ---- The harness itself. ----

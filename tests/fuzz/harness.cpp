@@ -67,28 +67,8 @@ std::string replace_all(std::string text, const std::string& from, const std::st
   return text;
 }
 
-std::set<std::string> listing(const fs::path& dir) {
-  std::set<std::string> names;
-  std::error_code ec;
-  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
-       it.increment(ec))
-    names.insert(fs::relative(it->path(), dir).string());
-  return names;
-}
-
 std::size_t lines_in(const std::string& text) {
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
-}
-
-// What a one-line error message must be. `what` is "message" or "stderr".
-std::optional<std::string> one_line_problem(const std::string& message, std::size_t size, const std::string& what) {
-  if (size == 0) return what + " is empty";
-  const std::size_t body = message.back() == '\n' ? message.size() - 1 : message.size();
-  if (message.find('\n') < body) return what + " is " + std::to_string(lines_in(message) + 1) + " lines: " + excerpt(message);
-  if (size > kMaxMessage + 1)
-    return what + " is " + std::to_string(size) + " characters (> " + std::to_string(kMaxMessage) + "): " +
-           excerpt(message);
-  return std::nullopt;
 }
 
 // Flags whose value the command documents as a number >= 0 (docs/cli.md): poundbench must
@@ -124,6 +104,25 @@ std::optional<std::string> must_refuse(const std::vector<std::string>& args) {
 }
 
 }  // namespace
+
+std::set<std::string> listing(const fs::path& dir) {
+  std::set<std::string> names;
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec))
+    names.insert(fs::relative(it->path(), dir).string());
+  return names;
+}
+
+std::optional<std::string> one_line_problem(const std::string& message, std::size_t size, const std::string& what) {
+  if (size == 0) return what + " is empty";
+  const std::size_t body = message.back() == '\n' ? message.size() - 1 : message.size();
+  if (message.find('\n') < body) return what + " is " + std::to_string(lines_in(message) + 1) + " lines: " + excerpt(message);
+  if (size > kMaxMessage + 1)
+    return what + " is " + std::to_string(size) + " characters (> " + std::to_string(kMaxMessage) + "): " +
+           excerpt(message);
+  return std::nullopt;
+}
 
 Budget Budget::from_build_and_environment() {
   Budget b;

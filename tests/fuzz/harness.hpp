@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,12 @@ std::vector<std::vector<std::string>> cli_seeds();
 // start with "#" are comments.
 std::vector<std::string> read_args_file(const fs::path& file);
 std::string args_text(const std::vector<std::string>& args);  // the same format, to write one
+
+// What a one-line error message must be: one line of at most kMaxMessage characters; `size`
+// is every byte written, `what` "message" or "stderr". Nothing when it is one.
+std::optional<std::string> one_line_problem(const std::string& message, std::size_t size, const std::string& what);
+// Every file and folder under `dir`, relative to it.
+std::set<std::string> listing(const fs::path& dir);
 
 std::string read_file(const fs::path& file);
 std::vector<fs::path> corpus_files(const std::string& kind);  // tests/fuzz/corpus/<kind>/*, sorted
