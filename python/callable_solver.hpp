@@ -23,6 +23,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "cases/text.hpp"
 #include "python/call_deadline.hpp"
 
 namespace pb::python {
@@ -67,8 +68,7 @@ class CallableSolver {
       return py::str(json_.attr("dumps")(out, py::arg("allow_nan") = false));
     } catch (py::error_already_set& e) {
       // The point's failed row says what f raised: "ZeroDivisionError: division by zero".
-      const std::string what = std::string(py::str(e.type().attr("__name__"))) + ": " + std::string(py::str(e.value()));
-      throw std::runtime_error(what);
+      throw std::runtime_error(describe(e));
     }
   }
 
@@ -105,6 +105,35 @@ class CallableSolver {
     std::chrono::steady_clock::time_point start_;
     bool ended_ = false;
   };
+
+  // "ValueError: bad": the exception's type and message in one line of at most 1000 bytes
+  // (control characters as '?', text that is not UTF-8 escaped), whatever its str() does (a
+  // multi-line message was a row's message of several lines: found by the fuzzer).
+  static std::string describe(pybind11::error_already_set& e) {
+    namespace py = pybind11;
+    const py::object name = py::getattr(e.type(), "__name__", py::str("exception"));
+    std::string text = py::isinstance<py::str>(name) ? utf8_text(name.ptr()) : "exception";
+    if (PyObject* str = PyObject_Str(e.value().ptr())) {
+      text += ": " + utf8_text(str);
+      Py_DECREF(str);
+    } else {
+      PyErr_Clear();
+      text += ": (its str() raised)";
+    }
+    return clip(text, 1000);
+  }
+
+  // A str's text as UTF-8, with what is not (a lone surrogate) escaped.
+  static std::string utf8_text(PyObject* str) {
+    PyObject* bytes = PyUnicode_AsEncodedString(str, "utf-8", "backslashreplace");
+    if (bytes == nullptr) {
+      PyErr_Clear();
+      return "?";
+    }
+    std::string out(PyBytes_AS_STRING(bytes), static_cast<std::size_t>(PyBytes_GET_SIZE(bytes)));
+    Py_DECREF(bytes);
+    return out;
+  }
 
   // The case document's time_limit, 0 where it has none.
   static double time_limit(const pybind11::object& case_dict) {

@@ -474,9 +474,12 @@ py::dict history_arrays(const Row& row) {
 // Calls nest: a Python callable the sweep runs may call poundbench itself. The inner call's
 // flag is the target while it runs and the outer's again after it (issue 46: the inner call
 // left none, and a Ctrl-C after it raised KeyboardInterrupt inside the callable, which the
-// sweep took for the callable's failure and went on); an inner call that Ctrl-C stopped stops
-// the outer one too.
+// sweep took for the callable's failure and went on); an inner call that was stopped stops
+// the outer one too. A KeyboardInterrupt out of a callable stops the sweep that runs it
+// (interrupt_sweep), whether SIGINT is caught here or not: `current_stop` is the innermost
+// call's flag on this thread.
 std::atomic<std::atomic<bool>*> interrupt_target{nullptr};
+thread_local std::atomic<bool>* current_stop = nullptr;
 struct sigaction replaced {};  // the handler ours replaced: Python's, unless the program set another
 unsigned long main_thread = 0;  // threading.main_thread().ident, read when the module loads
 extern "C" void on_interrupt(int signal, siginfo_t* info, void* context) {
@@ -493,9 +496,10 @@ extern "C" void on_interrupt(int signal, siginfo_t* info, void* context) {
   }
 }
 
-// The sweep under way is to stop (a KeyboardInterrupt out of a Python callable it runs).
+// The sweep under way on this thread is to stop (a KeyboardInterrupt out of a Python callable
+// it runs).
 void interrupt_sweep() {
-  if (std::atomic<bool>* stop = interrupt_target.load()) stop->store(true);
+  if (current_stop) current_stop->store(true);
 }
 
 template <class Work>
@@ -504,7 +508,9 @@ void run_interruptibly(std::atomic<bool>& stop, Work&& work) {
   sigaction(SIGINT, nullptr, &now);
   const bool ours = (now.sa_flags & SA_SIGINFO) && now.sa_sigaction == on_interrupt;
   const bool catching = (ours || now.sa_handler != SIG_IGN) && PyThread_get_thread_ident() == main_thread;
-  std::atomic<bool>* const outer = interrupt_target.load();
+  std::atomic<bool>* const outer_target = interrupt_target.load();
+  std::atomic<bool>* const outer = current_stop;
+  current_stop = &stop;
   if (catching) {
     interrupt_target.store(&stop);
     if (!ours) {
@@ -525,11 +531,17 @@ void run_interruptibly(std::atomic<bool>& stop, Work&& work) {
       error = std::current_exception();
     }
   }
-  if (catching) interrupt_target.store(outer);
-  if (catching && stop.load()) {
+  current_stop = outer;
+  if (catching) interrupt_target.store(outer_target);
+  if (stop.load()) {
     if (outer) outer->store(true);
-    PyErr_SetInterrupt();
-    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    if (catching) {
+      PyErr_SetInterrupt();  // Python's handler, or the program's, decides
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    } else {
+      PyErr_SetNone(PyExc_KeyboardInterrupt);
+      throw py::error_already_set();
+    }
   }
   if (error) std::rethrow_exception(error);
 }
