@@ -28,8 +28,9 @@ Result run(const System& sys, const Settings& set, const Config& config) {
   try {
     engine = config.faithful ? make_faithful(sys, config, set, plan.h, limit) : make_default(sys, config, plan.h, limit);
   } catch (const OutOfTime&) {
-    Result r = failed(limit.reason() + " in DART's set-up of " + std::to_string(sys.n_bodies()) + " bodies");
+    Result r;
     r.status = Status::time_limit;
+    r.message = limit.reason() + " in DART's set-up of " + std::to_string(sys.n_bodies()) + " bodies";
     r.step = plan.h;
     return r;
   }

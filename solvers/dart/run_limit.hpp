@@ -1,11 +1,11 @@
 #pragma once
 // The run's time limit (and a sweep's stop flag) inside DART, where the shared step loop's
 // look between steps comes too late (issue 46). Measured on a chain of 1000 touching bodies
-// (dantzig-faithful, a loaded 2-core machine): adding the skeleton's bodies 35-40 s of CPU
-// (Skeleton::registerBodyNode resizes the skeleton's n x n caches for every body: O(n^3) in
-// all, against 0.02 s for 200 bodies), then one step 0.6-0.8 s of CPU, half of it the
-// BoxedLcpConstraintSolver's matrix (one unit impulse per contact row, each O(bodies)) and
-// half Dantzig's LCP on its 999 rows. With a limit of 1 s the run took 110 s.
+// (dantzig-faithful, a loaded 2-core machine) with a limit of 1 s: 110 s. Adding the bodies
+// to the faithful model's one skeleton took 35-40 s of CPU (a skeleton per building since:
+// gap_constraint.hpp), then a step 0.6-0.8 s of CPU, half of it the BoxedLcpConstraintSolver's
+// matrix (one unit impulse per contact row, each then O(bodies)) and half Dantzig's LCP on its
+// 999 rows; now a step is 0.5-0.8 s of wall, 0.4-0.57 s of it the LCP.
 //
 // A RunLimit is one Deadline started before the model is built, and this folder's own code
 // ticks it wherever DART calls it or is called: each body added, each step, each unit impulse

@@ -60,9 +60,8 @@ class GroundLoad : public Force::Custom::Implementation {
 
 // When a contact takes part in a step: the faithful rule g + gamma h g' <= 0 from the state at
 // the step's start (the stepper asks isProximal there), or the stepper's own, g <= its
-// constraint tolerance. Either way the answer is noted for the step's counts.
-// The stepper asks at the start of every step, contact by contact: the run's limit is asked
-// too (`watch`, ModelSpec::out_of_time).
+// constraint tolerance. Either way the answer is noted for the step's counts, and the run's
+// limit is asked (`watch`, ModelSpec::out_of_time).
 struct Proximity {
   bool predicted = true;
   double gamma_h = 0.0;
@@ -273,7 +272,7 @@ struct Model::Impl {
   }
 
   double silent_seconds(int n_contacts) {
-    if (!stepper || spec.kind == Kind::faithful_pgs || n_contacts < 16) return 0.0;  // below 16: 8192 reads
+    if (!stepper || spec.kind == Kind::faithful_pgs || n_contacts < 16) return 0.0;  // below 16: 8192 terms
     if (term_seconds == 0.0) term_seconds = seconds_per_term();
     const double p = n_contacts;
     return kSilentTerms * p * p * p * term_seconds;

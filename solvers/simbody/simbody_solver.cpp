@@ -1,6 +1,7 @@
 #include "solvers/simbody/simbody_solver.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <optional>
