@@ -470,11 +470,20 @@ py::dict history_arrays(const Row& row) {
 // signal.signal() installed another, ours replaces that one in turn. Where SIGINT is ignored,
 // or the call is not on the main thread (which alone runs Python's handlers), the work runs
 // without it.
-std::atomic<bool>* interrupt_target = nullptr;
+//
+// Calls nest: a Python callable the sweep runs may call poundbench itself. The inner call's
+// flag is the target while it runs and the outer's again after it (issue 46: the inner call
+// left none, and a Ctrl-C after it raised KeyboardInterrupt inside the callable, which the
+// sweep took for the callable's failure and went on); an inner call that was stopped stops
+// the outer one too. A KeyboardInterrupt out of a callable stops the sweep that runs it
+// (interrupt_sweep), whether SIGINT is caught here or not: `current_stop` is the innermost
+// call's flag on this thread.
+std::atomic<std::atomic<bool>*> interrupt_target{nullptr};
+thread_local std::atomic<bool>* current_stop = nullptr;
 struct sigaction replaced {};  // the handler ours replaced: Python's, unless the program set another
 unsigned long main_thread = 0;  // threading.main_thread().ident, read when the module loads
 extern "C" void on_interrupt(int signal, siginfo_t* info, void* context) {
-  if (std::atomic<bool>* stop = interrupt_target) {
+  if (std::atomic<bool>* stop = interrupt_target.load()) {
     stop->store(true);
   } else if (replaced.sa_flags & SA_SIGINFO) {
     replaced.sa_sigaction(signal, info, context);
@@ -487,14 +496,23 @@ extern "C" void on_interrupt(int signal, siginfo_t* info, void* context) {
   }
 }
 
+// The sweep under way on this thread is to stop (a KeyboardInterrupt out of a Python callable
+// it runs).
+void interrupt_sweep() {
+  if (current_stop) current_stop->store(true);
+}
+
 template <class Work>
 void run_interruptibly(std::atomic<bool>& stop, Work&& work) {
   struct sigaction now {};
   sigaction(SIGINT, nullptr, &now);
   const bool ours = (now.sa_flags & SA_SIGINFO) && now.sa_sigaction == on_interrupt;
   const bool catching = (ours || now.sa_handler != SIG_IGN) && PyThread_get_thread_ident() == main_thread;
+  std::atomic<bool>* const outer_target = interrupt_target.load();
+  std::atomic<bool>* const outer = current_stop;
+  current_stop = &stop;
   if (catching) {
-    interrupt_target = &stop;
+    interrupt_target.store(&stop);
     if (!ours) {
       struct sigaction handler {};
       handler.sa_sigaction = on_interrupt;
@@ -513,13 +531,24 @@ void run_interruptibly(std::atomic<bool>& stop, Work&& work) {
       error = std::current_exception();
     }
   }
-  if (catching) interrupt_target = nullptr;
-  if (catching && stop.load()) {
-    PyErr_SetInterrupt();
-    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  current_stop = outer;
+  if (catching) interrupt_target.store(outer_target);
+  if (stop.load()) {
+    if (outer) outer->store(true);
+    if (catching) {
+      PyErr_SetInterrupt();  // Python's handler, or the program's, decides
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    } else {
+      PyErr_SetNone(PyExc_KeyboardInterrupt);
+      throw py::error_already_set();
+    }
   }
   if (error) std::rethrow_exception(error);
 }
+
+// The class a Python callable's call is interrupted with at its time limit
+// (call_deadline.hpp), made when the module loads and kept for the process.
+PyObject* time_limit_exceeded = nullptr;
 
 // A ValueError whose message may echo bytes that are not UTF-8 (a file's name): as U+FFFD,
 // where pybind11's own conversion raised UnicodeDecodeError instead.
@@ -661,7 +690,7 @@ py::list spectrum(const py::object& case_set, const py::kwargs& kwargs) {
   std::optional<std::function<std::string(const std::string&, double&)>> in_process;
   if (k.callable) {
     if (k.has("--command")) raise_value_error("--command: not with a Python callable as the solver");
-    in_process = CallableSolver(k.callable);
+    in_process = CallableSolver(k.callable, time_limit_exceeded, &interrupt_sweep);
     k.solver_flags.settings.in_process = &*in_process;
     k.solver_flags.settings.command = "python " + std::string(py::str(py::getattr(k.callable, "__qualname__", py::repr(k.callable))));
     k.threads = 1;
@@ -786,7 +815,7 @@ std::unique_ptr<StudyInput> read_study(const std::string& function, const py::ob
     const std::size_t mark = run.settings.command.find(kCallableMark);
     if (mark == std::string::npos || run.settings.command.compare(0, mark, python) != 0) continue;
     const std::string name = run.settings.command.substr(mark + kCallableMark.size());
-    in->in_process.emplace_back(CallableSolver(callables[py::str(name)]));
+    in->in_process.emplace_back(CallableSolver(callables[py::str(name)], time_limit_exceeded, &interrupt_sweep));
     run.settings.in_process = &in->in_process.back();
     run.settings.command = "python " + name;
     in->threads = 1;
@@ -899,6 +928,14 @@ std::string keyword_lines(const Table& table) {
 PYBIND11_MODULE(poundbench, m) {
   using namespace pb;
   python::main_thread = py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
+  python::time_limit_exceeded = PyErr_NewExceptionWithDoc(
+      "poundbench.TimeLimitExceeded",
+      "Raised inside a Python callable run as a solver once its call has run to its time limit (the\n"
+      "point's time_limit): a BaseException, as KeyboardInterrupt is, so that `except Exception` does\n"
+      "not take it. The point's row is time-limit, whether the callable lets it through or not.",
+      PyExc_BaseException, nullptr);
+  if (python::time_limit_exceeded == nullptr) throw py::error_already_set();
+  m.attr("TimeLimitExceeded") = py::reinterpret_borrow<py::object>(python::time_limit_exceeded);
   m.doc() = "poundbench: solve pounding cases with the project's solvers (README.md, docs/cli.md).";
   const std::string run_doc =
       "run(**keywords) -> dict\n\n"
@@ -926,7 +963,9 @@ PYBIND11_MODULE(poundbench, m) {
       "solver may be a Python callable f(case: dict) -> dict, run in process on one thread: it gets the\n"
       "external protocol's case document and returns its answer (docs/external.md; 'version' may be left\n"
       "out). Each row's solve_seconds is the call, timed around it; what f raises is that point's failed\n"
-      "row, with the exception's type and message; Ctrl-C stops the sweep.\n";
+      "row, with the exception's type and message; Ctrl-C stops the sweep. A call still running at the\n"
+      "point's time limit is interrupted (TimeLimitExceeded raised in it) and, like any call that took\n"
+      "longer than the limit, is that point's time-limit row.\n";
   m.def("spectrum", &python::spectrum, py::arg("case_set"), spectrum_doc.c_str());
   m.def("workprecision", &python::workprecision, py::arg("case_set"),
         "workprecision(case_set, settings=[...], solvers={}, threads=None, repetitions=None) -> list of dict\n\n"

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <string>
 #include <string_view>
@@ -185,6 +186,58 @@ TEST(Dart, Pi1DoesNotDependOnThePulseScale) {
       else
         EXPECT_NEAR(r.pi1, base.pi1, 1e-12 * base.pi1) << variant << " " << a_p << " " << w_p;
     }
+  }
+}
+
+// A run ends near its time limit wherever DART spends its time (issue 46): a chain of 1000
+// touching bodies with a limit of 1 s ran 31.7 to 110 s, 35-40 s of CPU of it adding the
+// faithful model's bodies to one skeleton (O(n^3): now a skeleton per building, 0.3 s) and the
+// rest inside steps whose LCP has 999 rows. The limit is now ticked per body built, per step,
+// per unit impulse of a gap constraint and before each LCP solve; past it a run does at most
+// one LCP solve (Dantzig's on 999 rows: 0.4-1.1 s on a loaded machine). 15 s is a hang bound,
+// not a timing: a machine 10 times slower passes.
+TEST(Dart, EveryVariantEndsNearItsTimeLimitOnAThousandBodyChain) {
+  Case c = make_case(Scene::chain, PulseShape::sine, 1.0, 1.0, 0.5);
+  c.pi3 = 0.0;
+  c.bodies = 1000;
+  const System s = make_system(c);
+  for (std::string_view variant : {"dantzig-faithful", "pgs-faithful", "default"}) {
+    Settings st;
+    st.variant = std::string(variant);
+    st.time_limit = 1.0;
+    const auto start = std::chrono::steady_clock::now();
+    const Result r = dart::solve(s, st);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    RecordProperty(std::string(variant) + "_seconds", sci(seconds));
+    EXPECT_EQ(r.status, Status::time_limit) << variant << ": " << r.message;
+    EXPECT_LT(seconds, 15.0) << variant << ": " << r.message;
+    EXPECT_TRUE(std::isnan(r.pi1)) << variant;
+    // Where it stopped: a step's start, inside a step, or (on a slow machine) the set-up.
+    EXPECT_TRUE(r.message.find("wall time at t = ") != std::string::npos ||
+                r.message.find("in DART's set-up of 1000 bodies") != std::string::npos)
+        << variant << ": " << r.message;
+  }
+}
+
+// A skeleton per building, and contacts solved apart where bodies do not touch through
+// others: four free unit masses in a row, touching, 0 and 1 closing at 2 while 2 and 3 leave
+// each other and 1: the closing pair's impact alone, reversed to eps times its approach with
+// its momentum kept (1e-14: one impulse of O(1) numbers), the other two bodies untouched.
+TEST(Dart, ContactsOfSeparateBodiesAreSolvedApart) {
+  System s = test::free_pair(0.5);
+  s.delta = 0.0;
+  s.bodies.assign(4, Body{1.0, 1.0, 0.0, 0.0});
+  s.u_start = {0.0, 0.0, 0.0, 0.0};
+  s.v_start = {1.0, -1.0, 1.0, 2.0};
+  for (std::string_view variant : {"dantzig-faithful", "pgs-faithful"}) {
+    const Result r = run(s, variant, 64, true);
+    ASSERT_EQ(r.status, Status::ok) << r.message;
+    const HistoryRow after{r.history, 1};
+    const int v = 1 + 4;  // body 0's velocity column
+    EXPECT_NEAR(after.at(v + 1) - after.at(v), 0.5 * 2.0, 1e-14) << variant;
+    EXPECT_NEAR(after.at(v) + after.at(v + 1), 0.0, 1e-14) << variant;
+    EXPECT_EQ(after.at(v + 2), 1.0) << variant;
+    EXPECT_EQ(after.at(v + 3), 2.0) << variant;
   }
 }
 

@@ -448,6 +448,117 @@ print("finished", flush=True)
                 self.assertLess(elapsed, 3.0, function)
                 self.assertEqual(os.listdir(cwd), [], function)
 
+    # Three wall points, for the tests whose calls take seconds each.
+    THREE = """name = "three"
+[[family]]
+name = "wall-sine"
+scene = "wall"
+pulse = "sine"
+directivity = "normal"
+eps = 0.5
+pi3 = 0.5
+pi2 = { from = 0.5, to = 2, points = 3, spacing = "linear" }
+"""
+
+    def test_a_call_past_its_time_limit_is_that_points_time_limit_row(self):
+        # Issue 46: a 2 s solve at time_limit=0.5 gave every row ok. A call still running at
+        # its limit is interrupted (poundbench.TimeLimitExceeded raised in it, which `except
+        # Exception` does not take); one in C code (time.sleep) takes it when it returns, and
+        # one that swallows it is judged by its time. Each is its point's time-limit row, with
+        # its time; a quick call under the same limit stays ok.
+        import time
+
+        def busy(case):
+            start = time.monotonic()
+            try:
+                while time.monotonic() - start < 2.0:
+                    pass
+            except Exception:  # not TimeLimitExceeded
+                pass
+            return {"status": "ok", "pi1": 1.0}
+
+        def sleepy(case):
+            time.sleep(0.7)
+            return {"status": "ok", "pi1": 1.0}
+
+        def stubborn(case):
+            start = time.monotonic()
+            while time.monotonic() - start < 0.7:
+                try:
+                    while time.monotonic() - start < 0.7:
+                        pass
+                except BaseException:
+                    pass
+            return {"status": "ok", "pi1": 1.0}
+
+        with tempfile.TemporaryDirectory() as d:
+            three = os.path.join(d, "three.toml")
+            with open(three, "w") as f:
+                f.write(self.THREE)
+            for solver, how in ((busy, "was interrupted"), (sleepy, "after"), (stubborn, "after")):
+                rows = poundbench.spectrum(three, solver=solver, time_limit=0.5)
+                self.assertEqual(len(rows), 3, solver.__name__)
+                for row in rows:
+                    self.assertEqual(row["status"], "time-limit", (solver.__name__, row["message"]))
+                    self.assertIn("s of wall time: the function", row["message"], solver.__name__)
+                    self.assertIn(how, row["message"], solver.__name__)
+                    self.assertIsNone(row["pi1"])
+                    self.assertGreater(row["solve_seconds"], 0.45, solver.__name__)
+                    self.assertNotIn("\n", row["message"])
+                    if solver is busy:  # stopped, not run out: 2 s a call otherwise
+                        self.assertLess(row["solve_seconds"], 2.0)
+            quick = poundbench.spectrum(three, solver=lambda case: {"status": "ok", "pi1": 1.0}, time_limit=0.5)
+            self.assertEqual([r["status"] for r in quick], ["ok"] * 3)
+            # A study's run takes its time_limit from its settings.
+            table = poundbench.workprecision(three, settings=[{"solver": "mine", "steps": [16], "time_limit": 0.5}],
+                                             solvers={"mine": busy}, repetitions=1)
+            mine = [r for r in table if r["solver"] == "external"]
+            self.assertEqual(sum(r["points"] for r in mine), 3)
+            self.assertEqual(sum(r["failed"] for r in mine), 3)
+        self.assertTrue(issubclass(poundbench.TimeLimitExceeded, BaseException))
+        self.assertFalse(issubclass(poundbench.TimeLimitExceeded, Exception))
+
+    def test_ctrl_c_inside_a_nested_poundbench_call_stops_the_outer_sweep(self):
+        # A function that calls poundbench.run itself: Ctrl-C during that inner run (the
+        # inner call stops and raises KeyboardInterrupt in the function), or after it (Python
+        # code of the function), must stop the outer sweep with KeyboardInterrupt. Before, the
+        # inner call left the module's handler without a sweep to stop: the first case became
+        # the point's failed row and the sweep went on (40 calls of seconds each), the second
+        # likewise. 20 s is a hang bound: the sweep ends within a second of the signal.
+        import signal
+        child = f"""
+import sys, time
+import poundbench
+def f(case):
+    print("called", flush=True)
+    steps = 32768 if sys.argv[1] == "inside" else 64  # seconds, or a moment
+    poundbench.run(scene="pair", pulse="cosine", directivity="normal", pi2=0.8, pi3=0.5, eps=0.5, pi5=0.5,
+                   pi6=1.0, solver="moreau-jean", steps=steps, n_free=1000)
+    time.sleep(0.5)
+    return {{"status": "ok", "pi1": 1.0}}
+poundbench.spectrum({self.SMOKE!r}, solver=f)
+print("finished", flush=True)
+"""
+        for when in ("inside", "after"):
+            with tempfile.TemporaryDirectory() as cwd:
+                process = subprocess.Popen([sys.executable, "-c", child, when], cwd=cwd, stdout=subprocess.PIPE,
+                                           stderr=subprocess.PIPE, text=True)
+                self.assertEqual(process.stdout.readline(), "called\n")
+                if when == "after":
+                    import time
+                    time.sleep(0.2)  # the inner run has returned (64 steps a period): the function sleeps
+                process.send_signal(signal.SIGINT)
+                try:
+                    out, err = process.communicate(timeout=20)
+                except subprocess.TimeoutExpired:
+                    process.kill()
+                    out, err = process.communicate()
+                    self.fail(f"{when}: the sweep went on after Ctrl-C")
+                self.assertNotEqual(process.returncode, 0, when)
+                self.assertIn("KeyboardInterrupt", err, when)
+                self.assertNotIn("finished", out, when)
+                self.assertEqual(out.count("called"), 0, when)  # no further point was started
+
 
 class WithoutNumPy(unittest.TestCase):
     def test_a_history_without_numpy_is_one_line_naming_the_package(self):

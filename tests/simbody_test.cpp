@@ -6,8 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -167,6 +170,75 @@ TEST(Simbody, QuietScopeDropsOnlyItsOwnThreadsWrites) {
   std::cout << "d" << std::flush;
   const std::string out = testing::internal::GetCapturedStdout();
   EXPECT_EQ(out, "ab" + std::string(100, 'c') + "d");
+}
+
+// A scope's watch sees each write the scope drops (both ways Simbody writes; glibc may hand
+// one printf on in more than one write), the thread's inner scopes' too, and no other
+// thread's: the time limit's hook inside Simbody's impulse solvers (model.cpp).
+TEST(Simbody, AQuietScopesWatchSeesEachWriteItDrops) {
+  std::atomic<int> seen{0};
+  const std::function<void()> watch = [&] { ++seen; };
+  std::thread other([] {
+    const simbody::QuietScope scope;
+    for (int i = 0; i < 100; ++i) std::printf("other%d\n", i);
+  });
+  {
+    const simbody::QuietScope scope(&watch);
+    std::printf("one %d\n", 1);
+    std::cout << "two" << std::flush;
+    const simbody::QuietScope inner;
+    std::printf("three\n");
+  }
+  other.join();
+  std::printf("%s", "");  // outside every scope: not watched, and nothing to print
+  EXPECT_GE(seen.load(), 3);
+  EXPECT_LT(seen.load(), 100);
+}
+
+// A run ends near its time limit wherever Simbody spends its time (issue 46): a chain of 1000
+// touching bodies with a limit of 2 s ran 14.5 s, and its first step alone takes minutes,
+// inside PLUS's impulse solve of 999 contacts. The limit is now asked inside the step (each
+// contact's isProximal, each line of the solvers' trace, hunt-crossley's internal steps), and
+// a PLUS step whose silent stretches would outlast the limit's margin is not started: it says
+// so. 15 s is a hang bound, not a timing: a machine 10 times slower passes.
+TEST(Simbody, EveryVariantEndsNearItsTimeLimitOnAThousandBodyChain) {
+  Case c = make_case(Scene::chain, PulseShape::sine, 1.0, 1.0, 0.5);
+  c.pi3 = 0.0;
+  c.bodies = 1000;
+  const System s = make_system(c);
+  for (std::string_view variant : {"plus-faithful", "pgs-faithful", "default", "hunt-crossley"}) {
+    Settings st;
+    st.variant = std::string(variant);
+    st.time_limit = 1.0;
+    const auto start = std::chrono::steady_clock::now();
+    const Result r = simbody::solve(s, st);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    RecordProperty(std::string(variant) + "_seconds", sci(seconds));
+    EXPECT_EQ(r.status, Status::time_limit) << variant << ": " << r.message;
+    EXPECT_LT(seconds, 15.0) << variant << ": " << r.message;
+    EXPECT_TRUE(std::isnan(r.pi1)) << variant;
+    const bool plus = variant == "plus-faithful" || variant == "default";
+    if (plus) {
+      EXPECT_EQ(r.message.rfind("refused at t = 0 after ", 0), 0u) << variant << ": " << r.message;
+    }
+    EXPECT_NE(r.message.find(plus ? "PLUS, 999 contacts" : "wall time"), std::string::npos) << variant << ": " << r.message;
+  }
+}
+
+// The refusal is the limit's alone: without one, the same PLUS model steps (a chain of 20
+// touching bodies: 19 contacts, whose silent stretch is far below any margin, and without a
+// limit none is asked for).
+TEST(Simbody, APlusStepIsRefusedOnlyUnderALimit) {
+  Case c = make_case(Scene::chain, PulseShape::sine, 1.0, 1.0, 0.5);
+  c.pi3 = 0.0;
+  c.bodies = 20;
+  Settings st;
+  st.step_cap = 0;
+  for (double limit : {0.0, 60.0}) {
+    st.time_limit = limit;
+    const Result r = simbody::solve(make_system(c), st);
+    EXPECT_EQ(r.status, Status::ok) << limit << ": " << r.message;
+  }
 }
 
 // A sweep through Simbody on two threads writes poundbench's CSV on stdout and nothing else:

@@ -22,8 +22,18 @@ Result run(const System& sys, const Settings& set, const Config& config) {
         return failed("the default variant's joint springs and dampers must be >= 0: DART's joints take no unstable spring");
   StepPlan plan;
   if (Result r = plan_steps(sys, set, kDefaultSteps, kDefaultStepCap, plan); r.status != Status::ok) return r;
-  std::unique_ptr<StepEngine> engine =
-      config.faithful ? make_faithful(sys, config, set, plan.h) : make_default(sys, config, plan.h);
+  // The limit holds from here, through the model's set-up (run_limit.hpp).
+  RunLimit limit(set);
+  std::unique_ptr<StepEngine> engine;
+  try {
+    engine = config.faithful ? make_faithful(sys, config, set, plan.h, limit) : make_default(sys, config, plan.h, limit);
+  } catch (const OutOfTime&) {
+    Result r;
+    r.status = Status::time_limit;
+    r.message = limit.reason() + " in DART's set-up of " + std::to_string(sys.n_bodies()) + " bodies";
+    r.step = plan.h;
+    return r;
+  }
   return run_steps(sys, set, plan, *engine);
 }
 

@@ -3,7 +3,7 @@
 // ODE and Bullet. Two models, each stepped by DART's World::step (semi-implicit Euler:
 // v += h M^-1 F, constraint impulses, x += h v):
 //
-//   faithful  (dantzig-faithful, pgs-faithful) one skeleton of prismatic joints, a gap
+//   faithful  (dantzig-faithful, pgs-faithful) a skeleton per building, on a prismatic joint, a gap
 //             constraint of this project's own per contact (gap_constraint.hpp) with ODE's
 //             faithful contact row, explicit springs and dampers, the activation rule of
 //             every faithful time-stepper (solvers/fixed_step.hpp): ODE's dantzig-faithful

@@ -50,9 +50,9 @@ constexpr double kBox = 1.0;
 
 class Default : public StepEngine {
  public:
-  Default(const System& sys, double h)
+  Default(const System& sys, double h, RunLimit& limit)
       : StepEngine(sys), sys_(sys), load_(sys.pulse), length_(sys.length_scale()), time_(1.0 / sys.pulse.w),
-        mass_(sys.bodies[ix(sys.ref)].m), h_(h), touching_(ix(sys.n_contacts()), 0) {
+        mass_(sys.bodies[ix(sys.ref)].m), h_(h), touching_(ix(sys.n_contacts()), 0), limit_(limit) {
     prepare_process();
     world_ = ::dart::simulation::World::create("pounding");
     world_->setGravity(Eigen::Vector3d::Zero());
@@ -60,10 +60,14 @@ class Default : public StepEngine {
     // DART's own default (World's constructor makes the same), with counters.
     lcp_.dantzig = std::make_shared<CountingDantzig>();
     lcp_.pgs = std::make_shared<CountingPgs>();
+    lcp_.dantzig->limit = lcp_.pgs->limit = &limit;
     world_->setConstraintSolver(std::make_unique<::dart::constraint::BoxedLcpConstraintSolver>(lcp_.dantzig, lcp_.pgs));
     const double spacing = kBox + sys.delta / length_;
     if (sys.wall) add_wall(-spacing);
-    for (int i = 0; i < sys.n_bodies(); ++i) add_building(i, static_cast<double>(i) * spacing);
+    for (int i = 0; i < sys.n_bodies(); ++i) {
+      limit.tick();
+      add_building(i, static_cast<double>(i) * spacing);
+    }
     messages_before_ = lcp_messages();
   }
 
@@ -78,7 +82,7 @@ class Default : public StepEngine {
       }
       joints_[i]->setForce(0, f);
     }
-    world_->step();
+    if (!step_within(*world_, limit_, k, h_, res)) return StepOutcome::refused;
     for (std::size_t i = 0; i < joints_.size(); ++i) {
       out_.u[i] = joints_[i]->getPosition(0) * length_;
       out_.v[i] = joints_[i]->getVelocity(0) * length_ / time_;
@@ -180,12 +184,13 @@ class Default : public StepEngine {
   std::vector<char> touching_;
   LcpSolvers lcp_;
   long messages_before_ = 0;
+  RunLimit& limit_;
 };
 
 }  // namespace
 
-std::unique_ptr<StepEngine> make_default(const System& sys, const Config&, double h) {
-  return std::make_unique<Default>(sys, h);
+std::unique_ptr<StepEngine> make_default(const System& sys, const Config&, double h, RunLimit& limit) {
+  return std::make_unique<Default>(sys, h, limit);
 }
 
 }  // namespace pb::dart

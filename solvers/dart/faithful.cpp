@@ -1,8 +1,8 @@
 // The faithful variants: ODE's faithful scheme in DART (solvers/dart/README.md).
 //
-//   bodies    one skeleton, a tree per building: a BodyNode of mass m_i on a PrismaticJoint
-//             along x from the world, at the origin (the joint coordinate is u_i, the gaps
-//             are this code's), no shapes, no gravity, no joint spring or damper.
+//   bodies    a skeleton per building: a BodyNode of mass m_i on a PrismaticJoint along x
+//             from the world, at the origin (the joint coordinate is u_i, the gaps are this
+//             code's), no shapes, no gravity, no joint spring or damper.
 //   forces    -k u - c v - m a_g(t_k) at the step's start as the joint's force: DART steps
 //             v += h M^-1 F, then solves its constraints, then x += h v_new (World::step),
 //             semi-implicit Euler with explicit springs, ODE's step.
@@ -32,27 +32,30 @@ namespace {
 
 class Faithful : public StepEngine {
  public:
-  Faithful(const System& sys, const Config& config, const Settings& set, double h)
+  Faithful(const System& sys, const Config& config, const Settings& set, double h, RunLimit& limit)
       : StepEngine(sys), sys_(sys), load_(sys.pulse), config_(config), h_(h), gamma_h_(set.gamma * h),
-        was_active_(ix(sys.n_contacts()), 0) {
+        was_active_(ix(sys.n_contacts()), 0), limit_(limit) {
     prepare_process();
     world_ = ::dart::simulation::World::create("pounding");
     world_->setGravity(Eigen::Vector3d::Zero());
     world_->setTimeStep(h);
     if (config.lcp == Lcp::pgs) {
       lcp_.pgs = std::make_shared<CountingPgs>();
+      lcp_.pgs->limit = &limit;
       // Tolerances 0: stop only when a sweep changes nothing (variants.hpp).
       lcp_.pgs->setOption(::dart::constraint::PgsBoxedLcpSolver::Option(kFaithfulPgsSweeps, 0.0, 0.0));
       world_->setConstraintSolver(std::make_unique<::dart::constraint::BoxedLcpConstraintSolver>(lcp_.pgs, nullptr));
     } else {
       lcp_.dantzig = std::make_shared<CountingDantzig>();
+      lcp_.dantzig->limit = &limit;
       world_->setConstraintSolver(
           std::make_unique<::dart::constraint::BoxedLcpConstraintSolver>(lcp_.dantzig, nullptr));
     }
     add_bodies();
     for (int j = 0; j < sys.n_contacts(); ++j) {
       const int left = sys.left(j);
-      auto gap = std::make_shared<GapConstraint>(left == kWall ? nullptr : bodies_[ix(left)], bodies_[ix(sys.right(j))]);
+      auto gap =
+          std::make_shared<GapConstraint>(left == kWall ? nullptr : bodies_[ix(left)], bodies_[ix(sys.right(j))], limit);
       world_->getConstraintSolver()->addConstraint(gap);
       gaps_.push_back(std::move(gap));
     }
@@ -81,7 +84,7 @@ class Faithful : public StepEngine {
       was_active_[jj] = on ? 1 : 0;
     }
     const long failures_before = lcp_.dantzig ? lcp_.dantzig->failures : 0;
-    world_->step();
+    if (!step_within(*world_, limit_, k, h_, res)) return StepOutcome::refused;
     for (std::size_t i = 0; i < joints_.size(); ++i) {
       out_.u[i] = joints_[i]->getPosition(0);
       out_.v[i] = joints_[i]->getVelocity(0);
@@ -101,9 +104,11 @@ class Faithful : public StepEngine {
   }
 
  private:
+  // A skeleton per building (gap_constraint.hpp says why).
   void add_bodies() {
-    auto skel = ::dart::dynamics::Skeleton::create("buildings");
     for (std::size_t i = 0; i < sys_.bodies.size(); ++i) {
+      limit_.tick();
+      auto skel = ::dart::dynamics::Skeleton::create("building" + std::to_string(i));
       ::dart::dynamics::PrismaticJoint::Properties joint;
       joint.mAxis = Eigen::Vector3d::UnitX();
       joint.mName = "u" + std::to_string(i);
@@ -117,9 +122,9 @@ class Faithful : public StepEngine {
       j->setVelocity(0, out_.v[i]);
       joints_.push_back(j);
       bodies_.push_back(b);
+      if (world_->addSkeleton(skel).empty()) throw std::runtime_error("DART refused a skeleton");
+      skeletons_.push_back(std::move(skel));
     }
-    if (world_->addSkeleton(skel).empty()) throw std::runtime_error("DART refused the skeleton");
-    skeleton_ = std::move(skel);
   }
 
   const System& sys_;
@@ -128,19 +133,21 @@ class Faithful : public StepEngine {
   double h_;
   double gamma_h_;
   ::dart::simulation::WorldPtr world_;
-  ::dart::dynamics::SkeletonPtr skeleton_;
+  std::vector<::dart::dynamics::SkeletonPtr> skeletons_;
   std::vector<::dart::dynamics::Joint*> joints_;
   std::vector<::dart::dynamics::BodyNode*> bodies_;
   std::vector<std::shared_ptr<GapConstraint>> gaps_;
   std::vector<char> was_active_;
   LcpSolvers lcp_;
   long messages_before_ = 0;
+  RunLimit& limit_;
 };
 
 }  // namespace
 
-std::unique_ptr<StepEngine> make_faithful(const System& sys, const Config& config, const Settings& set, double h) {
-  return std::make_unique<Faithful>(sys, config, set, h);
+std::unique_ptr<StepEngine> make_faithful(const System& sys, const Config& config, const Settings& set, double h,
+                                          RunLimit& limit) {
+  return std::make_unique<Faithful>(sys, config, set, h, limit);
 }
 
 }  // namespace pb::dart

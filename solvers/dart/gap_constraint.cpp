@@ -16,10 +16,24 @@ Eigen::Vector6d along_x(double sign) {
   return imp;
 }
 
+// The velocity change of a unit impulse along `sign` x on the body, its skeleton's only one.
+void unit_impulse(::dart::dynamics::BodyNode* body, double sign) {
+  ::dart::dynamics::Skeleton* skel = body->getSkeleton().get();
+  skel->clearConstraintImpulses();
+  skel->updateBiasImpulse(body, along_x(sign));
+  skel->updateVelocityChange();
+}
+
+// The body's x velocity change in the unit impulse under test: none unless its skeleton is
+// the tested constraint's (excited).
+double velocity_change(const ::dart::dynamics::BodyNode* body) {
+  return body->getSkeleton()->isImpulseApplied() ? body->getBodyVelocityChange()[3] : 0.0;
+}
+
 }  // namespace
 
-GapConstraint::GapConstraint(::dart::dynamics::BodyNode* left, ::dart::dynamics::BodyNode* right)
-    : left_(left), right_(right) {
+GapConstraint::GapConstraint(::dart::dynamics::BodyNode* left, ::dart::dynamics::BodyNode* right, RunLimit& limit)
+    : left_(left), right_(right), limit_(limit) {
   mDim = 1;
 }
 
@@ -38,25 +52,25 @@ void GapConstraint::getInformation(::dart::constraint::ConstraintInfo* info) {
 }
 
 void GapConstraint::applyUnitImpulse(std::size_t) {
-  ::dart::dynamics::Skeleton* skel = right_->getSkeleton().get();
-  skel->clearConstraintImpulses();
-  if (left_)
-    skel->updateBiasImpulse(right_, along_x(1.0), left_, along_x(-1.0));
-  else
-    skel->updateBiasImpulse(right_, along_x(1.0));
-  skel->updateVelocityChange();
+  limit_.tick();  // may throw OutOfTime: DART is filling its LCP's matrix
+  unit_impulse(right_, 1.0);
+  if (left_) unit_impulse(left_, -1.0);
 }
 
 void GapConstraint::getVelocityChange(double* vel, bool) {
   // No softening (DART's ContactConstraint scales the diagonal by 1 + CFM here).
-  vel[0] = 0.0;
-  if (!right_->getSkeleton()->isImpulseApplied()) return;
-  vel[0] = right_->getBodyVelocityChange()[3] - (left_ ? left_->getBodyVelocityChange()[3] : 0.0);
+  vel[0] = velocity_change(right_) - (left_ ? velocity_change(left_) : 0.0);
 }
 
-void GapConstraint::excite() { right_->getSkeleton()->setImpulseApplied(true); }
+void GapConstraint::excite() {
+  right_->getSkeleton()->setImpulseApplied(true);
+  if (left_) left_->getSkeleton()->setImpulseApplied(true);
+}
 
-void GapConstraint::unexcite() { right_->getSkeleton()->setImpulseApplied(false); }
+void GapConstraint::unexcite() {
+  right_->getSkeleton()->setImpulseApplied(false);
+  if (left_) left_->getSkeleton()->setImpulseApplied(false);
+}
 
 void GapConstraint::applyImpulse(double* lambda) {
   impulse_ = lambda[0];
@@ -66,6 +80,21 @@ void GapConstraint::applyImpulse(double* lambda) {
 
 ::dart::dynamics::SkeletonPtr GapConstraint::getRootSkeleton() const {
   return ConstraintBase::getRootSkeleton(right_->getSkeleton());
+}
+
+// Union by size, as DART's ContactConstraint unites its two bodies' skeletons.
+void GapConstraint::uniteSkeletons() {
+  if (!left_) return;
+  const ::dart::dynamics::SkeletonPtr a = compressPath(left_->getSkeleton());
+  const ::dart::dynamics::SkeletonPtr b = compressPath(right_->getSkeleton());
+  if (a == b) return;
+  if (a->mUnionSize < b->mUnionSize) {
+    a->mUnionRootSkeleton = b;
+    b->mUnionSize += a->mUnionSize;
+  } else {
+    b->mUnionRootSkeleton = a;
+    a->mUnionSize += b->mUnionSize;
+  }
 }
 
 }  // namespace pb::dart

@@ -25,6 +25,7 @@ long lcp_messages() { return t_messages; }
 
 bool CountingDantzig::solve(int n, double* A, double* x, double* b, int nub, double* lo, double* hi, int* findex,
                             bool earlyTermination) {
+  if (limit) limit->tick();
   const bool ok = DantzigBoxedLcpSolver::solve(n, A, x, b, nub, lo, hi, findex, earlyTermination);
   bool finite = true;
   for (int i = 0; i < n; ++i) finite = finite && !std::isnan(x[i]);
@@ -34,6 +35,7 @@ bool CountingDantzig::solve(int n, double* A, double* x, double* b, int nub, dou
 
 bool CountingPgs::solve(int n, double* A, double* x, double* b, int nub, double* lo, double* hi, int* findex,
                         bool earlyTermination) {
+  if (limit) limit->tick();
   ++calls;
   const bool ok = PgsBoxedLcpSolver::solve(n, A, x, b, nub, lo, hi, findex, earlyTermination);
   if (!ok) ++failures;

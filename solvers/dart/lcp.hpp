@@ -22,6 +22,8 @@
 #include <dart/constraint/DantzigBoxedLcpSolver.hpp>
 #include <dart/constraint/PgsBoxedLcpSolver.hpp>
 
+#include "solvers/dart/run_limit.hpp"
+
 namespace pb::dart {
 
 // Sets DART's dMessage handler, once per process.
@@ -34,6 +36,7 @@ class CountingDantzig : public ::dart::constraint::DantzigBoxedLcpSolver {
  public:
   bool solve(int n, double* A, double* x, double* b, int nub, double* lo, double* hi, int* findex,
              bool earlyTermination) override;
+  RunLimit* limit = nullptr;  // ticked before each solve (may throw OutOfTime), when set
   // Solves that returned false, or a solution with a NaN (which DART's
   // BoxedLcpConstraintSolver also counts as a failure, and then hands to its fallback).
   long failures = 0;
@@ -43,6 +46,7 @@ class CountingPgs : public ::dart::constraint::PgsBoxedLcpSolver {
  public:
   bool solve(int n, double* A, double* x, double* b, int nub, double* lo, double* hi, int* findex,
              bool earlyTermination) override;
+  RunLimit* limit = nullptr;  // ticked before each solve (may throw OutOfTime), when set
   long calls = 0;     // solves (as DART's fallback: the steps where the primary solver failed)
   long failures = 0;  // solves that stopped at the sweep limit
 };

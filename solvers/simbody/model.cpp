@@ -3,6 +3,7 @@
 
 #include "solvers/simbody/model.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -23,6 +24,13 @@ std::size_t ix(int i) { return static_cast<std::size_t>(i); }
 // of O(1) velocities), at most 200 iterations (PGS: sweeps; PLUS: Newton steps).
 constexpr Real kImpulseTolerance = 1e-14;
 constexpr int kImpulseIterations = 200;
+
+// PLUS's silent stretch with p contacts, in terms of seconds_per_term(): its numerical
+// Jacobian is 2 p^3 terms, and a term there measured 4.0 to 6.4 times the calibration's (rows
+// read across a column-major matrix that outgrows the caches, the index conversions): the
+// stretch was 0.094, 0.54, 1.9 and 4.6 s at 100, 200, 300 and 400 contacts on a loaded 2-core
+// machine, against 2 p^3 terms of 0.015, 0.13, 0.47 and 0.96 s.
+constexpr double kSilentTerms = 8.0;
 
 // The ground load -m a_g(t) on every body, at the time of the state it is realized at. It
 // also notes the velocities the forces of time t_k are computed from (the stepper realizes
@@ -52,19 +60,47 @@ class GroundLoad : public Force::Custom::Implementation {
 
 // When a contact takes part in a step: the faithful rule g + gamma h g' <= 0 from the state at
 // the step's start (the stepper asks isProximal there), or the stepper's own, g <= its
-// constraint tolerance. Either way the answer is noted for the step's counts.
+// constraint tolerance. Either way the answer is noted for the step's counts, and the run's
+// limit is asked (`watch`, ModelSpec::out_of_time).
 struct Proximity {
   bool predicted = true;
   double gamma_h = 0.0;
   std::vector<char>* noted = nullptr;
   int index = 0;
+  const std::function<void()>* watch = nullptr;
 
+  bool takes(double g, double rate, Real ptol) const { return predicted ? g + gamma_h * rate <= 0.0 : g <= ptol; }
   bool decide(double g, double rate, Real ptol) const {
-    const bool on = predicted ? g + gamma_h * rate <= 0.0 : g <= ptol;
+    if (watch) (*watch)();
+    const bool on = takes(g, rate, ptol);
     (*noted)[ix(index)] = on ? 1 : 0;
     return on;
   }
 };
+
+// Seconds one term of PLUS's products of a matrix row and a packed column takes (its
+// multRowTimesActiveCol: each term reads the row through SimTK's accessor, RowVectorView::
+// operator[] into MatrixHelper::getElt, and the column likewise), measured on a 64 x 64
+// matrix: the fastest of 4 passes, so that a moment's load does not inflate it.
+double seconds_per_term() {
+  const int n = 64;
+  const Matrix a(n, n, 1.0);
+  const Vector column(n, 1.0);
+  Array_<int> active(n);
+  for (int i = 0; i < n; ++i) active[i] = i;
+  Real sum = 0.0;
+  double best = Infinity;
+  for (int pass = 0; pass < 4; ++pass) {
+    const auto start = std::chrono::steady_clock::now();
+    for (int r = 0; r < n; ++r) {
+      const RowVectorView row = a[r];
+      for (int c = 0; c < n; ++c) sum += row[active[c]] * column[c];
+    }
+    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  if (!(sum > 0.0)) return 0.0;  // never: the terms are used, so that none is optimised away
+  return best / (n * n);
+}
 
 // The wall: a lower stop of body 0's coordinate at -delta (g = u + delta).
 class WallStop : public HardStopLower {
@@ -112,6 +148,19 @@ struct Model::Impl {
   std::vector<char> proximal;         // per contact, decided in the last step
   std::vector<ContactStep> steps;     // per contact, the last step's
   std::vector<double> q, u;           // per body, after the last step
+  bool halted = false;                // out_of_time said so in this step
+  double term_seconds = 0.0;          // seconds_per_term(), once measured
+  // Asks the run's limit; once passed, tells the impulse solver to stop at its next iteration
+  // (ImpulseSolver reads both settings at each: PLUS's Newton loop and active-set test, PGS's
+  // sweeps), so that the step ends without converging and is thrown away.
+  const std::function<void()> watch = [this] {
+    if (halted || !spec.out_of_time || !spec.out_of_time()) return;
+    halted = true;
+    if (!stepper) return;
+    auto& solver = const_cast<ImpulseSolver&>(stepper->getImpulseSolver());  // the stepper's own, made non-const
+    solver.setConvergenceTol(Infinity);
+    solver.setMaxIterations(1);
+  };
 
   explicit Impl(const ModelSpec& s) : spec(s) {
     const int n = static_cast<int>(s.m.size());
@@ -169,7 +218,7 @@ struct Model::Impl {
   void add_unilateral_contacts() {
     const bool predicted = spec.kind != Kind::stepper_default;
     for (std::size_t j = 0; j < spec.left.size(); ++j) {
-      const Proximity rule{predicted, spec.gamma * spec.h, &proximal, static_cast<int>(j)};
+      const Proximity rule{predicted, spec.gamma * spec.h, &proximal, static_cast<int>(j), &watch};
       MobilizedBody& right = bodies[ix(spec.right[j])];
       if (spec.left[j] < 0)
         matter.adoptUnilateralContact(new WallStop(right, spec.delta, spec.eps, rule));
@@ -198,12 +247,35 @@ struct Model::Impl {
     }
   }
 
-  void step(long k, const InternalStep& each) {
+  bool step(long k, const InternalStep& each) {
     const double t1 = static_cast<double>(k + 1) * spec.h;
     if (stepper)
       take_stepper_step(t1);
     else
       take_integrator_step(t1, each);
+    return !halted;
+  }
+
+  int contacts_next_step() const {
+    if (!stepper) return 0;
+    const bool predicted = spec.kind != Kind::stepper_default;
+    const Proximity rule{predicted, spec.gamma * spec.h};
+    int n = 0;
+    for (std::size_t j = 0; j < spec.left.size(); ++j) {
+      const int l = spec.left[j];
+      const auto r = ix(spec.right[j]);
+      const double g = spec.delta + q[r] - (l < 0 ? 0.0 : q[ix(l)]);
+      const double rate = u[r] - (l < 0 ? 0.0 : u[ix(l)]);
+      if (rule.takes(g, rate, stepper->getConstraintToleranceInUse())) ++n;
+    }
+    return n;
+  }
+
+  double silent_seconds(int n_contacts) {
+    if (!stepper || spec.kind == Kind::faithful_pgs || n_contacts < 16) return 0.0;  // below 16: 8192 terms
+    if (term_seconds == 0.0) term_seconds = seconds_per_term();
+    const double p = n_contacts;
+    return kSilentTerms * p * p * p * term_seconds;
   }
 
   void take_stepper_step(double t1) {
@@ -234,6 +306,8 @@ struct Model::Impl {
 
   void take_integrator_step(double t1, const InternalStep& each) {
     while (integrator->getTime() < t1) {
+      watch();
+      if (halted) return;
       integrator->stepTo(t1);
       read(integrator->getState());
       if (each) each(integrator->getTime(), q.data(), u.data());
@@ -272,14 +346,21 @@ Model::~Model() {
   impl_.reset();
 }
 
-void Model::step(long k, const InternalStep& each) {
-  const QuietScope quiet;
+bool Model::step(long k, const InternalStep& each) {
+  const QuietScope quiet(&impl_->watch);
   try {
-    impl_->step(k, each);
+    return impl_->step(k, each);
   } catch (const std::exception& e) {
     throw std::runtime_error(std::string("Simbody: ") + e.what());
   }
 }
+
+int Model::contacts_next_step() const {
+  const QuietScope quiet;
+  return impl_->contacts_next_step();
+}
+
+double Model::silent_seconds(int contacts) { return impl_->silent_seconds(contacts); }
 
 double Model::u(int body) const { return impl_->q[ix(body)]; }
 double Model::v(int body) const { return impl_->u[ix(body)]; }

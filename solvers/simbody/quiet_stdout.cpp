@@ -9,6 +9,12 @@ namespace pb::simbody {
 namespace {
 
 thread_local int t_quiet = 0;  // QuietScopes open on this thread
+thread_local const std::function<void()>* t_watch = nullptr;  // the innermost scope's watch
+
+// A write dropped: the watch sees it first.
+void dropped() {
+  if (t_watch) (*t_watch)();
+}
 
 // What std::cout wrote to before: every write outside a QuietScope goes on to it.
 class FilterBuffer : public std::streambuf {
@@ -18,10 +24,15 @@ class FilterBuffer : public std::streambuf {
 
  protected:
   int_type overflow(int_type c) override {
+    if (t_quiet) dropped();
     if (t_quiet || traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
     return next_->sputc(traits_type::to_char_type(c));
   }
-  std::streamsize xsputn(const char* s, std::streamsize n) override { return t_quiet ? n : next_->sputn(s, n); }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    if (!t_quiet) return next_->sputn(s, n);
+    dropped();
+    return n;
+  }
   int sync() override { return t_quiet ? 0 : next_->pubsync(); }
 
  private:
@@ -29,7 +40,10 @@ class FilterBuffer : public std::streambuf {
 };
 
 ssize_t write_on(void* original, const char* data, size_t size) {
-  if (t_quiet) return static_cast<ssize_t>(size);
+  if (t_quiet) {
+    dropped();
+    return static_cast<ssize_t>(size);
+  }
   // Into the original FILE's own buffer, unflushed: a program's output keeps the buffering
   // it had (a write per printf made `solve_case | head -1` die of SIGPIPE, and every CSV line
   // a system call).
@@ -71,8 +85,14 @@ const Filters g_filters;  // before main, after <iostream> made std::cout (this 
 
 }  // namespace
 
-QuietScope::QuietScope() { ++t_quiet; }
-QuietScope::~QuietScope() { --t_quiet; }
+QuietScope::QuietScope(const std::function<void()>* watch) : outer_(t_watch) {
+  ++t_quiet;
+  if (watch) t_watch = watch;
+}
+QuietScope::~QuietScope() {
+  --t_quiet;
+  t_watch = outer_;
+}
 
 bool stdout_filtered() { return g_filters.installed(); }
 

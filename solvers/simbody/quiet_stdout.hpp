@@ -1,4 +1,6 @@
 #pragma once
+
+#include <functional>
 // Keeps Debian's Simbody from writing on stdout.
 //
 // Debian builds Simbody 3.7 without NDEBUG, and then its SemiExplicitEulerTimeStepper and
@@ -20,6 +22,10 @@
 // buffer, C's stdout its original FILE's). Inside
 // one, what the thread writes to stdout is dropped; other threads write as before.
 //
+// A QuietScope may carry a watch: a function called at every write the scope drops, before it
+// is dropped. Simbody's impulse solvers write their trace at every iteration (Debian's build),
+// and no other code of this project runs inside them: model.cpp's time limit watches there.
+//
 // One difference remains: fflush(stdout) empties the filter, not the original FILE behind
 // it, so a program that must deliver its output before _exit (a forked child) calls
 // fflush(nullptr), which empties every stream; exit() and a terminal's line buffering
@@ -29,10 +35,16 @@ namespace pb::simbody {
 
 class QuietScope {
  public:
-  QuietScope();
+  // watch: called at each write dropped while this scope is open (null: none, or the watch of
+  // the scope it is inside); it must not throw (glibc's printf holds its stream's lock around the write:
+  // unwinding through it left the lock taken, measured).
+  explicit QuietScope(const std::function<void()>* watch = nullptr);
   ~QuietScope();
   QuietScope(const QuietScope&) = delete;
   QuietScope& operator=(const QuietScope&) = delete;
+
+ private:
+  const std::function<void()>* outer_;  // the watch of the scope this one is inside
 };
 
 // Whether the filters are in place (false only if fopencookie failed).

@@ -1,13 +1,16 @@
 #include "solvers/simbody/simbody_solver.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <optional>
+#include <sstream>
 
 #include "cases/text.hpp"
 #include "solvers/contact_elements/contact_law.hpp"
 #include "solvers/fixed_step.hpp"
+#include "solvers/run_limits.hpp"
 #include "solvers/simbody/model.hpp"
 #include "solvers/simbody/variants.hpp"
 #include "solvers/variant_table.hpp"
@@ -75,27 +78,52 @@ double hermite_extreme(double t0, double x0, double v0, double t1, double x1, do
   return (2 * s3 - 3 * s2 + 1) * x0 + (s3 - 2 * s2 + s) * m0 + (-2 * s3 + 3 * s2) * x1 + (s3 - s2) * m1;
 }
 
-// Simbody behind the shared step loop (solvers/fixed_step.hpp).
+// x to two significant digits, for a message ("12 s", "0.037 s").
+std::string two_digits(double x) {
+  std::ostringstream out;
+  out.precision(2);
+  out << x;
+  return out.str();
+}
+
+// How far a run may pass its time limit inside a step that cannot be interrupted: a tenth of
+// the limit, and half a second at least. A step of PLUS whose silent stretches
+// (Model::silent_seconds) could pass it is not started (Engine::too_silent).
+constexpr double kLimitMargin = 0.1, kLimitMarginMin = 0.5;
+// The silent stretches a stepper's step can hold: after the limit passes inside one, the
+// impulse solves still to come (an impact's compression and reaction rounds, the dynamics
+// phase, the default variant's position projection) each run one more before they stop.
+constexpr int kSilentPerStep = 4;
+
+// Simbody behind the shared step loop (solvers/fixed_step.hpp). The run's limit is its
+// deadline, started before the model was built and asked inside each step too (ModelSpec::
+// out_of_time): a step of a 1000-body chain took minutes (PLUS on 999 contacts).
 class Engine : public StepEngine {
  public:
-  Engine(const System& sys, const Config& config, const ModelSpec& spec, const Units& units)
-      : StepEngine(sys), sys_(sys), compliant_(!config.time_stepper()), units_(units), model_(spec),
-        engaged_(ix(sys.n_contacts()), 0), whole_(sys), u_(out_.u), v_(out_.v), v_before_(out_.v),
-        touching_(ix(sys.n_contacts()), 0) {
+  Engine(const System& sys, const Config& config, ModelSpec spec, const Units& units, const Settings& set, double h,
+         Deadline& deadline)
+      : StepEngine(sys), sys_(sys), compliant_(!config.time_stepper()), units_(units), h_(h),
+        limit_(set.time_limit), start_(std::chrono::steady_clock::now()), deadline_(deadline),
+        model_(with_deadline(std::move(spec), deadline)), engaged_(ix(sys.n_contacts()), 0), whole_(sys), u_(out_.u),
+        v_(out_.v), v_before_(out_.v), touching_(ix(sys.n_contacts()), 0) {
     if (compliant_) inner_step(0.0, out_.u, out_.v);
   }
 
   StepOutcome step(long k, Result& res) override {
+    if (deadline_.tick()) return out_of_time(k, "", res);
+    if (too_silent(k, res)) return StepOutcome::refused;
+    bool done = true;
     try {
       if (compliant_)
-        model_.step(k, [this](double t, const double* q, const double* u) { inner_step(t, q, u); });
+        done = model_.step(k, [this](double t, const double* q, const double* u) { inner_step(t, q, u); });
       else
-        model_.step(k);
+        done = model_.step(k);
     } catch (const std::exception& e) {
       res.status = Status::failed;
       res.message = e.what() + std::string(" (step ") + std::to_string(k + 1) + ")";
       return StepOutcome::refused;
     }
+    if (!done) return out_of_time(k, ", inside Simbody's step " + std::to_string(k + 1), res);
     for (int i = 0; i < sys_.n_bodies(); ++i) {
       out_.u[ix(i)] = model_.u(i) * units_.length;
       out_.v[ix(i)] = model_.v(i) * units_.velocity();
@@ -149,9 +177,43 @@ class Engine : public StepEngine {
     v_before_ = v_;
   }
 
+  static ModelSpec with_deadline(ModelSpec spec, Deadline& deadline) {
+    spec.out_of_time = [&deadline] { return deadline.tick(); };
+    return spec;
+  }
+
+  StepOutcome out_of_time(long k, const std::string& where, Result& res) const {
+    res.status = Status::time_limit;
+    res.message = deadline_.reason() + " at t = " + std::to_string(static_cast<double>(k) * h_) + where;
+    return StepOutcome::refused;
+  }
+
+  // True (res says why) where the next step's impulse solve could pass the limit by more than
+  // its margin without a look at the clock.
+  bool too_silent(long k, Result& res) {
+    if (!(limit_ > 0.0) || compliant_) return false;
+    const int contacts = model_.contacts_next_step();
+    const double silent = model_.silent_seconds(contacts);
+    const double margin = std::max(kLimitMarginMin, kLimitMargin * limit_);
+    if (!(kSilentPerStep * silent > margin)) return false;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    res.status = Status::time_limit;
+    res.message = "refused at t = " + format_number(static_cast<double>(k) * h_) + " after " + two_digits(elapsed) +
+                  " s: the next step's impulse solve (Simbody's PLUS, " + std::to_string(contacts) +
+                  " contacts) runs about " + two_digits(silent) +
+                  " s at a time where no limit can stop it (Debian's build checks every Newton iteration's "
+                  "Jacobian numerically), up to " + std::to_string(kSilentPerStep) +
+                  " times in a step: more than the limit's margin of " + two_digits(margin) + " s";
+    return true;
+  }
+
   const System& sys_;
   bool compliant_;
   Units units_;
+  double h_;                                       // the step (hunt-crossley: the report interval)
+  double limit_;                                   // Settings::time_limit
+  std::chrono::steady_clock::time_point start_;    // the model's set-up
+  Deadline& deadline_;
   Model model_;
   std::vector<char> engaged_;  // per contact, in the last step
   // hunt-crossley: whole contacts and the peak over the integrator's internal steps
@@ -175,7 +237,8 @@ Result run(const System& sys, const Settings& set, const Config& config) {
   StepPlan plan;
   if (Result r = plan_steps(sys, stepping, kDefaultSteps, kDefaultStepCap, plan); r.status != Status::ok) return r;
   const Units units(sys);
-  Engine engine(sys, config, model_spec(sys, config, set, plan.h, units), units);
+  Deadline deadline(set);  // from here: the model's set-up counts against the limit
+  Engine engine(sys, config, model_spec(sys, config, set, plan.h, units), units, set, plan.h, deadline);
   return run_steps(sys, set, plan, engine);
 }
 

@@ -17,6 +17,7 @@
 #include <optional>
 #include <set>
 
+#include "tests/fuzz/callables.hpp"
 #include "tests/fuzz/harness.hpp"
 #include "tests/fuzz/mutator.hpp"
 #include "tests/fuzz/report_target.hpp"
@@ -274,6 +275,37 @@ TEST(ReportInputFuzz, ExitsZeroOrTwoWithAWholeFolderOrNone) {
                return problem;
              }),
          "ReportInputFuzz.*");
+}
+
+// Issue 46's target (callables.hpp): Python callables as the solver, misbehaving. Each input
+// is a Python process sweeping three points, about 1-3 s: a quarter of the command line's
+// count. Corpus entries (corpus/callable/*.py: a first '#' line says what each holds) are
+// replayed one test each.
+ChildLimits callable_limits() {
+  ChildLimits limits = budget().cli_limits;
+  limits.seconds = std::max(limits.seconds, 20.0) * (POUNDBENCH_FUZZ_SLOW ? 3.0 : 1.0);
+  return limits;
+}
+
+class CallableCorpus : public ::testing::TestWithParam<fs::path> {};
+
+TEST_P(CallableCorpus, GivesARowPerPointInItsTimeLimit) {
+  if (!python_available()) GTEST_SKIP() << "the Python module is not built";
+  if (auto problem = check_callable(read_file(GetParam()), callable_limits())) ADD_FAILURE() << GetParam() << ": " << *problem;
+}
+
+INSTANTIATE_TEST_SUITE_P(Fuzz, CallableCorpus, ::testing::ValuesIn(corpus_files("callable")), reader_test_name);
+
+TEST(PythonCallableFuzz, GivesARowPerPointInItsTimeLimitWithOneLine) {
+  if (!python_available()) GTEST_SKIP() << "the Python module is not built";
+  report(campaign(
+             "callable", std::max<std::size_t>(budget().cli_runs / 4, 1), ".py", [](Rng& rng) { return make_callable(rng); },
+             [](const std::string& text) {
+               auto problem = check_callable(text, callable_limits());
+               if (problem) *problem += "\n  callable:\n" + excerpt(text, 1200);
+               return problem;
+             }),
+         "PythonCallableFuzz.*");
 }
 
 // ---- The harness itself. ----

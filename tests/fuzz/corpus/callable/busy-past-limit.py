@@ -1,0 +1,5 @@
+# Issue 46: a 3 s loop in Python at a limit of 0.3 s: interrupted (TimeLimitExceeded), a time-limit row.
+STUDY = True
+def f(case):
+    busy(3.0)
+    return {'status': 'ok', 'pi1': 1.0}
