@@ -28,4 +28,4 @@ echo "fuzz: seed $seed, $seconds s per target, failing inputs to $failures/"
 POUNDBENCH_FUZZ_SEED=$seed POUNDBENCH_FUZZ_SECONDS=$seconds POUNDBENCH_FUZZ_MAX_FAILURES=1000 \
   POUNDBENCH_FUZZ_FAILURES=$failures \
   "$build/tests/fuzz/poundbench_fuzz_tests" \
-  --gtest_filter='CaseSetReaderFuzz.*:SettingsReaderFuzz.*:CliFuzz.*:RecordReaderFuzz.*:AnswerReaderFuzz.*:AdapterDocumentFuzz.*:PythonKeywordFuzz.*'
+  --gtest_filter='CaseSetReaderFuzz.*:SettingsReaderFuzz.*:CliFuzz.*:RecordReaderFuzz.*:AnswerReaderFuzz.*:AdapterDocumentFuzz.*:PythonKeywordFuzz.*:ReportInputFuzz.*:PythonCallableFuzz.*'
