@@ -203,6 +203,6 @@ void BM_EventDrivenTouchingChainGrowth(benchmark::State& state) {
   }
   state.counters["growth"] = seconds[1] / seconds[0];
 }
-BENCHMARK(BM_EventDrivenTouchingChainGrowth)->Iterations(1)->Repetitions(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EventDrivenTouchingChainGrowth)->Iterations(1)->Repetitions(pb::bench::whole_set_repetitions())->Unit(benchmark::kMillisecond);
 
 }  // namespace

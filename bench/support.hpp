@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <ctime>
 #include <initializer_list>
 #include <string>
@@ -44,6 +45,16 @@ inline System fig4_point(Scene scene) { return make_system(fig4_case(scene)); }
 inline Settings timed(Settings settings) {
   settings.monitor = false;
   return settings;
+}
+
+// The repetitions of a benchmark that times a whole set or a growth (seconds a repetition): three
+// give the main job their median. POUNDBENCH_BENCH_REPETITIONS sets another count, for the tests
+// that run every benchmark to see that it runs (bench_smoke: one; report_smoke: two, the fewest
+// whose median the report reads), not to measure it.
+inline int whole_set_repetitions() {
+  const char* text = std::getenv("POUNDBENCH_BENCH_REPETITIONS");
+  const int n = text ? std::atoi(text) : 0;
+  return n >= 1 ? n : 3;
 }
 
 // CPU seconds per step (the console prints it with an SI prefix: "7.5n" is 7.5 ns).

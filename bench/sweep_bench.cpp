@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/support.hpp"
 #include "app/output_files.hpp"
 #include "rows/row_read.hpp"
 #include "cases/case_set.hpp"
@@ -80,10 +81,11 @@ void BM_SweepFig4Reference(benchmark::State& state) {
 BENCHMARK(BM_SweepFig4Reference)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // An iteration of the benchmarks over the whole paper set is a sweep of its 23,820 points
-// (0.2 to 5 s): three repetitions give their median, whatever --benchmark_repetitions says.
+// (0.2 to 5 s): three repetitions give their median (whole_set_repetitions), whatever
+// --benchmark_repetitions says.
 // At the main job's five they were about two thirds of its benchmark step (issue 36: the main job
 // under 5 minutes).
-constexpr int kWholeSetRepetitions = 3;
+const int kWholeSetRepetitions = pb::bench::whole_set_repetitions();
 
 // The reference alone on every point of the paper set, one thread: CPU per point.
 void BM_PaperSetReferenceSolverAlone(benchmark::State& state) {

@@ -119,7 +119,7 @@ class Run(unittest.TestCase):
             poundbench.spectrum(os.path.join(SOURCE, "cases/sets/paper.toml"), solver="moreau-jean",
                                 steps=4096, threads=1)
         timer.join()
-        self.assertLess(time.monotonic() - started, 5.0)
+        self.assertLess(time.monotonic() - started, 30.0)  # minutes if the interruption is lost
         self.assertIs(signal.getsignal(signal.SIGINT), signal.default_int_handler)
 
     def test_a_loop_over_the_case_checks_each_calls_solver_keywords(self):
@@ -413,10 +413,11 @@ class Callable(unittest.TestCase):
 
     def test_ctrl_c_stops_a_sweep_over_a_function_and_writes_nothing(self):
         # A child process sweeps the smoke set (40 points) through a function that takes
-        # 0.2 s a call, 8 s in all; SIGINT after its first call must end it with
-        # KeyboardInterrupt within 3 s (the call under way finishes, 0.2 s; the rest is the
-        # sweep winding down and the interpreter's exit, on a busy machine), and leave no
-        # file behind in its working directory (no partial file, no lock).
+        # 0.5 s a call, 20 s in all; SIGINT after its first call must end it with
+        # KeyboardInterrupt within 12 s (the call under way finishes, 0.5 s; the rest is the
+        # sweep winding down and the interpreter's exit: about a second, ten times that on a
+        # slow or loaded machine), and leave no file behind in its working directory (no
+        # partial file, no lock).
         import signal
         import time
         child = f"""
@@ -424,7 +425,7 @@ import sys, time
 import poundbench
 def slow(case):
     print("called", flush=True)
-    time.sleep(0.2)
+    time.sleep(0.5)
     return {{"status": "ok", "pi1": 1.0}}
 if sys.argv[1] == "spectrum":
     poundbench.spectrum({self.SMOKE!r}, solver=slow)
@@ -445,7 +446,7 @@ print("finished", flush=True)
                 self.assertNotEqual(process.returncode, 0, function)
                 self.assertIn("KeyboardInterrupt", err, function)
                 self.assertNotIn("finished", out, function)
-                self.assertLess(elapsed, 3.0, function)
+                self.assertLess(elapsed, 12.0, function)
                 self.assertEqual(os.listdir(cwd), [], function)
 
     # Three wall points, for the tests whose calls take seconds each.
@@ -471,7 +472,7 @@ pi2 = { from = 0.5, to = 2, points = 3, spacing = "linear" }
         def busy(case):
             start = time.monotonic()
             try:
-                while time.monotonic() - start < 2.0:
+                while time.monotonic() - start < 20.0:
                     pass
             except Exception:  # not TimeLimitExceeded
                 pass
@@ -505,8 +506,8 @@ pi2 = { from = 0.5, to = 2, points = 3, spacing = "linear" }
                     self.assertIsNone(row["pi1"])
                     self.assertGreater(row["solve_seconds"], 0.45, solver.__name__)
                     self.assertNotIn("\n", row["message"])
-                    if solver is busy:  # stopped, not run out: 2 s a call otherwise
-                        self.assertLess(row["solve_seconds"], 2.0)
+                    if solver is busy:  # stopped, not run out: 20 s a call otherwise
+                        self.assertLess(row["solve_seconds"], 10.0)
             quick = poundbench.spectrum(three, solver=lambda case: {"status": "ok", "pi1": 1.0}, time_limit=0.5)
             self.assertEqual([r["status"] for r in quick], ["ok"] * 3)
             # A study's run takes its time_limit from its settings.

@@ -269,7 +269,9 @@ TEST(Siconos, LsodarEndsWithinItsTimeLimitInTheSetUpAndInItsSteps) {
   double seconds = timed(big, 0.5, r);
   EXPECT_EQ(r.status, Status::time_limit) << r.message;
   EXPECT_NE(r.message.find("in Siconos' set-up of 1000 bodies"), std::string::npos) << r.message;
-  EXPECT_LT(seconds, 2.0) << "the old code: 8 s";
+  // About 0.6 s here; the bound is ten times that, for a slower or loaded machine, and still
+  // under the old code's 8 s on this one.
+  EXPECT_LT(seconds, 6.0) << "the old code: 8 s";
   RecordProperty("set_up_seconds", sci(seconds));
   // A stiff chain (body 0 at half the others' frequency, Pi2 = 5): LSODAR switches to BDF and
   // forms its Jacobian, so the limit passes inside the Fortran integrator's calls.
@@ -279,7 +281,7 @@ TEST(Siconos, LsodarEndsWithinItsTimeLimitInTheSetUpAndInItsSteps) {
   seconds = timed(stiff, 0.5, r);
   EXPECT_EQ(r.status, Status::time_limit) << r.message;
   EXPECT_NE(r.message.find("wall time at t = "), std::string::npos) << r.message;
-  EXPECT_LT(seconds, 2.0);
+  EXPECT_LT(seconds, 6.0);
   RecordProperty("steps_seconds", sci(seconds));
 }
 

@@ -29,10 +29,12 @@
 #include <cstdint>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include "cases/case_set.hpp"
@@ -79,7 +81,8 @@ struct Facts {
   bool fails_where_contact_persists = false;
   // Every k-th smoke point (1: all 40): a subset for a slow engine.
   int smoke_stride = 1;
-  // How long a run told to stop after 0.05 s may take (the clock is not read inside a step).
+  // How long a run told to stop after 0.05 s takes at most on an idle machine (the clock is
+  // not read inside a step); the test allows ten times as much (kSlowerMachine).
   double time_limit_bound = 0.5;
   // Fails (status failed, the message naming eps) where its model has no element for eps.
   bool refuses_plastic = false;
@@ -357,6 +360,8 @@ void PrintTo(const Subject& s, std::ostream* out) {
        << (s.facts->contact.empty() ? "" : " --contact ") << s.facts->contact;
 }
 
+std::vector<Case> smoke_points(const Facts& f);
+
 class Contract : public testing::TestWithParam<Subject> {
  protected:
   // A run that did not end ok has no Pi1, whichever the solver.
@@ -379,6 +384,20 @@ class Contract : public testing::TestWithParam<Subject> {
     return solver().solve(at, st);
   }
   Result solve(const System& s) const { return solve(s, settings()); }
+  // The smoke points swept at settings() with this step (steps, wh) on this many threads, once
+  // a process: three tests read the same sweep (the statuses, the verdicts, one thread against
+  // two), and a solver's contract is one process (param_groups.cmake).
+  const std::vector<Row>& smoke_sweep(int steps, double wh, int threads) const {
+    static std::map<std::tuple<const SolverInfo*, const Facts*, int, double, int>, std::vector<Row>> swept;
+    const auto key = std::make_tuple(GetParam().solver, GetParam().facts, steps, wh, threads);
+    if (auto it = swept.find(key); it != swept.end()) return it->second;
+    Settings st = settings();
+    st.steps = steps;
+    st.wh = wh;
+    SweepOptions options;
+    options.threads = threads;
+    return swept[key] = run_sweep(smoke_points(facts()), solver(), st, options);
+  }
 };
 
 using SolverContract = Contract;
@@ -508,7 +527,9 @@ TEST_P(SolverContract, TimeLimitStopsAHundredBodyChainSoon) {
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   RecordProperty("elapsed_s", sci(elapsed));
   expect_no_pi1(r);
-  EXPECT_LT(elapsed, facts().time_limit_bound);
+  // Minutes where the limit is ignored; a machine ten times slower or as loaded stays under.
+  constexpr double kSlowerMachine = 10.0;
+  EXPECT_LT(elapsed, kSlowerMachine * facts().time_limit_bound);
   // A failure the solver documents may come before the limit; a variant that fails
   // everywhere may meet the limit inside its first step (NewMarkAlphaOSI's Newton loop).
   if (r.status == Status::failed && may_fail(facts(), c, r.message)) {
@@ -566,13 +587,9 @@ TEST_P(SolverContract, SmokeSetEndsOkWithFinitePi1ButForDocumentedFailures) {
       if (n >= facts().coarsest_steps) steps.push_back(n);
     steps.push_back(0);
   }
-  SweepOptions options;
-  options.threads = 2;
   int documented = 0;
   for (int n : steps) {
-    Settings st = settings();
-    st.steps = n;
-    const std::vector<Row> rows = run_sweep(cases, solver(), st, options);
+    const std::vector<Row>& rows = smoke_sweep(n, 0.0, 2);
     ASSERT_EQ(rows.size(), cases.size());
     for (const Row& row : rows) {
       const Case& c = cases[row.point];
@@ -597,15 +614,11 @@ TEST_P(SolverContract, SmokeSetEndsOkWithFinitePi1ButForDocumentedFailures) {
 // wherever it ends ok, naming its step, whatever else it measured.
 TEST_P(SolverContract, EveryFinishedRunCarriesTheVerdictOfItsOwnMeasurements) {
   const std::vector<Case> cases = smoke_points(facts());
-  SweepOptions options;
-  options.threads = 2;
   std::vector<double> whs = {0.0};
   if (facts().time_stepper) whs.push_back(2.0);
   long judged = 0, unresolved = 0;
   for (double wh : whs) {
-    Settings st = settings();
-    st.wh = wh;
-    for (const Row& row : run_sweep(cases, solver(), st, options)) {
+    for (const Row& row : smoke_sweep(0, wh, 2)) {
       const Result& r = row.result;
       const Case& c = cases[row.point];
       const std::string what = c.family + " pi2=" + std::to_string(c.pi2) + " wh=" + std::to_string(wh);
@@ -722,11 +735,8 @@ void expect_same_answer(const Result& a, const Result& b, const std::string& wha
 // between runs (sweep/sweep.hpp's requirement of every registry solver).
 TEST_P(SolverContract, OneAndTwoThreadsGiveTheSameRowsBitForBit) {
   const std::vector<Case> cases = smoke_points(facts());
-  SweepOptions one, two;
-  one.threads = 1;
-  two.threads = 2;
-  const std::vector<Row> serial = run_sweep(cases, solver(), settings(), one);
-  const std::vector<Row> parallel = run_sweep(cases, solver(), settings(), two);
+  const std::vector<Row>& serial = smoke_sweep(0, 0.0, 1);
+  const std::vector<Row>& parallel = smoke_sweep(0, 0.0, 2);
   ASSERT_EQ(serial.size(), cases.size());
   ASSERT_EQ(parallel.size(), cases.size());
   int finite = 0;

@@ -433,20 +433,22 @@ Row timed_row(std::vector<double> costs, int repetitions, bool monitor = false) 
   return run_point(smoke_cases().front(), 0, kCostly, settings, repetitions);
 }
 
-// Five repetitions costing 0.4, 0.1, 0.3, 0.2 and 0.5 ms (each a little more: the clock is
-// read after the work): the row's CPU time is the median, with the fastest and slowest.
+// Five repetitions costing 1.6, 0.4, 1.2, 0.8 and 2.0 ms (each a little more: the clock is
+// read after the work): the row's CPU time is the median, with the fastest and slowest. The
+// costs are 0.4 ms apart and 6 ms in all (under the point's budget): the clocks' own cost,
+// microseconds even on a loaded machine, cannot move one into its neighbour's range.
 TEST(RunPoint, TimesTheSolveRepeatedlyAndKeepsTheMedianAndTheRange) {
-  const Row row = timed_row({4e-4, 1e-4, 3e-4, 2e-4, 5e-4}, 5);
+  const Row row = timed_row({1.6e-3, 0.4e-3, 1.2e-3, 0.8e-3, 2.0e-3}, 5);
   ASSERT_EQ(row.result.status, Status::ok) << row.result.message;
   EXPECT_EQ(row.repetitions, 5);
   EXPECT_EQ(g_unmonitored, 5);
   EXPECT_EQ(g_monitored, 0);
-  EXPECT_GE(row.cpu_seconds, 3e-4);
-  EXPECT_LT(row.cpu_seconds, 4e-4);
-  EXPECT_GE(row.cpu_seconds_low, 1e-4);
-  EXPECT_LT(row.cpu_seconds_low, 2e-4);
-  EXPECT_GE(row.cpu_seconds_high, 5e-4);
-  EXPECT_LT(row.cpu_seconds_high, 1e-3);
+  EXPECT_GE(row.cpu_seconds, 1.2e-3);
+  EXPECT_LT(row.cpu_seconds, 1.6e-3);
+  EXPECT_GE(row.cpu_seconds_low, 0.4e-3);
+  EXPECT_LT(row.cpu_seconds_low, 0.8e-3);
+  EXPECT_GE(row.cpu_seconds_high, 2.0e-3);
+  EXPECT_LT(row.cpu_seconds_high, 4.0e-3);
   EXPECT_GE(row.seconds, row.cpu_seconds * 0.99);  // wall time: the median too, never less than CPU
   EXPECT_EQ(row.result.pi1, 1.5);
 

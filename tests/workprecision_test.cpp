@@ -277,7 +277,13 @@ TEST(WorkPrecision, SmokeStudyHasARowPerFamilyAndSettingAndTheReferenceMatchesIt
       EXPECT_TRUE(std::isnan(r.result.energy_excess)) << r.settings;
     }
   }
-  EXPECT_EQ(wp.points.front().repetitions, kStudyRepetitions);
+  // All five, unless the first ones spent the point's budget (a loaded machine's
+  // microsecond solve can take milliseconds): then the repetitions that ran spent it.
+  const Row& first = wp.points.front();
+  if (first.repetitions != kStudyRepetitions) {
+    EXPECT_LT(first.repetitions, kStudyRepetitions);
+    EXPECT_GE(first.repetitions * first.cpu_seconds_high, kRepetitionBudget) << first.repetitions;
+  }
 }
 
 // A compliant setting is measured twice: against the rigid reference (its model's error and

@@ -155,6 +155,10 @@ struct ContactMode {
   // as exact as the first) once the level has been used kCacheAfter times; how often it was.
   std::vector<MatrixXd> levels;
   std::vector<int> uses;
+  // Row j: the rate of contact j's force F = -k g - c g' (the gap's row of W and the rows of
+  // W a and W a^2), for a closed element; zero for an open one. Where it turns from rising to
+  // falling inside a stretch, the force peaks there (peak_force).
+  MatrixXd force_rate;
 };
 
 class KelvinVoigt {
@@ -399,6 +403,10 @@ class KelvinVoigt {
     md.balanced = d.asDiagonal() * a * d.cwiseInverse().asDiagonal();
     md.rows.resize(2 * nf_, m_);
     md.rows << w_, w_ * a;
+    md.force_rate = MatrixXd::Zero(nc_, m_);
+    for (int j = 0; j < nc_; ++j)
+      if (elements_.closed(j))
+        md.force_rate.row(j) = -elements_.law(j).k * md.rows.row(nf_ + j) - elements_.law(j).c * (md.rows.row(nf_ + j) * a);
     const MatrixXd wb = w_ * d.cwiseInverse().asDiagonal();  // W D^-1: functions of D y
     std::frexp(a.cwiseAbs().rowwise().sum().maxCoeff(), &md.exponent);
     md.motion = a * std::ldexp(1.0, -md.exponent);
@@ -663,9 +671,27 @@ class KelvinVoigt {
     return room ? Verdict::proven_with_room : Verdict::proven;
   }
 
+  // The largest force of closed contact j inside [t_, t_ + h] from y_ to yb, located (issue 48):
+  // where its rate falls from positive to negative, the rate's root, bisected on the exact
+  // motion y_ + (exp(a s) - I) y_ to the last bit of s (the force is flat there, so its value
+  // is exact to round-off well before); 0 where the force does not peak inside.
+  double peak_force(const ContactMode& md, int j, const VectorXd& yb, double h) const {
+    if (!(md.force_rate.row(j).dot(y_) > 0.0 && md.force_rate.row(j).dot(yb) < 0.0)) return 0.0;
+    double lo = 0.0, hi = h;
+    VectorXd y = yb;
+    for (int i = 0; i < 200; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      if (!(mid > lo && mid < hi)) break;
+      y = y_ + increment(md, mid) * y_;
+      (md.force_rate.row(j).dot(y) > 0.0 ? lo : hi) = mid;
+    }
+    return elements_.law(j).force(-y(j), -y(n_ + j), elements_.v_minus(j));
+  }
+
   // The stretch from t_ to t_ + h is taken: its extremes are those of the Hermite ranges
-  // where judged (within the slack), else its end's.
-  void take(const VectorXd& yb, double h, bool judged) {
+  // where judged (within the slack), else its end's; each contact's force at its end and at
+  // a peak inside it.
+  void take(const ContactMode& md, const VectorXd& yb, double h, bool judged) {
     if (judged) {
       const Range& u = range_[ix(nc_)];
       if (error_[ix(nc_)] <= std::max(slack_, kNoise * noise_(nc_))) {
@@ -681,9 +707,9 @@ class KelvinVoigt {
     for (int j = 0; j < nc_; ++j)
       if (elements_.closed(j)) {
         min_gap_ = std::min(min_gap_, w_.row(j).dot(yb));
-        // The element's force from its gap and rate (the state's first 2 nc_ coordinates), at
-        // the stretch's end, as CVODE's at its accepted steps (compliant/cvode_run.cpp).
-        force_max_ = std::max(force_max_, elements_.law(j).force(-yb(j), -yb(n_ + j), elements_.v_minus(j)));
+        // The element's force from its gap and rate (the state's first 2 nc_ coordinates).
+        force_max_ = std::max({force_max_, elements_.law(j).force(-yb(j), -yb(n_ + j), elements_.v_minus(j)),
+                               peak_force(md, j, yb, h)});
       }
     y_ = yb;
     t_ += h;
@@ -707,7 +733,7 @@ class KelvinVoigt {
     const int change = first_change(yb);
     const Verdict verdict = change < 0 ? judge(md, h, yb) : Verdict::unproven;
     if (verdict != Verdict::unproven || h <= floor_ || level >= kMaxLevel || ix(depth + 1) >= buf_.size()) {
-      take(yb, h, verdict != Verdict::unproven);
+      take(md, yb, h, verdict != Verdict::unproven);
       if (depth == 0) halved_ = false, easy_ = verdict == Verdict::proven_with_room;
       return change;
     }

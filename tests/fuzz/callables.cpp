@@ -71,7 +71,7 @@ def sweep(run):
     if any(r == "KeyboardInterrupt" for _, r in calls):
         result("BAD f raised KeyboardInterrupt and the sweep went on")
     for seconds, _ in calls:
-        if seconds > 2.5:
+        if seconds > 15:  # 30 s unstopped; a tenth of a second stopped, ten times that on a slow machine
             result("BAD a call ran %.2f s: its limit of %g s did not stop it" % (seconds, LIMIT))
     return out
 
@@ -97,16 +97,16 @@ result("OK")
 )";
 
 // What a call does before it returns. The sleeps in C are past the limit or not; the loops in
-// Python (busy) run 3 s unless interrupted.
+// Python (busy) run 30 s unless interrupted.
 const std::vector<std::string>& actions() {
   static const std::vector<std::string> v = {
       "pass",
       "time.sleep(0.05)",
       "time.sleep(0.45)",
       "time.sleep(0.9)",
-      "busy(3.0)",
-      "try:\n    busy(3.0)\nexcept BaseException:\n    pass",
-      "try:\n    busy(3.0)\nexcept poundbench.TimeLimitExceeded:\n    time.sleep(0.1)",
+      "busy(30.0)",
+      "try:\n    busy(30.0)\nexcept BaseException:\n    pass",
+      "try:\n    busy(30.0)\nexcept poundbench.TimeLimitExceeded:\n    time.sleep(0.1)",
       "poundbench.run(scene='wall', pulse='sine', directivity='normal', pi2=1, pi3=0.5, eps=0.5, "
       "solver='moreau-jean', steps=16)",
       "poundbench.run(scene='pair', pulse='cosine', directivity='normal', pi2=0.8, pi3=0.5, eps=0.5, pi5=0.5, "

@@ -12,6 +12,8 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <stdexcept>
 #include <typeinfo>
 
@@ -28,6 +30,21 @@ std::size_t resident_bytes(pid_t pid) {
   std::size_t size = 0, resident = 0;
   statm >> size >> resident;
   return resident * static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+}
+
+// The CPU seconds `pid` has spent, with those of its children it has waited for (proc(5):
+// utime, stime, cutime, cstime, the 14th to 17th fields, after the command's parentheses).
+double cpu_seconds(pid_t pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
+  const std::size_t close = text.rfind(')');
+  if (close == std::string::npos) return 0;
+  std::istringstream fields(text.substr(close + 2));
+  std::string field;
+  double ticks = 0;
+  for (int i = 3; i <= 17 && fields >> field; ++i)
+    if (i >= 14) ticks += std::strtod(field.c_str(), nullptr);
+  return ticks / static_cast<double>(::sysconf(_SC_CLK_TCK));
 }
 
 void keep(std::string& into, std::size_t& size, const char* data, std::size_t n) {
@@ -62,8 +79,11 @@ ChildOutcome supervise(InChild in_child, const ChildLimits& limits) {
   // Read both pipes until the child closes them (it exits), watching its time and memory.
   while (open > 0) {
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    if (!killed && elapsed > limits.seconds) {
+    if (!killed && cpu_seconds(pid) > limits.seconds) {
       o.timed_out = killed = true;
+      ::kill(pid, SIGKILL);
+    } else if (!killed && elapsed > limits.wall_limit()) {
+      o.timed_out = o.blocked = killed = true;
       ::kill(pid, SIGKILL);
     } else if (!killed && resident_bytes(pid) > limits.max_rss_bytes) {
       o.over_memory = killed = true;
@@ -96,7 +116,8 @@ ChildOutcome supervise(InChild in_child, const ChildLimits& limits) {
 std::string ChildOutcome::describe() const {
   char seconds_text[32];
   std::snprintf(seconds_text, sizeof seconds_text, "%.1f", seconds);
-  if (timed_out) return std::string("hang: no exit within ") + seconds_text + " s (killed)";
+  if (blocked) return std::string("hang: blocked, no exit within ") + seconds_text + " s (killed)";
+  if (timed_out) return std::string("hang: past its CPU limit after ") + seconds_text + " s (killed)";
   if (over_memory) return "memory: over the limit after " + std::string(seconds_text) + " s (killed)";
   if (const std::string line = sanitizer_line(err); !line.empty()) return "sanitizer: " + line;
   if (!exited) return "crash: signal " + std::to_string(signal) + " (" + ::strsignal(signal) + ")";

@@ -2,6 +2,7 @@
 // Runs one fuzz input in a child process, so that a crash, a sanitizer abort, a hang or a
 // runaway allocation is a finding about that input and never takes the test down with it.
 
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -9,16 +10,25 @@
 
 namespace pb::fuzz {
 
+// A hang is measured in work, not in time: a child spinning in a loop spends CPU, and its CPU
+// seconds are the same on an idle machine and on one loaded ten times over, where a wall-clock
+// bound fails inputs that merely waited for a core (issue 46). A child blocked without
+// spending CPU (a pipe, a sleep) is caught by a wall clock as generous as a backstop can be.
 struct ChildLimits {
-  double seconds = 5;                    // wall clock; then SIGKILL
+  double seconds = 5;                    // CPU: the child's own and its waited-for children's; then SIGKILL
   std::size_t max_rss_bytes = 2UL << 30;  // resident memory; then SIGKILL
+  double wall_seconds = 0;               // then SIGKILL; 0: the default, wall_limit()
+
+  // Six times the CPU limit, at least 30 s, and under ctest's 180 s TIMEOUT for a fuzz test.
+  double wall_limit() const { return wall_seconds > 0 ? wall_seconds : std::min(std::max(30.0, 6 * seconds), 150.0); }
 };
 
 struct ChildOutcome {
   bool exited = false;     // else killed by a signal (ours or its own)
   int exit_code = -1;
   int signal = 0;
-  bool timed_out = false;  // we killed it at the time limit
+  bool timed_out = false;  // we killed it at a time limit: CPU (spinning) or wall (blocked)
+  bool blocked = false;    // the wall clock's: it spent no more than its CPU limit
   bool over_memory = false;  // we killed it at the memory limit
   double seconds = 0;
   std::string out, err;    // the first kKeep bytes of each
