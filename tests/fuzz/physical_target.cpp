@@ -54,7 +54,7 @@ bool used(const Flag& f, std::string_view scene) {
   return f.scenes.empty() || std::find(f.scenes.begin(), f.scenes.end(), scene) != f.scenes.end();
 }
 
-std::string value_for(const char* sane, Rng& rng) { return rng.one_in(3) ? rng.pick(hostile_values()) : sane; }
+std::string value_for(const char* sane, Rng& rng) { return rng.one_in(4) ? rng.pick(hostile_values()) : sane; }
 
 // The pulse's scale: --a-p and --tp (or --w-p), each left out or made hostile now and then.
 void add_scale(std::vector<std::string>& args, bool record, Rng& rng) {
