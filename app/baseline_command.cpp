@@ -117,6 +117,74 @@ int interrupted() {
   return kInterrupted;
 }
 
+// A stored baseline file as `baseline --check` and `--update` read it, with the case set
+// (and settings list) its header names.
+struct StoredBaseline {
+  std::string file;
+  RowFile stored;
+  BaselineHeader header;
+  Source source;
+};
+
+StoredBaseline load_stored(const std::string& file) {
+  RowFile stored = read_rows(file);
+  BaselineHeader header;
+  try {
+    header = parse_header(stored.comments, file);
+  } catch (const RowReadError& e) {
+    throw BadInput(e.what());
+  }
+  const fs::path dir = fs::absolute(file).parent_path();
+  Source s = load_source(dir / header.cases, header.settings.empty() ? fs::path() : dir / header.settings);
+  return {file, std::move(stored), std::move(header), std::move(s)};
+}
+
+// --junit of `baseline --check` is written after every file is checked: refused before the
+// first run when it is one of a baseline's inputs (the file, its case set, settings, records).
+void check_junit_apart(const std::string& junit, const StoredBaseline& b) {
+  if (junit.empty()) return;
+  const fs::path dir = fs::absolute(b.file).parent_path();
+  std::vector<NamedFile> inputs = record_files(b.source.set.cases);
+  inputs.push_back({"--check", b.file});
+  inputs.push_back({"the baseline's case set", dir / b.header.cases});
+  if (!b.header.settings.empty()) inputs.push_back({"the baseline's settings", dir / b.header.settings});
+  check_outputs_apart({{"--junit", junit}}, inputs);
+}
+
+// --check or --update of every file given. Each file, its case set and settings are read
+// (and --junit checked against them all) before the first run, so that a bad file or an
+// overlap is refused at once and not after the runs of the files before it.
+int check_or_update(const BaselineFlags& flags) {
+  const bool update = !flags.update.empty();
+  std::vector<StoredBaseline> baselines;
+  for (const std::string& file : update ? flags.update : flags.check) {
+    baselines.push_back(load_stored(file));
+    check_junit_apart(flags.junit, baselines.back());
+  }
+  bool all_passed = true;
+  std::vector<Verdict> verdicts;
+  for (StoredBaseline& b : baselines) {
+    const std::optional<std::vector<Row>> rows = run(b.source, flags.threads);
+    if (!rows) return interrupted();
+    const std::vector<Comparison> table = compare_rows(*rows, b.stored.rows, Match::same_setting);
+    std::cout << b.file << ":\n" << comparison_table(table, Match::same_setting);
+    bool passed = true;
+    for (const Comparison& c : table) {
+      passed = passed && c.passed(Match::same_setting);
+      verdicts.push_back({b.file, label_of(c), failure_of(c, Match::same_setting, false)});
+    }
+    if (update) {
+      b.header.notes = provenance();
+      store(b.file, b.header, *rows);
+      std::cout << b.file << ": stored again (" << rows->size() << " rows)" << (passed ? "" : "; it had changed")
+                << '\n';
+    }
+    all_passed = all_passed && passed;
+  }
+  write_junit(flags.junit, "baseline --check", verdicts);
+  return all_passed || update ? 0 : kCheckFailed;
+}
+
 }  // namespace
 
 CLI::App* add_baseline_command(CLI::App& app, BaselineFlags& flags) {
@@ -155,38 +223,7 @@ int baseline_command(const CLI::App& command, const BaselineFlags& flags) {
     return 0;
   }
 
-  const bool update = !flags.update.empty();
-  bool all_passed = true;
-  std::vector<Verdict> verdicts;
-  for (const std::string& file : update ? flags.update : flags.check) {
-    const RowFile stored = read_rows(file);
-    BaselineHeader header;
-    try {
-      header = parse_header(stored.comments, file);
-    } catch (const RowReadError& e) {
-      throw BadInput(e.what());
-    }
-    const fs::path dir = fs::absolute(file).parent_path();
-    const Source s = load_source(dir / header.cases, header.settings.empty() ? fs::path() : dir / header.settings);
-    const std::optional<std::vector<Row>> rows = run(s, flags.threads);
-    if (!rows) return interrupted();
-    const std::vector<Comparison> table = compare_rows(*rows, stored.rows, Match::same_setting);
-    std::cout << file << ":\n" << comparison_table(table, Match::same_setting);
-    bool passed = true;
-    for (const Comparison& c : table) {
-      passed = passed && c.passed(Match::same_setting);
-      verdicts.push_back({file, label_of(c), failure_of(c, Match::same_setting, false)});
-    }
-    if (update) {
-      header.notes = provenance();
-      store(file, header, *rows);
-      std::cout << file << ": stored again (" << rows->size() << " rows)" << (passed ? "" : "; it had changed")
-                << '\n';
-    }
-    all_passed = all_passed && passed;
-  }
-  write_junit(flags.junit, "baseline --check", verdicts);
-  return all_passed || update ? 0 : kCheckFailed;
+  return check_or_update(flags);
 }
 
 CLI::App* add_compare_command(CLI::App& app, CompareFlags& flags) {
@@ -217,6 +254,7 @@ int compare_command(const CLI::App& command, const CompareFlags& flags) {
   if (given && !(flags.tolerance >= 0.0 && std::isfinite(flags.tolerance)))
     throw BadInput("--tolerance: must be finite and >= 0");
   check_junit_target(flags.junit, true);
+  check_outputs_apart({{"--junit", flags.junit}}, {{"ROWS", flags.rows}, {"--baseline", flags.baseline}});
   RowFile rows;
   try {
     rows = read_minimal_csv_file(flags.rows);

@@ -155,9 +155,8 @@ int run_command(const CLI::App& command, RunFlags flags) {
   if (k_contact)
     apply_k_contact(chosen.input, flags.solver_flags.solver, flags.solver_flags.settings, flags.k_contact,
                     command.count("--stiffness") > 0);
-  const SolverInfo& solver = checked_solver(flags.solver_flags, [&](std::string_view flag) {
-    return command.count(std::string(flag)) > 0 || (k_contact && flag == "--stiffness");
-  });
+  const SolverInfo& solver = checked_solver_k_contact(
+      flags.solver_flags, [&](std::string_view flag) { return command.count(std::string(flag)) > 0; }, k_contact);
   check_step_bound(chosen.input, flags.solver_flags.settings);
   if (history) {
     std::vector<NamedFile> inputs = record_files(std::span<const Case>(&chosen.input, 1));

@@ -123,7 +123,9 @@ int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const 
     if (!processes.leader()) return;
     std::vector<NamedFile> inputs = record_files(set.cases);
     inputs.push_back({"CASESET", flags.case_set});
-    check_outputs_apart({{"--out", flags.out}}, inputs, partial, lock_file_name(flags.out, "spectrum"));
+    // --junit is an output like --out: never an input, the partial file or --out itself.
+    check_outputs_apart({{"--out", flags.out}, {"--junit", flags.junit}}, inputs, partial,
+                        lock_file_name(flags.out, "spectrum"));
     if (!flags.out.empty()) check_sweep_output(flags.out, "--out");
     check_junit_target(flags.junit, flags.check);
     lock = take_output_lock(flags.out, "spectrum", partial);

@@ -114,8 +114,8 @@ Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_vi
     std::vector<NamedFile> inputs = record_files(study.set.cases);
     if (!flags.case_set.empty()) inputs.push_back({"CASESET", flags.case_set});
     inputs.push_back({"--settings", flags.settings});
-    check_outputs_apart({{"--out", flags.out}, {"--points", flags.points}}, inputs, study.partial,
-                        lock_file_name(flags.out, name));
+    check_outputs_apart({{"--out", flags.out}, {"--points", flags.points}, {"--junit", flags.junit}}, inputs,
+                        study.partial, lock_file_name(flags.out, name));
     if (!flags.out.empty()) check_sweep_output(flags.out, "--out");
     if (!flags.points.empty()) check_sweep_output(flags.points, "--points");
     check_junit_target(flags.junit, flags.check);

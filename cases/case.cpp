@@ -143,6 +143,18 @@ std::optional<std::string> check_yielding(const Case& c) {
   return std::nullopt;
 }
 
+}  // namespace
+
+std::optional<std::string> check_scale(const Case& c) {
+  if (!positive(c.a_p)) return "a_p: must be finite and > 0";
+  if (!within(c.a_p, kMinAp, kMaxAp)) return "a_p: must be in [" + text(kMinAp) + ", " + text(kMaxAp) + "]";
+  if (!positive(c.w_p)) return "w_p: must be finite and > 0";
+  if (!within(c.w_p, kMinWp, kMaxWp)) return "w_p: must be in [" + text(kMinWp) + ", " + text(kMaxWp) + "]";
+  return std::nullopt;
+}
+
+namespace {
+
 // Each value alone: the spec's rules (cases/README.md), then the bounds of the domain.
 //   pi3 <= 1e6: a gap is delta + u_R - u_L, rounded to about 1e-16 delta; the reference
 //     counts a gap below 1e-10 a_p / w_p^2 as closed, and at pi3 = 1e6 the rounding
@@ -184,10 +196,7 @@ std::optional<std::string> check_values(const Case& c) {
   if (!std::isfinite(c.xi) || c.xi < 0.0 || c.xi >= 1.0) return "xi: damping ratio must be in [0, 1)";
   if (!positive(c.n_free)) return "n_free: must be finite and > 0";
   if (c.n_free > kMaxNFree) return "n_free: must be <= " + text(kMaxNFree);
-  if (!positive(c.a_p)) return "a_p: must be finite and > 0";
-  if (!within(c.a_p, kMinAp, kMaxAp)) return "a_p: must be in [" + text(kMinAp) + ", " + text(kMaxAp) + "]";
-  if (!positive(c.w_p)) return "w_p: must be finite and > 0";
-  if (!within(c.w_p, kMinWp, kMaxWp)) return "w_p: must be in [" + text(kMinWp) + ", " + text(kMaxWp) + "]";
+  if (auto bad = check_scale(c)) return bad;
   if (auto bad = check_yielding(c)) return bad;
   return check_load(c);
 }

@@ -141,6 +141,11 @@ inline bool paper_pulse(PulseShape p) { return p == PulseShape::sine || p == Pul
 // How long the load lasts, in periods T_p = 2 pi / w_p (an upper bound for makris-c).
 double load_periods(const Case& c);
 
+// The pulse scale alone: a_p in [kMinAp, kMaxAp], w_p in [kMinWp, kMaxWp] ("a_p: reason").
+// validate() checks it too; a case in physical units checks it first, since its Pi terms are
+// computed from a_p and w_p (cases/physical.hpp).
+std::optional<std::string> check_scale(const Case& c);
+
 // Checks every value the case uses, alone and in the contrasts and durations they imply.
 // Returns "field: reason" for the first bad one; the reason names the bound.
 std::optional<std::string> validate(const Case& c);

@@ -409,6 +409,7 @@ class Reader {
         read_numbers(node, s);
         if (number_field(*k) && number_field(*k)->integer) require_whole_numbers(s);
         if (const CaseAlias* alias = alias_of(*k)) convert_alias(*alias, s);
+        if (const PhysicalField* physical = physical_of(*k)) refuse_nan(*physical, s);
       }
       else if (*k == kSymmetric) {
         const auto* b = node.as_boolean();
@@ -447,6 +448,17 @@ class Reader {
       for (std::size_t i = 0; i < arr->size(); ++i) one(*arr->get(i), s.field + "[" + std::to_string(i) + "]");
     } else {
       one(node, s.field);
+    }
+  }
+
+  // NaN is a physical field's "not given" (cases/physical.hpp): `uy0 = nan` ran elastic and
+  // `m0 = nan` as 1 kg, as if the key were not there. Refused at its value.
+  void refuse_nan(const PhysicalField& physical, const Entry& s) const {
+    for (std::size_t i = 0; i < s.values.size(); ++i) {
+      if (!std::isnan(s.values[i])) continue;
+      std::string field = s.field;
+      if (s.shape == Entry::Shape::list) field += "[" + std::to_string(i) + "]";
+      fail(s.value_lines[i], field, physical_rule(physical) + " (got nan)");
     }
   }
 
@@ -829,7 +841,7 @@ class Reader {
     }
     if (e.physical) to_pi_terms(c, eff, e.axes, at, e.symmetric);
     if (check)
-      if (auto bad = validate(c)) report_invalid(*bad, eff, e.axes, at, e.symmetric);
+      if (auto bad = validate(c)) report_invalid(physical_reason(c, *bad), eff, e.axes, at, e.symmetric);
     return c;
   }
 

@@ -1,5 +1,7 @@
 #include "cases/physical.hpp"
 
+#include <algorithm>
+#include <cstdio>
 #include <numbers>
 
 #include "cases/record.hpp"
@@ -13,6 +15,13 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 bool given(double x) { return !std::isnan(x); }
 
+// A value or a bound as a message shows it: "1e-30", "inf", "6.28319e+308".
+std::string text(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", x);
+  return buffer;
+}
+
 }  // namespace
 
 bool used_by(const PhysicalField& field, Scene scene) {
@@ -23,6 +32,22 @@ bool physical(const Case& c) {
   for (const PhysicalField& f : kPhysicalFields)
     if (given(c.physical.*f.member)) return true;
   return false;
+}
+
+bool physical_value_ok(const PhysicalField& field, double x) {
+  // The gap may be 0 (bodies touching at rest, Pi3 = 0); periods and masses may not; a
+  // yield displacement may be inf (elastic), as its Pi term.
+  if (field.pi.starts_with("pi_y")) return x > 0.0;
+  if (field.name == "gap") return std::isfinite(x) && x >= 0.0;
+  if (field.name.starts_with("m")) return x >= kMinMass && x <= kMaxMass;
+  return std::isfinite(x) && x > 0.0;
+}
+
+std::string physical_rule(const PhysicalField& field) {
+  if (field.pi.starts_with("pi_y")) return "must be > 0 (inf: elastic)";
+  if (field.name == "gap") return "must be finite and >= 0";
+  if (field.name.starts_with("m")) return "must be in [" + text(kMinMass) + ", " + text(kMaxMass) + "] kg";
+  return "must be finite and > 0";
 }
 
 std::optional<std::string> apply_physical(Case& c) {
@@ -38,13 +63,9 @@ std::optional<std::string> apply_physical(Case& c) {
       if (needed) return std::string(f.name) + ": required by a case in physical units";
       continue;
     }
-    // The gap may be 0 (bodies touching at rest, Pi3 = 0); periods and masses may not; a
-    // yield displacement may be inf (elastic), as its Pi term.
-    const bool yield = !f.pi.empty() && f.pi.starts_with("pi_y");
-    if (yield ? !(x > 0.0) : (!std::isfinite(x) || x < 0.0 || (x == 0.0 && f.name != "gap")))
-      return std::string(f.name) + (yield ? ": must be > 0 (inf: elastic)"
-                                   : f.name == "gap" ? ": must be finite and >= 0" : ": must be finite and > 0");
+    if (!physical_value_ok(f, x)) return std::string(f.name) + ": " + physical_rule(f);
   }
+  if (auto bad = check_scale(c)) return bad;
   const double m0 = given(p.m0) ? p.m0 : 1.0;
   const double w0 = kTwoPi / p.t0;
   c.pi2 = w0 / c.w_p;
@@ -63,6 +84,36 @@ std::optional<std::string> apply_physical(Case& c) {
                                  {p.uy, &Case::pi_y}})
     if (given(uy)) c.*pi_y = uy * to_pi;
   return std::nullopt;
+}
+
+namespace {
+
+// How a Pi term follows from the physical fields (cases/README.md, "Physical units").
+std::string_view formula(std::string_view pi) {
+  if (pi == "pi2") return "2 pi / (t0 w_p)";
+  if (pi == "pi3") return "gap w_p^2 / a_p";
+  if (pi == "pi5") return "t1 / t0";
+  if (pi == "pi6") return "m0 / m1";
+  if (pi == "pi7") return "t2 / t0";
+  if (pi == "pi8") return "m0 / m2";
+  return "u_y w_p^2 / a_p";  // the yield displacements
+}
+
+}  // namespace
+
+std::string physical_reason(const Case& c, const std::string& field_reason) {
+  const std::size_t colon = field_reason.find(':');
+  if (colon == std::string::npos || !physical(c)) return field_reason;
+  const std::string_view pi = std::string_view(field_reason).substr(0, colon);
+  for (const PhysicalField& f : kPhysicalFields) {
+    if (f.pi != pi || !used_by(f, c.scene)) continue;
+    const auto term = std::find_if(kCaseFields.begin(), kCaseFields.end(),
+                                   [&](const CaseField& cf) { return cf.name == pi; });
+    const std::string value = term == kCaseFields.end() ? std::string("?") : text(term->get(c));
+    return std::string(f.name) + ": gives " + std::string(pi) + " = " + std::string(formula(pi)) + " = " + value +
+           " (" + field_reason + ")";
+  }
+  return field_reason;
 }
 
 double default_w_p(const Case& c) {

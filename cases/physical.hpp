@@ -46,6 +46,26 @@ inline constexpr std::array<PhysicalField, 11> kPhysicalFields = {{
     {"uy", &Physical::uy, "pi_y", FieldUse::chain, "Physical units: yield displacement of every chain body (m), instead of --pi-y"},
 }};
 
+// The masses m0, m1, m2 (kg) lie in [kMinMass, kMaxMass]. A run is solved with m0 = 1 (it
+// cancels from Pi1), and a contact force is reported in N as the run's force times m0: at
+// m0 = 1e308 that overflowed, and a compliant run said ok with contact_force_max null
+// (issue 46). Within 1e-30..1e30 kg (a grain of sand to two hundred thousand Earths) a force
+// stays within 1e30 of the run's own, itself bounded by the valid domain (case.hpp) far below
+// overflow; and a physical stiffness k / (m0 w0^2) likewise.
+inline constexpr double kMinMass = 1e-30, kMaxMass = 1e30;
+
+// Whether x is a value the field takes, and the reason it is not ("must be finite and > 0").
+// NaN is no value: it is Physical's "not given", so where a field is read (a flag, a case-set
+// key, a keyword) a NaN given must be refused with physical_rule, as --pi-y0 nan is.
+bool physical_value_ok(const PhysicalField& field, double x);
+std::string physical_rule(const PhysicalField& field);
+
+// validate()'s "field: reason" for a case in physical units, where the field is a Pi term
+// that a physical field gave (pi2 from t0, pi3 from gap, pi5 from t1, ...): the same reason
+// under the physical field the user gave, with the Pi term's value ("t0: gives pi2 = 2 pi /
+// (t0 w_p) = inf (pi2: must be finite and > 0)"). Any other message is returned as it is.
+std::string physical_reason(const Case& c, const std::string& field_reason);
+
 // Whether a scene has the body a physical field describes.
 bool used_by(const PhysicalField& field, Scene scene);
 
@@ -55,8 +75,9 @@ bool physical(const Case& c);
 // The Pi terms of c from c.physical and c's pulse scale (a_p, w_p, final), for the fields
 // its scene uses: Pi2 = w0 / w_p (w0 = 2 pi / t0), Pi3 = gap w_p^2 / a_p, Pi5 = w0 / w1,
 // Pi6 = m0 / m1, Pi7 = w0 / w2, Pi8 = m0 / m2, Pi_y = u_y w_p^2 / a_p (uy0 .. uy). Returns "field: reason" for a value that is
-// missing (t0, gap; t1 where the scene has body 1, t2 where it has body 2), not finite or
-// not > 0.
+// missing (t0, gap; t1 where the scene has body 1, t2 where it has body 2) or not one the
+// field takes (physical_rule), or for an a_p or w_p outside the domain (check_scale: the Pi
+// terms are computed from them, so a bad one is named as itself, not as the gap).
 std::optional<std::string> apply_physical(Case& c);
 
 // Where a physical case's unit of frequency w_p comes from when neither w_p nor tp is

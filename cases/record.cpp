@@ -175,22 +175,35 @@ const Unit* known_unit(std::string_view word) {
   return nullptr;
 }
 
-// The unit a header line names, as written: the word after "UNITS" or "UNIT" (past "OF",
-// "IN", "=", ":"), or after "IN" where that word is a unit ("ACCELERATION IN CM/S/S"), so
-// "IN UNITS OF GAL" names gal and no word merely containing a G names g. "" when none.
+// Words a header puts between "UNITS" and the unit itself ("UNITS OF G", "UNITS: GAL",
+// "The units are (g)", "units in cm/s2").
+bool linking_word(std::string_view field) {
+  const std::string word = unit_word(field);
+  return word.empty() || word == "of" || word == "in" || word == "are" || word == "is" || word == "=";
+}
+
+// Whether a word reads as a unit of acceleration: one poundbench knows, or a ratio ("ft/s2").
+bool unit_like(std::string_view field) {
+  const std::string word = unit_word(field);
+  return known_unit(word) || word.find('/') != std::string::npos;
+}
+
+// The unit a header line names, as written: after "UNITS" or "UNIT" the first word that
+// reads as a unit ("UNITS OF G", "The units are (g)": OpenSees' El Centro file), else the
+// first word past the linking words (of, in, are, is, "=", ":"), which the caller refuses as
+// a unit it does not know; or the word after "IN" where that word is a unit ("ACCELERATION
+// IN CM/S/S"), so "IN UNITS OF GAL" names gal and no word merely containing a G names g.
+// "" when none.
 std::string_view named_unit(std::string_view line) {
   const std::vector<std::string_view> f = fields(line);
   for (std::size_t i = 0; i < f.size(); ++i) {
     const std::string word = unit_word(f[i]);  // "(UNITS", "UNITS:" are "units"
     if (word == "units" || word == "unit") {
-      std::size_t j = i + 1;
-      while (j < f.size() && (unit_word(f[j]) == "of" || unit_word(f[j]) == "in" || unit_word(f[j]).empty() ||
-                              f[j] == "="))
-        ++j;
-      if (j < f.size()) return f[j];
-    } else if (word == "in" && i + 1 < f.size()) {
-      const std::string next = unit_word(f[i + 1]);
-      if (known_unit(next) || next.find('/') != std::string::npos) return f[i + 1];
+      const auto rest = f.begin() + static_cast<std::ptrdiff_t>(i) + 1;
+      if (const auto unit = std::find_if(rest, f.end(), unit_like); unit != f.end()) return *unit;
+      if (const auto other = std::find_if_not(rest, f.end(), linking_word); other != f.end()) return *other;
+    } else if (word == "in" && i + 1 < f.size() && unit_like(f[i + 1])) {
+      return f[i + 1];
     }
   }
   return {};

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <string_view>
 
@@ -50,6 +51,22 @@ ChosenCase case_from_file(const GivenFlag& given, const CaseFlags& flags) {
   const Case& c = set.cases[point];
   if (auto bad = validate(c)) throw BadInput(file + ": point " + std::to_string(point) + ": " + *bad);
   return {c, point, file};
+}
+
+// A message about a field the user gave through its alias (--tp 1e-300 gives w_p = 6.3e300,
+// out of the domain) names the alias, with the value it gave; any other message as it is.
+std::string as_given(const std::string& message, const Case& c, const GivenFlag& given) {
+  for (const CaseAlias& alias : kCaseAliases) {
+    const std::string field = flag_of(alias.field), flag = flag_of(alias.name);
+    if (!message.starts_with(field + ":") || !given(flag) || given(field)) continue;
+    const auto f = std::find_if(kCaseFields.begin(), kCaseFields.end(),
+                                [&](const CaseField& cf) { return cf.name == alias.field; });
+    char value[32];
+    std::snprintf(value, sizeof value, "%.6g", f == kCaseFields.end() ? std::nan("") : f->get(c));
+    return flag + ": gives " + std::string(alias.field) + " = " + value + " (" + std::string(alias.field) +
+           message.substr(field.size()) + ")";
+  }
+  return message;
 }
 
 ChosenCase case_from_flags(const GivenFlag& given, const CaseFlags& flags) {
@@ -122,7 +139,10 @@ ChosenCase case_from_flags(const GivenFlag& given, const CaseFlags& flags) {
     for (const PhysicalField& field : kPhysicalFields) {
       if (!given(flag_of(field.name))) continue;
       if (!used_by(field, c.scene)) throw BadInput(flag_of(field.name) + ": not used by scene " + scene);
-      c.physical.*field.member = flags.numbers.physical.*field.member;
+      // NaN is Physical's "not given": --uy0 nan ran elastic, as if the flag were not there.
+      const double x = flags.numbers.physical.*field.member;
+      if (std::isnan(x)) throw BadInput(flag_of(field.name) + ": " + physical_rule(field) + " (got nan)");
+      c.physical.*field.member = x;
     }
     // The unit of the Pi terms: a pulse's own a_p and period; a record's peak and mean period
     // unless given (any unit gives the same physical case).
@@ -135,9 +155,10 @@ ChosenCase case_from_flags(const GivenFlag& given, const CaseFlags& flags) {
       if (!std::isfinite(c.w_p))
         throw BadInput("--tp: required: " + c.record + " has no mean period (no Fourier amplitude in 0.25-20 Hz)");
     }
-    if (auto bad = apply_physical(c)) throw BadInput(case_flag_message(*bad));
+    if (auto bad = apply_physical(c)) throw BadInput(as_given(case_flag_message(*bad), c, given));
   }
-  if (auto bad = validate(c)) throw BadInput(case_flag_message(*bad));
+  // A Pi term out of the domain is named by the physical flag that gave it (--t0, not --pi2).
+  if (auto bad = validate(c)) throw BadInput(as_given(case_flag_message(physical_reason(c, *bad)), c, given));
   return {c, 0, {}};
 }
 

@@ -652,8 +652,7 @@ py::dict run(const py::kwargs& kwargs) {
     if (k_contact || !info || !same_objects(*last_key, k.solver_key)) {
       const app::GivenSolverFlag given = k.given_flag();
       last_solver = nullptr;
-      info = &app::checked_solver(
-          k.solver_flags, [&](std::string_view flag) { return given(flag) || (k_contact && flag == "--stiffness"); });
+      info = &app::checked_solver_k_contact(k.solver_flags, given, k_contact);
       if (!k_contact) {
         *last_key = k.solver_key;
         last_solver = info;

@@ -131,7 +131,9 @@ def section(rows, out_dir):
             "Pi5 = 2, as in its Figs 4, 5 and 7), both directivities.", "",
             "Per Pi2 the median and the 16th and 84th percentiles of Pi1 over the records (the band an engineer "
             "reads as the median plus and minus one standard deviation of a lognormal spread), each earthquake's "
-            f"median in colour (values in `{STATS}`; below, every other Pi2 of the spectrum).", "",
+            f"median in colour (values in `{STATS}`; below, every other Pi2 of the spectrum). Each percentile is "
+            "by linear interpolation between order statistics: the p-th of n sorted values is at rank "
+            "(n - 1) p / 100 counted from 0 (numpy's default; `study.percentile`).", "",
             "| curve | Pi2 | median Pi1 | 16th–84th | median no contact |", "|---|---:|---:|---|---:|"]
     for c, points in stats.items():
         for p in points[::2]:

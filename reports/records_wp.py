@@ -39,6 +39,11 @@ def needed(rows, key, target):
     return least, steps_of(rows[-1]) if rows else None
 
 
+ESTIMATOR = ("Percentiles (the median, the 95th) are over the points of a family, by linear interpolation "
+             "between order statistics: the p-th of n sorted errors is at rank (n - 1) p / 100 counted from 0 "
+             "(numpy's default, `studies/stats.cpp`).")
+
+
 def pct(x):
     return f"{100 * x:.2g} %" if x == x else "–"  # NaN: no run of the setting finished
 
@@ -54,6 +59,8 @@ def lines(summary, intro=None, scope_of=lambda r: "pair records"):
                       "of each earthquake of `cases/records/real/` on a flexible and a stiff pair at Pi2 = 0.5 and 2, "
                       "each record's Pi terms on its own peak and mean period; errors relative to the reference "
                       "solved 100x tighter."]
+    # The estimator of every percentile below (studies/stats.cpp's, which wrote err_p95).
+    intro = [*intro, "", ESTIMATOR]
     text = [*intro, "",
             "Each time-stepper at its default setting (its default variant, N = 64 steps per shortest period; "
             "`–`: no run finished):", "",

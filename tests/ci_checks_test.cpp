@@ -163,6 +163,46 @@ TEST_F(Cli, BaselinesNamePoundbenchsCommitAndTheirCheckPrintsSettingsWhole) {
       << xml;  // the reference and the two settings
 }
 
+// Issue 46 (1): --junit was checked only for being writable, so `compare r.csv --baseline
+// b.csv --junit r.csv` replaced the rows (or the stored baseline), `spectrum s.toml --check
+// --junit s.toml` the case set, and `--junit out.csv --out out.csv` the sweep's output, all
+// with exit 0. --junit obeys the rule of every output: never an input, never another output.
+TEST_F(Cli, AJunitFileThatIsAnInputOrAnotherOutputIsRefusedBeforeAnythingRuns) {
+  write("tiny.toml", kTinySet);
+  write("list.toml", "name = \"l\"\n[[run]]\nsolver = \"moreau-jean\"\nsteps = 16\n");
+  ASSERT_EQ(run("baseline tiny.toml --out base.csv").exit_code, 0);
+  write("mine.csv", six_digit_rows(read_text(file("base.csv"))));
+  const std::string base = read_text(file("base.csv")), mine = read_text(file("mine.csv"));
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"compare mine.csv --baseline base.csv --tolerance 1e-5 --junit mine.csv",
+       "poundbench: ROWS: mine.csv: would be overwritten by --junit mine.csv (an output must not be an input)\n"},
+      {"compare mine.csv --baseline base.csv --tolerance 1e-5 --junit ./base.csv",
+       "poundbench: --baseline: base.csv: would be overwritten by --junit ./base.csv"},
+      {"spectrum tiny.toml --check --junit tiny.toml", "poundbench: CASESET: tiny.toml: would be overwritten by --junit"},
+      {"spectrum tiny.toml --check --out out.csv --junit out.csv", "poundbench: --out: out.csv: is also --junit out.csv"},
+      {"spectrum tiny.toml --check --out out.csv --junit out.csv.partial",
+       "poundbench: --junit: out.csv.partial: is also the partial file"},
+      {"workprecision tiny.toml --settings list.toml --check --junit list.toml",
+       "poundbench: --settings: list.toml: would be overwritten by --junit"},
+      {"stress tiny.toml --settings list.toml --check --out s.csv --points p.csv --junit p.csv",
+       "poundbench: --points: p.csv: is also --junit p.csv"},
+      {"baseline --check base.csv --junit base.csv", "poundbench: --check: base.csv: would be overwritten by --junit"},
+      {"baseline --check base.csv --junit tiny.toml",
+       "poundbench: the baseline's case set: " + file("tiny.toml").string() + ": would be overwritten by --junit"},
+  };
+  for (const auto& [args, what] : cases) {
+    const Outcome o = run(args);
+    EXPECT_EQ(o.exit_code, 2) << args << "\n" << o.err;
+    EXPECT_EQ(line_count(o.err), 1u) << args << "\n" << o.err;
+    EXPECT_TRUE(o.err.starts_with(what)) << args << "\n" << o.err;
+  }
+  EXPECT_EQ(read_text(file("tiny.toml")), kTinySet);
+  EXPECT_EQ(read_text(file("base.csv")), base);
+  EXPECT_EQ(read_text(file("mine.csv")), mine);
+  EXPECT_NE(read_text(file("list.toml")).find("[[run]]"), std::string::npos);
+  EXPECT_EQ(files(), (std::set<std::string>{"base.csv", "list.toml", "mine.csv", "tiny.toml"}));
+}
+
 // A flag one or two edits from a real one is named; one further from every flag is not.
 TEST_F(Cli, AMistypedFlagIsAnsweredWithTheNearestFlag) {
   write("tiny.toml", kTinySet);

@@ -170,7 +170,107 @@ TEST_F(PhysicalCli, PhysicalUnitsRefuseMixingAndMissingValues) {
           " --solver compliant --k-contact 1e9", "--k-contact: needs a case in physical units");
   refuses(kBuildings + " --pulse sine --a-p 3 --tp 1 --solver compliant --k-contact 1e9 --stiffness 10",
           "--k-contact: not with --stiffness");
-  refuses(kBuildings + " --pulse sine --a-p 3 --tp 1 --k-contact 1e9", "--stiffness");  // the reference has none
+  // The reference has no contact stiffness: the flag given is named (issue 46: it said --stiffness).
+  refuses(kBuildings + " --pulse sine --a-p 3 --tp 1 --k-contact 1e9", "poundbench: --k-contact: gives --stiffness K = ");
+  refuses(kBuildings + " --pulse sine --a-p 3 --tp 1 --k-contact 1e9 --solver moreau-jean",
+          "poundbench: --k-contact: not used by moreau-jean");
+}
+
+// Issue 46 (8): NaN is a physical field's "not given", and `--uy0 nan` ran elastic, `--m0 nan`
+// as 1 kg, as if the flag were not there (while --pi-y0 nan was refused). A value outside its
+// field's domain is refused under the flag given.
+TEST_F(PhysicalCli, ANanOrInfinitePhysicalValueIsRefusedNamingItsFlag) {
+  const std::string pulse = " --pulse sine --a-p 3 --tp 1";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {" --uy0 nan", "poundbench: --uy0: must be > 0 (inf: elastic) (got nan)\n"},
+      {" --uy1 -nan", "poundbench: --uy1: must be > 0 (inf: elastic) (got nan)\n"},
+      {" --m0 nan", "poundbench: --m0: must be in [1e-30, 1e+30] kg (got nan)\n"},
+      {" --m1 NaN", "poundbench: --m1: must be in [1e-30, 1e+30] kg (got nan)\n"},
+      {" --m0 inf", "poundbench: --m0: must be in [1e-30, 1e+30] kg\n"},
+      {" --m1 1e31", "poundbench: --m1: must be in [1e-30, 1e+30] kg\n"},
+  };
+  for (const auto& [extra, says] : cases) {
+    const Outcome o = run("run" + kBuildings + pulse + extra + " --json");
+    EXPECT_EQ(o.exit_code, 2) << extra << "\n" << o.out;
+    EXPECT_EQ(o.err, says) << extra;
+  }
+  for (const std::string flag : {"--t0", "--t1", "--gap"}) {
+    std::string args = " --scene pair --directivity normal --eps 0.6" + pulse;
+    for (const std::string other : {"--t0", "--t1", "--gap"}) args += " " + other + (other == flag ? " nan" : " 0.5");
+    const Outcome o = run("run" + args);
+    EXPECT_EQ(o.exit_code, 2) << flag << "\n" << o.out;
+    EXPECT_TRUE(o.err.starts_with("poundbench: " + flag + ": must be finite and ")) << o.err;
+  }
+  // inf is a yield displacement's "elastic", as pi_y's: the elastic case's Pi1 exactly.
+  const nlohmann::json elastic = run_json(kBuildings + pulse), inf = run_json(kBuildings + pulse + " --uy0 inf");
+  EXPECT_EQ(num(inf, "pi1"), num(elastic, "pi1"));
+}
+
+// Issue 46 (8): a value that makes a Pi term leave the domain was named by the Pi flag
+// (`--t0 1e-308` said --pi2, `--gap 1e308` --pi3, `--a-p 1e-300` blamed the gap): it is named
+// by the flag the user gave, with the Pi term it gave.
+TEST_F(PhysicalCli, AValueThatTakesAPiTermOutOfTheDomainIsNamedByTheFlagGiven) {
+  const std::string row3 = " --scene row3 --directivity normal --eps 0.6 --pulse sine";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {" --t0 1e-308 --t1 1 --t2 1 --gap 0.01 --a-p 3 --tp 1",
+       "poundbench: --t0: gives pi2 = 2 pi / (t0 w_p) = inf (pi2: must be finite and > 0)"},
+      {" --t0 0.5 --t1 1 --t2 1 --gap 1e308 --a-p 3 --tp 1",
+       "poundbench: --gap: gives pi3 = gap w_p^2 / a_p = inf (pi3: gap must be finite and >= 0)"},
+      {" --t0 0.5 --t1 1 --t2 1 --gap 0.01 --a-p 1e-300 --tp 1", "poundbench: --a-p: must be in [1e-12, 1e12]"},
+      {" --t0 0.5 --t1 1 --t2 1 --gap 0.01 --a-p 3 --tp 1e-300", "poundbench: --tp: gives w_p = 6.28319e+300 (w_p: "},
+      {" --t0 0.5 --t1 5e-324 --t2 1 --gap 0.01 --a-p 3 --tp 1", "poundbench: --t1: gives pi5 = t1 / t0 = "},
+      {" --t0 0.5 --t1 1 --t2 1e5 --gap 0.01 --a-p 3 --tp 1", "poundbench: --t2: gives pi7 = t2 / t0 = 200000 (pi7: "},
+      {" --t0 0.5 --t1 1 --t2 1 --m0 1 --m2 1e-20 --gap 0.01 --a-p 3 --tp 1", "poundbench: --m2: gives pi8 = m0 / m2"},
+      {" --t0 0.5 --t1 1 --t2 1 --uy0 1e-300 --gap 0.01 --a-p 3 --tp 1", "poundbench: --uy0: gives pi_y0 = "},
+  };
+  for (const auto& [args, says] : cases) {
+    const Outcome o = run("run" + row3 + args);
+    EXPECT_EQ(o.exit_code, 2) << args << "\n" << o.out;
+    EXPECT_EQ(line_count(o.err), 1u) << o.err;
+    EXPECT_TRUE(o.err.starts_with(says)) << args << "\n" << o.err;
+    EXPECT_EQ(o.err.find(": --pi"), std::string::npos) << o.err;
+  }
+  // The same in Pi terms names the Pi flag and --w-p itself.
+  const Outcome pi = run("run" + row3 + " --pi2 1 --pi3 0.5 --pi5 1 --pi6 1 --pi7 1 --pi8 1 --w-p 1e300");
+  EXPECT_TRUE(pi.err.starts_with("poundbench: --w-p: must be in")) << pi.err;
+}
+
+// Issue 46 (8): `--m0 1e308` through the compliant solver ended ok with contact_force_max null:
+// the force in N (the run's, times m0) overflowed. The masses have a domain; within it the
+// force is a number.
+TEST_F(PhysicalCli, AMassBeyondTheDomainIsRefusedAndACompliantRunReportsItsForce) {
+  const std::string args = kBuildings + " --pulse sine --a-p 3 --tp 1 --solver compliant";
+  const Outcome o = run("run" + args + " --m0 1e308 --json");
+  EXPECT_EQ(o.exit_code, 2) << o.out;
+  EXPECT_EQ(o.err, "poundbench: --m0: must be in [1e-30, 1e+30] kg\n");
+  const nlohmann::json unit = run_json(args), heavy = run_json(args + " --m0 1e30 --m1 1e30");
+  ASSERT_GT(num(unit, "impacts"), 0);
+  EXPECT_GT(num(unit, "contact_force_max"), 0.0);
+  EXPECT_EQ(heavy.value("status", ""), "ok");
+  EXPECT_NEAR(num(heavy, "contact_force_max"), 1e30 * num(unit, "contact_force_max"),
+              1e-9 * 1e30 * num(unit, "contact_force_max"));
+}
+
+// Issue 46 (8): a case set's `uy0 = nan` and `m0 = nan` ran as if not given, and `t0 = 1e-308`
+// was refused as pi2 with no line. Each is refused at its value's line, under its key.
+TEST(PhysicalCaseSets, ABadPhysicalValueIsRefusedAtItsLineUnderItsKey) {
+  const auto error = [](const std::string& toml) {
+    try {
+      parse_case_set(toml, "bad.toml");
+    } catch (const CaseSetError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string family = "name = \"b\"\n[[family]]\nname = \"f\"\nscene = \"pair\"\npulse = \"sine\"\n"
+                             "directivity = \"normal\"\neps = 0.5\na_p = 1\ntp = 1\nt1 = 1\ngap = 0.1\n";  // 11 lines
+  EXPECT_EQ(error(family + "t0 = 1\nuy0 = nan\n"), "bad.toml:13: family[0].uy0: must be > 0 (inf: elastic) (got nan)");
+  EXPECT_EQ(error(family + "t0 = 1\nm0 = [1, nan]\n"), "bad.toml:13: family[0].m0[1]: must be in [1e-30, 1e+30] kg (got nan)");
+  EXPECT_EQ(error(family + "t0 = 1\nm0 = 1e308\n"), "bad.toml:13: family[0].m0: must be in [1e-30, 1e+30] kg (got 1e+308)");
+  EXPECT_EQ(error(family + "t0 = [0.5,\n  1e-308]\n"),
+            "bad.toml:13: family[0].t0[1]: gives pi2 = 2 pi / (t0 w_p) = inf (pi2: must be finite and > 0) (got 1e-308)");
+  const std::string gap = error(family + "t0 = 1\nm1 = 1e-20\n");
+  EXPECT_TRUE(gap.starts_with("bad.toml:13: family[0].m1: gives pi6 = m0 / m1 = 1e+20 (pi6: ")) << gap;
 }
 
 // A case-set family in physical units expands to the Pi terms its values give, its periods

@@ -149,6 +149,34 @@ TEST(RecordSuite, TheUnitIsReadAsAWordAndConvertedOrRefused) {
             "x.at2:3: units: gal here, g on line 2");
 }
 
+// Issue 46 (10): the El Centro file OpenSees ships says "The units are (g)", and the reader
+// took the word after "units", "are", for the unit ('are' is not a unit of acceleration);
+// the same file with a "*** Begin data ***" line before its NPTS line likewise. The unit is
+// the first word after "units" that reads as one; a header naming no known unit is refused.
+TEST(RecordSuite, TheUnitIsFoundPastLinkingWordsAsInOpenSeesElCentroHeader) {
+  const std::string title = "PACIFIC ENGINEERING AND ANALYSIS STRONG-MOTION DATA\n"
+                            " IMPERIAL VALLEY EARTHQUAKE 05/19/40, EL CENTRO, COMPONENT S00E\n";
+  const std::string values = "NPTS=  4, DT= .02 SEC\n  .0063 -.0035\n  .0009 .0015\n";
+  for (const std::string& before_npts : {std::string(), std::string("*** Begin data ***\n")}) {
+    const std::string text = title + "The units are (g)\n" + before_npts + values;
+    const Record r = parse_record(text, "elCentro.at2");
+    ASSERT_EQ(r.a.size(), 4u) << text;
+    EXPECT_DOUBLE_EQ(r.a[0], .0063 * 9.80665) << text;
+    EXPECT_DOUBLE_EQ(r.t[1], .02) << text;
+  }
+  const auto first = [&](const std::string& unit_line) {
+    return parse_record(title + unit_line + "\n" + values, "x.at2").a[0];
+  };
+  EXPECT_DOUBLE_EQ(first("The units are: gal"), .0063 * 0.01);
+  EXPECT_DOUBLE_EQ(first("units are in cm/s2"), .0063 * 0.01);
+  EXPECT_DOUBLE_EQ(first("Unit is m/s/s."), .0063);
+  EXPECT_DOUBLE_EQ(first("units = [g]"), .0063 * 9.80665);
+  // Linking words alone are no unit; what stands after them is read, and refused if unknown.
+  EXPECT_EQ(record_error(title + "The units are furlongs\n" + values, "x.at2"),
+            "x.at2:3: units: 'furlongs' is not a unit of acceleration poundbench reads (g, gal, cm/s^2, m/s^2)");
+  EXPECT_EQ(record_error(title + "The units are (ft/s2)\n" + values, "x.at2").rfind("x.at2:3: units: '(ft/s2)'", 0), 0u);
+}
+
 // A record in gal, cm/s^2 or m/s^2 gives the same Pi1 as in g (issue 34's "done when"),
 // with a_p given in m/s^2: the conversions, not the peak default, make them agree.
 TEST(RecordSuite, ARecordInGalCmPerS2OrMPerS2GivesThePi1OfTheSameRecordInG) {

@@ -20,6 +20,7 @@
 #include "tests/fuzz/callables.hpp"
 #include "tests/fuzz/harness.hpp"
 #include "tests/fuzz/mutator.hpp"
+#include "tests/fuzz/physical_target.hpp"
 #include "tests/fuzz/report_target.hpp"
 #include "tests/fuzz/targets.hpp"
 
@@ -306,6 +307,36 @@ TEST(PythonCallableFuzz, GivesARowPerPointInItsTimeLimitWithOneLine) {
                return problem;
              }),
          "PythonCallableFuzz.*");
+}
+
+// Issue 46's physical-units target (physical_target.hpp): `run` given physical flags with
+// hostile values and missing companions. Each input is one run of a fraction of a second:
+// half the command line's count. Corpus entries (corpus/physical/*.args) are replayed one
+// test each.
+class PhysicalCorpus : public ::testing::TestWithParam<fs::path> {};
+
+TEST_P(PhysicalCorpus, RunsOrRefusesNamingTheFlagGiven) {
+  const std::vector<std::string> args = read_args_file(GetParam());
+  if (auto problem = check_physical(args, budget().cli_limits))
+    ADD_FAILURE() << GetParam() << ": " << *problem << "\n  arguments: " << excerpt(args_text(args), 400);
+}
+
+INSTANTIATE_TEST_SUITE_P(Fuzz, PhysicalCorpus, ::testing::ValuesIn(corpus_files("physical")), cli_test_name);
+
+TEST(PhysicalFlagFuzz, RunsOrRefusesNamingTheFlagGiven) {
+  report(campaign(
+             "physical", std::max<std::size_t>(budget().cli_runs / 2, 1), ".args",
+             [](Rng& rng) { return args_text(make_physical_args(rng)); },
+             [](const std::string& text) {
+               const fs::path tmp = fs::temp_directory_path() / ("poundbench-fuzz-physical-" + std::to_string(::getpid()));
+               std::ofstream(tmp, std::ios::binary) << text;
+               const std::vector<std::string> args = read_args_file(tmp);
+               fs::remove(tmp);
+               auto problem = check_physical(args, budget().cli_limits);
+               if (problem) *problem += "\n  arguments: " + excerpt(text, 400);
+               return problem;
+             }),
+         "PhysicalFlagFuzz.*");
 }
 
 // ---- The harness itself. ----
