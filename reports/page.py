@@ -4,8 +4,8 @@ with no network at all. The charts are inline SVG drawn by page.js from the data
 chart library: log axes, lines, markers, a tooltip and a legend that toggles series are a
 few hundred lines, less than vendoring one. The answer's chooser computes the cheapest
 setting in the page from the summary rows the markdown table is written from, by the same
-rule (answer.py's cheapest, in page.js's cheapest); tests/report_page_test.py holds the two
-to the same answers in a real browser.
+rule (answer.py's cheapest over robust.py's robust errors, in page.js's cheapest over its
+robustErrors); tests/report_page_test.py holds the two to the same answers in a real browser.
 
 Each method adds a section (its place in the page is the order of the calls) and the data
 its script draws; the report's sections call them (report.py)."""
@@ -18,7 +18,8 @@ import re
 from collections import defaultdict
 
 import answer
-from rows import by_family, config_label, num, setting_label, steps_of
+import robust
+from rows import by_family, config_label, num, setting_label, settings_fields, steps_of, unresolved
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -53,7 +54,8 @@ def table_html(lines):
 
 
 # The numbers of a summary row the answer reads, in the order page.py writes them.
-ROW_FIELDS = ["family", "setting", "failed", "err_median", "err_p95", "cpu", "cost", "imp_median", "imp_p95"]
+ROW_FIELDS = ["family", "setting", "failed", "unresolved", "err_median", "err_p95", "cpu", "cost", "imp_median",
+              "imp_p95"]
 
 
 def slug(title):
@@ -74,11 +76,13 @@ class Page:
 
     def answer(self, summary, scopes, impacting):
         """The chooser and the live answer table: every summary row with what the rule reads
-        (answer.cheapest) and what the answer shows, and the scopes of the markdown table,
+        (answer.cheapest, by the one rule of robust.py) and what the answer shows, and the scopes of the markdown table,
         then each family as a scope of its own."""
         # Compact: each setting once (its label, whether it is a time-stepper), each row a list
         # of its family and setting indices and the numbers the rule reads (ROW_FIELDS).
-        settings, index = [], {}
+        # Each setting names its line (its solver and variant, its settings apart from the step)
+        # and how fine its step is, which the one rule (robust.py, page.js's robustErrors) reads.
+        settings, index, lines = [], {}, {}
         families = list(dict.fromkeys(r["family"] for r in summary))
         family_index = {f: i for i, f in enumerate(families)}
         rows = []
@@ -86,9 +90,12 @@ class Page:
             setting = (r["solver"], r["variant"], r["settings"])
             if setting not in index:
                 index[setting] = len(settings)
-                settings.append(dict(label=answer.answer_label(r), time_stepper=not answer.is_event_driven(r)))
+                rest, fineness = robust.step_split(settings_fields(r))
+                line = lines.setdefault((r["solver"], r["variant"], rest), len(lines))
+                settings.append(dict(label=answer.answer_label(r), time_stepper=not answer.is_event_driven(r),
+                                     line=line, fineness=fineness))
             imp = (impacting or {}).get((r["family"], *setting), {})
-            rows.append([family_index[r["family"]], index[setting], int(r["failed"]),
+            rows.append([family_index[r["family"]], index[setting], int(r["failed"]), unresolved(r),
                          number(num(r, "err_median")), number(num(r, "err_p95")), number(num(r, "cpu_median_s")),
                          answer.cost_cell(r), number(imp.get("err_median", float("nan"))),
                          number(imp.get("err_p95", float("nan")))])
@@ -101,8 +108,9 @@ class Page:
                                    impacting=impacting is not None, all=[answer.ALL, answer.ALL_TIME_STEPPERS])
         self.section("Which setting for which accuracy", (
             "<p>Choose where and how accurately: the cheapest setting of the study that meets the target on every "
-            "family of the choice, with no failed run, computed here from the study's rows by the rule of the "
-            "markdown report.</p>"
+            "family of the choice, with no failed or unresolved run, and so does every finer step of its solver "
+            "and variant (a lucky coarse step whose finer neighbours fail is never the answer), computed here from "
+            "the study's rows by the rule of the markdown report.</p>"
             "<div class=\"chooser\"><label>scene <select id=\"chooser-scope\"></select></label>"
             "<label>target <select id=\"chooser-target\"></select></label>"
             "<label>error <select id=\"chooser-measure\"></select></label></div>"

@@ -12,6 +12,7 @@ import csv
 import math
 import sys
 
+import robust
 from rows import config_label, median, num, settings_fields, steps_of
 
 SUMMARY = "records-step.csv"
@@ -84,13 +85,12 @@ def p95(values):
 
 
 def least_n(by_n, target, stat):
-    """The least N from which every larger N meets the target by `stat`; None if the largest does not."""
-    least = None
-    for n in sorted(by_n, reverse=True):
-        if not stat([e for e, _, _ in by_n[n]]) <= target:
-            break
-        least = n
-    return least
+    """The least N that meets the target by `stat` by the one rule (robust.py: every larger N
+    meets it too); None if the largest does not. A failed run's error is inf: its N and every
+    smaller one never meet."""
+    ns = list(by_n)
+    errors = robust.robust([("one line", n, stat([e for e, _, _ in by_n[n]])) for n in ns])
+    return min((n for n, e in zip(ns, errors) if e <= target), default=None)
 
 
 def _cells(runs):

@@ -8,7 +8,8 @@ pulses' `pair`). README's block and the report's section are written from the sa
 No matplotlib here."""
 
 import answer
-from rows import config_label, num, settings_fields, sound, steps_of
+import robust
+from rows import config_label, num, settings_fields, steps_of
 
 DEFAULT_N = 64  # every fixed-step solver's default (solvers/fixed_step.hpp)
 TARGETS = (1e-2, 1e-3)
@@ -27,16 +28,17 @@ def _configs(summary):
 
 
 def needed(rows, key, target):
-    """The least N from which every larger N of the study meets the target on every point
-    summarised (an error that is erratic in N, as on real records, meets it once by luck); None
-    when the largest N does not. With the N it was swept to."""
-    rows = sorted((r for r in rows if steps_of(r) is not None), key=steps_of)
-    least = None
-    for r in reversed(rows):
-        if not (sound(r) and num(r, key) <= target):
-            break
-        least = steps_of(r)
-    return least, steps_of(rows[-1]) if rows else None
+    """The least N that meets the target by the one rule (robust.py: it and every larger N of
+    the study meet it on every point summarised; an error that is erratic in N, as on real
+    records, meets it once by luck); None when the largest N does not. With the N it was swept
+    to. `rows`: one configuration's rows, on one family or several (each judged on its own)."""
+    rows = [r for r in rows if steps_of(r) is not None]
+    errors = robust.robust_errors(rows, key)
+    by_n = {}
+    for r in rows:  # a step count meets only where it meets on every family
+        n = steps_of(r)
+        by_n[n] = by_n.get(n, True) and errors[robust.row_key(r)] <= target
+    return min((n for n, ok in by_n.items() if ok), default=None), max(by_n, default=None)
 
 
 ESTIMATOR = ("Percentiles (the median, the 95th) are over the points of a family, by linear interpolation "

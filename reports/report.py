@@ -82,7 +82,8 @@ def beats_section(study, out):
     table = answer.beats_table(summary)
     out.page.table("Where another scheme beats the in-house Moreau–Jean", table)
     return ["## Where another scheme beats the in-house Moreau–Jean", "",
-            "Per family and target (the median of the relative Pi1 error, no failed or unresolved run), the in-house "
+            "Per family and target (the median of the relative Pi1 error, no failed or unresolved run; a step meets "
+            "it when every finer step of its configuration does too, as in the answer), the in-house "
             "`moreau-jean`'s cheapest setting that meets it and its least step count N, against every other "
             "time-stepper configuration of the study: those that meet the target at less CPU per run, and those "
             "that meet it with fewer steps per shortest period. The step counts compare the schemes apart from "

@@ -8,6 +8,9 @@ Moreau-Jean, an engine and the loosened reference), through `poundbench workprec
   - load without an error on the browser's console (a script error, a missing resource);
   - answer every scene, target and error measure of the markdown answer table with the
     same setting, cost and family, through its chooser (computed in the page);
+  - do so by the one rule (reports/robust.py, page.js's robustErrors) on the same study with
+    errors rewritten so that Moreau-Jean's coarse N = 16 meets 1 % and its N = 32 does not:
+    the markdown and the page both answer N = 64;
   - show, when a point of a work-precision diagram is hovered, that point's setting, N,
     error and cost as the study's summary CSV has them;
   - hide a line when its legend entry is clicked.
@@ -18,6 +21,7 @@ Exit 77 (skipped, saying so) where Chromium, chromedriver or selenium is missing
 scripts/setup.sh installs chromium, chromium-driver and python3-selenium."""
 
 import csv
+import json
 import os
 import re
 import shutil
@@ -121,6 +125,55 @@ def browser(profile):
     return webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
 
 
+def chooser_agrees(driver, expected):
+    """The page's chooser against the markdown, answer by answer: each choice made as a user
+    makes it (the option chosen, a change event), in one script so that they cost one round trip."""
+    answers = driver.execute_script("""
+        const pick = (id, text) => {
+          const s = document.getElementById(id);
+          const o = [...s.options].find((o) => o.text === text);
+          if (!o) return false;
+          s.value = o.value;
+          s.dispatchEvent(new Event("change"));
+          return true;
+        };
+        return arguments[0].map(([m, scene, t]) =>
+          pick("chooser-measure", m) && pick("chooser-scope", scene) && pick("chooser-target", t)
+            ? ["chooser-setting", "chooser-cost", "chooser-family"].map(
+                (id) => document.getElementById(id).textContent)
+            : null);""", [list(k) for k in expected])
+    for ((m, scene, t), (setting, cost, family)), got in zip(expected.items(), answers):
+        want = [setting, cost or "–", family or "–"]
+        if got != want:
+            fail(f"chooser for {scene}, {t}, {m}: {got}; the markdown table: {want}")
+
+
+# Moreau-Jean theta = 1/2's errors by N in the lucky study: N = 16 meets 1 %, N = 32 does not.
+LUCKY = {8: 0.5, 16: 0.008, 32: 0.012, 64: 0.004, 128: 0.001}
+
+
+def lucky_report(pb, tmp, summary):
+    """The report of the study's summary with Moreau-Jean theta = 1/2's errors replaced by LUCKY
+    on every family and every other setting's by 0.5 (none answers 1 % but Moreau-Jean); its
+    folder."""
+
+    rows = []
+    for r in summary:
+        fields = json.loads(r["settings"] or "{}")
+        mine = r["solver"] == "moreau-jean" and fields.get("theta") == 0.5
+        err = LUCKY[fields["steps"]] if mine else 0.5
+        rows.append(dict(r, err_median=repr(err), err_p95=repr(err), err_max=repr(err), failed="0", unresolved="0"))
+    path = os.path.join(tmp, "lucky.csv")
+    with open(path, "w", newline="") as f:
+        writer = csv.DictWriter(f, list(summary[0]), lineterminator="\n")
+        writer.writeheader()
+        writer.writerows(rows)
+    made = subprocess.run([pb, "report", path, "--out", "lucky"], cwd=tmp, capture_output=True, text=True)
+    if made.returncode != 0:
+        fail(f"poundbench report of the lucky study exited {made.returncode}: {made.stderr}")
+    return os.path.join(tmp, "lucky")
+
+
 def main():
     pb, src = sys.argv[1], sys.argv[2]
     for program in (CHROMIUM, CHROMEDRIVER):
@@ -181,26 +234,19 @@ def main():
             if errors:
                 fail(f"console errors: {errors}")
 
-            # The chooser against the markdown, answer by answer: each choice made as a user makes
-            # it (the option chosen, a change event), in one script so that the 40 cost one round trip.
-            answers = driver.execute_script("""
-                const pick = (id, text) => {
-                  const s = document.getElementById(id);
-                  const o = [...s.options].find((o) => o.text === text);
-                  if (!o) return false;
-                  s.value = o.value;
-                  s.dispatchEvent(new Event("change"));
-                  return true;
-                };
-                return arguments[0].map(([m, scene, t]) =>
-                  pick("chooser-measure", m) && pick("chooser-scope", scene) && pick("chooser-target", t)
-                    ? ["chooser-setting", "chooser-cost", "chooser-family"].map(
-                        (id) => document.getElementById(id).textContent)
-                    : null);""", [list(k) for k in expected])
-            for ((m, scene, t), (setting, cost, family)), got in zip(expected.items(), answers):
-                want = [setting, cost or "–", family or "–"]
-                if got != want:
-                    fail(f"chooser for {scene}, {t}, {m}: {got}; the markdown table: {want}")
+            chooser_agrees(driver, expected)
+
+            # The one rule (reports/robust.py) in the page as in the markdown: a study where
+            # Moreau-Jean's coarse N = 16 meets 1 % and its finer N = 32 does not.
+            lucky_out = lucky_report(pb, tmp, summary)
+            with open(os.path.join(lucky_out, "README.md")) as f:
+                lucky = answer_rows(f.read())
+            picks = {k: v[0] for k, v in lucky.items() if k[2] == "0.01"}
+            if not picks or any(p != "moreau-jean theta=0.5, N = 64" for p in picks.values()):
+                fail(f"the markdown's answers at 1 % on the lucky study: {picks}; want N = 64 (N = 16 is lucky)")
+            driver.get("file://" + os.path.join(lucky_out, "report.html"))
+            chooser_agrees(driver, lucky)
+            driver.get("file://" + os.path.join(out, "report.html"))
 
             # Hovering points of the first family's diagram: each tooltip against the CSV.
             family = Select(driver.find_element(By.ID, "wp-family")).first_selected_option.text
