@@ -16,7 +16,7 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 bool given(double x) { return !std::isnan(x); }
 
 // A value or a bound as a message shows it: "1e-30", "inf", "6.28319e+308".
-std::string text(double x) {
+std::string value_text(double x) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.6g", x);
   return buffer;
@@ -46,7 +46,7 @@ bool physical_value_ok(const PhysicalField& field, double x) {
 std::string physical_rule(const PhysicalField& field) {
   if (field.pi.starts_with("pi_y")) return "must be > 0 (inf: elastic)";
   if (field.name == "gap") return "must be finite and >= 0";
-  if (field.name.starts_with("m")) return "must be in [" + text(kMinMass) + ", " + text(kMaxMass) + "] kg";
+  if (field.name.starts_with("m")) return "must be in [" + value_text(kMinMass) + ", " + value_text(kMaxMass) + "] kg";
   return "must be finite and > 0";
 }
 
@@ -109,7 +109,7 @@ std::string physical_reason(const Case& c, const std::string& field_reason) {
     if (f.pi != pi || !used_by(f, c.scene)) continue;
     const auto term = std::find_if(kCaseFields.begin(), kCaseFields.end(),
                                    [&](const CaseField& cf) { return cf.name == pi; });
-    const std::string value = term == kCaseFields.end() ? std::string("?") : text(term->get(c));
+    const std::string value = term == kCaseFields.end() ? std::string("?") : value_text(term->get(c));
     return std::string(f.name) + ": gives " + std::string(pi) + " = " + std::string(formula(pi)) + " = " + value +
            " (" + field_reason + ")";
   }
