@@ -52,6 +52,10 @@ int adapter_command(const CLI::App& command, const AdapterFlags& flags) {
     result.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return external::answer_document(result, read.system);
   };
+  // stdin is read with no deadline of the adapter's own: the time limit is in the document, known
+  // only once it has been read, so the program running the adapter bounds its whole run (the
+  // external solver ends it at the point's limit plus kGraceSeconds). What the reading costs is
+  // linear in the document (protocol.cpp's parse_object: no quadratic check of its keys).
   if (!persistent) {
     const std::string input{std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>()};
     if (std::cin.bad()) throw std::runtime_error("stdin: read failed");

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # A longer fuzz campaign than the test suite's (tests/fuzz/README.md): each target (the
 # case-set reader, the settings reader, the command line; the record reader, the external
-# answer reader, the adapter's case documents and the Python keywords; the report inputs, the
-# Python callables and the physical flags of `run`) runs for --seconds,
+# answer reader, the adapter's case documents and the Python keywords; issue 46's report inputs,
+# Python callables, persistent external programs and the physical flags of `run`) runs for --seconds,
 # from --seed, and every failing input of a new kind is written to --failures for the corpus.
 #   scripts/fuzz.sh [--seconds N] [--seed S] [--build-dir DIR] [--failures DIR]
 # Exit 0 when nothing was found, 1 otherwise. A finding is reproduced alone with the line
@@ -29,4 +29,4 @@ echo "fuzz: seed $seed, $seconds s per target, failing inputs to $failures/"
 POUNDBENCH_FUZZ_SEED=$seed POUNDBENCH_FUZZ_SECONDS=$seconds POUNDBENCH_FUZZ_MAX_FAILURES=1000 \
   POUNDBENCH_FUZZ_FAILURES=$failures \
   "$build/tests/fuzz/poundbench_fuzz_tests" \
-  --gtest_filter='CaseSetReaderFuzz.*:SettingsReaderFuzz.*:CliFuzz.*:RecordReaderFuzz.*:AnswerReaderFuzz.*:AdapterDocumentFuzz.*:PythonKeywordFuzz.*:ReportInputFuzz.*:PythonCallableFuzz.*:PhysicalFlagFuzz.*'
+  --gtest_filter='CaseSetReaderFuzz.*:SettingsReaderFuzz.*:CliFuzz.*:RecordReaderFuzz.*:AnswerReaderFuzz.*:AdapterDocumentFuzz.*:PythonKeywordFuzz.*:ReportInputFuzz.*:PythonCallableFuzz.*:PhysicalFlagFuzz.*:PersistentProgramFuzz.*'

@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
+
+#include "cases/text.hpp"
 
 namespace pb {
 
@@ -23,7 +24,10 @@ Status state_end(const System& sys, bool finite, const double* u, const double* 
 }
 
 Deadline::Deadline(const Settings& settings)
-    : limit_(settings.time_limit), stop_(settings.stop), start_(std::chrono::steady_clock::now()) {
+    : limit_(settings.time_limit),
+      shown_(settings.point_time_limit > 0.0 ? settings.point_time_limit : settings.time_limit),
+      stop_(settings.stop),
+      start_(std::chrono::steady_clock::now()) {
   if (!(limit_ > 0.0) && !stop_) next_ = std::numeric_limits<long>::max();
 }
 
@@ -40,9 +44,7 @@ bool Deadline::look(long k) {
 
 std::string Deadline::reason() const {
   if (stop_ && stop_->load(std::memory_order_relaxed)) return "stopped (the sweep was interrupted)";
-  std::ostringstream msg;
-  msg << "more than " << limit_ << " s of wall time";
-  return msg.str();
+  return "more than " + format_number(shown_) + " s of wall time";
 }
 
 }  // namespace pb

@@ -49,6 +49,7 @@ class Deadline {
 
  private:
   double limit_;
+  double shown_;  // the limit as given, for reason(): the point's, not what was left of it
   const std::atomic<bool>* stop_;
   std::chrono::steady_clock::time_point start_;
   bool look(long k);

@@ -52,6 +52,9 @@ struct Settings {
   double projection_tol = 0;  // siconos projections: tolerance on a violated gap over a_p/w_p^2; 0 = default
   long step_cap = 0;     // 0 = the solver's own cap
   double time_limit = 0;  // seconds of wall time per run; 0 = none
+  // The point's limit as it was given, which messages quote: a sweep gives each solve of a point
+  // what is left of it as time_limit (0.999998 s of `--time-limit 1`). 0: time_limit is it.
+  double point_time_limit = 0;
   // Set by a sweep that is being stopped: a run in progress ends as time_limit at its
   // next look at the clock. Not a setting of the solver: never part of describe().
   const std::atomic<bool>* stop = nullptr;

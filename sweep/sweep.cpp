@@ -92,6 +92,7 @@ class PointDeadline {
     const double rest = limit_ - std::chrono::duration<double>(Clock::now() - start_).count();
     if (!(rest > 0.0)) return std::nullopt;
     settings.time_limit = rest;
+    settings.point_time_limit = limit_;
     return settings;
   }
 

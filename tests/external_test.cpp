@@ -25,6 +25,7 @@
 #include "cases/system.hpp"
 #include "solvers/external/command_words.hpp"
 #include "solvers/external/external.hpp"
+#include "solvers/external/process.hpp"
 #include "solvers/external/protocol.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
 #include "sweep/sweep.hpp"
@@ -253,6 +254,130 @@ TEST(ExternalFailures, AProgramThatDoesNotReadItsInputDoesNotKillPoundbench) {
   const Result r = external::solve(s, with_command("sh -c 'exec 0<&-; echo \"{\\\"version\\\":1,\\\"status\\\":\\\"ok\\\",\\\"pi1\\\":2}\"'"));
   EXPECT_EQ(r.status, Status::ok) << r.message;
   EXPECT_EQ(r.pi1, 2.0);
+}
+
+// ---------------------------------------------------------------- issue 46
+
+// A program that writes `answer` (one line, no single quotes) whatever it is asked, with
+// printf: no shell's echo reads its backslashes.
+std::string printing(const std::string& answer) {
+  return "sh -c 'cat > /dev/null; printf \"%s\\n\" \"$0\"' '" + answer + "'";
+}
+
+bool printable_utf8(const std::string& text) { return external::printable_line(text) == text; }
+
+TEST(ExternalProtocol, PrintableLineReplacesWhatIsNotUtf8AndEveryControlCharacter) {
+  using external::printable_line;
+  EXPECT_EQ(printable_line("plain ascii, \xC3\xA9t\xC3\xA9, \xE2\x82\xAC, \xF0\x9F\x98\x80"),
+            "plain ascii, \xC3\xA9t\xC3\xA9, \xE2\x82\xAC, \xF0\x9F\x98\x80");
+  EXPECT_EQ(printable_line("a\nb\rc\td\x1b[31me\x7f"), "a?b?c?d?[31me?");
+  EXPECT_EQ(printable_line(std::string("nul\0end", 7)), "nul?end");
+  const std::string fffd = "\xEF\xBF\xBD";
+  EXPECT_EQ(printable_line("\xff\xfe"), fffd + fffd);
+  EXPECT_EQ(printable_line("\xC3("), fffd + "(");          // a lead byte without its continuation
+  EXPECT_EQ(printable_line("cut \xE2\x82"), "cut " + fffd + fffd);  // a sequence cut short
+  EXPECT_EQ(printable_line("\xC0\xAF"), fffd + fffd);     // an overlong '/'
+  EXPECT_EQ(printable_line("\xED\xA0\x80"), fffd + fffd + fffd);  // a surrogate
+  EXPECT_EQ(printable_line("\xF4\x90\x80\x80"), fffd + fffd + fffd + fffd);  // past U+10FFFF
+  // C1 (U+0085, a line end to some readers), U+2028, U+2029, a right-to-left override, U+FEFF.
+  EXPECT_EQ(printable_line("\xC2\x85|\xE2\x80\xA8|\xE2\x80\xA9|\xE2\x80\xAE|\xEF\xBB\xBF"), "?|?|?|?|?");
+}
+
+// Issue 46: an answer's message and a program's stderr reached the rows as they were, and
+// `report` then refused poundbench's own output.
+TEST(ExternalFailures, WhatAProgramWritesReachesTheRowAsOnePrintableLine) {
+  const Result answered = external::solve(
+      pair_case(), with_command(printing(R"({"version":1,"status":"failed","message":"a\u001b[31mb\u0000c\u2028d\u0085e\nf"})")));
+  EXPECT_EQ(answered.status, Status::failed);
+  EXPECT_EQ(answered.message, "a?[31mb?c?d?e?f");
+  const Result failed = external::solve(
+      pair_case(), with_command("sh -c 'cat > /dev/null; printf \"not utf-8: \\377\\376 \\033[2J\\n\" >&2; exit 3'"));
+  EXPECT_EQ(failed.status, Status::failed);
+  EXPECT_EQ(failed.message, "the program exited with code 3; stderr: not utf-8: \xEF\xBF\xBD\xEF\xBF\xBD ?[2J");
+  // A line that is no answer is quoted in the message: its bytes too.
+  const Result quoted = external::solve(pair_case(), with_command("sh -c 'cat > /dev/null; printf \"\\377\\033\"'"));
+  EXPECT_EQ(quoted.status, Status::failed);
+  EXPECT_TRUE(printable_utf8(quoted.message)) << quoted.message;
+}
+
+TEST(ExternalProtocol, AReadyLineIsParsedAndItsReadyMustBeTrue) {
+  EXPECT_EQ(external::ready_line_problem(R"({"version": 1, "ready": true})"), "");
+  EXPECT_EQ(external::ready_line_problem(R"({"ready":true,"version":1,"program":"mine"})"), "");
+  for (const char* line : {R"({"version": 1, "ready": false})", R"("ready")", R"({"version": 1, "ready": "true"})",
+                           R"({"version": 1, "ready": 1})", R"({"ready": true})", R"({"version": 2, "ready": true})",
+                           R"({"version": 1, "ready": true, "ready": false})", "ready", "", "{\"ready\": true\x1b"}) {
+    const std::string why = external::ready_line_problem(line);
+    EXPECT_EQ(why.rfind(R"(its first line must be {"version": 1, "ready": true} (persistent mode), not ')", 0), 0u)
+        << line << " gave: " << why;
+    EXPECT_TRUE(why.find('\n') == std::string::npos) << why;
+  }
+}
+
+// The duplicate-key check was quadratic: 120,000 keys took 11.9 s to check. 400,000 (quadratic:
+// about 130 s) are refused for their first unknown key, long before a 60 s deadline (linear: well
+// under a second), and a key given twice among them is still found.
+TEST(ExternalProtocol, DuplicateKeysAreFoundInLinearTime) {
+  std::string many = R"({"version":1,"status":"ok","pi1":1)";
+  for (int i = 0; i < 400'000; ++i) many += ",\"k" + std::to_string(i) + "\":0";
+  const auto in_a_minute = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  Result r;
+  EXPECT_EQ(external::read_answer(many + "}", pair_case(), Settings{}, r, in_a_minute),
+            "answer: k0: unknown key (docs/external.md lists an answer's keys)");
+  EXPECT_EQ(external::read_answer(many + ",\"k399999\":1}", pair_case(), Settings{}, r, in_a_minute),
+            "answer: stdout: key \"k399999\" given twice in one object");
+}
+
+// `--time-limit 1` was quoted as "more than 0.999999 s": a sweep gives each solve of a point what is
+// left of the point's limit, and the messages quoted that.
+TEST(ExternalFailures, TimeLimitMessagesQuoteTheLimitAsGiven) {
+  const Case c = make_case(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5);
+  Settings program = with_command("sleep 30");
+  program.time_limit = 0.3000001;  // more digits than a stream prints by default
+  const Row ended = run_point(c, 0, *find_solver("external"), program);
+  EXPECT_EQ(ended.result.status, Status::time_limit);
+  EXPECT_EQ(ended.result.message.rfind("more than 0.3000001 s of wall time: the program had not answered", 0), 0u)
+      << ended.result.message;
+  Settings stepper;
+  stepper.steps = 10'000'000;  // 8e7 steps: seconds, under the step cap
+  stepper.time_limit = 0.3000001;
+  const Row stepped = run_point(c, 0, *find_solver("moreau-jean"), stepper);
+  EXPECT_EQ(stepped.result.status, Status::time_limit);
+  EXPECT_EQ(stepped.result.message.rfind("more than 0.3000001 s of wall time at t = ", 0), 0u) << stepped.result.message;
+}
+
+// A line already waiting on a persistent program's stdout when a case is to be sent (here the
+// second of two lines it wrote to the first case, there before the second case is sent) is not
+// that case's answer: the point fails saying why, and the next point starts the program again.
+TEST(ExternalPersistent, ALineWaitingBeforeTheCaseIsSentIsNoAnswer) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("pb-persistent-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string marker = (dir / "second-line-written").string();
+  const std::string script = (dir / "twice.sh").string();
+  std::ofstream(script) << "echo '{\"version\": 1, \"ready\": true}'\n"
+                           "while read -r line; do\n"
+                           "  echo '{\"version\": 1, \"status\": \"ok\", \"pi1\": 1}'\n"
+                           "  echo '{\"version\": 1, \"status\": \"ok\", \"pi1\": 99}'\n"
+                           "  touch " + marker + "\n"
+                           "done\n";
+  Settings st = with_command("sh " + script);
+  st.variant = std::string(external::kPersistent);
+  st.time_limit = 60;
+  const Result first = external::solve(pair_case(), st);
+  EXPECT_EQ(first.status, Status::ok) << first.message;
+  EXPECT_EQ(first.pi1, 1.0);
+  for (int waited = 0; !std::filesystem::exists(marker) && waited < 6000; ++waited)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  const Result second = external::solve(pair_case(), st);
+  EXPECT_EQ(second.status, Status::failed);
+  EXPECT_EQ(second.message, R"(the program wrote '{"version": 1, "status": "ok", "pi1": 99}' to stdout before this )"
+                            "case was sent (persistent mode: one answer line per case line); it was ended (the next "
+                            "point starts it again)");
+  const Result third = external::solve(pair_case(), st);
+  EXPECT_EQ(third.status, Status::ok) << third.message;
+  EXPECT_EQ(third.pi1, 1.0);
+  external::end_thread_sessions();
+  std::filesystem::remove_all(dir);
 }
 
 // ---------------------------------------------------------------- processes and descriptors

@@ -74,6 +74,7 @@ std::optional<ModelReference> model_reference(const Settings& settings) {
   ModelReference ref{"", {}};
   ref.settings.stiffness = stiffness(settings);
   ref.settings.time_limit = settings.time_limit;
+  ref.settings.point_time_limit = settings.point_time_limit;
   if (*model == Model::kelvin_voigt) {
     ref.solver = "event-driven";
     ref.settings.contact = "kelvin-voigt";

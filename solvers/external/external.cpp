@@ -54,7 +54,9 @@ Status outcome(const ProgramRun& run, const Settings& settings, std::string& why
     return Status::time_limit;
   }
   if (run.timed_out) {
-    why = "more than " + seconds_text(settings.time_limit) + " s of wall time: the program had not answered " +
+    // The limit as given (the point's), not what was left of it for this solve.
+    const double given = settings.point_time_limit > 0.0 ? settings.point_time_limit : settings.time_limit;
+    why = "more than " + format_number(given) + " s of wall time: the program had not answered " +
           seconds_text(kGraceSeconds) + " s after it and was ended" + stderr_note(run);
     return Status::time_limit;
   }
@@ -62,12 +64,18 @@ Status outcome(const ProgramRun& run, const Settings& settings, std::string& why
     why = "the program wrote more than " + std::to_string(kMaxAnswerBytes >> 20) + " MB to stdout and was ended";
     return Status::failed;
   }
-  if (!run.exited) {
-    why = "the program was ended by signal " + signal_text(run.signal) + stderr_note(run);
+  if (!run.protocol_error.empty()) {
+    why = run.protocol_error + "; it was ended (the next point starts it again)" + stderr_note(run);
     return Status::failed;
   }
-  if (run.exit_code != 0) {
-    why = "the program exited with code " + std::to_string(run.exit_code) + stderr_note(run);
+  // A persistent program that ended between two cases, or while it had one: not "stdout: empty".
+  const std::string unanswered = run.unanswered ? " before it answered this case" : "";
+  if (!run.exited) {
+    why = "the program was ended by signal " + signal_text(run.signal) + unanswered + stderr_note(run);
+    return Status::failed;
+  }
+  if (run.exit_code != 0 || run.unanswered) {
+    why = "the program exited with code " + std::to_string(run.exit_code) + unanswered + stderr_note(run);
     return Status::failed;
   }
   return Status::ok;
@@ -130,6 +138,9 @@ Result solve(const System& system, const Settings& settings) {
     // Past the deadline the answer was cut off by the limit, whatever else it lacked.
     finish(std::chrono::steady_clock::now() > deadline ? Status::time_limit : Status::failed, bad + stderr_note(run));
   }
+  // Whatever the program wrote reaches the row as one printable line of UTF-8 (its message,
+  // its stderr, a line quoted in an error): a row's reader (report) refuses anything else.
+  r.message = printable_line(r.message);
   r.startup_seconds = startup;
   if (settings.in_process) r.solve_seconds = call_seconds;  // timed around the call, whatever it says
   r.child_cpu_seconds = cpu;

@@ -5,6 +5,7 @@
 #include <pthread.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/ioctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -19,6 +20,9 @@
 #include <set>
 #include <system_error>
 #include <utility>
+
+#include "cases/text.hpp"
+#include "solvers/external/protocol.hpp"
 
 extern char** environ;
 
@@ -226,6 +230,33 @@ bool read_some(const Fd& fd, std::string& into) {
   return n < 0 && (errno == EAGAIN || errno == EINTR);
 }
 
+// Reads what is there now, without waiting: true once the pipe is empty (EAGAIN: nothing
+// came, which is no progress to wait on) or `most` bytes have been read; false at its end or
+// on an error. The bound is for a writer that keeps the pipe full (a process the program left
+// behind, writing on): it cannot hold the caller.
+bool read_available(const Fd& fd, std::string& into, std::size_t most) {
+  const std::size_t limit = into.size() + most;
+  char buffer[kChunk];
+  while (into.size() < limit) {
+    const ssize_t n = ::read(fd.get(), buffer, sizeof buffer);
+    if (n > 0) {
+      into.append(buffer, static_cast<std::size_t>(n));
+    } else if (n < 0 && errno == EINTR) {
+      continue;
+    } else {
+      return n < 0 && errno == EAGAIN;
+    }
+  }
+  return true;
+}
+
+// The bytes written to a pipe that its reader has not read yet (FIONREAD, which Linux answers
+// on either end); 0 where it cannot say.
+std::size_t unread_bytes(const Fd& write_end) {
+  int n = 0;
+  return ioctl(write_end.get(), FIONREAD, &n) == 0 && n > 0 ? static_cast<std::size_t>(n) : 0;
+}
+
 }  // namespace
 
 std::string last_lines(std::string_view text, int lines) {
@@ -387,20 +418,10 @@ class Session {
     SigpipeBlock sigpipe;
     err_.clear();
     if (!child_) {
-      if (!spawn_program(run)) return run;
-      // The ready line, within the point's limit: a start that hangs is this point's time-limit.
-      if (!converse({}, run, limits, start, sigpipe)) return run;
-      if (run.out.find("\"ready\"") == std::string::npos) {
-        const std::string first = run.out.substr(0, 200);
-        end(run);
-        run.spawn_error = argv_[0] + ": its first line must be {\"version\": 1, \"ready\": true} (persistent mode), not '" +
-                          first + "'";
-        return run;
-      }
+      if (!start_program(run, limits, start, sigpipe)) return run;
       startup = seconds_since(start);
-      run.out.clear();
     }
-    pending_.clear();  // a line past the last answer (a program that answered twice) is not this case's
+    if (!waiting_for_case(run)) return run;
     std::string input(line);
     input += '\n';
     if (converse(input, run, limits, start, sigpipe)) {
@@ -446,24 +467,57 @@ class Session {
     return true;
   }
 
+  // Starts the program and reads its ready line, within the point's limit (a start that hangs
+  // is this point's time-limit): true, or false with run saying why.
+  bool start_program(ProgramRun& run, const ProgramLimits& limits, Clock::time_point start, SigpipeBlock& sigpipe) {
+    if (!spawn_program(run) || !converse({}, run, limits, start, sigpipe)) return false;
+    if (std::string bad = ready_line_problem(run.out); !bad.empty()) {
+      end(run);
+      run.spawn_error = argv_[0] + ": " + bad;
+      return false;
+    }
+    run.out.clear();
+    return true;
+  }
+
+  // Before a case is sent, the program must be waiting for it: nothing on its stdout (a line
+  // there, such as a second answer to the last case written late, is no answer to this case,
+  // and would be taken for it), and still running. Else it is ended, run says why: false.
+  bool waiting_for_case(ProgramRun& run) {
+    const bool open = read_available(out_, pending_, kChunk);
+    if (!pending_.empty()) {
+      const std::string_view stray = std::string_view(pending_).substr(0, pending_.find('\n'));
+      run.protocol_error = "the program wrote '" + clip(stray) +
+                           "' to stdout before this case was sent (persistent mode: one answer line per case line)";
+      end(run);
+      return false;
+    }
+    if (!open) out_.reset();
+    if (!open || child_->wait(WNOHANG)) return ended_by_itself(run);
+    return true;
+  }
+
   // Writes `input`, then reads until a whole line is there (into run.out, without its end):
   // true. Else the program is ended and run says why: false.
   bool converse(std::string_view input, ProgramRun& run, const ProgramLimits& limits, Clock::time_point start,
                 SigpipeBlock& sigpipe) {
     std::size_t written = 0;
     for (;;) {
-      if (const std::size_t end_of_line = pending_.find('\n'); end_of_line != std::string::npos) {
-        if (written == input.size()) {
-          run.out.assign(pending_, 0, end_of_line);
-          pending_.erase(0, end_of_line + 1);
-          return true;
-        }
-      }
+      if (const std::size_t end_of_line = pending_.find('\n');
+          end_of_line != std::string::npos && written == input.size())
+        return take_line(input, end_of_line, run);
       if (limits.stop && limits.stop->load(std::memory_order_relaxed)) return end(run, run.stopped);
       const double elapsed = seconds_since(start);
       if (limits.kill_after > 0.0 && elapsed > limits.kill_after) return end(run, run.timed_out);
       if (limits.max_output > 0 && pending_.size() > limits.max_output) return end(run, run.output_cut);
       if (!out_.open()) return ended_by_itself(run);
+      if (child_->wait(WNOHANG)) {
+        // It has exited: what it wrote is in the pipe now. A process it left behind may hold
+        // the pipe open for as long as it likes; it is not the program, and is not waited for.
+        if (!read_available(out_, pending_, limits.max_output > 0 ? limits.max_output : kChunk)) out_.reset();
+        if (pending_.find('\n') != std::string::npos && written == input.size()) continue;
+        return ended_by_itself(run);
+      }
 
       pollfd fds[3];
       nfds_t n = 0;
@@ -499,6 +553,21 @@ class Session {
     }
   }
 
+  // The line that ends at `end_of_line` of pending_, once all of `input` was written: the answer
+  // (true), unless the program wrote it while every byte of the case still sat unread in its
+  // stdin. A program cannot answer a case it has not read: that line was written before, and
+  // is ended as a protocol_error (false).
+  bool take_line(std::string_view input, std::size_t end_of_line, ProgramRun& run) {
+    run.out.assign(pending_, 0, end_of_line);
+    pending_.erase(0, end_of_line + 1);
+    if (input.empty() || run.input_refused || unread_bytes(in_) < input.size()) return true;
+    run.protocol_error = "the program wrote '" + clip(run.out) +
+                         "' before it read this case: not its answer (persistent mode: one answer line per case line)";
+    run.out.clear();
+    end(run);
+    return false;
+  }
+
   // Ends the program for the reason `why` (a flag of run): false, for converse to return.
   bool end(ProgramRun& run, bool& why) {
     why = true;
@@ -512,24 +581,26 @@ class Session {
     }
     finish(run);
   }
-  // Its stdout ended: it exited, or is about to. Given kDrainAfterExit, then ended.
+  // It exited, or is about to (its stdout ended), without an answer: given kDrainAfterExit,
+  // then ended. What it left in its group (a child still holding its stdout) is ended with it.
   bool ended_by_itself(ProgramRun& run) {
-    if (!wait_for_exit(*child_)) {
+    if (!wait_for_exit(*child_) || out_.open()) {
       child_->end_group();
       child_->wait(0);
     }
     const int status = child_->status();
+    run.unanswered = true;
     run.exited = WIFEXITED(status);
     run.exit_code = run.exited ? WEXITSTATUS(status) : -1;
     run.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
     finish(run);
     return false;
   }
-  // Whatever is left of stderr read into the tail, and the program forgotten: the next
-  // exchange starts it again.
+  // What stderr holds now read into the tail, without waiting for its end (a process of
+  // another session may hold it open for good), and the program forgotten: the next exchange
+  // starts it again.
   void finish(ProgramRun& run) {
-    while (err_read_.open() && read_some(err_read_, err_) && err_.size() < 2 * kErrTail) {
-    }
+    if (err_read_.open()) read_available(err_read_, err_, 2 * kErrTail);
     if (err_.size() > kErrTail) err_.erase(0, err_.size() - kErrTail);
     run.err_tail = err_;
     child_.reset();

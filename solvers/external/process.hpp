@@ -39,6 +39,12 @@ struct ProgramRun {
   bool stopped = false;       // ended because the stop flag was set
   bool output_cut = false;    // ended for writing more than max_output
   bool input_refused = false; // it closed its stdin before reading all of the input
+  // Persistent mode (exchange): it ended (exited, or by a signal: exited and exit_code, or
+  // signal, say how) before it answered the case, which may not have been sent.
+  bool unanswered = false;
+  // Persistent mode: why it broke the protocol (a line on its stdout before the case was sent,
+  // or before it read it: not the case's answer); then it was ended. "" when it did not.
+  std::string protocol_error;
   std::string out;            // its stdout
   std::string err_tail;       // the last lines of its stderr (at most kErrTail bytes)
   double seconds = 0.0;       // wall time from the start to its end
@@ -57,11 +63,19 @@ void end_running_programs();
 
 // A persistent program (docs/external.md, "Persistent mode"): started once per thread and
 // command, it answers a stream of cases, one line each way. After its start it writes one ready
-// line ({"version": 1, "ready": true}) so that its start-up is timed apart from any solve.
-// Each exchange writes `line` (one line, without its end) and reads one line back into
-// ProgramRun::out; every other field says, as run_program's do, why there was no answer
-// (spawn_error, timed_out, stopped, output_cut; exited or signal when it ended by itself),
-// and then the program has been ended, with its group, and the next exchange starts it again.
+// line ({"version": 1, "ready": true}, protocol.hpp's ready_line_problem) so that its start-up
+// is timed apart from any solve. Each exchange writes `line` (one line, without its end) and
+// reads one line back into ProgramRun::out; every other field says, as run_program's do, why
+// there was no answer (spawn_error, timed_out, stopped, output_cut; unanswered with exited or
+// signal when it ended by itself; protocol_error), and then the program has been ended, with
+// its group, and the next exchange starts it again.
+//
+// A line is the case's answer only if the program wrote it after it read the case: one already
+// on its stdout before the case is sent (a second answer to the last case, written late), or
+// written while the whole case still sat unread in its stdin, is a protocol_error. Once the
+// program itself has exited, nothing it left behind (a child holding its stdout or stderr, in
+// a session of its own where the group's SIGKILL does not reach it) holds the exchange: its
+// pipes are read for what is there and closed.
 // kill_after counts from the exchange's start (the program's start included, on the first).
 // `startup_seconds` is set to the start's wall seconds on the exchange that started it, NaN on
 // the others. cpu_seconds is 0: the program's CPU is known only once it is reaped.

@@ -44,6 +44,17 @@ CaseDocument case_document(const System& system, const Settings& settings);
 std::string read_answer(std::string_view text, const System& system, const Settings& settings, Result& result,
                         std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
+// A persistent program's first line (docs/external.md, "Persistent mode"): "" when it is the
+// ready line, a JSON object whose "ready" is true and "version" 1 (found by its parse, not in
+// the text: {"ready": false} and a bare "ready" are no ready line); else why, in one line.
+std::string ready_line_problem(std::string_view line);
+
+// Text a program wrote (its answer's message, its stderr, a line quoted in an error) as one
+// printable line of valid UTF-8, for a row: a byte that is not UTF-8 becomes U+FFFD; a control
+// character (C0, DEL, C1: a line end, an escape sequence's ESC), a line or paragraph separator
+// and the invisible format characters (bidirectional overrides, zero widths) become '?'.
+std::string printable_line(std::string_view text);
+
 // A program's side: the system and the settings a case document carries (the step as
 // steps_per_period, or as wh from step, step_cap, time_limit, history_samples, monitor).
 // Throws std::invalid_argument("field: why").

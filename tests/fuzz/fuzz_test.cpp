@@ -21,6 +21,7 @@
 #include "tests/fuzz/harness.hpp"
 #include "tests/fuzz/mutator.hpp"
 #include "tests/fuzz/physical_target.hpp"
+#include "tests/fuzz/persistent.hpp"
 #include "tests/fuzz/report_target.hpp"
 #include "tests/fuzz/targets.hpp"
 
@@ -377,6 +378,38 @@ TEST(FuzzHarness, SeesASpinningOrBlockedHangACrashAndAStrayLineAsFindings) {
   EXPECT_FALSE(check_cli({"run", "--eps", "2"}, budget().cli_limits));
   EXPECT_FALSE(check_cli({"solvers"}, budget().cli_limits));
   EXPECT_FALSE(check_reader(Reader::case_set, "name = 1", budget().reader_limits));
+}
+
+// Issue 46's persistent target (persistent.hpp): persistent external programs misbehaving in
+// the stream. Each input is a sweep of four points at a limit of 1 s, 2 to 10 s: an eighth of
+// the command line's count. Corpus entries (corpus/persistent/*.py: a first '#' line says what
+// each holds) are replayed one test each.
+ChildLimits persistent_limits() {
+  ChildLimits limits = budget().cli_limits;
+  limits.seconds = 120.0 * (POUNDBENCH_FUZZ_SLOW ? 3.0 : 1.0);  // the driver's own bound is 90 s
+  return limits;
+}
+
+class PersistentCorpus : public ::testing::TestWithParam<fs::path> {};
+
+TEST_P(PersistentCorpus, GivesEveryPointAOneLineRowInTime) {
+  if (!persistent_available()) GTEST_SKIP() << "no Python 3 interpreter was found";
+  if (auto problem = check_persistent(read_file(GetParam()), persistent_limits())) ADD_FAILURE() << GetParam() << ": " << *problem;
+}
+
+INSTANTIATE_TEST_SUITE_P(Fuzz, PersistentCorpus, ::testing::ValuesIn(corpus_files("persistent")), reader_test_name);
+
+TEST(PersistentProgramFuzz, GivesEveryPointAOneLineRowInTime) {
+  if (!persistent_available()) GTEST_SKIP() << "no Python 3 interpreter was found";
+  report(campaign(
+             "persistent", std::max<std::size_t>(budget().cli_runs / 8, 1), ".py",
+             [](Rng& rng) { return make_persistent_program(rng); },
+             [](const std::string& text) {
+               auto problem = check_persistent(text, persistent_limits());
+               if (problem) *problem += "\n  program:\n" + excerpt(text, 2000);
+               return problem;
+             }),
+         "PersistentProgramFuzz.*");
 }
 
 }  // namespace
