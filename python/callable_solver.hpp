@@ -3,8 +3,9 @@
 // solver=f)`. f gets the case as a dict (the external protocol's case document,
 // docs/external.md) and returns the answer as a dict ("version" may be left out); the
 // external solver hands it the document through Settings::in_process, so the row is made by
-// the same code as a program's, answer checks included. Its row's solve_seconds is the call
-// timed around it, the dict's conversions outside; what f raises is that point's failed row,
+// the same code as a program's, answer checks included. Its row's solve_seconds is the call's
+// CPU time on its thread (the sweep's clock: issue 48), the dict's conversions outside; its
+// time limit is wall time, as every solver's. What f raises is that point's failed row,
 // with the exception's type and message. A sweep with a callable runs on one thread: the GIL
 // lets one call run at a time, and a second thread's wait for it would be timed as its cost.
 //
@@ -16,6 +17,8 @@
 // call) stops the sweep (`interrupt`): the point is a stopped row, not f's failure.
 
 #include <pybind11/pybind11.h>
+
+#include <time.h>
 
 #include <chrono>
 #include <memory>
@@ -44,11 +47,13 @@ class CallableSolver {
       const double limit = time_limit(case_dict);
       py::object answer;
       std::string ended;  // why the call is a time-limit row; "" when it is not
+      const ThreadCpu cpu;
       {
-        Call call(*deadline_, limit, call_seconds);
+        Call call(*deadline_, limit);
         try {
           answer = f_(case_dict);
         } catch (py::error_already_set& e) {
+          call_seconds = cpu.seconds();
           ended = call.end();
           if (!ended.empty()) return time_limit_answer(ended);
           if (e.matches(PyExc_KeyboardInterrupt)) {
@@ -59,6 +64,7 @@ class CallableSolver {
         }
         ended = call.end();
       }
+      call_seconds = cpu.seconds();
       if (!ended.empty()) return time_limit_answer(ended);
       if (!py::isinstance<py::dict>(answer))
         throw std::runtime_error("the solver returned " + std::string(py::str(py::type::of(answer).attr("__name__"))) +
@@ -73,12 +79,27 @@ class CallableSolver {
   }
 
  private:
-  // One call of f, timed, under its limit (0: none): end() says whether it was a time-limit
-  // row, and the destructor disarms whatever end() was not reached for.
+  // The calling thread's CPU seconds since it was made.
+  class ThreadCpu {
+   public:
+    ThreadCpu() : start_(now()) {}
+    double seconds() const { return now() - start_; }
+
+   private:
+    static double now() {
+      timespec t{};
+      ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+      return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+    }
+    double start_;
+  };
+
+  // One call of f under its limit (0: none), on the wall clock: end() says whether it was a
+  // time-limit row, and the destructor disarms whatever end() was not reached for.
   class Call {
    public:
-    Call(CallDeadline& deadline, double limit, double& seconds)
-        : deadline_(deadline), limit_(limit), seconds_(seconds), start_(std::chrono::steady_clock::now()) {
+    Call(CallDeadline& deadline, double limit)
+        : deadline_(deadline), limit_(limit), start_(std::chrono::steady_clock::now()) {
       if (limit_ > 0.0) deadline_.arm(limit_);
     }
     ~Call() {
@@ -89,19 +110,18 @@ class CallableSolver {
     // The call has returned or raised: its time, and "" or why it is a time-limit row.
     std::string end() {
       ended_ = true;
-      seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
       const bool interrupted = limit_ > 0.0 && deadline_.disarm();
-      if (!interrupted && !(limit_ > 0.0 && seconds_ > limit_)) return {};
+      if (!interrupted && !(limit_ > 0.0 && seconds > limit_)) return {};
       std::ostringstream why;
       why << "more than " << limit_ << " s of wall time: the function " << (interrupted ? "was interrupted" : "returned")
-          << " after " << seconds_ << " s";
+          << " after " << seconds << " s";
       return why.str();
     }
 
    private:
     CallDeadline& deadline_;
     double limit_;
-    double& seconds_;
     std::chrono::steady_clock::time_point start_;
     bool ended_ = false;
   };

@@ -961,7 +961,7 @@ PYBIND11_MODULE(poundbench, m) {
       python::keyword_lines(kSettingFields) +
       "solver may be a Python callable f(case: dict) -> dict, run in process on one thread: it gets the\n"
       "external protocol's case document and returns its answer (docs/external.md; 'version' may be left\n"
-      "out). Each row's solve_seconds is the call, timed around it; what f raises is that point's failed\n"
+      "out). Each row's solve_seconds is the call's CPU time on its thread; what f raises is that point's failed\n"
       "row, with the exception's type and message; Ctrl-C stops the sweep. A call still running at the\n"
       "point's time limit is interrupted (TimeLimitExceeded raised in it) and, like any call that took\n"
       "longer than the limit, is that point's time-limit row.\n";
@@ -972,7 +972,7 @@ PYBIND11_MODULE(poundbench, m) {
         "line. settings: a settings-list file, or a list of dicts, one per [[run]] (studies/settings_list.hpp:\n"
         "{'solver': 'moreau-jean', 'steps': [64, 256]}). solvers: names of Python callables, each usable as\n"
         "a run's solver ({'solver': 'mine', 'steps': [64, 256]}), run in process as spectrum's solver=f;\n"
-        "their rows' cost (cpu_median_s, column cost = solve_seconds) is the calls' own time.");
+        "their rows' cost (cpu_median_s) is the thread's CPU time for each call and its dicts' conversions.");
   m.def("stress", &python::stress, py::arg("case_set"),
         "stress(case_set, settings=[...], solvers={}, threads=None, repetitions=None) -> list of dict\n\n"
         "The stress study, as `poundbench stress`: its table (the stability CSV), one dict per line; settings\n"

@@ -142,11 +142,11 @@ def panel_rank(panel):
 
 
 def cost_label(rows):
-    """The cost axis: CPU time, or the solver's own time for a setting whose runs report it
-    (the table's cost column, studies/stats.hpp: an external program's solve_seconds, a Python
-    callable timed around its call)."""
+    """The cost axis, named by its clock: CPU time for every solver (the table's cost column,
+    issue 48); a file of an earlier version whose rows costed a program's own solve time says so."""
     own = {r.get("cost") for r in rows} - {None, "", "cpu_seconds"}
-    return "CPU time per run (us)" if not own else "cost per run (us): CPU time; a solver's own solve time where it reports one"
+    return ("CPU time per run (us)" if not own
+            else "cost per run (us): CPU time; a solver's own solve time where it reported one (earlier version)")
 
 def wp_diagram(family, panel, labels, lines, rows, out_dir):
     """One family's diagram for one panel's configurations: the median and the 95th percentile

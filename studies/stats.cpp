@@ -27,23 +27,12 @@ CpuCost cpu_cost(std::span<const Row* const> rows) {
   if (rows.empty()) return c;
   std::vector<double> median, low, high;
   c.repetitions = rows.front()->repetitions;
-  std::size_t own = 0;
   for (const Row* row : rows) {
     c.repetitions = std::min(c.repetitions, row->repetitions);
-    if (const double solve = row->result.solve_seconds; std::isfinite(solve)) {
-      // The program's own time for its solve: a persistent program's cpu_seconds is
-      // poundbench's side alone, and a one-shot one's holds its start.
-      median.push_back(solve);
-      low.push_back(solve);
-      high.push_back(solve);
-      ++own;
-      continue;
-    }
     median.push_back(row->cpu_seconds);
     low.push_back(std::isnan(row->cpu_seconds_low) ? row->cpu_seconds : row->cpu_seconds_low);
     high.push_back(std::isnan(row->cpu_seconds_high) ? row->cpu_seconds : row->cpu_seconds_high);
   }
-  c.axis = own == 0 ? "cpu_seconds" : own == rows.size() ? "solve_seconds" : "mixed";
   c.median = percentile(median, 50.0);
   c.mean = std::accumulate(median.begin(), median.end(), 0.0) / static_cast<double>(median.size());
   c.median_low = percentile(low, 50.0);

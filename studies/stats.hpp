@@ -32,10 +32,6 @@ struct CpuCost {
   double median_low = std::numeric_limits<double>::quiet_NaN();
   double median_high = std::numeric_limits<double>::quiet_NaN();
   int repetitions = 0;  // the fewest timed repetitions of a run (0: no runs)
-  // Which time the cost is: a run that reports its own solve time (Result::solve_seconds: an
-  // external program's answer, a Python callable timed around its call) costs that, with no
-  // spread; the others cost their cpu_seconds. "solve_seconds", "cpu_seconds", or "mixed".
-  std::string_view axis = "cpu_seconds";
 };
 
 CpuCost cpu_cost(std::span<const Row* const> rows);

@@ -144,7 +144,8 @@ std::string work_precision_csv_line(const WorkPrecisionRow& row) {
   line << ',' << s.cpu.repetitions << ',' << csv_field(row.model_reference);
   for (double x : {row.integration.err_median, row.integration.err_p95, row.integration.err_max})
     line << ',' << format_number(x);
-  line << ',' << s.unresolved << ',' << s.cpu.axis;
+  // The cost's clock, one for every solver since issue 48 (older files may say solve_seconds).
+  line << ',' << s.unresolved << ",cpu_seconds";
   for (double x : {row.physical.h_s, row.physical.k_contact}) line << ',' << (x > 0.0 ? format_number(x) : "");
   return line.str();
 }

@@ -123,6 +123,23 @@ class Persistent(unittest.TestCase):
             self.assertEqual(r["variant"], "persistent")
         self.assertEqual(sum(1 for r in rows if r["startup_seconds"]), 2)
 
+    def test_a_program_is_costed_on_its_cpu_and_one_that_lies_about_its_time_is_flagged(self):
+        # Issue 48: a persistent program's cost was the solve_seconds it reported, unchecked (one
+        # that said 1e-9 s won every target at 0.00 us). Its cost is now the CPU its process ran
+        # in the exchange (here 50 ms of a busy loop a case), and a run whose answer says
+        # otherwise cannot vouch for it, naming both; an honest one is not flagged.
+        for mode in ("liar", "honest"):
+            rows = self.spectrum(mode, "--threads", "1", "--monitor")
+            self.assertEqual(len(rows), 40, mode)
+            for r in rows:
+                self.assertEqual(r["status"], "ok", r["message"])
+                self.assertGreater(float(r["cpu_seconds"]), 0.04, mode)
+                flagged = "its process ran" in r["unresolved"]
+                self.assertEqual(flagged, mode == "liar", (mode, r["unresolved"]))
+                if mode == "liar":
+                    self.assertEqual(r["resolved"], "false")
+                    self.assertIn("solve_seconds 1e-09 s", r["unresolved"])
+
     @unittest.skipIf(len(os.sched_getaffinity(0)) < 2, "needs two cores")
     def test_each_workers_program_runs_on_its_workers_core(self):
         two = set(sorted(os.sched_getaffinity(0))[:2])

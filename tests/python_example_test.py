@@ -2,8 +2,8 @@
 through poundbench.workprecision in process, beside Moreau-Jean, and the answer table it prints
 places it. At 512 steps per shortest period its Pi1 is within 1e-1 of the reference's at the
 95th percentile (measured 6e-4 on the example's Fig. 4-like pair: a first-order scheme, its
-error at 32 steps 3e-2), so it has a place at the 1e-1 target; the rows are timed on its own
-solve (cost solve_seconds), or the script stops with an error.
+error at 32 steps 3e-2), so it has a place at the 1e-1 target; the rows are timed on the CPU
+clock as every solver's (cost cpu_seconds), or the script stops with an error.
 
     python3 tests/python_example_test.py SOURCE_DIR      (PYTHONPATH: the module's directory)
 """

@@ -504,7 +504,9 @@ pi2 = { from = 0.5, to = 2, points = 3, spacing = "linear" }
                     self.assertIn("s of wall time: the function", row["message"], solver.__name__)
                     self.assertIn(how, row["message"], solver.__name__)
                     self.assertIsNone(row["pi1"])
-                    self.assertGreater(row["solve_seconds"], 0.45, solver.__name__)
+                    # The call's CPU on its thread: a sleeping call spends next to none.
+                    if solver is sleepy:
+                        self.assertLess(row["solve_seconds"], 0.45)
                     self.assertNotIn("\n", row["message"])
                     if solver is busy:  # stopped, not run out: 20 s a call otherwise
                         self.assertLess(row["solve_seconds"], 10.0)

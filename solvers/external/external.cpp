@@ -81,6 +81,19 @@ Status outcome(const ProgramRun& run, const Settings& settings, std::string& why
   return Status::ok;
 }
 
+// A persistent program's own solve_seconds against the CPU its threads ran in the exchange
+// (issue 48: a program that reported 1e-9 s won every target at 0.00 us): past the noise
+// (1 ms, and half the measured time: a program's reading and writing of the documents are in
+// the exchange, not in its solve), the run cannot vouch for its cost, and says so. A program
+// that solves in a process of its own (not counted) is flagged too: docs/external.md says so.
+void doubt_reported_time(Result& r, double exchange_cpu) {
+  if (r.status != Status::ok || !std::isfinite(r.solve_seconds) || !std::isfinite(exchange_cpu)) return;
+  if (std::abs(r.solve_seconds - exchange_cpu) <= 1e-3 + 0.5 * exchange_cpu) return;
+  if (!r.doubt.empty()) r.doubt += "; ";
+  r.doubt += "it reports solve_seconds " + format_number(r.solve_seconds) + " s where its process ran " +
+             format_number(exchange_cpu) + " s of CPU in the exchange (the row's cost is the latter)";
+}
+
 }  // namespace
 
 Result solve(const System& system, const Settings& settings) {
@@ -143,7 +156,10 @@ Result solve(const System& system, const Settings& settings) {
   r.message = printable_line(r.message);
   r.startup_seconds = startup;
   if (settings.in_process) r.solve_seconds = call_seconds;  // timed around the call, whatever it says
-  r.child_cpu_seconds = cpu;
+  // The row's cost is poundbench's clock: the program's CPU (a persistent one's in the exchange)
+  // on top of this thread's. What a persistent program says of itself is kept beside it.
+  r.child_cpu_seconds = std::isfinite(cpu) ? cpu : 0.0;
+  if (settings.variant == kPersistent && !settings.in_process) doubt_reported_time(r, cpu);
   return r;
 }
 

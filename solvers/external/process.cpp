@@ -14,6 +14,8 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -176,6 +178,7 @@ class Child {
   }
   int status() const { return status_; }
   double cpu_seconds() const { return cpu_; }
+  pid_t pid() const { return pid_; }
 
  private:
   pid_t pid_;
@@ -185,6 +188,24 @@ class Child {
 };
 
 std::string error_text(int error) { return std::generic_category().message(error); }
+
+// The CPU seconds the threads of process `pid` alive now have run, to the nanosecond (the first
+// field of each /proc/<pid>/task/<tid>/schedstat): a persistent program's cost per exchange,
+// where its rusage comes only when it is reaped and /proc's stat counts in 10 ms ticks. NaN
+// where /proc cannot tell.
+double process_cpu_seconds(pid_t pid) {
+  std::error_code ec;
+  const std::filesystem::path tasks = "/proc/" + std::to_string(pid) + "/task";
+  double ns = 0.0;
+  bool read = false;
+  for (auto it = std::filesystem::directory_iterator(tasks, ec); !ec && it != std::filesystem::directory_iterator();
+       it.increment(ec)) {
+    std::ifstream stat(it->path() / "schedstat");
+    double on_cpu = 0.0;
+    if (stat >> on_cpu) ns += on_cpu, read = true;
+  }
+  return read ? 1e-9 * ns : std::numeric_limits<double>::quiet_NaN();
+}
 
 // Starts argv with `in` as its stdin, `out` as stdout, `err` as stderr, in a process group of
 // its own, with the signal mask and the dispositions a program expects (poundbench's own may
@@ -424,9 +445,12 @@ class Session {
     if (!waiting_for_case(run)) return run;
     std::string input(line);
     input += '\n';
+    const pid_t pid = child_->pid();
+    const double cpu_before = process_cpu_seconds(pid);
     if (converse(input, run, limits, start, sigpipe)) {
       run.exited = true;  // answered, as a program of run_program that exits with 0 (it goes on running)
       run.exit_code = 0;
+      run.cpu_seconds = process_cpu_seconds(pid) - cpu_before;
     }
     run.seconds = seconds_since(start);
     return run;

@@ -48,7 +48,10 @@ struct ProgramRun {
   std::string out;            // its stdout
   std::string err_tail;       // the last lines of its stderr (at most kErrTail bytes)
   double seconds = 0.0;       // wall time from the start to its end
-  double cpu_seconds = 0.0;   // its CPU time, user and system, with its waited-for children
+  // Its CPU time, user and system, with its waited-for children; persistent mode: what its
+  // threads ran from the case's sending to its answer (its children not counted), NaN where
+  // /proc cannot tell, 0 where it did not answer.
+  double cpu_seconds = 0.0;
 };
 
 // What is kept of stderr: its end, enough for a traceback's last lines.
@@ -78,7 +81,7 @@ void end_running_programs();
 // pipes are read for what is there and closed.
 // kill_after counts from the exchange's start (the program's start included, on the first).
 // `startup_seconds` is set to the start's wall seconds on the exchange that started it, NaN on
-// the others. cpu_seconds is 0: the program's CPU is known only once it is reaped.
+// the others. cpu_seconds is what the program's threads ran between the case and its answer.
 ProgramRun exchange(const std::vector<std::string>& argv, std::string_view line, const ProgramLimits& limits,
                     double& startup_seconds);
 // Ends the calling thread's persistent programs: their stdin closed, each given kDrainAfterExit

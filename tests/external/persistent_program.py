@@ -41,9 +41,17 @@ def leave_a_child(*command):
         f.write(f"{child.pid}\n")
 
 
-def answer(case, pi1=None):
+def answer(case, pi1=None, solve_seconds=0.001):
     pi1 = 1.0 + case["eps"] if pi1 is None else pi1
-    print(json.dumps({"version": 1, "status": "ok", "pi1": pi1, "solve_seconds": 0.001}), flush=True)
+    print(json.dumps({"version": 1, "status": "ok", "pi1": pi1, "solve_seconds": solve_seconds}), flush=True)
+
+
+def busy(seconds):
+    """Spends `seconds` of this process's CPU time, and says how much it spent."""
+    start = time.process_time()
+    while time.process_time() - start < seconds:
+        pass
+    return time.process_time() - start
 
 
 if mode == "late":
@@ -75,6 +83,10 @@ for line in sys.stdin:
         message = "esc \x1b[31mred\x1b[0m nul \x00 bell \x07 line\nend \u2028 c1 \x85 rlo \u202e done"
         print(json.dumps({"version": 1, "status": "ok", "pi1": 1.0, "message": message}), flush=True)
         sys.exit(0)  # the next point restarts it, and the restarted one fails
+    if mode in ("liar", "honest"):
+        spent = busy(0.05)
+        answer(case, solve_seconds=1e-9 if mode == "liar" else spent)
+        continue
     answer(case)
     answered += 1
     if mode in ("twice", "twice-slow"):

@@ -75,7 +75,7 @@ void add_solver(std::vector<std::string>& args, Rng& rng) {
 
 // What a value must be for a flag: its domain, as cases/physical.hpp and docs/cli.md give it.
 // Returns why `value` lies outside, or nothing.
-std::optional<std::string> outside_domain(const std::string& flag, const std::string& value) {
+std::optional<std::string> physical_domain_problem(const std::string& flag, const std::string& value) {
   char* end = nullptr;
   const double x = std::strtod(value.c_str(), &end);
   if (end == value.c_str() || *end) return std::nullopt;
@@ -176,7 +176,7 @@ std::optional<std::string> check_physical(const std::vector<std::string>& args, 
   if (after != before) return o.describe() + ": left a file behind";
   if (o.exit_code == 2) return check_refusal(o, args);
   for (std::size_t i = 0; i + 1 < args.size(); ++i)
-    if (auto why = outside_domain(args[i], args[i + 1]))
+    if (auto why = physical_domain_problem(args[i], args[i + 1]))
       return "accepted " + args[i] + " " + args[i + 1] + " (" + *why + "; " + o.describe() + "): it must exit 2";
   if (o.exit_code != 0 && o.exit_code != 1) return o.describe() + "; stderr: " + excerpt(o.err, 300);
   const bool compliant = std::find(args.begin(), args.end(), "compliant") != args.end();
