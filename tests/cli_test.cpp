@@ -61,9 +61,11 @@ TEST_F(Cli, RunJsonPrintsTheSolversPi1) {
 }
 
 // Issue 32: status ok means only that a run finished. Newmark at its defaults (N = 64,
-// K = 1e4) on the issue's wall case ends ok far from the answer (Pi1 8.1 against 1.80), its
-// contacts a step long, making energy: `run` says so under the status and on stderr, and
-// `--json` carries the verdict (false, with its reasons); the reference's run is resolved.
+// K = 1e4) on the issue's wall case ends ok with its contacts a step long, which its verdict
+// cannot vouch for: `run` says so under the status and on stderr, and `--json` carries the
+// verdict (false, with its reason); the reference's run is resolved. (Before Newmark split its
+// steps at contact changes, that run also made energy and ended far off, Pi1 8.1 against
+// 1.80; now 1.799, the exact Kelvin-Voigt model's 1.806.)
 TEST_F(Cli, RunSaysWhenAFinishedRunDidNotResolveWhatItSolved) {
   const std::string wall = "run --scene wall --pulse cosine --directivity normal --pi2 1 --pi3 0.5 --eps 0.5";
   const Outcome text = run(wall + " --solver compliant --integrator newmark");
@@ -74,13 +76,11 @@ TEST_F(Cli, RunSaysWhenAFinishedRunDidNotResolveWhatItSolved) {
   const nlohmann::json j = nlohmann::json::parse(run(wall + " --solver compliant --integrator newmark --json").out);
   EXPECT_EQ(j.at("status"), "ok");
   EXPECT_EQ(j.at("resolved"), false);
-  for (const char* reason : {"a contact lasted", "it made energy"})
-    EXPECT_NE(j.at("unresolved").get<std::string>().find(reason), std::string::npos) << reason;
+  EXPECT_NE(j.at("unresolved").get<std::string>().find("a contact lasted"), std::string::npos) << j.at("unresolved");
   const nlohmann::json ref = nlohmann::json::parse(run(wall + " --json").out);
   EXPECT_EQ(ref.at("resolved"), true);
   EXPECT_EQ(ref.at("unresolved"), "");
   EXPECT_NEAR(ref.at("pi1").get<double>(), 1.80, 0.01);
-  EXPECT_GT(j.at("pi1").get<double>(), 4.0);  // the unresolved answer, far from it
   const Outcome failed = run(wall + " --solver moreau-jean --step-cap 2 --json");
   EXPECT_TRUE(nlohmann::json::parse(failed.out).at("resolved").is_null());  // not ok: not judged
 }

@@ -388,37 +388,49 @@ TEST(Compliant, BdfAndAdamsAgreeToTheirTolerance) {
   EXPECT_EQ(a.impacts, b.impacts);
 }
 
-// A step far too large for a stiff element whose law has no bounded slope: Jankowski's damping
-// grows as p^(1/4), its slope as p^(-3/4), at K = 1e8 and N = 8, and Newton's iteration does not
-// converge at the first impact. That is a status with its reason and time, never a crash or an
-// ok with a wrong answer. (Kelvin-Voigt's force jump at onset, which made Newton cycle, is
-// solved as a set-valued law: NewmarkPinsAGapAtTheKelvinVoigtOnset.)
-TEST(Compliant, NewmarkThatCannotConvergeEndsFailedSayingWhere) {
-  const Result r = solve(make_case(Scene::pair, PulseShape::sine, 0.3, 0.5, 0.5), "jankowski", 1e8, "newmark", 8);
-  EXPECT_EQ(r.status, Status::failed) << r.message;
-  EXPECT_NE(r.message.find("Newton"), std::string::npos) << r.message;
-  EXPECT_NE(r.message.find("at t = "), std::string::npos) << r.message;
-  EXPECT_TRUE(std::isnan(r.pi1));
+// A step far too large for a stiff element: Jankowski's at K = 1e8 and N = 8, where a contact
+// lasts a small fraction of a step. Before contact changes were located, Newton's iteration
+// failed there at the first impact (the element's damping has the slope p^(-3/4) at its
+// onset, and the iterates crossed it); now each sub-step sees one smooth law and the run ends,
+// far from the answer (Pi1 31.5 against CVODE's 7.2), and the verdict says so, naming the
+// contact that lasted no step end and the energy it made. Never a crash or a resolved wrong
+// answer; a Newton iteration that does not converge still ends the run failed, saying where.
+TEST(Compliant, NewmarkAtAStepFarTooLargeForTheElementIsUnresolvedSayingWhy) {
+  const System s = make_system(make_case(Scene::pair, PulseShape::sine, 0.3, 0.5, 0.5));
+  Settings st;
+  st.variant = "jankowski";
+  st.stiffness = 1e8;
+  st.integrator = "newmark";
+  st.steps = 8;
+  st.monitor = true;
+  Result r = compliant::solve(s, st);
+  ASSERT_TRUE(r.status == Status::ok || r.status == Status::failed) << r.message;
+  if (r.status == Status::failed) {
+    EXPECT_NE(r.message.find("at t = "), std::string::npos) << r.message;
+    return;
+  }
+  judge(s, r);
+  EXPECT_EQ(r.resolved, false);
+  EXPECT_NE(r.unresolved.find("step ends"), std::string::npos) << r.unresolved;
 }
 
-// Where a step ends at a Kelvin-Voigt onset, the dashpot's force jumps by c q and the step's
-// equation has no solution with the element open or closed; with its gap pinned at zero by a
-// force in [0, c q] (the law's convex hull there) it has one. Before, at K = 1e4 and N = 4096
-// (a resolved contact: w_c h = 0.2), 22 of the 224 work-precision runs failed in Newton's
-// iteration; now every smoke run converges, at every N and K of the study's range, and the
-// pinned steps are counted in the message.
-TEST(Compliant, NewmarkPinsAGapAtTheKelvinVoigtOnset) {
+// Where an element opens or closes inside a step, Newmark ends a sub-step there (newmark.cpp):
+// every smoke run converges, at every N and K of the study's range. Before, a step ending at a
+// Kelvin-Voigt onset had no solution with the element open or closed (at K = 1e4 and N = 4096,
+// 22 of the 224 work-precision runs failed in Newton's iteration), and then the gap was pinned
+// at zero by a set-valued force, which converged at first order only.
+TEST(Compliant, NewmarkConvergesAtEveryKelvinVoigtOnset) {
   const CaseSet set = load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/smoke.toml");
-  int pinned = 0;
+  long impacts = 0;
   for (double K : {1e2, 1e4})
     for (int n : {64, 1024})
       for (const Case& c : set.cases) {
         const Result r = solve(c, "kelvin-voigt", K, "newmark", n);
         EXPECT_EQ(r.status, Status::ok) << c.family << " pi2 " << c.pi2 << " K " << K << " N " << n << ": " << r.message;
-        if (r.message.find("pinned") != std::string::npos) ++pinned;
+        impacts += r.impacts;
       }
-  RecordProperty("runs_with_pinned_steps", std::to_string(pinned));
-  EXPECT_GT(pinned, 0) << "the onset case never arose: the test no longer tests it";
+  RecordProperty("impacts", std::to_string(impacts));
+  EXPECT_GT(impacts, 0) << "no contact closed: the test no longer tests onsets";
 }
 
 TEST(Compliant, CheckNamesTheBadSetting) {

@@ -15,7 +15,8 @@
 //            own period is not in T_min: a step that does not resolve it shows as
 //            penetration, restitution and energy in the row, and a Newton iteration that
 //            does not converge ends the run with status failed and says where. A step is
-//            split where the load jumps (second order across it: newmark.cpp).
+//            split where the load jumps and where an element opens or closes (second order
+//            across each: newmark.cpp); Pi1 is read at the steps' ends k h only.
 //
 // The variant is the element (kelvin-voigt, the default; hertz; hunt-crossley; jankowski;
 // jankowski-published, his element with his own zeta(eps));
