@@ -21,7 +21,7 @@
 namespace pb {
 namespace {
 
-const std::string kElCentro = std::string(POUNDBENCH_SOURCE_DIR) + "/cases/records/real/B-ELC000.AT2";
+const std::string kElCentroFile = std::string(POUNDBENCH_SOURCE_DIR) + "/cases/records/real/B-ELC000.AT2";
 const std::string kBuildings = " --scene pair --directivity normal --t0 0.5 --t1 1 --gap 0.01 --eps 0.6";
 
 // `run ... --json` as a user types it, in the fixture's directory of its own.
@@ -47,7 +47,7 @@ TEST_F(PhysicalCli, PhysicalRecordCaseEqualsItsPiTermCase) {
   // 5 cm these buildings do not pound under this record, at 1 cm they do.
   for (const char* gap : {"0.05", "0.01"}) {
     const nlohmann::json phys = run_json(
-        " --scene pair --pulse record --record " + kElCentro + " --t0 0.5 --t1 1 --gap " + gap + " --eps 0.6");
+        " --scene pair --pulse record --record " + kElCentroFile + " --t0 0.5 --t1 1 --gap " + gap + " --eps 0.6");
     ASSERT_FALSE(phys.empty());
     EXPECT_EQ(phys.at("t0").get<double>(), 0.5);
     EXPECT_EQ(phys.at("directivity"), "normal");
@@ -72,7 +72,7 @@ TEST_F(PhysicalCli, PhysicalRecordCaseEqualsItsPiTermCase) {
     std::snprintf(pi_terms, sizeof pi_terms, " --pi2 %.17g --pi3 %.17g --pi5 %.17g --pi6 1 --a-p %.17g --w-p %.17g",
                   num(phys, "pi2"), num(phys, "pi3"), num(phys, "pi5"), a_p, w_p);
     const nlohmann::json pi = run_json(
-        " --scene pair --directivity normal --eps 0.6 --pulse record --record " + kElCentro + pi_terms);
+        " --scene pair --directivity normal --eps 0.6 --pulse record --record " + kElCentroFile + pi_terms);
     ASSERT_FALSE(pi.empty());
     EXPECT_NEAR(num(pi, "pi1"), num(phys, "pi1"), 1e-9 * num(phys, "pi1"));
     EXPECT_NEAR(num(pi, "peak_m"), num(phys, "peak_m"), 1e-9 * num(phys, "peak_m"));
@@ -92,7 +92,7 @@ TEST_F(PhysicalCli, PhysicalRecordCaseEqualsItsPiTermCase) {
 // so not the model): 2e-4. The largest force is sampled at CVODE's accepted steps (3.5e-4): 2e-3.
 TEST_F(PhysicalCli, KContactGivesTheSamePeakUnderTwoNormalisationsOfARecord) {
   for (const char* variant : {"kelvin-voigt", "hunt-crossley"}) {
-    const std::string args = kBuildings + " --pulse record --record " + kElCentro +
+    const std::string args = kBuildings + " --pulse record --record " + kElCentroFile +
                              " --m0 2e6 --m1 1e6 --solver compliant --variant " + variant +
                              (std::string(variant) == "kelvin-voigt" ? " --k-contact 5e9" : " --k-contact 2e11");
     const nlohmann::json a = run_json(args);
@@ -416,7 +416,7 @@ TEST_F(PhysicalCli, AYieldDisplacementInMetresEqualsItsPiTwin) {
 // two runs of one setting agree to round-off (the same solver on the same case), so the
 // check fails only if the study measured the wrong error or mapped the wrong step.
 TEST_F(PhysicalCli, TheSearchPicksASettingThatMeetsOnePercent) {
-  const std::string buildings = " --scene pair --pulse record --record " + kElCentro +
+  const std::string buildings = " --scene pair --pulse record --record " + kElCentroFile +
                                 " --t0 0.5 --t1 1 --m0 1e6 --m1 1e6 --gap 0.01 --eps 0.6";
   const Outcome o = run("workprecision --settings " + std::string(POUNDBENCH_SOURCE_DIR) +
                         "/cases/settings/physical.toml --repetitions 1 --out table.csv --points points.csv" + buildings);
