@@ -8,6 +8,7 @@
 #include <exception>
 #include <memory>
 #include <mutex>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <thread>
@@ -162,10 +163,49 @@ void add_monitor(Row& row, const SolverInfo& solver, const System& system, Setti
   r.gap_rate_max = monitored.gap_rate_max;
 }
 
+// x(h) against x(2h) at order p, relative to x(h) (ErrorEstimate); 0 where both are 0.
+double richardson(double at_h, double at_2h, double order) {
+  const double difference = std::abs(at_h - at_2h);
+  if (difference == 0.0) return 0.0;
+  return difference / (std::exp2(order) - 1.0) / std::abs(at_h);
+}
+
+// The companion solve of ErrorEstimate at twice the run's step, and the estimates from it.
+void add_estimate(Row& row, const SolverInfo& solver, const System& system, Settings settings,
+                  const PointDeadline& deadline) {
+  Result& r = row.result;
+  settings.steps = 0;
+  settings.steps_per_sample = 0;
+  settings.wh = 2.0 * 2.0 * std::numbers::pi * r.step / system.t_min;
+  settings.monitor = false;
+  settings.history_samples = 0;
+  if (!solver.check(settings).empty()) return;  // no companion for this setting: no estimate
+  const std::optional<Settings> now = deadline.left(settings);
+  const Result companion = now ? timed_solve(solver, system, *now).result : Result{};
+  if (!now || companion.status == Status::time_limit) {
+    r.message += std::string(r.message.empty() ? "" : "; ") +
+                 "the companion solve at 2h passed the time limit: no error estimate";
+    return;
+  }
+  if (companion.status != Status::ok) {
+    r.doubt += std::string(r.doubt.empty() ? "" : "; ") + "its companion solve at twice the step ended " +
+               std::string(name(companion.status)) + ": no error estimate";
+    return;
+  }
+  r.error_estimate = richardson(r.pi1, companion.pi1, solver.step_order);
+  r.error_estimate_velocity = richardson(r.impact_velocity_max, companion.impact_velocity_max, solver.step_order);
+}
+
+// Whether the run took every measurement the verdict could ask of it (run_point says which).
+bool measured_all(const Result& r, const SolverInfo& solver, const Settings& settings) {
+  if (!settings.monitor && !solver.reference) return false;
+  return !(solver.step_order > 0.0 && std::isfinite(r.step)) || !std::isnan(r.error_estimate);
+}
+
 }  // namespace
 
 Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const Settings& settings,
-              int repetitions, NoContactCache* no_contact, bool monitor_timed) {
+              int repetitions, NoContactCache* no_contact, bool monitor_timed, const ErrorEstimate& estimate) {
   Row row;
   row.input = c;
   row.point = point;
@@ -203,7 +243,9 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
       row.result.status != Status::time_limit)
     add_monitor(row, solver, system, settings, deadline);
 
-  judge(system, row.result);
+  if (estimate.on && solver.step_order > 0.0 && std::isfinite(row.result.step) && row.result.status == Status::ok)
+    add_estimate(row, solver, system, settings, deadline);
+  judge(system, row.result, {estimate.target_error, measured_all(row.result, solver, settings)});
   row.wh = 2.0 * std::numbers::pi * row.result.step / system.t_min;
   row.penetration_steps = penetration_steps(row.result);
 
