@@ -324,7 +324,7 @@ std::vector<Row> run_sweep(const CaseList& cases, std::span<const SweepRun> runs
       const std::size_t r = *task / n;
       Row row =
           run_point(cases[*task % n], *task % n, *runs[r].solver, settings[r], runs[r].repetitions, &no_contact,
-                    runs[r].monitor_timed);
+                    runs[r].monitor_timed, runs[r].estimate);
       row.run = r;
       if (cancelled()) return;  // the run may have been cut short by the stop: not a result
       std::exception_ptr finished_error;
