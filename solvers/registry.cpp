@@ -45,7 +45,10 @@ std::string check_all(const Settings& settings);
 // smooth a second-order scheme reads it to O(h^2), but where it sits at an impact (u0' jumps:
 // a kink of |u0|) the step ends sample it to O(h) whatever the scheme, and every scheme here
 // is first order through its impacts (Moreau-Jean at theta = 1/2 included). So p = 1, the
-// conservative choice: a p of 2 would divide the estimate by 3. Measured: ORDER_MEASUREMENT.
+// conservative choice: a p of 2 would divide the estimate by 3. Measured on the 200 random wall
+// and pair cases of scripts/estimate_reliability.py against the reference, the order of Pi1's
+// error from N to 2N (N = 32 .. 256): Moreau-Jean 1.4 to 1.6 in the median case, its quartiles
+// 0.5 to 2.5 (erratic: impacts move between step ends); ODE 1.0 to 1.06, quartiles 0.4 to 1.5.
 constexpr double kFixedStepOrder = 1.0;
 
 const std::array kSolvers = {

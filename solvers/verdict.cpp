@@ -48,6 +48,9 @@ void judge(const System& system, Result& r, const VerdictScope& scope) {
   if (r.error_estimate > scope.target_error)
     fail("error estimate " + percent(r.error_estimate) + " > target " + percent(scope.target_error) +
          " (its Pi1 against a companion solve at twice the step)");
+  if (r.error_estimate_velocity > scope.target_error)
+    fail("impact velocity error estimate " + percent(r.error_estimate_velocity) + " > target " +
+         percent(scope.target_error) + " (its fastest approach against the companion's: its impacts have not converged)");
   if (!r.doubt.empty()) fail(r.doubt);
   if (why.empty() && !scope.complete) return;  // not judged: what was not measured could fail
   r.resolved = why.empty();

@@ -193,7 +193,12 @@ void add_estimate(Row& row, const SolverInfo& solver, const System& system, Sett
     return;
   }
   r.error_estimate = richardson(r.pi1, companion.pi1, solver.step_order);
-  r.error_estimate_velocity = richardson(r.impact_velocity_max, companion.impact_velocity_max, solver.step_order);
+  // No impact is an approach of 0: an impact at one step and none at the other is as far apart
+  // as the impact (100 % at p = 1, or infinite where the run itself had none); none at either, no estimate.
+  const auto approach = [](double v) { return std::isnan(v) ? 0.0 : v; };
+  if (!std::isnan(r.impact_velocity_max) || !std::isnan(companion.impact_velocity_max))
+    r.error_estimate_velocity =
+        richardson(approach(r.impact_velocity_max), approach(companion.impact_velocity_max), solver.step_order);
 }
 
 // Whether the run took every measurement the verdict could ask of it (run_point says which).
