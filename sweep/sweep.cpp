@@ -170,16 +170,26 @@ double richardson(double at_h, double at_2h, double order) {
   return difference / (std::exp2(order) - 1.0) / std::abs(at_h);
 }
 
-// The companion solve of ErrorEstimate at twice the run's step, and the estimates from it.
-void add_estimate(Row& row, const SolverInfo& solver, const System& system, Settings settings,
-                  const PointDeadline& deadline) {
-  Result& r = row.result;
+// The settings of ErrorEstimate's companion solve at twice the run's step; nullopt where there
+// is none: a run without a fixed step, a solver of no known order, or a variant whose check
+// refuses a step of ours (it chooses its own: Simbody's Runge-Kutta-Merson reports a step but
+// takes none of --steps or --wh), which is then judged as the solvers without a fixed step.
+std::optional<Settings> companion_settings(const SolverInfo& solver, const System& system, const Result& r,
+                                           Settings settings) {
+  if (!(solver.step_order > 0.0) || !std::isfinite(r.step) || r.status != Status::ok) return std::nullopt;
   settings.steps = 0;
   settings.steps_per_sample = 0;
   settings.wh = 2.0 * 2.0 * std::numbers::pi * r.step / system.t_min;
   settings.monitor = false;
   settings.history_samples = 0;
-  if (!solver.check(settings).empty()) return;  // no companion for this setting: no estimate
+  if (!solver.check(settings).empty()) return std::nullopt;
+  return settings;
+}
+
+// The companion solve of ErrorEstimate (its settings: companion_settings), and the estimates from it.
+void add_estimate(Row& row, const SolverInfo& solver, const System& system, const Settings& settings,
+                  const PointDeadline& deadline) {
+  Result& r = row.result;
   const std::optional<Settings> now = deadline.left(settings);
   const Result companion = now ? timed_solve(solver, system, *now).result : Result{};
   if (!now || companion.status == Status::time_limit) {
@@ -201,10 +211,11 @@ void add_estimate(Row& row, const SolverInfo& solver, const System& system, Sett
         richardson(approach(r.impact_velocity_max), approach(companion.impact_velocity_max), solver.step_order);
 }
 
-// Whether the run took every measurement the verdict could ask of it (run_point says which).
-bool measured_all(const Result& r, const SolverInfo& solver, const Settings& settings) {
+// Whether the run took every measurement the verdict could ask of it (run_point says which);
+// estimable: it has a companion (companion_settings).
+bool measured_all(const Result& r, const SolverInfo& solver, const Settings& settings, bool estimable) {
   if (!settings.monitor && !solver.reference) return false;
-  return !(solver.step_order > 0.0 && std::isfinite(r.step)) || !std::isnan(r.error_estimate);
+  return !estimable || !std::isnan(r.error_estimate);
 }
 
 }  // namespace
@@ -248,9 +259,9 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
       row.result.status != Status::time_limit)
     add_monitor(row, solver, system, settings, deadline);
 
-  if (estimate.on && solver.step_order > 0.0 && std::isfinite(row.result.step) && row.result.status == Status::ok)
-    add_estimate(row, solver, system, settings, deadline);
-  judge(system, row.result, {estimate.target_error, measured_all(row.result, solver, settings)});
+  const std::optional<Settings> companion = companion_settings(solver, system, row.result, settings);
+  if (estimate.on && companion) add_estimate(row, solver, system, *companion, deadline);
+  judge(system, row.result, {estimate.target_error, measured_all(row.result, solver, settings, companion.has_value())});
   row.wh = 2.0 * std::numbers::pi * row.result.step / system.t_min;
   row.penetration_steps = penetration_steps(row.result);
 
