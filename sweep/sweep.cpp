@@ -199,7 +199,7 @@ void add_estimate(Row& row, const SolverInfo& solver, const System& system, cons
   }
   if (companion.status != Status::ok) {
     r.doubt += std::string(r.doubt.empty() ? "" : "; ") + "its companion solve at twice the step ended " +
-               std::string(name(companion.status)) + ": no error estimate";
+               std::string(name(companion.status)) + " (so nothing to estimate its error by)";
     return;
   }
   r.error_estimate = richardson(r.pi1, companion.pi1, solver.step_order);

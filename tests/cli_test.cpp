@@ -151,8 +151,9 @@ TEST_F(Cli, ASweepWithoutEstimateErrorHasAnEmptyColumnAndNoResolvedRow) {
     EXPECT_NE(b.at(k, "error_estimate"), "");
     EXPECT_NE(b.at(k, "resolved"), "");
     const std::string velocity = b.at(k, "error_estimate_velocity");  // empty: no impact at either step
-    if (std::stod(b.at(k, "error_estimate")) > 0.01 || (!velocity.empty() && std::stod(velocity) > 0.01))
+    if (std::stod(b.at(k, "error_estimate")) > 0.01 || (!velocity.empty() && std::stod(velocity) > 0.01)) {
       EXPECT_EQ(b.at(k, "resolved"), "false");
+    }
   }
   const Outcome unused = run("spectrum tiny.toml --solver moreau-jean --target-error 0.05");
   EXPECT_EQ(unused.exit_code, 2);
