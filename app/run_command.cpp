@@ -18,6 +18,7 @@
 #include "frontend/errors.hpp"
 #include "frontend/run_output.hpp"
 #include "rows/physical_results.hpp"
+#include "solvers/verdict.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb::app {
@@ -64,6 +65,17 @@ void print_physical(std::ostream& out, const Row& row) {
     out << "contact  largest force " << value(5) << " N, deepest penetration " << value(6) << " m\n";
 }
 
+// The error estimate's line (Result::error_estimate), where the run has one.
+void print_estimate(std::ostream& out, const Row& row) {
+  const Result& r = row.result;
+  if (std::isnan(r.error_estimate)) return;
+  const SolverInfo* solver = find_solver(row.solver);
+  out << "error    estimate " << percent(r.error_estimate) << " of Pi1";
+  if (std::isfinite(r.error_estimate_velocity))
+    out << ", " << percent(r.error_estimate_velocity) << " of the fastest approach";
+  out << " (companion solve at 2h, order " << brief(solver ? solver->step_order : std::nan("")) << ")\n";
+}
+
 void print_summary(std::ostream& out, const Row& row) {
   const Case& c = row.input;
   const Result& r = row.result;
@@ -93,10 +105,11 @@ void print_summary(std::ostream& out, const Row& row) {
   out << "status   " << name(r.status) << (r.message.empty() ? "" : ": " + r.message) << '\n';
   if (r.resolved) {
     out << "verdict  "
-        << (*r.resolved ? "resolved (no criterion of solvers/verdict.hpp failed)"
+        << (*r.resolved ? "resolved (no criterion of solvers/verdict.hpp failed, error estimate within the target)"
                         : "UNRESOLVED, do not trust this Pi1: " + r.unresolved)
         << '\n';
   }
+  print_estimate(out, row);
   out << "Pi1      " << brief(r.pi1) << "  (no contact " << brief(row.pi1_no_contact)
       << "), at t = " << brief(r.t_max) << '\n';
   out << "impacts  " << r.impacts << ", contact phases " << r.contact_phases << ", steps/events " << r.steps << '\n';
@@ -137,6 +150,7 @@ CLI::App* add_run_command(CLI::App& app, RunFlags& flags) {
                       "Write the time history as CSV (t,u1,u0,...,v...,g...,lambda...) to this file");
   command->add_option("--samples", flags.samples, "Samples of the time history (with --history)")
       ->capture_default_str();
+  add_estimate_flags(*command, flags.estimate, false);
   command->add_option("--k-contact", flags.k_contact,
                       "Compliant: contact stiffness in N/m (linear element) or N/m^1.5 (Hertz family), for a case in "
                       "physical units; sets --stiffness's Pi term K");
@@ -145,6 +159,7 @@ CLI::App* add_run_command(CLI::App& app, RunFlags& flags) {
 
 int run_command(const CLI::App& command, RunFlags flags) {
   const ChosenCase chosen = chosen_case(command, flags.case_flags);
+  check_estimate_flags(command, flags.estimate, false);
   const bool history = command.count("--history") > 0;
   if (command.count("--samples") && !history) throw BadInput("--samples: only used with --history");
   if (history) {
@@ -169,7 +184,7 @@ int run_command(const CLI::App& command, RunFlags flags) {
   const bool second_pass = flags.solver_flags.settings.monitor;
   Settings settings = flags.solver_flags.settings;
   settings.monitor = true;
-  const Row row = run_point(chosen.input, chosen.point, solver, settings, 1, nullptr, !second_pass);
+  const Row row = run_point(chosen.input, chosen.point, solver, settings, 1, nullptr, !second_pass, flags.estimate);
   if (history)
     write_atomically(flags.history, [&](std::ostream& out) { write_history(out, row.result.history, row.input); });
 

@@ -18,6 +18,8 @@ struct RunFlags {
   std::string history;
   int samples = 2000;
   double k_contact = 0.0;  // --k-contact (frontend/contact_stiffness.hpp)
+  // A fixed-step run's error estimate, always made (a companion solve at 2h); --target-error.
+  ErrorEstimate estimate{.on = true};
 };
 
 CLI::App* add_run_command(CLI::App& app, RunFlags& flags);

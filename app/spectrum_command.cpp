@@ -101,6 +101,7 @@ CLI::App* add_spectrum_command(CLI::App& app, SpectrumFlags& flags) {
   command->add_option("--out", flags.out, "Write the CSV to this file (default: stdout)");
   command->add_option("--threads", flags.threads, "Worker threads (default: all cores)");
   add_repetitions_flag(*command, flags.repetitions);
+  add_estimate_flags(*command, flags.estimate, true);
   command->add_flag(
       "--check", flags.check,
       "Exit 1 when a point did not finish ok (after writing the output), naming them on stderr per family");
@@ -118,7 +119,9 @@ int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const 
   processes.agree([&] {
     set = load_case_list(flags.case_set);
     validate_case_set(set.cases, flags.case_set);
-    runs[0] = {&checked_solver(flags.solver_flags, command), flags.solver_flags.settings, flags.repetitions};
+    check_estimate_flags(command, flags.estimate, true);
+    runs[0] = {&checked_solver(flags.solver_flags, command), flags.solver_flags.settings, flags.repetitions, false,
+               flags.estimate};
     if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
     if (!processes.leader()) return;
     std::vector<NamedFile> inputs = record_files(set.cases);

@@ -25,6 +25,7 @@ struct SpectrumFlags {
   bool check = false;   // exit 1 when a point did not finish ok (after writing the output)
   std::string junit;    // --junit: --check's verdicts, a testcase per family (app/check_report.hpp)
   SolverFlags solver_flags;
+  ErrorEstimate estimate{};  // --estimate-error, --target-error
 };
 
 CLI::App* add_spectrum_command(CLI::App& app, SpectrumFlags& flags);

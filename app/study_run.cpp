@@ -8,6 +8,7 @@
 #include "app/resumable_sweep.hpp"
 #include "app/sweep_watch.hpp"
 #include "frontend/errors.hpp"
+#include "frontend/solver_flags.hpp"
 #include "studies/workprecision.hpp"
 
 namespace pb::app {
@@ -82,6 +83,7 @@ CLI::App* add_study_command(CLI::App& app, StudyFlags& flags, std::string_view n
   command->add_option("--points", flags.points, std::string(points_help));
   command->add_option("--threads", flags.threads, "Worker threads (default: all cores)");
   add_repetitions_flag(*command, flags.repetitions);
+  add_estimate_flags(*command, flags.estimate, true);
   command->add_flag("--check", flags.check, std::string(check_help));
   add_junit_flag(*command, flags.junit, "summary row");
   return command;
@@ -90,6 +92,7 @@ CLI::App* add_study_command(CLI::App& app, StudyFlags& flags, std::string_view n
 Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_view name, StudyOptions options,
                 const Processes& processes, const std::function<CaseSet()>& case_from_flags) {
   options.repetitions = flags.repetitions;
+  options.estimate = flags.estimate;
   Study study;
   std::vector<SweepRun> runs;
   EarlierRows earlier;
@@ -109,6 +112,7 @@ Study run_study(const CLI::App& command, const StudyFlags& flags, std::string_vi
       throw BadInput(e.what());
     }
     if (command.count("--threads") && flags.threads == 0) throw BadInput("--threads: must be >= 1");
+    check_estimate_flags(command, flags.estimate, true);
     runs = study_runs(study.list, options);
     if (!processes.leader()) return;
     std::vector<NamedFile> inputs = record_files(study.set.cases);

@@ -30,6 +30,7 @@ struct StudyFlags {
   int repetitions = kStudyRepetitions;
   bool check = false;  // exit 1 when a row fails (after writing the outputs)
   std::string junit;   // --junit: --check's verdicts as JUnit XML (app/check_report.hpp)
+  ErrorEstimate estimate{};  // --estimate-error, --target-error: the list's runs' (StudyOptions)
 };
 
 // --repetitions R: timed solves per point, at most (sweep/sweep.hpp), from 1 to
@@ -40,7 +41,8 @@ void add_repetitions_flag(CLI::App& command, int& repetitions);
 // and, when `say` (the leader), each run of an engine this build left out named on stderr.
 SettingsList read_settings_list(const std::string& file, bool say);
 
-// CASESET, --settings, --out, --points, --threads, --repetitions, --check with `check_help`, --junit.
+// CASESET, --settings, --out, --points, --threads, --repetitions, --estimate-error, --target-error,
+// --check with `check_help`, --junit.
 CLI::App* add_study_command(CLI::App& app, StudyFlags& flags, std::string_view name, std::string_view summary,
                             std::string_view points_help, std::string_view check_help);
 

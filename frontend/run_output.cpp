@@ -116,6 +116,9 @@ void row_fields(const Row& row, const ChosenCase& chosen, FieldSink& sink) {
   // The external solver's own timings (rows/row.hpp), after everything else.
   j["solve_seconds"] = number_or_null(r.solve_seconds);
   j["startup_seconds"] = number_or_null(r.startup_seconds);
+  // A fixed-step run's error estimates (Result::error_estimate), added last.
+  j["error_estimate"] = number_or_null(r.error_estimate);
+  j["error_estimate_velocity"] = number_or_null(r.error_estimate_velocity);
 }
 
 nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {

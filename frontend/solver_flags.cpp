@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <string_view>
 
 #include "cases/fields.hpp"
@@ -82,6 +83,25 @@ void check_step_bound(const Case& c, const Settings& settings) {
   if (std::string bad = step_rule_problem(system, settings); !bad.empty()) throw BadInput(as_flag_message(bad));
   if (std::string bad = step_problem(system, time_step(system, settings, 1)); !bad.empty())
     throw BadInput("--wh: " + bad);
+}
+
+void add_estimate_flags(CLI::App& command, ErrorEstimate& estimate, bool sweep) {
+  if (sweep)
+    command.add_flag("--estimate-error", estimate.on,
+                     "Fixed-step solvers: estimate each point's relative error of Pi1 from a companion solve at twice "
+                     "the step (about half a solve more; the error_estimate column), which `resolved` needs");
+  command
+      .add_option("--target-error", estimate.target_error,
+                  "The largest error estimate (relative, of Pi1) of a resolved run" +
+                      std::string(sweep ? " (with --estimate-error)" : ""))
+      ->capture_default_str();
+}
+
+void check_estimate_flags(const CLI::App& command, const ErrorEstimate& estimate, bool sweep) {
+  if (!(estimate.target_error > 0.0) || !std::isfinite(estimate.target_error))
+    throw BadInput("--target-error: must be a finite number > 0 (a relative error: 0.01 is 1 %)");
+  if (sweep && command.count("--target-error") && !estimate.on)
+    throw BadInput("--target-error: only used with --estimate-error");
 }
 
 const SolverInfo& checked_solver(const SolverFlags& flags, const CLI::App& command) {

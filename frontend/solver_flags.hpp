@@ -9,6 +9,7 @@
 
 #include "cases/case.hpp"
 #include "solvers/solver.hpp"
+#include "sweep/sweep.hpp"
 
 namespace pb::app {
 
@@ -42,5 +43,14 @@ void check_step_bound(const Case& c, const Settings& settings);
 
 // "field: reason" from a check() with the field turned into its flag, e.g. "--tol-scale: ...".
 std::string as_flag_message(const std::string& field_reason);
+
+// --target-error (the largest error estimate a resolved run may have, solvers/verdict.hpp) and,
+// on a sweep (`spectrum`, `workprecision`, `stress`), --estimate-error, which a sweep's
+// estimate needs: it costs a companion solve at twice the step per point (sweep/sweep.hpp).
+// `run` estimates whenever it can, so it has no --estimate-error.
+void add_estimate_flags(CLI::App& command, ErrorEstimate& estimate, bool sweep);
+// Throws BadInput for a --target-error that is not a number > 0, or (on a sweep) one given
+// without --estimate-error, which would not be used.
+void check_estimate_flags(const CLI::App& command, const ErrorEstimate& estimate, bool sweep);
 
 }  // namespace pb::app

@@ -664,7 +664,8 @@ py::dict run(const py::kwargs& kwargs) {
   std::atomic<bool> stop{false};
   Settings settings = k.solver_flags.settings;
   settings.stop = &stop;
-  // As `run`: without monitor=True its one solve is monitored; monitor=False: not at all.
+  // As `run`: without monitor=True its one solve is monitored; monitor=False: not at all. As
+  // `run`, a fixed-step run's error estimate is made (a companion solve at 2h).
   const bool second_pass = settings.monitor;
   if (!k.has("--monitor")) settings.monitor = true;
   Row row;
@@ -675,7 +676,7 @@ py::dict run(const py::kwargs& kwargs) {
   // at N = 64): BM_PythonRun's fixed cost, one case called again and again, 25.4 -> 21.6 us.
   static NoContactCache no_contact;
   run_interruptibly(stop, [&] {
-    row = run_point(chosen.input, chosen.point, *solver, settings, 1, &no_contact, !second_pass);
+    row = run_point(chosen.input, chosen.point, *solver, settings, 1, &no_contact, !second_pass, ErrorEstimate{.on = true});
   });
   py::dict out = row_dict(row, chosen);
   if (history) out["history"] = history_arrays(row);

@@ -46,6 +46,8 @@ MPI_PROVENANCE = "mpi-provenance.json"
 PERSISTENT = "persistent.csv"  # scripts/persistent_overhead.py's medians (scripts/main.sh runs it)
 PERSISTENT_PROVENANCE = "persistent-provenance.json"
 PHYSICAL = "physical-example.json"  # scripts/physical_example.sh: README's question in metres and seconds
+ESTIMATE = "estimate-reliability.csv"  # scripts/estimate_reliability.py: how far the error estimate is trusted
+ESTIMATE_PROVENANCE = "estimate-reliability-provenance.json"
 
 
 def committed(folder):
@@ -74,11 +76,15 @@ def committed(folder):
     has_records_wp = os.path.exists(os.path.join(folder, RECORDS_WP))
     has_yielding_wp = os.path.exists(os.path.join(folder, YIELDING_WP))
     has_records_step = os.path.exists(os.path.join(folder, RECORDS_STEP))
+    estimate = None
+    if os.path.exists(os.path.join(folder, ESTIMATE)):
+        with open(path(ESTIMATE_PROVENANCE)) as f:
+            estimate = dict(rows=load([path(ESTIMATE)]), provenance=json.load(f))
     physical = None
     if os.path.exists(os.path.join(folder, PHYSICAL)):
         with open(path(PHYSICAL)) as f:
             physical = json.load(f)
-    return dict(mpi=mpi, persistent=persistent, physical=physical, workprecision=load([path(WORKPRECISION)]),
+    return dict(mpi=mpi, persistent=persistent, estimate=estimate, physical=physical, workprecision=load([path(WORKPRECISION)]),
                 impacting=read_impacting(path(IMPACTING)) if has_impacting else None,
                 scenes={r["family"]: r["scene"] for r in load([path(FAMILIES)])},
                 stability=load([path(STABILITY)]), measured=load([path(MEASURED)]),
@@ -150,6 +156,23 @@ def persistent_lines(persistent):
 
 
 PHYSICAL_TARGETS = (1e-2, 1e-3)  # the engineer's 1 %, and ten times tighter
+
+
+def estimate_lines(estimate):
+    """How far a resolved run can be trusted: the error estimate's verdicts against the reference on
+    random cases at coarse steps (scripts/estimate_reliability.py), per solver."""
+    rows = estimate["rows"]
+    first = rows[0]
+    lines = [f"{first['cases']} random wall and pair cases (seed {first['seed']}) at N = {first['steps']} steps per "
+             f"shortest period, `--monitor --estimate-error`, target {100 * float(first['target']):g} %, against the "
+             "reference (`scripts/estimate_reliability.py`):", "",
+             f"| solver | runs ok | resolved | resolved but more than {100 * float(first['off']):g} % off | unresolved "
+             f"| unresolved but within {100 * float(first['within']):g} % |", "|---|---:|---:|---:|---:|---:|"]
+    for r in rows:
+        lines.append(f"| {r['solver']} | {r['ok']} | {r['resolved']} | {r['resolved_off']} "
+                     f"({100 * float(r['resolved_off_share']):.1f} %) | {r['unresolved']} | {r['unresolved_within']} "
+                     f"({100 * float(r['unresolved_within_share']):.1f} %) |")
+    return lines
 
 
 def physical_model(row):
@@ -237,6 +260,11 @@ def blocks(folder):
             source_line(inputs, [PERSISTENT, PERSISTENT_PROVENANCE], inputs["persistent"]["provenance"]),
         ] if inputs["persistent"] else ["Not measured yet: `scripts/persistent_overhead.py --out reports/persistent.csv` "
                                         "writes these numbers."],
+        "estimate": [
+            *estimate_lines(inputs["estimate"]), "",
+            source_line(inputs, [ESTIMATE, ESTIMATE_PROVENANCE], inputs["estimate"]["provenance"]),
+        ] if inputs["estimate"] else ["Not measured yet: `scripts/estimate_reliability.py --out "
+                                      "reports/estimate-reliability.csv` writes these numbers."],
         "answer": [
             "For each scene of the work-precision study and each target error, the cheapest setting that meets "
             "it, and its cost; then for every scene at once, among every solver and among the time-steppers only "

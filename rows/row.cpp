@@ -127,6 +127,8 @@ constexpr std::array kVerdictColumns = {"resolved", "unresolved"};
 constexpr std::array kOwnTimeColumns = {"solve_seconds", "startup_seconds"};
 // A record's step over its sampling interval, h / DT (the step rule `record`, issue 34), last.
 constexpr std::array kRecordStepColumns = {"h_over_dt"};
+// A fixed-step run's error estimates (Result::error_estimate, issue 48), after h_over_dt.
+constexpr std::array kEstimateColumns = {"error_estimate", "error_estimate_velocity"};
 
 // Where a field's column is: after the directivity (those of every scene's bodies), after
 // the message (the chain's, where they were added), after the tail (the pulses') or at the
@@ -220,6 +222,7 @@ std::string csv_header() {
   for (std::string_view column : kPhysicalResultNames) line.text(column);
   for (const char* column : kOwnTimeColumns) line.text(column);
   for (const char* column : kRecordStepColumns) line.text(column);
+  for (const char* column : kEstimateColumns) line.text(column);
   return line.take();
 }
 
@@ -270,6 +273,8 @@ std::string csv_line(const Row& row) {
   line.number(r.solve_seconds);
   line.number(r.startup_seconds);
   line.number(h_over_dt(row));
+  line.number(r.error_estimate);
+  line.number(r.error_estimate_velocity);
   return line.take();
 }
 

@@ -10,7 +10,8 @@
 //   energy_excess, penetration, isolated_impacts, restitution_low, restitution_high,
 //   penetration_steps, cpu_seconds_low, cpu_seconds_high, repetitions, cycles, mp_gamma,
 //   mp_nu, record, resolved, unresolved, pi_y0, pi_y1, pi_y2, pi_y, alpha, mu, residual, hysteretic,
-//   t0, ... (the physical values and results), solve_seconds, startup_seconds, h_over_dt
+//   t0, ... (the physical values and results), solve_seconds, startup_seconds, h_over_dt,
+//   error_estimate, error_estimate_velocity
 // pi5/pi6 are empty for the wall scene and pi7/pi8 for every scene but row3; bodies and
 // kick are empty except for chain; cycles, mp_gamma, mp_nu and record except for the pulse
 // that uses them (makris-c, mp, record: the record's file as the case named it); the fields
@@ -25,6 +26,9 @@
 // none; startup_seconds a persistent program's start, on the one row whose point started it.
 // h_over_dt is a record's step over its sampling interval DT (empty for a pulse or a solver
 // with no fixed step): the step rule `record` (Settings::steps_per_sample) makes it 1/m.
+// error_estimate and error_estimate_velocity are a fixed-step run's estimated relative errors
+// of Pi1 and of the fastest impact's approach velocity (Result::error_estimate), empty where
+// none was made: a sweep without --estimate-error, a solver with no fixed step.
 //
 // Timing: the solve alone, with the monitor off, the clocks' own cost taken off (about 0.37 us
 // of CPU: the thread's CPU clock is a system call; sweep/stopwatch.hpp), repeated

@@ -239,6 +239,8 @@ Row parse_row(const Columns& columns, const std::vector<std::string>& fields) {
   r.contact_force_max = f.number("contact_force_max") / mass_unit(c);
   r.solve_seconds = f.number("solve_seconds");  // a file from before them, or not external: NaN
   r.startup_seconds = f.number("startup_seconds");
+  r.error_estimate = f.number("error_estimate");  // a file from before them: not estimated
+  r.error_estimate_velocity = f.number("error_estimate_velocity");
   if (const std::string bad = row_problem(row); !bad.empty()) throw RowReadError(bad);
   return row;  // penetration is not read: it is made from min_gap
 }

@@ -40,6 +40,17 @@ namespace {
 template <std::string (*OwnCheck)(const Settings&)>
 std::string check_all(const Settings& settings);
 
+// The order of Pi1 in the step that a fixed-step run's error estimate assumes
+// (SolverInfo::step_order). Pi1 is the largest |u0| over the step ends: where that maximum is
+// smooth a second-order scheme reads it to O(h^2), but where it sits at an impact (u0' jumps:
+// a kink of |u0|) the step ends sample it to O(h) whatever the scheme, and every scheme here
+// is first order through its impacts (Moreau-Jean at theta = 1/2 included). So p = 1, the
+// conservative choice: a p of 2 would divide the estimate by 3. Measured on the 200 random wall
+// and pair cases of scripts/estimate_reliability.py against the reference, the order of Pi1's
+// error from N to 2N (N = 32 .. 256): Moreau-Jean 1.4 to 1.6 in the median case, its quartiles
+// 0.5 to 2.5 (erratic: impacts move between step ends); ODE 1.0 to 1.06, quartiles 0.4 to 1.5.
+constexpr double kFixedStepOrder = 1.0;
+
 const std::array kSolvers = {
     // Every solver is a deterministic sequence of floating-point operations: the stored
     // rows were reproduced bit for bit by the Release (-O3), RelWithDebInfo (-O2) and
@@ -51,45 +62,46 @@ const std::array kSolvers = {
     // A time-stepper's round-off can flip an activation test that sits at its threshold and
     // move Pi1 by a step's worth; 1e-12 lets round-off through and catches any such flip.
     SolverInfo{"moreau-jean", "theta-method time-stepper, Newton impacts on predicted contacts (fixed step)",
-               &moreau_jean::solve, &moreau_jean::describe, &check_all<&moreau_jean::check>, &moreau_jean::variant_list, 1e-12},
+               &moreau_jean::solve, &moreau_jean::describe, &check_all<&moreau_jean::check>, &moreau_jean::variant_list, 1e-12,
+               false, nullptr, false, kFixedStepOrder},
 #ifdef POUNDBENCH_HAVE_ODE
     SolverInfo{"ode", "Open Dynamics Engine: its LCP contact solver with restitution (see --variant)", &ode::solve,
-               &ode::describe, &check_all<&ode::check>, &ode::variant_list, 1e-12},
+               &ode::describe, &check_all<&ode::check>, &ode::variant_list, 1e-12, false, nullptr, false, kFixedStepOrder},
 #endif
 #ifdef POUNDBENCH_HAVE_BULLET
     // Debian's Bullet computes in single precision: the same margin at float round-off.
     SolverInfo{"bullet", "Bullet Physics (single precision): its constraint solvers with restitution (see --variant)",
-               &bullet::solve, &bullet::describe, &check_all<&bullet::check>, &bullet::variant_list, 1e-6},
+               &bullet::solve, &bullet::describe, &check_all<&bullet::check>, &bullet::variant_list, 1e-6, false, nullptr, false, kFixedStepOrder},
 #endif
 #ifdef POUNDBENCH_HAVE_SICONOS
     // Its LSODAR variant chooses its own steps, and round-off can move a step choice and Pi1
     // with it within its tolerances (1e-10 and below): as the reference.
     SolverInfo{"siconos", "Siconos: its MoreauJeanOSI, event-driven LSODAR and other nonsmooth integrators (see --variant)",
-               &siconos::solve, &siconos::describe, &check_all<&siconos::check>, &siconos::variant_list, 1e-9},
+               &siconos::solve, &siconos::describe, &check_all<&siconos::check>, &siconos::variant_list, 1e-9, false, nullptr, false, kFixedStepOrder},
 #endif
 #ifdef POUNDBENCH_HAVE_SUNDIALS
     // CVODE chooses its steps, and round-off can move a step choice and Pi1 with it within
     // its tolerance (1e-8 by default): 1e-7 lets that through.
     SolverInfo{"compliant", "compliant contact elements (see --variant), integrated by CVODE or Newmark",
                &compliant::solve, &compliant::describe, &check_all<&compliant::check>, &compliant::variant_list, 1e-7,
-               false, &compliant::model_reference},
+               false, &compliant::model_reference, false, kFixedStepOrder},
 #endif
 #ifdef POUNDBENCH_HAVE_MUJOCO
     // A fixed-step engine in double precision, as ODE: round-off only, 1e-12.
     SolverInfo{"mujoco", "MuJoCo: soft contacts calibrated to eps, Euler, implicit or RK4 (see --variant)",
-               &mujoco::solve, &mujoco::describe, &check_all<&mujoco::check>, &mujoco::variant_list, 1e-12},
+               &mujoco::solve, &mujoco::describe, &check_all<&mujoco::check>, &mujoco::variant_list, 1e-12, false, nullptr, false, kFixedStepOrder},
 #endif
 #ifdef POUNDBENCH_HAVE_DART
     // A fixed-step engine in double precision, as ODE: round-off only, 1e-12.
     SolverInfo{"dart", "DART: its constraint solver with a gap constraint of its own, or boxes via FCL (see --variant)",
-               &dart::solve, &dart::describe, &check_all<&dart::check>, &dart::variant_list, 1e-12},
+               &dart::solve, &dart::describe, &check_all<&dart::check>, &dart::variant_list, 1e-12, false, nullptr, false, kFixedStepOrder},
 #endif
 #ifdef POUNDBENCH_HAVE_SIMBODY
     // Its time-stepper, in double precision, is deterministic: round-off only, 1e-12. Its
     // hunt-crossley variant's Runge-Kutta-Merson chooses its steps, and round-off can move a
     // choice and Pi1 with it within its accuracy (1e-8 by default): 1e-7, as CVODE's.
     SolverInfo{"simbody", "Simbody: its semi-explicit Euler time-stepper with Poisson impacts, or Hunt-Crossley elements (see --variant)",
-               &simbody::solve, &simbody::describe, &check_all<&simbody::check>, &simbody::variant_list, 1e-7},
+               &simbody::solve, &simbody::describe, &check_all<&simbody::check>, &simbody::variant_list, 1e-7, false, nullptr, false, kFixedStepOrder},
 #endif
     // Another program, run once per point (docs/external.md): what it computes is its own; a
     // deterministic program gives its Pi1 again bit for bit, and 1e-9 lets another build of it

@@ -162,6 +162,13 @@ struct Result {
   // the one point whose solve started it (NaN on every other): the sweep takes it off that
   // point's seconds, so the start-up is reported once, apart from any solve.
   double startup_seconds = std::numeric_limits<double>::quiet_NaN();
+  // A fixed-step run's estimated relative error of Pi1, and of impact_velocity_max, by
+  // Richardson from a companion solve at twice the step (sweep/sweep.hpp, run_point's
+  // ErrorEstimate): |x(h) - x(2h)| / (2^p - 1) / |x(h)|, p the solver's SolverInfo::step_order.
+  // NaN: not estimated (not asked for, no fixed step, a solver of no known order, or no impact
+  // in one of the two solves for the velocity's).
+  double error_estimate = std::numeric_limits<double>::quiet_NaN();
+  double error_estimate_velocity = std::numeric_limits<double>::quiet_NaN();
 };
 
 // An impact at time t approaching at -rate > 0: what every solver's impact count notes.
@@ -264,6 +271,11 @@ struct SolverInfo {
   // the row's measurement too, with no monitored pass more (the external solver: a second
   // pass ran the user's program twice per point; it measures what it can either way).
   bool one_pass = false;
+  // The order p of Pi1 in the step that the error estimate assumes (Result::error_estimate),
+  // for a run with a fixed step (Result::step finite); 0: no estimate (a solver without a fixed
+  // step, or whose order poundbench does not know: the external programs'). A per-solver fact
+  // from the registry: 1 for every fixed-step solver, measured (solvers/registry.cpp says how).
+  double step_order = 0.0;
 };
 
 std::span<const SolverInfo> solvers();

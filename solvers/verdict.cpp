@@ -17,7 +17,13 @@ std::string brief(double x) {
 
 }  // namespace
 
-void judge(const System& system, Result& r) {
+std::string percent(double relative) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g %%", 100.0 * relative);
+  return text;
+}
+
+void judge(const System& system, Result& r, const VerdictScope& scope) {
   r.resolved.reset();
   r.unresolved.clear();
   if (r.status != Status::ok) return;
@@ -39,7 +45,14 @@ void judge(const System& system, Result& r) {
            brief(r.restitution_high) + " for eps " + brief(system.eps) + " (off by more than " +
            brief(kRestitutionMargin) + ")");
   }
+  if (r.error_estimate > scope.target_error)
+    fail("error estimate " + percent(r.error_estimate) + " > target " + percent(scope.target_error) +
+         " (its Pi1 against a companion solve at twice the step)");
+  if (r.error_estimate_velocity > scope.target_error)
+    fail("impact velocity error estimate " + percent(r.error_estimate_velocity) + " > target " +
+         percent(scope.target_error) + " (its fastest approach against the companion's: its impacts have not converged)");
   if (!r.doubt.empty()) fail(r.doubt);
+  if (why.empty() && !scope.complete) return;  // not judged: what was not measured could fail
   r.resolved = why.empty();
   r.unresolved = std::move(why);
 }

@@ -64,7 +64,7 @@ std::vector<SweepRun> study_runs(const SettingsList& list, const StudyOptions& s
   truth.settings.time_limit = list.reference_time_limit;
   runs.push_back(truth);
   for (const SweepRun& run : list.runs) {
-    runs.push_back({run.solver, run.settings, study.repetitions, study.monitor});
+    runs.push_back({run.solver, run.settings, study.repetitions, study.monitor, study.estimate});
     runs.back().settings.monitor = study.monitor && run.settings.monitor;
   }
   if (study.model_references)

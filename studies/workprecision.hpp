@@ -57,6 +57,9 @@ struct StudyOptions {
   // true: the list's runs are followed by the references of their own models
   // (model_reference_runs), and the table measures each run against its model's too.
   bool model_references = false;
+  // The list's runs' error estimates (sweep/sweep.hpp, ErrorEstimate: --estimate-error); not the
+  // truth's or the model references', which have no fixed step.
+  ErrorEstimate estimate{};
 };
 
 // The references of the list's runs' own models (SolverInfo::model_reference) that the list

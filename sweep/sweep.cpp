@@ -8,6 +8,7 @@
 #include <exception>
 #include <memory>
 #include <mutex>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <thread>
@@ -163,10 +164,65 @@ void add_monitor(Row& row, const SolverInfo& solver, const System& system, Setti
   r.gap_rate_max = monitored.gap_rate_max;
 }
 
+// x(h) against x(2h) at order p, relative to x(h) (ErrorEstimate); 0 where both are 0.
+double richardson(double at_h, double at_2h, double order) {
+  const double difference = std::abs(at_h - at_2h);
+  if (difference == 0.0) return 0.0;
+  return difference / (std::exp2(order) - 1.0) / std::abs(at_h);
+}
+
+// The settings of ErrorEstimate's companion solve at twice the run's step; nullopt where there
+// is none: a run without a fixed step, a solver of no known order, or a variant whose check
+// refuses a step of ours (it chooses its own: Simbody's Runge-Kutta-Merson reports a step but
+// takes none of --steps or --wh), which is then judged as the solvers without a fixed step.
+std::optional<Settings> companion_settings(const SolverInfo& solver, const System& system, const Result& r,
+                                           Settings settings) {
+  if (!(solver.step_order > 0.0) || !std::isfinite(r.step) || r.status != Status::ok) return std::nullopt;
+  settings.steps = 0;
+  settings.steps_per_sample = 0;
+  settings.wh = 2.0 * 2.0 * std::numbers::pi * r.step / system.t_min;
+  settings.monitor = false;
+  settings.history_samples = 0;
+  if (!solver.check(settings).empty()) return std::nullopt;
+  return settings;
+}
+
+// The companion solve of ErrorEstimate (its settings: companion_settings), and the estimates from it.
+void add_estimate(Row& row, const SolverInfo& solver, const System& system, const Settings& settings,
+                  const PointDeadline& deadline) {
+  Result& r = row.result;
+  const std::optional<Settings> now = deadline.left(settings);
+  const Result companion = now ? timed_solve(solver, system, *now).result : Result{};
+  if (!now || companion.status == Status::time_limit) {
+    r.message += std::string(r.message.empty() ? "" : "; ") +
+                 "the companion solve at 2h passed the time limit: no error estimate";
+    return;
+  }
+  if (companion.status != Status::ok) {
+    r.doubt += std::string(r.doubt.empty() ? "" : "; ") + "its companion solve at twice the step ended " +
+               std::string(name(companion.status)) + " (so nothing to estimate its error by)";
+    return;
+  }
+  r.error_estimate = richardson(r.pi1, companion.pi1, solver.step_order);
+  // No impact is an approach of 0: an impact at one step and none at the other is as far apart
+  // as the impact (100 % at p = 1, or infinite where the run itself had none); none at either, no estimate.
+  const auto approach = [](double v) { return std::isnan(v) ? 0.0 : v; };
+  if (!std::isnan(r.impact_velocity_max) || !std::isnan(companion.impact_velocity_max))
+    r.error_estimate_velocity =
+        richardson(approach(r.impact_velocity_max), approach(companion.impact_velocity_max), solver.step_order);
+}
+
+// Whether the run took every measurement the verdict could ask of it (run_point says which);
+// estimable: it has a companion (companion_settings).
+bool measured_all(const Result& r, const SolverInfo& solver, const Settings& settings, bool estimable) {
+  if (!settings.monitor && !solver.reference) return false;
+  return !estimable || !std::isnan(r.error_estimate);
+}
+
 }  // namespace
 
 Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const Settings& settings,
-              int repetitions, NoContactCache* no_contact, bool monitor_timed) {
+              int repetitions, NoContactCache* no_contact, bool monitor_timed, const ErrorEstimate& estimate) {
   Row row;
   row.input = c;
   row.point = point;
@@ -204,7 +260,9 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
       row.result.status != Status::time_limit)
     add_monitor(row, solver, system, settings, deadline);
 
-  judge(system, row.result);
+  const std::optional<Settings> companion = companion_settings(solver, system, row.result, settings);
+  if (estimate.on && companion) add_estimate(row, solver, system, *companion, deadline);
+  judge(system, row.result, {estimate.target_error, measured_all(row.result, solver, settings, companion.has_value())});
   row.wh = 2.0 * std::numbers::pi * row.result.step / system.t_min;
   row.penetration_steps = penetration_steps(row.result);
 
@@ -283,7 +341,7 @@ std::vector<Row> run_sweep(const CaseList& cases, std::span<const SweepRun> runs
       const std::size_t r = *task / n;
       Row row =
           run_point(cases[*task % n], *task % n, *runs[r].solver, settings[r], runs[r].repetitions, &no_contact,
-                    runs[r].monitor_timed);
+                    runs[r].monitor_timed, runs[r].estimate);
       row.run = r;
       if (cancelled()) return;  // the run may have been cut short by the stop: not a result
       std::exception_ptr finished_error;

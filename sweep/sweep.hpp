@@ -25,6 +25,7 @@
 #include "cases/case.hpp"
 #include "cases/case_list.hpp"
 #include "solvers/solver.hpp"
+#include "solvers/verdict.hpp"
 #include "rows/row.hpp"
 #include "sweep/no_contact_cache.hpp"
 
@@ -56,6 +57,19 @@ namespace pb {
 inline constexpr int kMaxRepetitions = 1000;
 inline constexpr double kRepetitionBudget = 0.01;  // CPU seconds per point, over its repetitions
 
+// The error estimate of a fixed-step run (Result::error_estimate) and the target its verdict
+// holds it to (solvers/verdict.hpp). on: run_point solves the case once more, untimed, at twice
+// the run's step (Settings::wh = 2 w_max h, without a record's step rule: the companion's step is
+// exactly 2h), for a solver with a SolverInfo::step_order whose run had a fixed step; that costs
+// about half a solve more. A companion that does not end ok makes the run unresolved (a doubt);
+// one the solver's check refuses, or that the time limit cuts short, leaves the run without an
+// estimate (not judged). Its time is not the row's: the row times the run at h alone.
+// `run` estimates by default; a sweep with --estimate-error.
+struct ErrorEstimate {
+  bool on = false;
+  double target_error = kTargetError;
+};
+
 // Solves one case: builds the System, times solver.solve alone (as above, 1 <= repetitions
 // <= kMaxRepetitions), adds the monitor's measurements when settings.monitor asks and the
 // no-contact Pi1 (from `no_contact` when given: a sweep's cache, sweep/no_contact_cache.hpp).
@@ -64,8 +78,13 @@ inline constexpr double kRepetitionBudget = 0.01;  // CPU seconds per point, ove
 // monitor_timed: the timed solves keep settings.monitor as it is and there is no monitored
 // pass. `run` monitors its one solve so: the verdict then judges every criterion at the cost of
 // one solve (the monitor adds 30 % to 44 % to a Moreau-Jean step), where a second pass doubled it.
+// The verdict (solvers/verdict.hpp) is not judged (resolved empty) where it cannot be true
+// for want of a measurement: with settings.monitor off (but the reference's own checks), or
+// for a fixed-step run with a step_order whose estimate was not made (`estimate` off, or none
+// made), unless a criterion it did measure fails.
 Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const Settings& settings,
-              int repetitions = 1, NoContactCache* no_contact = nullptr, bool monitor_timed = false);
+              int repetitions = 1, NoContactCache* no_contact = nullptr, bool monitor_timed = false,
+              const ErrorEstimate& estimate = {});
 
 // One solver with its settings, run over every case of a sweep. settings.monitor: the rows
 // carry the monitor's measurements, from one untimed pass more (run_point), or, with
@@ -75,6 +94,7 @@ struct SweepRun {
   Settings settings;
   int repetitions = 1;         // timed solves per point, at most (run_point)
   bool monitor_timed = false;  // run_point's monitor_timed
+  ErrorEstimate estimate{};    // run_point's estimate (--estimate-error, --target-error)
 };
 
 // Hands out the task a thread solves next; nullopt when there is none left. It is called

@@ -597,7 +597,7 @@ TEST(Csv, NumbersReadBackToTheSameDouble) {
 
 TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   const std::vector<std::string> header = split_csv(csv_header());
-  ASSERT_EQ(header.size(), 76u);  // 47, the yielding, the physical, the own timings, h_over_dt
+  ASSERT_EQ(header.size(), 78u);  // 47, the yielding, the physical, the own timings, h_over_dt, the estimates
   EXPECT_EQ(header.front(), "family");
   EXPECT_EQ(header[28], "message");  // the columns after it were appended later
   EXPECT_EQ(header[37], "penetration_steps");
@@ -607,7 +607,9 @@ TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   EXPECT_EQ(header[47], "pi_y0");  // yielding's fields and responses (issue 39)
   EXPECT_EQ(header[55], "t0");     // the physical values and results (issue 35)
   EXPECT_EQ(header[74], "startup_seconds");  // the external solver's own timings (issue 37)
-  EXPECT_EQ(header.back(), "h_over_dt");      // a record's step over its sampling interval last (issue 34)
+  EXPECT_EQ(header[75], "h_over_dt");        // a record's step over its sampling interval (issue 34)
+  EXPECT_EQ(header[76], "error_estimate");   // the error estimates last (issue 48)
+  EXPECT_EQ(header.back(), "error_estimate_velocity");
 
   Row row;
   row.input.family = "odd, \"name\"";
@@ -641,6 +643,9 @@ TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   EXPECT_EQ(field("pi_y0"), "");  // an elastic case: no yield fields, no yield responses
   EXPECT_EQ(field("alpha"), "");
   EXPECT_EQ(field("mu"), "");
+  EXPECT_EQ(field("error_estimate"), "");  // not estimated
+  row.result.error_estimate = 1.0 / 3.0;
+  row.result.error_estimate_velocity = 0.125;
   row.input.pi_y0 = 0.5;
   row.input.alpha = 0.05;
   row.result.residual = 0.25;
@@ -650,6 +655,8 @@ TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   EXPECT_EQ(back.input.alpha, 0.05);
   EXPECT_TRUE(std::isinf(back.input.pi_y1));  // not given: elastic
   EXPECT_EQ(back.result.residual, 0.25);
+  EXPECT_EQ(back.result.error_estimate, 1.0 / 3.0);
+  EXPECT_EQ(back.result.error_estimate_velocity, 0.125);
   EXPECT_EQ(ductility(back), row.result.pi1 / 0.5);
   EXPECT_EQ(case_key(back.input), case_key(row.input));
 }

@@ -87,5 +87,42 @@ TEST(Verdict, WhatARunDidNotMeasureIsNotJudgedAndAFailedRunHasNone) {
   EXPECT_EQ(failed.unresolved, "");
 }
 
+// Issue 48: a fixed-step run's error estimates (of Pi1 and of the fastest approach) above the
+// target make it unresolved, each named with both percentages; at the target it is resolved.
+TEST(Verdict, AnErrorEstimateAboveTheTargetMakesARunUnresolvedAndIsNamed) {
+  const System s = make_system(test::make_case(Scene::wall, PulseShape::sine, 1.0, 1.0, 0.5));
+  Result pi1 = quiet(s);
+  pi1.error_estimate = 0.94;
+  judge(s, pi1);
+  EXPECT_EQ(pi1.resolved, false);
+  EXPECT_EQ(pi1.unresolved.find("error estimate 94 % > target 1 %"), 0u) << pi1.unresolved;
+  Result velocity = quiet(s);
+  velocity.error_estimate = 0.001;
+  velocity.error_estimate_velocity = 0.3;
+  judge(s, velocity);
+  EXPECT_EQ(velocity.resolved, false);
+  EXPECT_EQ(velocity.unresolved.find("impact velocity error estimate 30 % > target 1 %"), 0u) << velocity.unresolved;
+  Result edge = quiet(s);
+  edge.error_estimate = edge.error_estimate_velocity = 0.05;
+  judge(s, edge, {.target_error = 0.05});
+  EXPECT_EQ(edge.resolved, true) << edge.unresolved;
+}
+
+// A run whose measurements were not all taken (VerdictScope::complete false: a sweep without
+// --monitor, or without --estimate-error) is never resolved: not judged, unless a criterion it
+// did measure fails.
+TEST(Verdict, ARunWhoseMeasurementsWereNotAllTakenIsNotJudgedUnlessOneFails) {
+  const System s = make_system(test::make_case(Scene::wall, PulseShape::sine, 1.0, 1.0, 0.5));
+  Result r = quiet(s);
+  judge(s, r, {.complete = false});
+  EXPECT_FALSE(r.resolved.has_value());
+  EXPECT_EQ(r.unresolved, "");
+  Result coarse = quiet(s);
+  coarse.step = s.t_min / 3.0;
+  judge(s, coarse, {.complete = false});
+  EXPECT_EQ(coarse.resolved, false);
+  EXPECT_EQ(coarse.unresolved.find("its step is"), 0u) << coarse.unresolved;
+}
+
 }  // namespace
 }  // namespace pb
