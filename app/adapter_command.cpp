@@ -11,7 +11,7 @@
 #include "app/output_files.hpp"
 #include "cases/fields.hpp"
 #include "frontend/errors.hpp"
-#include "solvers/external/protocol.hpp"
+#include "programs/protocol.hpp"
 
 namespace pb::app {
 
@@ -32,9 +32,9 @@ int adapter_command(const CLI::App& command, const AdapterFlags& flags) {
   SolverFlags base = flags.solver_flags;
   if (persistent) base.settings.variant.clear();
   const auto answer = [&](std::string_view input) {
-    external::CaseRead read;
+    programs::CaseRead read;
     try {
-      read = external::read_case(input);
+      read = programs::read_case(input);
     } catch (const std::invalid_argument& e) {
       throw BadInput(std::string("stdin: ") + e.what());
     }
@@ -50,7 +50,7 @@ int adapter_command(const CLI::App& command, const AdapterFlags& flags) {
     const auto start = std::chrono::steady_clock::now();
     Result result = solver.solve(read.system, settings);
     result.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return external::answer_document(result, read.system);
+    return programs::answer_document(result, read.system);
   };
   // stdin is read with no deadline of the adapter's own: the time limit is in the document, known
   // only once it has been read, so the program running the adapter bounds its whole run (the

@@ -17,7 +17,7 @@
 #include "app/sweep_watch.hpp"
 #include "cases/input_file.hpp"
 #include "frontend/errors.hpp"
-#include "solvers/external/process.hpp"
+#include "programs/process.hpp"
 #include "sweep/partial_rows.hpp"
 
 namespace pb::app {
@@ -134,7 +134,7 @@ std::optional<std::vector<Row>> run_resumable(std::string_view command, const Pr
       std::fprintf(stderr, "%spoundbench: interrupted; the finished rows are in %s\n", erase, partial.c_str());
     std::fflush(stderr);
     lock.release();  // _Exit runs no destructor
-    external::end_running_programs();  // the external solver's, in process groups of their own
+    programs::end_running_programs();  // the external solver's, in process groups of their own
     std::_Exit(kInterrupted);
   };
   const auto write_due = [&] {

@@ -9,7 +9,7 @@
 #include "cases/system.hpp"
 #include "cases/text.hpp"
 #include "frontend/errors.hpp"
-#include "solvers/external/external.hpp"
+#include "programs/process.hpp"
 #include "solvers/settings_fields.hpp"
 
 namespace pb::app {
@@ -34,7 +34,7 @@ void add_solver_flags(CLI::App& command, SolverFlags& flags) {
   CLI::Option* variant = command.add_option("--variant", s.variant, "Solver variant (default: the solver's own)");
   command
       .add_flag_callback(
-          "--persistent", [&s] { s.variant = std::string(external::kPersistent); },
+          "--persistent", [&s] { s.variant = std::string(programs::kPersistent); },
           "External: start the program once per worker and send it every case, a line each way "
           "(--variant persistent; docs/external.md)")
       ->excludes(variant);

@@ -61,7 +61,7 @@
 #include "studies/settings_list.hpp"
 #include "studies/stress.hpp"
 #include "studies/workprecision.hpp"
-#include "solvers/external/external.hpp"
+#include "programs/process.hpp"
 #include "solvers/settings_fields.hpp"
 #include "sweep/sweep.hpp"
 
@@ -315,7 +315,7 @@ Keywords read_keywords(const std::string& function, const py::kwargs& kwargs) {
         break;
       case Slot::persistent:
         if (!py::isinstance<py::bool_>(value)) type_error(function, key, "must be True or False");
-        if (value.cast<bool>()) settings.variant = std::string(external::kPersistent);
+        if (value.cast<bool>()) settings.variant = std::string(programs::kPersistent);
         break;
       case Slot::variant: settings.variant = text(function, key, value); break;
       case Slot::setting: {

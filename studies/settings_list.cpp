@@ -10,7 +10,7 @@
 #include "cases/case.hpp"
 #include "cases/text.hpp"
 #include "cases/toml_input.hpp"
-#include "solvers/external/external.hpp"
+#include "programs/process.hpp"
 #include "solvers/settings_fields.hpp"
 
 namespace pb {
@@ -168,7 +168,7 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
         const auto* b = v.as_boolean();
         if (!b) r.fail(&v, f, "must be true or false");
         if (t->contains("variant")) r.fail(&v, f, "give persistent or variant, not both");
-        if (b->get()) variants = {std::string(external::kPersistent)};
+        if (b->get()) variants = {std::string(programs::kPersistent)};
       } else if (k == "h_s" || k == "k_contact") {
         std::vector<double>& physical = k == "h_s" ? h_s : k_contact;
         physical = r.numbers(v, f);

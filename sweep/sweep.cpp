@@ -15,7 +15,7 @@
 
 #include "cases/system.hpp"
 #include "cases/text.hpp"
-#include "solvers/external/process.hpp"
+#include "programs/process.hpp"
 #include "solvers/verdict.hpp"
 #include "sweep/stopwatch.hpp"
 #include "sweep/worker_cores.hpp"
@@ -334,7 +334,7 @@ std::vector<Row> run_sweep(const CaseList& cases, std::span<const SweepRun> runs
     const unsigned worker = workers.fetch_add(1);
     const PinnedThread pinned(worker < cores.size() ? cores[worker] : -1);
     // A worker's persistent programs (the external solver's) end with it: started once per worker.
-    const external::ThreadSessionsEnd sessions_end;
+    const programs::ThreadSessionsEnd sessions_end;
     while (!stopped()) {
       const std::optional<std::size_t> task = next_task();
       if (!task || *task >= total) return;

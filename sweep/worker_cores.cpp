@@ -4,13 +4,13 @@
 
 #include <algorithm>
 
-#include "solvers/external/external.hpp"
+#include "programs/process.hpp"
 
 namespace pb {
 
 std::vector<int> worker_cores(std::span<const SweepRun> runs, unsigned threads, bool pin_persistent) {
   const bool persistent = std::any_of(runs.begin(), runs.end(), [](const SweepRun& run) {
-    return run.solver && run.solver->name == "external" && run.settings.variant == external::kPersistent &&
+    return run.solver && run.solver->name == "external" && run.settings.variant == programs::kPersistent &&
            !run.settings.in_process;
   });
   if (!pin_persistent || !persistent) return {};

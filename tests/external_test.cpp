@@ -23,10 +23,10 @@
 
 #include "cases/case_set.hpp"
 #include "cases/system.hpp"
-#include "solvers/external/command_words.hpp"
+#include "programs/command_words.hpp"
 #include "solvers/external/external.hpp"
-#include "solvers/external/process.hpp"
-#include "solvers/external/protocol.hpp"
+#include "programs/process.hpp"
+#include "programs/protocol.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
 #include "sweep/sweep.hpp"
 #include "tests/cli_fixture.hpp"
@@ -68,7 +68,7 @@ TEST(ExternalCommand, WordsFollowTheQuotingRules) {
       {"prog $HOME *.py | wc > out ; rm", {"prog", "$HOME", "*.py", "|", "wc", ">", "out", ";", "rm"}},
   };
   for (const auto& [text, words] : cases) {
-    const external::CommandWords split = external::split_command(text);
+    const programs::CommandWords split = programs::split_command(text);
     EXPECT_EQ(split.error, "") << text;
     EXPECT_EQ(split.words, words) << text;
   }
@@ -78,7 +78,7 @@ TEST(ExternalCommand, WordsFollowTheQuotingRules) {
            {"prog end\\", "command: ends in a backslash (\\ escapes the next character)"},
            {"   ", "command: no program (give the program and its arguments, e.g. \"python3 adapter.py\")"},
            {"'' arg", "command: the program's name is empty"}}) {
-    const external::CommandWords split = external::split_command(text);
+    const programs::CommandWords split = programs::split_command(text);
     EXPECT_EQ(split.error, error) << text;
     EXPECT_TRUE(split.words.empty()) << text;
   }
@@ -137,7 +137,7 @@ TEST(ExternalProtocol, CaseDocumentReadsBackToTheSameSystem) {
   st.step_cap = 1000;
   st.time_limit = 2.5;
   st.history_samples = 10;
-  const external::CaseRead back = external::read_case(external::case_document(s, st).text);
+  const programs::CaseRead back = programs::read_case(programs::case_document(s, st).text);
   EXPECT_EQ(case_key(case_of(back.system)), case_key(case_of(s)));
   EXPECT_EQ(back.system.u_start, s.u_start);
   EXPECT_EQ(back.system.v_start, s.v_start);
@@ -250,7 +250,7 @@ TEST(ExternalFailures, AProgramThatDoesNotReadItsInputDoesNotKillPoundbench) {
   Case c = make_case(Scene::chain, PulseShape::sine, 1.0, 1.0, 0.5);
   c.bodies = 1000;
   const System s = make_system(c);
-  ASSERT_GT(external::case_document(s, Settings{}).text.size(), 65'536u);  // Linux's pipe buffer
+  ASSERT_GT(programs::case_document(s, Settings{}).text.size(), 65'536u);  // Linux's pipe buffer
   const Result r = external::solve(s, with_command("sh -c 'exec 0<&-; echo \"{\\\"version\\\":1,\\\"status\\\":\\\"ok\\\",\\\"pi1\\\":2}\"'"));
   EXPECT_EQ(r.status, Status::ok) << r.message;
   EXPECT_EQ(r.pi1, 2.0);
@@ -264,10 +264,10 @@ std::string printing(const std::string& answer) {
   return "sh -c 'cat > /dev/null; printf \"%s\\n\" \"$0\"' '" + answer + "'";
 }
 
-bool printable_utf8(const std::string& text) { return external::printable_line(text) == text; }
+bool printable_utf8(const std::string& text) { return programs::printable_line(text) == text; }
 
 TEST(ExternalProtocol, PrintableLineReplacesWhatIsNotUtf8AndEveryControlCharacter) {
-  using external::printable_line;
+  using programs::printable_line;
   EXPECT_EQ(printable_line("plain ascii, \xC3\xA9t\xC3\xA9, \xE2\x82\xAC, \xF0\x9F\x98\x80"),
             "plain ascii, \xC3\xA9t\xC3\xA9, \xE2\x82\xAC, \xF0\x9F\x98\x80");
   EXPECT_EQ(printable_line("a\nb\rc\td\x1b[31me\x7f"), "a?b?c?d?[31me?");
@@ -301,12 +301,12 @@ TEST(ExternalFailures, WhatAProgramWritesReachesTheRowAsOnePrintableLine) {
 }
 
 TEST(ExternalProtocol, AReadyLineIsParsedAndItsReadyMustBeTrue) {
-  EXPECT_EQ(external::ready_line_problem(R"({"version": 1, "ready": true})"), "");
-  EXPECT_EQ(external::ready_line_problem(R"({"ready":true,"version":1,"program":"mine"})"), "");
+  EXPECT_EQ(programs::ready_line_problem(R"({"version": 1, "ready": true})"), "");
+  EXPECT_EQ(programs::ready_line_problem(R"({"ready":true,"version":1,"program":"mine"})"), "");
   for (const char* line : {R"({"version": 1, "ready": false})", R"("ready")", R"({"version": 1, "ready": "true"})",
                            R"({"version": 1, "ready": 1})", R"({"ready": true})", R"({"version": 2, "ready": true})",
                            R"({"version": 1, "ready": true, "ready": false})", "ready", "", "{\"ready\": true\x1b"}) {
-    const std::string why = external::ready_line_problem(line);
+    const std::string why = programs::ready_line_problem(line);
     EXPECT_EQ(why.rfind(R"(its first line must be {"version": 1, "ready": true} (persistent mode), not ')", 0), 0u)
         << line << " gave: " << why;
     EXPECT_TRUE(why.find('\n') == std::string::npos) << why;
@@ -321,9 +321,9 @@ TEST(ExternalProtocol, DuplicateKeysAreFoundInLinearTime) {
   for (int i = 0; i < 400'000; ++i) many += ",\"k" + std::to_string(i) + "\":0";
   const auto in_a_minute = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   Result r;
-  EXPECT_EQ(external::read_answer(many + "}", pair_case(), Settings{}, r, in_a_minute),
+  EXPECT_EQ(programs::read_answer(many + "}", pair_case(), Settings{}, r, in_a_minute),
             "answer: k0: unknown key (docs/external.md lists an answer's keys)");
-  EXPECT_EQ(external::read_answer(many + ",\"k399999\":1}", pair_case(), Settings{}, r, in_a_minute),
+  EXPECT_EQ(programs::read_answer(many + ",\"k399999\":1}", pair_case(), Settings{}, r, in_a_minute),
             "answer: stdout: key \"k399999\" given twice in one object");
 }
 
@@ -376,7 +376,7 @@ TEST(ExternalPersistent, ALineWaitingBeforeTheCaseIsSentIsNoAnswer) {
   const Result third = external::solve(pair_case(), st);
   EXPECT_EQ(third.status, Status::ok) << third.message;
   EXPECT_EQ(third.pi1, 1.0);
-  external::end_thread_sessions();
+  programs::end_thread_sessions();
   std::filesystem::remove_all(dir);
 }
 

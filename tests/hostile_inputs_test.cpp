@@ -16,7 +16,7 @@
 
 #include "cases/case_set.hpp"
 #include "cases/system.hpp"
-#include "solvers/external/protocol.hpp"
+#include "programs/protocol.hpp"
 #include "solvers/solver.hpp"
 #include "tests/cli_fixture.hpp"
 #include "tests/support.hpp"
@@ -140,7 +140,7 @@ TEST_F(Cli, TheAdapterRefusesADocumentOutsideItsSchemaOrTheDomain) {
   System s = make_system(test::make_case(Scene::pair, PulseShape::sine, 1.0, 0.5, 0.5));
   Settings st;
   st.steps = 32;
-  const nlohmann::json doc = nlohmann::json::parse(external::case_document(s, st).text);
+  const nlohmann::json doc = nlohmann::json::parse(programs::case_document(s, st).text);
   const std::vector<std::pair<std::string, std::function<void(nlohmann::json&)>>> edits = {
       {"eps: must be in [0, 1]", [](nlohmann::json& d) { d["eps"] = 2; }},
       {"contacts.gap: must be >= 0", [](nlohmann::json& d) { d["contacts"][0]["gap"] = -0.5; }},
@@ -193,7 +193,7 @@ TEST(HostileAnswers, TheAnswerReaderRefusesWhatItCouldMisreadNamingIt) {
   const auto refusal = [&](const std::string& text, std::chrono::steady_clock::time_point deadline =
                                                         std::chrono::steady_clock::time_point::max()) {
     Result r;
-    return external::read_answer(text, s, st, r, deadline);
+    return programs::read_answer(text, s, st, r, deadline);
   };
   EXPECT_EQ(refusal(R"({"version":1,"status":"failed","status":"ok","pi1":1})"),
             "answer: stdout: key \"status\" given twice in one object");

@@ -9,12 +9,23 @@
 #include <string.h>
 
 #include "cases/text.hpp"
-#include "solvers/external/command_words.hpp"
-#include "solvers/external/process.hpp"
-#include "solvers/external/protocol.hpp"
+#include "programs/command_words.hpp"
+#include "programs/process.hpp"
+#include "programs/protocol.hpp"
 #include "solvers/named_values.hpp"
 
 namespace pb::external {
+
+using programs::case_document;
+using programs::CaseDocument;
+using programs::CommandWords;
+using programs::exchange;
+using programs::printable_line;
+using programs::ProgramLimits;
+using programs::ProgramRun;
+using programs::read_answer;
+using programs::run_program;
+using programs::split_command;
 
 namespace {
 

@@ -1,7 +1,7 @@
 #pragma once
 // The external solver: another program, run once per point (`--solver external --command
 // "PROGRAM ARGS"`). It gets the case as one JSON document on its stdin and answers with
-// one on its stdout (solvers/external/protocol.hpp, docs/external.md), so that a solver
+// one on its stdout (programs/protocol.hpp, docs/external.md), so that a solver
 // enters poundbench without being linked into it: an OpenSees model, a Python script.
 //
 // Why a process per point by default, and a long-lived program only when asked: a
@@ -12,7 +12,8 @@
 // compiled solvers it dominates (they take microseconds), for the programs this is for
 // (a Python integrator, an FE model) it does not, except for the start of Python with its
 // imports (85 to 90 % of a SciPy point: issue 37), which the persistent variant pays once per
-// worker, its program answering a stream of cases, one line each way (process.hpp, exchange).
+// worker, its program answering a stream of cases, one line each way (programs/process.hpp,
+// exchange). Running programs and their protocol are the room programs/, this folder the solver.
 //
 // Everything that can go wrong with a program is a row, never a stopped sweep: it cannot
 // be started (failed), it exits with a code other than 0 or is ended by a signal (failed,
@@ -24,6 +25,7 @@
 #include <string_view>
 #include <vector>
 
+#include "programs/process.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb::external {
@@ -31,13 +33,13 @@ namespace pb::external {
 // The variants: a process per point (the default), or one program per sweep worker that
 // answers a stream of cases, a line each way (`--persistent`, `persistent = true`).
 inline constexpr std::string_view kPerPoint = "per-point";
-inline constexpr std::string_view kPersistent = "persistent";
+using programs::kPersistent;
 
 // A program asked to stop at Settings::time_limit gets this much longer to write its
 // answer before it is ended (a Python program's start alone takes 0.1 to 0.3 s of it).
 inline constexpr double kGraceSeconds = 0.5;
 // Its stdout, at most: the history of u0 at run's largest --samples (1e6) is ~40 MB. Read
-// and parsed within the run's time limit (protocol.hpp, read_answer).
+// and parsed within the run's time limit (programs/protocol.hpp, read_answer).
 inline constexpr std::size_t kMaxAnswerBytes = std::size_t{64} << 20;
 // The lines of stderr a failure's message quotes.
 inline constexpr int kStderrLines = 5;

@@ -13,7 +13,7 @@
 #include "cases/case.hpp"
 #include "cases/record.hpp"
 #include "cases/system.hpp"
-#include "solvers/external/protocol.hpp"
+#include "programs/protocol.hpp"
 #include "solvers/solver.hpp"
 
 namespace pb::fuzz {
@@ -77,7 +77,7 @@ std::string answer_report(const std::string& text) {
   settings.history_samples = 50;
   Result result;
   result.step = system.step(64);
-  const std::string bad = external::read_answer(text, system, settings, result);
+  const std::string bad = programs::read_answer(text, system, settings, result);
   if (!bad.empty()) {
     if (bad.rfind("answer: ", 0) != 0) return "BAD message does not start with 'answer: ': " + bad.substr(0, 160);
     return "ERR " + bad;
@@ -91,9 +91,9 @@ std::string answer_report(const std::string& text) {
 }
 
 std::string document_report(const std::string& text, bool every_solver) {
-  external::CaseRead read;
+  programs::CaseRead read;
   try {
-    read = external::read_case(text);
+    read = programs::read_case(text);
   } catch (const std::invalid_argument& e) {
     return std::string("ERR ") + e.what();
   }
@@ -311,7 +311,7 @@ std::vector<std::string> document_seeds(Document kind) {
       Settings settings;
       settings.history_samples = 20;
       const Result r = find_solver(solver)->solve(system, settings);
-      seeds.push_back(external::answer_document(r, system));
+      seeds.push_back(programs::answer_document(r, system));
     }
     seeds.push_back(R"({"version": 1, "status": "ok", "pi1": 2.5, "t_max": 5.4, "impacts": 4, "message": "x"})");
     seeds.push_back(R"({"protocol": "poundbench-external", "version": 1, "status": "failed", "message": "why"})");
@@ -322,7 +322,7 @@ std::vector<std::string> document_seeds(Document kind) {
     Settings settings;
     settings.steps = steps;
     settings.history_samples = steps > 0 ? 0 : 10;
-    seeds.push_back(external::case_document(make_system(c), settings).text);
+    seeds.push_back(programs::case_document(make_system(c), settings).text);
   };
   add({.scene = Scene::wall}, 0);
   add({.scene = Scene::pair, .pulse = PulseShape::cosine, .pi3 = 0.0}, 64);

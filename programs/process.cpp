@@ -1,4 +1,4 @@
-#include "solvers/external/process.hpp"
+#include "programs/process.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -24,11 +24,11 @@
 #include <utility>
 
 #include "cases/text.hpp"
-#include "solvers/external/protocol.hpp"
+#include "programs/protocol.hpp"
 
 extern char** environ;
 
-namespace pb::external {
+namespace pb::programs {
 
 namespace {
 
@@ -402,9 +402,9 @@ ProgramRun run_program(const std::vector<std::string>& argv, std::string_view in
   return run;
 }
 
-}  // namespace pb::external
+}  // namespace pb::programs
 
-namespace pb::external {
+namespace pb::programs {
 
 namespace {
 
@@ -663,4 +663,4 @@ ProgramRun exchange(const std::vector<std::string>& argv, std::string_view line,
 
 void end_thread_sessions() { sessions.clear(); }
 
-}  // namespace pb::external
+}  // namespace pb::programs

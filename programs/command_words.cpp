@@ -1,4 +1,4 @@
-#include "solvers/external/command_words.hpp"
+#include "programs/command_words.hpp"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cstdlib>
 
-namespace pb::external {
+namespace pb::programs {
 
 CommandWords split_command(std::string_view command) {
   CommandWords out;
@@ -81,4 +81,4 @@ std::string find_program(const std::string& program) {
   return {};
 }
 
-}  // namespace pb::external
+}  // namespace pb::programs

@@ -17,7 +17,7 @@
 #include <string_view>
 #include <vector>
 
-namespace pb::external {
+namespace pb::programs {
 
 struct CommandWords {
   std::vector<std::string> words;
@@ -30,4 +30,4 @@ CommandWords split_command(std::string_view command);
 // '/', else the first executable file of that name in PATH (what posix_spawnp runs).
 std::string find_program(const std::string& program);
 
-}  // namespace pb::external
+}  // namespace pb::programs

@@ -20,7 +20,7 @@
 #include "cases/system.hpp"
 #include "solvers/solver.hpp"
 
-namespace pb::external {
+namespace pb::programs {
 
 inline constexpr std::string_view kProtocol = "poundbench-external";
 // Raised when a document changes in a way an existing program or reader would misread.
@@ -68,4 +68,4 @@ CaseRead read_case(std::string_view text);
 // and the history of u0 when it has one.
 std::string answer_document(const Result& result, const System& system);
 
-}  // namespace pb::external
+}  // namespace pb::programs

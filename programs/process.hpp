@@ -22,7 +22,11 @@
 #include <string_view>
 #include <vector>
 
-namespace pb::external {
+namespace pb::programs {
+
+// The variant of a solver whose program is started once per sweep worker and answers a stream
+// of cases, a line each way (exchange below): the external solver's `--persistent`.
+inline constexpr std::string_view kPersistent = "persistent";
 
 struct ProgramLimits {
   double kill_after = 0.0;  // wall seconds from the start; 0: none
@@ -99,4 +103,4 @@ struct ThreadSessionsEnd {
 // a one-line message.
 std::string last_lines(std::string_view text, int lines);
 
-}  // namespace pb::external
+}  // namespace pb::programs

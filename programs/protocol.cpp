@@ -1,4 +1,4 @@
-#include "solvers/external/protocol.hpp"
+#include "programs/protocol.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -19,7 +19,7 @@
 #include "cases/record.hpp"
 #include "cases/text.hpp"
 
-namespace pb::external {
+namespace pb::programs {
 
 namespace {
 
@@ -721,4 +721,4 @@ std::string answer_document(const Result& r, const System& s) {
   return j.dump(-1, ' ', false, Ordered::error_handler_t::replace) + '\n';
 }
 
-}  // namespace pb::external
+}  // namespace pb::programs
