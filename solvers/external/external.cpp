@@ -20,6 +20,8 @@ using programs::case_document;
 using programs::CaseDocument;
 using programs::CommandWords;
 using programs::exchange;
+using programs::find_program;
+using programs::last_lines;
 using programs::printable_line;
 using programs::ProgramLimits;
 using programs::ProgramRun;

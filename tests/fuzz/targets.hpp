@@ -4,10 +4,10 @@
 //
 // * record: parse_record on a mutated record file (AT2 or CSV); returns, or throws
 //   RecordError with one line of at most kMaxMessage characters starting with the file.
-// * answer: the external solver's answer reader (external::read_answer) on a mutated
+// * answer: the external solver's answer reader (programs::read_answer) on a mutated
 //   answer; returns "" or "answer: ..." in one line, and an accepted ok answer has a finite
 //   Pi1 >= 0 taken within the run (t_max in [0, t_end + a step]).
-// * document: the adapter's side (external::read_case), then a solve of what it accepted by
+// * document: the adapter's side (programs::read_case), then a solve of what it accepted by
 //   one of the registry's solvers, on a mutated case document; read_case returns or throws
 //   std::invalid_argument in one line, and the solver returns (any status) with an ok run's
 //   Pi1 finite: no crash, no abort, no hang.
