@@ -710,7 +710,11 @@ TEST_F(CliStudy, RepetitionsAreRecordedInEveryRow) {
     const auto number = [&](const CsvTable& t, std::string_view column) {
       return std::strtod(t.rows[i][t.column(column)].c_str(), nullptr);
     };
-    EXPECT_EQ(r3.rows[i][r3.column("repetitions")], "3") << "µs solves: all three";
+    // µs solves: all three, unless the first ones spent the point's budget (a sanitizer build,
+    // a loaded machine): then those that ran spent it.
+    const double reps = number(r3, "repetitions");
+    EXPECT_TRUE(reps == 3 || (reps >= 1 && reps < 3 && reps * number(r3, "cpu_seconds_high") >= kRepetitionBudget))
+        << reps << " repetitions, the slowest " << number(r3, "cpu_seconds_high") << " s";
     EXPECT_EQ(r1.rows[i][r1.column("repetitions")], "1") << "spectrum's default";
     EXPECT_LE(number(r3, "cpu_seconds_low"), number(r3, "cpu_seconds"));
     EXPECT_LE(number(r3, "cpu_seconds"), number(r3, "cpu_seconds_high"));
