@@ -261,7 +261,9 @@ TEST(RowReader, BadInputNamesFileLineColumnAndReason) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message(text), "rows.csv:2: 78 fields, the header has 76");
+  const std::size_t columns = split_csv(csv_header()).size();
+  EXPECT_EQ(message(text), "rows.csv:2: " + std::to_string(columns + 2) + " fields, the header has " +
+                               std::to_string(columns));
   std::string bad_status = good;
   bad_status.replace(bad_status.find(",ok,"), 4, ",fine,");
   EXPECT_EQ(message(bad_status), "rows.csv:2: status: unknown name (\"fine\")");
