@@ -18,8 +18,6 @@
 
 #include <pybind11/pybind11.h>
 
-#include <time.h>
-
 #include <chrono>
 #include <memory>
 #include <sstream>
@@ -28,6 +26,7 @@
 
 #include "cases/text.hpp"
 #include "python/call_deadline.hpp"
+#include "sweep/stopwatch.hpp"
 
 namespace pb::python {
 
@@ -47,13 +46,13 @@ class CallableSolver {
       const double limit = time_limit(case_dict);
       py::object answer;
       std::string ended;  // why the call is a time-limit row; "" when it is not
-      const ThreadCpu cpu;
+      const Stopwatch cpu;  // the sweep's clock, its own cost taken off
       {
         Call call(*deadline_, limit);
         try {
           answer = f_(case_dict);
         } catch (py::error_already_set& e) {
-          call_seconds = cpu.seconds();
+          call_seconds = cpu.elapsed().cpu;
           ended = call.end();
           if (!ended.empty()) return time_limit_answer(ended);
           if (e.matches(PyExc_KeyboardInterrupt)) {
@@ -64,7 +63,7 @@ class CallableSolver {
         }
         ended = call.end();
       }
-      call_seconds = cpu.seconds();
+      call_seconds = cpu.elapsed().cpu;
       if (!ended.empty()) return time_limit_answer(ended);
       if (!py::isinstance<py::dict>(answer))
         throw std::runtime_error("the solver returned " + std::string(py::str(py::type::of(answer).attr("__name__"))) +
@@ -79,21 +78,6 @@ class CallableSolver {
   }
 
  private:
-  // The calling thread's CPU seconds since it was made.
-  class ThreadCpu {
-   public:
-    ThreadCpu() : start_(now()) {}
-    double seconds() const { return now() - start_; }
-
-   private:
-    static double now() {
-      timespec t{};
-      ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-      return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-    }
-    double start_;
-  };
-
   // One call of f under its limit (0: none), on the wall clock: end() says whether it was a
   // time-limit row, and the destructor disarms whatever end() was not reached for.
   class Call {

@@ -251,25 +251,27 @@ TEST_F(PhysicalCli, AMassBeyondTheDomainIsRefusedAndACompliantRunReportsItsForce
               1e-9 * 1e30 * num(unit, "contact_force_max"));
 }
 
+// The error a case set's text is refused with, or "no error".
+std::string case_set_error(const std::string& toml) {
+  try {
+    parse_case_set(toml, "bad.toml");
+  } catch (const CaseSetError& e) {
+    return std::string(e.what());
+  }
+  return std::string("no error");
+}
+
 // Issue 46 (8): a case set's `uy0 = nan` and `m0 = nan` ran as if not given, and `t0 = 1e-308`
 // was refused as pi2 with no line. Each is refused at its value's line, under its key.
 TEST(PhysicalCaseSets, ABadPhysicalValueIsRefusedAtItsLineUnderItsKey) {
-  const auto error = [](const std::string& toml) {
-    try {
-      parse_case_set(toml, "bad.toml");
-    } catch (const CaseSetError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
   const std::string family = "name = \"b\"\n[[family]]\nname = \"f\"\nscene = \"pair\"\npulse = \"sine\"\n"
                              "directivity = \"normal\"\neps = 0.5\na_p = 1\ntp = 1\nt1 = 1\ngap = 0.1\n";  // 11 lines
-  EXPECT_EQ(error(family + "t0 = 1\nuy0 = nan\n"), "bad.toml:13: family[0].uy0: must be > 0 (inf: elastic) (got nan)");
-  EXPECT_EQ(error(family + "t0 = 1\nm0 = [1, nan]\n"), "bad.toml:13: family[0].m0[1]: must be in [1e-30, 1e+30] kg (got nan)");
-  EXPECT_EQ(error(family + "t0 = 1\nm0 = 1e308\n"), "bad.toml:13: family[0].m0: must be in [1e-30, 1e+30] kg (got 1e+308)");
-  EXPECT_EQ(error(family + "t0 = [0.5,\n  1e-308]\n"),
+  EXPECT_EQ(case_set_error(family + "t0 = 1\nuy0 = nan\n"), "bad.toml:13: family[0].uy0: must be > 0 (inf: elastic) (got nan)");
+  EXPECT_EQ(case_set_error(family + "t0 = 1\nm0 = [1, nan]\n"), "bad.toml:13: family[0].m0[1]: must be in [1e-30, 1e+30] kg (got nan)");
+  EXPECT_EQ(case_set_error(family + "t0 = 1\nm0 = 1e308\n"), "bad.toml:13: family[0].m0: must be in [1e-30, 1e+30] kg (got 1e+308)");
+  EXPECT_EQ(case_set_error(family + "t0 = [0.5,\n  1e-308]\n"),
             "bad.toml:13: family[0].t0[1]: gives pi2 = 2 pi / (t0 w_p) = inf (pi2: must be finite and > 0) (got 1e-308)");
-  const std::string gap = error(family + "t0 = 1\nm1 = 1e-20\n");
+  const std::string gap = case_set_error(family + "t0 = 1\nm1 = 1e-20\n");
   EXPECT_TRUE(gap.starts_with("bad.toml:13: family[0].m1: gives pi6 = m0 / m1 = 1e+20 (pi6: ")) << gap;
 }
 
@@ -319,19 +321,11 @@ pi6 = 1
   EXPECT_EQ(set.cases[4].pi3, 1.0);  // the Pi-term family keeps its own, and [defaults]' Pi terms
   EXPECT_TRUE(std::isnan(set.cases[4].physical.t0));
 
-  const auto error = [](const std::string& toml) {
-    try {
-      parse_case_set(toml, "bad.toml");
-    } catch (const CaseSetError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
   const std::string family = "name = \"b\"\n[[family]]\nname = \"f\"\nscene = \"pair\"\npulse = \"sine\"\n"
                              "directivity = \"normal\"\neps = 0.5\na_p = 1\ntp = 1\nt1 = 1\n";
-  EXPECT_NE(error(family + "t0 = 1\ngap = 0.1\npi2 = 1\n").find("pi2: not with"), std::string::npos);
-  EXPECT_NE(error(family + "t0 = 1\n").find("gap: required by a family in physical units"), std::string::npos);
-  EXPECT_NE(error(family + "t0 = 1\ngap = -0.1\n").find("gap"), std::string::npos);
+  EXPECT_NE(case_set_error(family + "t0 = 1\ngap = 0.1\npi2 = 1\n").find("pi2: not with"), std::string::npos);
+  EXPECT_NE(case_set_error(family + "t0 = 1\n").find("gap: required by a family in physical units"), std::string::npos);
+  EXPECT_NE(case_set_error(family + "t0 = 1\ngap = -0.1\n").find("gap"), std::string::npos);
   // Yield displacements (m) as keys too: Pi_y = u_y w_p^2 / a_p (here w_p = 2 pi, a_p = 1),
   // never beside their Pi terms; a symmetric row3's uy2 is its uy1.
   const CaseSet yielding = parse_case_set(family + "t0 = 1\ngap = 0.1\nuy0 = 0.02\nuy1 = [0.01, 0.03]\n", "y.toml");
@@ -341,8 +335,8 @@ pi6 = 1
   EXPECT_NEAR(yielding.cases[0].pi_y0, 0.02 * to_pi, 1e-15 * 0.02 * to_pi);
   EXPECT_NEAR(yielding.cases[1].pi_y1, 0.03 * to_pi, 1e-15 * 0.03 * to_pi);
   EXPECT_TRUE(std::isinf(yielding.cases[0].pi_y2));
-  EXPECT_NE(error(family + "t0 = 1\ngap = 0.1\npi_y0 = 1\n").find("pi_y0: not with"), std::string::npos);
-  EXPECT_NE(error(family + "t0 = 1\ngap = 0.1\nuy = 1\n").find("uy"), std::string::npos);  // a chain's key
+  EXPECT_NE(case_set_error(family + "t0 = 1\ngap = 0.1\npi_y0 = 1\n").find("pi_y0: not with"), std::string::npos);
+  EXPECT_NE(case_set_error(family + "t0 = 1\ngap = 0.1\nuy = 1\n").find("uy"), std::string::npos);  // a chain's key
 }
 
 // Rows carry the physical values given and the results in them, after every older column, and
