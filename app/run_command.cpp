@@ -17,7 +17,7 @@
 #include "frontend/contact_stiffness.hpp"
 #include "frontend/errors.hpp"
 #include "frontend/run_output.hpp"
-#include "rows/physical_results.hpp"
+#include "rows/result_fields.hpp"
 #include "solvers/verdict.hpp"
 #include "sweep/sweep.hpp"
 
@@ -48,21 +48,22 @@ std::string brief(double x) {
   return text;
 }
 
-// The results in the case's units (rows/physical_results.hpp): metres and seconds when the
-// case was given in them, the pulse's a_p and w_p in SI otherwise.
+// The results in the case's units (rows/result_fields.hpp, Place::physical): metres and
+// seconds when the case was given in them, the pulse's a_p and w_p in SI otherwise.
 void print_physical(std::ostream& out, const Row& row) {
-  const auto x = physical_results(row);
-  const auto value = [&](std::size_t k) { return brief(x[k].value); };
-  out << "peak     " << value(0) << " m (body 0)";
-  if (std::isfinite(x[1].value)) out << ", step h = " << value(1) << " s";
+  const auto number = [&](std::string_view field) { return find_result_field(field)->number(row); };
+  const auto value = [&](std::string_view field) { return brief(number(field)); };
+  out << "peak     " << value("peak_m") << " m (body 0)";
+  if (std::isfinite(number("h_s"))) out << ", step h = " << value("h_s") << " s";
   out << '\n';
-  if (std::isfinite(x[2].value))
-    out << "pounding first impact at t = " << value(2) << " s, fastest approach " << value(3) << " m/s (Pi "
-        << value(4) << ")\n";
+  if (std::isfinite(number("first_impact_s")))
+    out << "pounding first impact at t = " << value("first_impact_s") << " s, fastest approach "
+        << value("impact_velocity") << " m/s (Pi " << value("impact_velocity_pi") << ")\n";
   else if (row.result.impacts == 0)
     out << "pounding none\n";
-  if (std::isfinite(x[5].value))
-    out << "contact  largest force " << value(5) << " N, deepest penetration " << value(6) << " m\n";
+  if (std::isfinite(number("contact_force_max")))
+    out << "contact  largest force " << value("contact_force_max") << " N, deepest penetration "
+        << value("penetration_m") << " m\n";
 }
 
 // The error estimate's line (Result::error_estimate), where the run has one.

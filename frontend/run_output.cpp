@@ -6,7 +6,7 @@
 #include "cases/record.hpp"
 #include "frontend/errors.hpp"
 #include "cases/physical.hpp"
-#include "rows/physical_results.hpp"
+#include "rows/result_fields.hpp"
 
 namespace pb::app {
 
@@ -44,10 +44,6 @@ void case_fields(const Case& c, RowFields& j) {
   }
 }
 
-// NaN and infinity have no JSON spelling; null says "no value" (RowFields writes every
-// number that way).
-double number_or_null(double x) { return x; }
-
 // --json's object, as nlohmann's JSON.
 class JsonSink final : public FieldSink {
  public:
@@ -57,7 +53,7 @@ class JsonSink final : public FieldSink {
   void integer(std::string_view key, long long x) override { j[std::string(key)] = x; }
   void number(std::string_view key, double x) override { j[std::string(key)] = x; }
   void text(std::string_view key, std::string_view x) override { j[std::string(key)] = x; }
-  void object(std::string_view key, const std::string& json) override { j[std::string(key)] = nlohmann::json::parse(json); }
+  void object(std::string_view key, std::string_view json) override { j[std::string(key)] = nlohmann::json::parse(json); }
 };
 
 // A history is held in memory, then written as CSV (about 20 bytes a value), so its size
@@ -71,34 +67,19 @@ constexpr long long kMaxHistoryValues = 20'000'000;
 }  // namespace
 
 void row_fields(const Row& row, const ChosenCase& chosen, FieldSink& sink) {
-  const Result& r = row.result;
   RowFields j{sink};
-  j["status"] = name(r.status);
-  // The verdict (solvers/verdict.hpp): true or false for a run that ended ok, null otherwise.
-  j["resolved"] = r.resolved;
-  j["unresolved"] = r.unresolved;
-  j["message"] = r.message;
-  j["pi1"] = number_or_null(r.pi1);
-  j["pi1_no_contact"] = number_or_null(row.pi1_no_contact);
-  j["t_max"] = number_or_null(r.t_max);
-  j["impacts"] = r.impacts;
-  j["contact_phases"] = r.contact_phases;
-  j["steps"] = r.steps;
-  j["min_gap"] = number_or_null(min_gap_ratio(row));
-  j["seconds"] = row.seconds;
-  j["wh"] = number_or_null(row.wh);
-  j["h_over_dt"] = number_or_null(h_over_dt(row));
-  j["energy_excess"] = number_or_null(r.energy_excess);
-  j["penetration"] = number_or_null(penetration(row));
-  j["isolated_impacts"] = r.isolated_impacts;
-  j["restitution_low"] = number_or_null(r.restitution_low);
-  j["restitution_high"] = number_or_null(r.restitution_high);
-  j["mu"] = number_or_null(ductility(row));
-  j["residual"] = number_or_null(r.residual);
-  j["hysteretic"] = number_or_null(r.hysteretic);
-  j["solver"] = row.solver;
-  j["variant"] = row.variant;
-  j["settings"] = RowFields::Object{row.settings};
+  // The row's results (rows/result_fields.hpp), in its table's order.
+  for (const ResultField& f : kResultFields) {
+    if (!f.json) continue;
+    switch (f.type) {
+      case ResultType::number: j[f.name] = f.number(row); break;
+      case ResultType::count: j[f.name] = f.whole ? row.result.*f.whole : static_cast<long long>(f.number(row)); break;
+      case ResultType::text: j[f.name] = f.text(row); break;
+      case ResultType::object: j[f.name] = RowFields::Object{f.text(row)}; break;
+      case ResultType::status: j[f.name] = name(row.result.status); break;
+      case ResultType::verdict: j[f.name] = row.result.resolved; break;
+    }
+  }
   if (!chosen.case_file.empty()) {
     j["case_file"] = chosen.case_file;
     j["point"] = chosen.point;
@@ -106,19 +87,12 @@ void row_fields(const Row& row, const ChosenCase& chosen, FieldSink& sink) {
   case_fields(row.input, j);
   if (const std::string source = w_p_source(row.input); !source.empty()) {
     j["record_peak"] = row.input.samples->peak;
-    j["record_t_m"] = number_or_null(row.input.samples->t_m);
+    j["record_t_m"] = row.input.samples->t_m;
     j["w_p_source"] = source;
   }
   // A case in physical units: the values it was given (the Pi terms above follow from them).
   for (const PhysicalField& field : kPhysicalFields)
     if (!std::isnan(row.input.physical.*field.member)) j[field.name] = row.input.physical.*field.member;
-  for (const PhysicalResult& x : physical_results(row)) j[x.name] = number_or_null(x.value);
-  // The external solver's own timings (rows/row.hpp), after everything else.
-  j["solve_seconds"] = number_or_null(r.solve_seconds);
-  j["startup_seconds"] = number_or_null(r.startup_seconds);
-  // A fixed-step run's error estimates (Result::error_estimate), added last.
-  j["error_estimate"] = number_or_null(r.error_estimate);
-  j["error_estimate_velocity"] = number_or_null(r.error_estimate_velocity);
 }
 
 nlohmann::ordered_json row_json(const Row& row, const ChosenCase& chosen) {

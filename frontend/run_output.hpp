@@ -29,14 +29,14 @@ class FieldSink {
   virtual void number(std::string_view key, double x) = 0;  // finite
   virtual void text(std::string_view key, std::string_view x) = 0;
   // A flat JSON object's text (a row's settings, NamedValues): names to numbers, strings, booleans.
-  virtual void object(std::string_view key, const std::string& json) = 0;
+  virtual void object(std::string_view key, std::string_view json) = 0;
 };
 
 // `fields[key] = value` into a FieldSink: a number that is not finite is null (JSON has no
 // spelling for it), an empty optional<bool> null.
 struct RowFields {
   struct Object {
-    const std::string& json;
+    std::string_view json;
   };
   struct Field {
     FieldSink& sink;

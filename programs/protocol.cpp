@@ -18,6 +18,7 @@
 #include "cases/load.hpp"
 #include "cases/record.hpp"
 #include "cases/text.hpp"
+#include "rows/result_fields.hpp"
 
 namespace pb::programs {
 
@@ -155,13 +156,12 @@ Json parse_object(std::string_view text, const char* what, Clock::time_point dea
 
 // ---------------------------------------------------------------- the answer
 
-// Every key of an answer: anything else is a typo that would go unseen (a "pi_1").
-constexpr std::array kAnswerKeys = {"protocol",         "version",         "status",           "message",
-                                    "pi1",              "t_max",           "history",          "impacts",
-                                    "contact_phases",   "steps",           "isolated_impacts", "min_gap",
-                                    "step",             "energy_excess",   "restitution_low",  "restitution_high",
-                                    "gap_rate_max",     "residual",        "hysteretic",
-                                    "solve_seconds"};
+// Whether key is one of an answer's: its own (protocol, version, history) or a result field's
+// (rows/result_fields.hpp). Anything else is a typo that would go unseen (a "pi_1").
+bool answer_key(std::string_view key) {
+  if (key == "protocol" || key == "version" || key == "history") return true;
+  return std::any_of(kResultFields.begin(), kResultFields.end(), [&](const ResultField& f) { return f.answer == key; });
+}
 
 struct U0History {
   std::vector<double> t, u0;
@@ -190,8 +190,7 @@ U0History read_history(const Json& h) {
 
 void fill_answer(const Json& doc, const System& s, const Settings& settings, Result& r) {
   for (const auto& [key, value] : doc.items())
-    if (std::find(kAnswerKeys.begin(), kAnswerKeys.end(), key) == kAnswerKeys.end())
-      bad(clip(key), "unknown key (docs/external.md lists an answer's keys)");
+    if (!answer_key(key)) bad(clip(key), "unknown key (docs/external.md lists an answer's keys)");
   check_version(doc);
   const Json& status = member(doc, "status", "status");
   const std::optional<Status> parsed = status.is_string() ? parse_status(status.get<std::string>()) : std::nullopt;
@@ -205,28 +204,26 @@ void fill_answer(const Json& doc, const System& s, const Settings& settings, Res
       bad("message", std::to_string(r.message.size()) + " bytes, more than " + std::to_string(kMaxMessageBytes) +
                          " (a message is shown in a row: put long output on stderr)");
   }
-  for (auto [key, count] : {std::pair{"impacts", &r.impacts}, {"contact_phases", &r.contact_phases},
-                            {"steps", &r.steps}, {"isolated_impacts", &r.isolated_impacts}})
-    if (const auto it = doc.find(key); it != doc.end() && !it->is_null()) *count = whole(*it, key);
-  for (auto [key, value] : {std::pair{"energy_excess", &r.energy_excess}, {"restitution_low", &r.restitution_low},
-                            {"restitution_high", &r.restitution_high}, {"gap_rate_max", &r.gap_rate_max}})
-    *value = maybe_number(doc, key).value_or(kNaN);
-  r.min_gap = maybe_number(doc, "min_gap").value_or(std::numeric_limits<double>::infinity());
+  // The numbers and counts of the result fields an answer carries, as the solver has them.
+  for (const ResultField& f : kResultFields) {
+    if (f.answer.empty() || !(f.real || f.whole)) continue;
+    const std::string key(f.answer);
+    const auto it = doc.find(key);
+    if (it == doc.end() || it->is_null()) continue;
+    if (f.whole)
+      r.*f.whole = whole(*it, key);
+    else
+      r.*f.real = number(*it, key);
+  }
   // A yielding case's answer says what the bilinear law left (never an elastic answer
   // passed off as the yielding one): a program that does not apply it answers failed.
-  r.residual = maybe_number(doc, "residual").value_or(kNaN);
-  r.hysteretic = maybe_number(doc, "hysteretic").value_or(kNaN);
   if (s.yields() && r.status == Status::ok && (std::isnan(r.residual) || std::isnan(r.hysteretic)))
     bad("residual", "a yielding case (bodies[].u_y) needs residual and hysteretic with status ok; a program that "
                     "does not apply the bilinear law answers status failed");
-  if (const auto solve = maybe_number(doc, "solve_seconds")) {
-    if (!(*solve >= 0.0 && std::isfinite(*solve))) bad("solve_seconds", "must be a number of seconds >= 0");
-    r.solve_seconds = *solve;
-  }
-  if (const auto step = maybe_number(doc, "step")) {
-    if (!(*step > 0.0 && *step <= s.t_end)) bad("step", "must be > 0 and at most t_end (a step of the run)");
-    r.step = *step;
-  }
+  if (!std::isnan(r.solve_seconds) && !(r.solve_seconds >= 0.0 && std::isfinite(r.solve_seconds)))
+    bad("solve_seconds", "must be a number of seconds >= 0");
+  if (const auto step = doc.find("step"); step != doc.end() && !step->is_null() && !(r.step > 0.0 && r.step <= s.t_end))
+    bad("step", "must be > 0 and at most t_end (a step of the run)");
 
   // Times of the run: 0 to t_end, and a time-stepper's last step may end past t_end by up to
   // a step (the fixed_step.hpp shell's rule), so a Pi1 is never taken from outside the run.
@@ -241,8 +238,6 @@ void fill_answer(const Json& doc, const System& s, const Settings& settings, Res
     if (!in_run(history.t[i])) bad(field, run_times + " (it is " + format_number(history.t[i]) + ")");
     if (i > 0 && history.t[i] < history.t[i - 1]) bad(field, "goes back from the time before it (times must not fall)");
   }
-  r.pi1 = maybe_number(doc, "pi1").value_or(kNaN);
-  r.t_max = maybe_number(doc, "t_max").value_or(kNaN);
   if (!std::isnan(r.t_max) && !in_run(r.t_max)) bad("t_max", run_times + " (it is " + format_number(r.t_max) + ")");
   if (std::isnan(r.pi1) && !history.u0.empty() && r.status == Status::ok) {
     if (std::any_of(history.u0.begin(), history.u0.end(), [](double u) { return !std::isfinite(u); }))
@@ -691,23 +686,16 @@ std::string answer_document(const Result& r, const System& s) {
   j["version"] = kVersion;
   j["status"] = name(r.status);
   j["message"] = r.message;
-  j["pi1"] = number_or_null(r.pi1);
-  j["t_max"] = number_or_null(r.t_max);
-  j["impacts"] = r.impacts;
-  j["contact_phases"] = r.contact_phases;
-  j["steps"] = r.steps;
-  j["isolated_impacts"] = r.isolated_impacts;
-  j["min_gap"] = number_or_null(r.min_gap);
-  j["step"] = number_or_null(r.step);
-  j["energy_excess"] = number_or_null(r.energy_excess);
-  j["restitution_low"] = number_or_null(r.restitution_low);
-  j["restitution_high"] = number_or_null(r.restitution_high);
-  j["gap_rate_max"] = number_or_null(r.gap_rate_max);
-  if (s.yields()) {
-    j["residual"] = number_or_null(r.residual);
-    j["hysteretic"] = number_or_null(r.hysteretic);
+  // The result fields an answer carries (rows/result_fields.hpp); residual and hysteretic
+  // only for a yielding case.
+  for (const ResultField& f : kResultFields) {
+    if (f.answer.empty() || !(f.real || f.whole)) continue;
+    if (!s.yields() && (f.real == &Result::residual || f.real == &Result::hysteretic)) continue;
+    if (f.whole)
+      j[std::string(f.answer)] = r.*f.whole;
+    else
+      j[std::string(f.answer)] = number_or_null(r.*f.real);
   }
-  j["solve_seconds"] = number_or_null(r.solve_seconds);
   const History& h = r.history;
   if (h.rows() > 0 && h.n_bodies == s.n_bodies()) {
     Ordered t = Ordered::array(), u0 = Ordered::array();

@@ -386,7 +386,7 @@ class DictSink final : public app::FieldSink {
   }
   // A row's settings: the last one parsed is kept (a loop of calls gives the same settings
   // again), and each row gets a copy of its own.
-  void object(std::string_view key, const std::string& json) override {
+  void object(std::string_view key, std::string_view json) override {
     static std::string last_json;
     static py::dict* last = nullptr;
     if (!last || json != last_json) {

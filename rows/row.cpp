@@ -10,7 +10,7 @@
 #include "cases/fields.hpp"
 #include "cases/text.hpp"
 #include "cases/physical.hpp"
-#include "rows/physical_results.hpp"
+#include "rows/result_fields.hpp"
 
 namespace pb {
 
@@ -111,24 +111,8 @@ std::string csv_field(std::string_view text) {
 
 namespace {
 
-// The columns around the case's numbers (cases/fields.hpp): those of every scene's bodies
-// come after the directivity, the chain's after the message (where they were added).
+// The columns before the case's numbers: which case, where it sits in the sweep.
 constexpr std::array kLeadColumns = {"family", "point", "scene", "pulse", "directivity"};
-constexpr std::array kMiddleColumns = {"solver",         "variant", "settings",       "status", "pi1",
-                                       "pi1_no_contact", "impacts", "contact_phases", "steps",  "min_gap",
-                                       "seconds",        "cpu_seconds", "message"};
-constexpr std::array kTailColumns = {"wh",          "energy_excess",   "penetration",     "isolated_impacts",
-                                     "restitution_low", "restitution_high", "penetration_steps",
-                                     "cpu_seconds_low", "cpu_seconds_high", "repetitions"};
-
-// The verdict (solvers/verdict.hpp), after everything else: the columns added last.
-constexpr std::array kVerdictColumns = {"resolved", "unresolved"};
-// The external solver's own timings (Result::solve_seconds, startup_seconds), after the verdict.
-constexpr std::array kOwnTimeColumns = {"solve_seconds", "startup_seconds"};
-// A record's step over its sampling interval, h / DT (the step rule `record`, issue 34), last.
-constexpr std::array kRecordStepColumns = {"h_over_dt"};
-// A fixed-step run's error estimates (Result::error_estimate, issue 48), after h_over_dt.
-constexpr std::array kEstimateColumns = {"error_estimate", "error_estimate_velocity"};
 
 // Where a field's column is: after the directivity (those of every scene's bodies), after
 // the message (the chain's, where they were added), after the tail (the pulses') or at the
@@ -138,12 +122,6 @@ Group group_of(const CaseField& f) {
   if (f.yielding) return Group::yielding;
   return f.use == FieldUse::chain ? Group::chain : pulse_use(f.use) ? Group::pulse : Group::body;
 }
-
-// The responses of yielding, after its fields.
-constexpr std::array kYieldColumns = {"mu", "residual", "hysteretic"};
-
-// Written as an empty field: a body the scene does not have, a gap that never closed.
-constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
 
 // Fields written straight into the line: a sweep formats a row per point (the paper set's
 // 23 820 rows, 45 fields each), and a string per field was an allocation for most numbers.
@@ -201,6 +179,18 @@ void case_numbers(LineBuilder& line, const Case& c, Group group) {
   }
 }
 
+// A result's field (rows/result_fields.hpp) as its column shows it.
+void result_cell(LineBuilder& line, const ResultField& f, const Row& row) {
+  switch (f.type) {
+    case ResultType::number: line.number(f.number(row)); return;
+    case ResultType::count: line.count(f.whole ? row.result.*f.whole : static_cast<long long>(f.number(row))); return;
+    case ResultType::text:
+    case ResultType::object: line.text(f.text(row)); return;
+    case ResultType::status: line.text(name(row.result.status)); return;
+    case ResultType::verdict: line.text(resolved_text(row.result.resolved)); return;
+  }
+}
+
 }  // namespace
 
 double h_over_dt(const Row& row) {
@@ -210,71 +200,45 @@ double h_over_dt(const Row& row) {
 std::string csv_header() {
   LineBuilder line;
   for (const char* column : kLeadColumns) line.text(column);
+  const auto results = [&](Place place) {
+    for (const ResultField& f : kResultFields)
+      if (f.place == place) line.text(f.name);
+  };
   case_names(line, Group::body);
-  for (const char* column : kMiddleColumns) line.text(column);
+  results(Place::middle);
   case_names(line, Group::chain);
-  for (const char* column : kTailColumns) line.text(column);
+  results(Place::tail);
   case_names(line, Group::pulse);
-  for (const char* column : kVerdictColumns) line.text(column);
+  results(Place::verdict);
   case_names(line, Group::yielding);
-  for (const char* column : kYieldColumns) line.text(column);
+  results(Place::yielding);
   for (const PhysicalField& f : kPhysicalFields) line.text(f.name);
-  for (std::string_view column : kPhysicalResultNames) line.text(column);
-  for (const char* column : kOwnTimeColumns) line.text(column);
-  for (const char* column : kRecordStepColumns) line.text(column);
-  for (const char* column : kEstimateColumns) line.text(column);
+  for (Place place : {Place::physical, Place::own_time, Place::record_step, Place::estimate}) results(place);
   return line.take();
 }
 
 std::string csv_line(const Row& row) {
   const Case& c = row.input;
-  const Result& r = row.result;
   LineBuilder line;
   line.text(c.family);
   line.count(static_cast<long long>(row.point));
   line.text(name(c.scene));
   line.text(name(c.pulse));
   line.text(name(c.directivity));
+  const auto results = [&](Place place) {
+    for (const ResultField& f : kResultFields)
+      if (f.place == place) result_cell(line, f, row);
+  };
   case_numbers(line, c, Group::body);
-  line.text(row.solver);
-  line.text(row.variant);
-  line.text(row.settings);
-  line.text(name(r.status));
-  line.number(r.pi1);
-  line.number(row.pi1_no_contact);
-  line.count(r.impacts);
-  line.count(r.contact_phases);
-  line.count(r.steps);
-  const double gap = min_gap_ratio(row);
-  line.number(gap == std::numeric_limits<double>::infinity() ? kMissing : gap);
-  line.number(row.seconds);
-  line.number(row.cpu_seconds);
-  line.text(r.message);
+  results(Place::middle);
   case_numbers(line, c, Group::chain);
-  line.number(row.wh);
-  line.number(r.energy_excess);
-  line.number(penetration(row));
-  line.count(r.isolated_impacts);
-  line.number(r.restitution_low);
-  line.number(r.restitution_high);
-  line.number(row.penetration_steps);
-  line.number(row.cpu_seconds_low);
-  line.number(row.cpu_seconds_high);
-  line.count(row.repetitions);
+  results(Place::tail);
   case_numbers(line, c, Group::pulse);
-  line.text(resolved_text(r.resolved));
-  line.text(r.unresolved);
+  results(Place::verdict);
   case_numbers(line, c, Group::yielding);
-  line.number(ductility(row));
-  line.number(r.residual);
-  line.number(r.hysteretic);
+  results(Place::yielding);
   for (const PhysicalField& f : kPhysicalFields) line.number(c.physical.*f.member);
-  for (const PhysicalResult& x : physical_results(row)) line.number(x.value);
-  line.number(r.solve_seconds);
-  line.number(r.startup_seconds);
-  line.number(h_over_dt(row));
-  line.number(r.error_estimate);
-  line.number(r.error_estimate_velocity);
+  for (Place place : {Place::physical, Place::own_time, Place::record_step, Place::estimate}) results(place);
   return line.take();
 }
 

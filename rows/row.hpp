@@ -3,7 +3,8 @@
 // it, what came out, and how long the solve took. Rows are written as CSV, one line per
 // row, with numbers printed so that they read back to the same double.
 //
-// Columns (csv_header()):
+// Columns (csv_header()): the case's (cases/fields.hpp, cases/physical.hpp) and the result's
+// (rows/result_fields.hpp, which says what each holds and where its column sits), in the order
 //   family, point, scene, pulse, directivity, pi2, pi3, eps, pi5, pi6, pi7, pi8, xi,
 //   n_free, a_p, w_p, solver, variant, settings, status, pi1, pi1_no_contact, impacts,
 //   contact_phases, steps, min_gap, seconds, cpu_seconds, message, bodies, kick, wh,
@@ -12,23 +13,9 @@
 //   mp_nu, record, resolved, unresolved, pi_y0, pi_y1, pi_y2, pi_y, alpha, mu, residual, hysteretic,
 //   t0, ... (the physical values and results), solve_seconds, startup_seconds, h_over_dt,
 //   error_estimate, error_estimate_velocity
-// pi5/pi6 are empty for the wall scene and pi7/pi8 for every scene but row3; bodies and
-// kick are empty except for chain; cycles, mp_gamma, mp_nu and record except for the pulse
-// that uses them (makris-c, mp, record: the record's file as the case named it); the fields
-// of yielding (pi_y0 .. alpha) and its responses (mu, residual, hysteretic: Result, and
-// ductility below) are empty for a case with no yielding body; min_gap is divided by the pulse's length scale
-// a_p / w_p^2 and empty when no contact ever closed (infinite); a NaN is written as an
-// empty field. The columns after message came later; they are appended so that scripts
-// reading columns by position keep working. resolved is the verdict of solvers/verdict.hpp,
-// true or false for a run that ended ok and empty otherwise (and in a file from before it),
-// unresolved its reasons. solve_seconds is the external solver's own time for its solve (the
-// answer's, or a Python callable's call timed around it; docs/external.md), empty when it gave
-// none; startup_seconds a persistent program's start, on the one row whose point started it.
-// h_over_dt is a record's step over its sampling interval DT (empty for a pulse or a solver
-// with no fixed step): the step rule `record` (Settings::steps_per_sample) makes it 1/m.
-// error_estimate and error_estimate_velocity are a fixed-step run's estimated relative errors
-// of Pi1 and of the fastest impact's approach velocity (Result::error_estimate), empty where
-// none was made: a sweep without --estimate-error, a solver with no fixed step.
+// A column that does not apply (a body the scene lacks, a pulse's shape, yielding's fields for
+// an elastic case) and a NaN are empty fields. The columns after message came later; they are
+// appended so that scripts reading columns by position keep working.
 //
 // Timing: the solve alone, with the monitor off, the clocks' own cost taken off (about 0.37 us
 // of CPU: the thread's CPU clock is a system call; sweep/stopwatch.hpp), repeated

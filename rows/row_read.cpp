@@ -9,7 +9,7 @@
 
 #include "cases/fields.hpp"
 #include "cases/physical.hpp"
-#include "rows/physical_results.hpp"
+#include "rows/result_fields.hpp"
 #include "cases/input_file.hpp"
 
 namespace pb {
@@ -203,46 +203,26 @@ Row parse_row(const Columns& columns, const std::vector<std::string>& fields) {
     else
       c.*field.integer = f.count<int>(column, c.*field.integer);
   }
-  row.solver = f.text("solver");
-  row.variant = f.text("variant");
-  row.settings = f.text("settings");
-  r.status = f.named("status", &parse_status);
-  r.pi1 = f.number("pi1");
-  row.pi1_no_contact = f.number("pi1_no_contact");
-  r.impacts = f.count<long>("impacts");
-  r.contact_phases = f.count<long>("contact_phases");
-  r.steps = f.count<long>("steps");
-  r.min_gap = f.number("min_gap", std::numeric_limits<double>::infinity());  // empty: no contact closed
-  row.length_scale = 1.0;
-  row.seconds = f.number("seconds");
-  row.cpu_seconds = f.number("cpu_seconds");
-  r.message = f.text("message");
-  row.wh = f.number("wh");
-  r.energy_excess = f.number("energy_excess");
-  r.isolated_impacts = f.count<long>("isolated_impacts");
-  r.restitution_low = f.number("restitution_low");
-  r.restitution_high = f.number("restitution_high");
-  row.penetration_steps = f.number("penetration_steps");
-  row.cpu_seconds_low = f.number("cpu_seconds_low");
-  row.cpu_seconds_high = f.number("cpu_seconds_high");
-  row.repetitions = f.count<int>("repetitions", 1);  // a file from before repetitions: one timing
-  r.resolved = f.named("resolved", &parse_resolved);  // a file from before the verdict: not judged
-  r.unresolved = f.text("unresolved");
-  r.residual = f.number("residual");  // mu is not read: it is made from pi1 and Pi_y
-  r.hysteretic = f.number("hysteretic");
-  // The physical units (rows/physical_results.hpp), after the verdict: a file from before them
-  // has none. The results that are Pi terms times a scale are made again, not read.
+  // The physical units (cases/physical.hpp), before the results: contact_force_max is read per unit of m0.
   for (const PhysicalField& field : kPhysicalFields) c.physical.*field.member = f.number(std::string(field.name));
-  r.step = f.number("h_s");
-  r.first_impact = f.number("first_impact_s");
-  r.impact_velocity_max = f.number("impact_velocity");
-  r.contact_force_max = f.number("contact_force_max") / mass_unit(c);
-  r.solve_seconds = f.number("solve_seconds");  // a file from before them, or not external: NaN
-  r.startup_seconds = f.number("startup_seconds");
-  r.error_estimate = f.number("error_estimate");  // a file from before them: not estimated
-  r.error_estimate_velocity = f.number("error_estimate_velocity");
+  // Every result field by its column (rows/result_fields.hpp): a column missing from an older
+  // file reads as an empty field; a field made from others (mu, penetration) is made again.
+  for (const ResultField& field : kResultFields) {
+    if (field.place == Place::none) continue;
+    const std::string column(field.name);
+    switch (field.type) {
+      case ResultType::number: field.read(row, f.number(column, field.missing)); break;
+      case ResultType::count:
+        field.read(row, static_cast<double>(f.count<long long>(column, static_cast<long long>(field.missing))));
+        break;
+      case ResultType::text:
+      case ResultType::object: field.store_text(row, f.text(column)); break;
+      case ResultType::status: r.status = f.named(column, &parse_status); break;
+      case ResultType::verdict: r.resolved = f.named(column, &parse_resolved); break;  // a file from before it: not judged
+    }
+  }
   if (const std::string bad = row_problem(row); !bad.empty()) throw RowReadError(bad);
-  return row;  // penetration is not read: it is made from min_gap
+  return row;
 }
 
 Row parse_row(const std::vector<std::string>& fields) {
