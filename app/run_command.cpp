@@ -18,8 +18,9 @@
 #include "frontend/errors.hpp"
 #include "frontend/run_output.hpp"
 #include "rows/result_fields.hpp"
-#include "solvers/verdict.hpp"
+#include "kit/verdict.hpp"
 #include "sweep/sweep.hpp"
+#include "solvers/registry.hpp"
 
 namespace pb::app {
 
@@ -106,7 +107,7 @@ void print_summary(std::ostream& out, const Row& row) {
   out << "status   " << name(r.status) << (r.message.empty() ? "" : ": " + r.message) << '\n';
   if (r.resolved) {
     out << "verdict  "
-        << (*r.resolved ? "resolved (no criterion of solvers/verdict.hpp failed, error estimate within the target)"
+        << (*r.resolved ? "resolved (no criterion of kit/verdict.hpp failed, error estimate within the target)"
                         : "UNRESOLVED, do not trust this Pi1: " + r.unresolved)
         << '\n';
   }

@@ -9,7 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cases/fields.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
 
 namespace pb::app {
 

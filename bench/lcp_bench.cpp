@@ -1,4 +1,4 @@
-// Cost of the LCP solvers of solvers/lcp/ at the sizes the scenes produce: one and two
+// Cost of the LCP solvers of kit/lcp/ at the sizes the scenes produce: one and two
 // contacts (small.hpp), and n = 2, 10, 100 for Lemke and PGS (the chain scene of a later
 // issue has up to 100 contacts). Each benchmark cycles through a fixed set of seeded
 // problems built before the timed loop, so no branch pattern is learnt from one input.
@@ -12,9 +12,9 @@
 #include <utility>
 #include <vector>
 
-#include "solvers/lcp/lemke.hpp"
-#include "solvers/lcp/pgs.hpp"
-#include "solvers/lcp/small.hpp"
+#include "kit/lcp/lemke.hpp"
+#include "kit/lcp/pgs.hpp"
+#include "kit/lcp/small.hpp"
 
 namespace {
 

@@ -20,7 +20,8 @@
 #include <benchmark/benchmark.h>
 #include <pybind11/embed.h>
 
-#include "bench/support.hpp"
+#include "kit/benchmarking.hpp"
+#include "solvers/registry.hpp"
 
 namespace py = pybind11;
 
@@ -59,7 +60,7 @@ void BM_PythonRun(benchmark::State& state) {
   const double per_call = (pb::bench::thread_seconds() - start) / static_cast<double>(state.iterations());
   pb::Settings settings;
   settings.steps = 64;
-  const double solve = pb::bench::seconds_per_run(&pb::moreau_jean::solve, pb::make_system(c), settings);
+  const double solve = pb::bench::seconds_per_run(pb::find_solver("moreau-jean")->solve, pb::make_system(c), settings);
   state.counters["solve"] = solve;
   state.counters["fixed_cost"] = per_call - solve;
 }

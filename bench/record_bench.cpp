@@ -15,7 +15,8 @@
 
 #include "cases/record.hpp"
 #include "cases/system.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
 
 namespace {
 

@@ -32,12 +32,12 @@
 #include <string>
 #include <vector>
 
-#include "bench/support.hpp"
+#include "kit/benchmarking.hpp"
 #include "app/output_files.hpp"
 #include "rows/row_read.hpp"
 #include "cases/case_set.hpp"
-#include "solvers/event_driven/event_driven.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
 #include "sweep/no_contact_cache.hpp"
 #include "sweep/partial_rows.hpp"
 #include "sweep/sweep.hpp"
@@ -91,7 +91,7 @@ const int kWholeSetRepetitions = pb::bench::whole_set_repetitions();
 void BM_PaperSetReferenceSolverAlone(benchmark::State& state) {
   const std::vector<pb::System>& systems = paper_systems();
   for (auto _ : state)
-    for (const pb::System& s : systems) benchmark::DoNotOptimize(pb::event_driven::solve(s, {}).pi1);
+    for (const pb::System& s : systems) benchmark::DoNotOptimize(pb::reference_solver().solve(s, {}).pi1);
   state.counters["time_per_point"] = per_item(systems.size());
   state.counters["points"] = static_cast<double>(systems.size());
 }

@@ -54,7 +54,7 @@ function(poundbench_install_package)
           FILES_MATCHING PATTERN "*.py" PATTERN "page.js" PATTERN "page.css" PATTERN "paper" EXCLUDE
           PATTERN "figures" EXCLUDE PATTERN "__pycache__" EXCLUDE)
   install(FILES studies/stress.hpp DESTINATION ${CMAKE_INSTALL_DATADIR}/poundbench/studies)
-  install(DIRECTORY cases programs solvers sweep rows studies DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/poundbench
+  install(DIRECTORY cases programs kit solvers sweep rows studies DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/poundbench
           FILES_MATCHING PATTERN "*.hpp")
   install(EXPORT poundbenchTargets NAMESPACE poundbench:: DESTINATION ${config_dir})
   get_property(POUNDBENCH_COMPONENTS GLOBAL PROPERTY POUNDBENCH_COMPONENTS)

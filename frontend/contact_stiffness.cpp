@@ -6,6 +6,7 @@
 
 #include "frontend/errors.hpp"
 #include "cases/physical.hpp"
+#include "solvers/registry.hpp"
 
 namespace pb::app {
 
@@ -14,7 +15,8 @@ void apply_k_contact(const Case& c, std::string_view solver, Settings& settings,
   if (!physical(c))
     throw BadInput("--k-contact: needs a case in physical units (--t0, --gap, ...): its unit of mass is m0's");
   if (!(std::isfinite(k) && k > 0.0)) throw BadInput("--k-contact: must be finite and > 0");
-  settings.stiffness = stiffness_pi_term(c, k, hertz_contact(solver, settings));
+  const SolverInfo* info = find_solver(solver);  // an unknown one is refused by its check, after
+  settings.stiffness = stiffness_pi_term(c, k, info && hertz_contact(*info, settings));
 }
 
 const SolverInfo& checked_solver_k_contact(const SolverFlags& flags, const GivenSolverFlag& given, bool k_contact) {

@@ -7,7 +7,7 @@
 
 #include "cases/case.hpp"
 #include "frontend/solver_flags.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
 #include "studies/physical_settings.hpp"  // hertz_contact
 
 namespace pb::app {

@@ -4,13 +4,15 @@
 #include <array>
 #include <cmath>
 #include <string_view>
+#include <vector>
 
 #include "cases/fields.hpp"
 #include "cases/system.hpp"
 #include "cases/text.hpp"
 #include "frontend/errors.hpp"
 #include "programs/process.hpp"
-#include "solvers/settings_fields.hpp"
+#include "kit/settings_fields.hpp"
+#include "solvers/registry.hpp"
 
 namespace pb::app {
 
@@ -23,6 +25,32 @@ std::string solver_names() {
     names += s.name;
   }
   return names;
+}
+
+// The own settings of every solver (SolverInfo::own_settings) as flags, each name once: a
+// value goes to Settings::own at its index in the chosen solver's list. CLI11 runs the options'
+// callbacks in the order they were added, after the parse, so --solver is known by then.
+void add_own_setting_flags(CLI::App& command, SolverFlags& flags) {
+  std::vector<std::string_view> added;
+  for (const SolverInfo& solver : solvers())
+    for (const OwnSetting& own : solver.own_settings) {
+      if (std::find(added.begin(), added.end(), own.name) != added.end()) continue;
+      added.push_back(own.name);
+      const std::string name(own.name);
+      command.add_option_function<double>(
+          flag_of(own.name),
+          [&flags, name](double x) {
+            const SolverInfo* chosen = find_solver(flags.solver);
+            if (!chosen) return;  // checked_solver names the unknown solver
+            const auto& list = chosen->own_settings;
+            const auto it = std::find_if(list.begin(), list.end(), [&](const OwnSetting& o) { return o.name == name; });
+            if (it == list.end())
+              flags.undeclared = flag_of(name);
+            else
+              flags.settings.own[static_cast<std::size_t>(it - list.begin())] = x;
+          },
+          std::string(own.help) + " (" + std::string(solver.name) + "'s own)");
+    }
 }
 
 }  // namespace
@@ -46,6 +74,7 @@ void add_solver_flags(CLI::App& command, SolverFlags& flags) {
                                       : command.add_option(flag, s.*f.text, help);
     option->capture_default_str();
   }
+  add_own_setting_flags(command, flags);
   command.add_flag("--monitor", s.monitor,
                    "Solve each point once more, untimed, with the time-steppers' monitor on: energy_excess, "
                    "the restitution range and gap_rate_max, and the verdict's energy and restitution criteria");
@@ -68,6 +97,8 @@ std::string as_flag_message(const std::string& field_reason) {
 const SolverInfo& checked_solver(const SolverFlags& flags, const GivenSolverFlag& given) {
   const SolverInfo* solver = find_solver(flags.solver);
   if (!solver) throw BadInput("--solver: unknown solver '" + clip(flags.solver) + "' (known: " + solver_names() + ")");
+  if (!flags.undeclared.empty())
+    throw BadInput(flags.undeclared + ": not used by solver " + std::string(solver->name) + " (another solver's own setting)");
   if (std::string bad = solver->check(flags.settings); !bad.empty()) throw BadInput(as_flag_message(bad));
   if (given) {
     const auto field_given = [&](std::string_view field) { return given(flag_of(field)); };

@@ -8,7 +8,8 @@
 #include <CLI/CLI.hpp>
 
 #include "cases/case.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb::app {
@@ -23,12 +24,15 @@ struct SolverFlags {
     s.monitor = false;
     return s;
   }();
+  // An own setting (SolverInfo::own_settings) given that the chosen solver does not declare:
+  // its flag, which checked_solver refuses.
+  std::string undeclared;
 };
 
 void add_solver_flags(CLI::App& command, SolverFlags& flags);
 
 // The named solver, after SolverInfo::check accepted the settings and no flag of
-// solvers/settings_fields.hpp that `given` ("--theta") says was given is one the solver does
+// kit/settings_fields.hpp that `given` ("--theta") says was given is one the solver does
 // not use (pb::unused_setting); throws BadInput.
 using GivenSolverFlag = std::function<bool(std::string_view flag)>;
 const SolverInfo& checked_solver(const SolverFlags& flags, const GivenSolverFlag& given = {});
@@ -44,7 +48,7 @@ void check_step_bound(const Case& c, const Settings& settings);
 // "field: reason" from a check() with the field turned into its flag, e.g. "--tol-scale: ...".
 std::string as_flag_message(const std::string& field_reason);
 
-// --target-error (the largest error estimate a resolved run may have, solvers/verdict.hpp) and,
+// --target-error (the largest error estimate a resolved run may have, kit/verdict.hpp) and,
 // on a sweep (`spectrum`, `workprecision`, `stress`), --estimate-error, which a sweep's
 // estimate needs: it costs a companion solve at twice the step per point (sweep/sweep.hpp).
 // `run` estimates whenever it can, so it has no --estimate-error.

@@ -18,7 +18,7 @@
 #include <string_view>
 
 #include "cases/system.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::programs {
 

@@ -10,7 +10,7 @@
 // NumPy is needed for histories alone (run(history=True)), imported there.
 //
 // Its keywords are the command line's flags, with '_' for '-' (n_free for --n-free), made
-// from the same tables (cases/fields.hpp, solvers/settings_fields.hpp), and they are checked
+// from the same tables (cases/fields.hpp, kit/settings_fields.hpp), and they are checked
 // by the same code as the flags (frontend/case_flags.cpp, frontend/solver_flags.cpp): a bad keyword is a
 // ValueError with the command line's message ("--pi3: required (or give --case-file)").
 // run() returns the object `run --json` prints, as a dict, with the history as NumPy arrays
@@ -62,8 +62,9 @@
 #include "studies/stress.hpp"
 #include "studies/workprecision.hpp"
 #include "programs/process.hpp"
-#include "solvers/settings_fields.hpp"
+#include "kit/settings_fields.hpp"
 #include "sweep/sweep.hpp"
+#include "solvers/registry.hpp"
 
 namespace py = pybind11;
 

@@ -184,7 +184,7 @@ def rule(summary, impacting=True):
     return ("A setting meets a target when its relative Pi1 error against the reference solved 100x tighter "
             "(the median, or the 95th percentile, over the points of a family) is at most the target on every "
             "family of the scene (of the study, for *all scenes*), with no failed run and no unresolved one (a run "
-            "that finished but whose own measurements say it did not resolve what it solved: `solvers/verdict.hpp`), "
+            "that finished but whose own measurements say it did not resolve what it solved: `kit/verdict.hpp`), "
             "and every finer step of the same solver and variant in the study (the same settings apart from the "
             "step: N, w_max h or h) meets it too: an error need not fall with the step, and a lucky coarse step "
             "whose finer neighbours fail is never the answer. Every table of this report that picks a setting by "
@@ -267,7 +267,7 @@ def failure_table(points):
 
 def unresolved_table(points):
     """Markdown: every setting with runs that finished without resolving what they solved, per
-    family: how many, and the first one's reasons (solvers/verdict.hpp). Empty when none."""
+    family: how many, and the first one's reasons (kit/verdict.hpp). Empty when none."""
     found = defaultdict(list)
     total = defaultdict(int)
     for r in points:

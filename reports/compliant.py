@@ -112,7 +112,7 @@ def answer_lines(summary):
              + ", ".join(f"{f} {fmt(num(r, 'err_median'))} / {fmt(num(r, 'err_p95'))}" for f, r in mj.items())
              + f"; {fmt_cost(cost(list(mj.values())))} us per run). A compliant setting is as accurate when it "
              "meets both on every family where its element applies, with no failed run and no unresolved one (here: "
-             "a contact shorter than 4 steps of the integrator, `solvers/verdict.hpp`); a step count N of Newmark is, "
+             "a contact shorter than 4 steps of the integrator, `kit/verdict.hpp`); a step count N of Newmark is, "
              "as everywhere in this report (`reports/robust.py`), as accurate only when every larger N of the study "
              "is too.", "",
              "| element | integrator | as accurate from | CPU per run (us) | times Moreau–Jean's |",
@@ -186,7 +186,7 @@ def newmark_table(summary, points):
 
 
 def restitution_lines(rows):
-    """README's table of what each element restitutes (bench/restitution_table.cpp's
+    """README's table of what each element restitutes (solvers/compliant/restitution_table_main.cpp's
     measurements, reports/restitution.csv): one row per element and damping rule, one column
     per eps, each cell the measured restitution and the damping parameter that gave it."""
     eps_values = sorted({num(r, "eps") for r in rows if r["element"] != "hertz"})
@@ -195,7 +195,7 @@ def restitution_lines(rows):
     methods = [r["measured_by"] for r in rows]
     usual = max(set(methods), key=methods.count)
     other = sorted(set(methods) - {usual})
-    lines = ["Restitution of one free impact, nothing but the element acting (`bench/restitution_table.cpp`), and "
+    lines = ["Restitution of one free impact, nothing but the element acting (`solvers/compliant/restitution_table_main.cpp`), and "
              f"in brackets the damping parameter that gives it. Measured by {usual}"
              + (f"; rows marked * by {', '.join(other)} (closed forms that are no variant of the solver)" if other
                 else "") + ".", "",
@@ -270,7 +270,7 @@ def section(summary, points, out_dir):
             "Average acceleration with Newton iterations at h = T_min / N, where the contact's own period is not "
             "in T_min. A run whose steps do not resolve the contact shows it here rather than being hidden: "
             "*unresolved* counts the runs that ended ok with a contact shorter than 4 steps of the integrator "
-            "(`solvers/verdict.hpp`; the study runs without the monitor, so energy made is not judged here), and "
+            "(`kit/verdict.hpp`; the study runs without the monitor, so energy made is not judged here), and "
             "no table ranks such a setting.", "",
             *newmark_table(summary, points), "",
             f"![compliant contact]({fig})", ""]

@@ -48,7 +48,7 @@ STRESS_ABOUT = ("Every case of the stress set (`cases/sets/stress.toml`: stiffne
 STRESS_READING = [
     "Reading it: ODE and Bullet apply the ground load sampled at the start of each step, which makes energy to first "
     "order in h, so they fail the energy check at any step (the excess says how much, and shrinks with h: "
-    "`tests/ode_test.cpp`, `tests/bullet_test.cpp`); as explicit schemes they diverge from w_max h = 2 on, the "
+    "`solvers/ode/ode_test.cpp`, `solvers/bullet/bullet_test.cpp`); as explicit schemes they diverge from w_max h = 2 on, the "
     "stability limit of their semi-implicit Euler step. Where Moreau-Jean makes energy (a plastic impulse on a "
     "separating contact at theta = 1/2, elastic contacts held closed at theta = 1) is derived in "
     "`solvers/moreau_jean/README.md`. Siconos' MoreauJeanOSI samples the load at the step's ends instead of averaging "

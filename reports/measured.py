@@ -147,13 +147,13 @@ class Measured:
 
 def external_lines(measured):
     """What the external protocol costs a point, against the same solve in process
-    (bench/external_bench.cpp, wall time): one sentence, or none without the benchmarks."""
+    (solvers/external/external_bench.cpp, wall time): one sentence, or none without the benchmarks."""
     m = Measured(measured)
     inproc, adapter, floor = (m.get(f"BM_External{n}/real_time", "real_time")
                               for n in ("PairInProcess", "PairThroughAdapter", "ProtocolFloor"))
     if None in (inproc, adapter, floor):
         return ["Not measured: the main job's benchmarks did not run the external solver's."]
-    return [f"What the protocol costs a point (`bench/external_bench.cpp`, medians, wall time, the Fig. 4 pair "
+    return [f"What the protocol costs a point (`solvers/external/external_bench.cpp`, medians, wall time, the Fig. 4 pair "
             f"through moreau-jean at N = 64): {sig(1e3 * floor)} ms for a program that only answers (a spawn, the "
             f"pipes, both documents, the wait), {sig(1e3 * adapter)} ms for poundbench itself as the program (its "
             f"own start included), against {sig(1e6 * inproc)} us for the same solve in process."]

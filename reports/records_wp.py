@@ -11,7 +11,7 @@ import answer
 import robust
 from rows import config_label, num, settings_fields, steps_of
 
-DEFAULT_N = 64  # every fixed-step solver's default (solvers/fixed_step.hpp)
+DEFAULT_N = 64  # every fixed-step solver's default (kit/fixed_step.hpp)
 TARGETS = (1e-2, 1e-3)
 SUMMARY = "workprecision-records.csv"
 

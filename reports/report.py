@@ -117,7 +117,7 @@ def unresolved_section(study, out):
         return []
     out.page.table("Unresolved runs", table)
     return ["## Unresolved runs", "", "Every setting with runs that ended ok but whose own measurements say they did "
-            "not resolve what they solved (`resolved` false in their rows, `solvers/verdict.hpp`), and the reasons of "
+            "not resolve what they solved (`resolved` false in their rows, `kit/verdict.hpp`), and the reasons of "
             "the first. No table above ranks them; the diagrams draw them hollow.", "", *table, ""]
 
 

@@ -32,7 +32,7 @@ def num(row, key):
 
 def unresolved(row):
     """A summary row's runs that finished without resolving what they solved (the
-    `unresolved` column, solvers/verdict.hpp); 0 in a file from before that column."""
+    `unresolved` column, kit/verdict.hpp); 0 in a file from before that column."""
     return int(row.get("unresolved") or 0)
 
 

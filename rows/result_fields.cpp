@@ -87,7 +87,7 @@ constexpr auto kTable = std::to_array<ResultField>({
     // A time-stepper's largest |g'| (Result::gap_rate_max): the answer's alone, penetration_steps shows it.
     {.name = "gap_rate_max", .type = T::number, .place = P::none, .json = false, .answer = "gap_rate_max",
      .real = &Result::gap_rate_max},
-    // The verdict of solvers/verdict.hpp: true or false for a run that ended ok, empty otherwise
+    // The verdict of kit/verdict.hpp: true or false for a run that ended ok, empty otherwise
     // (and in a file from before it); unresolved its reasons.
     {.name = "resolved", .type = T::verdict, .place = P::verdict},
     {.name = "unresolved", .type = T::text, .place = P::verdict,

@@ -35,7 +35,7 @@
 #include <string_view>
 
 #include "cases/case.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
 
 namespace pb {
 

@@ -6,8 +6,9 @@
 #include "solvers/event_driven/event_driven.hpp"
 #include "solvers/external/external.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
-#include "solvers/settings_fields.hpp"
-#include "solvers/solver.hpp"
+#include "kit/settings_fields.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
 #ifdef POUNDBENCH_HAVE_ODE
 #include "solvers/ode/ode_solver.hpp"
 #endif
@@ -84,7 +85,7 @@ const std::array kSolvers = {
     // its tolerance (1e-8 by default): 1e-7 lets that through.
     SolverInfo{"compliant", "compliant contact elements (see --variant), integrated by CVODE or Newmark",
                &compliant::solve, &compliant::describe, &check_all<&compliant::check>, &compliant::variant_list, 1e-7,
-               false, &compliant::model_reference, false, kFixedStepOrder},
+               false, &compliant::model_reference, false, kFixedStepOrder, &compliant::hertz_contact},
 #endif
 #ifdef POUNDBENCH_HAVE_MUJOCO
     // A fixed-step engine in double precision, as ODE: round-off only, 1e-12.
@@ -101,7 +102,8 @@ const std::array kSolvers = {
     // hunt-crossley variant's Runge-Kutta-Merson chooses its steps, and round-off can move a
     // choice and Pi1 with it within its accuracy (1e-8 by default): 1e-7, as CVODE's.
     SolverInfo{"simbody", "Simbody: its semi-explicit Euler time-stepper with Poisson impacts, or Hunt-Crossley elements (see --variant)",
-               &simbody::solve, &simbody::describe, &check_all<&simbody::check>, &simbody::variant_list, 1e-7, false, nullptr, false, kFixedStepOrder},
+               &simbody::solve, &simbody::describe, &check_all<&simbody::check>, &simbody::variant_list, 1e-7, false, nullptr, false, kFixedStepOrder,
+               &simbody::hertz_contact},
 #endif
     // Another program, run once per point (docs/external.md): what it computes is its own; a
     // deterministic program gives its Pi1 again bit for bit, and 1e-9 lets another build of it

@@ -13,6 +13,7 @@
 #include "cases/text.hpp"
 #include "rows/row_read.hpp"
 #include "studies/workprecision.hpp"
+#include "solvers/registry.hpp"
 
 namespace pb {
 

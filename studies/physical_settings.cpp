@@ -7,7 +7,6 @@
 #include "cases/physical.hpp"
 #include "cases/system.hpp"
 #include "cases/text.hpp"
-#include "solvers/contact_elements/contact_law.hpp"
 #include "studies/settings_list.hpp"
 
 namespace pb {
@@ -20,14 +19,6 @@ namespace {
 constexpr double kSameMapping = 1e-12;
 
 }  // namespace
-
-bool hertz_contact(std::string_view solver, const Settings& settings) {
-  if (solver == "compliant") {
-    const auto model = compliant::parse_model(settings.variant);
-    return model && *model != compliant::Model::kelvin_voigt;
-  }
-  return solver == "simbody";
-}
 
 void resolve_physical_settings(SettingsList& list, std::span<const Case> cases, std::string_view source) {
   for (std::size_t k = 0; k < list.runs.size() && k < list.physical.size(); ++k) {
@@ -55,7 +46,7 @@ void resolve_physical_settings(SettingsList& list, std::span<const Case> cases, 
         if (!physical(c))
           fail("k_contact", "point " + std::to_string(i) + " is in Pi terms; a stiffness in N/m needs a case in "
                             "physical units (its unit of mass is m0's)");
-        agree("k_contact", stiffness, stiffness_pi_term(c, given.k_contact, hertz_contact(run.solver->name, run.settings)));
+        agree("k_contact", stiffness, stiffness_pi_term(c, given.k_contact, hertz_contact(*run.solver, run.settings)));
       }
     }
     if (given.h_s > 0.0) run.settings.wh = wh;

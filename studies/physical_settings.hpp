@@ -11,7 +11,7 @@
 #include <string_view>
 
 #include "cases/case.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
 
 namespace pb {
 
@@ -25,8 +25,10 @@ struct PhysicalSetting {
 };
 
 // Whether the solver's contact element with these settings is of the Hertz family (force
-// k p^1.5: the compliant solver's elements but kelvin-voigt, Simbody's Hunt-Crossley).
-bool hertz_contact(std::string_view solver, const Settings& settings);
+// k p^1.5): as its registry row says (SolverInfo::hertz_contact).
+inline bool hertz_contact(const SolverInfo& solver, const Settings& settings) {
+  return solver.hertz_contact && solver.hertz_contact(settings);
+}
 
 // Sets the Pi forms (wh, stiffness) of every list run given in physical units from the
 // cases; throws SettingsListError ("SOURCE: run R (solver settings): h_s: why") when a case

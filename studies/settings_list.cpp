@@ -11,7 +11,8 @@
 #include "cases/text.hpp"
 #include "cases/toml_input.hpp"
 #include "programs/process.hpp"
-#include "solvers/settings_fields.hpp"
+#include "kit/settings_fields.hpp"
+#include "solvers/registry.hpp"
 
 namespace pb {
 
@@ -138,7 +139,7 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
     if (!t) r.fail(&rn, field, "must be a table");
     std::string solver;
     std::vector<std::string> variants = {""};
-    // Every number of Settings (solvers/settings_fields.hpp) may be a list; unset, its
+    // Every number of Settings (kit/settings_fields.hpp) may be a list; unset, its
     // default. The rules below are the list's own: the solver's check() judges the rest.
     std::array<std::vector<double>, kSettingFields.size()> values;
     std::array<std::vector<std::string>, kSettingFields.size()> names;  // a name's values

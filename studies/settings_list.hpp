@@ -21,7 +21,7 @@
 // stress study gives the run one more, untimed solve per point with the time-steppers'
 // monitor on, for its energy, gap and restitution checks; no solve is timed with it on, and
 // the work-precision study has no such solve: StudyOptions::monitor), and every number of a
-// solver's Settings as solvers/settings_fields.hpp declares it (steps or wh, theta, gamma,
+// solver's Settings as kit/settings_fields.hpp declares it (steps or wh, theta, gamma,
 // tol_scale, step_cap, time_limit in seconds per run): a list, or one value; step_cap and
 // time_limit take one value.
 // In physical units (studies/physical_settings.hpp), never beside their Pi forms in one
@@ -39,7 +39,7 @@
 #include <string_view>
 #include <vector>
 
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
 #include "studies/physical_settings.hpp"
 #include "sweep/sweep.hpp"
 

@@ -40,7 +40,7 @@ struct Summary {
   std::size_t points = 0;  // rows summarised
   std::size_t failed = 0;  // status other than ok, or a Pi1 that is not finite
   // Finished runs that did not resolve what they solved (Result::resolved false,
-  // solvers/verdict.hpp); their errors count as every finished run's do.
+  // kit/verdict.hpp); their errors count as every finished run's do.
   std::size_t unresolved = 0;
   // Relative Pi1 error |Pi1 - Pi1_ref| / Pi1_ref over the runs that did not fail, where the
   // reference has a Pi1.

@@ -50,7 +50,7 @@ namespace pb {
 // round-off stays many orders below this.
 inline constexpr double kEnergyTolerance = 1e-6;
 // Of h max|g'|, one step of travel at the fastest gap rate: Moreau-Jean at theta = gamma = 1/2
-// stays within (1 - eps/2) of it (tests/moreau_jean_test.cpp), and a scheme that finds a
+// stays within (1 - eps/2) of it (solvers/moreau_jean/moreau_jean_test.cpp), and a scheme that finds a
 // contact only once it overlaps reaches it exactly where touching bodies close at their
 // fastest rate. The 1e-5 is room for round-off there (single-precision Bullet: 1 + 1e-6).
 inline constexpr double kPenetrationSteps = 1.00001;

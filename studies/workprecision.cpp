@@ -7,6 +7,7 @@
 
 #include "cases/text.hpp"
 #include "studies/stats.hpp"
+#include "solvers/registry.hpp"
 
 namespace pb {
 
@@ -157,7 +158,7 @@ std::string work_precision_problem(const WorkPrecisionRow& row, double max_error
     problem = std::to_string(s.failed) + " of " + std::to_string(s.points) + " runs did not finish ok";
   if (s.unresolved > 0)
     problem += (problem.empty() ? "" : "; ") + std::to_string(s.unresolved) + " of " + std::to_string(s.points) +
-               " runs finished without resolving what they solved (solvers/verdict.hpp)";
+               " runs finished without resolving what they solved (kit/verdict.hpp)";
   for (const auto& [bound, value, column] :
        {std::tuple{max_error, s.err_median, "err_median"}, std::tuple{max_error_p95, s.err_p95, "err_p95"}})
     if (!std::isnan(bound) && !(value <= bound))

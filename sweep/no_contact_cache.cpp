@@ -1,4 +1,5 @@
 #include "sweep/no_contact_cache.hpp"
+#include "solvers/registry.hpp"
 
 #include <bit>
 #include <cmath>

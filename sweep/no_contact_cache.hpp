@@ -29,7 +29,7 @@
 #include <unordered_map>
 
 #include "cases/system.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
 
 namespace pb {
 

@@ -16,9 +16,10 @@
 #include "cases/system.hpp"
 #include "cases/text.hpp"
 #include "programs/process.hpp"
-#include "solvers/verdict.hpp"
+#include "kit/verdict.hpp"
 #include "sweep/stopwatch.hpp"
 #include "sweep/worker_cores.hpp"
+#include "solvers/registry.hpp"
 
 namespace pb {
 

@@ -24,8 +24,8 @@
 
 #include "cases/case.hpp"
 #include "cases/case_list.hpp"
-#include "solvers/solver.hpp"
-#include "solvers/verdict.hpp"
+#include "kit/solver.hpp"
+#include "kit/verdict.hpp"
 #include "rows/row.hpp"
 #include "sweep/no_contact_cache.hpp"
 
@@ -58,7 +58,7 @@ inline constexpr int kMaxRepetitions = 1000;
 inline constexpr double kRepetitionBudget = 0.01;  // CPU seconds per point, over its repetitions
 
 // The error estimate of a fixed-step run (Result::error_estimate) and the target its verdict
-// holds it to (solvers/verdict.hpp). on: run_point solves the case once more, untimed, at twice
+// holds it to (kit/verdict.hpp). on: run_point solves the case once more, untimed, at twice
 // the run's step (Settings::wh = 2 w_max h, without a record's step rule: the companion's step is
 // exactly 2h), for a solver with a SolverInfo::step_order whose run had a fixed step; that costs
 // about half a solve more. A companion that does not end ok makes the run unresolved (a doubt);
@@ -78,7 +78,7 @@ struct ErrorEstimate {
 // monitor_timed: the timed solves keep settings.monitor as it is and there is no monitored
 // pass. `run` monitors its one solve so: the verdict then judges every criterion at the cost of
 // one solve (the monitor adds 30 % to 44 % to a Moreau-Jean step), where a second pass doubled it.
-// The verdict (solvers/verdict.hpp) is not judged (resolved empty) where it cannot be true
+// The verdict (kit/verdict.hpp) is not judged (resolved empty) where it cannot be true
 // for want of a measurement: with settings.monitor off (but the reference's own checks), or
 // for a fixed-step run with a step_order whose estimate was not made (`estimate` off, or none
 // made), unless a criterion it did measure fails.

@@ -15,7 +15,8 @@
 #include <vector>
 
 #include "cases/case_set.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
 #include "rows/row_read.hpp"
 
 namespace pb {

@@ -16,8 +16,9 @@
 
 #include "cases/system.hpp"
 #include "cases/text.hpp"
-#include "solvers/solver.hpp"
-#include "tests/support.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
+#include "kit/testing.hpp"
 
 namespace pb {
 namespace {

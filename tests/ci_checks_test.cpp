@@ -124,7 +124,7 @@ TEST_F(Cli, WorkprecisionGatesTheNinetyFifthPercentileAndNamesTheFailingPoints) 
                   "--junit junit.xml");
   EXPECT_EQ(o.exit_code, 1) << o.err;
   const std::regex line(R"(poundbench: workprecision --check: pair moreau-jean \{"wh":6,"theta":0.5,"gamma":0.5\}: )"
-                        R"(6 of 6 runs finished without resolving what they solved \(solvers/verdict.hpp\); )"
+                        R"(6 of 6 runs finished without resolving what they solved \(kit/verdict.hpp\); )"
                         R"(err_p95 [0-9.e-]+ above 0.05; above 0.05: point \d \([0-9.e-]+\))");
   EXPECT_TRUE(std::regex_search(o.err, line)) << o.err;
   EXPECT_EQ(o.err.find("steps"), std::string::npos) << o.err;

@@ -25,11 +25,12 @@
 #include <vector>
 
 #include "cases/text.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
 #include "studies/stress.hpp"
 #include "sweep/sweep.hpp"
 #include "tests/cli_fixture.hpp"
-#include "tests/support.hpp"
+#include "kit/testing.hpp"
 
 extern char** environ;
 
@@ -685,7 +686,7 @@ TEST_F(CliStudy, CheckExitsOneWhenARowFailsAfterWritingTheOutputs) {
   EXPECT_EQ(run("stress tiny.toml --settings list.toml --out plain.csv").exit_code, 0);  // no --check: 0
 
   // workprecision: every run finished, but those at w_max h = 2 and 6 (fewer than 4 steps a
-  // shortest period) did not resolve what they solved (solvers/verdict.hpp), which fails their
+  // shortest period) did not resolve what they solved (kit/verdict.hpp), which fails their
   // rows; an err_median above --max-error fails its row too.
   const std::string wp6 = R"(poundbench: workprecision --check: pair moreau-jean {"wh":6,"theta":0.5,"gamma":0.5}: )";
   o = run("workprecision tiny.toml --settings list.toml --out wp.csv --check");
@@ -693,7 +694,7 @@ TEST_F(CliStudy, CheckExitsOneWhenARowFailsAfterWritingTheOutputs) {
   EXPECT_NE(o.err.find(wp6 + "6 of 6 runs finished without resolving what they solved"), std::string::npos) << o.err;
   o = run("workprecision tiny.toml --settings list.toml --out wp.csv --check --max-error 0.05");
   EXPECT_EQ(o.exit_code, 1) << o.err;
-  EXPECT_NE(o.err.find("(solvers/verdict.hpp); err_median "), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find("(kit/verdict.hpp); err_median "), std::string::npos) << o.err;
   EXPECT_EQ(o.err.find("steps"), std::string::npos) << "N = 64 is within 5 %: " << o.err;
   EXPECT_TRUE(fs::exists(file("wp.csv")));
 }

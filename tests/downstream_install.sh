@@ -10,7 +10,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
 cmake --install "$build" --prefix "$tmp/prefix" > "$tmp/install.log"
-test -f "$tmp/prefix/include/poundbench/solvers/solver.hpp"
+test -f "$tmp/prefix/include/poundbench/kit/solver.hpp"
 test -x "$tmp/prefix/bin/poundbench"
 
 # The installed `poundbench report` runs the generator installed beside it (its README names

@@ -17,9 +17,10 @@
 #include "cases/case_set.hpp"
 #include "cases/system.hpp"
 #include "programs/protocol.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
 #include "tests/cli_fixture.hpp"
-#include "tests/support.hpp"
+#include "kit/testing.hpp"
 
 namespace pb {
 namespace {

@@ -1,4 +1,4 @@
-// LCP solvers (solvers/lcp/): enumeration as ground truth, Lemke (plain and with a
+// LCP solvers (kit/lcp/): enumeration as ground truth, Lemke (plain and with a
 // lexicographic right-hand side), PGS (run-time and fixed size), and the closed forms of
 // small.hpp, on seeded random problems of sizes 1..10.
 //
@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "solvers/lcp/enumerate.hpp"
-#include "solvers/lcp/lemke.hpp"
-#include "solvers/lcp/pgs.hpp"
-#include "solvers/lcp/small.hpp"
+#include "kit/lcp/enumerate.hpp"
+#include "kit/lcp/lemke.hpp"
+#include "kit/lcp/pgs.hpp"
+#include "kit/lcp/small.hpp"
 
 namespace pb::lcp {
 namespace {

@@ -6,7 +6,7 @@
 //   - a ramp record follows the motion derived by hand;
 //   - makris-a and makris-b, through the general path, are the sine and cosine pulses;
 //   - the pulse models end at rest, and the mp acceleration is its velocity's derivative.
-// (Against CVODE at a tight tolerance: tests/loads_cvode_test.cpp.)
+// (Against CVODE at a tight tolerance: solvers/compliant/loads_cvode_test.cpp.)
 
 #include <gtest/gtest.h>
 
@@ -21,8 +21,9 @@
 #include "cases/load.hpp"
 #include "cases/record.hpp"
 #include "cases/system.hpp"
-#include "solvers/solver.hpp"
-#include "tests/support.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
+#include "kit/testing.hpp"
 
 namespace pb {
 namespace {

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "solvers/named_values.hpp"
+#include "kit/named_values.hpp"
 
 namespace pb {
 namespace {

@@ -16,7 +16,8 @@
 #include <vector>
 
 #include "cases/case_set.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb {

@@ -12,7 +12,8 @@
 #include <vector>
 
 #include "cases/case_set.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
 #include "sweep/partial_rows.hpp"
 #include "rows/row_read.hpp"
 #include "studies/stats.hpp"

@@ -14,8 +14,9 @@
 #include "cases/case_set.hpp"
 #include "cases/record.hpp"
 #include "cases/system.hpp"
-#include "solvers/fixed_step.hpp"
-#include "solvers/solver.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
 #include "tests/cli_fixture.hpp"
 
 namespace pb {

@@ -15,8 +15,9 @@
 
 #include "cases/record.hpp"
 #include "cases/system.hpp"
-#include "solvers/solver.hpp"
-#include "tests/support.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
+#include "kit/testing.hpp"
 
 namespace pb {
 namespace {

@@ -13,7 +13,7 @@
 #include "programs/protocol.hpp"
 #include "rows/result_fields.hpp"
 #include "rows/row_read.hpp"
-#include "tests/support.hpp"
+#include "kit/testing.hpp"
 
 namespace pb {
 namespace {

@@ -40,10 +40,11 @@
 #include "cases/case_set.hpp"
 #include "cases/record.hpp"
 #include "cases/system.hpp"
-#include "solvers/solver.hpp"
-#include "solvers/verdict.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
+#include "kit/verdict.hpp"
 #include "sweep/sweep.hpp"
-#include "tests/support.hpp"
+#include "kit/testing.hpp"
 
 namespace pb {
 namespace {
@@ -309,7 +310,7 @@ const std::vector<Facts>& facts_table() {
       // limit go to the program, which honours them). Apart from them: a non-finite body is
       // refused before the program starts (JSON has no NaN), a body on a negative spring by
       // the adapter (outside the domain every document is checked against: failed, its one
-      // line quoted), and the stop flag ends the program (it cannot see the flag). A point costs ~13 ms, the program's start (bench/external_bench.cpp):
+      // line quoted), and the stop flag ends the program (it cannot see the flag). A point costs ~13 ms, the program's start (solvers/external/external_bench.cpp):
       // every 2nd smoke point. The Python adapter is the other example, not run here: its
       // interpreter's start (~0.3 s a point) would make this suite minutes long
       // (tests/external_examples_test.py runs it). A time limit of 0.05 s: the program's start
@@ -608,7 +609,7 @@ TEST_P(SolverContract, SmokeSetEndsOkWithFinitePi1ButForDocumentedFailures) {
   RecordProperty("documented_failures", std::to_string(documented));
 }
 
-// The verdict (solvers/verdict.hpp, issue 32) is every solver's, through the sweep's
+// The verdict (kit/verdict.hpp, issue 32) is every solver's, through the sweep's
 // run_point: every run that ends ok carries one and no other run does; it is false exactly
 // when one of the run's own measurements crosses a criterion (the error estimate's included,
 // issue 48: the sweep asks for it), and then its reasons name that criterion. A time-stepper at w_max h = 2 (3.1 steps a shortest period) ends unresolved

@@ -12,7 +12,7 @@
 
 #include "cases/case_set.hpp"
 #include "rows/row_read.hpp"
-#include "tests/support.hpp"
+#include "kit/testing.hpp"
 
 namespace pb {
 namespace {

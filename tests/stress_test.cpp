@@ -15,7 +15,8 @@
 
 #include "cases/case_set.hpp"
 #include "cases/system.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
 #include "studies/stress.hpp"
 #include "sweep/sweep.hpp"
 

@@ -18,7 +18,8 @@
 #include "cases/case_set.hpp"
 #include "rows/row.hpp"
 #include "rows/row_read.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
 #include "sweep/partial_rows.hpp"
 #include "sweep/sweep.hpp"
 

@@ -19,6 +19,7 @@
 #include "app/partial_output.hpp"
 #include "app/sweep_watch.hpp"
 #include "tests/cli_fixture.hpp"
+#include "solvers/registry.hpp"
 
 namespace pb::app {
 namespace {

@@ -22,12 +22,13 @@
 #include "cases/text.hpp"
 #include "rows/row.hpp"
 #include "rows/row_read.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
 #include "sweep/no_contact_cache.hpp"
 #include "sweep/stopwatch.hpp"
 #include "studies/workprecision.hpp"
 #include "sweep/sweep.hpp"
-#include "tests/support.hpp"
+#include "kit/testing.hpp"
 
 namespace pb {
 namespace {
@@ -661,7 +662,7 @@ TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   EXPECT_EQ(case_key(back.input), case_key(row.input));
 }
 
-// The verdict (solvers/verdict.hpp) goes out and comes back as it was: true, false with its
+// The verdict (kit/verdict.hpp) goes out and comes back as it was: true, false with its
 // reasons (a comma and a quote in them), and not judged; and a file written before its two
 // columns reads, its rows not judged.
 TEST(Csv, TheVerdictReadsBackAndAFileFromBeforeItStillReads) {

@@ -1,4 +1,4 @@
-// The verdict on a finished run (solvers/verdict.hpp): each criterion alone makes a run
+// The verdict on a finished run (kit/verdict.hpp): each criterion alone makes a run
 // unresolved and is named; what a run did not measure is not judged; a run that did not end
 // ok has none. The contract test (solver_contract_test.cpp) holds every solver to it.
 
@@ -9,8 +9,8 @@
 #include <string>
 
 #include "cases/system.hpp"
-#include "solvers/verdict.hpp"
-#include "tests/support.hpp"
+#include "kit/verdict.hpp"
+#include "kit/testing.hpp"
 
 namespace pb {
 namespace {

@@ -11,6 +11,7 @@
 #include "studies/settings_list.hpp"
 #include "studies/stats.hpp"
 #include "studies/workprecision.hpp"
+#include "solvers/registry.hpp"
 
 namespace pb {
 namespace {

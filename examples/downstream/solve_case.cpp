@@ -8,7 +8,8 @@
 
 #include "cases/case.hpp"
 #include "cases/system.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
 #include "sweep/sweep.hpp"
 
 int main() {

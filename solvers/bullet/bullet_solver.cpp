@@ -7,14 +7,14 @@
 #include <optional>
 
 #include "solvers/bullet/engine.hpp"
-#include "solvers/fixed_step.hpp"
-#include "solvers/variant_table.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/variant_table.hpp"
 
 namespace pb::bullet {
 
 namespace {
 
-// Bullet behind the shared step loop (solvers/fixed_step.hpp).
+// Bullet behind the shared step loop (kit/fixed_step.hpp).
 class Stepper : public StepEngine {
  public:
   Stepper(const System& sys, const Config& config, double h, double gamma)

@@ -13,7 +13,7 @@
 //             v_k+1 = v_k + h F_k / m + (contact impulse) / m, u_k+1 = u_k + h v_k+1:
 //             explicit springs, stable only for w h below ~1.9 (README, large steps).
 //   contacts  no collision detection: while the variant's activation rule takes contact j
-//             at the start of a step (solvers/fixed_step.hpp: faithful g + gamma h g' <= 0,
+//             at the start of a step (kit/fixed_step.hpp: faithful g + gamma h g' <= 0,
 //             si-overlap and default g <= 0), it has one btManifoldPoint (normal +x,
 //             distance min(g_j, 0), no friction acting) in its
 //             btPersistentManifold, and the manifolds go to the variant's solveGroup
@@ -25,7 +25,7 @@
 //             over the step is positive.
 //
 // The run around the steps (h, step count and cap, counts, monitor, history, limits) is
-// the shell every time-stepper shares, solvers/fixed_step.hpp. Variants and every setting:
+// the shell every time-stepper shares, kit/fixed_step.hpp. Variants and every setting:
 // variants.hpp; the engine objects and the step: engine.hpp; modelling, restitution law,
 // single precision and what Bullet's defaults change, with numbers:
 // solvers/bullet/README.md.
@@ -33,8 +33,8 @@
 #include <string>
 
 #include "solvers/bullet/variants.hpp"
-#include "solvers/fixed_step.hpp"
-#include "solvers/solver.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::bullet {
 

@@ -4,7 +4,7 @@
 // A step is btDiscreteDynamicsWorld::internalSingleStepSimulation with the collision
 // detection replaced by the scene's known gaps:
 //   1. contacts   for each contact j that the variant's activation rule takes at the start
-//                 of the step (solvers/fixed_step.hpp), its
+//                 of the step (kit/fixed_step.hpp), its
 //                 btPersistentManifold holds one btManifoldPoint: normal +x on the left
 //                 body (B) towards the right one (A), distance min(g_j, 0), restitution and
 //                 friction as the variant sets them (friction never acts: see below). A point that persists from the last
@@ -40,7 +40,7 @@
 
 #include "cases/system.hpp"
 #include "solvers/bullet/variants.hpp"
-#include "solvers/hysteresis.hpp"
+#include "kit/hysteresis.hpp"
 
 namespace pb::bullet {
 

@@ -15,10 +15,10 @@
 #include <string_view>
 #include <vector>
 
-#include "solvers/fixed_step.hpp"
-#include "solvers/named_values.hpp"
-#include "solvers/solver.hpp"
-#include "solvers/variant_table.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/named_values.hpp"
+#include "kit/solver.hpp"
+#include "kit/variant_table.hpp"
 
 namespace pb::bullet {
 
@@ -32,7 +32,7 @@ struct Config {
   std::string_view name;
   Engine engine = Engine::si;
   bool faithful = true;  // false: Bullet's btContactSolverInfo defaults, restitution per body
-  // When contact j has a manifold point in a step (solvers/fixed_step.hpp).
+  // When contact j has a manifold point in a step (kit/fixed_step.hpp).
   Activation activation = Activation::predicted;
 };
 

@@ -5,9 +5,9 @@
 
 #include "cases/text.hpp"
 #include "solvers/compliant/integrators.hpp"
-#include "solvers/contact_elements/contact_law.hpp"
-#include "solvers/fixed_step.hpp"
-#include "solvers/named_values.hpp"
+#include "kit/contact_elements/contact_law.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/named_values.hpp"
 
 namespace pb::compliant {
 
@@ -66,6 +66,11 @@ Result solve(const System& system, const Settings& settings) {
   } catch (const std::exception& e) {
     return failed(e.what());
   }
+}
+
+bool hertz_contact(const Settings& settings) {
+  const auto model = parse_model(settings.variant);
+  return model && *model != Model::kelvin_voigt;
 }
 
 std::optional<ModelReference> model_reference(const Settings& settings) {

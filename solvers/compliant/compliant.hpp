@@ -35,7 +35,7 @@
 #include <string>
 #include <vector>
 
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::compliant {
 
@@ -50,6 +50,9 @@ std::vector<VariantInfo> variant_list();
 // kelvin-voigt at the same stiffness); for the Hertz family, CVODE at rtol kModelReferenceRtol
 // (BDF), which no other setting of it is (nullopt for that one itself).
 std::optional<ModelReference> model_reference(const Settings& settings);
+// Whether the variant's element is of the Hertz family (every model but kelvin-voigt):
+// SolverInfo::hertz_contact.
+bool hertz_contact(const Settings& settings);
 // CVODE's tolerance as the Hertz family's reference: measured on the Kelvin-Voigt element
 // against its exact solution, within 1.7e-9 over the smoke set (compliant_test.cpp).
 inline constexpr double kModelReferenceRtol = 1e-12;

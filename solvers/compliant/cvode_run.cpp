@@ -27,9 +27,9 @@
 
 #include "solvers/compliant/compliant.hpp"
 #include "solvers/compliant/integrators.hpp"
-#include "solvers/contact_elements/elements.hpp"
-#include "solvers/fixed_step.hpp"
-#include "solvers/run_limits.hpp"
+#include "kit/contact_elements/elements.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/run_limits.hpp"
 
 namespace pb::compliant {
 

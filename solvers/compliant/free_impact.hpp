@@ -4,12 +4,12 @@
 // itself (CVODE at rtol 1e-12, the contact's onset and end at its root functions) and read
 // as the solver reads every isolated impact (Result::restitution_low). The element's own
 // restitution, against which a pounding case's (where the bodies' springs and the pulse act
-// during the contact too) shows the model's error. bench/restitution_table.cpp writes it
+// during the contact too) shows the model's error. solvers/compliant/restitution_table_main.cpp writes it
 // for every element and eps (reports/restitution.csv, README's table).
 
 #include <string_view>
 
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::compliant {
 

@@ -1,8 +1,8 @@
 #pragma once
 // The two integrators of the compliant solver (compliant.hpp), each a whole run.
 
-#include "solvers/contact_elements/contact_law.hpp"
-#include "solvers/solver.hpp"
+#include "kit/contact_elements/contact_law.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::compliant {
 

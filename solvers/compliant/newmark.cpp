@@ -22,7 +22,7 @@
 // to that time, the element switched there (each body's acceleration changing by the
 // element's force jump alone), and the rest solved from there. The interpolant places the
 // event to O(h^3) in the penetration: an O(h^3) error per contact change, second order overall
-// (tests/newmark_order_test.cpp: body 0's state at 1.94 to 2.00 from N = 512 to 8192, before
+// (solvers/compliant/newmark_order_test.cpp: body 0's state at 1.94 to 2.00 from N = 512 to 8192, before
 // 0.58 to 1.68). A sub-step's end is not a step's end of the run: the shell reads Pi1, the
 // history and the tallies at t = k h only (cases/README.md: the largest |u0| over the steps of
 // h = T_min / N), so the sampled maximum means what it means for every time-stepper, and a run
@@ -44,9 +44,9 @@
 #include <vector>
 
 #include "solvers/compliant/integrators.hpp"
-#include "solvers/contact_elements/elements.hpp"
-#include "solvers/fixed_step.hpp"
-#include "solvers/hysteresis.hpp"
+#include "kit/contact_elements/elements.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/hysteresis.hpp"
 
 namespace pb::compliant {
 

@@ -3,7 +3,7 @@
 # SUNDIALS (Debian's libsundials-dev) for the compliant solver's CVODE integrator: the solver
 # is left out without it, as the engines are.
 find_package(SUNDIALS CONFIG QUIET)
-file(GLOB POUNDBENCH_COMPLIANT_SOURCES CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/*.cpp)
+poundbench_solver_sources(POUNDBENCH_COMPLIANT_SOURCES ${CMAKE_CURRENT_LIST_DIR})
 set(POUNDBENCH_HAVE_SUNDIALS OFF)
 if(SUNDIALS_FOUND AND TARGET SUNDIALS::cvode AND POUNDBENCH_COMPLIANT_SOURCES)
   set(POUNDBENCH_HAVE_SUNDIALS ON)

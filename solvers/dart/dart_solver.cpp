@@ -4,8 +4,8 @@
 
 #include "solvers/dart/engines.hpp"
 #include "solvers/dart/variants.hpp"
-#include "solvers/fixed_step.hpp"
-#include "solvers/variant_table.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/variant_table.hpp"
 
 namespace pb::dart {
 

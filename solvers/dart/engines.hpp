@@ -1,5 +1,5 @@
 #pragma once
-// The two DART models behind the shared step loop (solvers/fixed_step.hpp), one per kind of
+// The two DART models behind the shared step loop (kit/fixed_step.hpp), one per kind of
 // variant: faithful.cpp (a skeleton per building, a GapConstraint per contact) and default_model.cpp
 // (a box per building, FCL's contacts). Each builds its world in its constructor and throws
 // std::runtime_error if DART refuses it, OutOfTime if the run's limit passes meanwhile; each
@@ -9,7 +9,7 @@
 
 #include "solvers/dart/run_limit.hpp"
 #include "solvers/dart/variants.hpp"
-#include "solvers/fixed_step.hpp"
+#include "kit/fixed_step.hpp"
 
 namespace pb::dart {
 

@@ -14,7 +14,7 @@
 // g'_free the gap rate after the step's forces (what the bodies move at when the solver
 // builds the row), g'_k the rate at the step's start, which the engine hands in with the
 // decision whether the row takes part in the step (the activation rule of
-// solvers/fixed_step.hpp). Each body sits on a prismatic joint along x, the only body of its
+// kit/fixed_step.hpp). Each body sits on a prismatic joint along x, the only body of its
 // own skeleton, so the Jacobian is +1 on the right body's x and -1 on the left's (none for the
 // wall), and a unit impulse moves its two skeletons alone. Like DART's ContactConstraint, the
 // constraint unites its two skeletons for the constraint solver, which then solves the

@@ -21,8 +21,8 @@
 
 #include <string>
 
-#include "solvers/run_limits.hpp"
-#include "solvers/solver.hpp"
+#include "kit/run_limits.hpp"
+#include "kit/solver.hpp"
 
 namespace dart::simulation {
 class World;

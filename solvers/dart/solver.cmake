@@ -5,7 +5,7 @@
 # canSolve only without it), so the solver's sources, which include DART's headers, are
 # compiled without NDEBUG in every build type; ${CMAKE_CURRENT_LIST_DIR}/dart_solver.hpp names no DART type.
 find_package(DART 6.12 CONFIG QUIET COMPONENTS dart)
-file(GLOB POUNDBENCH_DART_SOURCES CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/*.cpp)
+poundbench_solver_sources(POUNDBENCH_DART_SOURCES ${CMAKE_CURRENT_LIST_DIR})
 set(POUNDBENCH_HAVE_DART OFF)
 if(DART_FOUND AND TARGET dart AND POUNDBENCH_DART_SOURCES)
   set(POUNDBENCH_HAVE_DART ON)

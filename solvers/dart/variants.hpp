@@ -13,10 +13,10 @@
 #include <string_view>
 #include <vector>
 
-#include "solvers/fixed_step.hpp"
-#include "solvers/named_values.hpp"
-#include "solvers/solver.hpp"
-#include "solvers/variant_table.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/named_values.hpp"
+#include "kit/solver.hpp"
+#include "kit/variant_table.hpp"
 
 namespace pb::dart {
 
@@ -32,7 +32,7 @@ struct Config {
   // suite's normalisation (a_p = w_p = m0 = 1).
   bool faithful = true;
   Lcp lcp = Lcp::dantzig;
-  // When a contact takes part in a step (solvers/fixed_step.hpp); the default variant's
+  // When a contact takes part in a step (kit/fixed_step.hpp); the default variant's
   // contacts are FCL's, made at overlap.
   Activation activation = Activation::predicted;
 };

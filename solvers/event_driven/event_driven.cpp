@@ -17,15 +17,15 @@
 #include <Eigen/Core>
 
 #include "cases/text.hpp"
-#include "solvers/contact_elements/contact_law.hpp"
+#include "kit/contact_elements/contact_law.hpp"
 #include "solvers/event_driven/frame.hpp"
 #include "solvers/event_driven/impact.hpp"
 #include "solvers/event_driven/kelvin_voigt.hpp"
 #include "solvers/event_driven/plastic.hpp"
 #include "solvers/event_driven/search.hpp"
-#include "solvers/lcp/lemke.hpp"
-#include "solvers/named_values.hpp"
-#include "solvers/run_limits.hpp"
+#include "kit/lcp/lemke.hpp"
+#include "kit/named_values.hpp"
+#include "kit/run_limits.hpp"
 
 namespace pb::event_driven {
 

@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::event_driven {
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "solvers/lcp/small.hpp"
+#include "kit/lcp/small.hpp"
 
 namespace pb::event_driven {
 

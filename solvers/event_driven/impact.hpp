@@ -23,7 +23,7 @@
 #include <Eigen/Core>
 
 #include "cases/system.hpp"
-#include "solvers/lcp/lemke.hpp"
+#include "kit/lcp/lemke.hpp"
 
 namespace pb::event_driven {
 

@@ -14,9 +14,9 @@
 #include <Eigen/Dense>
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "solvers/contact_elements/contact_law.hpp"
-#include "solvers/contact_elements/elements.hpp"
-#include "solvers/run_limits.hpp"
+#include "kit/contact_elements/contact_law.hpp"
+#include "kit/contact_elements/elements.hpp"
+#include "kit/run_limits.hpp"
 
 namespace pb::event_driven {
 

@@ -21,7 +21,7 @@
 
 #include <string_view>
 
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::event_driven {
 

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "solvers/event_driven/frame.hpp"
-#include "solvers/run_limits.hpp"
-#include "solvers/solver.hpp"
+#include "kit/run_limits.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::event_driven {
 

@@ -159,7 +159,7 @@ double next_down(double x) { return -next_up(-x); }
 // Its answer was the hi end of that bracket. Where g's rounded values change sign once,
 // this answer is the same or up to 2 eps |t| (3 ulp) earlier; g is known only to its
 // rounding, 4 eps of its terms S, and within 4 eps S / |g'| of the root either search may
-// stop at another of its sign changes (tests/search_test.cpp checks both bounds on random
+// stop at another of its sign changes (solvers/event_driven/search_test.cpp checks both bounds on random
 // waves: of its 2000 roots 73 % are the old ones bit for bit, the others earlier).
 //
 // eval(t) returns a P with t, f = g(t), df = g'(t) (and whatever else a caller keeps);

@@ -11,7 +11,7 @@
 // within round-off of the gap.
 
 #include "solvers/event_driven/wave.hpp"
-#include "solvers/run_limits.hpp"
+#include "kit/run_limits.hpp"
 
 namespace pb::event_driven {
 

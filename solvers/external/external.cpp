@@ -12,7 +12,7 @@
 #include "programs/command_words.hpp"
 #include "programs/process.hpp"
 #include "programs/protocol.hpp"
-#include "solvers/named_values.hpp"
+#include "kit/named_values.hpp"
 
 namespace pb::external {
 

@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "programs/process.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::external {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "solvers/lcp/small.hpp"
+#include "kit/lcp/small.hpp"
 
 namespace pb::moreau_jean::dynamic {
 

@@ -23,7 +23,7 @@
 #include "cases/system.hpp"
 #include "solvers/moreau_jean/loop_common.hpp"
 #include "solvers/moreau_jean/tridiagonal_lcp.hpp"
-#include "solvers/monitor.hpp"
+#include "kit/monitor.hpp"
 
 namespace pb::moreau_jean::dynamic {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The StepMonitor of the fixed-size Moreau-Jean loop (stepper.hpp): the same measurements
-// (solvers/monitor.hpp says what they are) on the loop's own fixed-size vectors, inlined
+// (kit/monitor.hpp says what they are) on the loop's own fixed-size vectors, inlined
 // into its step, with the energy balance kept per body.
 //
 // Why a second monitor: the loop's step costs 68 instructions on pair and 120 on row3
@@ -14,7 +14,7 @@
 //
 // every body's terms formed at once in one SSE2 register (two bodies to a register), and
 // one horizontal sum a step, of the b_i. Measured on pair and row3: 1.2x and 1.3x the time of
-// the unmonitored loop (bench/moreau_jean_bench.cpp); since, with the loop itself faster,
+// the unmonitored loop (solvers/moreau_jean/moreau_jean_bench.cpp); since, with the loop itself faster,
 // 1.26x and 1.51-1.55x (126 and 202 instructions a step on row3, callgrind). The loop's state
 // and the monitor's running values do not fit in the sixteen XMM registers: what is spilled
 // is stored and loaded every step, so the monitor now carries no copy of what the loop has.
@@ -38,7 +38,7 @@
 // from StepMonitor's by a few roundings of its terms, at most (4 NB + 4) 2^-53 E_max, with
 // E_max the largest energy of the run; over n steps, the balance and so the energy excess by
 // at most (4 NB + 4) n 2^-53 E_max, 1.2e-11 of E_max at 8 192 steps on row3, against the
-// stress check's tolerance of 1e-6 of the energy scale (measured: tests/moreau_jean_test.cpp).
+// stress check's tolerance of 1e-6 of the energy scale (measured: solvers/moreau_jean/moreau_jean_test.cpp).
 // The restitutions, the isolated impacts and the largest gap rate are StepMonitor's to the
 // last bit (the same operations on the same numbers).
 
@@ -49,7 +49,7 @@
 #include <stdexcept>
 
 #include "cases/system.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::moreau_jean {
 

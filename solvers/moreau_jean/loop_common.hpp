@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "cases/system.hpp"
-#include "solvers/fixed_step.hpp"
+#include "kit/fixed_step.hpp"
 
 namespace pb::moreau_jean {
 
@@ -123,7 +123,7 @@ struct PulseMeans {
   }
 };
 
-// The counts a Result is made from: the shell's (solvers/fixed_step.hpp), filled here by the
+// The counts a Result is made from: the shell's (kit/fixed_step.hpp), filled here by the
 // scheme's own inner loops.
 using Tally = StepTally;
 

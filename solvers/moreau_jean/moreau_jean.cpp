@@ -8,11 +8,11 @@
 #include <optional>
 
 #include "cases/text.hpp"
-#include "solvers/fixed_step.hpp"
-#include "solvers/monitor.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/monitor.hpp"
 #include "solvers/moreau_jean/dynamic.hpp"
 #include "solvers/moreau_jean/stepper.hpp"
-#include "solvers/run_limits.hpp"
+#include "kit/run_limits.hpp"
 #include "solvers/moreau_jean/yielding.hpp"
 
 namespace pb::moreau_jean {

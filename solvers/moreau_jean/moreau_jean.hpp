@@ -9,8 +9,8 @@
 #include <string_view>
 #include <vector>
 
-#include "solvers/fixed_step.hpp"
-#include "solvers/solver.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::moreau_jean {
 

@@ -35,7 +35,7 @@
 #include <vector>
 
 #include "cases/system.hpp"
-#include "solvers/lcp/small.hpp"
+#include "kit/lcp/small.hpp"
 #include "solvers/moreau_jean/loop_common.hpp"
 #include "solvers/moreau_jean/fixed_monitor.hpp"
 
@@ -138,7 +138,7 @@ PB_MJ_INLINE void tally_state(const Scheme<NB, NC>& sc, const State<NB, NC>& st,
   if constexpr (NC > 0) t.g_min = std::min(t.g_min, st.g.minCoeff());
 }
 
-// One history row: t, u, v, g, lambda = P / h (History in solvers/solver.hpp).
+// One history row: t, u, v, g, lambda = P / h (History in kit/solver.hpp).
 template <int NB, int NC>
 void record(const Scheme<NB, NC>& sc, const State<NB, NC>& st, const typename Scheme<NB, NC>::VecC& impulse,
             std::vector<double>& out) {

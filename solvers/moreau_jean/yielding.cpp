@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "solvers/fixed_step.hpp"
+#include "kit/fixed_step.hpp"
 #include "solvers/moreau_jean/dynamic.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
-#include "solvers/run_limits.hpp"
+#include "kit/run_limits.hpp"
 
 namespace pb::moreau_jean {
 

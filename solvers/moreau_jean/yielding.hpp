@@ -18,7 +18,7 @@
 // solution it shares); a system without a yielding body never reaches it.
 
 #include "cases/system.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::moreau_jean {
 

@@ -15,7 +15,7 @@
 // diagApprox is MuJoCo's estimate of the row's A from the bodies' invweight0, the mean of
 // the three translational directions: a body on one slide joint moves in one of them, so
 // diagApprox = A / 3 exactly and de = 3d / (1 + 2d) (0.99664 for d = 0.99; measured from
-// efc_R and efc_diagApprox, tests/mujoco_test.cpp). calibrated_contact() divides it out.
+// efc_R and efc_diagApprox, solvers/mujoco/mujoco_test.cpp). calibrated_contact() divides it out.
 //
 // The direct form of solref (-k, -b) is used, not (timeconst, dampratio): dampratio = 0
 // (eps = 1) is an infinitely stiff spring there, and a zero spring (eps = 0, a pure damper)

@@ -5,10 +5,10 @@
 #include <limits>
 #include <optional>
 
-#include "solvers/fixed_step.hpp"
+#include "kit/fixed_step.hpp"
 #include "solvers/mujoco/model.hpp"
-#include "solvers/variant_table.hpp"
-#include "solvers/whole_contacts.hpp"
+#include "kit/variant_table.hpp"
+#include "kit/whole_contacts.hpp"
 
 namespace pb::mujoco {
 
@@ -24,7 +24,7 @@ std::vector<int> contacts_by_geom(const System& sys, const mjModel* m) {
   return out;
 }
 
-// MuJoCo behind the shared step loop (solvers/fixed_step.hpp).
+// MuJoCo behind the shared step loop (kit/fixed_step.hpp).
 class Engine : public StepEngine {
  public:
   Engine(const System& sys, const Config& config, const Units& units, double h_model, ModelPtr model, DataPtr data)

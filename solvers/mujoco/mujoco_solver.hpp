@@ -18,13 +18,13 @@
 //             contact closed from its onset to its end, approaching faster than the floor).
 //
 // The run around the steps (h, step count and cap, monitor, history, limits) is the shell
-// every time-stepper shares, solvers/fixed_step.hpp. Calibration, pitfalls and
+// every time-stepper shares, kit/fixed_step.hpp. Calibration, pitfalls and
 // measurements: solvers/mujoco/README.md.
 
 #include <string>
 
 #include "solvers/mujoco/variants.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::mujoco {
 

@@ -5,7 +5,7 @@
 # (/usr/include/libqhull_r: libqhull-dev) among its include directories, though this
 # project uses neither; without them find_package fails and the solver is left out.
 find_package(mujoco CONFIG QUIET)
-file(GLOB POUNDBENCH_MUJOCO_SOURCES CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/*.cpp)
+poundbench_solver_sources(POUNDBENCH_MUJOCO_SOURCES ${CMAKE_CURRENT_LIST_DIR})
 set(POUNDBENCH_HAVE_MUJOCO OFF)
 set(POUNDBENCH_MUJOCO_INCLUDES_EXIST ON)
 if(TARGET mujoco::mujoco)

@@ -11,9 +11,9 @@
 #include <string_view>
 #include <vector>
 
-#include "solvers/named_values.hpp"
-#include "solvers/solver.hpp"
-#include "solvers/variant_table.hpp"
+#include "kit/named_values.hpp"
+#include "kit/solver.hpp"
+#include "kit/variant_table.hpp"
 
 namespace pb::mujoco {
 

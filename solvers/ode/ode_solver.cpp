@@ -7,10 +7,10 @@
 #include <numbers>
 #include <optional>
 
-#include "solvers/fixed_step.hpp"
-#include "solvers/hysteresis.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/hysteresis.hpp"
 #include "solvers/ode/world.hpp"
-#include "solvers/variant_table.hpp"
+#include "kit/variant_table.hpp"
 
 namespace pb::ode {
 
@@ -27,7 +27,7 @@ std::string check_config(const Config& c) {
   return {};
 }
 
-// ODE behind the shared step loop (solvers/fixed_step.hpp): each step applies the springs,
+// ODE behind the shared step loop (kit/fixed_step.hpp): each step applies the springs,
 // dashpots and ground load of its start, makes the contact joints its activation rule asks
 // for from the gaps and rates there, and lets ODE step.
 class Engine : public StepEngine {

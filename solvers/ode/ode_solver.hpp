@@ -11,7 +11,7 @@
 //             steps v += h/m (F + contact force), u += h v_new (semi-implicit Euler):
 //             explicit springs, stable only for w h below ~1.9 (README, large steps).
 //   contacts  no collision detection: for each contact of the scene that the variant's
-//             activation rule takes (solvers/fixed_step.hpp: faithful g + gamma h g' <= 0,
+//             activation rule takes (kit/fixed_step.hpp: faithful g + gamma h g' <= 0,
 //             default g <= 0) a dContactJoint with normal +x on the right
 //             body (the wall is the static environment), depth max(0, -g), mu 0, and
 //             dContactBounce with bounce = eps: ODE's Newton-type law, target separation
@@ -20,15 +20,15 @@
 //             over the step is positive.
 //
 // The run around the steps (h, step count and cap, counts, monitor, history, limits) is
-// the shell every time-stepper shares, solvers/fixed_step.hpp. The modelling, the settings
+// the shell every time-stepper shares, kit/fixed_step.hpp. The modelling, the settings
 // of each variant and what ODE's defaults change are in solvers/ode/README.md; the engine
 // set-up and its thread safety in world.hpp.
 
 #include <string>
 
 #include "solvers/ode/variants.hpp"
-#include "solvers/fixed_step.hpp"
-#include "solvers/solver.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::ode {
 

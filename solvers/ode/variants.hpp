@@ -11,10 +11,10 @@
 #include <string_view>
 #include <vector>
 
-#include "solvers/fixed_step.hpp"
-#include "solvers/named_values.hpp"
-#include "solvers/solver.hpp"
-#include "solvers/variant_table.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/named_values.hpp"
+#include "kit/solver.hpp"
+#include "kit/variant_table.hpp"
 
 namespace pb::ode {
 
@@ -30,7 +30,7 @@ struct Config {
   double bounce_vel = 0.0;     // dSurfaceParameters::bounce_vel: no bounce at or below it
   double surface_layer = 0.0;  // dWorldSetContactSurfaceLayer: depth left uncorrected
   double max_vel = 0.0;        // dWorldSetContactMaxCorrectingVel: cap of the push-out
-  // When a contact joint is made for a step (solvers/fixed_step.hpp): faithful, the
+  // When a contact joint is made for a step (kit/fixed_step.hpp): faithful, the
   // Moreau-Jean rule g + gamma h g' <= 0; default, at overlap, as collision detection would.
   Activation activation = Activation::predicted;
 };

@@ -10,9 +10,9 @@
 #include <memory>
 #include <sstream>
 
-#include "solvers/fixed_step.hpp"
-#include "solvers/monitor.hpp"
-#include "solvers/run_limits.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/monitor.hpp"
+#include "kit/run_limits.hpp"
 #include "solvers/siconos/model.hpp"
 
 namespace pb::siconos {

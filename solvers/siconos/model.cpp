@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "solvers/run_limits.hpp"
+#include "kit/run_limits.hpp"
 
 namespace pb::siconos {
 

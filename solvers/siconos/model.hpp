@@ -14,7 +14,7 @@
 #include "cases/system.hpp"
 #include "solvers/siconos/engine.hpp"
 #include "solvers/siconos/siconos_solver.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::siconos {
 
@@ -70,7 +70,7 @@ struct State {
   bool finite() const;
 };
 
-// One History row: t, u, v, g, and the contact forces (solvers/solver.hpp).
+// One History row: t, u, v, g, and the contact forces (kit/solver.hpp).
 void record(double t, const State& st, const std::vector<double>& force, std::vector<double>& out);
 
 }  // namespace pb::siconos

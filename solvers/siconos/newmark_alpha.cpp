@@ -16,8 +16,8 @@
 #include <limits>
 #include <sstream>
 
-#include "solvers/fixed_step.hpp"
-#include "solvers/run_limits.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/run_limits.hpp"
 #include "solvers/siconos/model.hpp"
 
 namespace pb::siconos {

@@ -26,8 +26,8 @@
 #include <string_view>
 #include <vector>
 
-#include "solvers/fixed_step.hpp"
-#include "solvers/solver.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::siconos {
 

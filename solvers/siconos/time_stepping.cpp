@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "solvers/fixed_step.hpp"
+#include "kit/fixed_step.hpp"
 #include "solvers/siconos/model.hpp"
 
 namespace pb::siconos {
@@ -52,7 +52,7 @@ constexpr const char* kBilbaoIgnoresTheLoad =
     "model with no load (Siconos 4.4's computeFreeState uses only the stiffness, the damping and the state, never "
     "F_ext)";
 
-// A Siconos time-stepping simulation behind the shared step loop (solvers/fixed_step.hpp),
+// A Siconos time-stepping simulation behind the shared step loop (kit/fixed_step.hpp),
 // one step at a time.
 class Engine : public StepEngine {
  public:

@@ -8,13 +8,13 @@
 #include <sstream>
 
 #include "cases/text.hpp"
-#include "solvers/contact_elements/contact_law.hpp"
-#include "solvers/fixed_step.hpp"
-#include "solvers/run_limits.hpp"
+#include "kit/contact_elements/contact_law.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/run_limits.hpp"
 #include "solvers/simbody/model.hpp"
 #include "solvers/simbody/variants.hpp"
-#include "solvers/variant_table.hpp"
-#include "solvers/whole_contacts.hpp"
+#include "kit/variant_table.hpp"
+#include "kit/whole_contacts.hpp"
 
 namespace pb::simbody {
 
@@ -95,7 +95,7 @@ constexpr double kLimitMargin = 0.1, kLimitMarginMin = 0.5;
 // phase, the default variant's position projection) each run one more before they stop.
 constexpr int kSilentPerStep = 4;
 
-// Simbody behind the shared step loop (solvers/fixed_step.hpp). The run's limit is its
+// Simbody behind the shared step loop (kit/fixed_step.hpp). The run's limit is its
 // deadline, started before the model was built and asked inside each step too (ModelSpec::
 // out_of_time): a step of a 1000-body chain took minutes (PLUS on 999 contacts).
 class Engine : public StepEngine {

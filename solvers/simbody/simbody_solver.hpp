@@ -14,13 +14,13 @@
 //              fine grid: not a time-stepper (no --steps).
 //
 // Every variant is built in the pulse's units (a_p = w_p = m0 = 1). The run around the steps
-// is the shell every time-stepper shares, solvers/fixed_step.hpp. Debian's build prints a
+// is the shell every time-stepper shares, kit/fixed_step.hpp. Debian's build prints a
 // trace of every step on stdout: quiet_stdout.hpp keeps it off, per thread.
 
 #include <string>
 #include <vector>
 
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::simbody {
 
@@ -28,5 +28,8 @@ Result solve(const System& system, const Settings& settings);
 std::string describe(const Settings& settings);
 std::string check(const Settings& settings);
 std::vector<VariantInfo> variant_list();
+// Its one contact element, Hunt-Crossley, is of the Hertz family (SolverInfo::hertz_contact):
+// --k-contact is in N/m^1.5 whatever the variant (only hunt-crossley uses it).
+inline bool hertz_contact(const Settings&) { return true; }
 
 }  // namespace pb::simbody

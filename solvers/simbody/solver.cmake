@@ -11,7 +11,7 @@
 # (Debian built the library without it, and the layout of SimTK's State cache entries depends
 # on it).
 find_package(Simbody CONFIG QUIET)
-file(GLOB POUNDBENCH_SIMBODY_SOURCES CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/*.cpp)
+poundbench_solver_sources(POUNDBENCH_SIMBODY_SOURCES ${CMAKE_CURRENT_LIST_DIR})
 list(FILTER POUNDBENCH_SIMBODY_SOURCES EXCLUDE REGEX "/model\\.cpp$")
 set(POUNDBENCH_HAVE_SIMBODY OFF)
 if(Simbody_FOUND AND TARGET SimTKsimbody AND POUNDBENCH_SIMBODY_SOURCES

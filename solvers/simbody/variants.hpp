@@ -13,18 +13,18 @@
 #include <string_view>
 #include <vector>
 
-#include "solvers/fixed_step.hpp"
-#include "solvers/named_values.hpp"
+#include "kit/fixed_step.hpp"
+#include "kit/named_values.hpp"
 #include "solvers/simbody/model.hpp"
-#include "solvers/solver.hpp"
-#include "solvers/variant_table.hpp"
+#include "kit/solver.hpp"
+#include "kit/variant_table.hpp"
 
 namespace pb::simbody {
 
 struct Config {
   std::string_view name;
   Kind kind = Kind::faithful_plus;
-  // When a unilateral contact takes part in a step (solvers/fixed_step.hpp): faithful,
+  // When a unilateral contact takes part in a step (kit/fixed_step.hpp): faithful,
   // predicted; default, the stepper's own margin (g <= its constraint tolerance).
   Activation activation = Activation::predicted;
   bool time_stepper() const { return kind != Kind::hunt_crossley; }

@@ -14,7 +14,8 @@
 #include "cases/record.hpp"
 #include "cases/system.hpp"
 #include "programs/protocol.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
+#include "solvers/registry.hpp"
 
 namespace pb::fuzz {
 

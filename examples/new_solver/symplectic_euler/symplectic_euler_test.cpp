@@ -1,0 +1,47 @@
+// The example solver's own tests, in its own folder (built into poundbench_tests with the
+// rest): its own setting, `passes`, is checked and changes what a run of a row of three does.
+#include <gtest/gtest.h>
+
+#include "kit/testing.hpp"
+#include "solvers/registry.hpp"
+#include "solvers/symplectic_euler/symplectic_euler.hpp"
+
+namespace pb {
+namespace {
+
+Settings with_passes(double passes) {
+  Settings s;
+  s.own[0] = passes;
+  return s;
+}
+
+TEST(SymplecticEuler, RefusesPassesThatAreNotAWholeNumberFromOneToAHundred) {
+  for (double bad : {0.0, 1.5, 101.0, -1.0}) EXPECT_NE(symplectic_euler::check(with_passes(bad)), "") << bad;
+  EXPECT_EQ(symplectic_euler::check(with_passes(3)), "");
+  EXPECT_EQ(symplectic_euler::check(Settings{}), "");  // not given: one pass
+}
+
+TEST(SymplecticEuler, SaysItsPassesInItsSettingsAndItsRegistryRowDeclaresThem) {
+  EXPECT_NE(symplectic_euler::describe(with_passes(4)).find("\"passes\":4"), std::string::npos);
+  EXPECT_NE(symplectic_euler::describe(Settings{}).find("\"passes\":1"), std::string::npos);
+  const SolverInfo* solver = find_solver("symplectic-euler");
+  ASSERT_NE(solver, nullptr);
+  ASSERT_EQ(solver->own_settings.size(), 1u);
+  EXPECT_EQ(solver->own_settings[0].name, "passes");
+}
+
+// Where the two contacts of a row of three share body 0, one pass is not the simultaneous
+// impact; more passes change the answer, and every run still ends ok.
+TEST(SymplecticEuler, MorePassesChangeARowOfThreeWhoseContactsShareABody) {
+  const System s = make_system(test::make_case(Scene::row3, PulseShape::cosine, 1.0, 0.5, 0.5));
+  const Result one = symplectic_euler::solve(s, with_passes(1));
+  const Result four = symplectic_euler::solve(s, with_passes(4));
+  ASSERT_EQ(one.status, Status::ok) << one.message;
+  ASSERT_EQ(four.status, Status::ok) << four.message;
+  EXPECT_EQ(symplectic_euler::solve(s, Settings{}).pi1, one.pi1);
+  EXPECT_GT(one.impacts, 0);
+  EXPECT_NE(four.pi1, one.pi1);
+}
+
+}  // namespace
+}  // namespace pb
