@@ -164,11 +164,15 @@ def _plain(x, _pos=None):
 
 def log_ticks(axis):
     """A log axis' ticks: at 1, 2 and 5 of each decade, as plain numbers, over less than two
-    and a half decades; else at decades (at most eight), as 10 and a superscript. No minor
+    and a half decades between 0.001 and 10⁴ where a decade has room for them; else at decades (at most eight), as 10 and a superscript. No minor
     ticks: making the eight of each decade's artists was 45 % of the report's drawing, and
     matplotlib's labels of powers of ten are mathtext, parsed anew for each figure (a fifth)."""
     lo, hi = sorted(axis.get_view_interval())
-    if lo > 0 and hi / lo < 10 ** 2.5:
+    box = axis.axes.get_position()
+    width, height = axis.axes.figure.get_size_inches()
+    length = box.width * width if axis is axis.axes.xaxis else box.height * height  # inches
+    short = lo >= 1e-3 and hi < 1e4  # plain numbers of at most five characters
+    if short and hi / lo < 10 ** 2.5 and length / max(math.log10(hi / lo), 0.1) > 0.8:  # room for 2 and 5
         axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
         axis.set_major_formatter(FuncFormatter(_plain))
     else:

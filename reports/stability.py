@@ -66,8 +66,8 @@ def large_step_figure(points, out_dir):
     for r in runs:
         by_config[config(r)][float(settings_fields(r)["wh"])].append(r)
     styles = solver_styles(runs)
-    fig, grid = with_legend_below(figure_width(3, 3.0), 3.4, len(by_config), wspace=0.42)
-    axes = fig.subplots(1, 3, gridspec_kw=grid)
+    fig, grid = with_legend_below(figure_width(3, 3.0), 3.4, len(by_config), wspace=0.6)
+    axes = fig.subplots(1, 3, sharex=True, gridspec_kw=grid)  # one step axis: a panel with finished runs alone
     for label, per_wh in sorted(by_config.items()):
         whs = sorted(per_wh)
         ok = [[r for r in per_wh[w] if r["status"] == "ok"] for w in whs]
@@ -82,10 +82,10 @@ def large_step_figure(points, out_dir):
                     xs.append(w)
                     ys.append(max(max(values), FLOOR))
             ax.plot(xs, ys, **style)
-    axes[0].set_ylabel("share of runs that finished")
+    axes[0].set_ylabel("share of runs\nthat finished")
     axes[0].set_ylim(-0.05, 1.05)
-    axes[1].set_ylabel("worst energy excess (over the energy scale)")
-    axes[2].set_ylabel("worst penetration (over one step of travel, h max|g'|)")
+    axes[1].set_ylabel("worst energy excess\n(over the energy scale)")
+    axes[2].set_ylabel("worst penetration\n(over one step of travel, h max|g'|)")
     for ax in axes:
         ax.set_xscale("log")
         ax.set_xlabel("ωₘₐₓ h")
