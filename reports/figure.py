@@ -1,12 +1,9 @@
 """Saving a figure of the reports: matplotlib without a display, and reproducible SVGs."""
 
-import atexit
 import hashlib
 import math
 import os
 import re
-import sys
-import traceback
 from collections import defaultdict
 
 import matplotlib
@@ -17,20 +14,26 @@ matplotlib.use("Agg")
 matplotlib.rcParams["svg.hashsalt"] = "poundbench"
 os.environ.setdefault("SOURCE_DATE_EPOCH", "0")
 import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.ticker import LogLocator  # noqa: E402
+from PIL import Image  # noqa: E402  (matplotlib's own PNG writer)
+from matplotlib.ticker import FuncFormatter, LogLocator, NullLocator  # noqa: E402
 
 from rows import config_label  # noqa: E402
 
-# Every text of a figure at one size, the legends' too: a figure is drawn at 100 dpi no
-# wider than the page column it is shown in (some 900 px), so 10 pt reads as the page's text.
-matplotlib.rcParams.update({"font.size": 10, "legend.fontsize": 10})
+DPI = 100  # a figure's pixels an inch: README shows it at its own size
+# Every text of a figure at one size, the legends' too: a figure is drawn at 100 dpi no wider
+# than README's column (some 830 px on GitHub), so it is shown at its own size and 10 pt reads
+# as the page's text. A title stays where it is put (axes.titley): matplotlib otherwise moves
+# it above the tick labels, measuring every one of them at each draw (11 of the smoke study's
+# 40 profiled seconds).
+matplotlib.rcParams.update({"font.size": 10, "legend.fontsize": 10, "axes.titley": 1.0, "figure.dpi": DPI})
 LEGEND_LINE = 0.21  # inches a line of a legend takes at that size (measured on the stress figure: 9 in 1.9)
+PAGE_WIDTH = 8.3  # inches at 100 dpi: README's column on GitHub
 
 
-def figure_width(columns, per_column=4.6):
-    """Inches: a figure is shown at most some 900 px wide (GitHub's page column), so at 100 dpi
+def figure_width(columns, per_column=4.1):
+    """Inches: a figure is shown at most some 830 px wide (GitHub's page column), so at 100 dpi
     and no wider than this its text is drawn at the size it is read."""
-    return min(per_column * columns + 0.8, 9.2)
+    return min(per_column * columns + 0.8, PAGE_WIDTH)
 
 
 def log_spans(values, decades=1.5):
@@ -40,19 +43,106 @@ def log_spans(values, decades=1.5):
     return bool(values) and max(values) / min(values) > 10 ** decades
 
 
+def _legend_room(width, height, entries, columns, wspace, hspace):
+    legend = LEGEND_LINE * math.ceil(entries / columns) + 0.15
+    total = height + legend
+    grid = dict(left=0.85 / width, right=1 - 0.15 / width, top=1 - 0.62 / total, bottom=(legend + 0.55) / total,
+                wspace=wspace, hspace=hspace)
+    return total, legend / total, grid
+
+
 def with_legend_below(width, height, entries, columns=2, wspace=0.12, hspace=0.08):
     """A figure `width` inches wide: `height` inches of plots over room for a legend of
     `entries` entries in `columns` columns (outside the plots, where it hides no line).
     Returns the figure and the keywords of its subplots' grid (its margins in inches made
     fractions). Laid out by hand: matplotlib's constrained layout took two thirds of a
     report's time (17 of 26 s on a 16-figure study)."""
-    legend = LEGEND_LINE * math.ceil(entries / columns) + 0.15
-    total = height + legend
+    total, fig_legend_top, grid = _legend_room(width, height, entries, columns, wspace, hspace)
     fig = plt.figure(figsize=(width, total))
-    fig.legend_top = legend / total  # where legend_below hangs the legend from
-    grid = dict(left=0.85 / width, right=1 - 0.15 / width, top=1 - 0.62 / total, bottom=(legend + 0.55) / total,
-                wspace=wspace, hspace=hspace)
+    fig.legend_top = fig_legend_top  # where legend_below hangs the legend from
     return fig, grid
+
+
+# A report draws many figures of a few layouts (a family's diagram, its spectra): each layout's
+# figure is made once and drawn again with the next family's lines. Most of a figure's cost
+# was making its axes and, at its first draw, their ticks (7,400 ticks' artists for the smoke
+# study's 64 figures: half its CPU), which a figure drawn again keeps.
+_kept = {}  # a layout's key -> (figure, its axes as rows of columns)
+
+
+def reused_figure(key, width, height, entries, shape, columns=2, wspace=0.12, hspace=0.08, **subplots):
+    """with_legend_below's figure with its grid of axes (`shape`: rows, columns; `subplots`:
+    fig.subplots' sharex, sharey, gridspec_kw), the one made for `key` before when there is
+    one, emptied of what was drawn on it (its lines, patches, texts, legends, titles, labels;
+    its axes' scales are kept: set them). Returns the figure, its axes as rows of columns, and
+    whether it is new (set what every figure of the layout shares, such as the grid, then)."""
+    total, fig_legend_top, grid = _legend_room(width, height, entries, columns, wspace, hspace)
+    kept = _kept.get(key)
+    if kept is None:
+        fig = plt.figure(figsize=(width, total))
+        gridspec_kw = dict(grid, **subplots.pop("gridspec_kw", {}))
+        axes = fig.subplots(*shape, squeeze=False, gridspec_kw=gridspec_kw, **subplots)
+        fig.kept = True
+        _kept[key] = fig, axes
+    else:
+        fig, axes = kept
+        _empty(fig)
+        fig.set_size_inches(width, total)
+        axes[0][0].get_subplotspec().get_gridspec().update(**grid)
+    fig.legend_top = fig_legend_top
+    return fig, axes, kept is None
+
+
+def _empty(fig):
+    for ax in fig.axes:
+        for artist in [*ax.lines, *ax.collections, *ax.patches, *ax.texts, *ax.images]:
+            artist.remove()
+        ax.containers.clear()
+        if ax.legend_ is not None:
+            ax.legend_.remove()
+        for title in (ax.title, ax._left_title, ax._right_title):
+            title.set_text("")
+        ax.set_xlabel("")
+        ax.set_ylabel("")
+        ax.set_autoscale_on(True)
+        ax.ignore_existing_data_limits = True  # the next lines' data alone sets the limits
+    for legend in list(fig.legends):
+        legend.remove()
+    if fig._suptitle is not None:
+        fig._suptitle.set_text("")
+
+
+def label_axes(fig, bottom, left, xlabel, ylabel):
+    """One x label centred under the axes of `bottom` (a row), one y label beside those of
+    `left` (a column), at places set in inches from the axes: two panels side by side share
+    their label rather than each writing its own into the other's (issue 47), and a label
+    placed needs no measuring of the tick labels at each draw (a sixth of the drawing)."""
+    xlabel_below(fig, bottom, xlabel)
+    ylabel_beside(fig, left, ylabel)
+
+
+def xlabel_below(fig, row, text):
+    """One x label centred under a row of axes (label_axes)."""
+    first, last = row[0].get_position(), row[-1].get_position()
+    row[0].set_xlabel(text)
+    row[0].xaxis.set_label_coords((first.x0 + last.x1) / 2, first.y0 - 0.3 / fig.get_size_inches()[1],
+                                  transform=fig.transFigure)
+
+
+def ylabel_beside(fig, column, text):
+    """One y label beside a column of axes, its lines ending half an inch left of them (room
+    for tick labels such as 10⁻¹³; label_axes)."""
+    top, low = column[0].get_position(), column[-1].get_position()
+    column[0].set_ylabel(text)
+    column[0].yaxis.set_label_coords(top.x0 - 0.5 / fig.get_size_inches()[0], (top.y1 + low.y0) / 2,
+                                     transform=fig.transFigure)
+
+
+def legend_columns(width, crowd=False):
+    """How many columns a legend below a figure `width` inches wide has: two where two
+    entries of a setting's name (up to some 35 characters) fit side by side; one in a narrower
+    figure, or for a crowd's one entry, a sentence."""
+    return 1 if crowd or width < 7 else 2
 
 
 def legend_below(fig, handles, labels=None, columns=2):
@@ -61,64 +151,51 @@ def legend_below(fig, handles, labels=None, columns=2):
                frameon=False)
 
 
-# Drawing is nearly all of a report's time (115 of 139 s of the main job's report, profiled:
-# savefig's draw, most of it ticks), and each figure is drawn alone: a figure is drawn in a
-# child process forked when it is saved, as many at once as this process may use cores, while
-# the report goes on to the next. finish() waits for them; it runs at exit too.
-_DRAWERS = len(os.sched_getaffinity(0))
-_drawing = {}  # pid -> the figure's stem, oldest first
-_failed = []  # the stems whose drawing failed
+SUPERSCRIPT = str.maketrans("-0123456789", "\u207b\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079")
+
+
+def _decade(x, _pos=None):
+    return f"10{str(round(math.log10(x))).translate(SUPERSCRIPT)}"
+
+
+def _plain(x, _pos=None):
+    return f"{x:g}"
+
+
+def log_ticks(axis):
+    """A log axis' ticks: at 1, 2 and 5 of each decade, as plain numbers, over less than two
+    and a half decades between 0.001 and 10⁴ where a decade has room for them; else at decades (at most eight), as 10 and a superscript. No minor
+    ticks: making the eight of each decade's artists was 45 % of the report's drawing, and
+    matplotlib's labels of powers of ten are mathtext, parsed anew for each figure (a fifth)."""
+    lo, hi = sorted(axis.get_view_interval())
+    box = axis.axes.get_position()
+    width, height = axis.axes.figure.get_size_inches()
+    length = box.width * width if axis is axis.axes.xaxis else box.height * height  # inches
+    short = lo >= 1e-3 and hi < 1e4  # plain numbers of at most five characters
+    if short and hi / lo < 10 ** 2.5 and length / max(math.log10(hi / lo), 0.1) > 0.8:  # room for 2 and 5
+        axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+        axis.set_major_formatter(FuncFormatter(_plain))
+    else:
+        axis.set_major_locator(LogLocator(numticks=8))
+        axis.set_major_formatter(FuncFormatter(_decade))
+    axis.set_minor_locator(NullLocator())
 
 
 def _write(fig, path, vector):
-    # Log axes get minor ticks at 2 and 5 of each decade, not at all eight: the grid reads the
-    # same, and making the eight ticks' artists was 45 % of the report's drawing (72 -> 39 s of
-    # CPU over the main job's 130 figures).
     for ax in fig.axes:
         for axis in (ax.xaxis, ax.yaxis):
             if axis.get_scale() == "log":
-                axis.set_minor_locator(LogLocator(subs=(2.0, 5.0)))
-    for ext in ("png", "svg") if vector else ("png",):
-        fig.savefig(f"{path}.tmp.{ext}", dpi=100)  # renamed into place: never a half-written figure
-        os.replace(f"{path}.tmp.{ext}", f"{path}.{ext}")
-
-
-def _wait_oldest():
-    # Its own pid, never any child: os.wait() could reap a subprocess the report runs.
-    pid = next(iter(_drawing))
-    _, status = os.waitpid(pid, 0)
-    stem = _drawing.pop(pid)
-    if os.waitstatus_to_exitcode(status) != 0:
-        _failed.append(stem)
-
-
-def finish():
-    """Waits until every figure saved so far is written; raises if one could not be."""
-    while _drawing:
-        _wait_oldest()
-    if _failed:
-        stems = ", ".join(_failed)
-        _failed.clear()
-        raise RuntimeError(f"figure {stems}: drawing it failed (the error is above)")
-
-
-def abandon():
-    """Waits until every drawing child has ended, and forgets their failures: the report they
-    draw for is given up (its folder is removed next)."""
-    while _drawing:
-        _wait_oldest()
-    _failed.clear()
-
-
-def _finish_at_exit():
-    try:
-        finish()
-    except RuntimeError as e:
-        print(f"{os.path.basename(sys.argv[0])}: {e}", file=sys.stderr)
-        os._exit(1)
-
-
-atexit.register(_finish_at_exit)
+                log_ticks(axis)
+    # Renamed into place: never a half-written figure. The PNG in 256 colours: a figure of lines
+    # has few more, and it is a third of the file and of the time to encode (PIL's RGBA encoder
+    # took 30 ms a figure, an eighth of the report).
+    fig.canvas.draw()
+    pixels = Image.frombuffer("RGBA", fig.canvas.get_width_height(), fig.canvas.buffer_rgba(), "raw", "RGBA", 0, 1)
+    pixels.convert("RGB").quantize(256, method=Image.Quantize.FASTOCTREE).save(f"{path}.tmp.png", format="png")
+    os.replace(f"{path}.tmp.png", f"{path}.png")
+    if vector:
+        fig.savefig(f"{path}.tmp.svg", dpi=DPI)
+        os.replace(f"{path}.tmp.svg", f"{path}.svg")
 
 
 def clipped(text, most=60):
@@ -126,6 +203,11 @@ def clipped(text, most=60):
     5,000-character family is wider than any figure)."""
     text = " ".join(str(text).splitlines())
     return text if len(text) <= most else text[:most - 1] + "…"
+
+
+def title_room(fig):
+    """How many characters of a figure's title (12 pt) fit its width."""
+    return int(fig.get_size_inches()[0] * 11.5)
 
 
 def joined(lines):
@@ -151,30 +233,13 @@ def file_stem(name):
 
 
 def save(fig, out_dir, stem, vector=True):
-    """Writes figures/STEM.png, and .svg unless `vector` is false, under out_dir (drawn by a
-    child process: finish() waits for it), STEM made a file's name (file_stem); returns the
-    PNG's path relative to out_dir."""
+    """Writes figures/STEM.png, and .svg unless `vector` is false, under out_dir, STEM made a
+    file's name (file_stem); returns the PNG's path relative to out_dir. A figure of
+    reused_figure is kept for the next of its layout; any other is closed."""
     stem = file_stem(stem)
-    path = os.path.join(out_dir, "figures", stem)
-    if _DRAWERS < 2:
-        _write(fig, path, vector)
-    else:
-        while len(_drawing) >= _DRAWERS:
-            _wait_oldest()
-        sys.stdout.flush()
-        sys.stderr.flush()
-        pid = os.fork()
-        if pid == 0:  # the child draws, and leaves without the parent's exit handlers
-            code = 0
-            try:
-                _write(fig, path, vector)
-            except BaseException:
-                traceback.print_exc()
-                code = 1
-            sys.stderr.flush()
-            os._exit(code)
-        _drawing[pid] = stem
-    plt.close(fig)
+    _write(fig, os.path.join(out_dir, "figures", stem), vector)
+    if not getattr(fig, "kept", False):
+        plt.close(fig)
     return f"figures/{stem}.png"
 
 

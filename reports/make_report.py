@@ -221,8 +221,8 @@ def report(args):
              "* **N** is the number of steps per shortest period (`h = T_min / N`).", ""]
     text += ["The studies to explore in a browser (the answer for any scene and target, the diagrams and spectra "
              "with every value on hover): [report.html](report.html), one file that works offline, written "
-             "by the main job beside this page and not kept in the repository (it carries the data and "
-             "`page.js`/`page.css` inline, whose sources are here).", ""]
+             "by the main job beside this page and committed with it (download it and open it: it carries the "
+             "data and `page.js`/`page.css` inline, whose sources are here).", ""]
     if wp_study:
         write_families(wp_study.points, os.path.join(args.out, readme.FAMILIES))
         for section in report_of.SECTIONS["workprecision"]:
@@ -258,8 +258,6 @@ def report(args):
     text += ["## Where this ran", "", footer(measured_on), ""]
     out.page.provenance([f"- measured at: {provenance.describe(measured_on)}"])
     out.page.write(os.path.join(args.out, "report.html"))
-    from figure import finish
-    finish()  # every figure drawn before the page that shows them
     write_page(args.out, text, "make_report.py")
 
 

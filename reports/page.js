@@ -17,8 +17,8 @@ if (DATA.answer) {  // each summary row as an object: its family's and setting's
 const SVG = "http://www.w3.org/2000/svg";
 const FLOOR = 1e-13;  // errors below are round-off: drawn at it (reports/wp.py's ERROR_FLOOR)
 const PALETTE = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#bcbd22",
-                 "#17becf", "#393b79", "#637939", "#8c6d31", "#843c39", "#7b4173", "#3182bd", "#e6550d"];
-const DASHES = ["", "6 3", "2 3", "8 3 2 3", "12 4", "3 6"];
+                 "#17becf"];  // reports/styles.py's
+const DASHES = ["", "8 3", "2 2.5", "8 2.5 2 2.5", "4 2.5", "12 3 2 2.5 2 2.5", "1.6 5.6"];
 
 // A missing value (null in the JSON: a NaN, which JSON cannot hold) as NaN again, so that
 // every comparison with it is false, as in the Python that wrote the markdown.
@@ -296,27 +296,22 @@ function legend(box, entries, hidden, redraw) {
     const item = document.createElement("span");
     item.className = "item" + (hidden.has(e.name) ? " off" : "");
     item.dataset.series = e.name;
-    const swatch = document.createElement("span");
-    swatch.className = "swatch";
-    swatch.style.borderTopColor = e.color;
-    if (e.dash) swatch.style.borderTopStyle = "dashed";
+    const swatch = el("svg", { class: "swatch", width: 30, height: 10 });  // the line as the chart draws it
+    el("line", { x1: 1, x2: 29, y1: 5, y2: 5, stroke: e.color, "stroke-width": 2, "stroke-dasharray": e.dash || "" },
+       swatch);
     item.append(swatch, e.name);
     item.addEventListener("click", () => { (hidden.has(e.name) ? hidden.delete(e.name) : hidden.add(e.name)); redraw(); });
     box.appendChild(item);
   }
 }
 
-// A colour and a dash per series name, stable while a family is shown: a colour per name
-// in its group, a dash per group.
+// A colour and a dash per series name: a solver setting's are the figures' (DATA.styles,
+// reports/styles.py), the same in every family; any other series' by its place in the
+// legend, colour and dash cycling at different lengths, so that no two of a chart share both.
 function styles(entries) {
-  const groups = [...new Set(entries.map((e) => e.group))];
-  const seen = new Map();
-  return entries.map((e) => {
-    const g = groups.indexOf(e.group);
-    const k = seen.get(e.group) || 0;
-    seen.set(e.group, k + 1);
-    return Object.assign({}, e, { color: PALETTE[(k * 3 + g * 5) % PALETTE.length], dash: DASHES[g % DASHES.length] });
-  });
+  const given = DATA.styles || {};
+  return entries.map((e, k) => Object.assign({}, e, given[e.name] ||
+    { color: PALETTE[k % PALETTE.length], dash: DASHES[k % DASHES.length] }));
 }
 
 function chartWidth(columns) {

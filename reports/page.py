@@ -20,6 +20,7 @@ from collections import defaultdict
 import answer
 import robust
 from rows import by_family, config_label, num, setting_label, settings_fields, steps_of, unresolved
+from styles import svg_dash
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -118,6 +119,10 @@ class Page:
             "<div>CPU per run (us): <span id=\"chooser-cost\"></span>, set by family <span id=\"chooser-family\">"
             "</span></div><div>error on the worst family: <span id=\"chooser-error\"></span></div></div>"
             "<h3>Every scene and target</h3><div id=\"answer-tables\"></div>"))
+
+    def styles(self, styles):
+        """Each configuration's colour and dash (wp.setting_styles), as the figures draw it."""
+        self.data["styles"] = {label: dict(color=st["color"], dash=svg_dash(st["dash"])) for label, st in styles.items()}
 
     def diagrams(self, summary, panels_of):
         """The work-precision diagrams: per family, a series per configuration (its settings
@@ -234,7 +239,7 @@ class Page:
                                f"{v or 'nothing to judge'}\"></td>")
             body.append(f"<tr><th class=\"setting\">{html.escape(s)}</th>{''.join(tds)}</tr>")
         self.section("Stress checks", (
-            "<p>Green pass, red fail, grey nothing to judge; " + ", ".join(f"{c[0].upper()}: {c}" for c in checks)
+            "<p>Green ✓ pass, red ✗ fail, grey nothing to judge; " + ", ".join(f"{c[0].upper()}: {c}" for c in checks)
             + ". Hover a cell for its family and check.</p><div class=\"wide\"><table class=\"verdicts\">"
             + head + "".join(body) + "</table></div>"))
 

@@ -34,11 +34,21 @@ class Output:
         self.dir = out_dir
         self.page = html.Page(title)
         self.impacting = None  # the errors over impacting points, once computed
+        self.styles = None  # each configuration's line style (wp.setting_styles), once computed
+
+    def setting_styles(self, summary):
+        """Each configuration's line style, the same in every figure and on the page."""
+        if self.styles is None:
+            import wp
+            self.styles = wp.setting_styles(summary)
+            self.page.styles(self.styles)
+        return self.styles
 
 
 # A report draws the figures of its first MAX_FAMILY_FIGURES families, in each section that
-# has a figure per family: a figure costs some 0.3 s of a core (the main job's 130: 39 s), so a
-# study of 1,000 families would spend most of an hour on figures that nobody pages through.
+# has a figure per family: a figure costs some 0.05 s of a core (a 64-figure study's report: 4.3 s,
+# its start included), so a study of 1,000 families would spend minutes on figures that nobody
+# pages through.
 # report.html draws every family from the study's rows.
 MAX_FAMILY_FIGURES = 40
 
@@ -137,7 +147,8 @@ def diagrams_section(study, out):
             "that none hides another." + (" Horizontal bars: the lowest and highest CPU time of the timing "
                                          "repetitions." if spread else ""), ""]
     families = list(dict.fromkeys(r["family"] for r in summary))
-    for family, figures in wp.wp_diagrams(summary, out.dir, set(families[:MAX_FAMILY_FIGURES])):
+    styles = out.setting_styles(summary)
+    for family, figures in wp.wp_diagrams(summary, out.dir, set(families[:MAX_FAMILY_FIGURES]), styles):
         text += figure_lines(family, figures)
     text += left_out_lines(families)
     out.page.diagrams(summary, wp.panels_of)
@@ -156,7 +167,8 @@ def spectra_section(study, out):
     import wp
 
     families = list(dict.fromkeys(r["family"] for r in study.points))
-    figures = wp.wp_spectra(study.points, out.dir, set(families[:MAX_FAMILY_FIGURES]))
+    figures = wp.wp_spectra(study.points, out.dir, set(families[:MAX_FAMILY_FIGURES]),
+                            out.setting_styles(study.rows))
     if not figures:
         return []
     n = figures[0][1]
@@ -329,8 +341,6 @@ def write(study, out_dir, title=None, made_by="poundbench report"):
     text += provenance_lines(study, made_by)
     out.page.provenance(text[text.index("## Provenance") + 2:])
     out.page.write(os.path.join(out_dir, "report.html"))
-    from figure import finish
-    finish()  # every figure drawn before the page that shows them
     from rows import write_page
     write_page(out_dir, text)
     return sum(line.startswith("![") for line in text)
@@ -371,8 +381,6 @@ def report(args):
         return 1
     finally:
         if staging is not None and staging.path is not None:
-            if "figure" in sys.modules:
-                sys.modules["figure"].abandon()  # no drawing child may write into a removed folder
             staging.remove()
     print(f"poundbench: report: wrote {os.path.join(args.out, 'README.md')}")
     print(f"poundbench: report: wrote {os.path.join(args.out, 'report.html')} and {figures} figures in "

@@ -65,10 +65,27 @@ def config_label(row):
     return _config_label(row["solver"], row.get("variant") or "", row["settings"])
 
 
+# A Python callable's rows name it in their command as this and the name it was given in
+# `solvers={"name": f}` (python/poundbench_module.cpp).
+CALLABLE_PREFIX = "python "
+
+
+def external_name(fields):
+    """An external solver's name as its user gave it: a `name` of its settings (a name given
+    on the command line), a Python callable's key in `solvers=`, else its command itself, so
+    that two programs never share a line."""
+    if fields.get("name"):
+        return str(fields["name"])
+    command = str(fields.get("command", ""))
+    if command.startswith(CALLABLE_PREFIX) and command[len(CALLABLE_PREFIX):].strip():
+        return command[len(CALLABLE_PREFIX):]
+    return command or "external"
+
+
 @functools.cache
 def _config_label(solver, variant, settings):
     fields = _parsed_settings(settings)
-    label = solver
+    label = external_name(fields) if solver == "external" else solver
     if variant:
         label += " " + variant
     if "theta" in fields:  # moreau-jean, and siconos' Moreau-Jean variants

@@ -5,8 +5,9 @@ from collections import defaultdict
 
 from matplotlib.lines import Line2D
 
-from figure import clipped, colors, figure_width, joined, legend_below, log_spans, save, with_legend_below
+from figure import clipped, colors, title_room, figure_width, joined, legend_below, log_spans, save, with_legend_below
 from rows import CASE_KEYS, num
+from styles import DASHES, matplotlib_dash
 
 
 def varying(rows, keys):
@@ -72,6 +73,7 @@ def plot_family(family, rows, out_dir):
     axes = [fig.axes[i * len(directivities):(i + 1) * len(directivities)] for i in range(len(pulses))]
     logy = log_spans([num(r, "pi1") for r in rows])
     palette = dict(zip(labels, colors(0 if crowd else len(labels))))
+    dashes = {label: matplotlib_dash(DASHES[i % len(DASHES)]) for i, label in enumerate(labels)}  # without colour too
     together = []  # coinciding curves: their labels, largest difference, whether they are all of their panel
     for pi, pulse in enumerate(pulses):
         for di, direc in enumerate(directivities):
@@ -105,16 +107,16 @@ def plot_family(family, rows, out_dir):
                 for i, (label, x, y) in enumerate(group):
                     width = WIDTHS[i % len(WIDTHS)] if len(group) > 1 else 1.5
                     ax.plot(x, y, color=palette[label], lw=width, alpha=0.45 if width > 3 else 1.0,
-                            label=names[label])
+                            ls="-" if len(group) > 1 else dashes[label], label=names[label])
             ax.set_xscale("log")
             if logy:
                 ax.set_yscale("log")
             ax.set_title(clipped(f"{pulse} pulse, {direc} directivity"))
             ax.grid(True, which="both", alpha=0.25)
             if pi == len(pulses) - 1:
-                ax.set_xlabel(r"$\Pi_2 = \omega_0/\omega_p$")
+                ax.set_xlabel("Π₂ = ω₀/ωₚ")
             if di == 0:
-                ax.set_ylabel(r"$\Pi_1 = u_{0,\max}\,\omega_p^2/a_p$")
+                ax.set_ylabel("Π₁ = u₀,max ωₚ²/aₚ")
     handles, texts = axes[0][-1].get_legend_handles_labels()
     unique = dict(zip(texts, handles))
     unique["no contact"] = Line2D([], [], **NO_CONTACT)
@@ -122,7 +124,7 @@ def plot_family(family, rows, out_dir):
     left_out = "" if (pulses, directivities) == (all_pulses, all_directivities) else \
         f"; the first {len(pulses)} of {len(all_pulses)} pulses, {len(directivities)} of {len(all_directivities)} " \
         "directivities"
-    fig.suptitle(f"{clipped(family)}: Pi-spectra of body 0 (colour: with contact, dashed grey: no contact{left_out})")
+    fig.suptitle(clipped(f"{family}: Pi-spectra of body 0{left_out}", title_room(fig)))
     note = None
     if together:
         members = together[0][0]

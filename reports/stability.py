@@ -10,9 +10,8 @@ from collections import defaultdict
 
 import numpy as np
 from matplotlib.colors import to_rgb
-from matplotlib.patches import Patch
 
-from figure import clipped, figure_width, legend_below, plt, save, solver_styles, with_legend_below
+from figure import PAGE_WIDTH, clipped, figure_width, legend_below, plt, save, solver_styles, with_legend_below
 from rows import config_label as config, median, num, settings_fields
 
 FLOOR = 1e-17  # energy excesses and penetrations at or below this are drawn on the floor
@@ -67,8 +66,8 @@ def large_step_figure(points, out_dir):
     for r in runs:
         by_config[config(r)][float(settings_fields(r)["wh"])].append(r)
     styles = solver_styles(runs)
-    fig, grid = with_legend_below(figure_width(3, 3.0), 3.4, len(by_config), wspace=0.42)
-    axes = fig.subplots(1, 3, gridspec_kw=grid)
+    fig, grid = with_legend_below(figure_width(3, 3.0), 3.4, len(by_config), wspace=0.6)
+    axes = fig.subplots(1, 3, sharex=True, gridspec_kw=grid)  # one step axis: a panel with finished runs alone
     for label, per_wh in sorted(by_config.items()):
         whs = sorted(per_wh)
         ok = [[r for r in per_wh[w] if r["status"] == "ok"] for w in whs]
@@ -83,13 +82,13 @@ def large_step_figure(points, out_dir):
                     xs.append(w)
                     ys.append(max(max(values), FLOOR))
             ax.plot(xs, ys, **style)
-    axes[0].set_ylabel("share of runs that finished")
+    axes[0].set_ylabel("share of runs\nthat finished")
     axes[0].set_ylim(-0.05, 1.05)
-    axes[1].set_ylabel("worst energy excess (over the energy scale)")
-    axes[2].set_ylabel("worst penetration (over one step of travel, h max|g'|)")
+    axes[1].set_ylabel("worst energy excess\n(over the energy scale)")
+    axes[2].set_ylabel("worst penetration\n(over one step of travel, h max|g'|)")
     for ax in axes:
         ax.set_xscale("log")
-        ax.set_xlabel(r"$\omega_{\max} h$")
+        ax.set_xlabel("ωₘₐₓ h")
         ax.grid(True, which="both", alpha=0.25)
     for ax in axes[1:]:
         ax.set_yscale("log")
@@ -134,8 +133,8 @@ def chain_cost_figure(points, out_dir, wh=2.0):
     return save(fig, out_dir, "stability-chain-cost")
 
 CHECKS = ("finite", "energy", "gap", "restitution", "accuracy")  # the verdict columns, where the CSV has them
-VERDICT_COLOURS = {"pass": "#74c476", "fail": "#de2d26"}  # anything else: nothing to judge
-NOT_JUDGED = "#e3e3e3"
+# A cell of the verdict grid: its colour and its mark, so that it reads without colour too.
+PASSED, FAILED, NOT_JUDGED = "#c7e9c0", "#cb181d", "#ffffff"
 
 
 def checks_of(summary):
@@ -148,54 +147,76 @@ def table_config(row):
     return config(row) + (f", {step}" if step else "")
 
 
-# The verdict grid's rows (settings) and column blocks (families) up to these many: a row is
-# 0.24 in, so 150 are a figure 37 in tall, and matplotlib refuses an image past 2^16 pixels a
-# side (a 100,000-setting stress summary asked for 2.4 million). The page's table has them all.
-MAX_VERDICT_SETTINGS, MAX_VERDICT_FAMILIES = 150, 40
+# The verdict grid's rows (settings) and columns (families) up to these many: a row is 0.19 in,
+# so 150 are a figure 29 in tall, and matplotlib refuses an image past 2^16 pixels a side (a
+# 100,000-setting stress summary asked for 2.4 million); a column is 0.45 in, the room for the
+# five checks' letters, so 12 fill README's 830 px beside the settings' names. The page's table
+# has them all.
+MAX_VERDICT_SETTINGS, MAX_VERDICT_FAMILIES = 150, 12
+
+
+def cell_mark(row, checks):
+    """A cell's mark and colour: the letters of the checks that fail, on red; a tick where
+    every check judged passes, on light green; blank where nothing was judged."""
+    if row is None:
+        return "", NOT_JUDGED
+    failed = [c[0].upper() for c in checks if row[c] == "fail"]
+    if failed:
+        return "".join(failed), FAILED
+    return ("\u2713", PASSED) if any(row[c] == "pass" for c in checks) else ("", NOT_JUDGED)
+
+
+def short_setting(label, most=45):
+    """A setting's name as the verdict grid's row shows it: its step as "ωh=10", and a name
+    too long for the column cut in its middle, so that the step at its end still shows."""
+    label = " ".join(label.splitlines()).replace("w_max h = ", "\u03c9h=")
+    return label if len(label) <= most else label[:most - 12] + "\u2026" + label[-11:]
 
 
 def verdict_figure(summary, out_dir):
-    """The verdicts as a grid: a row per solver setting, a block of columns per stress family,
-    a column per check in it; green pass, red fail, grey nothing to judge. Returns the figure
-    and how many settings and families it leaves out (the first MAX_VERDICT_* are drawn)."""
+    """The verdicts as a grid, README's width: a row per solver setting, a column per stress
+    family; in each cell the letters of the checks that fail (red), a tick where every check
+    judged passes (green), blank where nothing was judged. Returns the figure and how many
+    settings and families it leaves out (the first MAX_VERDICT_* are drawn)."""
     checks = checks_of(summary)
     every_family = list(dict.fromkeys(r["family"] for r in summary))
     every_setting = list(dict.fromkeys(table_config(r) for r in summary))
     families, settings = every_family[:MAX_VERDICT_FAMILIES], every_setting[:MAX_VERDICT_SETTINGS]
     cells = {(table_config(r), r["family"]): r for r in summary}
-    width = len(checks) + 1  # a blank column after each family
-    image = np.ones((len(settings), len(families) * width - 1, 3))
-    for i, setting in enumerate(settings):
-        for j, family in enumerate(families):
-            r = cells.get((setting, family))
-            for c, check in enumerate(checks):
-                if r is not None:
-                    image[i, j * width + c] = to_rgb(VERDICT_COLOURS.get(r[check], NOT_JUDGED))
-    fig, ax = plt.subplots(figsize=(3.5 + 0.26 * image.shape[1], 1.6 + 0.24 * len(settings)), layout="constrained")
+    marks = [[cell_mark(cells.get((s, f)), checks) for f in families] for s in settings]
+    image = np.array([[to_rgb(colour) for _, colour in row] for row in marks]).reshape(len(settings), len(families), 3)
+    names, cell, right = 2.95, 0.37, 0.8  # inches: the settings' names, a family's column, the last name's tail
+    width = min(names + cell * len(families) + right, PAGE_WIDTH)
+    top, bottom = 1.45, 0.75  # the title and the families' names; the key
+    height = top + 0.19 * len(settings) + bottom
+    fig = plt.figure(figsize=(width, height))
+    ax = fig.add_axes([names / width, bottom / height, cell * len(families) / width, 1 - (top + bottom) / height])
     ax.imshow(image, aspect="auto", interpolation="nearest")
-    ax.set_yticks(range(len(settings)), [clipped(x) for x in settings], fontsize=8)
-    ax.set_xticks([j * width + c for j in range(len(families)) for c in range(len(checks))],
-                  [check[0].upper() for _ in families for check in checks], fontsize=7)
-    top = ax.secondary_xaxis("top")
-    top.set_xticks([j * width + (len(checks) - 1) / 2 for j in range(len(families))],
-                   [clipped(f, 30) for f in families], fontsize=8.5,
-                   rotation=30, ha="left")
-    top.tick_params(length=0)
-    solvers = [(s.split() or [""])[0] for s in settings]
-    for i in range(1, len(settings)):  # a white line between two settings, a black one between two solvers
-        ax.axhline(i - 0.5, color="k" if solvers[i] != solvers[i - 1] else "white", lw=0.8)
-    for j in range(len(families)):  # white lines between the checks of a family
-        for c in range(1, len(checks)):
-            ax.axvline(j * width + c - 0.5, color="white", lw=0.8)
+    for i, row in enumerate(marks):
+        for j, (mark, colour) in enumerate(row):
+            if mark:
+                failed = colour == FAILED
+                ax.text(j, i, mark, ha="center", va="center", fontsize=7.5, color="white" if failed else "#00441b",
+                        fontweight="bold" if failed else None)
+    ax.set_yticks(range(len(settings)), [short_setting(x) for x in settings], fontsize=8)
+    ax.xaxis.tick_top()
+    ax.set_xticks(range(len(families)), [clipped(f, 20) for f in families], fontsize=8, rotation=50, ha="left",
+                  rotation_mode="anchor")
     ax.tick_params(axis="both", length=0)
+    solvers = [(s.split() or [""])[0] for s in settings]
+    for i in range(1, len(settings)):  # a thin white line between two settings, a black one between two solvers
+        other = solvers[i] != solvers[i - 1]
+        ax.axhline(i - 0.5, color="k" if other else "white", lw=0.8 if other else 0.5)
+    for j in range(1, len(families)):
+        ax.axvline(j - 0.5, color="white", lw=1.5)
     for side in ax.spines.values():
         side.set_visible(False)
-    handles = [Patch(color=VERDICT_COLOURS["pass"], label="pass"), Patch(color=VERDICT_COLOURS["fail"], label="fail"),
-               Patch(color=NOT_JUDGED, label="nothing to judge")]
-    handles += [Patch(color="white", label=f"{check[0].upper()}: {check}") for check in checks]
-    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
-    ax.set_title("Stress set: the verdict of every check per family (column blocks) and solver setting (rows)",
-                 fontsize=10)
+    fig.text(0.5, 1 - 0.12 / height, "Stress set: the verdicts per family (columns) and solver setting (rows)",
+             ha="center", va="top")
+    fig.text(0.01, 0.42 / height, "In a cell: the checks that fail, " + ", ".join(
+        f"{c[0].upper()} {c}" for c in checks) + ";\n\u2713 every check judged passes; blank: nothing to judge; "
+        "\u03c9h: the step as w_max h.",
+        ha="left", va="center", fontsize=8.5)
     return save(fig, out_dir, "stability-verdicts"), (len(every_setting) - len(settings),
                                                       len(every_family) - len(families))
 

@@ -9,14 +9,14 @@ from collections import defaultdict
 
 from matplotlib.lines import Line2D
 
+import styles as setting_style
 from answer import MIDDLE_N, has_spread
-from figure import MARKERS, clipped, colors, figure_width, joined, legend_below, log_spans, save, with_legend_below
-from rows import by_family, config_label, num, sound, steps_of
+from figure import (clipped, figure_width, joined, label_axes, legend_below, legend_columns, log_spans, reused_figure,
+                    save, title_room, ylabel_beside)
+from rows import by_family, config_label, external_name, num, settings_fields, sound, steps_of
 
 ERROR_FLOOR = 1e-13  # errors below this are round-off: drawn in a band under it, one row per setting
 FLOOR_ROW = 10 ** -0.6  # the factor between two rows of that band
-STYLE = {"moreau-jean": "-", "ode": "--", "bullet": ":", "siconos": "-.", "mujoco": (0, (5, 1, 1, 1)),
-         "compliant": (0, (3, 1)), "event-driven": "-", "dart": (0, (1, 1)), "simbody": (0, (5, 2))}
 # The panels of a diagram: one per solver family, the in-house stepper with the reference;
 # Siconos in two, its Moreau–Jean integrators apart from its other ones, so that no panel
 # carries more lines than can be told apart.
@@ -37,6 +37,8 @@ def panel_of(row):
         return PANELS["siconos-other"]
     if row["solver"] == "event-driven" and "contact" in row["settings"]:  # a compliant model, solved exactly
         return PANELS["compliant"]
+    if row["solver"] == "external":  # a program or Python callable of the user's: a panel by its name
+        return external_name(settings_fields(row))
     return PANELS.get(row["solver"], row["solver"])
 
 
@@ -134,6 +136,20 @@ def panels_of(rows):
     return lines, dict(sorted(panels.items(), key=lambda p: panel_rank(p[0])))
 
 
+def setting_styles(rows):
+    """Every configuration's line style (styles.py), the same in each figure and on the page:
+    assigned in the order the legends list them (by panel, then by name)."""
+    first = {}
+    for r in rows:
+        first.setdefault(config_label(r), r)
+    return setting_style.assign(sorted(first, key=lambda lb: (panel_rank(panel_of(first[lb])), lb)))
+
+
+def line_style(style):
+    """A setting's style as matplotlib's keywords of a line."""
+    return dict(color=style["color"], ls=setting_style.matplotlib_dash(style["dash"]), marker=style["marker"])
+
+
 def panel_rank(panel):
     """Where a panel comes: PANELS' order, another solver's after them by name."""
     order = list(dict.fromkeys(PANELS.values()))
@@ -148,7 +164,7 @@ def cost_label(rows):
     return ("CPU time per run (us)" if not own
             else "cost per run (us): CPU time; a solver's own solve time where it reported one (earlier version)")
 
-def wp_diagram(family, panel, labels, lines, rows, out_dir):
+def wp_diagram(family, panel, labels, lines, rows, out_dir, styles):
     """One family's diagram for one panel's configurations: the median and the 95th percentile
     of the error side by side, the other solvers in grey and the Pareto front over every solver
     behind them, the legend below at the size of the text. More than MAX_LINES configurations
@@ -162,17 +178,20 @@ def wp_diagram(family, panel, labels, lines, rows, out_dir):
     deepest = min(floor_rows.values(), default=ERROR_FLOOR * FLOOR_ROW)
     spread = not crowd and any(has_spread(r) for r in rows)
     hollow = any(not sound(r) for r in rows)
-    palette = colors(0 if crowd else len(labels))
-    styles = {lb: dict(color=palette[i], marker=MARKERS[i % len(MARKERS)], ls=STYLE.get(lines[lb][0]["solver"], "-"))
-              for i, lb in enumerate(labels)} if not crowd else {}
+    shown = {} if crowd else {lb: line_style(styles[lb]) for lb in labels}
 
     entries = (1 if crowd else len(labels)) + 2 + hollow + spread
     columns = 1 if crowd else 2  # a crowd's one entry is a sentence
-    fig, grid = with_legend_below(figure_width(2), 3.8, entries, columns)
-    axes = fig.subplots(1, 2, sharex=True, sharey=True, gridspec_kw=grid)
+    fig, axes, new = reused_figure("wp-diagram", figure_width(2), 3.8, entries, (1, 2), columns, sharex=True,
+                                   sharey=True)
+    axes = axes[0]
     mine = set(labels)
     for col, (key, title) in enumerate(ERRORS):
         ax = axes[col]
+        if new:
+            ax.set_xscale("log")  # before the limits: a shared axis already log refuses a linear autoscale's bottom <= 0
+            ax.set_yscale("log")
+            ax.grid(True, which="major", alpha=0.3)
         ax.plot(*joined(diagram_line(lrows, key) for label, lrows in lines.items() if label not in mine),
                 color="0.85", lw=0.8, zorder=1)  # the other solvers, for context
         front = pareto_front(rows, key)
@@ -182,21 +201,16 @@ def wp_diagram(family, panel, labels, lines, rows, out_dir):
                 color="k", lw=7, alpha=0.12, solid_capstyle="round", zorder=2)
         if crowd:
             _draw_crowd(ax, labels, lines, key)
-        for label in styles:
-            _draw_setting(ax, [r for r in lines[label] if math.isfinite(num(r, key))], key, styles[label],
+        for label, style in shown.items():
+            _draw_setting(ax, [r for r in lines[label] if math.isfinite(num(r, key))], key, style,
                           floor_rows.get(label, ERROR_FLOOR))
         if band:
             ax.axhspan(deepest * FLOOR_ROW ** 1.2, ERROR_FLOOR, color="0.93", zorder=0)
             ax.text(0.02, 0.02, f"below {ERROR_FLOOR:g}: round-off", transform=ax.transAxes, color="0.35")
-        ax.set_xscale("log")  # before the limits: a shared axis already log refuses a linear autoscale's bottom <= 0
-        ax.set_yscale("log")
         ax.set_ylim(deepest * FLOOR_ROW ** 1.2 if band else None, 3)
-        ax.grid(True, which="major", alpha=0.3)
         ax.set_title(f"{title} over the points")
-        ax.set_xlabel(cost_label(rows))
-    axes[0].set_ylabel("relative Pi1 error")
-    handles = [Line2D([], [], ls=styles[lb]["ls"], marker=styles[lb]["marker"], color=styles[lb]["color"], ms=5,
-                      label=clipped(lb)) for lb in styles]
+    label_axes(fig, axes, axes[:1], cost_label(rows), "relative Pi1 error")
+    handles = [Line2D([], [], ms=5, label=clipped(lb), **style) for lb, style in shown.items()]
     if crowd:
         handles.append(Line2D([], [], marker="o", ms=2.5, color="tab:blue", lw=0.6, label=(
             f"{len(labels)} configurations, too many to tell apart: each point a setting (report.html names it)")))
@@ -208,18 +222,20 @@ def wp_diagram(family, panel, labels, lines, rows, out_dir):
     if spread:
         handles.append(Line2D([], [], ls="-", marker="|", color="0.3", label="bar: low–high of the repetitions"))
     legend_below(fig, handles, columns=columns)
-    fig.suptitle(clipped(f"{family}: {panel}", 100))
+    fig.suptitle(clipped(f"{family}: {panel}", title_room(fig)))
     return save(fig, out_dir, f"wp-{family}-{slug(panel)}", vector=False)
 
 
-def wp_diagrams(summary, out_dir, families=None):
-    """Every family's diagrams (of `families`, where given): [(family, [(panel, figure path)])]."""
+def wp_diagrams(summary, out_dir, families=None, styles=None):
+    """Every family's diagrams (of `families`, where given): [(family, [(panel, figure path)])].
+    `styles`: each configuration's (setting_styles; by default, of the summary)."""
+    styles = styles or setting_styles(summary)
     out = []
     for family, rows in by_family(summary).items():
         if families is not None and family not in families:
             continue
         lines, panels = panels_of(rows)
-        out.append((family, [(panel, wp_diagram(family, panel, labels, lines, rows, out_dir))
+        out.append((family, [(panel, wp_diagram(family, panel, labels, lines, rows, out_dir, styles))
                              for panel, labels in panels.items()]))
     return out
 
@@ -265,7 +281,7 @@ def spectrum_curve(crow, truth):
     return pi1, err
 
 
-def wp_spectrum(family, panel, labels, by_label, truth, n, out_dir):
+def wp_spectrum(family, panel, labels, by_label, truth, n, out_dir, styles):
     """One family's spectra of one panel's configurations (by_label: each one's rows): Pi1
     against Pi2 over the truth, a column per (pulse, Pi5), their relative error below; the
     legend below at text size. More than MAX_LINES configurations are drawn as a crowd, in one
@@ -274,12 +290,12 @@ def wp_spectrum(family, panel, labels, by_label, truth, n, out_dir):
     panels = spectrum_panels(frows)
     shown = panels[:MAX_PANELS]
     crowd = len(labels) > MAX_LINES
-    palette = colors(0 if crowd else len(labels))  # a colour per configuration: a panel's are mostly one solver's
-    styles = {lb: dict(color=palette[i], ls=STYLE.get(by_label[lb][0]["solver"], "-"))
-              for i, lb in enumerate(labels)} if not crowd else {}
-    fig, grid = with_legend_below(figure_width(len(shown)), 5.6, (1 if crowd else len(labels)) + 2, wspace=0.38,
-                                  hspace=0.12)
-    axes = fig.subplots(2, len(shown), squeeze=False, sharex=True, gridspec_kw=dict(grid, height_ratios=[3, 2]))
+    lined = {} if crowd else {lb: dict(line_style(styles[lb]), lw=1.3, ms=3.5) for lb in labels}
+    width = figure_width(len(shown))
+    columns = legend_columns(width, crowd)
+    fig, axes, new = reused_figure(("wp-spectrum", len(shown)), width, 5.6, (1 if crowd else len(labels)) + 2,
+                                   (2, len(shown)), columns, wspace=0.38, hspace=0.12, sharex=True,
+                                   gridspec_kw=dict(height_ratios=[3, 2]))
     for pi, (pulse, pi5) in enumerate(shown):
         mine = defaultdict(list)
         for r in frows:
@@ -289,6 +305,11 @@ def wp_spectrum(family, panel, labels, by_label, truth, n, out_dir):
                       key=lambda r: num(r, "pi2"))
         refs = [r for r in refs if r["status"] == "ok"]
         top, bottom = axes[0][pi], axes[1][pi]
+        if new:
+            bottom.set_xscale("log")
+            bottom.set_yscale("log")
+            for ax in (top, bottom):
+                ax.grid(True, which="major", alpha=0.25)
         x = [num(r, "pi2") for r in refs]
         top.plot(x, [num(r, "pi1_no_contact") for r in refs], color="0.6", lw=1, ls="--", label="no contact")
         top.plot(x, [num(r, "pi1") for r in refs], color="k", lw=2.4, label="reference (rigid, 100x tighter)")
@@ -298,38 +319,33 @@ def wp_spectrum(family, panel, labels, by_label, truth, n, out_dir):
                 ax.plot(*joined(c[part] for c in curves.values()), color="tab:blue", lw=0.6, alpha=0.35,
                         label=f"{len(labels)} configurations, too many to tell apart (report.html names each)")
         for label, (pi1, err) in curves.items():
-            if label in styles and pi1[0]:
-                style = dict(styles[label], marker=None, lw=1.3)
-                top.plot(*pi1, label=clipped(label), **style)
-                bottom.plot(*err, **style)
+            if label in lined and pi1[0]:
+                top.plot(*pi1, label=clipped(label), **lined[label])
+                bottom.plot(*err, **lined[label])
         top.set_title(clipped(f"{pulse}" + (f", Pi5 = {pi5}" if pi5 else ""), 40))
-        if log_spans([num(r, "pi1") for r in refs]):
-            top.set_yscale("log")
-        bottom.set_xscale("log")
-        bottom.set_yscale("log")
-        bottom.set_xlabel(r"$\Pi_2 = \omega_0/\omega_p$")
-        for ax in (top, bottom):
-            ax.grid(True, which="both", alpha=0.25)
-    axes[0][0].set_ylabel(r"$\Pi_1$")
-    axes[1][0].set_ylabel(f"relative Pi1 error\n(below {ERROR_FLOOR:g}: at it)")
+        top.set_yscale("log" if log_spans([num(r, "pi1") for r in refs]) else "linear")
+    label_axes(fig, axes[1], [axes[0][0]], "Π₂ = ω₀/ωₚ", "Π₁")
+    ylabel_beside(fig, [axes[1][0]], f"relative Pi1 error\n(below {ERROR_FLOOR:g}: at it)")
     handles, names = axes[0][0].get_legend_handles_labels()
     for ax in axes[0][1:]:  # a configuration missing from the first panel
         for h, name in zip(*ax.get_legend_handles_labels()):
             if name not in names:
                 handles.append(h)
                 names.append(name)
-    legend_below(fig, handles, names, columns=1 if crowd else 2)
+    legend_below(fig, handles, names, columns=columns)
     title = f"{clipped(family)}: {panel}" + (f", at N = {n}" if n else "")
     if len(panels) > len(shown):
         title += f" (the first {len(shown)} of {len(panels)} pulse and Pi5 panels)"
-    fig.suptitle(title)
+    fig.suptitle(clipped(title, title_room(fig)))
     return save(fig, out_dir, f"wp-spectra-{family}-{slug(panel)}", vector=False)
 
 
-def wp_spectra(points, out_dir, families=None):
+def wp_spectra(points, out_dir, families=None, styles=None):
     """Each family's spectra (of `families`, where given), a figure per panel of
-    configurations: [(family, N, [(panel, path)])]."""
+    configurations: [(family, N, [(panel, path)])]. `styles`: each configuration's
+    (setting_styles; by default, of the points)."""
     n, truth, chosen = spectra_rows(points)
+    styles = styles or setting_styles(chosen)
     out = []
     for family, frows in by_family(chosen).items():
         if families is not None and family not in families:
@@ -342,6 +358,6 @@ def wp_spectra(points, out_dir, families=None):
             if any(r["status"] == "ok" for r in by_label[label]):
                 panels[panel_of(by_label[label][0])].append(label)
         ordered = sorted(panels.items(), key=lambda p: panel_rank(p[0]))
-        out.append((family, n, [(panel, wp_spectrum(family, panel, labels, by_label, truth, n, out_dir))
+        out.append((family, n, [(panel, wp_spectrum(family, panel, labels, by_label, truth, n, out_dir, styles))
                                 for panel, labels in ordered]))
     return out

@@ -8,8 +8,9 @@ N answers on yielding cases. Reads the rows of `poundbench spectrum cases/sets/y
 import math
 from collections import defaultdict
 
-from figure import colors, figure_width, legend_below, save, with_legend_below
+from figure import colors, figure_width, legend_below, save, with_legend_below, xlabel_below, ylabel_beside
 from rows import config_label, median, num
+from styles import DASHES, matplotlib_dash
 
 REFERENCE = "event-driven"
 ALPHA = "0.05"  # the spectra's alpha; the findings use every alpha
@@ -31,29 +32,31 @@ def plot_spectra(rows, family, out_dir):
     columns = sorted({(r["pulse"], r["pi5"]) for r in rows}, key=lambda k: (k[0], float(k[1])))
     levels = sorted({_pi_y(r) for r in rows})
     palette = colors(len(levels))
-    fig, grid = with_legend_below(figure_width(len(columns)), 5.6, len(levels), columns=len(levels))
+    width = figure_width(len(columns), 2.0)
+    fig, grid = with_legend_below(width, 5.6, len(levels), columns=min(len(levels), 6), wspace=0.3)
     fig.subplots(2, len(columns), squeeze=False, sharex=True, gridspec_kw=dict(grid, height_ratios=[3, 2]))
     axes = [fig.axes[:len(columns)], fig.axes[len(columns):]]
     for col, (pulse, pi5) in enumerate(columns):
         top, bottom = axes[0][col], axes[1][col]
-        for level, color in zip(levels, palette):
+        for i, (level, color) in enumerate(zip(levels, palette)):
             curve = sorted((r for r in rows if (r["pulse"], r["pi5"]) == (pulse, pi5) and _pi_y(r) == level),
                            key=lambda r: num(r, "pi2"))
             label = "elastic" if math.isinf(level) else f"Pi_y0 = {level:g}"
             x = [num(r, "pi2") for r in curve]
-            top.plot(x, [num(r, "pi1") for r in curve], color="black" if math.isinf(level) else color,
-                     lw=2.2 if math.isinf(level) else 1.2, label=label)
+            line = dict(color=color, lw=1.2, ls=matplotlib_dash(DASHES[i % len(DASHES)]))  # reads without colour
+            top.plot(x, [num(r, "pi1") for r in curve], label=label,
+                     **(dict(color="black", lw=2.2) if math.isinf(level) else line))
             if not math.isinf(level):
-                bottom.plot(x, [num(r, "mu") for r in curve], color=color, lw=1.2)
+                bottom.plot(x, [num(r, "mu") for r in curve], **line)
         top.set_xscale("log")
         top.set_yscale("log")
         bottom.set_yscale("log")
-        top.set_title(f"{family}: {pulse}, Pi5 = {pi5}")
-        top.set_ylabel("Pi1")
-        bottom.set_ylabel("mu = max|u0| / u_y0")
-        bottom.set_xlabel("Pi2")
+        top.set_title(f"{pulse}, Pi5 = {pi5}")
         for ax in (top, bottom):
-            ax.grid(True, which="both", alpha=0.3)
+            ax.grid(True, which="major", alpha=0.3)
+    xlabel_below(fig, axes[1], "Pi2")
+    ylabel_beside(fig, axes[0][:1], "Pi1")
+    ylabel_beside(fig, axes[1][:1], "mu = max|u0| / u_y0")
     legend_below(fig, *axes[0][0].get_legend_handles_labels(), columns=min(len(levels), 6))
     fig.suptitle(f"{family}: the reference's spectra of Pi1 and mu, alpha = {ALPHA}")
     return save(fig, out_dir, f"yielding-{family}")

@@ -170,9 +170,9 @@ echo "main: the external protocol's own cost a point (scripts/persistent_overhea
 timed persistent /usr/bin/python3 scripts/persistent_overhead.py --poundbench $pb \
   --answer build/bench/poundbench_instant_answer --out reports/persistent.csv > /dev/null
 
-# The report (reports/README.md, figures/, report.html), the result files it commits beside it
-# (reports/*.csv, provenance.json), and README's generated blocks written from those files (checked
-# by the readme_numbers test).
+# The report (reports/README.md, figures/, and report.html, the page that draws every study from its
+# data: all committed), the result files it commits beside it (reports/*.csv, provenance.json), and
+# README's generated blocks written from those files (checked by the readme_numbers test).
 /usr/bin/python3 reports/make_report.py results/paper-*.csv --workprecision results/workprecision.csv \
   --points results/workprecision-points.csv --bench results/bench.json --timings results/timings.csv \
   --provenance results/provenance.json --stress results/stability.csv --stress-points results/stability-points.csv \

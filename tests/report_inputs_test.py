@@ -238,12 +238,12 @@ class Study(unittest.TestCase):
         self.assertLessEqual(large, 12 * small, f"{small} row visits at 20 families, {large} at 200")
 
     def test_a_diagram_of_thousands_of_settings_is_drawn_in_a_few_artists(self):
-        import figure
         import wp
 
-        drawn = []
+        drawn = []  # each figure's axes' titles and artist counts as it was saved (a figure is drawn again)
         saved = wp.save
-        wp.save = lambda fig, out_dir, stem, vector=True: drawn.append(fig) or f"figures/{stem}.png"
+        wp.save = lambda fig, out_dir, stem, vector=True: drawn.append(
+            [(ax.get_title(), len(ax.lines) + len(ax.collections)) for ax in fig.axes]) or f"figures/{stem}.png"
         try:
             # one family: 2,000 Moreau-Jean configurations of one setting each (a crowd), and one
             # ODE configuration of 2,000 step counts (a line)
@@ -252,13 +252,67 @@ class Study(unittest.TestCase):
         finally:
             wp.save = saved
         self.assertTrue(drawn)
-        for fig in drawn:
-            for ax in fig.axes:
-                artists = len(ax.lines) + len(ax.collections)
+        for axes in drawn:
+            for title, artists in axes:
                 # a line, two kinds of marker and the bars per configuration up to wp.MAX_LINES (18),
                 # else a crowd of three; the other solvers; the Pareto front
-                self.assertLessEqual(artists, 4 * 18 + 4, f"{artists} artists on {ax.get_title()}")
-            figure.plt.close(fig)
+                self.assertLessEqual(artists, 4 * 18 + 4, f"{artists} artists on {title}")
+
+    def test_a_solver_of_ones_own_is_labelled_by_the_name_its_user_gave(self):
+        # The in-house stepper's rows as a Python callable's (`solvers={"mine": f}`), both in the
+        # summary and the points: the report names it "mine", in its tables and its figures.
+        def own(rows):
+            for r in rows:
+                if r["solver"] == "moreau-jean":
+                    steps = json.loads(r["settings"])["steps"]
+                    r.update(solver="external", settings=json.dumps({"command": "python mine", "steps": steps}))
+            return rows
+
+        write(self.path("wp.csv"), own([dict(r) for r in self.summary]))
+        write(self.path("points.csv"), own([dict(r) for r in self.points]))
+        out = self.report("wp.csv", "--points", "points.csv", "--out", "report")
+        self.assertEqual(out.returncode, 0, out.stderr)
+        with open(self.path("report", "README.md")) as f:
+            readme = f.read()
+        self.assertIn("| mine, N = 16 |", readme)
+        self.assertNotIn("external", readme)
+        for family in ("wall", "pair"):
+            self.assertIn(f"figures/wp-{family}-mine.png", readme)
+            self.assertTrue(os.path.isfile(self.path("report", "figures", f"wp-{family}-mine.png")))
+        import rows
+        label = lambda settings: rows.config_label(dict(solver="external", variant="", settings=json.dumps(settings)))
+        # a name given with the run's settings; a program's own command, so that two programs never share a line
+        self.assertEqual(label({"command": "my_solver --fast", "name": "fast one"}), "fast one")
+        self.assertEqual(label({"command": "sh my_solver.sh --rtol 1e-6"}), "sh my_solver.sh --rtol 1e-6")
+        self.assertNotEqual(label({"command": "sh a.sh"}), label({"command": "sh b.sh"}))
+
+    def test_each_setting_has_its_own_colour_and_dash_the_page_s_too_in_figures_of_readmes_width(self):
+        import styles
+        import wp
+
+        # 60 configurations of one solver: no two alike in both colour and dash (nor in marker
+        # and dash: the lines read without their colours)
+        chosen = wp.setting_styles(synthetic_summary(1, 60, configurations=60))
+        self.assertEqual(len({(s["color"], s["dash"]) for s in chosen.values()}), 60)
+        self.assertEqual(len({(s["marker"], s["dash"]) for s in chosen.values()}), 60)
+        out = self.report(os.path.join(self.tmp.name, "wp.csv"), "--points", os.path.join(self.tmp.name, "points.csv"),
+                          "--out", "report")
+        self.assertEqual(out.returncode, 0, out.stderr)
+        with open(self.path("report", "report.html")) as f:
+            data = json.loads(re.search(r'id="report-data">(.*?)</script>', f.read(), re.S).group(1).replace("<\\/", "</"))
+        expected = wp.setting_styles(self.summary)
+        series = {s["name"] for family in data["diagrams"].values() for s in family}
+        self.assertTrue(series)
+        for name in series:  # the page draws each setting as the figures do
+            self.assertEqual(data["styles"][name], dict(color=expected[name]["color"],
+                                                        dash=styles.svg_dash(expected[name]["dash"])))
+        self.assertEqual(len({(s["color"], s["dash"]) for s in data["styles"].values()}), len(data["styles"]))
+        # README's column on GitHub is some 830 px: a figure no wider is shown at its own size
+        pngs = [f for f in listing(self.path("report")) if f.endswith(".png")]
+        self.assertTrue(pngs)
+        for png in pngs:
+            with open(self.path("report", png), "rb") as f:
+                self.assertLessEqual(int.from_bytes(f.read(24)[16:20], "big"), 830, png)
 
 
 class Visited(list):

@@ -115,7 +115,7 @@ def figs_4_5_section(fam, out):
     text = []
     for number, direc in ((4, "normal"), (5, "reverse")):
         spectra = pi5_spectra(fam, number)
-        figure = plots.pi5_spectra(spectra, f"Fig. {number}: pair, $\\Pi_6$ = 1, $\\Pi_3$ = 0.5, {direc} directivity",
+        figure = plots.pi5_spectra(spectra, f"Fig. {number}: pair, Π₆ = 1, Π₃ = 0.5, {direc} directivity",
                                    f"fig{number}-{direc}", out)
         cells = []
         for side, name in ((True, "flexible"), (False, "stiff")):
@@ -252,8 +252,8 @@ def fig6_section(fam, pb, out):
             impacts = analysis.impact_times(hist)
             tp = 2 * math.pi / float(row["w_p"])
             before = impacts[impacts <= run["t_max"]]
-            panels.append(dict(title=f"{name} body 0: cosine pulse, normal, $\\Pi_5$ = {pi5}, $\\Pi_2$ = {g(c.x[i])}: "
-                               f"$\\Pi_1$ = {g(run['pi1'])} with contact, {g(free_run['pi1'])} without",
+            panels.append(dict(title=f"{name} body 0: cosine pulse, normal, Π₅ = {pi5}, Π₂ = {g(c.x[i])}: "
+                               f"Π₁ = {g(run['pi1'])} with contact, {g(free_run['pi1'])} without",
                                contact=hist, free=free, impacts=impacts, tp=tp,
                                length=float(row["a_p"]) / float(row["w_p"]) ** 2))
             amplified.append(run["pi1"] > (1 + analysis.NO_EFFECT) * free_run["pi1"])
@@ -281,7 +281,7 @@ def fig6_section(fam, pb, out):
 
 def fig7_section(fam, out):
     figure = plots.pi5_spectra(pi5_spectra(fam, 7), "Fig. 7: symmetric row3 (body 2 = body 1), "
-                               "$\\Pi_6$ = $\\Pi_8$ = 1, $\\Pi_3$ = 0.5", "fig7-two-sided", out)
+                               "Π₆ = Π₈ = 1, Π₃ = 0.5", "fig7-two-sided", out)
     return ["## Fig. 7: two-sided pounding", "", f"![Fig. 7]({figure})", "",
             "Body 0 between two identical neighbours (Pi7 = Pi5, Pi8 = Pi6 = 1), in the layout of Figs 4 and 5. "
             "The row is its own mirror image, so the case set runs normal directivity only. The numbers are "
@@ -451,8 +451,8 @@ def mass_section(fam, out):
     for number, name in ((8, "stiff"), (9, "flexible")):
         spectra = fam[f"fig{number}"]
         pi5 = spectra[0]["pi5"]
-        figure = plots.pi6_spectra(spectra, f"Fig. {number}: pair, {name} body 0 ($\\Pi_5$ = {pi5}), "
-                                            "$\\Pi_3$ = 0.5, mass ratios $\\Pi_6 = m_0/m_1$",
+        figure = plots.pi6_spectra(spectra, f"Fig. {number}: pair, {name} body 0 (Π₅ = {pi5}), "
+                                            "Π₃ = 0.5, mass ratios Π₆ = m₀/m₁",
                                    f"fig{number}-mass-{name}", out)
         falling = rising = changed_total = points = 0
         widest = (1.0, "")

@@ -7,12 +7,29 @@ import numpy as np
 from matplotlib.lines import Line2D
 
 import analysis
-from figure import plt, save  # reports/figure.py: matplotlib set up for files
+from styles import DASHES, matplotlib_dash
+from figure import PAGE_WIDTH, plt, save  # reports/figure.py: matplotlib set up for files
 
-PI1 = r"$\Pi_1 = u_{0,\max}\,\omega_p^2/a_p$"
-PI2 = r"$\Pi_2 = \omega_0/\omega_p$"
+# Every figure is README's width (PAGE_WIDTH at 100 dpi: shown at its own size) and laid out by
+# hand in inches: tight_layout measured every tick label of every panel twice a figure, half of
+# the paper report's drawing.
+
+PI1 = "Π₁ = u₀,ₘₐₓ ωₚ²/aₚ"
+PI2 = "Π₂ = ω₀/ωₚ"
 NO_CONTACT = dict(color="0.45", lw=1.0, ls="--", alpha=0.8, zorder=3)  # on top: visible where contact changes nothing
 PULSES = ("sine", "cosine")  # rows of the paper's figures, sine first
+
+
+def _margins(fig, left, right, top, bottom, **space):
+    """The plots' margins in inches (the figure's size made fractions), and their spacing."""
+    width, height = fig.get_size_inches()
+    fig.subplots_adjust(left=left / width, right=1 - right / width, top=1 - top / height, bottom=bottom / height,
+                        **space)
+
+
+def _dash(i):
+    """The i-th line's dash (styles.py's): lines of a panel tell apart without their colours."""
+    return matplotlib_dash(DASHES[i % len(DASHES)])
 
 
 def _spectrum_axes(ax, title, yscale="log"):
@@ -36,13 +53,14 @@ def _legend(ax, title, loc="lower left"):
     handles, labels = ax.get_legend_handles_labels()
     handles.append(Line2D([], [], **NO_CONTACT))
     labels.append("no contact")
-    ax.legend(handles, labels, title=title, fontsize=7.5, title_fontsize=8, loc=loc, ncol=1)
+    ax.legend(handles, labels, title=title, fontsize=8, title_fontsize=8, loc=loc, ncol=1)
 
 
 def fig3(by_amplitude, by_duration, note, out_dir):
     """Left: u_max in metres against T0 in seconds; right: the same curves in Pi terms,
     with a note (the measured spread) in the corner."""
-    fig, (phys, pi) = plt.subplots(1, 2, figsize=(12, 4.8))
+    fig, (phys, pi) = plt.subplots(1, 2, figsize=(PAGE_WIDTH, 4.4))
+    _margins(fig, left=0.75, right=0.15, top=0.6, bottom=0.55, wspace=0.3)
     # the amplitudes in lines of decreasing width, so that all show where they coincide; the durations dashed
     styles = [dict(lw=5.0, alpha=0.35), dict(lw=2.8, alpha=0.7), dict(lw=1.2)]
     lines = [(c, dict(color=f"C{i}", **styles[i % 3]))
@@ -51,7 +69,7 @@ def fig3(by_amplitude, by_duration, note, out_dir):
               for i, c in enumerate(sorted(by_duration, key=lambda c: float(c["w_p"])))]
     for c, style in lines:
         a_p, w_p = float(c["a_p"]), float(c["w_p"])
-        label = f"$a_p$ = {a_p:.3g} m/s², $T_p$ = {2 * math.pi / w_p:.3g} s"
+        label = f"aₚ = {a_p:.3g} m/s², Tₚ = {2 * math.pi / w_p:.3g} s"
         t0 = 2 * math.pi / (c.x * w_p)
         phys.plot(t0, c.pi1 * a_p / w_p ** 2, label=label, **style)
         phys.plot(t0, c.pi1_nc * a_p / w_p ** 2, color=style["color"], lw=0.8, alpha=0.45)
@@ -61,17 +79,15 @@ def fig3(by_amplitude, by_duration, note, out_dir):
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.grid(True, which="both", alpha=0.25)
-    phys.set_xlabel(r"$T_0 = 2\pi/\omega_0$ (s)")
-    phys.set_ylabel(r"$u_{0,\max}$ (m)")
+    phys.set_xlabel("T₀ = 2π/ω₀ (s)")
+    phys.set_ylabel("u₀,ₘₐₓ (m)")
     phys.set_title("physical units", fontsize=10)
     pi.set_xlabel(PI2)
     pi.set_ylabel(PI1)
     pi.set_title("Pi terms: one master curve", fontsize=10)
     pi.text(0.03, 0.05, note, transform=pi.transAxes, fontsize=8)
-    phys.legend(fontsize=7.5, loc="lower right", title="heavy: contact, light: no contact", title_fontsize=7.5)
-    fig.suptitle(r"Fig. 3: asymmetric row3 ($\Pi_5$ = 0.5, $\Pi_6$ = 2, $\Pi_7$ = 2, $\Pi_8$ = 0.5), cosine pulse, "
-                 r"$\Pi_3$ = 0.5", fontsize=11)
-    fig.tight_layout(rect=(0, 0, 1, 0.95))
+    phys.legend(fontsize=8, loc="lower right", title="heavy: contact, light: no contact", title_fontsize=8)
+    fig.suptitle("Fig. 3: asymmetric row3 (Π₅ = 0.5, Π₆ = 2, Π₇ = 2, Π₈ = 0.5), cosine pulse, Π₃ = 0.5", fontsize=11)
     return save(fig, out_dir, "fig3-self-similarity")
 
 
@@ -82,14 +98,14 @@ def _save_grid(fig, axes, title, out_dir, stem):
     for row in axes:
         row[0].set_ylabel(PI1)
     fig.suptitle(title, fontsize=11)
-    fig.tight_layout(rect=(0, 0, 1, 0.96))
     return save(fig, out_dir, stem)
 
 
 def pi5_spectra(curve_list, title, stem, out_dir):
     """Figs 4, 5, 7: rows pulses, columns the flexible (Pi5 < 1) and the stiff (Pi5 > 1)
     body 0, a line per Pi5."""
-    fig, axes = plt.subplots(2, 2, figsize=(12, 8.4), sharex=True)
+    fig, axes = plt.subplots(2, 2, figsize=(PAGE_WIDTH, 7.4), sharex=True)
+    _margins(fig, left=0.75, right=0.15, top=0.65, bottom=0.55, wspace=0.22, hspace=0.2)
     for row, pulse in enumerate(PULSES):
         for col, (name, flexible) in enumerate((("flexible body 0", True), ("stiff body 0", False))):
             ax = axes[row][col]
@@ -97,16 +113,17 @@ def pi5_spectra(curve_list, title, stem, out_dir):
                            key=lambda c: float(c["pi5"]))
             _no_contact(ax, panel)
             for i, c in enumerate(panel):
-                ax.plot(c.x, c.pi1, color=f"C{i}", lw=1.5, label=f"{float(c['pi5']):g}")
+                ax.plot(c.x, c.pi1, color=f"C{i}", lw=1.5, ls=_dash(i), label=f"{float(c['pi5']):g}")
             _spectrum_axes(ax, f"{pulse} pulse, {name}")
-            _legend(ax, r"$\Pi_5 = \omega_0/\omega_1$")
+            _legend(ax, "Π₅ = ω₀/ω₁")
     return _save_grid(fig, axes, title, out_dir, stem)
 
 
 def pi6_spectra(curve_list, title, stem, out_dir):
     """Figs 8, 9: rows pulses, columns directivities, a line per Pi6. Linear Pi1: the mass
     ratio matters where Pi1 is large."""
-    fig, axes = plt.subplots(2, 2, figsize=(12, 8.4), sharex=True, sharey="row")
+    fig, axes = plt.subplots(2, 2, figsize=(PAGE_WIDTH, 7.4), sharex=True, sharey="row")
+    _margins(fig, left=0.75, right=0.15, top=0.65, bottom=0.55, wspace=0.08, hspace=0.2)
     colors = plt.get_cmap("viridis")
     for row, pulse in enumerate(PULSES):
         for col, direc in enumerate(("normal", "reverse")):
@@ -114,10 +131,10 @@ def pi6_spectra(curve_list, title, stem, out_dir):
             panel = sorted(analysis.select(curve_list, pulse=pulse, directivity=direc), key=lambda c: float(c["pi6"]))
             _no_contact(ax, panel)
             for i, c in enumerate(panel):
-                ax.plot(c.x, c.pi1, color=colors(i / max(len(panel) - 1, 1) * 0.92), lw=1.4,
+                ax.plot(c.x, c.pi1, color=colors(i / max(len(panel) - 1, 1) * 0.92), lw=1.4, ls=_dash(i),
                         label=f"{float(c['pi6']):g}")
             _spectrum_axes(ax, f"{pulse} pulse, {direc} directivity", yscale="linear")
-            _legend(ax, r"$\Pi_6 = m_0/m_1$", loc="upper right")
+            _legend(ax, "Π₆ = m₀/m₁", loc="upper right")
     return _save_grid(fig, axes, title, out_dir, stem)
 
 
@@ -125,22 +142,22 @@ def histories(panels, out_dir):
     """Fig. 6: one row per panel (dict: title, contact and free histories, impact times,
     tp = T_p, length = a_p / w_p^2): u0 and u1 against t / T_p with and without contact,
     impacts marked on u0."""
-    fig, axes = plt.subplots(len(panels), 1, figsize=(11, 3.6 * len(panels)), squeeze=False)
+    fig, axes = plt.subplots(len(panels), 1, figsize=(PAGE_WIDTH, 3.3 * len(panels)), squeeze=False)
+    _margins(fig, left=0.75, right=0.15, top=0.6, bottom=0.55, hspace=0.4)
     for ax, p in zip(axes[:, 0], panels):
         hist, free, tp, length = p["contact"], p["free"], p["tp"], p["length"]
-        ax.plot(free["t"] / tp, free["u0"] / length, color="0.55", lw=1.2, ls="--", label="$u_0$, no contact")
-        ax.plot(hist["t"] / tp, hist["u1"] / length, color="C1", lw=1.0, label="$u_1$ (neighbour), with contact")
-        ax.plot(hist["t"] / tp, hist["u0"] / length, color="C0", lw=1.8, label="$u_0$, with contact")
+        ax.plot(free["t"] / tp, free["u0"] / length, color="0.55", lw=1.2, ls="--", label="u₀, no contact")
+        ax.plot(hist["t"] / tp, hist["u1"] / length, color="C1", lw=1.0, label="u₁ (neighbour), with contact")
+        ax.plot(hist["t"] / tp, hist["u0"] / length, color="C0", lw=1.8, label="u₀, with contact")
         ax.plot(p["impacts"] / tp, np.interp(p["impacts"], hist["t"], hist["u0"]) / length, "v", color="k", ms=5,
                 label=f"impact ({len(p['impacts'])})")
         ax.axvline(1.0, color="0.3", lw=0.8, ls=":")
         ax.set_title(p["title"], fontsize=10)
-        ax.set_ylabel(r"$u\,\omega_p^2/a_p$")
+        ax.set_ylabel("u ωₚ²/aₚ")
         ax.grid(True, alpha=0.25)
-        ax.legend(fontsize=7.5, loc="upper right", ncol=2)
-    axes[-1][0].set_xlabel(r"$t/T_p$ (dotted: end of the pulse)")
+        ax.legend(fontsize=8, loc="upper right", ncol=2)
+    axes[-1][0].set_xlabel("t/Tₚ (dotted: end of the pulse)")
     fig.suptitle("Fig. 6: contact amplifies the flexible (top) and the stiff (bottom) body 0", fontsize=11)
-    fig.tight_layout(rect=(0, 0, 1, 0.96))
     return save(fig, out_dir, "fig6-time-histories")
 
 
@@ -148,7 +165,8 @@ def fig10(fitted, out_dir):
     """ln Pi1 against ln Pi6 at fixed Pi2 from (curve, its branches) pairs: points where
     contact changed Pi1 filled, the others open; the fitted branches dashed."""
     panels = sorted({(c["pulse"], c["pi5"]) for c, _ in fitted}, key=lambda k: (PULSES.index(k[0]), float(k[1])))
-    fig, axes = plt.subplots(2, 2, figsize=(12, 8.4), sharex=True)
+    fig, axes = plt.subplots(2, 2, figsize=(PAGE_WIDTH, 7.8), sharex=True)
+    _margins(fig, left=0.75, right=0.15, top=0.75, bottom=1.25, wspace=0.22, hspace=0.2)
     for ax, (pulse, pi5) in zip(axes.flat, panels):
         panel = sorted(((c, b) for c, b in fitted if c["pulse"] == pulse and c["pi5"] == pi5),
                        key=lambda cb: float(cb[0]["pi2"]))
@@ -162,50 +180,51 @@ def fig10(fitted, out_dir):
             for b in (b for b in fits if b.kind != "no effect"):  # flat by construction: the open points
                 bx = np.log([b.lo, b.hi])
                 ax.plot(bx, math.log(b.intercept) + b.slope * bx, color="k", lw=1.0, ls="--")
-        ax.set_title(rf"{pulse} pulse, $\Pi_5$ = {float(pi5):g}", fontsize=10)
+        ax.set_title(f"{pulse} pulse, Π₅ = {float(pi5):g}", fontsize=10)
         ax.grid(True, alpha=0.25)
     for ax in axes[1]:
-        ax.set_xlabel(r"$\ln \Pi_6 = \ln(m_0/m_1)$")
+        ax.set_xlabel("ln Π₆ = ln(m₀/m₁)")
     for ax in axes[:, 0]:
-        ax.set_ylabel(r"$\ln \Pi_1$")
+        ax.set_ylabel("ln Π₁")
     handles, labels = axes[0][0].get_legend_handles_labels()
-    fig.legend(handles, labels, title=r"$\Pi_2 = \omega_0/\omega_p$", loc="lower center", ncol=5, fontsize=9,
+    fig.legend(handles, labels, title="Π₂ = ω₀/ωₚ", loc="lower center", ncol=5, fontsize=9,
                title_fontsize=9, frameon=False)
-    fig.suptitle("Fig. 10: pair, normal directivity. Filled: contact changed Pi1; open: it did not; "
+    fig.suptitle("Fig. 10: pair, normal directivity.\nFilled: contact changed Pi1; open: it did not; "
                  "dashed: fitted sloped branches", fontsize=10.5)
-    fig.tight_layout(rect=(0, 0.07, 1, 0.96))
     return save(fig, out_dir, "fig10-scaling")
 
 
 def pi5_limit(rows, out_dir):
     """Largest and smallest Pi1 / Pi1_nc over Pi2 against Pi5: rows of
     (pulse, pi5, largest, smallest)."""
-    fig, ax = plt.subplots(figsize=(8, 4.8))
+    fig, ax = plt.subplots(figsize=(PAGE_WIDTH, 4.6))
+    _margins(fig, left=0.85, right=0.2, top=0.45, bottom=0.55)
     for i, pulse in enumerate(PULSES):
         pts = sorted((r for r in rows if r[0] == pulse), key=lambda r: r[1])
         x = [r[1] for r in pts]
-        ax.plot(x, [r[2] for r in pts], "o-", color=f"C{i}", ms=4, label=f"{pulse}: largest over $\\Pi_2$")
+        ax.plot(x, [r[2] for r in pts], "o-", color=f"C{i}", ms=4, label=f"{pulse}: largest over Π₂")
         ax.plot(x, [r[3] for r in pts], "s--", color=f"C{i}", ms=4, mfc="none",
-                label=f"{pulse}: smallest over $\\Pi_2$")
+                label=f"{pulse}: smallest over Π₂")
     ax.axvline(1.0, color="0.3", lw=0.8, ls=":")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel(r"$\Pi_5 = \omega_0/\omega_1$")
-    ax.set_ylabel(r"$\Pi_1 / \Pi_{1,\mathrm{no\ contact}}$")
+    ax.set_xlabel("Π₅ = ω₀/ω₁")
+    ax.set_ylabel("Π₁ / Π₁ without contact")
     ax.grid(True, which="both", alpha=0.25)
     ax.legend(fontsize=8)
-    ax.set_title(r"pair, $\Pi_6$ = 1, normal directivity: contact's effect vanishes as $\Pi_5 \to 1$", fontsize=10)
-    fig.tight_layout()
+    ax.set_title("pair, Π₆ = 1, normal directivity: contact's effect vanishes as Π₅ → 1", fontsize=10)
     return save(fig, out_dir, "pi5-limit")
 
 
 EFFECT_COLORS = {"amplified": "#d62728", "deamplified": "#1f77b4", "none": "#dddddd"}
+EFFECT_HATCHES = {"amplified": "////", "deamplified": "", "none": ""}  # red and blue are one grey without colour
 
 
 def region_map(groups, out_dir):
     """One panel per (title, curves): each spectrum as a strip along Pi2 coloured by the
     effect of contact; Pi2 = 1 dotted, Pi2 = Pi5 marked."""
-    fig, axes = plt.subplots(1, len(groups), figsize=(5 * len(groups), 6.2), sharey=True)
+    fig, axes = plt.subplots(1, len(groups), figsize=(PAGE_WIDTH, 6.4), sharey=True)
+    _margins(fig, left=0.95, right=0.2, top=0.65, bottom=1.0, wspace=0.14)
     kinds = list(EFFECT_COLORS)
     for ax, (title, curve_list) in zip(np.atleast_1d(axes), groups):
         labels = []
@@ -216,7 +235,8 @@ def region_map(groups, out_dir):
             starts = np.flatnonzero(np.concatenate([[True], kind[1:] != kind[:-1]]))
             ends = np.append(starts[1:], len(kind))
             for a, b in zip(starts, ends):
-                ax.broken_barh([(edges[a], edges[b] - edges[a])], (j - 0.4, 0.8), facecolors=EFFECT_COLORS[kind[a]])
+                ax.broken_barh([(edges[a], edges[b] - edges[a])], (j - 0.4, 0.8), facecolors=EFFECT_COLORS[kind[a]],
+                               hatch=EFFECT_HATCHES[kind[a]], edgecolor="white", linewidth=0)
             ax.plot(float(c["pi5"]), j, "k|", ms=9, mew=1.5)
             labels.append(f"{c['pulse']} {float(c['pi5']):g}")
         ax.axvline(1.0, color="k", lw=0.8, ls=":")
@@ -227,10 +247,10 @@ def region_map(groups, out_dir):
         ax.invert_yaxis()
         ax.set_title(title, fontsize=10)
         ax.set_xlabel(PI2)
-    handles = [plt.Rectangle((0, 0), 1, 1, color=EFFECT_COLORS[k]) for k in kinds]
+    handles = [plt.Rectangle((0, 0), 1, 1, facecolor=EFFECT_COLORS[k], hatch=EFFECT_HATCHES[k], edgecolor="white",
+                             linewidth=0) for k in kinds]
     handles.append(Line2D([], [], color="k", marker="|", ls="none", ms=9, mew=1.5))
     fig.legend(handles, [f"amplified (> +{analysis.NO_EFFECT:.0%})", f"deamplified (< -{analysis.NO_EFFECT:.0%})",
-                         "no effect", r"$\Pi_2 = \Pi_5$"], loc="lower center", ncol=4, fontsize=9, frameon=False)
+                         "no effect", "Π₂ = Π₅"], loc="lower center", ncol=4, fontsize=9, frameon=False)
     fig.suptitle("Effect of contact on Pi1 along Pi2, per spectrum (rows: pulse and Pi5)", fontsize=11)
-    fig.tight_layout(rect=(0, 0.05, 1, 0.96))
     return save(fig, out_dir, "regions")
