@@ -36,7 +36,8 @@ struct SettingField {
   }
 };
 
-inline constexpr std::array<SettingField, 17> kSettingFields = {{
+// Sized by its rows (std::to_array): a new setting is a row, nothing to count.
+inline constexpr auto kSettingFields = std::to_array<SettingField>({
     {"steps", nullptr, &Settings::steps, nullptr,
      "Time-steppers: steps per shortest period N, h = T_min/N (0: default)"},
     {"wh", &Settings::wh, nullptr, nullptr,
@@ -62,6 +63,8 @@ inline constexpr std::array<SettingField, 17> kSettingFields = {{
     {"command", nullptr, nullptr, nullptr,
      "External: the program run per point and its arguments, as words, no shell (docs/external.md)",
      &Settings::command},
+    {"name", nullptr, nullptr, nullptr,
+     "External: the name its rows' settings and the report give the program (default: its command)", &Settings::name},
     {"lcp", nullptr, nullptr, nullptr,
      "Siconos, a scheme whose variant does not name its LCP solver: lemke or enum (default: lemke)", &Settings::lcp},
     {"projection_tol", &Settings::projection_tol, nullptr, nullptr,
@@ -69,7 +72,7 @@ inline constexpr std::array<SettingField, 17> kSettingFields = {{
     {"steps_per_sample", nullptr, &Settings::steps_per_sample, nullptr,
      "Time-steppers on a record: the step rule `record`, h = DT/m, m the least whole number >= k with "
      "h <= T_min/N (DT the record's sampling interval; 0: T_min/N alone)"},
-}};
+});
 
 // The index of a field in kSettingFields by its name, if there is one.
 inline std::optional<std::size_t> setting_field_index(std::string_view name) {

@@ -63,6 +63,7 @@ struct Settings {
   std::string contact;     // event-driven: rigid (empty) or kelvin-voigt, the compliant model solved exactly
   double contact_steps = 0;  // mujoco: the contact time constant 1/w_c in steps h; 0 = default
   std::string command;     // external: the program to run per point, as words (docs/external.md)
+  std::string name;        // external: what its rows and the report call it; empty: its command
   std::string lcp;         // siconos: the LCP solver of a scheme that does not name it, lemke or enum; empty = lemke
   double projection_tol = 0;  // siconos projections: tolerance on a violated gap over a_p/w_p^2; 0 = default
   // The solver's own settings (SolverInfo::own_settings), by index; NaN: not given.

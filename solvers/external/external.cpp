@@ -178,6 +178,7 @@ Result solve(const System& system, const Settings& settings) {
 
 std::string describe(const Settings& settings) {
   NamedValues out;
+  if (!settings.name.empty()) out.add("name", settings.name);
   out.add("command", settings.command);
   if (settings.wh > 0.0)
     out.add("wh", settings.wh);
