@@ -77,6 +77,68 @@ EarlierRows read_earlier_rows(const std::string& partial, const CaseList& cases,
   return earlier;
 }
 
+namespace {
+
+// The tasks `earlier` lacks, in the order they are handed out; earlier.done is released.
+std::vector<std::size_t> tasks_left(std::size_t points, std::size_t runs, EarlierRows& earlier) {
+  const std::size_t total = points * runs;
+  std::vector<std::size_t> todo;
+  for (std::size_t t = 0; t < total; ++t)
+    if (earlier.done.empty() || !earlier.done[t]) todo.push_back(t);
+  std::vector<bool>().swap(earlier.done);
+  // Several runs: handed out a point at a time, each point through every run in turn, not a
+  // run at a time. Run after run, the threads took the same solver together, and Bullet's
+  // Dantzig solves are taken one at a time (solvers/bullet/engine.cpp): the main job's
+  // work-precision study would take 152 s on 2 threads by its rows' CPU times, against 145 s
+  // a point at a time and 141 s at best. The rows are the same; only their order differs.
+  if (runs > 1)
+    std::stable_sort(todo.begin(), todo.end(),
+                     [points](std::size_t a, std::size_t b) { return a % points < b % points; });
+  return todo;
+}
+
+// The partial file made ready to append to: the rows read, a torn last line dropped:
+// rewritten from the ones kept; else, when the file holds each as it would be written, cut
+// after its last whole record; else rewritten from the file's own rows, streamed in its order
+// (the output is copied in point order from the file either way).
+void restore_partial_file(const std::string& partial, const CaseList& cases, std::span<const SweepRun> runs,
+                          const EarlierRows& earlier) {
+  const bool with_run = runs.size() > 1;
+  if (earlier.rows.size() != earlier.count && earlier.file.as_printed) {
+    std::filesystem::resize_file(partial, earlier.file.whole_bytes);
+    return;
+  }
+  write_atomically(partial, [&](std::ostream& out) {
+    out << partial_header(with_run) << '\n';
+    if (earlier.rows.size() == earlier.count)
+      for (const Row& row : earlier.rows) out << partial_line(row, with_run) << '\n';
+    else
+      each_partial_row(partial, cases, runs, [&](Row&& row) { out << partial_line(row, with_run) << '\n'; });
+  });
+}
+
+// The sweep's rows; where it fails, the rows finished before are written first and the
+// error says where they are.
+std::vector<Row> sweep_keeping_finished(const Processes& processes, const CaseList& cases,
+                                        std::span<const SweepRun> runs, const std::vector<std::size_t>& todo,
+                                        const SweepOptions& options, SweepWatch& watch,
+                                        std::optional<PartialWriter>& file, const std::string& partial) {
+  try {
+    return processes.sweep(cases, runs, todo, options);
+  } catch (const std::exception& e) {
+    watch.finish();
+    if (!file) throw;
+    try {
+      file->write_all();  // the rows finished before the failure
+    } catch (const std::exception&) {
+      // The failure may be the file's own: the sweep's error says what happened.
+    }
+    throw std::runtime_error(std::string(e.what()) + " (finished rows are in " + partial + ")");
+  }
+}
+
+}  // namespace
+
 std::optional<std::vector<Row>> run_resumable(std::string_view command, const Processes& processes,
                                               const CaseList& cases, std::span<const SweepRun> runs,
                                               const std::string& partial, OutputLock& lock, EarlierRows earlier,
@@ -87,32 +149,8 @@ std::optional<std::vector<Row>> run_resumable(std::string_view command, const Pr
   std::vector<std::size_t> todo;
   std::optional<PartialWriter> file;
   if (processes.leader()) {
-    for (std::size_t t = 0; t < total; ++t)
-      if (earlier.done.empty() || !earlier.done[t]) todo.push_back(t);
-    std::vector<bool>().swap(earlier.done);
-    // Several runs: handed out a point at a time, each point through every run in turn, not a
-    // run at a time. Run after run, the threads took the same solver together, and Bullet's
-    // Dantzig solves are taken one at a time (solvers/bullet/engine.cpp): the main job's
-    // work-precision study would take 152 s on 2 threads by its rows' CPU times, against 145 s
-    // a point at a time and 141 s at best. The rows are the same; only their order differs.
-    const std::size_t n = cases.size();
-    if (runs.size() > 1)
-      std::stable_sort(todo.begin(), todo.end(), [n](std::size_t a, std::size_t b) { return a % n < b % n; });
-    // The rows read, a torn last line dropped: rewritten from the ones kept; else, when the
-    // file holds each as it would be written, cut after its last whole record; else rewritten
-    // from the file's own rows, streamed in its order (the output is copied in point order
-    // from the file either way).
-    if (earlier.rows.size() != earlier.count && earlier.file.as_printed) {
-      std::filesystem::resize_file(partial, earlier.file.whole_bytes);
-    } else {
-      write_atomically(partial, [&](std::ostream& out) {
-        out << partial_header(with_run) << '\n';
-        if (earlier.rows.size() == earlier.count)
-          for (const Row& row : earlier.rows) out << partial_line(row, with_run) << '\n';
-        else
-          each_partial_row(partial, cases, runs, [&](Row&& row) { out << partial_line(row, with_run) << '\n'; });
-      });
-    }
+    todo = tasks_left(cases.size(), runs.size(), earlier);
+    restore_partial_file(partial, cases, runs, earlier);
     if (!keep_rows) std::vector<Row>().swap(earlier.rows);  // in the file now, which is where the output comes from
     if (lines) lines->assign(total, std::string());
     file.emplace(partial, with_run, cases.size(), lines, todo.size());
@@ -156,19 +194,7 @@ std::optional<std::vector<Row>> run_resumable(std::string_view command, const Pr
     options.on_progress = [&](std::size_t done, std::size_t) { watch.set_done(finished = resumed + done); };
   }
 
-  std::vector<Row> rows;
-  try {
-    rows = processes.sweep(cases, runs, todo, options);
-  } catch (const std::exception& e) {
-    watch.finish();
-    if (!file) throw;
-    try {
-      file->write_all();  // the rows finished before the failure
-    } catch (const std::exception&) {
-      // The failure may be the file's own: the sweep's error says what happened.
-    }
-    throw std::runtime_error(std::string(e.what()) + " (finished rows are in " + partial + ")");
-  }
+  std::vector<Row> rows = sweep_keeping_finished(processes, cases, runs, todo, options, watch, file, partial);
   watch.finish();
   if (!file) return std::vector<Row>{};
   file->write_all();

@@ -616,7 +616,22 @@ class Reader {
   // The family's own keys, else [defaults], else the built-in defaults; and the rules on
   // which keys a family's scenes need.
   Entries resolve(const Entries& own, const Entries& defaults, const std::string& prefix,
-                   std::uint32_t line) const {
+                  std::uint32_t line) const {
+    Entries eff = merged(own, defaults, prefix, line);
+    const bool physical = resolve_physical(own, eff, prefix, line);
+    require_every_scene_keys(eff, prefix, line, physical);
+    const std::vector<int>& scenes = eff[index(kScene)].choices;
+    drop_keys_of_absent_bodies(own, eff, scenes);
+    require_chain_keys(eff, scenes, prefix, line);
+    resolve_pulse_keys(own, eff, prefix, line, physical);
+    apply_symmetry(own, eff);
+    require_body_keys(eff, scenes, prefix, line, physical);
+    return eff;
+  }
+
+  // Each key from the family's own table, else [defaults], else its built-in default; an
+  // alias given as its field.
+  Entries merged(const Entries& own, const Entries& defaults, const std::string& prefix, std::uint32_t line) const {
     auto builtin = [&](Key k, double v) {
       Entry s;
       s.given = true;
@@ -648,25 +663,34 @@ class Reader {
       else if (!own[index(f)].given && defaults[index(a)].given) eff[index(f)] = defaults[index(a)];
       eff[index(a)] = Entry{};
     }
-    // A family in physical units (cases/physical.hpp): never beside the Pi terms they give.
+    return eff;
+  }
+
+  // A family in physical units (cases/physical.hpp): never beside the Pi terms they give.
+  // Whether it is one.
+  bool resolve_physical(const Entries& own, Entries& eff, const std::string& prefix, std::uint32_t line) const {
     const Entry* physical = nullptr;
     for (Key k = kFirstPhysical; k < kKeyCount && !physical; ++k)
       if (eff[index(k)].given) physical = &eff[index(k)];
-    if (physical) {
-      // A family's own Pi term is a mistake; a default one serves the families in Pi terms.
-      for (Key k = kFirstNumber; k < kSymmetric; ++k) {
-        if (!replaced_by_physical(k)) continue;
-        if (own[index(k)].given)
-          fail(own[index(k)].line, own[index(k)].field,
-               "not with " + physical->field + " (line " + std::to_string(physical->line) +
-                   "): a family is given in Pi terms or in physical units, not both");
-        eff[index(k)] = Entry{};
-      }
-      for (std::string_view key : {"t0", "gap"})
-        if (!eff[index(key_of(key))].given)
-          fail(line, prefix + "." + std::string(key), "required by a family in physical units");
+    if (!physical) return false;
+    // A family's own Pi term is a mistake; a default one serves the families in Pi terms.
+    for (Key k = kFirstNumber; k < kSymmetric; ++k) {
+      if (!replaced_by_physical(k)) continue;
+      if (own[index(k)].given)
+        fail(own[index(k)].line, own[index(k)].field,
+             "not with " + physical->field + " (line " + std::to_string(physical->line) +
+                 "): a family is given in Pi terms or in physical units, not both");
+      eff[index(k)] = Entry{};
     }
+    for (std::string_view key : {"t0", "gap"})
+      if (!eff[index(key_of(key))].given)
+        fail(line, prefix + "." + std::string(key), "required by a family in physical units");
+    return true;
+  }
 
+  // The choices, and the numbers every scene needs that have no default.
+  void require_every_scene_keys(const Entries& eff, const std::string& prefix, std::uint32_t line,
+                                bool physical) const {
     for (Key k = 0; k < kSymmetric; ++k) {
       const bool required = is_choice(k) || (number_field(k)->required && use_of(k) == FieldUse::every);
       if (!required || eff[index(k)].given || (physical && replaced_by_physical(k))) continue;
@@ -674,19 +698,13 @@ class Reader {
       if (key_name(k) == "eps") fail(line, field, "required (the coefficient of restitution is always stated)");
       fail(line, field, "required");
     }
+  }
 
-    const std::vector<int>& scenes = eff[index(kScene)].choices;
-    const bool body1 = std::any_of(scenes.begin(), scenes.end(),
-                                   [](int s) { return uses_body1(static_cast<Scene>(s)); });
-    const bool body2 = std::any_of(scenes.begin(), scenes.end(),
-                                   [](int s) { return uses_body2(static_cast<Scene>(s)); });
-    const bool chain = std::any_of(scenes.begin(), scenes.end(),
-                                   [](int s) { return has_chain(static_cast<Scene>(s)); });
+  // A family's own key for a body its scenes lack is a mistake; a default for it is
+  // merely not needed here, since [defaults] serves families of every scene.
+  void drop_keys_of_absent_bodies(const Entries& own, Entries& eff, const std::vector<int>& scenes) const {
     const std::string used_by = "not used by scene" + std::string(scenes.size() > 1 ? "s " : " ") +
                                 scene_list(scenes);
-
-    // A family's own key for a body its scenes lack is a mistake; a default for it is
-    // merely not needed here, since [defaults] serves families of every scene.
     for (Key k = kFirstNumber; k < kKeyCount; ++k) {
       if (k >= kName && !is_physical(k)) continue;
       if (use_of(k) == FieldUse::every || is_pulse_key(k)) continue;
@@ -697,28 +715,43 @@ class Reader {
       if (o.given) fail(o.line, o.field, used_by + " (" + keys_of(use_of(k)) + " describe " + bodies_of(use_of(k)) + ")");
       eff[index(k)] = Entry{};
     }
+  }
+
+  void require_chain_keys(const Entries& eff, const std::vector<int>& scenes, const std::string& prefix,
+                          std::uint32_t line) const {
+    const bool chain = std::any_of(scenes.begin(), scenes.end(),
+                                   [](int s) { return has_chain(static_cast<Scene>(s)); });
     for (Key k = kFirstNumber; k < kSymmetric; ++k)
       if (chain && is_chain(k) && number_field(k)->required && !eff[index(k)].given)
         fail(line, prefix + "." + std::string(key_name(k)), "required by scene chain (" +
                                                                 std::string(number_field(k)->help) + ")");
+  }
 
-    resolve_pulse_keys(own, eff, prefix, line, physical != nullptr);
-
+  // symmetric = true sets body 2's keys from body 1's: the family's own are a mistake.
+  void apply_symmetry(const Entries& own, Entries& eff) const {
     const Entry& sym = eff[index(kSymmetric)];
-    if (sym.given && sym.flag) {
-      for (Key k = kFirstNumber; k < kKeyCount; ++k) {
-        if (!is_body2(k) || (k >= kSymmetric && !is_physical(k))) continue;
-        const Entry& o = own[index(k)];
-        if (o.given)
-          fail(o.line, o.field,
-               "not allowed with symmetric = true (line " + std::to_string(sym.line) + "), which sets " +
-                   std::string(is_physical(k) ? physical_of(k)->name : key_name(k)) + " = " +
-                   (is_physical(k) ? physical_twin(physical_of(k)->name)
-                                   : std::string(key_name(body1_twin(k)))));
-        eff[index(k)] = Entry{};  // a default gives way to the family's symmetry
-      }
+    if (!(sym.given && sym.flag)) return;
+    for (Key k = kFirstNumber; k < kKeyCount; ++k) {
+      if (!is_body2(k) || (k >= kSymmetric && !is_physical(k))) continue;
+      const Entry& o = own[index(k)];
+      if (o.given)
+        fail(o.line, o.field,
+             "not allowed with symmetric = true (line " + std::to_string(sym.line) + "), which sets " +
+                 std::string(is_physical(k) ? physical_of(k)->name : key_name(k)) + " = " +
+                 (is_physical(k) ? physical_twin(physical_of(k)->name)
+                                 : std::string(key_name(body1_twin(k)))));
+      eff[index(k)] = Entry{};  // a default gives way to the family's symmetry
     }
+  }
 
+  // The required keys of the bodies the scenes have (body 2's not with symmetric = true).
+  void require_body_keys(const Entries& eff, const std::vector<int>& scenes, const std::string& prefix,
+                         std::uint32_t line, bool physical) const {
+    const bool body1 = std::any_of(scenes.begin(), scenes.end(),
+                                   [](int s) { return uses_body1(static_cast<Scene>(s)); });
+    const bool body2 = std::any_of(scenes.begin(), scenes.end(),
+                                   [](int s) { return uses_body2(static_cast<Scene>(s)); });
+    const Entry& sym = eff[index(kSymmetric)];
     for (Key k = kFirstNumber; k < kKeyCount; ++k) {
       if (k >= kSymmetric && !is_physical(k)) continue;
       // In physical units the periods are required, the masses default to m0.
@@ -734,7 +767,6 @@ class Reader {
       fail(line, prefix + "." + std::string(key_name(k)),
            "required by scene " + scene_list(users) + (is_body2(k) ? " (or set symmetric = true)" : ""));
     }
-    return eff;
   }
 
   // The keys of one pulse (record, cycles, mp_gamma, mp_nu): a family's pulses all use each

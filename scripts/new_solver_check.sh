@@ -34,7 +34,7 @@ text = text.replace(anchor, anchor + "".join(row), 1)
 open("solvers/registry.cpp", "w").write(text)
 facts = open(f"{example}/{solver}.facts.txt").read()
 text = open("tests/solver_contract_test.cpp").read()
-anchor = "  };\n  return table;\n"
+anchor = "  });\n  return table;\n"
 assert anchor in text, "tests/solver_contract_test.cpp: no facts table"
 text = text.replace(anchor, facts + anchor, 1)
 open("tests/solver_contract_test.cpp", "w").write(text)

@@ -29,6 +29,7 @@ packages=(
   python3 python3-matplotlib python3-numpy python3-jsonschema
   python3-scipy python3-dev pybind11-dev
   chromium chromium-driver python3-selenium
+  universal-ctags
 )
 missing=()
 for p in "${packages[@]}"; do

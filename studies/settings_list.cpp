@@ -12,7 +12,6 @@
 #include "cases/toml_input.hpp"
 #include "programs/process.hpp"
 #include "kit/settings_fields.hpp"
-#include "solvers/registry.hpp"
 
 namespace pb {
 
@@ -102,12 +101,8 @@ class Reader {
   std::string source_;
 };
 
-}  // namespace
-
-SettingsList parse_settings_list(std::string_view text, std::string_view source) {
-  const Reader r(source);
-  const toml::table doc = parse_toml<SettingsListError>(text, source);
-  SettingsList list;
+// The top-level keys into `list`; the [[run]] tables.
+const toml::array& read_top_level(const Reader& r, const toml::table& doc, SettingsList& list) {
   const toml::array* runs = nullptr;
   for (auto&& [key, node] : doc) {
     const std::string k(key.str());
@@ -131,158 +126,221 @@ SettingsList parse_settings_list(std::string_view text, std::string_view source)
     }
   }
   if (!runs || runs->empty()) r.fail(nullptr, "run", "no [[run]] tables");
+  return *runs;
+}
 
-  for (std::size_t i = 0; i < runs->size(); ++i) {
-    const toml::node& rn = *runs->get(i);
-    const std::string field = "run[" + std::to_string(i) + "]";
-    const auto* t = rn.as_table();
-    if (!t) r.fail(&rn, field, "must be a table");
-    std::string solver;
-    std::vector<std::string> variants = {""};
-    // Every number of Settings (kit/settings_fields.hpp) may be a list; unset, its
-    // default. The rules below are the list's own: the solver's check() judges the rest.
-    std::array<std::vector<double>, kSettingFields.size()> values;
-    std::array<std::vector<std::string>, kSettingFields.size()> names;  // a name's values
-    std::array<const toml::node*, kSettingFields.size()> given{};
-    for (std::size_t j = 0; j < kSettingFields.size(); ++j) {
-      if (kSettingFields[j].text) names[j] = {Settings{}.*kSettingFields[j].text};
-      else values[j] = {kSettingFields[j].get(Settings{})};
-    }
-    const auto axis_size = [&](std::size_t j) { return kSettingFields[j].text ? names[j].size() : values[j].size(); };
-    bool monitor = Settings{}.monitor;
-    const toml::node* solver_node = &rn;
-    // The physical forms (studies/physical_settings.hpp): 0, not given.
-    std::vector<double> h_s = {0.0}, k_contact = {0.0};
-    const toml::node *h_s_node = nullptr, *k_contact_node = nullptr;
-    for (auto&& [key, v] : *t) {
-      const std::string k(key.str()), f = field + "." + k;
-      const auto j = setting_field_index(k);
-      if (k == "solver") {
-        const auto* s = v.as_string();
-        if (!s) r.fail(&v, f, "must be a string");
-        solver = s->get();
-        solver_node = &v;
-      } else if (k == "variant") {
-        variants = r.strings(v, f);
-      } else if (k == "persistent") {
-        // The external solver's persistent variant (docs/external.md), as `--persistent`.
-        const auto* b = v.as_boolean();
-        if (!b) r.fail(&v, f, "must be true or false");
-        if (t->contains("variant")) r.fail(&v, f, "give persistent or variant, not both");
-        if (b->get()) variants = {std::string(programs::kPersistent)};
-      } else if (k == "h_s" || k == "k_contact") {
-        std::vector<double>& physical = k == "h_s" ? h_s : k_contact;
-        physical = r.numbers(v, f);
-        for (double x : physical)
-          if (!(x > 0.0))
-            r.fail(&v, f, k == "h_s" ? "must be > 0 (the step in seconds)" : "must be > 0 (N/m; N/m^1.5 for the Hertz family)");
-        (k == "h_s" ? h_s_node : k_contact_node) = &v;
-      } else if (k == "monitor") {
-        const auto* b = v.as_boolean();
-        if (!b) r.fail(&v, f, "must be true or false");
-        monitor = b->get();
-      } else if (!j) {
-        r.fail(&v, f, "unknown key");
-      } else if (kSettingFields[*j].text) {
-        names[*j] = r.strings(v, f);
-      } else if (k == "steps") {
-        values[*j] = r.steps(v, f);
-      } else if (k == "step_cap") {
-        const auto* n = v.as_integer();
-        if (!n || n->get() < 1) r.fail(&v, f, "must be an integer >= 1");
-        values[*j] = {static_cast<double>(n->get())};
-      } else if (k == "time_limit") {
-        const auto* n = v.as_integer();
-        const auto* x = v.as_floating_point();
-        const double seconds = n ? static_cast<double>(n->get()) : x ? x->get() : -1.0;
-        if (!(seconds > 0.0) || !std::isfinite(seconds)) r.fail(&v, f, "must be one number of seconds > 0");
-        values[*j] = {seconds};
-      } else {
-        values[*j] = r.numbers(v, f);
-        for (double x : values[*j])
-          if (!kSettingFields[*j].number && x != std::floor(x)) r.fail(&v, f, "must be a whole number");
-        if (k == "wh")
-          for (double x : values[*j])
-            if (!(x > 0.0)) r.fail(&v, f, "must be > 0 (the step as w_max h)");
+// One [[run]] table as read: its solver, and the values of each axis of its product.
+struct RunTable {
+  const toml::table* table = nullptr;
+  const toml::node* node = nullptr;  // the table's, for the errors of the whole run
+  std::string field;                 // "run[i]"
+  std::string solver;
+  const toml::node* solver_node = nullptr;
+  std::vector<std::string> variants = {""};
+  // Every number of Settings (kit/settings_fields.hpp) may be a list; unset, its
+  // default. The rules below are the list's own: the solver's check() judges the rest.
+  std::array<std::vector<double>, kSettingFields.size()> values;
+  std::array<std::vector<std::string>, kSettingFields.size()> names;  // a name's values
+  std::array<const toml::node*, kSettingFields.size()> given{};
+  bool monitor = Settings{}.monitor;
+  // The physical forms (studies/physical_settings.hpp): 0, not given.
+  std::vector<double> h_s = {0.0}, k_contact = {0.0};
+  const toml::node *h_s_node = nullptr, *k_contact_node = nullptr;
+
+  std::size_t axis_size(std::size_t j) const { return kSettingFields[j].text ? names[j].size() : values[j].size(); }
+};
+
+// A key of Settings (every other key of a [[run]] is read by read_run_key).
+void read_setting(const Reader& r, const std::string& k, std::size_t j, const toml::node& v, const std::string& f,
+                  RunTable& run) {
+  if (kSettingFields[j].text) {
+    run.names[j] = r.strings(v, f);
+  } else if (k == "steps") {
+    run.values[j] = r.steps(v, f);
+  } else if (k == "step_cap") {
+    const auto* n = v.as_integer();
+    if (!n || n->get() < 1) r.fail(&v, f, "must be an integer >= 1");
+    run.values[j] = {static_cast<double>(n->get())};
+  } else if (k == "time_limit") {
+    const auto* n = v.as_integer();
+    const auto* x = v.as_floating_point();
+    const double seconds = n ? static_cast<double>(n->get()) : x ? x->get() : -1.0;
+    if (!(seconds > 0.0) || !std::isfinite(seconds)) r.fail(&v, f, "must be one number of seconds > 0");
+    run.values[j] = {seconds};
+  } else {
+    run.values[j] = r.numbers(v, f);
+    for (double x : run.values[j])
+      if (!kSettingFields[j].number && x != std::floor(x)) r.fail(&v, f, "must be a whole number");
+    if (k == "wh")
+      for (double x : run.values[j])
+        if (!(x > 0.0)) r.fail(&v, f, "must be > 0 (the step as w_max h)");
+  }
+  run.given[j] = &v;
+}
+
+// One key of a [[run]] table into `run`.
+void read_run_key(const Reader& r, const std::string& k, const toml::node& v, RunTable& run) {
+  const std::string f = run.field + "." + k;
+  if (k == "solver") {
+    const auto* s = v.as_string();
+    if (!s) r.fail(&v, f, "must be a string");
+    run.solver = s->get();
+    run.solver_node = &v;
+  } else if (k == "variant") {
+    run.variants = r.strings(v, f);
+  } else if (k == "persistent") {
+    // The external solver's persistent variant (docs/external.md), as `--persistent`.
+    const auto* b = v.as_boolean();
+    if (!b) r.fail(&v, f, "must be true or false");
+    if (run.table->contains("variant")) r.fail(&v, f, "give persistent or variant, not both");
+    if (b->get()) run.variants = {std::string(programs::kPersistent)};
+  } else if (k == "h_s" || k == "k_contact") {
+    std::vector<double>& physical = k == "h_s" ? run.h_s : run.k_contact;
+    physical = r.numbers(v, f);
+    for (double x : physical)
+      if (!(x > 0.0))
+        r.fail(&v, f, k == "h_s" ? "must be > 0 (the step in seconds)" : "must be > 0 (N/m; N/m^1.5 for the Hertz family)");
+    (k == "h_s" ? run.h_s_node : run.k_contact_node) = &v;
+  } else if (k == "monitor") {
+    const auto* b = v.as_boolean();
+    if (!b) r.fail(&v, f, "must be true or false");
+    run.monitor = b->get();
+  } else if (const auto j = setting_field_index(k)) {
+    read_setting(r, k, *j, v, f, run);
+  } else {
+    r.fail(&v, f, "unknown key");
+  }
+}
+
+RunTable read_run(const Reader& r, const toml::node& rn, std::size_t i) {
+  RunTable run;
+  run.node = run.solver_node = &rn;
+  run.field = "run[" + std::to_string(i) + "]";
+  run.table = rn.as_table();
+  if (!run.table) r.fail(&rn, run.field, "must be a table");
+  for (std::size_t j = 0; j < kSettingFields.size(); ++j) {
+    if (kSettingFields[j].text) run.names[j] = {Settings{}.*kSettingFields[j].text};
+    else run.values[j] = {kSettingFields[j].get(Settings{})};
+  }
+  for (auto&& [key, v] : *run.table) read_run_key(r, std::string(key.str()), v, run);
+  return run;
+}
+
+// A [[run]] gives its step one way (steps, wh or h_s) and its stiffness one way (stiffness or
+// k_contact).
+void check_one_form_each(const Reader& r, const RunTable& run) {
+  const std::size_t steps = *setting_field_index("steps"), wh = *setting_field_index("wh");
+  if (run.given[steps] && run.given[wh])
+    r.fail(run.given[wh], run.field + ".wh", "give steps or wh, not both (one [[run]] each)");
+  const std::size_t stiffness = *setting_field_index("stiffness");
+  for (const auto& [node, key, pi_node, pi_key] :
+       {std::tuple{run.h_s_node, "h_s", run.given[steps] ? run.given[steps] : run.given[wh],
+                   run.given[steps] ? "steps" : "wh"},
+        std::tuple{run.k_contact_node, "k_contact", run.given[stiffness], "stiffness"}})
+    if (node && pi_node)
+      r.fail(node, run.field + "." + key,
+             "not with " + std::string(pi_key) +
+                 " (a [[run]] gives its step and stiffness in physical units or in Pi terms, not both)");
+}
+
+// The order of the product: variant outermost, then the numbers in the table's order,
+// the step (steps or w_max h) innermost, so that one setting's step sizes are adjacent.
+std::vector<std::size_t> product_axes() {
+  const std::size_t steps = *setting_field_index("steps"), wh = *setting_field_index("wh");
+  std::vector<std::size_t> axes;
+  for (std::size_t j = 0; j < kSettingFields.size(); ++j)
+    if (j != steps && j != wh) axes.push_back(j);
+  axes.push_back(steps);
+  axes.push_back(wh);
+  return axes;
+}
+
+// The settings a run expands to. Counted before anything is expanded; the product so far is
+// at most kMaxSettings when the next list's length (bounded by the file's size) multiplies
+// it, so it cannot overflow.
+std::size_t count_settings(const Reader& r, const RunTable& run, const std::vector<std::size_t>& axes,
+                           std::size_t listed) {
+  std::size_t product = run.variants.size() * run.h_s.size() * run.k_contact.size();
+  for (std::size_t j : axes) {
+    product *= run.axis_size(j);
+    if (listed + product > kMaxSettings)
+      r.fail(run.node, run.field, "the list expands to more than " + std::to_string(kMaxSettings) +
+                                      " settings (the product of its lists' lengths); split the study");
+  }
+  return product;
+}
+
+// A physical value is mapped per case (resolve_physical_settings); here its Pi form stands
+// in as a valid one (w_max h = 1, K = 1), so that the check says whether the variant uses it
+// at all.
+void check_physical_forms(const Reader& r, const SolverInfo& info, const RunTable& run, const Settings& settings,
+                          double h, double k) {
+  Settings probe = settings;
+  if (h > 0.0) probe.wh = 1.0;
+  if (k > 0.0) probe.stiffness = 1.0;
+  if (std::string bad = info.check(probe); !bad.empty()) {
+    const bool step = h > 0.0 && (k == 0.0 || bad.rfind("wh: ", 0) == 0);
+    // The reason names the Pi form the value stood in for: the field says which it is.
+    const std::string_view pi_form = step ? "wh: " : "stiffness: ";
+    if (bad.rfind(pi_form, 0) == 0) bad.erase(0, pi_form.size());
+    r.fail(step ? run.h_s_node : run.k_contact_node, run.field + (step ? ".h_s" : ".k_contact"),
+           clip(bad, kMaxEchoedReason));
+  }
+}
+
+// The run's product into list.runs (and list.physical), each setting checked by its solver.
+void expand_run(const Reader& r, const SolverInfo* info, const RunTable& run, SettingsList& list) {
+  const std::vector<std::size_t> axes = product_axes();
+  const std::size_t product = count_settings(r, run, axes, list.runs.size());
+  std::vector<std::size_t> at(axes.size(), 0);
+  // k_contact beside the variant, h_s innermost: it is the step.
+  const std::size_t numbers = product / (run.variants.size() * run.h_s.size() * run.k_contact.size());
+  for (const std::string& variant : run.variants)
+    for (double k : run.k_contact)
+      for (std::size_t n = 0; n < numbers; ++n) {
+        SweepRun spec{info, {}};
+        spec.settings.variant = variant;
+        spec.settings.monitor = run.monitor;
+        for (std::size_t a = 0; a < axes.size(); ++a) {
+          const SettingField& sf = kSettingFields[axes[a]];
+          if (sf.text) spec.settings.*sf.text = run.names[axes[a]][at[a]];
+          else sf.set(spec.settings, run.values[axes[a]][at[a]]);
+        }
+        for (std::size_t a = axes.size(); a-- > 0;) {  // odometer: the last axis turns fastest
+          if (++at[a] < run.axis_size(axes[a])) break;
+          at[a] = 0;
+        }
+        // The check refuses a key the variant does not use, by its value (pb::unused_setting):
+        // a [[run]]'s key applies to each variant of its list, and at its default it changes
+        // nothing for those that do not use it (theta 1/2 beside d1-minus-linear).
+        if (const std::string bad = info->check(spec.settings); !bad.empty())
+          r.fail(run.node, run.field, clip(bad, kMaxEchoedReason));  // it may echo the file's own values
+        for (double h : run.h_s) {
+          check_physical_forms(r, *info, run, spec.settings, h, k);
+          list.runs.push_back(spec);
+          list.physical.push_back({h, k});
+        }
       }
-      if (j) given[*j] = &v;
-    }
-    const SolverInfo* info = find_solver(solver);
-    if (const std::string_view needs = left_out_needs(solver); !needs.empty()) {
-      list.left_out.push_back(field + ": " + solver + " (needs " + std::string(needs) + ")");
+}
+
+}  // namespace
+
+SettingsList parse_settings_list(std::string_view text, std::string_view source) {
+  const Reader r(source);
+  const toml::table doc = parse_toml<SettingsListError>(text, source);
+  SettingsList list;
+  const toml::array& runs = read_top_level(r, doc, list);
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const RunTable run = read_run(r, *runs.get(i), i);
+    const SolverInfo* info = find_solver(run.solver);
+    if (const std::string_view needs = left_out_needs(run.solver); !needs.empty()) {
+      list.left_out.push_back(run.field + ": " + run.solver + " (needs " + std::string(needs) + ")");
       continue;
     }
-    if (solver.empty()) r.fail(&rn, field + ".solver", "missing");
-    if (!info) r.fail(solver_node, field + ".solver", "unknown solver '" + clip(solver) + "'");
-    const std::size_t steps = *setting_field_index("steps"), wh = *setting_field_index("wh");
-    if (given[steps] && given[wh]) r.fail(given[wh], field + ".wh", "give steps or wh, not both (one [[run]] each)");
-    const std::size_t stiffness = *setting_field_index("stiffness");
-    for (const auto& [node, key, pi_node, pi_key] :
-         {std::tuple{h_s_node, "h_s", given[steps] ? given[steps] : given[wh], given[steps] ? "steps" : "wh"},
-          std::tuple{k_contact_node, "k_contact", given[stiffness], "stiffness"}})
-      if (node && pi_node)
-        r.fail(node, field + "." + key,
-               "not with " + std::string(pi_key) +
-                   " (a [[run]] gives its step and stiffness in physical units or in Pi terms, not both)");
-    // The order of the product: variant outermost, then the numbers in the table's order,
-    // the step (steps or w_max h) innermost, so that one setting's step sizes are adjacent.
-    std::vector<std::size_t> axes;
-    for (std::size_t j = 0; j < kSettingFields.size(); ++j)
-      if (j != steps && j != wh) axes.push_back(j);
-    axes.push_back(steps);
-    axes.push_back(wh);
-    // Counted before anything is expanded; the product so far is at most kMaxSettings
-    // when the next list's length (bounded by the file's size) multiplies it, so it
-    // cannot overflow.
-    std::size_t product = variants.size() * h_s.size() * k_contact.size();
-    for (std::size_t j : axes) {
-      product *= axis_size(j);
-      if (list.runs.size() + product > kMaxSettings)
-        r.fail(&rn, field, "the list expands to more than " + std::to_string(kMaxSettings) +
-                               " settings (the product of its lists' lengths); split the study");
-    }
-    std::vector<std::size_t> at(axes.size(), 0);
-    // k_contact beside the variant, h_s innermost: it is the step.
-    const std::size_t numbers = product / (variants.size() * h_s.size() * k_contact.size());
-    for (const std::string& variant : variants)
-      for (double k : k_contact)
-        for (std::size_t n = 0; n < numbers; ++n) {
-          SweepRun spec{info, {}};
-          spec.settings.variant = variant;
-          spec.settings.monitor = monitor;
-          for (std::size_t a = 0; a < axes.size(); ++a) {
-            const SettingField& sf = kSettingFields[axes[a]];
-            if (sf.text) spec.settings.*sf.text = names[axes[a]][at[a]];
-            else sf.set(spec.settings, values[axes[a]][at[a]]);
-          }
-          for (std::size_t a = axes.size(); a-- > 0;) {  // odometer: the last axis turns fastest
-            if (++at[a] < axis_size(axes[a])) break;
-            at[a] = 0;
-          }
-          // The check refuses a key the variant does not use, by its value (pb::unused_setting):
-          // a [[run]]'s key applies to each variant of its list, and at its default it changes
-          // nothing for those that do not use it (theta 1/2 beside d1-minus-linear).
-          if (const std::string bad = info->check(spec.settings); !bad.empty())
-            r.fail(&rn, field, clip(bad, kMaxEchoedReason));  // it may echo the file's own values
-          for (double h : h_s) {
-            // A physical value is mapped per case (resolve_physical_settings); here its Pi form
-            // stands in as a valid one (w_max h = 1, K = 1), so that the check says whether
-            // the variant uses it at all.
-            Settings probe = spec.settings;
-            if (h > 0.0) probe.wh = 1.0;
-            if (k > 0.0) probe.stiffness = 1.0;
-            if (std::string bad = info->check(probe); !bad.empty()) {
-              const bool step = h > 0.0 && (k == 0.0 || bad.rfind("wh: ", 0) == 0);
-              // The reason names the Pi form the value stood in for: the field says which it is.
-              const std::string_view pi_form = step ? "wh: " : "stiffness: ";
-              if (bad.rfind(pi_form, 0) == 0) bad.erase(0, pi_form.size());
-              r.fail(step ? h_s_node : k_contact_node, field + (step ? ".h_s" : ".k_contact"),
-                     clip(bad, kMaxEchoedReason));
-            }
-            list.runs.push_back(spec);
-            list.physical.push_back({h, k});
-          }
-        }
+    if (run.solver.empty()) r.fail(run.node, run.field + ".solver", "missing");
+    if (!info) r.fail(run.solver_node, run.field + ".solver", "unknown solver '" + clip(run.solver) + "'");
+    check_one_form_each(r, run);
+    expand_run(r, info, run, list);
   }
   if (list.runs.empty())
     r.fail(nullptr, "run", "every [[run]] names an engine this build left out: " + list.left_out.front());

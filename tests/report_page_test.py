@@ -174,8 +174,8 @@ def lucky_report(pb, tmp, summary):
     return os.path.join(tmp, "lucky")
 
 
-def main():
-    pb, src = sys.argv[1], sys.argv[2]
+def require_browser():
+    """Skips the test where Chromium, chromedriver or selenium is missing."""
     for program in (CHROMIUM, CHROMEDRIVER):
         if not os.access(program, os.X_OK):
             skip(f"{program} not found")
@@ -183,120 +183,150 @@ def main():
         import selenium  # noqa: F401
     except ImportError:
         skip("python3-selenium not found")
-    from selenium.common.exceptions import WebDriverException
+
+
+def make_study(pb, src, tmp):
+    """The case set and settings list through `poundbench workprecision` and `poundbench report`
+    in tmp: the report's folder, and the study's summary rows."""
+    with open(os.path.join(tmp, "mine.toml"), "w") as f:
+        f.write(CASES.replace("RECORD", os.path.join(src, "cases", "records", "mp-noise-20s.csv")))
+    settings = SETTINGS
+    built = subprocess.run([pb, "solvers"], capture_output=True, text=True, check=True).stdout
+    if not re.search(r"^ode ", built, re.M):
+        settings = settings.replace('solver = "ode"\nvariant = "dantzig-faithful"\nsteps = [16, 64]', "solver = "
+                                    '"moreau-jean"\ntheta = 1.0\nsteps = [16, 64]')
+    with open(os.path.join(tmp, "my-list.toml"), "w") as f:
+        f.write(settings)
+    subprocess.run([pb, "workprecision", "mine.toml", "--settings", "my-list.toml", "--repetitions", "1",
+                    "--out", "wp.csv", "--points", "wp-points.csv"], cwd=tmp, check=True,
+                   stderr=subprocess.DEVNULL)
+    made = subprocess.run([pb, "report", "wp.csv", "--points", "wp-points.csv", "--out", "report"], cwd=tmp,
+                          capture_output=True, text=True)
+    if made.returncode != 0:
+        fail(f"poundbench report exited {made.returncode}: {made.stderr}")
+    with open(os.path.join(tmp, "wp.csv"), newline="") as f:
+        summary = list(csv.DictReader(f))
+    return os.path.join(tmp, "report"), summary
+
+
+def markdown_answers(out):
+    """The report's markdown answers, checked for their number and the record's scope."""
+    with open(os.path.join(out, "README.md")) as f:
+        expected = answer_rows(f.read())
+    # 2 measures; pair (the pulse), pair records (the record: a scope of its own, never merged
+    # into the pulse's), wall, all scenes, its time-steppers; 4 targets
+    if len(expected) != 2 * 5 * 4:
+        fail(f"the markdown has {len(expected)} answers, not 2 x 5 scopes x 4 targets")
+    if not any(scene == "pair records" for _, scene, _ in expected):
+        fail("the record's family is not a scope of its own (pair records)")
+    return expected
+
+
+def no_console_errors(driver):
+    errors = [e for e in driver.get_log("browser") if e["level"] == "SEVERE"]
+    if errors:
+        fail(f"console errors: {errors}")
+
+
+def one_rule_agrees(driver, pb, tmp, summary):
+    """The one rule (reports/robust.py) in the page as in the markdown: a study where
+    Moreau-Jean's coarse N = 16 meets 1 % and its finer N = 32 does not."""
+    lucky_out = lucky_report(pb, tmp, summary)
+    with open(os.path.join(lucky_out, "README.md")) as f:
+        lucky = answer_rows(f.read())
+    picks = {k: v[0] for k, v in lucky.items() if k[2] == "0.01"}
+    if not picks or any(p != "moreau-jean theta=0.5, N = 64" for p in picks.values()):
+        fail(f"the markdown's answers at 1 % on the lucky study: {picks}; want N = 64 (N = 16 is lucky)")
+    driver.get("file://" + os.path.join(lucky_out, "report.html"))
+    chooser_agrees(driver, lucky)
+
+
+def hover(driver, point):
+    """The tooltip's lines over a point. The chart is scrolled into view first (by the caller),
+    so that moving to a point does not scroll the page under the pointer; a move that still
+    leaves no tooltip (the page laid out again under it) is made once more."""
     from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+
+    tooltip = driver.find_element(By.ID, "tooltip")
+    for _ in range(3):
+        ActionChains(driver).move_to_element(point).perform()
+        text = tooltip.text if tooltip.is_displayed() else ""
+        if text:
+            return text.split("\n")
+        time.sleep(0.2)
+    fail(f"hovering the point at {point.rect} shows no tooltip")
+
+
+def tooltips_agree(driver, summary, points):
+    """Hovering points of the first family's diagram: each tooltip against the CSV. The
+    settings seen."""
+    from answer import cost_cell
+    from rows import setting_label
     from selenium.webdriver.common.by import By
     from selenium.webdriver.support.ui import Select
 
-    sys.path.insert(0, os.path.join(src, "reports"))
-    from answer import cost_cell  # noqa: E402
-    from rows import setting_label  # noqa: E402
+    family = Select(driver.find_element(By.ID, "wp-family")).first_selected_option.text
+    if len(points) < 5:
+        fail(f"{len(points)} points in {family}'s diagram")
+    driver.execute_script("document.getElementById('wp-chart').scrollIntoView()")
+    seen = set()
+    for point in points[::2]:
+        lines = hover(driver, point)
+        rows = [r for r in summary if r["family"] == family and setting_label(r) == lines[0]]
+        if len(rows) != 1:
+            fail(f"the tooltip names {lines[0]!r}, which {family} has {len(rows)} times")
+        r = rows[0]
+        n = re.search(r"N = (\d+)", lines[0])
+        if n and lines[1] != f"N = {n.group(1)}":
+            fail(f"tooltip {lines}: N")
+        shown = float(lines[2].split(": ")[1])
+        if abs(shown - float(r["err_median"])) > 5e-3 * abs(float(r["err_median"])) + 1e-300 and \
+                not (float(r["err_median"]) < 1e-13 and shown < 1e-13):
+            fail(f"tooltip {lines}: error {shown}, the CSV's {r['err_median']} (3 digits)")
+        if lines[3] != f"CPU per run: {cost_cell(r)} us":
+            fail(f"tooltip {lines}: cost, the CSV's {cost_cell(r)}")
+        seen.add(lines[0])
+    if len(seen) < 3:
+        fail(f"hovering {len(points[::2])} points showed {len(seen)} settings")
+    return seen
 
+
+def legend_hides_a_line(driver, points):
+    from selenium.webdriver.common.by import By
+
+    item = driver.find_element(By.CSS_SELECTOR, "#wp-legend .item")
+    item.click()
+    after = driver.find_elements(By.CSS_SELECTOR, "#wp-chart circle.pt")
+    if not len(after) < len(points):
+        fail(f"clicking {item.text!r} left {len(after)} of {len(points)} points")
+
+
+def main():
+    pb, src = sys.argv[1], sys.argv[2]
+    require_browser()
+    from selenium.common.exceptions import WebDriverException
+    from selenium.webdriver.common.by import By
+
+    sys.path.insert(0, os.path.join(src, "reports"))
     tmp = tempfile.mkdtemp(prefix="poundbench-page-")
     try:
-        with open(os.path.join(tmp, "mine.toml"), "w") as f:
-            f.write(CASES.replace("RECORD", os.path.join(src, "cases", "records", "mp-noise-20s.csv")))
-        settings = SETTINGS
-        built = subprocess.run([pb, "solvers"], capture_output=True, text=True, check=True).stdout
-        if not re.search(r"^ode ", built, re.M):
-            settings = settings.replace('solver = "ode"\nvariant = "dantzig-faithful"\nsteps = [16, 64]', "solver = "
-                                        '"moreau-jean"\ntheta = 1.0\nsteps = [16, 64]')
-        with open(os.path.join(tmp, "my-list.toml"), "w") as f:
-            f.write(settings)
-        subprocess.run([pb, "workprecision", "mine.toml", "--settings", "my-list.toml", "--repetitions", "1",
-                        "--out", "wp.csv", "--points", "wp-points.csv"], cwd=tmp, check=True,
-                       stderr=subprocess.DEVNULL)
-        made = subprocess.run([pb, "report", "wp.csv", "--points", "wp-points.csv", "--out", "report"], cwd=tmp,
-                              capture_output=True, text=True)
-        if made.returncode != 0:
-            fail(f"poundbench report exited {made.returncode}: {made.stderr}")
-        out = os.path.join(tmp, "report")
-        with open(os.path.join(out, "README.md")) as f:
-            readme = f.read()
-        expected = answer_rows(readme)
-        # 2 measures; pair (the pulse), pair records (the record: a scope of its own, never merged
-        # into the pulse's), wall, all scenes, its time-steppers; 4 targets
-        if len(expected) != 2 * 5 * 4:
-            fail(f"the markdown has {len(expected)} answers, not 2 x 5 scopes x 4 targets")
-        if not any(scene == "pair records" for _, scene, _ in expected):
-            fail("the record's family is not a scope of its own (pair records)")
-        with open(os.path.join(tmp, "wp.csv"), newline="") as f:
-            summary = list(csv.DictReader(f))
-
-        profile = os.path.join(tmp, "profile")
+        out, summary = make_study(pb, src, tmp)
+        expected = markdown_answers(out)
         try:
-            driver = browser(profile)
+            driver = browser(os.path.join(tmp, "profile"))
         except WebDriverException as e:
             fail(f"Chromium did not start: {e.msg}")
         try:
             driver.get("file://" + os.path.join(out, "report.html"))
-            errors = [e for e in driver.get_log("browser") if e["level"] == "SEVERE"]
-            if errors:
-                fail(f"console errors: {errors}")
-
+            no_console_errors(driver)
             chooser_agrees(driver, expected)
-
-            # The one rule (reports/robust.py) in the page as in the markdown: a study where
-            # Moreau-Jean's coarse N = 16 meets 1 % and its finer N = 32 does not.
-            lucky_out = lucky_report(pb, tmp, summary)
-            with open(os.path.join(lucky_out, "README.md")) as f:
-                lucky = answer_rows(f.read())
-            picks = {k: v[0] for k, v in lucky.items() if k[2] == "0.01"}
-            if not picks or any(p != "moreau-jean theta=0.5, N = 64" for p in picks.values()):
-                fail(f"the markdown's answers at 1 % on the lucky study: {picks}; want N = 64 (N = 16 is lucky)")
-            driver.get("file://" + os.path.join(lucky_out, "report.html"))
-            chooser_agrees(driver, lucky)
+            one_rule_agrees(driver, pb, tmp, summary)
             driver.get("file://" + os.path.join(out, "report.html"))
-
-            # Hovering points of the first family's diagram: each tooltip against the CSV.
-            family = Select(driver.find_element(By.ID, "wp-family")).first_selected_option.text
             points = driver.find_elements(By.CSS_SELECTOR, "#wp-chart circle.pt")
-            if len(points) < 5:
-                fail(f"{len(points)} points in {family}'s diagram")
-            tooltip = driver.find_element(By.ID, "tooltip")
-
-            def hover(point):
-                """The tooltip's lines over a point. The chart is scrolled into view first, so that
-                moving to a point does not scroll the page under the pointer; a move that still
-                leaves no tooltip (the page laid out again under it) is made once more."""
-                for _ in range(3):
-                    ActionChains(driver).move_to_element(point).perform()
-                    text = tooltip.text if tooltip.is_displayed() else ""
-                    if text:
-                        return text.split("\n")
-                    time.sleep(0.2)
-                fail(f"hovering the point at {point.rect} shows no tooltip")
-
-            driver.execute_script("document.getElementById('wp-chart').scrollIntoView()")
-            seen = set()
-            for point in points[::2]:
-                lines = hover(point)
-                rows = [r for r in summary if r["family"] == family and setting_label(r) == lines[0]]
-                if len(rows) != 1:
-                    fail(f"the tooltip names {lines[0]!r}, which {family} has {len(rows)} times")
-                r = rows[0]
-                n = re.search(r"N = (\d+)", lines[0])
-                if n and lines[1] != f"N = {n.group(1)}":
-                    fail(f"tooltip {lines}: N")
-                shown = float(lines[2].split(": ")[1])
-                if abs(shown - float(r["err_median"])) > 5e-3 * abs(float(r["err_median"])) + 1e-300 and \
-                        not (float(r["err_median"]) < 1e-13 and shown < 1e-13):
-                    fail(f"tooltip {lines}: error {shown}, the CSV's {r['err_median']} (3 digits)")
-                if lines[3] != f"CPU per run: {cost_cell(r)} us":
-                    fail(f"tooltip {lines}: cost, the CSV's {cost_cell(r)}")
-                seen.add(lines[0])
-            if len(seen) < 3:
-                fail(f"hovering {len(points[::2])} points showed {len(seen)} settings")
-
-            # A legend entry hides its line.
-            item = driver.find_element(By.CSS_SELECTOR, "#wp-legend .item")
-            item.click()
-            after = driver.find_elements(By.CSS_SELECTOR, "#wp-chart circle.pt")
-            if not len(after) < len(points):
-                fail(f"clicking {item.text!r} left {len(after)} of {len(points)} points")
-            errors = [e for e in driver.get_log("browser") if e["level"] == "SEVERE"]
-            if errors:
-                fail(f"console errors: {errors}")
+            seen = tooltips_agree(driver, summary, points)
+            legend_hides_a_line(driver, points)
+            no_console_errors(driver)
         finally:
             driver.quit()
         print(f"report_page_test: {len(expected)} answers as the markdown's, {len(seen)} hovered settings as the "

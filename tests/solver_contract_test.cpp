@@ -27,6 +27,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <iomanip>
 #include <limits>
 #include <map>
@@ -119,9 +120,14 @@ struct Facts {
 // Measured restitution errors are on the wall cases of the restitution test (eps 0, 0.5, 1,
 // sine and cosine); error drops are the worst of the two quadruplings on the Pi1 test's cases;
 // time-limit bounds allow 10 times the measured 0.05 s for a loaded machine and the sanitizer.
-const std::vector<Facts>& facts_table() {
-  constexpr Status nan = Status::nan, failed = Status::failed;
-  static const std::vector<Facts> table = {
+// The rows are grouped by family (the reference and the rigid time-steppers, Siconos, the
+// compliant models, the other engines); facts_table() joins the groups and then holds the rows
+// of the solvers of their own (the external solver, a new solver).
+
+// The reference, Moreau-Jean, ODE and Bullet.
+std::vector<Facts> rigid_facts() {
+  constexpr Status nan = Status::nan;
+  return {
       // The reference: exact between events, Poisson's law at impacts. |e - eps| measured
       // 1.1e-16 (2.2e-13 over 600 random cases: event_driven_test). Its closed form has no
       // unstable spring (nan at t = 0).
@@ -164,6 +170,13 @@ const std::vector<Facts>& facts_table() {
        .error_drop = 1.3, .diverges_at_large_steps = true},
       {.solver = "bullet", .variant = "mlcp-lemke-default", .time_stepper = true, .restitution_tolerance = 0.6,
        .error_drop = 1.3, .diverges_at_large_steps = true, .time_limit_bound = 2.0},
+  };
+}
+
+// Siconos: its Moreau-Jean, event-driven and other integrators.
+std::vector<Facts> siconos_facts() {
+  constexpr Status failed = Status::failed;
+  return {
       // Siconos refuses a non-finite body (its own checks would print). MoreauJeanOSI as
       // moreau-jean end-samples: measured 4.4e-16, drops 2.2, 3.3. LSODAR fails where contact
       // persists (solvers/siconos/README.md); its runs cost ~10 ms, so every 2nd smoke point.
@@ -207,6 +220,13 @@ const std::vector<Facts>& facts_table() {
       // are stopped and fail by name, within 2 ms a run on the smoke set.
       {.solver = "siconos", .variant = "newmark-alpha", .time_stepper = true, .non_finite_body = failed,
        .runaway = failed, .documented_failure = "NewMarkAlphaOSI with EventDriven fails", .fails_everywhere = true},
+  };
+}
+
+// The compliant solver's elements, and the reference solving the Kelvin-Voigt model.
+std::vector<Facts> compliant_facts() {
+  constexpr Status failed = Status::failed;
+  return {
       // Compliant contact through CVODE at the default stiffness K = 1e4: an isolated wall
       // impact restitutes eps only up to what the body's spring, its dashpot and the pulse do
       // during the contact (measured |e - eps| up to 5.8e-3 for Kelvin-Voigt; it falls as K
@@ -248,6 +268,13 @@ const std::vector<Facts>& facts_table() {
       // state in one matrix: chains of at most 24 bodies.
       {.solver = "event-driven", .restitution_tolerance = 0.02, .error_drop = 0.0, .non_finite_body = failed,
        .stiffness = 1e4, .contact = "kelvin-voigt", .max_bodies = 24},
+  };
+}
+
+// MuJoCo, DART and Simbody.
+std::vector<Facts> engine_facts() {
+  constexpr Status failed = Status::failed;
+  return {
       // MuJoCo, soft contacts calibrated to eps (contact time constant 2 h): restitution is
       // over whole contacts, so the body's spring and the pulse act during each (Euler:
       // measured |e - eps| up to 0.052; its implicit integrator gives the same motion to
@@ -303,6 +330,21 @@ const std::vector<Facts>& facts_table() {
       // Like the in-house element, it refuses eps = 0.
       {.solver = "simbody", .variant = "hunt-crossley", .restitution_tolerance = 0.4, .error_drop = 0.0,
        .non_finite_body = failed, .runaway = failed, .smoke_stride = 4, .refuses_plastic = true},
+  };
+}
+
+// The groups' rows, then `rows`.
+std::vector<Facts> after_the_groups(std::initializer_list<Facts> rows) {
+  std::vector<Facts> out;
+  for (const std::vector<Facts>& group : {rigid_facts(), siconos_facts(), compliant_facts(), engine_facts()})
+    out.insert(out.end(), group.begin(), group.end());
+  out.insert(out.end(), rows);
+  return out;
+}
+
+const std::vector<Facts>& facts_table() {
+  constexpr Status failed = Status::failed;
+  static const std::vector<Facts> table = after_the_groups({
       // The external solver running poundbench itself (`poundbench adapter --solver moreau-jean`,
       // docs/external.md): the documents carry the system, the step, the limits and the answer
       // exactly, so its facts are moreau-jean's (restitution 2.2e-16, drops 2.2, 3.3), and the
@@ -317,7 +359,7 @@ const std::vector<Facts>& facts_table() {
       // and its own 0.05 s; 1 s allows the sanitizer's slower start.
       {.solver = "external", .time_stepper = true, .non_finite_body = failed, .runaway = failed, .smoke_stride = 2,
        .time_limit_bound = 1.0, .command = POUNDBENCH_EXE " adapter --solver moreau-jean"},
-  };
+  });
   return table;
 }
 

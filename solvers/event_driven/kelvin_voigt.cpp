@@ -350,8 +350,21 @@ class KelvinVoigt {
   }
 
   void build(ContactMode& md) const {
+    const MatrixXd a_bodies = motion_in_bodies();
+    const double w_scale = frequency_scale(a_bodies);
+    const MatrixXd a = to_gaps_ * a_bodies * to_bodies_;  // in the gaps' coordinates
+    const MatrixXd wb = balance(md, a, w_scale);
+    plain_bounds(md, a_bodies, wb);
+    const double fastest = modal_bounds(md, wb, w_scale);
+    md.base = 2.0 * std::numbers::pi / std::max(fastest, s_.pulse.w) / kStretchesPerPeriod;
+    md.levels.assign(ix(kMaxLevel - kMinLevel + 1), MatrixXd());
+    md.uses.assign(ix(kMaxLevel - kMinLevel + 1), 0);
+  }
+
+  // The motion's matrix a (y' = a y) with the elements closed now, in the bodies' coordinates.
+  MatrixXd motion_in_bodies() const {
     const int n = n_, c0 = 2 * n_, sn = c0 + 1, cs = c0 + 2;
-    MatrixXd a = MatrixXd::Zero(m_, m_);  // in the bodies' coordinates, then the gaps'
+    MatrixXd a = MatrixXd::Zero(m_, m_);
 
     for (int i = 0; i < n; ++i) {
       const Body& b = s_.bodies[ix(i)];
@@ -390,12 +403,21 @@ class KelvinVoigt {
         }
       }
     }
-    // The scaling D from a Gershgorin bound on the stiffness block's frequencies.
+    return a;
+  }
+
+  // The frequency of the scaling D: a Gershgorin bound on the stiffness block's frequencies,
+  // or the pulse's if it is faster.
+  double frequency_scale(const MatrixXd& a_bodies) const {
     double w2 = 0.0;
-    for (int i = 0; i < n; ++i) w2 = std::max(w2, a.block(n + i, 0, 1, n).cwiseAbs().sum());
-    const double w_scale = std::max(s_.pulse.w, std::sqrt(w2));
-    const MatrixXd a_bodies = a;
-    a = to_gaps_ * a * to_bodies_;
+    for (int i = 0; i < n_; ++i) w2 = std::max(w2, a_bodies.block(n_ + i, 0, 1, n_).cwiseAbs().sum());
+    return std::max(s_.pulse.w, std::sqrt(w2));
+  }
+
+  // The scaling D and D a D^-1, the tracked functions' rows, the contact forces' rates, and
+  // the scaled motion that decides a zero gap's side (a in the gaps' coordinates); W D^-1.
+  MatrixXd balance(ContactMode& md, const MatrixXd& a, double w_scale) const {
+    const int n = n_;
     VectorXd& d = md.scale;
     d = VectorXd::Ones(m_);
     d.head(n).setConstant(1.0 / L_);
@@ -411,8 +433,12 @@ class KelvinVoigt {
     std::frexp(a.cwiseAbs().rowwise().sum().maxCoeff(), &md.exponent);
     md.motion = a * std::ldexp(1.0, -md.exponent);
     md.wb_size = wb.cwiseAbs().rowwise().sum();
+    return wb;
+  }
 
-    // The plain bound, for where the modal one cannot be trusted.
+  // The plain bound, for where the modal one cannot be trusted.
+  void plain_bounds(ContactMode& md, const MatrixXd& a_bodies, const MatrixXd& wb) const {
+    const VectorXd& d = md.scale;
     const MatrixXd b2 = md.balanced * md.balanced;
     md.plain = (wb * (b2 * b2)).cwiseAbs().rowwise().sum() * kBoundMargin;
     md.norm = md.balanced.cwiseAbs().rowwise().sum().maxCoeff();
@@ -420,80 +446,80 @@ class KelvinVoigt {
     md.plain_bodies = ((w_ * to_gaps_ * d.cwiseInverse().asDiagonal()) * (bb2 * bb2)).cwiseAbs().rowwise().sum() * kBoundMargin;
     md.norm_bodies = bb.cwiseAbs().rowwise().sum().maxCoeff();
     md.modulus = VectorXd::Constant(m_, std::ldexp(md.norm, -md.exponent));  // the plain bound's, unless modal
+  }
 
-    // The modal bound: the eigenvectors of the whole motion, the load's states included (their
-    // modes are the constant, 0, and the pulse, +-i w_p; at resonance a body's coincide with the
-    // pulse's and the pair is defective: the condition number sends it to the plain bound).
+  // The modal bound: the eigenvectors of the whole motion, the load's states included (their
+  // modes are the constant, 0, and the pulse, +-i w_p; at resonance a body's coincide with the
+  // pulse's and the pair is defective: the condition number sends it to the plain bound).
+  // The fastest mode's frequency, w_scale where the bound is not modal.
+  double modal_bounds(ContactMode& md, const MatrixXd& wb, double w_scale) const {
     Eigen::EigenSolver<MatrixXd> eigen(md.balanced);
-    double fastest = w_scale;
-    if (eigen.info() == Eigen::Success) {
-      // The real basis (Re v, Im v of each complex pair), each column normalised on its own:
-      // a pair's complex eigenvectors are nearly parallel wherever a mode moves coordinates of
-      // different frequency scales (a slow mode's speeds over a stiff element's w: their
-      // imaginary parts are w_slow / w_c of the real ones), so the complex V's condition grew
-      // as sqrt(K) (3.6e5 at K = 1e10, 3.6e6 at 1e12 on a pair, past kMaxModalCondition: the
-      // plain bound, millions of stretches). Its real and imaginary parts, turned orthogonal
-      // (below) and normalised apart, are not: condition 8 on that pair at K = 1e10, 1e12 and
-      // 1e14. V^-1 D y is then solved in this basis and recombined per pair,
-      // c = (q1 - i q2) / 2, without a sum that cancels.
-      MatrixXd basis = eigen.pseudoEigenvectors();
-      const MatrixXd blocks = eigen.pseudoEigenvalueMatrix();
-      for (int k = 0; k + 1 < m_; ++k) {
-        if (blocks(k, k + 1) == 0.0) continue;
-        // v = p1 + i p2 times the phase e^(i phi) that makes v^T v real and positive: then
-        // Re v and Im v are orthogonal (Eigen's phase is arbitrary: both parts carried the
-        // slow pair's displacement, 1 and -1, and stayed parallel to 1e-5).
-        const VectorXcd v = basis.col(k).cast<std::complex<double>>() + std::complex<double>(0.0, 1.0) * basis.col(k + 1);
-        const VectorXcd turned = v * std::polar(1.0, -0.5 * std::arg((v.array() * v.array()).sum()));
-        basis.col(k) = turned.real();
-        basis.col(k + 1) = turned.imag();
-        ++k;
+    if (eigen.info() != Eigen::Success) return w_scale;
+    const MatrixXd blocks = eigen.pseudoEigenvalueMatrix();
+    const MatrixXd basis = real_basis(eigen.pseudoEigenvectors(), blocks);
+    const VectorXd norms = basis.colwise().norm().transpose();
+    if (!(norms.minCoeff() > 0.0 && norms.allFinite())) return w_scale;
+    const MatrixXd unit = basis * norms.cwiseInverse().asDiagonal();
+    const MatrixXd unit_inv = unit.inverse();
+    const double condition = unit.cwiseAbs().rowwise().sum().maxCoeff() * unit_inv.cwiseAbs().rowwise().sum().maxCoeff();
+    if (!(std::isfinite(condition) && condition < kMaxModalCondition)) return w_scale;
+    const MatrixXd q_of_y = norms.cwiseInverse().asDiagonal() * unit_inv;  // coefficients on the unnormalised basis
+    MatrixXcd v(m_, m_);
+    VectorXcd lambda(m_);
+    md.v_inv.resize(m_, m_);
+    const std::complex<double> i1(0.0, 1.0);
+    for (int k = 0; k < m_; ++k) {
+      const bool pair = k + 1 < m_ && blocks(k, k + 1) != 0.0;
+      if (!pair) {
+        v.col(k) = basis.col(k).cast<std::complex<double>>();
+        lambda(k) = blocks(k, k);
+        md.v_inv.row(k) = q_of_y.row(k).cast<std::complex<double>>();
+        continue;
       }
-      const VectorXd norms = basis.colwise().norm().transpose();
-      if (norms.minCoeff() > 0.0 && norms.allFinite()) {
-        const MatrixXd unit = basis * norms.cwiseInverse().asDiagonal();
-        const MatrixXd unit_inv = unit.inverse();
-        const double condition = unit.cwiseAbs().rowwise().sum().maxCoeff() * unit_inv.cwiseAbs().rowwise().sum().maxCoeff();
-        if (std::isfinite(condition) && condition < kMaxModalCondition) {
-          const MatrixXd q_of_y = norms.cwiseInverse().asDiagonal() * unit_inv;  // coefficients on the unnormalised basis
-          MatrixXcd v(m_, m_);
-          VectorXcd lambda(m_);
-          md.v_inv.resize(m_, m_);
-          const std::complex<double> i1(0.0, 1.0);
-          for (int k = 0; k < m_; ++k) {
-            const bool pair = k + 1 < m_ && blocks(k, k + 1) != 0.0;
-            if (!pair) {
-              v.col(k) = basis.col(k).cast<std::complex<double>>();
-              lambda(k) = blocks(k, k);
-              md.v_inv.row(k) = q_of_y.row(k).cast<std::complex<double>>();
-              continue;
-            }
-            // Columns p1, p2 with block [[s, w], [-w, s]]: v = p1 + i p2 has lambda = s + i w,
-            // and q1 p1 + q2 p2 = c v + conj(c v) with c = (q1 - i q2) / 2.
-            const auto p1 = basis.col(k), p2 = basis.col(k + 1);
-            v.col(k) = p1.cast<std::complex<double>>() + i1 * p2.cast<std::complex<double>>();
-            v.col(k + 1) = p1.cast<std::complex<double>>() - i1 * p2.cast<std::complex<double>>();
-            lambda(k) = {blocks(k, k), blocks(k, k + 1)};
-            lambda(k + 1) = std::conj(lambda(k));
-            md.v_inv.row(k) = 0.5 * (q_of_y.row(k).cast<std::complex<double>>() - i1 * q_of_y.row(k + 1).cast<std::complex<double>>());
-            md.v_inv.row(k + 1) = md.v_inv.row(k).conjugate();
-            ++k;
-          }
-          md.modal = true;
-          md.g = wb.cast<std::complex<double>>() * v;
-          md.modal_bound = md.g.cwiseAbs() * lambda.cwiseAbs2().cwiseAbs2().asDiagonal();  // |g| |lambda|^4
-          md.modal_bound *= kBoundMargin;
-          md.g_size = md.g.cwiseAbs() * kBoundMargin;
-          md.speed = lambda.cwiseAbs();
-          md.modulus = lambda.cwiseAbs() * std::ldexp(1.0, -md.exponent);
-          pair_close_modes(lambda, md);
-          fastest = lambda.cwiseAbs().maxCoeff();
-        }
-      }
+      // Columns p1, p2 with block [[s, w], [-w, s]]: v = p1 + i p2 has lambda = s + i w,
+      // and q1 p1 + q2 p2 = c v + conj(c v) with c = (q1 - i q2) / 2.
+      const auto p1 = basis.col(k), p2 = basis.col(k + 1);
+      v.col(k) = p1.cast<std::complex<double>>() + i1 * p2.cast<std::complex<double>>();
+      v.col(k + 1) = p1.cast<std::complex<double>>() - i1 * p2.cast<std::complex<double>>();
+      lambda(k) = {blocks(k, k), blocks(k, k + 1)};
+      lambda(k + 1) = std::conj(lambda(k));
+      md.v_inv.row(k) = 0.5 * (q_of_y.row(k).cast<std::complex<double>>() - i1 * q_of_y.row(k + 1).cast<std::complex<double>>());
+      md.v_inv.row(k + 1) = md.v_inv.row(k).conjugate();
+      ++k;
     }
-    md.base = 2.0 * std::numbers::pi / std::max(fastest, s_.pulse.w) / kStretchesPerPeriod;
-    md.levels.assign(ix(kMaxLevel - kMinLevel + 1), MatrixXd());
-    md.uses.assign(ix(kMaxLevel - kMinLevel + 1), 0);
+    md.modal = true;
+    md.g = wb.cast<std::complex<double>>() * v;
+    md.modal_bound = md.g.cwiseAbs() * lambda.cwiseAbs2().cwiseAbs2().asDiagonal();  // |g| |lambda|^4
+    md.modal_bound *= kBoundMargin;
+    md.g_size = md.g.cwiseAbs() * kBoundMargin;
+    md.speed = lambda.cwiseAbs();
+    md.modulus = lambda.cwiseAbs() * std::ldexp(1.0, -md.exponent);
+    pair_close_modes(lambda, md);
+    return lambda.cwiseAbs().maxCoeff();
+  }
+
+  // The real basis (Re v, Im v of each complex pair), each column normalised on its own:
+  // a pair's complex eigenvectors are nearly parallel wherever a mode moves coordinates of
+  // different frequency scales (a slow mode's speeds over a stiff element's w: their
+  // imaginary parts are w_slow / w_c of the real ones), so the complex V's condition grew
+  // as sqrt(K) (3.6e5 at K = 1e10, 3.6e6 at 1e12 on a pair, past kMaxModalCondition: the
+  // plain bound, millions of stretches). Its real and imaginary parts, turned orthogonal
+  // (below) and normalised apart (modal_bounds), are not: condition 8 on that pair at
+  // K = 1e10, 1e12 and 1e14. V^-1 D y is then solved in this basis and recombined per pair,
+  // c = (q1 - i q2) / 2, without a sum that cancels.
+  MatrixXd real_basis(MatrixXd basis, const MatrixXd& blocks) const {
+    for (int k = 0; k + 1 < m_; ++k) {
+      if (blocks(k, k + 1) == 0.0) continue;
+      // v = p1 + i p2 times the phase e^(i phi) that makes v^T v real and positive: then
+      // Re v and Im v are orthogonal (Eigen's phase is arbitrary: both parts carried the
+      // slow pair's displacement, 1 and -1, and stayed parallel to 1e-5).
+      const VectorXcd v = basis.col(k).cast<std::complex<double>>() + std::complex<double>(0.0, 1.0) * basis.col(k + 1);
+      const VectorXcd turned = v * std::polar(1.0, -0.5 * std::arg((v.array() * v.array()).sum()));
+      basis.col(k) = turned.real();
+      basis.col(k + 1) = turned.imag();
+      ++k;
+    }
+    return basis;
   }
 
   // Pairs each mode with its nearest unpaired neighbour when they lie within half the larger

@@ -80,12 +80,165 @@ struct Tally {
   }
 };
 
+// The run's events after its set-up: each one's state, impulses and peaks, to the end.
+class EventLoop {
+ public:
+  EventLoop(const System& sys, const Settings& set, engine::EventDrivenRun& run, Deadline& deadline)
+      : sys_(sys),
+        set_(set),
+        run_(run),
+        deadline_(deadline),
+        units_(units_of(sys)),
+        force_unit_(units_.length / (units_.time * units_.time)),  // per unit mass
+        nc_(sys.n_contacts()),
+        ref_(static_cast<std::size_t>(sys.ref)),
+        floor_(kRestitutionFloor * sys.a_p / sys.pulse.w),
+        cap_(set.step_cap > 0 ? set.step_cap : kDefaultEventCap),
+        recording_(set.history_samples > 0),
+        st_(sys),
+        before_(sys) {}
+
+  Result run() {
+    start();
+    while (run_.has_next() && next()) {
+    }
+    return finish();
+  }
+
+ private:
+  // The state at t = 0, and the history's first row.
+  void start() {
+    st_.read(run_, sys_, units_);
+    force_.resize(st_.g.size());
+    closed_.resize(st_.g.size());
+    t_.peak({std::abs(st_.u[ref_]), 0.0});
+    for (double g : st_.g) t_.g_min = std::min(t_.g_min, g);
+    if (recording_) {
+      res_.history.n_bodies = sys_.n_bodies();
+      res_.history.n_contacts = nc_;
+      // A row per event: the output points, and the roots on top of them (rarely many).
+      const auto rows = static_cast<std::size_t>(step_count(sys_.t_end, output_step(sys_)) + 1);
+      res_.history.data.reserve(2 * rows * static_cast<std::size_t>(res_.history.row_size()));
+      record(0.0, st_, force_, res_.history.data);
+    }
+  }
+
+  // One event of Siconos' and what it did; false where the run ends early (its status set).
+  bool next() {
+    if (events_ >= cap_) {
+      res_.status = Status::step_cap;
+      res_.message = "more than " + std::to_string(cap_) + " events";
+      return false;
+    }
+    const double u_last = st_.u[ref_], v_last = st_.v[ref_];
+    if (!advance()) return false;
+    ++events_;
+    st_.read(run_, sys_, units_);
+    const double now = run_.time() * units_.time;
+    res_.status = state_end(sys_, before_.finite() && st_.finite(), st_.u.data(), st_.v.data(), now, res_.message);
+    if (res_.status != Status::ok) return false;
+    // Between two events the motion is smooth: its largest |u0| is that of the cubic through
+    // the state after the last event and the state before this one.
+    t_.peak(hermite_peak(t_last_, now - t_last_, u_last, v_last, before_.u[ref_], before_.v[ref_]));
+    t_.peak({std::abs(before_.u[ref_]), now});
+    t_.peak({std::abs(st_.u[ref_]), now});
+    take_impulses(now);
+    if (recording_) record(now, st_, force_, res_.history.data);
+    t_last_ = now;
+    if (deadline_.tick()) {
+      res_.status = Status::time_limit;
+      res_.message = deadline_.reason() + " at t = " + std::to_string(now);
+      return false;
+    }
+    return true;
+  }
+
+  // Siconos to its next event, the state before it read; false (the status set) where it
+  // stopped or failed.
+  bool advance() {
+    try {
+      if (run_.advance()) ++t_.roots;
+      before_.read(run_, sys_, units_);
+      run_.process();
+    } catch (const engine::Stopped&) {
+      res_.status = Status::time_limit;
+      res_.message = deadline_.reason() + " at t = " + std::to_string(t_last_);
+      return false;
+    } catch (const std::exception& e) {
+      res_.status = Status::failed;
+      res_.message = std::string("Siconos: ") + e.what() + " (after " + std::to_string(events_) + " events, t = " +
+                     std::to_string(t_last_) + ")";
+      return false;
+    }
+    return true;
+  }
+
+  // The impulses of this event (none at an output point), and what they did.
+  void take_impulses(double now) {
+    int pushed = 0, last = 0;
+    for (int j = 0; j < nc_; ++j) {
+      const auto jj = static_cast<std::size_t>(j);
+      if (run_.impulse(j) > 0.0) {
+        ++pushed;
+        last = j;
+        if (before_.rate[jj] < 0.0) {
+          ++t_.impacts;
+          note_impact(res_, now, before_.rate[jj]);
+        }
+      }
+      const bool now_closed = run_.closed(j);
+      if (now_closed && !closed_[jj]) ++t_.phases;
+      closed_[jj] = now_closed ? 1 : 0;
+      force_[jj] = run_.force(j) * force_unit_;
+      t_.g_min = std::min({t_.g_min, st_.g[jj], before_.g[jj]});
+    }
+    const auto l = static_cast<std::size_t>(last);
+    if (set_.monitor && pushed == 1 && before_.rate[l] < -floor_) t_.restitution(-st_.rate[l] / before_.rate[l]);
+  }
+
+  Result finish() {
+    res_.steps = events_;
+    res_.impacts = t_.impacts;
+    res_.contact_phases = t_.phases;
+    res_.min_gap = t_.g_min < 0.0 ? t_.g_min : std::numeric_limits<double>::infinity();
+    res_.isolated_impacts = t_.isolated;
+    res_.restitution_low = t_.e_low;
+    res_.restitution_high = t_.e_high;
+    if (res_.status != Status::ok) return std::move(res_);
+    std::ostringstream msg;
+    msg << "lsodar: " << run_.lsodar_steps() << " steps, " << run_.lsodar_rhs_calls() << " rhs calls; events: "
+        << events_ - t_.roots << " output points, " << t_.roots << " roots";
+    res_.message = msg.str();
+    res_.pi1 = sys_.pi1(t_.u_max.value);
+    res_.t_max = t_.u_max.at;
+    return std::move(res_);
+  }
+
+  const System& sys_;
+  const Settings& set_;
+  engine::EventDrivenRun& run_;
+  Deadline& deadline_;
+  const Units units_;
+  const double force_unit_;
+  const int nc_;
+  const std::size_t ref_;
+  const double floor_;
+  const long cap_;
+  const bool recording_;
+  Result res_;
+  State st_, before_;
+  std::vector<double> force_;
+  std::vector<char> closed_;
+  Tally t_;
+  double t_last_ = 0.0;
+  long events_ = 0;
+};
+
 }  // namespace
 
 Result run_event_driven(const System& sys, const Settings& set) {
   if (std::string bad = check_system(sys); !bad.empty()) return stopped(Status::failed, bad);
   if (!(sys.t_end / output_step(sys) < 1e9)) return stopped(Status::failed, "t_end: more than 1e9 output points");
-  const long cap = set.step_cap > 0 ? set.step_cap : kDefaultEventCap;
   // The limit holds from here, through Siconos' set-up: LsodarOSI sizes its work arrays anew
   // for each body it is given, (2i)^2 doubles for the i-th, zeroed: O(n^3), 8.3 s for a chain
   // of 1000 bodies, 0.54 s for 400. The load plugin ticks the deadline once per body there
@@ -101,105 +254,7 @@ Result run_event_driven(const System& sys, const Settings& set) {
   engine::EventDrivenRun& run = *made;
   if (run.itol() != 1 || run.rtol() != kRtol * set.tol_scale || run.atol() != kAtol * set.tol_scale)
     return stopped(Status::failed, "LsodarOSI does not hold the tolerances set");
-
-  const Units units = units_of(sys);
-  const double force_unit = units.length / (units.time * units.time);  // per unit mass
-  const int nc = sys.n_contacts();
-  const auto ref = static_cast<std::size_t>(sys.ref);
-  const double floor = kRestitutionFloor * sys.a_p / sys.pulse.w;
-  Result res;
-  State st(sys), before(sys);
-  st.read(run, sys, units);
-  std::vector<double> force(st.g.size());
-  std::vector<char> closed(st.g.size());
-  Tally t;
-  t.peak({std::abs(st.u[ref]), 0.0});
-  for (double g : st.g) t.g_min = std::min(t.g_min, g);
-  const bool recording = set.history_samples > 0;
-  if (recording) {
-    res.history.n_bodies = sys.n_bodies();
-    res.history.n_contacts = nc;
-    // A row per event: the output points, and the roots on top of them (rarely many).
-    const auto rows = static_cast<std::size_t>(step_count(sys.t_end, output_step(sys)) + 1);
-    res.history.data.reserve(2 * rows * static_cast<std::size_t>(res.history.row_size()));
-    record(0.0, st, force, res.history.data);
-  }
-  double t_last = 0.0;
-  long events = 0;
-  while (run.has_next()) {
-    if (events >= cap) {
-      res.status = Status::step_cap;
-      res.message = "more than " + std::to_string(cap) + " events";
-      break;
-    }
-    const double u_last = st.u[ref], v_last = st.v[ref];
-    try {
-      if (run.advance()) ++t.roots;
-      before.read(run, sys, units);
-      run.process();
-    } catch (const engine::Stopped&) {
-      res.status = Status::time_limit;
-      res.message = deadline.reason() + " at t = " + std::to_string(t_last);
-      break;
-    } catch (const std::exception& e) {
-      res.status = Status::failed;
-      res.message = std::string("Siconos: ") + e.what() + " (after " + std::to_string(events) + " events, t = " +
-                    std::to_string(t_last) + ")";
-      break;
-    }
-    ++events;
-    st.read(run, sys, units);
-    const double now = run.time() * units.time;
-    res.status = state_end(sys, before.finite() && st.finite(), st.u.data(), st.v.data(), now, res.message);
-    if (res.status != Status::ok) break;
-    // Between two events the motion is smooth: its largest |u0| is that of the cubic through
-    // the state after the last event and the state before this one.
-    t.peak(hermite_peak(t_last, now - t_last, u_last, v_last, before.u[ref], before.v[ref]));
-    t.peak({std::abs(before.u[ref]), now});
-    t.peak({std::abs(st.u[ref]), now});
-    // The impulses of this event (none at an output point), and what they did.
-    int pushed = 0, last = 0;
-    for (int j = 0; j < nc; ++j) {
-      const auto jj = static_cast<std::size_t>(j);
-      if (run.impulse(j) > 0.0) {
-        ++pushed;
-        last = j;
-        if (before.rate[jj] < 0.0) {
-          ++t.impacts;
-          note_impact(res, now, before.rate[jj]);
-        }
-      }
-      const bool now_closed = run.closed(j);
-      if (now_closed && !closed[jj]) ++t.phases;
-      closed[jj] = now_closed ? 1 : 0;
-      force[jj] = run.force(j) * force_unit;
-      t.g_min = std::min({t.g_min, st.g[jj], before.g[jj]});
-    }
-    const auto l = static_cast<std::size_t>(last);
-    if (set.monitor && pushed == 1 && before.rate[l] < -floor) t.restitution(-st.rate[l] / before.rate[l]);
-    if (recording) record(now, st, force, res.history.data);
-    t_last = now;
-    if (deadline.tick()) {
-      res.status = Status::time_limit;
-      res.message = deadline.reason() + " at t = " + std::to_string(now);
-      break;
-    }
-  }
-  res.steps = events;
-  res.impacts = t.impacts;
-  res.contact_phases = t.phases;
-  res.min_gap = t.g_min < 0.0 ? t.g_min : std::numeric_limits<double>::infinity();
-  res.isolated_impacts = t.isolated;
-  res.restitution_low = t.e_low;
-  res.restitution_high = t.e_high;
-  if (res.status != Status::ok) return res;
-  std::ostringstream msg;
-  msg << "lsodar: " << run.lsodar_steps() << " steps, " << run.lsodar_rhs_calls() << " rhs calls; events: "
-      << events - t.roots << " output points, " << t.roots << " roots";
-  res.message = msg.str();
-  res.pi1 = sys.pi1(t.u_max.value);
-  res.t_max = t.u_max.at;
-  return res;
+  return EventLoop(sys, set, run, deadline).run();
 }
 
 EventDrivenSetup event_driven_setup(const System& system, const Settings& settings) {
