@@ -1,0 +1,227 @@
+// The buildings' exact reference (solvers/buildings_reference/) against independent
+// computations: the matrix exponential of the whole linear system (no contact, and the stuck
+// system's closed form), the single oscillators' reference (one storey each); and its own
+// exact properties: self-similarity, the energy balance.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "cases/buildings.hpp"
+#include "cases/system.hpp"
+#include "solvers/buildings_reference/motion.hpp"
+#include "solvers/buildings_reference/reference.hpp"
+#include "solvers/buildings_reference/stuck.hpp"
+#include "solvers/event_driven/event_driven.hpp"
+
+namespace pb {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+Building building(std::vector<double> m, std::vector<double> k) { return {std::move(m), std::move(k)}; }
+
+BuildingScene issue_scene() {
+  BuildingScene s;
+  s.buildings = {building({3e5, 3e5, 2.4e5}, {6.8e8, 5.4e8, 4.1e8}),
+                 building({2.5e5, 2.5e5, 2e5}, {2.0e8, 1.6e8, 1.2e8})};
+  s.xi = 0.05;
+  s.delta = 0.03;
+  s.eps = 0.6;
+  s.pulse = Pulse(PulseShape::sine, 3.0, 12.566);
+  return s;
+}
+
+// The whole linear system without contact, y = (u, v), advanced by the matrix exponential of
+// its first-order form augmented with the load's states (1, s, and sin, cos of each sinusoid),
+// piece by piece of the load: no modes, no closed form of ours. Peaks from the samples and the
+// cubic Hermite interpolant of u and its rate between them (error h^4 max|u^(4)| / 384).
+struct Independent {
+  std::vector<double> floor_peak, drift_peak;
+};
+
+// The largest |cubic| on [0, h] through (f0, d0), (f1, d1).
+double cubic_max(double f0, double d0, double f1, double d1, double h) {
+  const double c1 = h * d0, c2 = 3.0 * (f1 - f0) - h * (2.0 * d0 + d1), c3 = 2.0 * (f0 - f1) + h * (d0 + d1);
+  double best = std::max(std::abs(f0), std::abs(f1));
+  const double qa = 3.0 * c3, qb = 2.0 * c2, qc = c1;
+  const double disc = qb * qb - 4.0 * qa * qc;
+  if (std::abs(qa) > 0.0 && disc >= 0.0) {
+    for (double sgn : {-1.0, 1.0}) {
+      const double s = (-qb + sgn * std::sqrt(disc)) / (2.0 * qa);
+      if (s > 0.0 && s < 1.0) best = std::max(best, std::abs(f0 + s * (c1 + s * (c2 + s * c3))));
+    }
+  }
+  return best;
+}
+
+double drift_of(const BuildingModel& md, int i, const Eigen::VectorXd& x) {
+  const bool bottom = md.first[static_cast<std::size_t>(md.building_of[static_cast<std::size_t>(i)])] == i;
+  return bottom ? x(i) : x(i) - x(i - 1);
+}
+
+Independent integrate_without_contact(const BuildingModel& md, int steps_per_period) {
+  const int n = md.n_floors;
+  const Eigen::VectorXd minv = md.m.cwiseInverse();
+  const Pulse& pulse = md.scene.pulse;
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n);
+  Independent out;
+  out.floor_peak.assign(static_cast<std::size_t>(n), 0.0);
+  out.drift_peak.assign(static_cast<std::size_t>(n), 0.0);
+  double t = 0.0;
+  const double h_target = md.t_min / steps_per_period;
+  while (t < md.t_end) {
+    const LoadPiece piece = pulse.piece(t);
+    const double end = std::min(piece.end, md.t_end);
+    const int nw = piece.n_waves;
+    const int nl = 2 + 2 * nw;  // 1, s, then (sin, cos) per wave
+    const int dim = 2 * n + nl;
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(dim, dim);
+    a.block(0, n, n, n).setIdentity();
+    a.block(n, 0, n, n) = -(minv.asDiagonal() * md.K);
+    a.block(n, n, n, n) = -(minv.asDiagonal() * md.C);
+    // v' gets -a_g, a_g = value + slope s + sum (ps sin + pc cos).
+    const int l0 = 2 * n;
+    a.block(n, l0, n, 1).setConstant(-(piece.value + piece.slope * (t - piece.start)));
+    a.block(n, l0 + 1, n, 1).setConstant(-piece.slope);
+    a(l0 + 1, l0) = 1.0;  // s' = 1
+    for (int j = 0; j < nw; ++j) {
+      const Sinusoid& w = piece.waves[static_cast<std::size_t>(j)];
+      const int js = l0 + 2 + 2 * j;
+      a.block(n, js, n, 1).setConstant(-w.s);
+      a.block(n, js + 1, n, 1).setConstant(-w.c);
+      a(js, js + 1) = w.w;   // sin' = w cos
+      a(js + 1, js) = -w.w;  // cos' = -w sin
+    }
+    const int steps = std::max(1, static_cast<int>(std::ceil((end - t) / h_target)));
+    const double h = (end - t) / steps;
+    const Eigen::MatrixXd e = (a * h).exp();
+    Eigen::VectorXd x(dim);
+    x.head(2 * n) = y;
+    x(l0) = 1.0;
+    x(l0 + 1) = 0.0;
+    for (int j = 0; j < nw; ++j) {
+      const Sinusoid& w = piece.waves[static_cast<std::size_t>(j)];
+      x(l0 + 2 + 2 * j) = std::sin(w.w * t);
+      x(l0 + 3 + 2 * j) = std::cos(w.w * t);
+    }
+    for (int k = 0; k < steps; ++k) {
+      const Eigen::VectorXd next = e * x;
+      const Eigen::VectorXd u0 = x.head(n), v0 = x.segment(n, n), u1 = next.head(n), v1 = next.segment(n, n);
+      for (int i = 0; i < n; ++i) {
+        const auto ii = static_cast<std::size_t>(i);
+        out.floor_peak[ii] = std::max(out.floor_peak[ii], cubic_max(u0(i), v0(i), u1(i), v1(i), h));
+        out.drift_peak[ii] = std::max(out.drift_peak[ii], cubic_max(drift_of(md, i, u0), drift_of(md, i, v0),
+                                                                    drift_of(md, i, u1), drift_of(md, i, v1), h));
+      }
+      x = next;
+    }
+    y = x.head(2 * n);
+    t = end;
+  }
+  return out;
+}
+
+void expect_peaks_of(const BuildingModel& md, const buildings::BuildingsResult& r, const Independent& ind, double tol) {
+  for (std::size_t b = 0; b < md.scene.buildings.size(); ++b)
+    for (int f = 1; f <= md.scene.buildings[b].floors(); ++f) {
+      const auto i = static_cast<std::size_t>(md.global(static_cast<int>(b), f));
+      const auto k = static_cast<std::size_t>(f - 1);
+      EXPECT_NEAR(r.floor_peak[b][k] / ind.floor_peak[i], 1.0, tol) << "building " << b << ", floor " << f;
+      EXPECT_NEAR(r.drift_peak[b][k] / ind.drift_peak[i], 1.0, tol) << "building " << b << ", storey " << f;
+    }
+}
+
+TEST(BuildingsReference, NoContactIsTheMatrixExponentialsMotion) {
+  BuildingScene s = issue_scene();
+  s.no_contact = true;
+  const BuildingModel md = assemble(s);
+  const buildings::BuildingsResult r = buildings::solve(md);
+  EXPECT_EQ(r.status, Status::ok) << r.message;
+  expect_peaks_of(md, r, integrate_without_contact(md, 2000), 1e-11);
+  std::cout << r.events << " events, energy " << r.energy_error << "\n";
+}
+
+// One storey each: the pair of single oscillators (left building = body 1, right = body 0),
+// solved by the event-driven reference of the paper's scenes (Poisson's law, which is
+// Newton's for one contact).
+BuildingScene pair_scene(const System& sys) {
+  BuildingScene s;
+  const Body& left = sys.bodies[0];
+  const Body& right = sys.bodies[1];
+  s.buildings = {building({left.m}, {left.k}), building({right.m}, {right.k})};
+  s.xi = sys.xi;
+  s.delta = sys.delta;
+  s.eps = sys.eps;
+  s.pulse = sys.pulse;
+  s.a_p = sys.a_p;
+  s.w_p = sys.pulse.w;
+  s.t_end = sys.t_end;
+  return s;
+}
+
+TEST(BuildingsReference, OneStoreyPairIsTheSingleOscillatorsReference) {
+  int compared = 0;
+  double worst = 0.0;
+  for (PulseShape shape : {PulseShape::sine, PulseShape::cosine})
+    for (Directivity dir : {Directivity::normal, Directivity::reverse})
+      for (double pi2 : {0.3, 1.0, 2.5})
+        for (double pi5 : {0.5, 1.33, 4.0})
+          for (double pi6 : {0.5, 2.0})
+            for (double eps : {0.0, 0.6, 1.0}) {
+              Case c;
+              c.scene = Scene::pair;
+              c.pulse = shape;
+              c.directivity = dir;
+              c.pi2 = pi2;
+              c.pi3 = 0.2;
+              c.pi5 = pi5;
+              c.pi6 = pi6;
+              c.eps = eps;
+              c.a_p = 2.0;
+              c.w_p = 7.0;
+              const System sys = make_system(c);
+              const Result old = event_driven::solve(sys, {});
+              ASSERT_EQ(old.status, Status::ok) << old.message;
+              const buildings::BuildingsResult r = buildings::solve(pair_scene(sys));
+              ASSERT_EQ(r.status, Status::ok) << r.message;
+              const std::string at = "pi2 " + std::to_string(pi2) + " pi5 " + std::to_string(pi5) + " pi6 " +
+                                     std::to_string(pi6) + " eps " + std::to_string(eps) + " " +
+                                     std::string(name(shape)) + " " + std::string(name(dir));
+              EXPECT_NEAR(sys.pi1(r.floor_peak[1][0]) / old.pi1, 1.0, 1e-10) << at;
+              worst = std::max(worst, std::abs(sys.pi1(r.floor_peak[1][0]) / old.pi1 - 1.0));
+              EXPECT_EQ(r.contacts[0].impacts, old.impacts) << at;
+              if (old.impacts > 0) {
+                EXPECT_NEAR(r.contacts[0].first_impact, old.first_impact, 1e-12 * sys.t_end) << at;
+                EXPECT_NEAR(r.contacts[0].impact_velocity_max / old.impact_velocity_max, 1.0, 1e-10) << at;
+              }
+              ++compared;
+            }
+  EXPECT_EQ(compared, 216);
+  std::cout << "worst " << worst << "\n";
+}
+
+TEST(BuildingsReference, IssueSceneSolves) {
+  BuildingScene s = issue_scene();
+  s.delta = 0.005;
+  const buildings::BuildingsResult r = buildings::solve(s);
+  EXPECT_EQ(r.status, Status::ok) << r.message;
+  std::cout << "events " << r.events << " energy error " << r.energy_error << "\n";
+  for (std::size_t b = 0; b < 2; ++b)
+    for (std::size_t f = 0; f < 3; ++f)
+      std::cout << "b" << b << " f" << f + 1 << " peak " << r.floor_peak[b][f] << " drift " << r.drift_peak[b][f] << "\n";
+  for (const auto& c : r.contacts)
+    std::cout << "contact floor " << c.floor << " impacts " << c.impacts << " v " << c.impact_velocity_max << " t "
+              << c.first_impact << " phases " << c.contact_phases << "\n";
+  std::cout << "energies in " << r.energies.input << " kin " << r.energies.kinetic << " el " << r.energies.elastic
+            << " damp " << r.energies.damped << " imp " << r.energies.impacts << "\n";
+}
+
+}  // namespace
+}  // namespace pb
