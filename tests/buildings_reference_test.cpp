@@ -7,13 +7,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include <Eigen/Dense>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "cases/buildings.hpp"
+#include "cases/record.hpp"
 #include "cases/system.hpp"
 #include "solvers/buildings_reference/motion.hpp"
 #include "solvers/buildings_reference/reference.hpp"
@@ -148,6 +151,141 @@ TEST(BuildingsReference, NoContactIsTheMatrixExponentialsMotion) {
   std::cout << r.events << " events, energy " << r.energy_error << "\n";
 }
 
+TEST(BuildingsReference, NoContactAtResonanceIsTheMatrixExponentialsMotion) {
+  // Undamped, the pulse at building 0's second mode exactly: the secular branch (t sin, t cos).
+  BuildingScene s = issue_scene();
+  s.no_contact = true;
+  s.xi = 0.0;
+  s.pulse = Pulse(PulseShape::sine, 3.0, building_modes(s.buildings[0]).w(1));
+  const BuildingModel md = assemble(s);
+  const buildings::BuildingsResult r = buildings::solve(md);
+  ASSERT_EQ(r.status, Status::ok) << r.message;
+  expect_peaks_of(md, r, integrate_without_contact(md, 2000), 1e-11);
+}
+
+TEST(BuildingsReference, NoContactWithOverdampedModesIsTheMatrixExponentialsMotion) {
+  // Rayleigh's ratio grows with the mode: xi = 0.6 in modes 1 and 2 leaves the upper modes of
+  // a six-storey building overdamped (real roots).
+  BuildingScene s = issue_scene();
+  s.no_contact = true;
+  s.xi = 0.6;
+  s.buildings[1] = uniform_building(6, 2e5, 10.0);
+  const BuildingModel md = assemble(s);
+  ASSERT_GT(md.modes[1].xi(5), 1.0);
+  const buildings::BuildingsResult r = buildings::solve(md);
+  ASSERT_EQ(r.status, Status::ok) << r.message;
+  expect_peaks_of(md, r, integrate_without_contact(md, 2000), 1e-11);
+}
+
+TEST(BuildingsReference, NoContactOfThreeModallyDampedBuildingsUnderARecordIsTheMatrixExponentialsMotion) {
+  BuildingScene s = issue_scene();
+  s.no_contact = true;
+  s.damping = BuildingDamping::modal;
+  s.xi = 0.03;
+  s.buildings.push_back(building({1e5, 1.2e5, 0.9e5, 1e5}, {1.5e8, 1.4e8, 1.1e8, 0.9e8}));
+  auto rec = std::make_shared<Record>();
+  rec->source = "synthetic";
+  for (int i = 0; i <= 60; ++i) {
+    rec->t.push_back(0.01 * i);
+    rec->a.push_back(i == 0 || i == 60 ? 0.0 : 2.0 * std::sin(0.37 * i) + 0.5 * std::cos(1.3 * i));
+    rec->peak = std::max(rec->peak, std::abs(rec->a.back()));
+  }
+  s.pulse = Pulse{};
+  s.pulse.shape = PulseShape::record;
+  s.pulse.amplitude = -1.0;  // reverse
+  s.pulse.w = 10.0;
+  s.pulse.record = rec;
+  const BuildingModel md = assemble(s);
+  const buildings::BuildingsResult r = buildings::solve(md);
+  ASSERT_EQ(r.status, Status::ok) << r.message;
+  EXPECT_GE(r.events, 60);  // one a sample
+  expect_peaks_of(md, r, integrate_without_contact(md, 2000), 1e-11);
+}
+
+// The stuck system's closed form (complex modes: two buildings of different Rayleigh damping
+// joined are not classically damped) against the matrix exponential of its reduced first-order
+// system, and each stuck contact's force against what the left floor's own equation needs.
+TEST(BuildingsReference, StuckMotionAndForcesAreTheMatrixExponentials) {
+  BuildingScene s = issue_scene();
+  s.buildings.push_back(building({1e5, 1.2e5}, {1.5e8, 1.4e8}));
+  const BuildingModel md = assemble(s);
+  const int nf = md.n_floors, nc = static_cast<int>(md.contacts.size());
+  for (const std::vector<char>& stuck : {std::vector<char>{0, 0, 1, 0, 0}, std::vector<char>{1, 1, 1, 1, 1},
+                                         std::vector<char>{0, 1, 0, 0, 1}}) {
+    const buildings::Reduced red = buildings::make_reduced(md, stuck);
+    const buildings::Modal mo = buildings::make_modal(md, red);
+    ASSERT_TRUE(mo.ok) << mo.why;
+    // A state that keeps the stuck floors together: the cluster's position and velocity.
+    Eigen::VectorXd qs(red.n), qv(red.n);
+    for (int c = 0; c < red.n; ++c) {
+      qs(c) = 0.01 * std::sin(1.7 * c + 0.3);
+      qv(c) = 0.2 * std::cos(2.3 * c);
+    }
+    std::vector<double> u(static_cast<std::size_t>(nf)), v(static_cast<std::size_t>(nf)), g(static_cast<std::size_t>(nc));
+    for (int i = 0; i < nf; ++i) {
+      u[static_cast<std::size_t>(i)] = qs(red.cluster[static_cast<std::size_t>(i)]) + red.offset(i);
+      v[static_cast<std::size_t>(i)] = qv(red.cluster[static_cast<std::size_t>(i)]);
+    }
+    for (int j = 0; j < nc; ++j) {
+      const FloorContact& fc = md.contacts[static_cast<std::size_t>(j)];
+      g[static_cast<std::size_t>(j)] = s.delta + u[static_cast<std::size_t>(fc.i_right)] - u[static_cast<std::size_t>(fc.i_left)];
+    }
+    const double t0 = 0.1;
+    const LoadPiece piece = s.pulse.piece(t0);
+    buildings::Motion motion;
+    motion.reserve(nf, nc);
+    motion.build(md, red, mo, u.data(), v.data(), g.data(), piece, t0, piece.end);
+    // The reduced system, augmented with the sine's states.
+    const int n = red.n, dim = 2 * n + 3;
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(dim, dim);
+    const Eigen::VectorXd minv = red.mass.cwiseInverse();
+    a.block(0, n, n, n).setIdentity();
+    a.block(n, 0, n, n) = -(minv.asDiagonal() * red.K);
+    a.block(n, n, n, n) = -(minv.asDiagonal() * red.C);
+    a.block(n, 2 * n, n, 1) = minv.cwiseProduct(red.f);  // the constant state 1
+    const Sinusoid& w = piece.waves[0];
+    a.block(n, 2 * n + 1, n, 1).setConstant(-w.s);  // -a_g per unit mass
+    a.block(n, 2 * n + 2, n, 1).setConstant(-w.c);
+    a(2 * n + 1, 2 * n + 2) = w.w;
+    a(2 * n + 2, 2 * n + 1) = -w.w;
+    Eigen::VectorXd y0(dim);
+    y0 << qs, qv, 1.0, std::sin(w.w * t0), std::cos(w.w * t0);
+    for (double tau : {0.0, 0.013, 0.07, 0.31}) {
+      const double t = t0 + tau;
+      const Eigen::VectorXd y = (a * tau).exp() * y0;
+      const Eigen::VectorXd yd = a * y;
+      for (int i = 0; i < nf; ++i) {
+        const int c = red.cluster[static_cast<std::size_t>(i)];
+        double out[2];
+        motion.eval(motion.floor(i), t, out, 2);
+        EXPECT_NEAR(out[0], y(c) + red.offset(i), 1e-12 * 0.05) << "floor " << i << " at " << tau;
+        EXPECT_NEAR(out[1], y(n + c), 1e-12) << "floor " << i << " at " << tau;
+      }
+      // lambda_j = -(m u'' + C u' + K u + m a_g) of the floors of its cluster left of it.
+      Eigen::VectorXd uu(nf), uv(nf), ua(nf);
+      for (int i = 0; i < nf; ++i) {
+        const int c = red.cluster[static_cast<std::size_t>(i)];
+        uu(i) = y(c) + red.offset(i);
+        uv(i) = y(n + c);
+        ua(i) = yd(n + c);
+      }
+      const Eigen::VectorXd e = md.m.cwiseProduct(ua) + md.C * uv + md.K * uu + md.m * piece.accel(t);
+      for (int j = 0; j < nc; ++j) {
+        if (!stuck[static_cast<std::size_t>(j)]) continue;
+        const FloorContact& fc = md.contacts[static_cast<std::size_t>(j)];
+        double lambda = 0.0;
+        for (int b = 0; b <= fc.left; ++b) {
+          const int f = md.global(b, fc.floor);
+          if (red.cluster[static_cast<std::size_t>(f)] == red.cluster[static_cast<std::size_t>(fc.i_left)]) lambda -= e(f);
+        }
+        double out[1];
+        motion.eval(motion.contact(j), t, out, 1);
+        EXPECT_NEAR(out[0], lambda, 1e-11 * 3e5 * 3.0) << "contact " << j << " at " << tau;
+      }
+    }
+  }
+}
+
 // One storey each: the pair of single oscillators (left building = body 1, right = body 0),
 // solved by the event-driven reference of the paper's scenes (Poisson's law, which is
 // Newton's for one contact).
@@ -205,6 +343,51 @@ TEST(BuildingsReference, OneStoreyPairIsTheSingleOscillatorsReference) {
             }
   EXPECT_EQ(compared, 216);
   std::cout << "worst " << worst << "\n";
+}
+
+// A random scene of the whole space the scene allows.
+BuildingScene random_scene(std::mt19937& rng, int max_floors) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto pick = [&](std::initializer_list<double> xs) {
+    return *(xs.begin() + static_cast<std::ptrdiff_t>(rng() % xs.size()));
+  };
+  BuildingScene s;
+  const int nb = unit(rng) < 0.3 ? 3 : 2;
+  const double w_p = 2.0 + 20.0 * unit(rng), a_p = 0.5 + 5.0 * unit(rng);
+  for (int b = 0; b < nb; ++b) {
+    const int n = 1 + static_cast<int>(rng() % static_cast<unsigned>(max_floors));
+    Building bd;
+    const double w1 = w_p * std::exp(std::log(0.2) + std::log(25.0) * unit(rng));
+    bd = uniform_building(n, 1e5 * (0.5 + unit(rng)), w1);
+    if (unit(rng) < 0.5)  // not uniform
+      for (std::size_t i = 0; i < bd.masses.size(); ++i) {
+        bd.masses[i] *= 0.5 + unit(rng);
+        bd.stiffnesses[i] *= 0.5 + unit(rng);
+      }
+    s.buildings.push_back(bd);
+  }
+  if (unit(rng) < 0.2) s.buildings[1] = s.buildings[0];  // identical neighbours
+  s.damping = unit(rng) < 0.5 ? BuildingDamping::rayleigh : BuildingDamping::modal;
+  s.xi = pick({0.0, 0.02, 0.05, 0.1, 0.3});
+  s.eps = pick({0.0, 0.3, 0.6, 0.9, 1.0});
+  s.delta = pick({0.0, 0.01, 0.1, 0.5, 2.0}) * a_p / (w_p * w_p);
+  const double shape = unit(rng);
+  s.pulse = Pulse(shape < 0.5 ? PulseShape::sine : PulseShape::cosine, unit(rng) < 0.5 ? a_p : -a_p, w_p);
+  return s;
+}
+
+TEST(BuildingsReference, RandomScenesSolveWithTheirEnergyBalance) {
+  std::mt19937 rng(49);
+  int n_ok = 0;
+  double worst = 0.0;
+  for (int k = 0; k < 300; ++k) {
+    const BuildingScene s = random_scene(rng, 6);
+    const buildings::BuildingsResult r = buildings::solve(s);
+    EXPECT_EQ(r.status, Status::ok) << "scene " << k << ": " << r.message;
+    if (r.status == Status::ok) ++n_ok;
+    worst = std::max(worst, r.energy_error);
+  }
+  std::cout << n_ok << " ok, worst energy error " << worst << "\n";
 }
 
 TEST(BuildingsReference, IssueSceneSolves) {

@@ -63,11 +63,27 @@ class Motion {
   // b[0]: |f - mean(q)| over [t, horizon]; b[d], d = 1..kMaxOrder: max |f^(d)| there.
   void bounds(int q, double t, double* b);
   double mean(int q) const;
+  // A bound of |f - H| over [t, t + h], H the cubic Hermite interpolant of f on it: mode by
+  // mode the smaller of the fourth derivative's charge |a| |lambda|^4 h^4 / 384 and
+  // |f_k| + |H_k| <= |a| (2 + 8/27 |lambda| h) (the Hermite basis: h00 + h01 = 1,
+  // |h10|, |h11| <= 4/27), times the mode's decay; the near-resonant terms by the former. A fast
+  // mode of small amplitude then costs its amplitude, not its frequency: the windows of the
+  // searches span it. Never above bounds()' b[4] h^4 / 384.
+  double hermite_error(int q, double t, double h);
   double f0(int q) const { return f0_[static_cast<std::size_t>(q)]; }
+  double rate0(int q) const { return rate0_[static_cast<std::size_t>(q)]; }  // f'(t0)
   double t0() const { return t0_; }
   double horizon() const { return horizon_; }
   // The largest rate of the motion: its modes' |lambda| and the load's frequencies.
   double fastest() const { return fastest_; }
+
+  // For a quadrature that steps its nodes by products of exponentials instead of evaluating
+  // them anew: exp(lambda_k s) for each mode and exp(i w_j s) for each sinusoid (modes() and
+  // sines() of them), and every floor's velocity at t = t0 + s from those of s.
+  int modes() const { return n_k_; }
+  int sines() const { return n_j_; }
+  void exp_factors(double s, cplx* modes, cplx* sines) const;
+  void floor_velocities(double t, const cplx* modes, const cplx* sines, double* v);
 
  private:
   struct Resonant {
@@ -79,34 +95,41 @@ class Motion {
     cplx coef;                                // R: the modal coordinate's term
   };
 
-  void basis(double t);
+  void basis(double t, int nd);  // orders 0 .. nd - 1 (at least 2)
   void decays(double t);
   cplx& rho(int q, int k) { return rho_[static_cast<std::size_t>(q * k_max_ + k)]; }
+  std::size_t terms() const { return static_cast<std::size_t>(n_k_ + n_j_); }
 
   int n_floors_ = 0, n_contacts_ = 0, n_q_ = 0, k_max_ = 0;
+  std::size_t stride_ = 0;  // of a quantity's terms: k_max_ modes, then kMaxSinusoids sinusoids
   // This segment's modes, sinusoids and near-resonant terms.
   int n_k_ = 0, n_j_ = 0, n_r_ = 0;
   double t0_ = 0.0, horizon_ = 0.0, fastest_ = 0.0;
-  std::vector<cplx> lambda_;
-  std::vector<double> weight_;
-  std::array<double, kMaxSinusoids> w_{};
+  // Per term (modes, then sinusoids packed after them): its rate (lambda_k, or i w_j), the
+  // table of its powers and their moduli.
+  std::vector<cplx> rate_;
+  std::vector<std::array<cplx, kMaxOrder + 1>> pow_;
+  std::vector<std::array<double, kMaxOrder + 1>> mod_;
+  std::vector<double> weight_;  // per mode
   std::vector<Resonant> res_;
-  // Per mode: its power table lambda^d and |lambda|^d.
-  std::vector<std::array<cplx, kMaxOrder + 1>> lpow_;
-  std::vector<std::array<double, kMaxOrder + 1>> lmod_;
-  // Per quantity (row-major, q first): modal rows, and the terms of the closed form.
-  std::vector<cplx> rho_, a_, z_, r_;
-  std::vector<double> f0_, lin_, abs_a_, abs_z_, abs_r_;
+  // Per quantity: its modal row (modes only), its terms' coefficients (a_k, then Z_j), the
+  // near-resonant coefficients, f0, lin, the mean; and its bounds' parts: constant per order,
+  // and per order and mode the coefficient of the mode's decay.
+  std::vector<cplx> rho_, coef_, coef_rate_, r_;  // coef_rate_: each coefficient times its rate
+  std::vector<double> f0_, lin_, rate0_, mean_, bound_const_, bound_env_, coef_abs_, res4_;
   // Scratch of build().
-  std::vector<double> q0_, qd0_;
-  std::vector<cplx> c0_, lin_mode_, h_mode_;
+  std::vector<double> q0_, qd0_, modulus_;
+  std::vector<cplx> lin_mode_, h_mode_;
   std::vector<std::array<cplx, 2 * kMaxSinusoids>> x_mode_;  // per mode: X e^(+-i w t0), per sinusoid and sign
-  // The basis at one t (every quantity evaluated there shares it).
+  // The basis at one t (every quantity evaluated there shares it): per order, per term,
+  // expm1(rate s) for order 0 and rate^d exp(rate s) above.
   double basis_t_ = 0.0;
   bool basis_ok_ = false;
-  std::vector<std::array<cplx, kMaxOrder + 1>> em_;  // per mode: expm1(lambda s), then lambda^d exp(lambda s)
-  std::array<std::array<cplx, kMaxOrder + 1>, kMaxSinusoids> ew_{};  // the same for i w_j
-  std::vector<cplx> e_res_;                                          // E_r(s)
+  int basis_nd_ = 0;
+  std::array<std::vector<cplx>, kMaxOrder + 1> basis_;
+  std::vector<cplx> exp_;  // exp(rate s)
+  std::vector<cplx> e_res_;  // E_r(s)
+  std::vector<cplx> v_res_;  // floor_velocities' E_r'(s)
   double decay_t_ = 0.0;
   bool decay_ok_ = false;
   std::vector<double> decay_;

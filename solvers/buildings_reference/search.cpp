@@ -33,6 +33,10 @@ Point at3(const Track& w, double t) {
 class Bounds {
  public:
   explicit Bounds(const Track& w) : w_(w) {}
+  // Known already at t (the peak grid's).
+  Bounds(const Track& w, double t, const double* known) : w_(w), t_(t) {
+    std::copy(known, known + kMaxOrder + 1, value_);
+  }
   double operator()(double t, int d) {
     if (!(t == t_)) {
       w_.bounds(t, value_);
@@ -190,10 +194,9 @@ double search(const Track& g, Bounds& bound, const Point& a, const Point& b, dou
     const Cubic cubic(a, b);
     double lo, hi;
     cubic.range(lo, hi);
-    const double err = hermite_error(bound, a.t, h);
-    if (lo - err > 0.0) return kNoRoot;
+    if (lo - g.hermite_error(a.t, h) > 0.0) return kNoRoot;
     if (h <= floor) return kNoRoot;  // a touch within round-off, not a contact
-    edge_range(cubic, err, lo, hi);
+    edge_range(cubic, hermite_error(bound, a.t, h), lo, hi);
     if (lo > 0.0) return kNoRoot;
   }
   const Point m = at(g, 0.5 * (a.t + b.t));
@@ -205,11 +208,19 @@ double search(const Track& g, Bounds& bound, const Point& a, const Point& b, dou
   return std::isnan(r) ? search(g, bound, m, b, floor, dl) : r;
 }
 
-// A window whose Hermite error is a fraction of the current value.
-double window(Bounds& bound, double t, double f, double rest) {
+// A window whose Hermite error is at most a quarter of |f|: from the fourth derivative's bound,
+// then doubled while the mode-by-mode bound (Motion::hermite_error) still allows it.
+double window(const Track& g, Bounds& bound, double t, double f, double rest) {
   const double b4 = bound(t, 4);
   if (b4 <= 0.0) return rest;
-  return std::min(rest, std::sqrt(std::sqrt(96.0 * std::abs(f) / b4)));
+  double h = std::min(rest, std::sqrt(std::sqrt(96.0 * std::abs(f) / b4)));
+  const double target = 0.25 * std::abs(f);
+  for (int i = 0; i < 8 && h < rest; ++i) {
+    const double longer = std::min(2.0 * h, rest);
+    if (!(g.hermite_error(t, longer) <= target)) break;
+    h = longer;
+  }
+  return h;
 }
 
 void check_finite(Bounds& bound, const Point& p) {
@@ -228,7 +239,7 @@ double crossing(const Track& f, Bounds& bound, Point p, double b, double floor, 
   while (p.t < b) {
     tick(dl);
     if (mean - bound(p.t, 0) > 0.0) return kNoRoot;
-    const double h = std::max(window(bound, p.t, p.f, b - p.t), std::min(floor, b - p.t));
+    const double h = std::max(window(f, bound, p.t, p.f, b - p.t), std::min(floor, b - p.t));
     const double far = reach(p, bound(p.t, 2));
     if (far > h) {
       if (far >= b - p.t) return kNoRoot;
@@ -290,11 +301,10 @@ void peak_search(const Track& f, Bounds& bound, const Point& a, const Point& b, 
   const Cubic cubic(a, b);
   double lo, hi;
   cubic.range(lo, hi);
-  const double err = hermite_error(bound, a.t, h);
   const double best = peak.value > 0.0 ? peak.value : quiet;
-  if (std::max(-lo, hi) + err <= best) return;
+  if (std::max(-lo, hi) + f.hermite_error(a.t, h) <= best) return;
   if (h <= floor) return;
-  edge_range(cubic, err, lo, hi);
+  edge_range(cubic, hermite_error(bound, a.t, h), lo, hi);
   if (std::max(-lo, hi) <= best) return;
   if (one_sign(a.df, b.df, bound(a.t, 2), h)) return;  // monotone: the ends hold the max
   if ((a.df > 0.0) != (b.df > 0.0) && one_sign(a.ddf, b.ddf, bound(a.t, 3), h)) {
@@ -342,12 +352,124 @@ void max_abs(const Track& f, double a, double b, double floor, Peak& peak, Deadl
     if (mean + bound(p.t, 0) <= peak.value) return;
     const double ref = std::max(peak.value, std::abs(p.f));
     // While everything seen rounds to zero the window doubles its distance from a.
-    const double h = ref > 0.0 ? std::max(window(bound, p.t, ref, b - p.t), std::min(floor, b - p.t))
+    const double h = ref > 0.0 ? std::max(window(f, bound, p.t, ref, b - p.t), std::min(floor, b - p.t))
                                : std::min(std::max(floor, p.t - a), b - p.t);
     const Point q = at3(f, h >= b - p.t ? b : p.t + h);
     consider(q, peak);
     peak_search(f, bound, p, q, floor, quiet, peak, dl);
     p = q;
+  }
+}
+
+void PeakSearch::reserve(int quantities) {
+  const auto n = static_cast<std::size_t>(quantities);
+  for (std::vector<double>* v : {&mean_, &quiet_}) v->resize(n);
+  active_.resize(n);
+  grid_.resize(kChunk + 1);
+  values_.resize(3 * n * (kChunk + 1));
+  bounds_.resize((kMaxOrder + 1) * n * (kChunk + 1));
+}
+
+void PeakSearch::run(Motion& m, const int* qs, Peak* peaks, int n, double a, double b, double floor, Deadline& dl) {
+  const auto count = static_cast<std::size_t>(n);
+  double bd[kMaxOrder + 1];
+  bool presample = false;
+  // values_: per grid point k, per quantity i, (f, f', f'') at 3 (k n + i).
+  const auto put = [&](std::size_t k, double t) {
+    grid_[k] = t;
+    for (std::size_t i = 0; i < count; ++i) {
+      if (!active_[i]) continue;
+      double* out = &values_[3 * (k * count + i)];
+      m.eval(qs[i], t, out, 3);
+      if (!std::isfinite(out[0]) || !std::isfinite(out[1])) throw NonFinite{};
+      consider(Point{t, out[0], out[1], out[2]}, peaks[i]);
+    }
+  };
+  int left = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    mean_[i] = std::abs(m.mean(qs[i]));
+    m.bounds(qs[i], a, bd);
+    if (!std::isfinite(bd[kMaxOrder])) throw NonFinite{};
+    quiet_[i] = 8.0 * std::numeric_limits<double>::epsilon() * (mean_[i] + bd[0]);
+    // Not searched where it cannot beat its peak: |f| <= |f(a)| + |f'(a)| s + max|f''| s^2 / 2
+    // (most quantities over the short segments between impacts), or its swing about its mean.
+    const double h = b - a, f0 = m.f0(qs[i]);
+    const double taylor = std::abs(f0) + std::abs(m.rate0(qs[i])) * h + 0.5 * bd[2] * h * h;
+    consider(Point{a, f0, m.rate0(qs[i])}, peaks[i]);
+    active_[i] = !(std::min(taylor, mean_[i] + bd[0]) <= peaks[i].value);
+    if (active_[i]) {
+      ++left;
+      if (peaks[i].value < kPresample * (mean_[i] + bd[0])) presample = true;
+    }
+  }
+  if (left == 0) return;
+  // A quantity whose peak so far is far below what it may reach here (the rise from rest)
+  // asks for windows as short as its peak is small, and would set the grid for all: its peak
+  // is first raised to the values at evenly spaced points, two per radian of the fastest
+  // rate (true values, which any window is then tested against).
+  if (presample) {
+    const double span = b - a;
+    const int points = std::min(kMaxPresample, static_cast<int>(std::ceil(0.5 * span * m.fastest())));
+    double out[1];
+    for (int p = 1; p <= points; ++p) {
+      const double t = a + span * p / (points + 1);
+      for (std::size_t i = 0; i < count; ++i) {
+        if (!active_[i]) continue;
+        m.eval(qs[i], t, out, 1);
+        if (std::abs(out[0]) > peaks[i].value) peaks[i] = {std::abs(out[0]), t};
+      }
+    }
+  }
+  put(0, a);
+  while (grid_[0] < b && left > 0) {
+    // Pass 1: up to kChunk windows, each the shortest any active quantity asks for (max_abs's
+    // rule), every quantity evaluated at its end from one basis, its peak raised to the values.
+    std::size_t k = 0;
+    while (k < kChunk && grid_[k] < b) {
+      tick(dl);
+      const double t = grid_[k];
+      double h = b - t;
+      for (std::size_t i = 0; i < count; ++i) {
+        if (!active_[i]) continue;
+        double* known = &bounds_[(kMaxOrder + 1) * (k * count + i)];
+        m.bounds(qs[i], t, known);
+        const double f = values_[3 * (k * count + i)];
+        const double ref = std::max(peaks[i].value, std::abs(f));
+        const Track track{&m, qs[i], 0.0};
+        Bounds bound(track, t, known);
+        // The shortest window yet needs no longer a search than it.
+        const double rest = std::min(h, b - t);
+        const double hi = ref > 0.0 ? std::max(window(track, bound, t, ref, rest), std::min(floor, b - t))
+                                    : std::min(std::max(floor, t - a), b - t);
+        h = std::min(h, hi);
+      }
+      put(k + 1, h >= b - t ? b : t + h);
+      ++k;
+    }
+    // Pass 2: each window searched against the peak every value of the chunk has raised.
+    for (std::size_t i = 0; i < count; ++i) {
+      if (!active_[i]) continue;
+      const Track f{&m, qs[i], 0.0};
+      for (std::size_t w = 0; w < k; ++w) {
+        const double* p0 = &values_[3 * (w * count + i)];
+        const double* p1 = &values_[3 * ((w + 1) * count + i)];
+        Bounds bound(f, grid_[w], &bounds_[(kMaxOrder + 1) * (w * count + i)]);
+        peak_search(f, bound, Point{grid_[w], p0[0], p0[1], p0[2]}, Point{grid_[w + 1], p1[0], p1[1], p1[2]}, floor,
+                    quiet_[i], peaks[i], dl);
+      }
+    }
+    // The chunk's last point starts the next; a quantity whose bound over the rest of the
+    // segment cannot beat its peak leaves.
+    grid_[0] = grid_[k];
+    for (std::size_t i = 0; i < count; ++i) {
+      if (!active_[i]) continue;
+      for (int c = 0; c < 3; ++c) values_[3 * i + static_cast<std::size_t>(c)] = values_[3 * (k * count + i) + static_cast<std::size_t>(c)];
+      m.bounds(qs[i], grid_[0], bd);
+      if (mean_[i] + bd[0] <= peaks[i].value) {
+        active_[i] = 0;
+        --left;
+      }
+    }
   }
 }
 

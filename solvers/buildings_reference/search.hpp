@@ -8,6 +8,8 @@
 // windows of `floor` seconds; roots polished to a sign change of f's rounded values between
 // adjacent doubles, maxima at the zero of f' likewise.
 
+#include <vector>
+
 #include "solvers/buildings_reference/motion.hpp"
 #include "solvers/run_limits.hpp"
 
@@ -29,6 +31,7 @@ struct Track {
     out[0] += shift;
   }
   void bounds(double t, double* b) const { motion->bounds(q, t, b); }
+  double hermite_error(double t, double h) const { return motion->hermite_error(q, t, h); }
   double mean() const { return motion->mean(q) + shift; }
   double f0() const { return motion->f0(q) + shift; }
   double t0() const { return motion->t0(); }
@@ -47,5 +50,29 @@ struct Peak {
 
 // Raises peak to max |f| on [a, b] if that is larger; interior maxima at the zero of f'.
 void max_abs(const Track& f, double a, double b, double floor, Peak& peak, Deadline& deadline);
+
+// max_abs of many quantities of one Motion at once, on one grid: each grid point's window is
+// the shortest any quantity still searched asks for, and every quantity is evaluated there from
+// one basis (its exponentials and sinusoids: most of an evaluation's cost). A chunk of grid
+// points is sampled first, raising each peak to its values, and only then is each window that
+// a quantity cannot exclude searched for it alone, as max_abs does: against a peak that is
+// already near its final value, most local maxima are excluded without a halving. A quantity
+// leaves the grid once its bound over the rest of [a, b] cannot beat its peak. The answers are
+// max_abs's (the largest |f| certified to the same tests), found with fewer evaluations.
+class PeakSearch {
+ public:
+  void reserve(int quantities);
+  // peaks[i] for quantity qs[i], i < n.
+  void run(Motion& m, const int* qs, Peak* peaks, int n, double a, double b, double floor, Deadline& deadline);
+
+ private:
+  static constexpr std::size_t kChunk = 64;
+  // Presampling (run()): when a quantity's peak is below this fraction of its bound over the
+  // segment, at most this many points.
+  static constexpr double kPresample = 0.1;
+  static constexpr int kMaxPresample = 64;
+  std::vector<double> grid_, values_, bounds_, mean_, quiet_;
+  std::vector<char> active_;
+};
 
 }  // namespace pb::buildings
