@@ -520,6 +520,7 @@ class Solver {
         }
         ok = lex_nonnegative(coef_.data(), pass.depth, force_scale_[k], rate_, pass.tol);
 
+
       } else {
         const FloorContact& fc = md_.contacts[k];
         const auto cl = static_cast<std::size_t>(r.cluster[static_cast<std::size_t>(fc.i_left)]);
@@ -529,6 +530,7 @@ class Solver {
           coef_[static_cast<std::size_t>(d - 1)] = q[cr] - q[cl];
         }
         ok = lex_nonnegative(coef_.data(), pass.depth + 1, md_.a_p / rate_, rate_, pass.tol);
+
 
       }
       misfit_[k] = !ok;
