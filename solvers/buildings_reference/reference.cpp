@@ -12,7 +12,7 @@
 #include "solvers/buildings_reference/motion.hpp"
 #include "solvers/buildings_reference/search.hpp"
 #include "solvers/buildings_reference/stuck.hpp"
-#include "solvers/lcp/small.hpp"
+#include "kit/lcp/small.hpp"
 #include "solvers/run_limits.hpp"
 
 namespace pb::buildings {

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "cases/buildings.hpp"
-#include "solvers/solver.hpp"
+#include "kit/solver.hpp"
 
 namespace pb::buildings {
 
