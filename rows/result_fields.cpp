@@ -10,8 +10,6 @@ namespace pb {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 // The case's unit of length, a_p / w_p^2: the lengths in metres are Pi terms times it (m when
 // the case was given in physical units, or a pulse's a_p and w_p in SI).
 double length_unit(const Row& row) { return row.input.a_p / (row.input.w_p * row.input.w_p); }
@@ -19,7 +17,7 @@ double length_unit(const Row& row) { return row.input.a_p / (row.input.w_p * row
 double mass_unit(const Case& c) { return std::isnan(c.physical.m0) ? 1.0 : c.physical.m0; }
 
 // A number written as an empty field where it is infinite (a gap that never closed).
-double finite_or_missing(double x) { return std::isinf(x) ? kNaN : x; }
+double finite_or_missing(double x) { return std::isinf(x) ? std::numeric_limits<double>::quiet_NaN() : x; }
 
 using T = ResultType;
 using P = Place;
