@@ -12,6 +12,7 @@
 #include "cases/toml_input.hpp"
 #include "programs/process.hpp"
 #include "kit/settings_fields.hpp"
+#include "solvers/registry.hpp"
 
 namespace pb {
 
