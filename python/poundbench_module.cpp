@@ -636,12 +636,12 @@ py::object json_to_python(const nlohmann::ordered_json& j) {
   if (j.is_array()) {
     py::list out;
     for (const auto& x : j) out.append(json_to_python(x));
-    return std::move(out);
+    return out;
   }
   if (j.is_object()) {
     py::dict out;
     for (const auto& [key, x] : j.items()) out[decoded(key)] = json_to_python(x);
-    return std::move(out);
+    return out;
   }
   switch (j.type()) {
     case nlohmann::json::value_t::boolean: return py::bool_(j.get<bool>());
