@@ -376,6 +376,8 @@ class BuildingsReader {
   }
 
   struct Family;
+  void drop_unused_pulse_keys(Family& f) const;
+  void expand_points(const Family& f, std::vector<BuildingCase>& out) const;
   void check_pulse_keys(const Family& f) const;
   void expand(const toml::table& own, const toml::table* defaults, const std::string& prefix, const std::string& name,
               std::vector<BuildingCase>& out);
@@ -435,15 +437,19 @@ void BuildingsReader::expand(const toml::table& own, const toml::table* defaults
     if (!has(k))
       fail(f.line, prefix + "." + std::string(k),
            std::string("required by a buildings family ") + (pi ? "in Pi terms" : "given floor by floor"));
-  if (has("tp") && has("w_p"))
-    fail(given(own, defaults, prefix, "tp").line, given(own, defaults, prefix, "tp").field, "not with w_p: give one of them");
+  // tp gives w_p: never both in one table; the family's own (either) before [defaults]'s.
+  for (const toml::table* table : {&own, defaults})
+    if (table && table->contains("tp") && table->contains("w_p"))
+      fail(line_of(*table->get("tp")), (table == &own ? prefix : std::string("defaults")) + ".tp",
+           "not with w_p: give one of them");
+  const bool tp = own.contains("tp") || (!own.contains("w_p") && has("tp"));
   if (pi && own.contains("t_end"))
     fail(line_of(*own.get("t_end")), prefix + ".t_end",
          "not in the Pi-term form (its duration is T_p + n_free T_1, which scales with the pulse: give n_free)");
 
   for (std::string_view k : kAxisOrder) {
     const bool of_other_form = pi ? one_of(kFloorKeys, k) : one_of(kPiKeys, k);
-    Given g = given(own, defaults, prefix, k == "w_p" && has("tp") ? "tp" : k);
+    Given g = given(own, defaults, prefix, k == "w_p" && tp ? "tp" : k);
     if (!g.node || of_other_form) continue;
     Axis axis = k == "storeys"       ? storeys(g)
                 : k == "damping"     ? names(g, {"rayleigh", "modal"})
@@ -460,6 +466,7 @@ void BuildingsReader::expand(const toml::table& own, const toml::table* defaults
     f.keys.push_back(k);
     f.axes.push_back(std::move(axis));
   }
+  drop_unused_pulse_keys(f);
   check_pulse_keys(f);
   for (const Item& p : f.axes[static_cast<std::size_t>(std::find(f.keys.begin(), f.keys.end(), std::string_view("pulse")) - f.keys.begin())])
     for (std::string_view k : {"a_p", "w_p"})
@@ -483,11 +490,16 @@ void BuildingsReader::expand(const toml::table& own, const toml::table* defaults
     f.contact_floors_at = c;
   }
 
+  expand_points(f, out);
+}
+
+// The family's points, the last axis turning fastest, each built and checked.
+void BuildingsReader::expand_points(const Family& f, std::vector<BuildingCase>& out) const {
   std::size_t count = 1;
   for (const Axis& a : f.axes) {
     count *= a.size();
     if (count + out.size() > kMaxPoints)
-      fail(f.line, prefix, "expands to more than " + std::to_string(kMaxPoints) + " buildings points in this file");
+      fail(f.line, f.prefix, "expands to more than " + std::to_string(kMaxPoints) + " buildings points in this file");
   }
   std::vector<std::size_t> at(f.axes.size(), 0);
   for (std::size_t n = 0; n < count; ++n) {
@@ -519,6 +531,26 @@ void BuildingsReader::check_pulse_keys(const Family& f) const {
     if (!users.empty() && !others.empty() && given)
       fail(given->line, given->field, "used by pulse " + users + " but not by " + others + ": give each its own family");
     if (!users.empty() && !given) fail(f.line, f.prefix + "." + std::string(key), "required by pulse " + users);
+  }
+}
+
+// Which pulse uses a pulse's own key.
+std::string_view pulse_of_key(std::string_view key) {
+  return key == "record" ? "record" : key == "cycles" ? "makris-c" : key == "mp_gamma" || key == "mp_nu" ? "mp" : "";
+}
+
+// A default of a pulse's key that none of the family's pulses uses is left out (it would
+// repeat the family's points once per value).
+void BuildingsReader::drop_unused_pulse_keys(Family& f) const {
+  const Axis& pulses = f.axes[static_cast<std::size_t>(
+      std::find(f.keys.begin(), f.keys.end(), std::string_view("pulse")) - f.keys.begin())];
+  for (std::size_t a = f.keys.size(); a-- > 0;) {
+    const std::string_view pulse = pulse_of_key(f.keys[a]);
+    if (pulse.empty() || !f.axes[a][0].field.starts_with("defaults.")) continue;
+    if (std::none_of(pulses.begin(), pulses.end(), [&](const Item& p) { return p.text == pulse; })) {
+      f.keys.erase(f.keys.begin() + static_cast<std::ptrdiff_t>(a));
+      f.axes.erase(f.axes.begin() + static_cast<std::ptrdiff_t>(a));
+    }
   }
 }
 

@@ -93,6 +93,20 @@ TEST(BuildingsSet, TheIssuesExampleReadsAsWritten) {
   EXPECT_EQ(s.pulse.w, 12.566);
 }
 
+// [defaults] serves families of every pulse: a record there is left out of a sine family
+// (not an axis repeating its points), and the family's own w_p wins over a default tp.
+TEST(BuildingsSet, DefaultsGiveWayToWhatTheFamilyUsesAndGives) {
+  std::string text = kTwoBuildings;
+  text.replace(text.find("[[family]]"), 10,
+               "[defaults]\nrecord = [\"../records/real/SHL000.AT2\", \"../records/real/PFT135.AT2\"]\ntp = 0.1\n"
+               "[[family]]");
+  const std::optional<BuildingsSet> set = parse_buildings_set(text, kSource + "/cases/sets/t.toml");
+  ASSERT_TRUE(set.has_value());
+  ASSERT_EQ(set->points.size(), 1u);
+  EXPECT_EQ(set->points[0].scene.pulse.w, 12.566);
+  EXPECT_TRUE(set->points[0].record.empty());
+}
+
 TEST(BuildingsSet, EachBadFieldIsOneLineNamingFileLineAndField) {
   const auto with = [](const std::string& from, const std::string& to) {
     std::string t = kTwoBuildings;
