@@ -50,19 +50,19 @@ constexpr std::array<std::string_view, 18> kAxisOrder = {
 constexpr std::size_t kMaxPoints = 100'000;
 
 template <std::size_t N>
-bool one_of(const std::array<std::string_view, N>& keys, std::string_view k) {
+bool key_in(const std::array<std::string_view, N>& keys, std::string_view k) {
   return std::find(keys.begin(), keys.end(), k) != keys.end();
 }
 
-std::uint32_t line_of(const toml::node& n) { return n.source().begin.line; }
+std::uint32_t node_line(const toml::node& n) { return n.source().begin.line; }
 
-std::string brief(double x) {
+std::string short_number(double x) {
   std::ostringstream os;
   os << x;
   return os.str();
 }
 
-std::string_view type_phrase(const toml::node& n) {
+std::string_view node_kind(const toml::node& n) {
   if (n.is_string()) return "a string";
   if (n.is_integer()) return "an integer";
   if (n.is_floating_point()) return "a float";
@@ -72,7 +72,7 @@ std::string_view type_phrase(const toml::node& n) {
   return "a date or time";
 }
 
-std::optional<double> as_number(const toml::node& n) {
+std::optional<double> number_of(const toml::node& n) {
   if (const auto* i = n.as_integer()) return static_cast<double>(i->get());
   if (const auto* f = n.as_floating_point()) return f->get();
   return std::nullopt;
@@ -116,7 +116,7 @@ class BuildingsReader {
     for (const auto& [key, node] : root) {
       if (key.str() == "name" || key.str() == "description") {
         const auto* s = node.as_string();
-        if (s == nullptr) fail(key.source().begin.line, key.str(), "must be a string, got " + std::string(type_phrase(node)));
+        if (s == nullptr) fail(key.source().begin.line, key.str(), "must be a string, got " + std::string(node_kind(node)));
         (key.str() == "name" ? set.name : set.description) = s->get();
       } else if (key.str() == "defaults") {
         defaults = node.as_table();
@@ -131,12 +131,12 @@ class BuildingsReader {
     for (std::size_t i = 0; i < families.size(); ++i) {
       const std::string prefix = "family[" + std::to_string(i) + "]";
       const toml::table* t = families.get(i)->as_table();
-      if (t == nullptr) fail(line_of(*families.get(i)), prefix, "must be a table");
+      if (t == nullptr) fail(node_line(*families.get(i)), prefix, "must be a table");
       check_scene(*t, defaults, prefix);
       check_keys(*t, prefix, false);
       const std::string name = family_name(*t, prefix);
       if (std::find(names.begin(), names.end(), name) != names.end())
-        fail(line_of(*t), prefix + ".name", "duplicate family name \"" + clip(name) + "\"");
+        fail(node_line(*t), prefix + ".name", "duplicate family name \"" + clip(name) + "\"");
       names.push_back(name);
       expand(*t, defaults, prefix, name, set.points);
     }
@@ -151,7 +151,7 @@ class BuildingsReader {
   // that read the single oscillators' files solve no buildings yet.
   void check_scene(const toml::table& t, const toml::table* defaults, const std::string& prefix) const {
     const Given g = given(t, defaults, prefix, "scene");
-    if (g.node == nullptr) fail(line_of(t), prefix + ".scene", "required (\"buildings\" in a file of buildings families)");
+    if (g.node == nullptr) fail(node_line(t), prefix + ".scene", "required (\"buildings\" in a file of buildings families)");
     const auto* s = g.node->as_string();
     if (s == nullptr || s->get() != kBuildingsScene)
       fail(g.line, g.field,
@@ -181,20 +181,20 @@ class BuildingsReader {
 
   std::string family_name(const toml::table& t, const std::string& prefix) const {
     const toml::node* n = t.get("name");
-    if (n == nullptr) fail(line_of(t), prefix + ".name", "required (every family is named)");
+    if (n == nullptr) fail(node_line(t), prefix + ".name", "required (every family is named)");
     const auto* s = n->as_string();
-    if (s == nullptr || s->get().empty()) fail(line_of(*n), prefix + ".name", "must be a string, not empty");
+    if (s == nullptr || s->get().empty()) fail(node_line(*n), prefix + ".name", "must be a string, not empty");
     for (char c : s->get())
       if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.'))
-        fail(line_of(*n), prefix + ".name", "may hold only letters, digits, '-', '_' and '.'");
+        fail(node_line(*n), prefix + ".name", "may hold only letters, digits, '-', '_' and '.'");
     return s->get();
   }
 
   // The key from the family's table, else from [defaults].
   Given given(const toml::table& own, const toml::table* defaults, const std::string& prefix, std::string_view key) const {
-    if (const toml::node* n = own.get(key)) return {n, prefix + "." + std::string(key), line_of(*n)};
+    if (const toml::node* n = own.get(key)) return {n, prefix + "." + std::string(key), node_line(*n)};
     if (defaults)
-      if (const toml::node* n = defaults->get(key)) return {n, "defaults." + std::string(key), line_of(*n)};
+      if (const toml::node* n = defaults->get(key)) return {n, "defaults." + std::string(key), node_line(*n)};
     return {};
   }
 
@@ -202,9 +202,9 @@ class BuildingsReader {
   Axis numbers(const Given& g) const {
     Axis out;
     auto one = [&](const toml::node& n, const std::string& field) {
-      const auto v = as_number(n);
-      if (!v) fail(line_of(n), field, "must be a number, got " + std::string(type_phrase(n)));
-      out.push_back({*v, {}, {}, field, line_of(n)});
+      const auto v = number_of(n);
+      if (!v) fail(node_line(n), field, "must be a number, got " + std::string(node_kind(n)));
+      out.push_back({*v, {}, {}, field, node_line(n)});
     };
     if (const auto* arr = g.node->as_array()) {
       if (arr->empty()) fail(g.line, g.field, "empty list: give at least one value");
@@ -224,21 +224,21 @@ class BuildingsReader {
     for (const auto& [key, node] : grid) {
       const std::string field = g.field + "." + clip(key.str());
       if (key.str() == "from" || key.str() == "to") {
-        const auto v = as_number(node);
-        if (!v || !std::isfinite(*v)) fail(line_of(node), field, "must be a finite number");
+        const auto v = number_of(node);
+        if (!v || !std::isfinite(*v)) fail(node_line(node), field, "must be a finite number");
         (key.str() == "from" ? from : to) = *v;
       } else if (key.str() == "points") {
         const auto* i = node.as_integer();
         if (i == nullptr || i->get() < 1 || i->get() > 100'000)
-          fail(line_of(node), field, "must be an integer from 1 to 100000");
+          fail(node_line(node), field, "must be an integer from 1 to 100000");
         points = i->get();
       } else if (key.str() == "spacing") {
         const auto* s = node.as_string();
         if (s == nullptr || (s->get() != "log" && s->get() != "linear"))
-          fail(line_of(node), field, "must be \"log\" or \"linear\"");
+          fail(node_line(node), field, "must be \"log\" or \"linear\"");
         log = s->get() == "log";
       } else {
-        fail(line_of(node), field, "unknown key (expected from, to, points, spacing)");
+        fail(node_line(node), field, "unknown key (expected from, to, points, spacing)");
       }
     }
     if (!from || !to || !points || !log) fail(g.line, g.field, "a grid needs from, to, points and spacing");
@@ -263,10 +263,10 @@ class BuildingsReader {
     for (std::string_view c : choices) expected += (expected.empty() ? "" : ", ") + std::string(c);
     auto one = [&](const toml::node& n, const std::string& field) {
       const auto* s = n.as_string();
-      if (s == nullptr) fail(line_of(n), field, "must be a string, got " + std::string(type_phrase(n)));
+      if (s == nullptr) fail(node_line(n), field, "must be a string, got " + std::string(node_kind(n)));
       if (std::find(choices.begin(), choices.end(), s->get()) == choices.end())
-        fail(line_of(n), field, "unknown value \"" + clip(s->get()) + "\" (expected " + expected + ")");
-      out.push_back({0.0, s->get(), {}, field, line_of(n)});
+        fail(node_line(n), field, "unknown value \"" + clip(s->get()) + "\" (expected " + expected + ")");
+      out.push_back({0.0, s->get(), {}, field, node_line(n)});
     };
     if (const auto* arr = g.node->as_array()) {
       if (arr->empty()) fail(g.line, g.field, "empty list: give at least one value");
@@ -282,17 +282,17 @@ class BuildingsReader {
     Axis out;
     auto one = [&](const toml::node& n, const std::string& field) {
       const auto* s = n.as_string();
-      if (s == nullptr || s->get().empty()) fail(line_of(n), field, "must be a file name (a string)");
+      if (s == nullptr || s->get().empty()) fail(node_line(n), field, "must be a file name (a string)");
       const std::string path =
           (std::filesystem::path(file_).parent_path() / std::filesystem::path(s->get())).lexically_normal().string();
       if (!records_.contains(path)) {
         try {
           records_.emplace(path, read_record(path));
         } catch (const RecordError& e) {
-          fail(line_of(n), field, e.what());
+          fail(node_line(n), field, e.what());
         }
       }
-      out.push_back({0.0, path, {}, field, line_of(n)});
+      out.push_back({0.0, path, {}, field, node_line(n)});
     };
     if (const auto* arr = g.node->as_array()) {
       if (arr->empty()) fail(g.line, g.field, "empty list: give at least one file");
@@ -309,12 +309,12 @@ class BuildingsReader {
     auto pair = [&](const toml::node& n, const std::string& field) {
       const auto* arr = n.as_array();
       const std::string shape = "must be two storey counts [left, right] (the Pi-term form is a pair of buildings)";
-      if (arr == nullptr || arr->size() != 2) fail(line_of(n), field, shape);
-      Item item{0.0, {}, {}, field, line_of(n)};
+      if (arr == nullptr || arr->size() != 2) fail(node_line(n), field, shape);
+      Item item{0.0, {}, {}, field, node_line(n)};
       for (std::size_t i = 0; i < 2; ++i) {
         const auto* v = arr->get(i)->as_integer();
         if (v == nullptr || v->get() < 1 || v->get() > kMaxBuildingFloors)
-          fail(line_of(*arr->get(i)), field + "[" + std::to_string(i) + "]",
+          fail(node_line(*arr->get(i)), field + "[" + std::to_string(i) + "]",
                "must be a whole number of storeys from 1 to " + std::to_string(kMaxBuildingFloors));
         item.counts.push_back(static_cast<int>(v->get()));
       }
@@ -339,24 +339,24 @@ class BuildingsReader {
     for (std::size_t b = 0; b < arr->size(); ++b) {
       const std::string field = g.field + "[" + std::to_string(b) + "]";
       const auto* t = arr->get(b)->as_table();
-      if (t == nullptr) fail(line_of(*arr->get(b)), field, "must be a table { masses = [...], stiffnesses = [...] }");
+      if (t == nullptr) fail(node_line(*arr->get(b)), field, "must be a table { masses = [...], stiffnesses = [...] }");
       Building bd;
       for (const auto& [key, node] : *t) {
         const std::string f = field + "." + clip(key.str());
         if (key.str() != "masses" && key.str() != "stiffnesses")
-          fail(line_of(node), f, "unknown key (a building has masses, kg, and stiffnesses, N/m, floor 1 first)");
+          fail(node_line(node), f, "unknown key (a building has masses, kg, and stiffnesses, N/m, floor 1 first)");
         const auto* list = node.as_array();
-        if (list == nullptr || list->empty()) fail(line_of(node), f, "must be a list of numbers, floor 1 first");
+        if (list == nullptr || list->empty()) fail(node_line(node), f, "must be a list of numbers, floor 1 first");
         std::vector<double>& into = key.str() == "masses" ? bd.masses : bd.stiffnesses;
         for (std::size_t i = 0; i < list->size(); ++i) {
-          const auto v = as_number(*list->get(i));
-          if (!v) fail(line_of(*list->get(i)), f + "[" + std::to_string(i) + "]", "must be a number");
+          const auto v = number_of(*list->get(i));
+          if (!v) fail(node_line(*list->get(i)), f + "[" + std::to_string(i) + "]", "must be a number");
           into.push_back(*v);
         }
       }
       for (std::string_view k : {"masses", "stiffnesses"})
-        if (!t->contains(k)) fail(line_of(*t), field + "." + std::string(k), "required");
-      where.push_back({0.0, {}, {}, field, line_of(*t)});
+        if (!t->contains(k)) fail(node_line(*t), field + "." + std::string(k), "required");
+      where.push_back({0.0, {}, {}, field, node_line(*t)});
       out.push_back(std::move(bd));
     }
     return out;
@@ -369,7 +369,7 @@ class BuildingsReader {
     for (std::size_t i = 0; i < arr->size(); ++i) {
       const auto* v = arr->get(i)->as_integer();
       if (v == nullptr || v->get() < 1 || v->get() > kMaxBuildingFloors)
-        fail(line_of(*arr->get(i)), g.field + "[" + std::to_string(i) + "]", "must be a floor number from 1");
+        fail(node_line(*arr->get(i)), g.field + "[" + std::to_string(i) + "]", "must be a floor number from 1");
       out.push_back(static_cast<int>(v->get()));
     }
     return out;
@@ -414,7 +414,7 @@ void BuildingsReader::expand(const toml::table& own, const toml::table* defaults
   Family f;
   f.name = name;
   f.prefix = prefix;
-  f.line = line_of(own);
+  f.line = node_line(own);
   const auto has = [&](std::string_view k) { return given(own, defaults, prefix, k).node != nullptr; };
   // The form: floor by floor or Pi terms, never both (a default of the other form is dropped).
   bool floors = false, pi = false;
@@ -440,15 +440,15 @@ void BuildingsReader::expand(const toml::table& own, const toml::table* defaults
   // tp gives w_p: never both in one table; the family's own (either) before [defaults]'s.
   for (const toml::table* table : {&own, defaults})
     if (table && table->contains("tp") && table->contains("w_p"))
-      fail(line_of(*table->get("tp")), (table == &own ? prefix : std::string("defaults")) + ".tp",
+      fail(node_line(*table->get("tp")), (table == &own ? prefix : std::string("defaults")) + ".tp",
            "not with w_p: give one of them");
   const bool tp = own.contains("tp") || (!own.contains("w_p") && has("tp"));
   if (pi && own.contains("t_end"))
-    fail(line_of(*own.get("t_end")), prefix + ".t_end",
+    fail(node_line(*own.get("t_end")), prefix + ".t_end",
          "not in the Pi-term form (its duration is T_p + n_free T_1, which scales with the pulse: give n_free)");
 
   for (std::string_view k : kAxisOrder) {
-    const bool of_other_form = pi ? one_of(kFloorKeys, k) : one_of(kPiKeys, k);
+    const bool of_other_form = pi ? key_in(kFloorKeys, k) : key_in(kPiKeys, k);
     Given g = given(own, defaults, prefix, k == "w_p" && tp ? "tp" : k);
     if (!g.node || of_other_form) continue;
     Axis axis = k == "storeys"       ? storeys(g)
@@ -460,7 +460,7 @@ void BuildingsReader::expand(const toml::table& own, const toml::table* defaults
     if (g.field.ends_with(".tp"))
       for (Item& item : axis) {
         if (!(std::isfinite(item.x) && item.x > 0.0))
-          fail(item.line, item.field, "must be finite and > 0 (got " + brief(item.x) + ")");
+          fail(item.line, item.field, "must be finite and > 0 (got " + short_number(item.x) + ")");
         item.x = 2.0 * std::numbers::pi / item.x;
       }
     f.keys.push_back(k);
@@ -479,7 +479,7 @@ void BuildingsReader::expand(const toml::table& own, const toml::table* defaults
   if (!pi) {
     f.buildings = buildings(given(own, defaults, prefix, "buildings"), f.building_lines);
     if (const Given t = given(own, defaults, prefix, "t_end"); t.node) {
-      const auto v = as_number(*t.node);
+      const auto v = number_of(*t.node);
       if (!v || !(std::isfinite(*v) && *v > 0.0)) fail(t.line, t.field, "must be a number of seconds > 0");
       f.t_end = *v;
       f.t_end_at = t;
@@ -547,7 +547,7 @@ void BuildingsReader::drop_unused_pulse_keys(Family& f) const {
   for (std::size_t a = f.keys.size(); a-- > 0;) {
     const std::string_view pulse = pulse_of_key(f.keys[a]);
     if (pulse.empty() || !f.axes[a][0].field.starts_with("defaults.")) continue;
-    if (std::none_of(pulses.begin(), pulses.end(), [&](const Item& p) { return p.text == pulse; })) {
+    if (std::nkey_in(pulses.begin(), pulses.end(), [&](const Item& p) { return p.text == pulse; })) {
       f.keys.erase(f.keys.begin() + static_cast<std::ptrdiff_t>(a));
       f.axes.erase(f.axes.begin() + static_cast<std::ptrdiff_t>(a));
     }
@@ -599,7 +599,7 @@ BuildingCase BuildingsReader::build(const Family& f, const std::vector<std::size
       const Item* i = value(f, at, key);
       *term = i->x;
       const bool ok = key == "pi3" ? std::isfinite(i->x) && i->x >= 0.0 : std::isfinite(i->x) && i->x > 0.0;
-      if (!ok) fail(i->line, i->field, std::string("must be finite and ") + (key == "pi3" ? ">= 0" : "> 0") + " (got " + brief(i->x) + ")");
+      if (!ok) fail(i->line, i->field, std::string("must be finite and ") + (key == "pi3" ? ">= 0" : "> 0") + " (got " + short_number(i->x) + ")");
     }
     c.scene = uniform_pair(c.storeys_left, c.storeys_right, c.pi2, c.pi3, eps, c.pi5, c.pi6, pulse, load.a_p, load.w_p);
   } else {
@@ -646,7 +646,7 @@ void BuildingsReader::report(const Family& f, const std::vector<std::size_t>& at
   if (field == "gap" && f.pi_terms) field = "pi3";
   if (field == "t_end" && value(f, at, "n_free")) field = "n_free";
   if (const Item* i = value(f, at, field)) {
-    const std::string got = i->text.empty() ? brief(i->x) : "\"" + clip(i->text) + "\"";
+    const std::string got = i->text.empty() ? short_number(i->x) : "\"" + clip(i->text) + "\"";
     fail(i->line, i->field, reason + " (got " + got + ")");
   }
   fail(f.line, f.prefix + "." + field, reason);

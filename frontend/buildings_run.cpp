@@ -16,33 +16,33 @@ namespace pb::app {
 namespace {
 
 // CPU seconds of this thread: the solve runs on it.
-double thread_cpu_seconds() {
+double solve_cpu_seconds() {
   timespec t{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 // A number, or null where it is not finite (JSON has no spelling for NaN).
-nlohmann::ordered_json number(double x) { return std::isfinite(x) ? nlohmann::ordered_json(x) : nullptr; }
+nlohmann::ordered_json json_number(double x) { return std::isfinite(x) ? nlohmann::ordered_json(x) : nullptr; }
 
 // Per building, per floor: the values times `scale`.
 nlohmann::ordered_json per_floor(const std::vector<std::vector<double>>& values, double scale) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (const auto& building : values) {
     nlohmann::ordered_json floors = nlohmann::ordered_json::array();
-    for (double x : building) floors.push_back(number(x * scale));
+    for (double x : building) floors.push_back(json_number(x * scale));
     out.push_back(std::move(floors));
   }
   return out;
 }
 
-std::string brief(double x) {
+std::string summary_number(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%.6g", x);
   return text;
 }
 
-std::string storeys(const BuildingScene& s) {
+std::string storey_counts(const BuildingScene& s) {
   std::string out;
   for (const Building& b : s.buildings) out += (out.empty() ? "" : " + ") + std::to_string(b.floors());
   return out;
@@ -73,9 +73,9 @@ BuildingsRun run_buildings(const ChosenCase& chosen, const Settings& settings) {
   BuildingsRun run;
   run.chosen = chosen;
   const auto wall = std::chrono::steady_clock::now();
-  const double cpu = thread_cpu_seconds();
+  const double cpu = solve_cpu_seconds();
   run.result = buildings::solve(chosen.building->scene, settings);
-  run.cpu_seconds = thread_cpu_seconds() - cpu;
+  run.cpu_seconds = solve_cpu_seconds() - cpu;
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count();
   return run;
 }
@@ -106,15 +106,15 @@ nlohmann::ordered_json buildings_json(const BuildingsRun& run) {
     o["floor"] = k.floor;
     o["impacts"] = k.impacts;
     o["contact_phases"] = k.contact_phases;
-    o["impact_velocity_max_m_s"] = number(k.impact_velocity_max);
-    if (c.pi_terms) o["impact_velocity_max_pi"] = number(k.impact_velocity_max / md.speed_scale());
-    o["first_impact_s"] = number(k.first_impact);
+    o["impact_velocity_max_m_s"] = json_number(k.impact_velocity_max);
+    if (c.pi_terms) o["impact_velocity_max_pi"] = json_number(k.impact_velocity_max / md.speed_scale());
+    o["first_impact_s"] = json_number(k.first_impact);
     contacts.push_back(std::move(o));
   }
   j["contacts"] = std::move(contacts);
   j["events"] = r.events;
-  j["energy_error"] = number(r.energy_error);
-  j["t_end_s"] = number(r.t_end);
+  j["energy_error"] = json_number(r.energy_error);
+  j["t_end_s"] = json_number(r.t_end);
   j["a_p"] = md.a_p;
   j["w_p"] = md.w_p;
   j["seconds"] = run.seconds;
@@ -127,31 +127,31 @@ void print_buildings_summary(std::ostream& out, const BuildingsRun& run) {
   const BuildingScene& s = c.scene;
   const buildings::BuildingsResult& r = run.result;
   const BuildingModel md = assemble(s);
-  out << "buildings " << storeys(s) << " storeys, " << (s.damping == BuildingDamping::modal ? "modal" : "rayleigh")
-      << " xi " << brief(s.xi) << ", gap " << brief(s.delta) << " m, eps " << brief(s.eps);
+  out << "buildings " << storey_counts(s) << " storeys, " << (s.damping == BuildingDamping::modal ? "modal" : "rayleigh")
+      << " xi " << summary_number(s.xi) << ", gap " << summary_number(s.delta) << " m, eps " << summary_number(s.eps);
   if (c.pi_terms)
-    out << "  (Pi terms: pi2 " << brief(c.pi2) << ", pi3 " << brief(c.pi3) << ", pi5 " << brief(c.pi5) << ", pi6 "
-        << brief(c.pi6) << ")";
+    out << "  (Pi terms: pi2 " << summary_number(c.pi2) << ", pi3 " << summary_number(c.pi3) << ", pi5 " << summary_number(c.pi5) << ", pi6 "
+        << summary_number(c.pi6) << ")";
   out << '\n';
   out << "load     " << name(c.pulse) << ' ' << name(c.directivity) << (c.record.empty() ? "" : " " + c.record)
-      << ", a_p " << brief(md.a_p) << " m/s^2, w_p " << brief(md.w_p) << " rad/s, t_end " << brief(md.t_end) << " s\n";
+      << ", a_p " << summary_number(md.a_p) << " m/s^2, w_p " << summary_number(md.w_p) << " rad/s, t_end " << summary_number(md.t_end) << " s\n";
   out << "solver   " << reference_solver().name << " (exact, event-driven)\n";
   out << "status   " << name(r.status) << (r.message.empty() ? "" : ": " + r.message) << '\n';
   for (std::size_t b = 0; b < r.floor_peak.size(); ++b) {
     out << "building " << b << "  floor: peak |u| m, storey below: peak |drift| m\n";
     for (std::size_t i = 0; i < r.floor_peak[b].size(); ++i)
-      out << "  floor " << i + 1 << "  " << brief(r.floor_peak[b][i]) << "   storey " << i + 1 << "  "
-          << brief(r.drift_peak[b][i]) << '\n';
+      out << "  floor " << i + 1 << "  " << summary_number(r.floor_peak[b][i]) << "   storey " << i + 1 << "  "
+          << summary_number(r.drift_peak[b][i]) << '\n';
   }
   for (const buildings::ContactResult& k : r.contacts) {
     out << "contact  buildings " << k.left << '-' << k.right << " floor " << k.floor << ": " << k.impacts << " impacts";
     if (std::isfinite(k.first_impact))
-      out << ", first at " << brief(k.first_impact) << " s, fastest approach " << brief(k.impact_velocity_max) << " m/s";
+      out << ", first at " << summary_number(k.first_impact) << " s, fastest approach " << summary_number(k.impact_velocity_max) << " m/s";
     if (k.contact_phases > 0) out << ", " << k.contact_phases << " contact phases";
     out << '\n';
   }
-  out << "events   " << r.events << ", energy error " << brief(r.energy_error) << '\n';
-  out << "time     " << brief(run.seconds) << " s\n";
+  out << "events   " << r.events << ", energy error " << summary_number(r.energy_error) << '\n';
+  out << "time     " << summary_number(run.seconds) << " s\n";
 }
 
 }  // namespace pb::app
