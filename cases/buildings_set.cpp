@@ -547,7 +547,7 @@ void BuildingsReader::drop_unused_pulse_keys(Family& f) const {
   for (std::size_t a = f.keys.size(); a-- > 0;) {
     const std::string_view pulse = pulse_of_key(f.keys[a]);
     if (pulse.empty() || !f.axes[a][0].field.starts_with("defaults.")) continue;
-    if (std::nkey_in(pulses.begin(), pulses.end(), [&](const Item& p) { return p.text == pulse; })) {
+    if (std::none_of(pulses.begin(), pulses.end(), [&](const Item& p) { return p.text == pulse; })) {
       f.keys.erase(f.keys.begin() + static_cast<std::ptrdiff_t>(a));
       f.axes.erase(f.axes.begin() + static_cast<std::ptrdiff_t>(a));
     }
