@@ -17,6 +17,7 @@
 
 #include "cases/case_set.hpp"
 
+#include "cases/buildings_set.hpp"
 #include "cases/fields.hpp"
 #include "cases/nearest_name.hpp"
 #include "cases/physical.hpp"
@@ -331,6 +332,7 @@ class Reader {
     }
     if (!has_name) fail(0, "name", "required (the name of the case set)");
 
+    refuse_buildings(families, defaults_table);
     Entries defaults;
     if (defaults_table != nullptr) defaults = read_settings(*defaults_table, "defaults", true);
 
@@ -361,6 +363,19 @@ class Reader {
   }
 
   std::size_t size() const { return points_; }
+
+  // A buildings family has keys of its own (cases/buildings_set.hpp) and is solved by `run`
+  // alone: named before its keys would read as unknown ones here.
+  void refuse_buildings(const toml::node* families, const toml::table* defaults) const {
+    std::vector<std::pair<const toml::node*, std::string>> scenes;
+    if (defaults) scenes.emplace_back(defaults->get("scene"), "defaults.scene");
+    if (const toml::array* list = families ? families->as_array() : nullptr)
+      for (std::size_t i = 0; i < list->size(); ++i)
+        if (const toml::table* t = list->get(i)->as_table())
+          scenes.emplace_back(t->get("scene"), "family[" + std::to_string(i) + "].scene");
+    for (const auto& [scene, field] : scenes)
+      if (scene && scene->value<std::string>() == kBuildingsScene) fail(line_of(*scene), field, buildings_not_here_reason());
+  }
 
   // Point i of the set, as read() built it (the file was checked then: nothing here fails).
   Case case_at(std::size_t i) const {
@@ -496,6 +511,7 @@ class Reader {
       std::optional<int> parsed;
       std::string_view expected;
       if (k == kScene) {
+        if (v == kBuildingsScene) fail(line_of(n), field, buildings_not_here_reason());
         if (auto x = parse_scene(v)) parsed = static_cast<int>(*x);
         expected = "wall, pair, row3 or chain";
       } else if (k == kPulse) {

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string_view>
 
+#include "cases/buildings_set.hpp"
 #include "cases/case_set.hpp"
 #include "cases/fields.hpp"
 #include "cases/physical.hpp"
@@ -25,7 +26,23 @@ T parsed(std::string_view flag, const std::string& text, std::optional<T> value,
   return *value;
 }
 
-ChosenCase case_from_file(const GivenFlag& given, const CaseFlags& flags) {
+// The point --point names among n (0 when there is one and --point is not given).
+std::size_t chosen_point(const GivenFlag& given, const CaseFlags& flags, std::size_t n) {
+  const std::string& file = flags.case_file;
+  if (n == 0) throw BadInput(file + ": no cases");
+  if (given("--point")) {
+    if (flags.point < 0 || static_cast<std::size_t>(flags.point) >= n)
+      throw BadInput("--point: " + std::to_string(flags.point) + " is out of range (" + file + " has points 0.." +
+                     std::to_string(n - 1) + ")");
+    return static_cast<std::size_t>(flags.point);
+  }
+  if (n > 1)
+    throw BadInput("--point: " + file + " has " + std::to_string(n) + " cases; choose one with --point 0.." +
+                   std::to_string(n - 1));
+  return 0;
+}
+
+ChosenCase case_from_file(const GivenFlag& given, const CaseFlags& flags, bool buildings) {
   for (std::string_view flag : {"--scene", "--pulse", "--directivity"})
     if (given(flag)) throw BadInput(std::string(flag) + ": cannot be combined with --case-file");
   for (const CaseField& field : kCaseFields)
@@ -34,20 +51,17 @@ ChosenCase case_from_file(const GivenFlag& given, const CaseFlags& flags) {
     if (given(flag_of(alias.name))) throw BadInput(flag_of(alias.name) + ": cannot be combined with --case-file");
   for (const PhysicalField& field : kPhysicalFields)
     if (given(flag_of(field.name))) throw BadInput(flag_of(field.name) + ": cannot be combined with --case-file");
-  const CaseSet set = load_case_set(flags.case_file);
-  const std::size_t n = set.cases.size();
   const std::string file = flags.case_file;
-  if (n == 0) throw BadInput(file + ": no cases");
-  std::size_t point = 0;
-  if (given("--point")) {
-    if (flags.point < 0 || static_cast<std::size_t>(flags.point) >= n)
-      throw BadInput("--point: " + std::to_string(flags.point) + " is out of range (" + file + " has points 0.." +
-                     std::to_string(n - 1) + ")");
-    point = static_cast<std::size_t>(flags.point);
-  } else if (n > 1) {
-    throw BadInput("--point: " + file + " has " + std::to_string(n) + " cases; choose one with --point 0.." +
-                   std::to_string(n - 1));
+  // A buildings case set: its point, where the caller solves the scene.
+  if (std::optional<BuildingsSet> b = load_buildings_set(file)) {
+    if (!buildings) throw BadInput(file + ": " + buildings_not_here_reason());
+    const std::size_t point = chosen_point(given, flags, b->points.size());
+    ChosenCase out{{}, point, file};
+    out.building = std::make_shared<const BuildingCase>(std::move(b->points[point]));
+    return out;
   }
+  const CaseSet set = load_case_set(file);
+  const std::size_t point = chosen_point(given, flags, set.cases.size());
   const Case& c = set.cases[point];
   if (auto bad = validate(c)) throw BadInput(file + ": point " + std::to_string(point) + ": " + *bad);
   return {c, point, file};
@@ -184,7 +198,11 @@ void add_case_flags(CLI::App& command, CaseFlags& f) {
 }
 
 ChosenCase chosen_case(const GivenFlag& given, const CaseFlags& flags) {
-  return given("--case-file") ? case_from_file(given, flags) : case_from_flags(given, flags);
+  return given("--case-file") ? case_from_file(given, flags, false) : case_from_flags(given, flags);
+}
+
+ChosenCase chosen_case_or_buildings(const GivenFlag& given, const CaseFlags& flags) {
+  return given("--case-file") ? case_from_file(given, flags, true) : case_from_flags(given, flags);
 }
 
 ChosenCase chosen_case(const CLI::App& command, const CaseFlags& flags) {

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -13,6 +14,10 @@
 #include "cases/case.hpp"
 #include "cases/case_set.hpp"
 #include "cases/fields.hpp"
+
+namespace pb {
+struct BuildingCase;  // cases/buildings_set.hpp
+}
 
 namespace pb::app {
 
@@ -30,6 +35,9 @@ struct ChosenCase {
   Case input;
   std::size_t point = 0;  // index in the case file (0 for a case given by flags)
   std::string case_file;  // empty for a case given by flags
+  // A point of a buildings case set (cases/buildings_set.hpp), which `input` does not
+  // describe; null for every other case. Only chosen_case_or_buildings gives one.
+  std::shared_ptr<const BuildingCase> building{};
 };
 
 // The case the flags describe, validated; throws BadInput or CaseSetError.
@@ -38,6 +46,9 @@ ChosenCase chosen_case(const CLI::App& command, const CaseFlags& flags);
 // keywords take this path, so that they are checked with the command line's messages.
 using GivenFlag = std::function<bool(std::string_view flag)>;
 ChosenCase chosen_case(const GivenFlag& given, const CaseFlags& flags);
+// The same, where a point of a buildings case set is taken too (`run`, poundbench.run): it is
+// in `building`. chosen_case refuses one, saying what solves it.
+ChosenCase chosen_case_or_buildings(const GivenFlag& given, const CaseFlags& flags);
 
 // Every case of a case-set file validated ("FILE: point K: field: reason"); throws BadInput.
 void validate_case_set(const CaseList& cases, const std::string& file);

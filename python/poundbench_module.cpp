@@ -47,6 +47,7 @@
 #include "cases/case_set.hpp"
 #include "cases/fields.hpp"
 #include "cases/text.hpp"
+#include "frontend/buildings_run.hpp"
 #include "frontend/case_flags.hpp"
 #include "frontend/errors.hpp"
 #include "frontend/run_output.hpp"
@@ -618,8 +619,8 @@ app::ChosenCase case_of(const Keywords& k) {
     if (auto bad = validate(c)) throw app::BadInput(app::case_flag_message(*bad));
     return {std::move(c), 0, {}};
   }
-  app::ChosenCase chosen = app::chosen_case([&](std::string_view flag) { return k.has(flag); }, flags);
-  if (k.by_name_alone && chosen.input.pulse != PulseShape::record) {
+  app::ChosenCase chosen = app::chosen_case_or_buildings([&](std::string_view flag) { return k.has(flag); }, flags);
+  if (k.by_name_alone && chosen.input.pulse != PulseShape::record && !chosen.building) {
     if (!last) last = new Last();
     *last = {k.given, flags.scene, flags.pulse, flags.directivity, chosen.input};
   } else if (last) {
@@ -630,12 +631,58 @@ app::ChosenCase case_of(const Keywords& k) {
 }
 
 
+// JSON as Python objects: numbers, strings, null as None, lists and dicts (in their order).
+py::object json_to_python(const nlohmann::ordered_json& j) {
+  if (j.is_array()) {
+    py::list out;
+    for (const auto& x : j) out.append(json_to_python(x));
+    return out;
+  }
+  if (j.is_object()) {
+    py::dict out;
+    for (const auto& [key, x] : j.items()) out[decoded(key)] = json_to_python(x);
+    return out;
+  }
+  switch (j.type()) {
+    case nlohmann::json::value_t::boolean: return py::bool_(j.get<bool>());
+    case nlohmann::json::value_t::number_integer: return py::int_(j.get<long long>());
+    case nlohmann::json::value_t::number_unsigned: return py::int_(j.get<unsigned long long>());
+    case nlohmann::json::value_t::number_float: return py::float_(j.get<double>());
+    case nlohmann::json::value_t::string: return decoded(j.get_ref<const std::string&>());
+    default: return py::none();
+  }
+}
+
+// A point of a buildings case set: the object `run --json` prints for it, as a dict
+// (frontend/buildings_run.hpp).
+py::dict run_buildings(Keywords& k, const app::ChosenCase& chosen) {
+  checked([&] {
+    app::check_buildings_solver(k.solver_flags, k.given_flag());
+    for (std::string_view flag : {"--k-contact", "--target-error", "--monitor"})
+      if (k.has(flag)) throw app::BadInput(std::string(flag) + ": not for the buildings scene (yet)");
+    if (k.history || k.samples) throw app::BadInput("history: not for the buildings scene (yet)");
+    return 0;
+  });
+  std::atomic<bool> stop{false};
+  Settings settings = k.solver_flags.settings;
+  settings.stop = &stop;
+  app::BuildingsRun result;
+  run_interruptibly(stop, [&] { result = app::run_buildings(chosen, settings); });
+  return json_to_python(app::buildings_json(result));
+}
+
 py::dict run(const py::kwargs& kwargs) {
   Keywords k = checked([&] { return read_keywords("run", kwargs); });
+  // A case file is read once: a point of a buildings set is solved by its own path.
+  std::optional<app::ChosenCase> from_file;
+  if (k.has("--case-file")) {
+    from_file = checked([&] { return case_of(k); });
+    if (from_file->building) return run_buildings(k, *from_file);
+  }
   const bool history = k.history || k.samples.has_value();
   const int samples = k.samples ? static_cast<int>(std::clamp<long long>(*k.samples, INT_MIN, INT_MAX)) : 2000;
   const auto [chosen, solver] = checked([&] {
-    const app::ChosenCase c = case_of(k);
+    const app::ChosenCase c = from_file ? *from_file : case_of(k);
     if (history) {
       app::check_samples(samples, c.input);
       k.solver_flags.settings.history_samples = samples;

@@ -73,7 +73,9 @@ def rows(case_set, persistent, reduced=False):
 
 class CaseSchema(unittest.TestCase):
     def test_every_family_of_every_shipped_set_sends_valid_documents(self):
-        sets = sorted(glob.glob(os.path.join(SOURCE, "cases/sets/*.toml")))
+        # The buildings scene's sets are solved by `run` alone (issue 49): no sweep sends them yet.
+        sets = sorted(f for f in glob.glob(os.path.join(SOURCE, "cases/sets/*.toml"))
+                      if 'scene = "buildings"' not in open(f, encoding="utf-8").read())
         self.assertGreater(len(sets), 3)
         kinds = set()
         for case_set in sets:

@@ -260,6 +260,29 @@ class Run(unittest.TestCase):
             poundbench.run(**{**keywords, "pi3": 1})
 
 
+class Buildings(unittest.TestCase):
+    def test_a_buildings_point_is_run_jsons_object_as_a_dict(self):
+        # Issue 49: run(case_file=..., point=...) on a buildings set solves it with the scene's
+        # reference; its dict is --json's object, key for key, but the run's own clocks.
+        buildings = f"{SOURCE}/cases/sets/buildings.toml"
+        for point in (0, 10):
+            result = poundbench.run(case_file=buildings, point=point)
+            code, out, _ = cli("run", "--case-file", buildings, "--point", str(point), "--json")
+            self.assertEqual(code, 0)
+            expected = json.loads(out)
+            self.assertEqual(list(result), list(expected))
+            for key in expected:
+                if key not in ("seconds", "cpu_seconds"):
+                    self.assertEqual(result[key], expected[key], key)
+            self.assertEqual(len(result["floor_peak_m"]), 2)
+            self.assertEqual(result["contacts"][0]["left"], 0)
+        self.assertIn("floor_peak_pi", result)  # point 10 is in Pi terms
+
+    def test_another_solver_is_refused_by_name(self):
+        with self.assertRaisesRegex(ValueError, "solver moreau-jean does not solve the buildings scene"):
+            poundbench.run(case_file=f"{SOURCE}/cases/sets/buildings.toml", point=0, solver="moreau-jean")
+
+
 class Spectrum(unittest.TestCase):
     def test_spectrum_gives_the_rows_of_the_command_line(self):
         smoke = f"{SOURCE}/cases/sets/smoke.toml"

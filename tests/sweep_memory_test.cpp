@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "app/partial_writer.hpp"
+#include "cases/buildings_set.hpp"
 #include "cases/case_set.hpp"
 #include "rows/row.hpp"
 #include "rows/row_read.hpp"
@@ -65,6 +66,7 @@ TEST(CaseList, BuildsEveryShippedSetsCasesAsTheHeldListHoldsThem) {
   std::size_t compared = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(POUNDBENCH_SOURCE_DIR) / "cases" / "sets")) {
     if (entry.path().extension() != ".toml") continue;
+    if (load_buildings_set(entry.path())) continue;  // the buildings scene: no Cases, and no sweep yet
     const CaseSet held = load_case_set(entry.path());
     const CaseListSet lazy = load_case_list(entry.path());
     EXPECT_EQ(lazy.name, held.name);

@@ -1,0 +1,157 @@
+#include "frontend/buildings_run.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <numbers>
+
+#include "cases/text.hpp"
+#include "frontend/errors.hpp"
+#include "kit/settings_fields.hpp"
+#include "solvers/registry.hpp"
+
+namespace pb::app {
+
+namespace {
+
+// CPU seconds of this thread: the solve runs on it.
+double solve_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// A number, or null where it is not finite (JSON has no spelling for NaN).
+nlohmann::ordered_json json_number(double x) { return std::isfinite(x) ? nlohmann::ordered_json(x) : nullptr; }
+
+// Per building, per floor: the values times `scale`.
+nlohmann::ordered_json per_floor(const std::vector<std::vector<double>>& values, double scale) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const auto& building : values) {
+    nlohmann::ordered_json floors = nlohmann::ordered_json::array();
+    for (double x : building) floors.push_back(json_number(x * scale));
+    out.push_back(std::move(floors));
+  }
+  return out;
+}
+
+std::string summary_number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
+
+std::string storey_counts(const BuildingScene& s) {
+  std::string out;
+  for (const Building& b : s.buildings) out += (out.empty() ? "" : " + ") + std::to_string(b.floors());
+  return out;
+}
+
+}  // namespace
+
+void check_buildings_solver(const SolverFlags& flags, const GivenSolverFlag& given) {
+  const std::string reference(reference_solver().name);
+  if (flags.solver != reference)
+    throw BadInput("--solver: solver " + clip(flags.solver) +
+                   " does not solve the buildings scene (yet): its exact reference does (--solver " + reference +
+                   ", the default); Moreau-Jean and the compliant elements are to come");
+  if (!given) return;
+  for (const SettingField& f : kSettingFields) {
+    std::string flag = "--" + std::string(f.name);
+    for (char& c : flag)
+      if (c == '_') c = '-';
+    const bool read = std::find(std::begin(kBuildingsSettings), std::end(kBuildingsSettings), f.name) !=
+                      std::end(kBuildingsSettings);
+    if (!read && given(flag))
+      throw BadInput(flag + ": not used by the buildings scene's reference (it reads --tol-scale, --step-cap and "
+                            "--time-limit)");
+  }
+}
+
+BuildingsRun run_buildings(const ChosenCase& chosen, const Settings& settings) {
+  BuildingsRun run;
+  run.chosen = chosen;
+  const auto wall = std::chrono::steady_clock::now();
+  const double cpu = solve_cpu_seconds();
+  run.result = buildings::solve(chosen.building->scene, settings);
+  run.cpu_seconds = solve_cpu_seconds() - cpu;
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count();
+  return run;
+}
+
+nlohmann::ordered_json buildings_json(const BuildingsRun& run) {
+  const BuildingCase& c = *run.chosen.building;
+  const buildings::BuildingsResult& r = run.result;
+  const BuildingModel md = assemble(c.scene);  // the scales the Pi terms are relative to
+  nlohmann::ordered_json j;
+  j["scene"] = std::string(kBuildingsScene);
+  j["family"] = c.family;
+  j["case_file"] = run.chosen.case_file;
+  j["point"] = run.chosen.point;
+  j["solver"] = std::string(reference_solver().name);
+  j["status"] = std::string(name(r.status));
+  j["message"] = r.message;
+  j["floor_peak_m"] = per_floor(r.floor_peak, 1.0);
+  j["drift_peak_m"] = per_floor(r.drift_peak, 1.0);
+  if (c.pi_terms) {
+    j["floor_peak_pi"] = per_floor(r.floor_peak, 1.0 / md.length_scale());
+    j["drift_peak_pi"] = per_floor(r.drift_peak, 1.0 / md.length_scale());
+  }
+  nlohmann::ordered_json contacts = nlohmann::ordered_json::array();
+  for (const buildings::ContactResult& k : r.contacts) {
+    nlohmann::ordered_json o;
+    o["left"] = k.left;
+    o["right"] = k.right;
+    o["floor"] = k.floor;
+    o["impacts"] = k.impacts;
+    o["contact_phases"] = k.contact_phases;
+    o["impact_velocity_max_m_s"] = json_number(k.impact_velocity_max);
+    if (c.pi_terms) o["impact_velocity_max_pi"] = json_number(k.impact_velocity_max / md.speed_scale());
+    o["first_impact_s"] = json_number(k.first_impact);
+    contacts.push_back(std::move(o));
+  }
+  j["contacts"] = std::move(contacts);
+  j["events"] = r.events;
+  j["energy_error"] = json_number(r.energy_error);
+  j["t_end_s"] = json_number(r.t_end);
+  j["a_p"] = md.a_p;
+  j["w_p"] = md.w_p;
+  j["seconds"] = run.seconds;
+  j["cpu_seconds"] = run.cpu_seconds;
+  return j;
+}
+
+void print_buildings_summary(std::ostream& out, const BuildingsRun& run) {
+  const BuildingCase& c = *run.chosen.building;
+  const BuildingScene& s = c.scene;
+  const buildings::BuildingsResult& r = run.result;
+  const BuildingModel md = assemble(s);
+  out << "buildings " << storey_counts(s) << " storeys, " << (s.damping == BuildingDamping::modal ? "modal" : "rayleigh")
+      << " xi " << summary_number(s.xi) << ", gap " << summary_number(s.delta) << " m, eps " << summary_number(s.eps);
+  if (c.pi_terms)
+    out << "  (Pi terms: pi2 " << summary_number(c.pi2) << ", pi3 " << summary_number(c.pi3) << ", pi5 " << summary_number(c.pi5) << ", pi6 "
+        << summary_number(c.pi6) << ")";
+  out << '\n';
+  out << "load     " << name(c.pulse) << ' ' << name(c.directivity) << (c.record.empty() ? "" : " " + c.record)
+      << ", a_p " << summary_number(md.a_p) << " m/s^2, w_p " << summary_number(md.w_p) << " rad/s, t_end " << summary_number(md.t_end) << " s\n";
+  out << "solver   " << reference_solver().name << " (exact, event-driven)\n";
+  out << "status   " << name(r.status) << (r.message.empty() ? "" : ": " + r.message) << '\n';
+  for (std::size_t b = 0; b < r.floor_peak.size(); ++b) {
+    out << "building " << b << "  floor: peak |u| m, storey below: peak |drift| m\n";
+    for (std::size_t i = 0; i < r.floor_peak[b].size(); ++i)
+      out << "  floor " << i + 1 << "  " << summary_number(r.floor_peak[b][i]) << "   storey " << i + 1 << "  "
+          << summary_number(r.drift_peak[b][i]) << '\n';
+  }
+  for (const buildings::ContactResult& k : r.contacts) {
+    out << "contact  buildings " << k.left << '-' << k.right << " floor " << k.floor << ": " << k.impacts << " impacts";
+    if (std::isfinite(k.first_impact))
+      out << ", first at " << summary_number(k.first_impact) << " s, fastest approach " << summary_number(k.impact_velocity_max) << " m/s";
+    if (k.contact_phases > 0) out << ", " << k.contact_phases << " contact phases";
+    out << '\n';
+  }
+  out << "events   " << r.events << ", energy error " << summary_number(r.energy_error) << '\n';
+  out << "time     " << summary_number(run.seconds) << " s\n";
+}
+
+}  // namespace pb::app
