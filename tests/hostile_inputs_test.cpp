@@ -23,7 +23,8 @@
 #include "kit/testing.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace hostile_inputs_tests {
 
 const std::string kPair = "--scene pair --pulse sine --directivity reverse --pi2 0.5 --pi3 0.5 --eps 0.5 --pi5 0.5 --pi6 1";
 
@@ -264,5 +265,5 @@ TEST(HostileCaseSets, ARecordNameOfAHundredThousandCharactersGivesAShortError) {
   }
 }
 
-}  // namespace
+}  // namespace hostile_inputs_tests
 }  // namespace pb

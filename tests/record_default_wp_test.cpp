@@ -16,7 +16,8 @@
 #include "tests/cli_fixture.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace record_default_wp_tests {
 
 const std::string kPair = " --scene pair --directivity normal --pi2 1 --pi3 0.5 --eps 0.5 --pi5 0.5 --pi6 1";
 
@@ -76,5 +77,5 @@ TEST_F(RecordDefaultWpCli, ARecordWithNoMeanPeriodAsksForTpNamingTheFile) {
   EXPECT_NE(set.err.find("x.toml:7: family[0].record: fast.csv: it has no mean period"), std::string::npos) << set.err;
 }
 
-}  // namespace
+}  // namespace record_default_wp_tests
 }  // namespace pb

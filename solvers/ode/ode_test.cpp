@@ -26,7 +26,8 @@
 #include "solvers/registry.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace ode_tests {
 
 ode::Config variant(std::string_view name) { return test::config_named(ode::kVariants, name); }
 
@@ -616,5 +617,5 @@ TEST(Ode, MonitorMeasuresRestitutionEpsToRoundOffAndAFirstOrderEnergyExcess) {
   EXPECT_TRUE(std::isnan(ode::solve(test::monitor_systems().front(), off).energy_excess));
 }
 
-}  // namespace
+}  // namespace ode_tests
 }  // namespace pb

@@ -26,7 +26,8 @@
 #include "solvers/registry.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace simbody_tests {
 
 using test::make_case;
 using test::sci;
@@ -300,5 +301,5 @@ TEST(Simbody, CheckAndDescribeNameEverySetting) {
   EXPECT_EQ(r.message.rfind("eps:", 0), 0u) << r.message;
 }
 
-}  // namespace
+}  // namespace simbody_tests
 }  // namespace pb
