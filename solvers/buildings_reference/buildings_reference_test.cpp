@@ -23,24 +23,13 @@
 #include "solvers/buildings_reference/reference.hpp"
 #include "solvers/buildings_reference/stuck.hpp"
 #include "solvers/event_driven/event_driven.hpp"
+#include "tests/buildings_support.hpp"
 
 namespace pb {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
-Building building(std::vector<double> m, std::vector<double> k) { return {std::move(m), std::move(k)}; }
-
-BuildingScene issue_scene() {
-  BuildingScene s;
-  s.buildings = {building({3e5, 3e5, 2.4e5}, {6.8e8, 5.4e8, 4.1e8}),
-                 building({2.5e5, 2.5e5, 2e5}, {2.0e8, 1.6e8, 1.2e8})};
-  s.xi = 0.05;
-  s.delta = 0.03;
-  s.eps = 0.6;
-  s.pulse = Pulse(PulseShape::sine, 3.0, 12.566);
-  return s;
-}
+using test::building;
+using test::issue_scene;
 
 // The whole linear system without contact, y = (u, v), advanced by the matrix exponential of
 // its first-order form augmented with the load's states (1, s, and sin, cos of each sinusoid),
