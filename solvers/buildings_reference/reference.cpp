@@ -13,7 +13,7 @@
 #include "solvers/buildings_reference/search.hpp"
 #include "solvers/buildings_reference/stuck.hpp"
 #include "kit/lcp/small.hpp"
-#include "solvers/run_limits.hpp"
+#include "kit/run_limits.hpp"
 
 namespace pb::buildings {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "solvers/buildings_reference/motion.hpp"
-#include "solvers/run_limits.hpp"
+#include "kit/run_limits.hpp"
 
 namespace pb::buildings {
 
