@@ -11,25 +11,14 @@
 #include <Eigen/Dense>
 
 #include "cases/buildings.hpp"
+#include "tests/buildings_support.hpp"
 
 namespace pb {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
-Building building(std::vector<double> m, std::vector<double> k) { return {std::move(m), std::move(k)}; }
-
-// The issue's two buildings (three storeys each, SI units) under a sine pulse.
-BuildingScene issue_scene() {
-  BuildingScene s;
-  s.buildings = {building({3e5, 3e5, 2.4e5}, {6.8e8, 5.4e8, 4.1e8}),
-                 building({2.5e5, 2.5e5, 2e5}, {2.0e8, 1.6e8, 1.2e8})};
-  s.xi = 0.05;
-  s.delta = 0.03;
-  s.eps = 0.6;
-  s.pulse = Pulse(PulseShape::sine, 3.0, 12.566);
-  return s;
-}
+using test::building;
+using test::issue_scene;
+using std::numbers::pi;
 
 // ---- The model -------------------------------------------------------------------------
 
@@ -41,7 +30,7 @@ TEST(BuildingsModel, UniformBuildingFrequenciesAreTheClosedForm) {
     b.stiffnesses.assign(static_cast<std::size_t>(n), k);
     const BuildingModes modes = building_modes(b);
     for (int r = 1; r <= n; ++r) {
-      const double exact = 2.0 * std::sqrt(k / m) * std::sin((2.0 * r - 1.0) * kPi / (2.0 * (2.0 * n + 1.0)));
+      const double exact = 2.0 * std::sqrt(k / m) * std::sin((2.0 * r - 1.0) * pi / (2.0 * (2.0 * n + 1.0)));
       EXPECT_NEAR(modes.w(r - 1) / exact, 1.0, 1e-13) << "n = " << n << ", mode " << r;
     }
   }
@@ -127,8 +116,8 @@ TEST(BuildingsModel, ContactsAreEveryFloorBothNeighboursHaveOrTheNamedOnes) {
 TEST(BuildingsModel, DefaultDurationIsThePulsePlusThreeSlowestPeriods) {
   const BuildingScene s = issue_scene();
   const BuildingModel md = assemble(s);
-  const double t1 = 2.0 * kPi / std::min(md.modes[0].w(0), md.modes[1].w(0));
-  EXPECT_DOUBLE_EQ(md.t_end, 2.0 * kPi / 12.566 + 3.0 * t1);
+  const double t1 = 2.0 * pi / std::min(md.modes[0].w(0), md.modes[1].w(0));
+  EXPECT_DOUBLE_EQ(md.t_end, 2.0 * pi / 12.566 + 3.0 * t1);
   BuildingScene given = s;
   given.t_end = 2.5;
   EXPECT_EQ(assemble(given).t_end, 2.5);

@@ -73,80 +73,94 @@ void Motion::build(const BuildingModel& md, const Reduced& r, const Modal& mo, c
   n_k_ = mo.n;
   n_j_ = piece.n_waves;
   n_r_ = 0;
-  const double span = horizon - t0;
-  // The load from t0: p0 + p1 s + sum_j Re(F_j e^(i w_j t)), F = c - i s.
-  const double p0 = piece.slope == 0.0 ? piece.value : piece.value + piece.slope * (t0 - piece.start);
-  const double p1 = piece.slope;
-  std::array<cplx, kMaxSinusoids> f{}, rot{};  // F_j, and e^(i w_j t0)
   fastest_ = 0.0;
-  const auto set_powers = [&](std::size_t m, cplx x) {
-    rate_[m] = x;
-    pow_[m][0] = 1.0;
-    mod_[m][0] = 1.0;
-    const double modulus = std::abs(x);
-    for (std::size_t d = 1; d <= kMaxOrder; ++d) {
-      pow_[m][d] = pow_[m][d - 1] * x;
-      mod_[m][d] = mod_[m][d - 1] * modulus;
-    }
-    fastest_ = std::max(fastest_, modulus);
-  };
+  take_load(piece);
+  r.reduce(u, v, q0_.data(), qd0_.data());
+  for (int k = 0; k < n_k_; ++k) solve_mode(r, mo, k);
+  fill_rows(md, r, mo);
+  for (int q = 0; q < n_q_; ++q) fill_terms(md, r, q, u, v, g);
+}
+
+void Motion::set_powers(std::size_t m, cplx x) {
+  rate_[m] = x;
+  pow_[m][0] = 1.0;
+  mod_[m][0] = 1.0;
+  const double modulus = std::abs(x);
+  for (std::size_t d = 1; d <= kMaxOrder; ++d) {
+    pow_[m][d] = pow_[m][d - 1] * x;
+    mod_[m][d] = mod_[m][d - 1] * modulus;
+  }
+  fastest_ = std::max(fastest_, modulus);
+}
+
+// The load from t0: p0 + p1 s + sum_j Re(F_j e^(i w_j t)), F = c - i s; its sinusoids are the
+// terms after the modes.
+void Motion::take_load(const LoadPiece& piece) {
+  p0_ = piece.slope == 0.0 ? piece.value : piece.value + piece.slope * (t0_ - piece.start);
+  p1_ = piece.slope;
   for (int j = 0; j < n_j_; ++j) {
     const auto jj = static_cast<std::size_t>(j);
     const Sinusoid& s = piece.waves[jj];
-    f[jj] = cplx(s.c, -s.s);
-    rot[jj] = cplx(std::cos(s.w * t0), std::sin(s.w * t0));
+    load_f_[jj] = cplx(s.c, -s.s);
+    load_rot_[jj] = cplx(std::cos(s.w * t0_), std::sin(s.w * t0_));
     set_powers(static_cast<std::size_t>(n_k_) + jj, cplx(0.0, s.w));
   }
-  r.reduce(u, v, q0_.data(), qd0_.data());
-  for (int k = 0; k < n_k_; ++k) {
-    const auto kk = static_cast<std::size_t>(k);
-    const cplx lam = mo.lambda(k);
-    set_powers(kk, lam);
-    weight_[kk] = mo.weight(k);
-    cplx c0 = 0.0;
-    for (int c = 0; c < r.n; ++c)
-      c0 += mo.in_q(k, c) * q0_[static_cast<std::size_t>(c)] + mo.in_v(k, c) * qd0_[static_cast<std::size_t>(c)];
-    // The polynomial part A + B s: B lambda + alpha p1 = 0, A lambda + gamma + alpha p0 = B.
-    const cplx alpha = mo.alpha(k), gamma = mo.gamma(k);
-    const cplx b = -alpha * p1 / lam;
-    const cplx a = (b - gamma - alpha * p0) / lam;
-    cplx part = a;
-    for (int j = 0; j < n_j_; ++j) {
-      const auto jj = static_cast<std::size_t>(j);
-      const double w = piece.waves[jj].w;
-      for (int sign = 0; sign < 2; ++sign) {
-        // Re(F e^(i w t)) = (F e^(i w t) + conj(F) e^(-i w t)) / 2.
-        const cplx at(0.0, sign == 0 ? w : -w);
-        const cplx fs = sign == 0 ? f[jj] : std::conj(f[jj]);
-        const cplx phase = sign == 0 ? rot[jj] : std::conj(rot[jj]);
-        const cplx d = at - lam;
-        cplx& xe = x_mode_[kk][2 * jj + static_cast<std::size_t>(sign)];
-        if (std::abs(d) < kNearResonance * w) {
-          Resonant& rs = res_[static_cast<std::size_t>(n_r_++)];
-          rs.mode = k;
-          rs.sine = j;
-          rs.a = at;
-          rs.coef = 0.5 * alpha * fs * phase;
-          // |E| <= min(2 / |d|, s) times the mode's largest growth (none, but for round-off).
-          const double grow = lam.real() > 0.0 ? std::exp(lam.real() * span) : 1.0;
-          rs.bound = grow * std::min(2.0 / std::abs(d), span);
-          rs.a_pow[0] = 1.0;
-          rs.s_sum[0] = 0.0;
-          for (std::size_t o = 1; o <= kMaxOrder; ++o) {
-            rs.a_pow[o] = rs.a_pow[o - 1] * at;
-            rs.s_sum[o] = at * rs.s_sum[o - 1] + pow_[kk][o - 1];  // S_o = a S_(o-1) + lambda^(o-1)
-          }
-          xe = 0.0;
-        } else {
-          xe = 0.5 * alpha * fs / d * phase;
-          part += xe;
+}
+
+// Mode k's closed form from the reduced state q0_, qd0_: its polynomial part A + B s, each
+// sinusoid's particular part X e^(+-i w t) or, near resonance, its secular term R E, and the
+// free part H e^(lambda s) that fits c(t0).
+void Motion::solve_mode(const Reduced& r, const Modal& mo, int k) {
+  const auto kk = static_cast<std::size_t>(k);
+  const cplx lam = mo.lambda(k);
+  set_powers(kk, lam);
+  weight_[kk] = mo.weight(k);
+  cplx c0 = 0.0;
+  for (int c = 0; c < r.n; ++c)
+    c0 += mo.in_q(k, c) * q0_[static_cast<std::size_t>(c)] + mo.in_v(k, c) * qd0_[static_cast<std::size_t>(c)];
+  // B lambda + alpha p1 = 0, A lambda + gamma + alpha p0 = B.
+  const cplx alpha = mo.alpha(k), gamma = mo.gamma(k);
+  const cplx b = -alpha * p1_ / lam;
+  cplx part = (b - gamma - alpha * p0_) / lam;
+  const double span = horizon_ - t0_;
+  for (std::size_t jj = 0; jj < static_cast<std::size_t>(n_j_); ++jj) {
+    const double w = rate_[static_cast<std::size_t>(n_k_) + jj].imag();
+    for (int sign = 0; sign < 2; ++sign) {
+      // Re(F e^(i w t)) = (F e^(i w t) + conj(F) e^(-i w t)) / 2.
+      const cplx at(0.0, sign == 0 ? w : -w);
+      const cplx fs = sign == 0 ? load_f_[jj] : std::conj(load_f_[jj]);
+      const cplx phase = sign == 0 ? load_rot_[jj] : std::conj(load_rot_[jj]);
+      const cplx d = at - lam;
+      cplx& xe = x_mode_[kk][2 * jj + static_cast<std::size_t>(sign)];
+      if (std::abs(d) < kNearResonance * w) {
+        Resonant& rs = res_[static_cast<std::size_t>(n_r_++)];
+        rs.mode = k;
+        rs.sine = static_cast<int>(jj);
+        rs.a = at;
+        rs.coef = 0.5 * alpha * fs * phase;
+        // |E| <= min(2 / |d|, s) times the mode's largest growth (none, but for round-off).
+        const double grow = lam.real() > 0.0 ? std::exp(lam.real() * span) : 1.0;
+        rs.bound = grow * std::min(2.0 / std::abs(d), span);
+        rs.a_pow[0] = 1.0;
+        rs.s_sum[0] = 0.0;
+        for (std::size_t o = 1; o <= kMaxOrder; ++o) {
+          rs.a_pow[o] = rs.a_pow[o - 1] * at;
+          rs.s_sum[o] = at * rs.s_sum[o - 1] + pow_[kk][o - 1];  // S_o = a S_(o-1) + lambda^(o-1)
         }
+        xe = 0.0;
+      } else {
+        xe = 0.5 * alpha * fs / d * phase;
+        part += xe;
       }
     }
-    lin_mode_[kk] = b;
-    h_mode_[kk] = c0 - part;
   }
-  // Modal rows of the quantities.
+  lin_mode_[kk] = b;
+  h_mode_[kk] = c0 - part;
+}
+
+// The quantities' modal rows: a floor's is its cluster's shape, a drift and a gap differences of
+// floors', a stuck contact's force (Lq + lambda Lv) shape (q' = lambda q mode by mode).
+void Motion::fill_rows(const BuildingModel& md, const Reduced& r, const Modal& mo) {
   const int nf = n_floors_;
   for (int k = 0; k < n_k_; ++k) {
     for (int i = 0; i < nf; ++i) rho(floor(i), k) = mo.shape(r.cluster[static_cast<std::size_t>(i)], k);
@@ -166,90 +180,112 @@ void Motion::build(const BuildingModel& md, const Reduced& r, const Modal& mo, c
       }
     }
   }
-  // Each quantity's terms, its value at t0 from the state, and (a displacement) its rate too.
+}
+
+// Quantity q's value and rate at t0 from the state: a stuck contact's force from the reduced
+// state (its rate is not known there: *rate is left, false returned).
+bool Motion::state_value(const BuildingModel& md, const Reduced& r, int q, const double* u, const double* v,
+                         const double* g, double& value, double& rate) const {
+  const int nf = n_floors_;
+  if (q < nf) {
+    value = u[q];
+    rate = v[q];
+    return true;
+  }
+  if (q < 2 * nf) {
+    const int i = q - nf;
+    const bool bottom = md.first[static_cast<std::size_t>(md.building_of[static_cast<std::size_t>(i)])] == i;
+    value = bottom ? u[i] : u[i] - u[i - 1];
+    rate = bottom ? v[i] : v[i] - v[i - 1];
+    return true;
+  }
+  const int j = q - 2 * nf;
+  const FloorContact& fc = md.contacts[static_cast<std::size_t>(j)];
+  if (!r.stuck[static_cast<std::size_t>(j)]) {
+    value = g[j];
+    rate = v[fc.i_right] - v[fc.i_left];
+    return true;
+  }
+  value = r.L0(j);
+  for (int c = 0; c < r.n; ++c)
+    value += r.Lq(j, c) * q0_[static_cast<std::size_t>(c)] + r.Lv(j, c) * qd0_[static_cast<std::size_t>(c)];
+  return false;
+}
+
+// Quantity q's terms, its value at t0 from the state, and (a displacement) its rate too; its
+// mean and the parts of its bounds.
+void Motion::fill_terms(const BuildingModel& md, const Reduced& r, int q, const double* u, const double* v,
+                        const double* g) {
+  const auto qq = static_cast<std::size_t>(q);
   const std::size_t nt = terms(), nres = static_cast<std::size_t>(n_r_);
-  const std::size_t r_stride = static_cast<std::size_t>(k_max_ * kMaxSinusoids * 2);
-  for (int q = 0; q < n_q_; ++q) {
-    const auto qq = static_cast<std::size_t>(q);
-    cplx* cf = &coef_[qq * stride_];
-    cplx* rr = &r_[qq * r_stride];
-    double lin = 0.0;
-    for (std::size_t j = 0; j < static_cast<std::size_t>(n_j_); ++j) cf[static_cast<std::size_t>(n_k_) + j] = 0.0;
-    for (int k = 0; k < n_k_; ++k) {
-      const auto kk = static_cast<std::size_t>(k);
-      const cplx p = weight_[kk] * rho(q, k);
-      lin += re_mul(p, lin_mode_[kk]);
-      cf[kk] = p * h_mode_[kk];
-      for (std::size_t j = 0; j < static_cast<std::size_t>(n_j_); ++j)
-        cf[static_cast<std::size_t>(n_k_) + j] += p * x_mode_[kk][2 * j] + std::conj(p * x_mode_[kk][2 * j + 1]);
+  cplx* cf = &coef_[qq * stride_];
+  cplx* rr = &r_[qq * static_cast<std::size_t>(k_max_ * kMaxSinusoids * 2)];
+  double lin = 0.0;
+  for (std::size_t j = 0; j < static_cast<std::size_t>(n_j_); ++j) cf[static_cast<std::size_t>(n_k_) + j] = 0.0;
+  for (int k = 0; k < n_k_; ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    const cplx p = weight_[kk] * rho(q, k);
+    lin += re_mul(p, lin_mode_[kk]);
+    cf[kk] = p * h_mode_[kk];
+    for (std::size_t j = 0; j < static_cast<std::size_t>(n_j_); ++j)
+      cf[static_cast<std::size_t>(n_k_) + j] += p * x_mode_[kk][2 * j] + std::conj(p * x_mode_[kk][2 * j + 1]);
+  }
+  for (std::size_t e = 0; e < nres; ++e) {
+    const Resonant& rs = res_[e];
+    rr[e] = weight_[static_cast<std::size_t>(rs.mode)] * rho(q, rs.mode) * rs.coef;
+  }
+  double value = 0.0, rate = 0.0;
+  const bool displacement = state_value(md, r, q, u, v, g, value, rate);
+  f0_[qq] = value;
+  // The rate the terms give (E_r'(0) = 1); a displacement's is made the state's: they differ
+  // by the modes' round-off, and a gap that has just opened must start at its own rate.
+  double terms_rate = lin;
+  cplx* cv = &coef_rate_[qq * stride_];
+  for (std::size_t m = 0; m < nt; ++m) {
+    cv[m] = cf[m] * rate_[m];
+    terms_rate += cv[m].real();
+  }
+  for (std::size_t e = 0; e < nres; ++e) terms_rate += rr[e].real();
+  if (displacement) lin += rate - terms_rate;
+  rate0_[qq] = displacement ? rate : terms_rate;
+  lin_[qq] = lin;
+  // The mean (a linear term at its value halfway to the horizon) and the bounds' parts.
+  const double span = horizon_ - t0_;
+  double mean = value + 0.5 * lin * span;
+  for (std::size_t m = 0; m < nt; ++m) mean -= cf[m].real();
+  mean_[qq] = mean;
+  fill_bounds(q, lin, span);
+}
+
+// bounds()' parts of quantity q: per order a constant (the linear term, the sinusoids, the
+// near-resonant terms' growth) and per mode the coefficient of its decay; hermite_error()'s
+// moduli.
+void Motion::fill_bounds(int q, double lin, double span) {
+  const auto qq = static_cast<std::size_t>(q);
+  const std::size_t nt = terms(), nres = static_cast<std::size_t>(n_r_);
+  const cplx* cf = &coef_[qq * stride_];
+  const cplx* rr = &r_[qq * static_cast<std::size_t>(k_max_ * kMaxSinusoids * 2)];
+  double* bc = &bound_const_[qq * (kMaxOrder + 1)];
+  double* env = &bound_env_[qq * (kMaxOrder + 1) * static_cast<std::size_t>(k_max_)];
+  for (std::size_t m = 0; m < nt; ++m) modulus_[m] = coef_abs_[qq * stride_ + m] = modulus(cf[m]);
+  res4_[qq] = 0.0;
+  for (std::size_t d = 0; d <= kMaxOrder; ++d) {
+    double c = d == 0 ? 0.5 * std::abs(lin) * span : d == 1 ? std::abs(lin) : 0.0;
+    for (std::size_t m = static_cast<std::size_t>(n_k_); m < nt; ++m) c += modulus_[m] * mod_[m][d];
+    double* e = env + d * static_cast<std::size_t>(k_max_);
+    for (std::size_t k = 0; k < static_cast<std::size_t>(n_k_); ++k) e[k] = modulus_[k] * mod_[k][d];
+    // A near-resonant term: |E^(d)| <= |a|^d max|E| + |S_d| exp(Re lambda s).
+    for (std::size_t x = 0; x < nres; ++x) {
+      const Resonant& rs = res_[x];
+      const double ar = modulus(rr[x]);
+      c += ar * std::abs(rs.a_pow[d]) * rs.bound;
+      e[static_cast<std::size_t>(rs.mode)] += ar * std::abs(rs.s_sum[d]);
+      // hermite_error's: the modes' decay at their largest (1, or the growth to the horizon).
+      if (d == kMaxOrder)
+        res4_[qq] += ar * (std::abs(rs.a_pow[d]) * rs.bound +
+                           std::abs(rs.s_sum[d]) * std::max(1.0, std::exp(rate_[static_cast<std::size_t>(rs.mode)].real() * span)));
     }
-    for (std::size_t e = 0; e < nres; ++e) {
-      const Resonant& rs = res_[e];
-      rr[e] = weight_[static_cast<std::size_t>(rs.mode)] * rho(q, rs.mode) * rs.coef;
-    }
-    double value, rate;
-    bool displacement = true;
-    if (q < nf) {
-      value = u[q];
-      rate = v[q];
-    } else if (q < 2 * nf) {
-      const int i = q - nf;
-      const bool bottom = md.first[static_cast<std::size_t>(md.building_of[static_cast<std::size_t>(i)])] == i;
-      value = bottom ? u[i] : u[i] - u[i - 1];
-      rate = bottom ? v[i] : v[i] - v[i - 1];
-    } else {
-      const int j = q - 2 * nf;
-      const FloorContact& fc = md.contacts[static_cast<std::size_t>(j)];
-      if (!r.stuck[static_cast<std::size_t>(j)]) {
-        value = g[j];
-        rate = v[fc.i_right] - v[fc.i_left];
-      } else {
-        displacement = false;
-        value = r.L0(j);
-        for (int c = 0; c < r.n; ++c)
-          value += r.Lq(j, c) * q0_[static_cast<std::size_t>(c)] + r.Lv(j, c) * qd0_[static_cast<std::size_t>(c)];
-        rate = 0.0;
-      }
-    }
-    f0_[qq] = value;
-    // The rate the terms give (E_r'(0) = 1); a displacement's is made the state's: they differ
-    // by the modes' round-off, and a gap that has just opened must start at its own rate.
-    double terms_rate = lin;
-    cplx* cv = &coef_rate_[qq * stride_];
-    for (std::size_t m = 0; m < nt; ++m) {
-      cv[m] = cf[m] * rate_[m];
-      terms_rate += cv[m].real();
-    }
-    for (std::size_t e = 0; e < nres; ++e) terms_rate += rr[e].real();
-    if (displacement) lin += rate - terms_rate;
-    rate0_[qq] = displacement ? rate : terms_rate;
-    lin_[qq] = lin;
-    // The mean (a linear term at its value halfway to the horizon) and the bounds' parts.
-    double mean = value + 0.5 * lin * span;
-    for (std::size_t m = 0; m < nt; ++m) mean -= cf[m].real();
-    mean_[qq] = mean;
-    double* bc = &bound_const_[qq * (kMaxOrder + 1)];
-    double* env = &bound_env_[qq * (kMaxOrder + 1) * static_cast<std::size_t>(k_max_)];
-    for (std::size_t m = 0; m < nt; ++m) modulus_[m] = coef_abs_[qq * stride_ + m] = modulus(cf[m]);
-    res4_[qq] = 0.0;
-    for (std::size_t d = 0; d <= kMaxOrder; ++d) {
-      double c = d == 0 ? 0.5 * std::abs(lin) * span : d == 1 ? std::abs(lin) : 0.0;
-      for (std::size_t m = static_cast<std::size_t>(n_k_); m < nt; ++m) c += modulus_[m] * mod_[m][d];
-      double* e = env + d * static_cast<std::size_t>(k_max_);
-      for (std::size_t k = 0; k < static_cast<std::size_t>(n_k_); ++k) e[k] = modulus_[k] * mod_[k][d];
-      // A near-resonant term: |E^(d)| <= |a|^d max|E| + |S_d| exp(Re lambda s).
-      for (std::size_t x = 0; x < nres; ++x) {
-        const Resonant& rs = res_[x];
-        const double ar = modulus(rr[x]);
-        c += ar * std::abs(rs.a_pow[d]) * rs.bound;
-        e[static_cast<std::size_t>(rs.mode)] += ar * std::abs(rs.s_sum[d]);
-        // hermite_error's: the modes' decay at their largest (1, or the growth to the horizon).
-        if (d == kMaxOrder)
-          res4_[qq] += ar * (std::abs(rs.a_pow[d]) * rs.bound +
-                             std::abs(rs.s_sum[d]) * std::max(1.0, std::exp(rate_[static_cast<std::size_t>(rs.mode)].real() * span)));
-      }
-      bc[d] = c;
-    }
+    bc[d] = c;
   }
 }
 

@@ -95,6 +95,15 @@ class Motion {
     cplx coef;                                // R: the modal coordinate's term
   };
 
+  // build()'s steps.
+  void set_powers(std::size_t m, cplx x);
+  void take_load(const LoadPiece& piece);
+  void solve_mode(const Reduced& r, const Modal& mo, int k);
+  void fill_rows(const BuildingModel& md, const Reduced& r, const Modal& mo);
+  bool state_value(const BuildingModel& md, const Reduced& r, int q, const double* u, const double* v, const double* g,
+                   double& value, double& rate) const;
+  void fill_terms(const BuildingModel& md, const Reduced& r, int q, const double* u, const double* v, const double* g);
+  void fill_bounds(int q, double lin, double span);
   void basis(double t, int nd);  // orders 0 .. nd - 1 (at least 2)
   void decays(double t);
   cplx& rho(int q, int k) { return rho_[static_cast<std::size_t>(q * k_max_ + k)]; }
@@ -117,7 +126,9 @@ class Motion {
   // and per order and mode the coefficient of the mode's decay.
   std::vector<cplx> rho_, coef_, coef_rate_, r_;  // coef_rate_: each coefficient times its rate
   std::vector<double> f0_, lin_, rate0_, mean_, bound_const_, bound_env_, coef_abs_, res4_;
-  // Scratch of build().
+  // Scratch of build(): the load's polynomial and sinusoids (F_j and e^(i w_j t0)), the reduced state.
+  double p0_ = 0.0, p1_ = 0.0;
+  std::array<cplx, kMaxSinusoids> load_f_{}, load_rot_{};
   std::vector<double> q0_, qd0_, modulus_;
   std::vector<cplx> lin_mode_, h_mode_;
   std::vector<std::array<cplx, 2 * kMaxSinusoids>> x_mode_;  // per mode: X e^(+-i w t0), per sinusoid and sign

@@ -57,9 +57,10 @@ Reduced make_reduced(const BuildingModel& md, const std::vector<char>& stuck) {
   std::iota(comp.begin(), comp.end(), 0);
   for (std::size_t j = 0; j < md.contacts.size(); ++j)
     if (stuck[j]) {
-      const int a = comp[static_cast<std::size_t>(md.contacts[j].left)];
+      const int keep = comp[static_cast<std::size_t>(md.contacts[j].left)];
+      const int gone = comp[static_cast<std::size_t>(md.contacts[j].right)];
       for (int& x : comp)
-        if (x == comp[static_cast<std::size_t>(md.contacts[j].right)]) x = a;
+        if (x == gone) x = keep;
     }
   r.component.assign(static_cast<std::size_t>(n), 0);
   for (int i = 0; i < nf; ++i)
