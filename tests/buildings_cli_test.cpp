@@ -14,7 +14,8 @@
 #include "cli_fixture.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace buildings_cli_tests {
 
 const std::string kBuildingsSet = kSource + "/cases/sets/buildings.toml";
 
@@ -242,5 +243,5 @@ TEST_F(Cli, OtherSolversAndSweepsRefuseTheBuildingsSceneByName) {
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
 }
 
-}  // namespace
+}  // namespace buildings_cli_tests
 }  // namespace pb

@@ -11,10 +11,11 @@
 #include <Eigen/Dense>
 
 #include "cases/buildings.hpp"
-#include "tests/buildings_support.hpp"
+#include "kit/testing_buildings.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace buildings_model_tests {
 
 using test::building;
 using test::issue_scene;
@@ -145,5 +146,5 @@ TEST(BuildingsModel, InvalidScenesSayWhyInOneLine) {
     EXPECT_EQ(w.find('\n'), std::string::npos);
 }
 
-}  // namespace
+}  // namespace buildings_model_tests
 }  // namespace pb

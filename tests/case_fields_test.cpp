@@ -14,7 +14,8 @@
 #include "rows/row_read.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace case_fields_tests {
 
 // A case of `scene` and `pulse` with every field set to a value of its own (none of them a default).
 Case distinctive(Scene scene, PulseShape pulse = PulseShape::sine) {
@@ -81,5 +82,5 @@ TEST(CaseFields, TheRowKeyTellsApartCasesThatDifferInAnyUsedField) {
   }
 }
 
-}  // namespace
+}  // namespace case_fields_tests
 }  // namespace pb

@@ -22,7 +22,8 @@
 #include "kit/testing.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace case_set_tests {
 
 constexpr const char* kFile = "sets/x.toml";
 
@@ -666,5 +667,5 @@ TEST(ShippedCaseSets, EveryShippedSetLiesInsideTheValidDomain) {
   EXPECT_GE(sets, 6u);
 }
 
-}  // namespace
+}  // namespace case_set_tests
 }  // namespace pb

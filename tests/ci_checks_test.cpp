@@ -10,7 +10,8 @@
 #include "cli_fixture.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace ci_checks_tests {
 
 // kTinySet with a middle Pi2 (sqrt(0.3 * 3)) of more digits than 6: a row written to 6
 // significant digits is not the stored double.
@@ -222,5 +223,5 @@ TEST_F(Cli, AMistypedFlagIsAnsweredWithTheNearestFlag) {
   EXPECT_EQ(o.out, "");
 }
 
-}  // namespace
+}  // namespace ci_checks_tests
 }  // namespace pb

@@ -35,7 +35,8 @@
 extern char** environ;
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace cli_tests {
 
 constexpr const char* kPairCase =
     "--scene pair --pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 0.5 --pi5 0.5 --pi6 1";
@@ -974,5 +975,5 @@ TEST_F(Cli, HelpExitsZeroOnEverySubcommand) {
   EXPECT_NE(solvers.out.find("event-driven"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace cli_tests
 }  // namespace pb

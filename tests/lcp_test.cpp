@@ -23,7 +23,8 @@
 #include "kit/lcp/small.hpp"
 
 namespace pb::lcp {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace lcp_tests {
 
 using Eigen::Index;
 using Eigen::MatrixXd;
@@ -623,5 +624,5 @@ TEST(LcpSmall, Solve2AgreesWithEnumerationOnPMatrices) {
   EXPECT_LE(worst, 1e-11);
 }
 
-}  // namespace
+}  // namespace lcp_tests
 }  // namespace pb::lcp

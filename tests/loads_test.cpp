@@ -26,7 +26,8 @@
 #include "kit/testing.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace loads_tests {
 
 using test::sci;
 
@@ -411,5 +412,5 @@ TEST(Loads, ACaseSetRefusesBadLoadKeysNamingTheLine) {
   expect_refused("pulse = \"sine\"\ntp = -1\n", "x.toml:10: family[0].tp: must be finite and > 0");
 }
 
-}  // namespace
+}  // namespace loads_tests
 }  // namespace pb

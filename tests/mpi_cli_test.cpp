@@ -12,7 +12,8 @@
 #include "tests/cli_fixture.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace mpi_cli_tests {
 
 // Two ranks on whatever cores there are, as root too (CI runs as root); `timeout` ends a
 // job that hangs, which is a failure of its own.
@@ -117,5 +118,5 @@ TEST_F(Mpi, ABadInputEndsEveryRankWithOneLine) {
   }
 }
 
-}  // namespace
+}  // namespace mpi_cli_tests
 }  // namespace pb

@@ -8,7 +8,8 @@
 #include "kit/named_values.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace named_values_tests {
 
 TEST(NamedValues, WriteAJsonObjectInTheOrderTheyWereAdded) {
   NamedValues v;
@@ -34,5 +35,5 @@ TEST(NamedValues, NonFiniteNumbersAreNamedAndNamesAndTextsAreEscaped) {
   EXPECT_EQ(NamedValues().json(), "{}");
 }
 
-}  // namespace
+}  // namespace named_values_tests
 }  // namespace pb

@@ -21,7 +21,8 @@
 #include "sweep/sweep.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace paper_claims_tests {
 
 constexpr double kEffect = 0.02;
 constexpr double kNear = 1.25;  // a Pi2 within this factor of another is near it
@@ -290,5 +291,5 @@ TEST(PaperClaims, Fig10BranchesAreFlatWithoutContactAndOfBothSignsWithIt) {
   ::testing::Test::RecordProperty("positive_branches", std::to_string(positive.size()));
 }
 
-}  // namespace
+}  // namespace paper_claims_tests
 }  // namespace pb

@@ -19,7 +19,8 @@
 #include "tests/cli_fixture.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace physical_units_tests {
 
 const std::string kElCentroFile = std::string(POUNDBENCH_SOURCE_DIR) + "/cases/records/real/B-ELC000.AT2";
 const std::string kBuildings = " --scene pair --directivity normal --t0 0.5 --t1 1 --gap 0.01 --eps 0.6";
@@ -532,5 +533,5 @@ eps = 0.6
   EXPECT_THROW(resolve_physical_settings(again, cases, "physical.toml"), SettingsListError);
 }
 
-}  // namespace
+}  // namespace physical_units_tests
 }  // namespace pb

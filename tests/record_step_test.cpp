@@ -20,7 +20,8 @@
 #include "tests/cli_fixture.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace record_step_tests {
 
 const std::string kElCentro = kSource + "/cases/records/real/B-ELC000.AT2";
 
@@ -157,5 +158,5 @@ TEST_F(RecordStepCli, APhysicalUnitsRunTakesTheSameStep) {
   EXPECT_NEAR(pi.at("pi1").get<double>(), phys.at("pi1").get<double>(), 1e-9 * phys.at("pi1").get<double>());
 }
 
-}  // namespace
+}  // namespace record_step_tests
 }  // namespace pb

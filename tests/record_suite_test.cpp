@@ -20,7 +20,8 @@
 #include "kit/testing.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace record_suite_tests {
 
 const std::string kReal = std::string(POUNDBENCH_SOURCE_DIR) + "/cases/records/real/";
 
@@ -231,5 +232,5 @@ TEST(RecordSuite, ARecordStartingAfterTimeZeroIsZeroBeforeItsFirstSample) {
   EXPECT_NEAR(late, from_zero, 1e-12 * from_zero);
 }
 
-}  // namespace
+}  // namespace record_suite_tests
 }  // namespace pb

@@ -16,7 +16,8 @@
 #include "kit/testing.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace result_fields_tests {
 using test::make_case;
 
 // A row of a pair case whose every number and count in Result differs from its default and
@@ -107,5 +108,5 @@ TEST(ResultFields, ThatAnAnswerCarriesComeBackFromAnAnswerDocument) {
   EXPECT_EQ(back.message, "fine");
 }
 
-}  // namespace
+}  // namespace result_fields_tests
 }  // namespace pb

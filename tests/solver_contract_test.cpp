@@ -48,7 +48,8 @@
 #include "kit/testing.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace solver_contract_tests {
 
 using test::make_case;
 using test::sci;
@@ -1044,5 +1045,5 @@ TEST_P(TimeStepperContract, StepsPastTheStabilityLimitDivergeWithAStatusOrRunToT
 INSTANTIATE_TEST_SUITE_P(Registry, SolverContract, testing::ValuesIn(subjects(false)), subject_name);
 INSTANTIATE_TEST_SUITE_P(Registry, TimeStepperContract, testing::ValuesIn(subjects(true)), subject_name);
 
-}  // namespace
+}  // namespace solver_contract_tests
 }  // namespace pb

@@ -15,7 +15,8 @@
 #include "kit/testing.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace stability_tests {
 
 using test::kNaN;
 
@@ -287,5 +288,5 @@ wh = [0.5, 6]
   for (std::size_t p = 0; p < set.cases.size(); ++p) EXPECT_TRUE(std::isfinite(st.truth[p].pi1)) << p;
 }
 
-}  // namespace
+}  // namespace stability_tests
 }  // namespace pb

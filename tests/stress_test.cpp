@@ -21,7 +21,8 @@
 #include "sweep/sweep.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace stress_tests {
 
 const CaseSet& stress_set() {
   static const CaseSet set = load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/stress.toml");
@@ -181,5 +182,5 @@ TEST(Stress, Pi1DoesNotDependOnThePulseScaleFrom1eMinus3To1e3) {
   }
 }
 
-}  // namespace
+}  // namespace stress_tests
 }  // namespace pb

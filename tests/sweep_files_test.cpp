@@ -27,7 +27,8 @@
 extern char** environ;
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace sweep_files_tests {
 
 constexpr const char* kTinyList = R"(name = "tiny"
 [[run]]
@@ -275,5 +276,5 @@ TEST(ProgressLine, SaysDoneOfTotalTheTimeSoFarAndAboutHowLongIsLeft) {
             "spectrum: 7/10 points, 15 s, stopping (a second Ctrl-C abandons the running ones)");
 }
 
-}  // namespace
+}  // namespace sweep_files_tests
 }  // namespace pb

@@ -25,7 +25,8 @@
 #include "sweep/sweep.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace sweep_memory_tests {
 
 namespace fs = std::filesystem;
 
@@ -182,5 +183,5 @@ TEST(PartialRows, TheShapeSaysWhetherEveryRowIsAsWrittenAndWhereTheWholeRecordsE
   EXPECT_EQ(shape.whole_bytes, edited.size());
 }
 
-}  // namespace
+}  // namespace sweep_memory_tests
 }  // namespace pb

@@ -22,7 +22,8 @@
 #include "solvers/registry.hpp"
 
 namespace pb::app {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace sweep_output_tests {
 
 using namespace std::chrono_literals;
 
@@ -177,5 +178,5 @@ TEST(SweepWatch, RunsOnTickAtEveryTick) {
   EXPECT_LE(ticks.load(), 5);
 }
 
-}  // namespace
+}  // namespace sweep_output_tests
 }  // namespace pb::app

@@ -31,7 +31,8 @@
 #include "kit/testing.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace sweep_tests {
 
 std::vector<Case> smoke_cases() {
   return load_case_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/smoke.toml").cases;
@@ -750,5 +751,5 @@ TEST(Csv, WriteCsvWritesHeaderAndOneLinePerRow) {
   EXPECT_EQ(text.substr(0, text.find('\n')), csv_header());
 }
 
-}  // namespace
+}  // namespace sweep_tests
 }  // namespace pb

@@ -13,7 +13,8 @@
 #include "kit/testing.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace verdict_tests {
 
 using test::kNaN;
 
@@ -124,5 +125,5 @@ TEST(Verdict, ARunWhoseMeasurementsWereNotAllTakenIsNotJudgedUnlessOneFails) {
   EXPECT_EQ(coarse.unresolved.find("its step is"), 0u) << coarse.unresolved;
 }
 
-}  // namespace
+}  // namespace verdict_tests
 }  // namespace pb

@@ -14,7 +14,8 @@
 #include "solvers/registry.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace workprecision_tests {
 
 TEST(Percentile, InterpolatesBetweenOrderStatistics) {
   const std::vector<double> x = {5, 1, 4, 2, 3};
@@ -347,5 +348,5 @@ steps = 256
   }
 }
 
-}  // namespace
+}  // namespace workprecision_tests
 }  // namespace pb

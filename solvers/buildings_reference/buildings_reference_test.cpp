@@ -23,10 +23,11 @@
 #include "solvers/buildings_reference/reference.hpp"
 #include "solvers/buildings_reference/stuck.hpp"
 #include "solvers/event_driven/event_driven.hpp"
-#include "tests/buildings_support.hpp"
+#include "kit/testing_buildings.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace buildings_reference_tests {
 
 using test::building;
 using test::issue_scene;
@@ -693,5 +694,5 @@ TEST(BuildingsReference, LimitsEndARunWithTheirStatus) {
   EXPECT_EQ(refused.message, validate(bad));
 }
 
-}  // namespace
+}  // namespace buildings_reference_tests
 }  // namespace pb

@@ -31,7 +31,8 @@
 #include "solvers/registry.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace bullet_tests {
 
 bullet::Config variant(std::string_view name) { return test::config_named(bullet::kVariants, name); }
 
@@ -717,7 +718,7 @@ TEST(BulletFaithful, MonitorMeasuresRestitutionEpsToSinglePrecisionAndAFirstOrde
   }
 }
 
-}  // namespace
+}  // namespace bullet_tests
 }  // namespace pb
 
 #endif  // POUNDBENCH_HAVE_BULLET

@@ -26,7 +26,8 @@
 #include "kit/testing.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace compliant_tests {
 
 using test::make_case;
 using test::sci;
@@ -524,5 +525,5 @@ TEST(Compliant, TheExactKelvinVoigtReferenceAboveK1e12IsUnresolvedSayingWhy) {
   EXPECT_NE(stiff.unresolved.find("K above 1e12"), std::string::npos) << stiff.unresolved;
 }
 
-}  // namespace
+}  // namespace compliant_tests
 }  // namespace pb

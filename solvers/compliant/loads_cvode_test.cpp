@@ -21,7 +21,8 @@
 #include "kit/testing.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace loads_cvode_tests {
 
 using test::sci;
 
@@ -133,5 +134,5 @@ TEST(LoadsAgainstCvode, TheKelvinVoigtReferenceTakesARecordAndAMakrisPulse) {
   RecordProperty("worst", sci(worst));
 }
 
-}  // namespace
+}  // namespace loads_cvode_tests
 }  // namespace pb

@@ -25,7 +25,8 @@
 #include "kit/testing.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace newmark_order_tests {
 
 // K = 1e3: the contact's own frequency w_c is ~32 w0 (wall) to ~45 w0 (pair, m_eff = m / 2), so
 // w_c h = 0.19 to 0.27 at N = 512 and 0.012 to 0.017 at N = 8192: the range where the error
@@ -136,5 +137,5 @@ TEST(NewmarkOrder, StateErrorFallsAtSecondOrderWithContactsAndYield) {
   }
 }
 
-}  // namespace
+}  // namespace newmark_order_tests
 }  // namespace pb

@@ -17,7 +17,8 @@
 #include "kit/testing.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace yielding_cvode_tests {
 
 Result cvode_at(const System& s, double rtol) {
   Settings set;
@@ -139,5 +140,5 @@ TEST(YieldingCvode, AFarYieldGivesTheElasticRun) {
   RecordProperty("pi1_difference", test::sci(worst));
 }
 
-}  // namespace
+}  // namespace yielding_cvode_tests
 }  // namespace pb

@@ -19,7 +19,8 @@
 #include "solvers/registry.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace dart_tests {
 
 using test::make_case;
 using test::sci;
@@ -268,5 +269,5 @@ TEST(Dart, CheckAndDescribeNameEverySetting) {
   EXPECT_EQ(dart::check(st).rfind("variant:", 0), 0u);
 }
 
-}  // namespace
+}  // namespace dart_tests
 }  // namespace pb

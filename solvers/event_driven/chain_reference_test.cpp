@@ -15,7 +15,8 @@
 #include "kit/testing.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace chain_reference_tests {
 
 Case chain_case(int n, double pi3, double eps, double kick, double pi5 = 1.0, double pi6 = 1.0) {
   Case c;
@@ -269,5 +270,5 @@ TEST(ChainReference, TimeLimitStopsTheRunAsTimeout) {
   EXPECT_TRUE(std::isnan(r.pi1)) << "a run cut short has no Pi1";
 }
 
-}  // namespace
+}  // namespace chain_reference_tests
 }  // namespace pb

@@ -22,7 +22,8 @@
 #include "solvers/registry.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace reference_limits_tests {
 
 Case undamped(Scene scene, PulseShape pulse, double pi2) {
   Case c;
@@ -371,5 +372,5 @@ TEST(SweepLimits, AStoppedSweepDropsThePointsItCutShort) {
   EXPECT_TRUE(rows.empty());
 }
 
-}  // namespace
+}  // namespace reference_limits_tests
 }  // namespace pb

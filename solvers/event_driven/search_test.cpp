@@ -19,7 +19,8 @@
 #include "solvers/event_driven/wave.hpp"
 
 namespace pb::event_driven {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace search_tests {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
@@ -415,5 +416,5 @@ TEST(SearchPeak, AWaveOfExactZerosAtItsStartCostsWhatItsNeighboursCost) {
   EXPECT_NEAR(p_at, 0.5 * (p_below + p_above), 1e-8 * p_at);
 }
 
-}  // namespace
+}  // namespace search_tests
 }  // namespace pb::event_driven

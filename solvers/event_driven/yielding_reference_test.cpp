@@ -20,7 +20,8 @@
 #include "kit/testing.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace yielding_reference_tests {
 
 using event_driven::Forcing;
 using event_driven::Wave;
@@ -303,5 +304,5 @@ TEST(YieldingReference, ResidualIsTheRestPositionOfTheLastElasticBranch) {
   EXPECT_NEAR(u_end / s.length_scale(), r.residual, 2e-3 * std::abs(r.residual));
 }
 
-}  // namespace
+}  // namespace yielding_reference_tests
 }  // namespace pb

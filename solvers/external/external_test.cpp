@@ -29,12 +29,12 @@
 #include "programs/protocol.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
 #include "sweep/sweep.hpp"
-#include "tests/cli_fixture.hpp"
 #include "kit/testing.hpp"
 #include "solvers/registry.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace external_tests {
 
 using test::make_case;
 
@@ -437,35 +437,5 @@ TEST(ExternalProcesses, RowCpuSecondsIncludeTheProgramsCpu) {
 
 // ---------------------------------------------------------------- the command line
 
-TEST_F(Cli, ExternalWithoutACommandIsABadInput) {
-  const Outcome o = run("run --scene wall --pulse sine --directivity normal --pi2 1 --pi3 1 --eps 0.5 --solver external");
-  EXPECT_EQ(o.exit_code, 2);
-  EXPECT_EQ(o.err, "poundbench: --command: required by solver external (the program and its arguments, e.g. "
-                   "\"python3 adapter.py\")\n");
-}
-
-TEST_F(Cli, ExternalRowsNameTheCommandAndAFailingProgramIsARowNotAStop) {
-  write("set.toml", kTinySet);
-  const Outcome o = run("spectrum set.toml --threads 2 --solver external --command \"sh -c 'exit 4'\"");
-  EXPECT_EQ(o.exit_code, 0) << o.err;
-  CsvTable table(o.out);
-  ASSERT_EQ(table.rows.size(), 6u);
-  for (std::size_t i = 0; i < table.rows.size(); ++i) {
-    EXPECT_EQ(table.at(i, "status"), "failed");
-    EXPECT_EQ(table.at(i, "message"), "the program exited with code 4");
-    EXPECT_EQ(table.at(i, "settings"), R"({"command":"sh -c 'exit 4'"})");
-  }
-}
-
-TEST_F(Cli, AdapterRefusesABadCaseDocumentAsABadInput) {
-  write("case.json", R"({"protocol":"poundbench-external","version":1,"bodies":[]})");
-  const Outcome o = run("adapter --solver moreau-jean < case.json");
-  EXPECT_EQ(o.exit_code, 2);
-  EXPECT_EQ(o.err, "poundbench: stdin: bodies: must be a non-empty array\n");
-  const Outcome steps = run("adapter --solver moreau-jean --steps 8 < case.json");
-  EXPECT_EQ(steps.exit_code, 2);
-  EXPECT_EQ(steps.err, "poundbench: --steps: the case document gives it (run the sweep with it instead)\n");
-}
-
-}  // namespace
+}  // namespace external_tests
 }  // namespace pb

@@ -18,7 +18,8 @@
 #include "kit/testing.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace yielding_moreau_jean_tests {
 
 Result moreau_jean_at(const System& s, int steps) { return test::run_variant(&moreau_jean::solve, s, "", steps); }
 
@@ -100,5 +101,5 @@ TEST(YieldingMoreauJean, PerfectlyPlasticAtLargeStepsStaysBounded) {
   EXPECT_TRUE(std::isfinite(r.residual));
 }
 
-}  // namespace
+}  // namespace yielding_moreau_jean_tests
 }  // namespace pb

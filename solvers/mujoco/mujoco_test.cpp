@@ -22,7 +22,8 @@
 #include "solvers/registry.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace mujoco_tests {
 
 using test::make_case;
 using test::sci;
@@ -382,5 +383,5 @@ TEST(MujocoIntegrators, ImplicitTakesEulersStepsWhereOnlyJointsAreDamped) {
   EXPECT_LT(worst, 1e-12);
 }
 
-}  // namespace
+}  // namespace mujoco_tests
 }  // namespace pb

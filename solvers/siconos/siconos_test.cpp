@@ -27,7 +27,8 @@
 #include "solvers/registry.hpp"
 
 namespace pb {
-namespace {
+// Named, not anonymous: the unity build puts this file beside others with helpers of the same names.
+namespace siconos_tests {
 
 using test::make_case;
 using test::sci;
@@ -490,5 +491,5 @@ TEST(Siconos, CheckAndDescribeNameEverySetting) {
   EXPECT_EQ(find_solver("siconos")->solve, &siconos::solve);
 }
 
-}  // namespace
+}  // namespace siconos_tests
 }  // namespace pb

@@ -1,6 +1,6 @@
 #pragma once
-// What the buildings' tests share (tests/buildings_model_test.cpp,
-// tests/buildings_reference_test.cpp): a building from its floors, and the pair.
+// What the buildings' tests share (tests/buildings_model_test.cpp, the reference's own in
+// solvers/buildings_reference/): a building from its floors, and the pair.
 
 #include <utility>
 #include <vector>
