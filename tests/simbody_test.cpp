@@ -31,8 +31,9 @@ using test::make_case;
 using test::sci;
 using test::HistoryRow;
 
-// run(system, variant, N = the default, history = false): simbody::solve with those settings.
-const auto run = [](const auto&... args) { return test::run_variant(&simbody::solve, args...); };
+// solve_as(system, variant, N = the default, history = false): simbody::solve with those settings
+// (not `run`: a unity build puts this file beside tests whose locals are named run).
+const auto solve_as = [](const auto&... args) { return test::run_variant(&simbody::solve, args...); };
 
 // With no other force the stepper's impact alone acts: an approach leaves at exactly eps
 // times its speed (Poisson's and Newton's laws agree on one contact), and the momentum
@@ -40,13 +41,13 @@ const auto run = [](const auto&... args) { return test::run_variant(&simbody::so
 TEST(Simbody, FaithfulVariantsReverseAFreeApproachByExactlyEps) {
   for (std::string_view variant : {"plus-faithful", "pgs-faithful"})
     for (double eps : {0.0, 0.5, 1.0}) {
-      const Result wall = run(test::free_mass_at_wall(0.033, eps, -1.0), variant, 64, true);
+      const Result wall = solve_as(test::free_mass_at_wall(0.033, eps, -1.0), variant, 64, true);
       test::expect_free_wall_restituted(wall, eps, variant);
       double impulse = 0.0;
       for (std::size_t k = 1; k < wall.history.rows(); ++k) impulse += HistoryRow{wall.history, k}.lambda(0) * 0.01;
       EXPECT_NEAR(impulse, 2.0 * (1.0 + eps), 1e-12) << variant << " eps=" << eps;
 
-      test::expect_free_pair_restituted(run(test::free_pair(eps), variant, 64, true), eps, variant);
+      test::expect_free_pair_restituted(solve_as(test::free_pair(eps), variant, 64, true), eps, variant);
     }
 }
 
@@ -56,10 +57,10 @@ TEST(Simbody, FaithfulVariantsReverseAFreeApproachByExactlyEps) {
 // variants (tolerance 1e-12) restitute it.
 TEST(Simbody, DefaultCapturesSlowImpactsAndFaithfulRestitutesThem) {
   const System slow = test::free_mass_at_wall(1.5e-5, 1.0, -1.5e-3);
-  const Result d = run(slow, "default", 64, true);
+  const Result d = solve_as(slow, "default", 64, true);
   ASSERT_EQ(d.status, Status::ok) << d.message;
   EXPECT_NEAR((HistoryRow{d.history, d.history.rows() - 1}.v(0)), 0.0, 1e-15);
-  const Result f = run(slow, "plus-faithful", 64, true);
+  const Result f = solve_as(slow, "plus-faithful", 64, true);
   ASSERT_EQ(f.status, Status::ok) << f.message;
   EXPECT_NEAR((HistoryRow{f.history, f.history.rows() - 1}.v(0)), 1.5e-3, 1e-15);
 }
@@ -96,12 +97,12 @@ TEST(Simbody, ASimultaneousImpactFollowsTheReferencesPoissonLawWhereTheStepperTa
   EXPECT_NEAR(ref_end.v(1), 13.0 / 33.0, 1e-8);
   EXPECT_NEAR(ref_end.v(2), 13.0 / 33.0, 1e-8);
 
-  const Result d = run(s, "default", 4096, true);
+  const Result d = solve_as(s, "default", 4096, true);
   ASSERT_EQ(d.status, Status::ok) << d.message;
   const HistoryRow end{d.history, d.history.rows() - 1};
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(end.v(i), ref_end.v(i), 1e-8) << "body " << i;
 
-  const Result f = run(s, "plus-faithful", 4096, true);
+  const Result f = solve_as(s, "plus-faithful", 4096, true);
   ASSERT_EQ(f.status, Status::ok) << f.message;
   const HistoryRow fend{f.history, f.history.rows() - 1};
   RecordProperty("faithful_v_left", sci(fend.v(0)));
@@ -120,7 +121,7 @@ TEST(Simbody, HuntCrossleyRestitutionVariesWithTheImpactSpeedAsCalibrated) {
   for (double v : {0.01, 0.1, 0.3, 1.0, 3.0}) {
     System s = test::free_mass_at_wall(0.02, 0.5, -v);
     s.t_end = 0.02 / v + 1.0;  // past the contact's end
-    const Result r = run(s, "hunt-crossley");
+    const Result r = solve_as(s, "hunt-crossley");
     ASSERT_EQ(r.status, Status::ok) << r.message;
     ASSERT_EQ(r.isolated_impacts, 1) << v;
     const double predicted = compliant::hunt_crossley_restitution(chi * v);
@@ -141,7 +142,7 @@ TEST(Simbody, FaithfulConvergesToTheReferenceOnWallPairAndRow3) {
     const Result ref = reference_solver().solve(s, Settings{});
     std::vector<double> errors;
     for (int n : {64, 1024}) {
-      const Result r = run(s, "plus-faithful", n);
+      const Result r = solve_as(s, "plus-faithful", n);
       ASSERT_EQ(r.status, Status::ok) << r.message;
       errors.push_back(std::abs(r.pi1 - ref.pi1) / ref.pi1);
     }
@@ -294,7 +295,7 @@ TEST(Simbody, CheckAndDescribeNameEverySetting) {
   st.variant = "pgs-faithful";
   EXPECT_EQ(simbody::check(st).rfind("gamma:", 0), 0u);
   const System s = test::free_mass_at_wall(0.033, 0.0, -1.0);
-  const Result r = run(s, "hunt-crossley");
+  const Result r = solve_as(s, "hunt-crossley");
   EXPECT_EQ(r.status, Status::failed);
   EXPECT_EQ(r.message.rfind("eps:", 0), 0u) << r.message;
 }
