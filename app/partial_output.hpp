@@ -17,12 +17,17 @@ namespace pb::app {
 // One row's line (without its line end) with the columns of its header: a field by name is read
 // from the line when asked (the sweep's verdicts read 4 of its 76).
 struct PartialRecord {
+  PartialRecord(const std::vector<std::string>& columns_, std::string_view line_) : columns(columns_), line(line_) {}
   const std::vector<std::string>& columns;
   std::string_view line;
-  // The index of a column (std::runtime_error if the header has none), and field k.
+  // The index of a column (std::runtime_error if the header has none), and field k (fields
+  // asked for in their order are read on from the last one).
   std::size_t index(std::string_view column) const;
   std::string field(std::size_t k) const;
   std::string field(std::string_view column) const { return field(index(column)); }
+
+ private:
+  mutable std::size_t last_field_ = 0, last_start_ = 0;  // the last field read, and where it starts
 };
 
 // Writes csv_header() and the line of every point 0 .. points-1 of `partial` in point order

@@ -19,6 +19,10 @@
 //                           the command as the main job runs it (wall time, start included);
 //                           and on one thread, the command's CPU time against its solves'
 //                           (the rows' cpu_seconds): what a sweep adds to its solves (issue 46)
+//   SpectrumPersistentFloor `poundbench spectrum` on the paper-report set through a persistent
+//                           program that answers at once (bench/instant_answer.cpp), one
+//                           thread: the whole sweep a point, and what of it is outside the
+//                           exchanges (issue 46: the goal 50 us a point for the whole sweep)
 
 #include <benchmark/benchmark.h>
 
@@ -26,9 +30,11 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -213,39 +219,54 @@ void BM_SpectrumCommandPaperSet(benchmark::State& state) {
 }
 BENCHMARK(BM_SpectrumCommandPaperSet)->Repetitions(kWholeSetRepetitions)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The CPU seconds, user and system, of the children waited for so far.
+double children_cpu() {
+  rusage usage{};
+  getrusage(RUSAGE_CHILDREN, &usage);
+  const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+// `poundbench spectrum SET --threads 1 FLAGS --out FILE` run once: its wall and CPU seconds (its
+// own and its programs'), and its rows; nothing where it failed (the benchmark says so).
+struct SpectrumRun {
+  double wall = 0.0, cpu = 0.0;
+  std::vector<pb::Row> rows;
+};
+std::optional<SpectrumRun> run_spectrum(benchmark::State& state, const std::string& set, const std::string& flags) {
+  const std::string out = (std::filesystem::temp_directory_path() /
+                           ("poundbench-bench-1-" + std::to_string(::getpid()) + ".csv")).string();
+  const std::string command = std::string("'") + POUNDBENCH_EXE + "' spectrum '" + POUNDBENCH_SOURCE_DIR +
+                              "/cases/sets/" + set + "' --threads 1 " + flags + " --out '" + out + "' 2> /dev/null";
+  SpectrumRun run;
+  const double cpu = children_cpu();
+  const auto start = std::chrono::steady_clock::now();
+  const int status = std::system(command.c_str());
+  run.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.cpu = children_cpu() - cpu;
+  if (status != 0) {
+    state.SkipWithError("poundbench spectrum failed");
+    return std::nullopt;
+  }
+  run.rows = pb::read_csv_file(out).rows;
+  std::filesystem::remove(out);
+  return run;
+}
+
 // The same command on one thread: the CPU time of the whole command (its start, the case set
 // read, the sweep, the partial file, the output pass) per point, against the CPU time of its
 // solves (the rows' cpu_seconds, summed) per point. Counters: cpu_per_point, solves_per_point
 // and their ratio, over_solves (issue 46: 2.9 on idle cores, the goal 1.65).
 void BM_SpectrumCommandPaperSetOneThread(benchmark::State& state) {
-  const std::string out =
-      (std::filesystem::temp_directory_path() / ("poundbench-bench-1-" + std::to_string(::getpid()) + ".csv")).string();
-  const std::string command = std::string("'") + POUNDBENCH_EXE + "' spectrum '" + POUNDBENCH_SOURCE_DIR +
-                              "/cases/sets/paper.toml' --solver event-driven --threads 1 --out '" + out +
-                              "' 2> /dev/null";
-  const auto children_cpu = [] {
-    rusage usage{};
-    getrusage(RUSAGE_CHILDREN, &usage);
-    const auto seconds = [](const timeval& t) {
-      return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
-    };
-    return seconds(usage.ru_utime) + seconds(usage.ru_stime);
-  };
   double cpu = 0.0, solves = 0.0;
   std::size_t points = 0;
   for (auto _ : state) {
-    const double before = children_cpu();
-    if (std::system(command.c_str()) != 0) {
-      state.SkipWithError("poundbench spectrum failed");
-      break;
-    }
-    cpu += children_cpu() - before;
-    for (const pb::Row& row : pb::read_csv_file(out).rows) {
-      solves += row.cpu_seconds;
-      ++points;
-    }
+    const std::optional<SpectrumRun> run = run_spectrum(state, "paper.toml", "--solver event-driven");
+    if (!run) break;
+    cpu += run->cpu;
+    for (const pb::Row& row : run->rows) solves += row.cpu_seconds;
+    points += run->rows.size();
   }
-  std::filesystem::remove(out);
   if (points == 0) return;
   const double n = static_cast<double>(points);
   state.counters["cpu_per_point"] = cpu / n;
@@ -253,6 +274,42 @@ void BM_SpectrumCommandPaperSetOneThread(benchmark::State& state) {
   state.counters["over_solves"] = cpu / solves;
 }
 BENCHMARK(BM_SpectrumCommandPaperSetOneThread)
+    ->Iterations(1)
+    ->Repetitions(kWholeSetRepetitions)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The paper-report set (3,284 points) through a persistent program that answers every case at
+// once, without reading it (bench/instant_answer.cpp), on one thread: what a point costs a sweep
+// beyond its program's own work. Counters, per point: sweep (the command's wall time, its start
+// included), sweep_cpu (its CPU and the program's), exchange (the rows' seconds: the case
+// written, the answer read and checked) and outside (the sweep's wall time outside the exchanges
+// and the program's start: the point's row, the partial file, the output pass, poundbench's
+// start). Issue 46: 207 us a point of which 150 us outside; the goal 50 us for the whole sweep.
+// scripts/persistent_overhead.py measures the same, for README, and the one-shot mode beside it.
+void BM_SpectrumPersistentFloor(benchmark::State& state) {
+  double wall = 0.0, cpu = 0.0, exchange = 0.0, startup = 0.0;
+  std::size_t points = 0;
+  for (auto _ : state) {
+    const std::optional<SpectrumRun> run = run_spectrum(
+        state, "paper-report.toml", "--solver external --persistent --command '" POUNDBENCH_INSTANT_ANSWER "'");
+    if (!run) break;
+    wall += run->wall;
+    cpu += run->cpu;
+    for (const pb::Row& row : run->rows) {
+      exchange += row.seconds;
+      if (std::isfinite(row.result.startup_seconds)) startup += row.result.startup_seconds;
+    }
+    points += run->rows.size();
+  }
+  if (points == 0) return;
+  const double n = static_cast<double>(points);
+  state.counters["sweep"] = wall / n;
+  state.counters["sweep_cpu"] = cpu / n;
+  state.counters["exchange"] = exchange / n;
+  state.counters["outside"] = (wall - exchange - startup) / n;
+}
+BENCHMARK(BM_SpectrumPersistentFloor)
     ->Iterations(1)
     ->Repetitions(kWholeSetRepetitions)
     ->Unit(benchmark::kMillisecond)

@@ -8,17 +8,17 @@
 #include <sys/ioctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <system_error>
 #include <utility>
@@ -102,33 +102,68 @@ bool set_nonblocking(const Fd& fd) {
   return flags >= 0 && fcntl(fd.get(), F_SETFL, flags | O_NONBLOCK) == 0;
 }
 
-// SIGPIPE blocked in this thread while it lives; a SIGPIPE that a write raised here is
-// taken back before the old mask returns (one that was pending before is left alone).
+// SIGPIPE blocked on a sweep's worker for as long as it works (ThreadSessionsEnd): its
+// exchanges then need no mask of their own. Set and restored around each, with a look at what
+// was pending, the mask was three system calls a point (issue 46). depth: the
+// ThreadSessionsEnd scopes open on the thread; the mask is set at the first program run or
+// exchange within one and restored as the last ends.
+struct ThreadSigpipe {
+  int depth = 0;
+  bool blocked = false;
+  bool was_pending = false;  // pending when it was blocked: not taken back
+  sigset_t old{};
+};
+thread_local ThreadSigpipe thread_sigpipe;
+
+sigset_t sigpipe_set() {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGPIPE);
+  return set;
+}
+
+bool sigpipe_pending() {
+  sigset_t pending;
+  sigemptyset(&pending);
+  return sigpending(&pending) == 0 && sigismember(&pending, SIGPIPE) == 1;
+}
+
+// Takes back a SIGPIPE this thread raised and blocked.
+void take_back_sigpipe() {
+  const sigset_t pipe = sigpipe_set();
+  const timespec zero{};
+  while (sigtimedwait(&pipe, nullptr, &zero) < 0 && errno == EINTR) {
+  }
+}
+
+// SIGPIPE blocked in this thread while it lives (or, within a ThreadSessionsEnd scope, for as
+// long as the scope: thread_sigpipe); a SIGPIPE that a write raised here is taken back before
+// the old mask returns (one that was pending before is left alone).
 class SigpipeBlock {
  public:
   SigpipeBlock() {
-    sigemptyset(&pipe_);
-    sigaddset(&pipe_, SIGPIPE);
-    sigset_t pending;
-    sigemptyset(&pending);
-    was_pending_ = sigpending(&pending) == 0 && sigismember(&pending, SIGPIPE) == 1;
-    pthread_sigmask(SIG_BLOCK, &pipe_, &old_);
+    const sigset_t pipe = sigpipe_set();
+    if (thread_sigpipe.depth > 0) {
+      shared_ = true;
+      if (thread_sigpipe.blocked) return;
+      thread_sigpipe.was_pending = sigpipe_pending();
+      thread_sigpipe.blocked = pthread_sigmask(SIG_BLOCK, &pipe, &thread_sigpipe.old) == 0;
+      return;
+    }
+    was_pending_ = sigpipe_pending();
+    pthread_sigmask(SIG_BLOCK, &pipe, &old_);
   }
   SigpipeBlock(const SigpipeBlock&) = delete;
   SigpipeBlock& operator=(const SigpipeBlock&) = delete;
   ~SigpipeBlock() {
-    if (raised_ && !was_pending_) {
-      const timespec zero{};
-      while (sigtimedwait(&pipe_, nullptr, &zero) < 0 && errno == EINTR) {
-      }
-    }
-    pthread_sigmask(SIG_SETMASK, &old_, nullptr);
+    if (raised_ && !(shared_ ? thread_sigpipe.was_pending : was_pending_)) take_back_sigpipe();
+    if (!shared_) pthread_sigmask(SIG_SETMASK, &old_, nullptr);
   }
   void raised() { raised_ = true; }
 
  private:
-  sigset_t pipe_{}, old_{};
-  bool was_pending_ = false, raised_ = false;
+  sigset_t old_{};
+  bool shared_ = false, was_pending_ = false, raised_ = false;
 };
 
 // The child, until it is reaped: killed with its group and waited for on any way out.
@@ -189,22 +224,24 @@ class Child {
 
 std::string error_text(int error) { return std::generic_category().message(error); }
 
-// The CPU seconds the threads of process `pid` alive now have run, to the nanosecond (the first
-// field of each /proc/<pid>/task/<tid>/schedstat): a persistent program's cost per exchange,
-// where its rusage comes only when it is reaped and /proc's stat counts in 10 ms ticks. NaN
-// where /proc cannot tell.
-double process_cpu_seconds(pid_t pid) {
-  std::error_code ec;
-  const std::filesystem::path tasks = "/proc/" + std::to_string(pid) + "/task";
-  double ns = 0.0;
-  bool read = false;
-  for (auto it = std::filesystem::directory_iterator(tasks, ec); !ec && it != std::filesystem::directory_iterator();
-       it.increment(ec)) {
-    std::ifstream stat(it->path() / "schedstat");
-    double on_cpu = 0.0;
-    if (stat >> on_cpu) ns += on_cpu, read = true;
-  }
-  return read ? 1e-9 * ns : std::numeric_limits<double>::quiet_NaN();
+// The CPU clock of process `pid`: the run time of its threads summed, to the nanosecond, read
+// in one system call (a persistent program's cost per exchange, where its rusage comes only
+// when it is reaped and /proc's stat counts in 10 ms ticks). Its sum is the first field of each
+// /proc/<pid>/task/<tid>/schedstat, which was read instead: a directory and a file per thread,
+// some 20 system calls and 30,000 instructions an exchange, a tenth of a persistent sweep's work
+// through a program that answers at once (issue 46). The clock also keeps the time of a thread
+// that ended in the exchange, which the files had lost. None where the system has none.
+std::optional<clockid_t> process_cpu_clock(pid_t pid) {
+  clockid_t clock{};
+  if (clock_getcpuclockid(pid, &clock) != 0) return std::nullopt;
+  return clock;
+}
+
+// Seconds on `clock` (process_cpu_clock); NaN where it cannot be read.
+double cpu_clock_seconds(std::optional<clockid_t> clock) {
+  timespec t{};
+  if (!clock || clock_gettime(*clock, &t) != 0) return std::numeric_limits<double>::quiet_NaN();
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 // Starts argv with `in` as its stdin, `out` as stdout, `err` as stderr, in a process group of
@@ -445,12 +482,11 @@ class Session {
     if (!waiting_for_case(run)) return run;
     std::string input(line);
     input += '\n';
-    const pid_t pid = child_->pid();
-    const double cpu_before = process_cpu_seconds(pid);
+    const double cpu_before = cpu_clock_seconds(cpu_clock_);
     if (converse(input, run, limits, start, sigpipe)) {
       run.exited = true;  // answered, as a program of run_program that exits with 0 (it goes on running)
       run.exit_code = 0;
-      run.cpu_seconds = process_cpu_seconds(pid) - cpu_before;
+      run.cpu_seconds = cpu_clock_seconds(cpu_clock_) - cpu_before;
     }
     run.seconds = seconds_since(start);
     return run;
@@ -485,6 +521,7 @@ class Session {
       return false;
     }
     child_ = std::make_unique<Child>(pid);
+    cpu_clock_ = process_cpu_clock(pid);
     set_nonblocking(in_);
     set_nonblocking(out_);
     set_nonblocking(err_read_);
@@ -543,6 +580,10 @@ class Session {
         return ended_by_itself(run);
       }
 
+      // The case is written before any poll for room: the pipe takes a line of a case at once
+      // nearly always (it holds 64 KiB), and a poll for it, with the look at the child that
+      // came with the next turn of this loop, was two system calls a point.
+      if (written < input.size()) write_some(input, written, run, sigpipe);
       pollfd fds[3];
       nfds_t n = 0;
       const bool writing = written < input.size();
@@ -559,14 +600,7 @@ class Session {
       for (nfds_t k = 0; k < n; ++k) {
         if (!fds[k].revents) continue;
         if (writing && fds[k].fd == in_.get()) {
-          const ssize_t w = ::write(in_.get(), input.data() + written, std::min(kChunk, input.size() - written));
-          if (w > 0) written += static_cast<std::size_t>(w);
-          if (w < 0 && errno == EPIPE) sigpipe.raised();
-          // A program that closed its stdin will not read the case: its answer (or end) says why.
-          if (w < 0 && errno != EAGAIN && errno != EINTR) {
-            run.input_refused = true;
-            written = input.size();
-          }
+          write_some(input, written, run, sigpipe);
         } else if (fds[k].fd == out_.get()) {
           if (!read_some(out_, pending_)) out_.reset();
         } else if (fds[k].fd == err_read_.get()) {
@@ -574,6 +608,18 @@ class Session {
           if (err_.size() > 2 * kErrTail) err_.erase(0, err_.size() - kErrTail);
         }
       }
+    }
+  }
+
+  // Writes what the pipe takes of `input` past `written` (its end does not block).
+  void write_some(std::string_view input, std::size_t& written, ProgramRun& run, SigpipeBlock& sigpipe) {
+    const ssize_t w = ::write(in_.get(), input.data() + written, std::min(kChunk, input.size() - written));
+    if (w > 0) written += static_cast<std::size_t>(w);
+    if (w < 0 && errno == EPIPE) sigpipe.raised();
+    // A program that closed its stdin will not read the case: its answer (or end) says why.
+    if (w < 0 && errno != EAGAIN && errno != EINTR) {
+      run.input_refused = true;
+      written = input.size();
     }
   }
 
@@ -636,6 +682,7 @@ class Session {
 
   std::vector<std::string> argv_;
   std::unique_ptr<Child> child_;
+  std::optional<clockid_t> cpu_clock_;  // the child's (process_cpu_clock)
   Fd in_, out_, err_read_;
   std::string pending_, err_;
 };
@@ -662,5 +709,14 @@ ProgramRun exchange(const std::vector<std::string>& argv, std::string_view line,
 }
 
 void end_thread_sessions() { sessions.clear(); }
+
+ThreadSessionsEnd::ThreadSessionsEnd() { ++thread_sigpipe.depth; }
+
+ThreadSessionsEnd::~ThreadSessionsEnd() {
+  end_thread_sessions();
+  if (--thread_sigpipe.depth > 0 || !thread_sigpipe.blocked) return;
+  pthread_sigmask(SIG_SETMASK, &thread_sigpipe.old, nullptr);
+  thread_sigpipe.blocked = false;
+}
 
 }  // namespace pb::programs

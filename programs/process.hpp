@@ -10,8 +10,9 @@
 //     and the child closes every descriptor above 2 before exec (closefrom), so it also
 //     inherits none that other code opened without close-on-exec;
 //   - no SIGPIPE: a program that exits without reading its input must not kill poundbench,
-//     so the writing thread blocks SIGPIPE while it writes and takes back the one a write
-//     raised (a thread-directed signal, so other threads are untouched);
+//     so the writing thread blocks SIGPIPE while it writes (a sweep's worker for as long as it
+//     works: ThreadSessionsEnd) and takes back the one a write raised (a thread-directed
+//     signal, so other threads are untouched);
 //   - no zombie: the child is always waited for, on every path out (an exception too);
 //   - a deadline and a stop flag: the program runs in a process group of its own, and the
 //     whole group (a script and what it started) gets SIGKILL.
@@ -53,8 +54,8 @@ struct ProgramRun {
   std::string err_tail;       // the last lines of its stderr (at most kErrTail bytes)
   double seconds = 0.0;       // wall time from the start to its end
   // Its CPU time, user and system, with its waited-for children; persistent mode: what its
-  // threads ran from the case's sending to its answer (its children not counted), NaN where
-  // /proc cannot tell, 0 where it did not answer.
+  // threads ran from the case's sending to its answer (its process CPU clock; its children not
+  // counted), NaN where the clock cannot be read, 0 where it did not answer.
   double cpu_seconds = 0.0;
 };
 
@@ -92,11 +93,15 @@ ProgramRun exchange(const std::vector<std::string>& argv, std::string_view line,
 // to exit, then ended with its group. A sweep's worker calls it as it ends (ThreadSessionsEnd);
 // a thread that never does ends them as it exits.
 void end_thread_sessions();
+// A sweep's worker, from its start to its end: its programs are ended as it ends, and SIGPIPE
+// stays blocked on it from its first write to a program until then (not set and restored around
+// each exchange: three system calls a point). A SIGPIPE one of its writes raised is taken back
+// at once; any other is delivered as the scope ends.
 struct ThreadSessionsEnd {
-  ThreadSessionsEnd() = default;
+  ThreadSessionsEnd();
   ThreadSessionsEnd(const ThreadSessionsEnd&) = delete;
   ThreadSessionsEnd& operator=(const ThreadSessionsEnd&) = delete;
-  ~ThreadSessionsEnd() { end_thread_sessions(); }
+  ~ThreadSessionsEnd();
 };
 
 // The last `lines` lines of text (without a trailing line end), each line end as " | ", for

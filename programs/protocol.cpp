@@ -10,7 +10,6 @@
 #include <optional>
 #include <string>
 #include <stdexcept>
-#include <unordered_set>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -38,47 +37,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // NaN and infinity have no JSON spelling: null says "no value".
 Ordered number_or_null(double x) { return std::isfinite(x) ? Ordered(x) : Ordered(nullptr); }
 
-// The first number of the system that is not finite, by its field name; "" when none is.
-std::string non_finite_field(const System& s) {
-  const std::array<std::pair<double, const char*>, 8> numbers = {{{s.delta, "contacts.gap"},
-                                                                  {s.eps, "eps"},
-                                                                  {s.xi, "xi"},
-                                                                  {s.a_p, "a_p"},
-                                                                  {s.pulse.amplitude, "load.amplitude"},
-                                                                  {s.pulse.w, "load.w"},
-                                                                  {s.t_end, "t_end"},
-                                                                  {s.t_min, "t_min"}}};
-  for (const auto& [x, field] : numbers)
-    if (!std::isfinite(x)) return field;
-  for (const std::vector<double>* start : {&s.u_start, &s.v_start})
-    for (double x : *start)
-      if (!std::isfinite(x)) return start == &s.u_start ? "bodies.u" : "bodies.v";
-  return {};
-}
-
-// The load by its kind (docs/external.md): the paper's pulses as they always were, a pulse
-// model as its sinusoids, a record as its samples.
-Ordered load_json(const Pulse& p) {
-  if (p.paper())
-    return {{"kind", "pulse"}, {"shape", name(p.shape)}, {"amplitude", p.amplitude}, {"w", p.w}, {"duration", p.duration()}};
-  if (p.record) {
-    std::vector<double> a(p.record->a.size());
-    for (std::size_t i = 0; i < a.size(); ++i) a[i] = p.amplitude * p.record->a[i];
-    return {{"kind", "record"}, {"source", p.record->source}, {"w", p.w}, {"t", p.record->t}, {"a", a}};
-  }
-  Ordered terms = Ordered::array();
-  for (std::size_t i = 0; i < static_cast<std::size_t>(p.n_waves); ++i)
-    terms.push_back({{"w", p.waves[i].w}, {"sin", p.waves[i].s}, {"cos", p.waves[i].c}});
-  Ordered j = {{"kind", "sinusoids"}, {"shape", name(p.shape)}, {"amplitude", p.amplitude},
-               {"w", p.w},         {"duration", p.duration()}, {"terms", terms}};
-  if (p.shape == PulseShape::makris_c) j["cycles"] = p.cycles;
-  if (p.shape == PulseShape::mp) {
-    j["mp_gamma"] = p.mp_gamma;
-    j["mp_nu"] = p.mp_nu;
-  }
-  return j;
-}
-
 // ---------------------------------------------------------------- reading, with field names
 
 [[noreturn]] void bad(const std::string& field, const std::string& why) { throw std::invalid_argument(field + ": " + why); }
@@ -102,10 +60,13 @@ long whole(const Json& j, const std::string& field) {
 }
 
 // An optional number: absent or null is nullopt.
-std::optional<double> maybe_number(const Json& object, const std::string& key) {
+// (By string_view: a literal key made a std::string per look-up, 15 an answer.)
+std::optional<double> maybe_number(const Json& object, std::string_view key) {
   const auto it = object.find(key);
   if (it == object.end() || it->is_null()) return std::nullopt;
-  return number(*it, key);
+  if (it->is_number())
+    if (const double x = it->get<double>(); std::isfinite(x)) return x;
+  return number(*it, std::string(key));  // throws, naming the field
 }
 
 void check_version(const Json& doc) {
@@ -116,37 +77,104 @@ void check_version(const Json& doc) {
     bad("version", "must be " + std::to_string(kVersion) + " (it is " + clip(version.dump()) + ")");
 }
 
+// The DOM of a document, built from nlohmann's parser's events (its SAX interface) as its own
+// DOM parser builds it, with parse_object's checks made as the events come: a key seen twice
+// in its object, a level too deep, and, every 4096 events, the deadline. The parser's callback
+// made them before, on a DOM its callback parser built: a JSON value made for every key to
+// call it with, and a hashed set of the keys per object, 16,000 instructions for an answer of
+// four keys (a persistent sweep through a program that answers at once: issue 46). Here an
+// object's keys are looked up in the object itself. The events counted and the order of the
+// checks are the callback's.
+class CheckedDom {
+ public:
+  CheckedDom(Json& root, const char* what, Clock::time_point deadline, std::size_t bytes)
+      : root_(root), what_(what), deadline_(deadline), bytes_(bytes) {}
+
+  bool null() { return value(nullptr); }
+  bool boolean(bool b) { return value(b); }
+  bool number_integer(Json::number_integer_t n) { return value(n); }
+  bool number_unsigned(Json::number_unsigned_t n) { return value(n); }
+  bool number_float(Json::number_float_t x, const Json::string_t&) { return value(x); }
+  bool string(Json::string_t& text) { return value(text); }
+  bool binary(Json::binary_t& bytes) { return value(std::move(bytes)); }
+  bool start_object(std::size_t) { return open(Json::value_t::object); }
+  bool key(Json::string_t& key) {
+    event();
+    Json& object = *stack_.back();
+    if (object.contains(key)) bad(what_, "key \"" + clip(key) + "\" given twice in one object");
+    element_ = &object[key];
+    return true;
+  }
+  bool end_object() { return close(); }
+  bool start_array(std::size_t) { return open(Json::value_t::array); }
+  bool end_array() { return close(); }
+  // The parser's own error, thrown as its DOM parser throws it (the same message).
+  template <class Exception>
+  bool parse_error(std::size_t, const std::string&, const Exception& error) {
+    throw error;
+  }
+
+ private:
+  void event() {
+    if (++events_ % 4096 == 0 && Clock::now() > deadline_)
+      bad(what_, "still being read at the time limit (" + std::to_string(bytes_) + " bytes)");
+  }
+  // Where a value goes: the root, the end of the open array, or the key just read.
+  template <class Value>
+  Json* place(Value&& v) {
+    if (stack_.empty()) {
+      root_ = Json(std::forward<Value>(v));
+      return &root_;
+    }
+    if (stack_.back()->is_array()) {
+      stack_.back()->push_back(Json(std::forward<Value>(v)));
+      return &stack_.back()->back();
+    }
+    *element_ = Json(std::forward<Value>(v));
+    return element_;
+  }
+  template <class Value>
+  bool value(Value&& v) {
+    event();
+    place(std::forward<Value>(v));
+    return true;
+  }
+  bool open(Json::value_t type) {
+    event();
+    if (static_cast<int>(stack_.size()) >= kMaxDepth)
+      bad(what_, "nested more than " + std::to_string(kMaxDepth) + " levels deep");
+    stack_.push_back(place(type));
+    return true;
+  }
+  bool close() {
+    event();
+    stack_.pop_back();
+    return true;
+  }
+
+  Json& root_;
+  const char* what_;
+  Clock::time_point deadline_;
+  std::size_t bytes_;
+  std::vector<Json*> stack_;  // the open objects and arrays
+  Json* element_ = nullptr;   // the value of the key just read
+  std::size_t events_ = 0;
+};
+
 // A document as the protocol reads it: one JSON object, no key twice in an object
 // (nlohmann keeps the last one, and "status":"failed","status":"ok" read as ok), nested at
 // most kMaxDepth deep (a document's own depth is 3 or 4: a 40 MB answer of nested arrays
 // took 13.7 s and 1.5 GB to parse), and parsed by `deadline` (a long answer is read within
-// the run's time limit, not after it). The callback sees every token, so the parse stops at
+// the run's time limit, not after it). CheckedDom sees every event, so the parse stops at
 // the first key seen twice, the first level too deep, or the first look at the clock past
 // the deadline.
 Json parse_object(std::string_view text, const char* what, Clock::time_point deadline = Clock::time_point::max()) {
   if (text.find_first_not_of(" \t\r\n") == std::string_view::npos)
     bad(what, "empty (one JSON document is expected)");
-  // The keys of each open object, hashed: a document of 120,000 keys took 11.9 s to check
-  // against a list of the keys before each, and takes a few milliseconds so.
-  std::vector<std::unordered_set<std::string>> keys;
-  std::size_t events = 0;
-  const Json::parser_callback_t check = [&](int depth, Json::parse_event_t event, Json& parsed) {
-    if (++events % 4096 == 0 && Clock::now() > deadline)
-      bad(what, "still being read at the time limit (" + std::to_string(text.size()) + " bytes)");
-    if ((event == Json::parse_event_t::object_start || event == Json::parse_event_t::array_start) &&
-        depth >= kMaxDepth)
-      bad(what, "nested more than " + std::to_string(kMaxDepth) + " levels deep");
-    if (event == Json::parse_event_t::object_start) keys.emplace_back();
-    if (event == Json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
-    if (event == Json::parse_event_t::key && !keys.empty()) {
-      const std::string& key = parsed.get_ref<const std::string&>();
-      if (!keys.back().insert(key).second) bad(what, "key \"" + clip(key) + "\" given twice in one object");
-    }
-    return true;
-  };
   Json doc;
+  CheckedDom dom(doc, what, deadline, text.size());
   try {
-    doc = Json::parse(text, check);
+    Json::sax_parse(text, &dom);
   } catch (const Json::exception& e) {
     bad(what, "not one JSON document (" + clip(e.what(), kMaxEchoedReason) + ")");
   }
@@ -229,16 +257,19 @@ void fill_answer(const Json& doc, const System& s, const Settings& settings, Res
   // a step (the fixed_step.hpp shell's rule), so a Pi1 is never taken from outside the run.
   const double t_last = s.t_end + (std::isfinite(r.step) ? r.step : 0.0) + 1e-9 * s.t_end;
   const auto in_run = [&](double t) { return t >= 0.0 && t <= t_last; };
-  const std::string run_times = "must be within the run, 0 to t_end = " + format_number(s.t_end) +
-                                (std::isfinite(r.step) ? " (plus one step)" : "");
+  const auto run_times = [&] {  // made only for an error: t_end's shortest text is 1,000 instructions
+    return "must be within the run, 0 to t_end = " + format_number(s.t_end) +
+           (std::isfinite(r.step) ? " (plus one step)" : "");
+  };
   U0History history;
   if (const auto it = doc.find("history"); it != doc.end() && !it->is_null()) history = read_history(*it);
   for (std::size_t i = 0; i < history.t.size(); ++i) {
-    const std::string field = "history.t[" + std::to_string(i) + "]";
-    if (!in_run(history.t[i])) bad(field, run_times + " (it is " + format_number(history.t[i]) + ")");
-    if (i > 0 && history.t[i] < history.t[i - 1]) bad(field, "goes back from the time before it (times must not fall)");
+    const auto field = [i] { return "history.t[" + std::to_string(i) + "]"; };
+    if (!in_run(history.t[i])) bad(field(), run_times() + " (it is " + format_number(history.t[i]) + ")");
+    if (i > 0 && history.t[i] < history.t[i - 1])
+      bad(field(), "goes back from the time before it (times must not fall)");
   }
-  if (!std::isnan(r.t_max) && !in_run(r.t_max)) bad("t_max", run_times + " (it is " + format_number(r.t_max) + ")");
+  if (!std::isnan(r.t_max) && !in_run(r.t_max)) bad("t_max", run_times() + " (it is " + format_number(r.t_max) + ")");
   if (std::isnan(r.pi1) && !history.u0.empty() && r.status == Status::ok) {
     if (std::any_of(history.u0.begin(), history.u0.end(), [](double u) { return !std::isfinite(u); }))
       bad("history.u0", "status ok needs a finite u0 at every time to take pi1 from");
@@ -493,63 +524,7 @@ void check_case_domain(const Json& doc, const System& s) {
 // read_case without its guard against the JSON library's own exceptions.
 static CaseRead read_case_document(std::string_view text);
 
-CaseDocument case_document(const System& s, const Settings& settings) {
-  CaseDocument doc;
-  for (const Body& b : s.bodies)
-    if (!(b.m > 0.0 && std::isfinite(b.m)) || !std::isfinite(b.k) || !std::isfinite(b.c) || !std::isfinite(b.w)) {
-      doc.error = "every body needs a finite positive mass and a finite stiffness and damping (JSON has no NaN or "
-                  "infinity)";
-      return doc;
-    }
-  if (const std::string field = non_finite_field(s); !field.empty()) {
-    doc.error = field + ": must be finite (JSON has no NaN or infinity)";
-    return doc;
-  }
-  const auto nb = static_cast<std::size_t>(s.n_bodies());
-  if ((!s.u_start.empty() && s.u_start.size() != nb) || (!s.v_start.empty() && s.v_start.size() != nb)) {
-    doc.error = "start state: needs one u and one v per body (or none: rest)";
-    return doc;
-  }
-  Ordered j;
-  j["protocol"] = kProtocol;
-  j["version"] = kVersion;
-  Ordered bodies = Ordered::array();
-  for (std::size_t i = 0; i < nb; ++i) {
-    const Body& b = s.bodies[i];
-    bodies.push_back({{"m", b.m},
-                      {"k", b.k},
-                      {"c", b.c},
-                      {"w", b.w},
-                      {"u", s.u_start.empty() ? 0.0 : s.u_start[i]},
-                      {"v", s.v_start.empty() ? 0.0 : s.v_start[i]}});
-    if (b.yields()) bodies.back()["u_y"] = b.u_y;
-  }
-  j["bodies"] = std::move(bodies);
-  j["reference"] = s.ref;
-  Ordered contacts = Ordered::array();
-  for (int c = 0; c < s.n_contacts(); ++c)
-    contacts.push_back({{"left", s.left(c) == kWall ? Ordered(nullptr) : Ordered(s.left(c))},
-                        {"right", s.right(c)},
-                        {"gap", s.delta}});
-  j["contacts"] = std::move(contacts);
-  j["eps"] = s.eps;
-  j["xi"] = s.xi;
-  if (s.yields()) j["alpha"] = s.alpha;
-  j["load"] = load_json(s.pulse);
-  j["a_p"] = s.a_p;
-  j["length_scale"] = s.length_scale();
-  j["t_end"] = s.t_end;
-  j["t_min"] = s.t_min;
-  const bool stepped = settings.steps > 0 || settings.wh > 0.0;
-  j["step"] = stepped ? Ordered(time_step(s, settings, 1)) : Ordered(nullptr);
-  j["steps_per_period"] = settings.steps > 0 ? Ordered(settings.steps) : Ordered(nullptr);
-  j["step_cap"] = settings.step_cap;
-  j["time_limit"] = settings.time_limit;
-  j["history_samples"] = settings.history_samples;
-  j["monitor"] = settings.monitor;
-  doc.text = j.dump(-1, ' ', false, Ordered::error_handler_t::replace) + '\n';
-  return doc;
-}
+// case_document: programs/case_document.cpp.
 
 std::string read_answer(std::string_view text, const System& system, const Settings& settings, Result& result,
                         std::chrono::steady_clock::time_point deadline) {

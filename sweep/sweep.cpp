@@ -88,13 +88,20 @@ double median(std::vector<double> x) {
 class PointDeadline {
  public:
   explicit PointDeadline(double limit) : limit_(limit) {}
-  // The settings with the time left as their limit; nullopt when none is left.
-  std::optional<Settings> left(Settings settings) const {
-    if (limit_ <= 0.0) return settings;
+  // The time left set as the settings' limit: false, and the settings as they were, when none
+  // is left. (In place: a copy of the settings and its move per solve were 1,000 instructions
+  // a point.)
+  bool limit(Settings& settings) const {
+    if (limit_ <= 0.0) return true;
     const double rest = limit_ - std::chrono::duration<double>(Clock::now() - start_).count();
-    if (!(rest > 0.0)) return std::nullopt;
+    if (!(rest > 0.0)) return false;
     settings.time_limit = rest;
     settings.point_time_limit = limit_;
+    return true;
+  }
+  // The settings with the time left as their limit; nullopt when none is left.
+  std::optional<Settings> left(Settings settings) const {
+    if (!limit(settings)) return std::nullopt;
     return settings;
   }
 
@@ -113,9 +120,9 @@ void time_solves(Row& row, const SolverInfo& solver, const System& system, Setti
   std::vector<double> wall, cpu;
   double spent = 0.0;
   for (int j = 0; j < repetitions && (j == 0 || spent < kRepetitionBudget); ++j) {
-    const std::optional<Settings> now = deadline.left(settings);
-    if (!now && j > 0) break;  // the limit is spent: the repetitions end here
-    Timed t = timed_solve(solver, system, now.value_or(settings));
+    // Where none is left the first solve still runs, on the limit as given.
+    if (!deadline.limit(settings) && j > 0) break;  // the limit is spent: the repetitions end here
+    Timed t = timed_solve(solver, system, settings);
     if (j == 0) {
       row.result = std::move(t.result);
     } else if (t.result.status == Status::time_limit && row.result.status != Status::time_limit) {
@@ -177,8 +184,9 @@ double richardson(double at_h, double at_2h, double order) {
 // refuses a step of ours (it chooses its own: Simbody's Runge-Kutta-Merson reports a step but
 // takes none of --steps or --wh), which is then judged as the solvers without a fixed step.
 std::optional<Settings> companion_settings(const SolverInfo& solver, const System& system, const Result& r,
-                                           Settings settings) {
+                                           const Settings& run) {
   if (!(solver.step_order > 0.0) || !std::isfinite(r.step) || r.status != Status::ok) return std::nullopt;
+  Settings settings = run;
   settings.steps = 0;
   settings.steps_per_sample = 0;
   settings.wh = 2.0 * 2.0 * std::numbers::pi * r.step / system.t_min;
@@ -223,7 +231,8 @@ bool measured_all(const Result& r, const SolverInfo& solver, const Settings& set
 }  // namespace
 
 Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const Settings& settings,
-              int repetitions, NoContactCache* no_contact, bool monitor_timed, const ErrorEstimate& estimate) {
+              int repetitions, NoContactCache* no_contact, bool monitor_timed, const ErrorEstimate& estimate,
+              const std::string* described) {
   Row row;
   row.input = c;
   row.point = point;
@@ -236,7 +245,7 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
     return row;
   }
   try {
-    row.settings = solver.describe(settings);
+    row.settings = described ? *described : solver.describe(settings);
   } catch (...) {
     row.result.message = "describe: " + describe_exception(std::current_exception());
     return row;
@@ -261,17 +270,20 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
       row.result.status != Status::time_limit)
     add_monitor(row, solver, system, settings, deadline);
 
-  const std::optional<Settings> companion = companion_settings(solver, system, row.result, settings);
+  // The companion's settings (and the solver's check of them) only where the estimate is made or
+  // the verdict may be judged (measured_all): a sweep that asks neither does without.
+  std::optional<Settings> companion;
+  if (estimate.on || settings.monitor || solver.reference)
+    companion = companion_settings(solver, system, row.result, settings);
   if (estimate.on && companion) add_estimate(row, solver, system, *companion, deadline);
   judge(system, row.result, {estimate.target_error, measured_all(row.result, solver, settings, companion.has_value())});
   row.wh = 2.0 * std::numbers::pi * row.result.step / system.t_min;
   row.penetration_steps = penetration_steps(row.result);
 
   try {
-    if (const std::optional<Settings> now = deadline.left(settings))
-      row.pi1_no_contact = no_contact ? no_contact->pi1(system, *now) : no_contact_pi1(system, *now);
-    else
-      throw std::runtime_error("not computed: the run's time limit was spent");
+    Settings limits = settings;
+    if (!deadline.limit(limits)) throw std::runtime_error("not computed: the run's time limit was spent");
+    row.pi1_no_contact = no_contact ? no_contact->pi1(system, limits) : no_contact_pi1(system, limits);
   } catch (...) {
     // The solver's own result stands; only the comparison value is missing.
     if (!row.result.message.empty()) row.result.message += "; ";
@@ -325,6 +337,15 @@ std::vector<Row> run_sweep(const CaseList& cases, std::span<const SweepRun> runs
     settings.back().stop = options.cancel;
     if (settings.back().time_limit == 0.0) settings.back().time_limit = options.point_time_limit;
   }
+  // Each run's settings described once, not once a point (as run_point would); a run whose
+  // describe throws is described by each point, whose row then says so.
+  std::vector<std::optional<std::string>> described(runs.size());
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    try {
+      described[r] = runs[r].solver->describe(settings[r]);
+    } catch (...) {
+    }
+  }
   const auto cancelled = [&] { return options.cancel && options.cancel->load(); };
   const auto stopped = [&] { return stop.load(std::memory_order_relaxed) || cancelled(); };
   unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
@@ -342,7 +363,7 @@ std::vector<Row> run_sweep(const CaseList& cases, std::span<const SweepRun> runs
       const std::size_t r = *task / n;
       Row row =
           run_point(cases[*task % n], *task % n, *runs[r].solver, settings[r], runs[r].repetitions, &no_contact,
-                    runs[r].monitor_timed, runs[r].estimate);
+                    runs[r].monitor_timed, runs[r].estimate, described[r] ? &*described[r] : nullptr);
       row.run = r;
       if (cancelled()) return;  // the run may have been cut short by the stop: not a result
       std::exception_ptr finished_error;

@@ -20,6 +20,7 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "cases/case.hpp"
@@ -82,9 +83,10 @@ struct ErrorEstimate {
 // for want of a measurement: with settings.monitor off (but the reference's own checks), or
 // for a fixed-step run with a step_order whose estimate was not made (`estimate` off, or none
 // made), unless a criterion it did measure fails.
+// described: solver.describe(settings), where the caller has made it (a sweep, once per run).
 Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const Settings& settings,
               int repetitions = 1, NoContactCache* no_contact = nullptr, bool monitor_timed = false,
-              const ErrorEstimate& estimate = {});
+              const ErrorEstimate& estimate = {}, const std::string* described = nullptr);
 
 // One solver with its settings, run over every case of a sweep. settings.monitor: the rows
 // carry the monitor's measurements, from one untimed pass more (run_point), or, with
