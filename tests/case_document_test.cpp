@@ -19,7 +19,8 @@
 #include "cases/record.hpp"
 #include "cases/system.hpp"
 #include "programs/protocol.hpp"
-#include "tests/support.hpp"
+#include "cases/buildings_set.hpp"
+#include "kit/testing.hpp"
 
 namespace pb {
 namespace {
@@ -117,6 +118,7 @@ TEST(CaseDocument, IsTheOrderedJsonDumpByteForByteOnEveryShippedSet) {
   int compared = 0;
   for (const auto& entry : std::filesystem::directory_iterator(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets")) {
     if (entry.path().extension() != ".toml") continue;
+    if (load_buildings_set(entry.path())) continue;  // no case document for buildings yet (issue 50)
     const CaseSet set = load_case_set(entry.path());
     // Every set's first and last points and some 40 between (the paper set has 23,820).
     const std::size_t n = set.cases.size(), stride = std::max<std::size_t>(1, n / 40);
