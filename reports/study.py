@@ -258,7 +258,7 @@ def impacting_errors(study):
     the truth has none, the answer is the ground's motion through a free oscillator, which
     every scheme gets to its order, and a study's median can hide an impacting minority.
     Beside them, the second accuracy measure: the relative error in the largest impact velocity
-    (rows' impact_velocity_pi, rows/physical_results.hpp) over the same points, vel_median and
+    (rows' impact_velocity_pi, rows/result_fields.cpp) over the same points, vel_median and
     vel_p95 (NaN where the rows predate that column)."""
     errors = defaultdict(list)
     velocity = defaultdict(list)
