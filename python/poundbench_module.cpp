@@ -350,7 +350,9 @@ py::str decoded(std::string_view text) {
   return py::reinterpret_steal<py::str>(s);
 }
 
-py::object to_python(const nlohmann::json& j) {
+// A JSON scalar (of nlohmann's json or ordered_json) as a Python object.
+template <class Json>
+py::object to_python(const Json& j) {
   switch (j.type()) {
     case nlohmann::json::value_t::boolean: return py::bool_(j.get<bool>());
     case nlohmann::json::value_t::number_integer: return py::int_(j.get<long long>());
@@ -643,14 +645,7 @@ py::object json_to_python(const nlohmann::ordered_json& j) {
     for (const auto& [key, x] : j.items()) out[decoded(key)] = json_to_python(x);
     return out;
   }
-  switch (j.type()) {
-    case nlohmann::json::value_t::boolean: return py::bool_(j.get<bool>());
-    case nlohmann::json::value_t::number_integer: return py::int_(j.get<long long>());
-    case nlohmann::json::value_t::number_unsigned: return py::int_(j.get<unsigned long long>());
-    case nlohmann::json::value_t::number_float: return py::float_(j.get<double>());
-    case nlohmann::json::value_t::string: return decoded(j.get_ref<const std::string&>());
-    default: return py::none();
-  }
+  return to_python(j);
 }
 
 // A point of a buildings case set: the object `run --json` prints for it, as a dict

@@ -14,6 +14,7 @@
 #include "solvers/buildings_reference/stuck.hpp"
 #include "kit/lcp/small.hpp"
 #include "kit/run_limits.hpp"
+#include "kit/lex_sign.hpp"
 
 namespace pb::buildings {
 
@@ -63,16 +64,6 @@ struct GaussRule {
 const GaussRule& gauss_rule(double rh) {
   static const GaussRule g4(4), g8(8), g16(16);
   return rh <= 0.14 ? g4 : rh <= 2.6 ? g8 : g16;
-}
-
-// True when the first coefficient that is not negligible (|c_k| > tol scale rate^k) is positive.
-bool lex_nonnegative(const double* c, int n, double scale, double rate, double tol) {
-  double z = tol * scale;
-  for (int k = 0; k < n; ++k, z *= rate) {
-    if (c[k] > z) return true;
-    if (c[k] < -z) return false;
-  }
-  return true;
 }
 
 // One way of deciding the contact LCP: Taylor coefficients within tol (relative) of zero

@@ -26,6 +26,7 @@
 #include "kit/lcp/lemke.hpp"
 #include "kit/named_values.hpp"
 #include "kit/run_limits.hpp"
+#include "kit/lex_sign.hpp"
 
 namespace pb::event_driven {
 
@@ -62,16 +63,6 @@ constexpr double kNeutralRate = 1e-3;
 constexpr int kEnumerateLimit = 8;
 bool known_variant(std::string_view v) { return v.empty() || v == kLemkeVariant; }
 bool kelvin_voigt(const Settings& s) { return s.contact == kKelvinVoigtContact; }
-
-// True when the first coefficient that is not negligible is positive.
-bool lex_nonnegative(const double* c, int n, double scale, double rate, double tol) {
-  double z = tol * scale;
-  for (int k = 0; k < n; ++k, z *= rate) {
-    if (c[k] > z) return true;
-    if (c[k] < -z) return false;
-  }
-  return true;
-}
 
 // One way of deciding the contact LCP: Taylor coefficients within `tol` (relative) of zero
 // defer to the next one, up to `depth` derivatives beyond a gap's rate.
