@@ -354,11 +354,11 @@ py::str decoded(std::string_view text) {
 template <class Json>
 py::object to_python(const Json& j) {
   switch (j.type()) {
-    case nlohmann::json::value_t::boolean: return py::bool_(j.get<bool>());
-    case nlohmann::json::value_t::number_integer: return py::int_(j.get<long long>());
-    case nlohmann::json::value_t::number_unsigned: return py::int_(j.get<unsigned long long>());
-    case nlohmann::json::value_t::number_float: return py::float_(j.get<double>());
-    case nlohmann::json::value_t::string: return decoded(j.get_ref<const std::string&>());
+    case nlohmann::json::value_t::boolean: return py::bool_(j.template get<bool>());
+    case nlohmann::json::value_t::number_integer: return py::int_(j.template get<long long>());
+    case nlohmann::json::value_t::number_unsigned: return py::int_(j.template get<unsigned long long>());
+    case nlohmann::json::value_t::number_float: return py::float_(j.template get<double>());
+    case nlohmann::json::value_t::string: return decoded(j.template get_ref<const std::string&>());
     default: return py::none();  // a row's settings are flat (NamedValues): nothing else
   }
 }
