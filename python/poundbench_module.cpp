@@ -359,7 +359,7 @@ py::object to_python(const Json& j) {
     case nlohmann::json::value_t::number_unsigned: return py::int_(j.template get<unsigned long long>());
     case nlohmann::json::value_t::number_float: return py::float_(j.template get<double>());
     case nlohmann::json::value_t::string: return decoded(j.template get_ref<const std::string&>());
-    default: return py::none();  // a row's settings are flat (NamedValues): nothing else
+    default: return py::none();  // null; a row's settings are flat, and json_to_python takes lists and objects
   }
 }
 
