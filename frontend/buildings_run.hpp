@@ -15,21 +15,19 @@
 
 namespace pb::app {
 
-// The settings of kit/settings_fields.hpp that the buildings reference reads: what a
-// buildings run may be given besides --solver.
-inline constexpr std::string_view kBuildingsSettings[] = {"tol_scale", "step_cap", "time_limit"};
-
-// Throws BadInput, one line, for a solver other than the reference ("solver X does not solve
-// the buildings scene (yet): ...") and for a setting that the reference does not read.
-void check_buildings_solver(const SolverFlags& flags, const GivenSolverFlag& given);
+// The solver's registry row, if it solves the buildings scene; else throws BadInput, one line
+// ("--solver: X does not solve the buildings scene (these do: ...)"), as for a setting given
+// that its buildings solve does not read (SolverInfo::buildings_settings).
+const SolverInfo& check_buildings_solver(const SolverFlags& flags, const GivenSolverFlag& given);
 
 struct BuildingsRun {
   ChosenCase chosen;  // its `building` is the point solved
+  const SolverInfo* solver = nullptr;
   buildings::BuildingsResult result;
   double seconds = 0.0, cpu_seconds = 0.0;  // the solve's wall and CPU time (this thread's)
 };
 
-BuildingsRun run_buildings(const ChosenCase& chosen, const Settings& settings);
+BuildingsRun run_buildings(const ChosenCase& chosen, const SolverInfo& solver, const Settings& settings);
 
 // The object of `run --json`: floor_peak_m, drift_peak_m (per building, floor 1 first),
 // contacts, the Pi terms of a case in Pi terms, status, message, events, energy_error,

@@ -244,6 +244,13 @@ std::string check_limits(const Settings& settings);
 
 using SolveFn = Result (*)(const System&, const Settings&);
 
+// The buildings scene (cases/buildings.hpp; its result: kit/buildings_result.hpp).
+struct BuildingModel;
+namespace buildings {
+struct BuildingsResult;
+}
+using BuildingsSolveFn = buildings::BuildingsResult (*)(const BuildingModel&, const Settings&);
+
 // A variant of a solver (Settings::variant) and one line on what it is. Each solver lists
 // the names its solve() knows, its default first: the one the empty name runs (the
 // reference's default has no other name).
@@ -303,6 +310,11 @@ struct SolverInfo {
   bool (*hertz_contact)(const Settings&) = nullptr;
   // The settings of the solver's own (OwnSetting), at most kMaxOwnSettings.
   std::span<const OwnSetting> own_settings{};
+  // Its solve of the buildings scene; null: it refuses the scene (by name, in one line).
+  BuildingsSolveFn solve_buildings = nullptr;
+  // The fields of kit/settings_fields.hpp that its buildings solve reads (the limits
+  // step_cap and time_limit included where it honours them); any other given is refused.
+  std::span<const std::string_view> buildings_settings{};
 };
 
 // Own setting i of a run, from the solver's list of them: as given, else its fallback.

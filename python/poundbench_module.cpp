@@ -651,18 +651,18 @@ py::object json_to_python(const nlohmann::ordered_json& j) {
 // A point of a buildings case set: the object `run --json` prints for it, as a dict
 // (frontend/buildings_run.hpp).
 py::dict run_buildings(Keywords& k, const app::ChosenCase& chosen) {
-  checked([&] {
-    app::check_buildings_solver(k.solver_flags, k.given_flag());
+  const SolverInfo* solver = checked([&] {
+    const SolverInfo* info = &app::check_buildings_solver(k.solver_flags, k.given_flag());
     for (std::string_view flag : {"--k-contact", "--target-error", "--monitor"})
       if (k.has(flag)) throw app::BadInput(std::string(flag) + ": not for the buildings scene (yet)");
     if (k.history || k.samples) throw app::BadInput("history: not for the buildings scene (yet)");
-    return 0;
+    return info;
   });
   std::atomic<bool> stop{false};
   Settings settings = k.solver_flags.settings;
   settings.stop = &stop;
   app::BuildingsRun result;
-  run_interruptibly(stop, [&] { result = app::run_buildings(chosen, settings); });
+  run_interruptibly(stop, [&] { result = app::run_buildings(chosen, *solver, settings); });
   return json_to_python(app::buildings_json(result));
 }
 

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "cases/text.hpp"
+#include "solvers/buildings_reference/reference.hpp"
 #include "solvers/event_driven/event_driven.hpp"
 #include "solvers/external/external.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
@@ -52,14 +53,25 @@ std::string check_all(const Settings& settings);
 // 0.5 to 2.5 (erratic: impacts move between step ends); ODE 1.0 to 1.06, quartiles 0.4 to 1.5.
 constexpr double kFixedStepOrder = 1.0;
 
+// What the buildings scene's exact reference reads: its tolerances' scale and the limits.
+constexpr std::string_view kExactBuildingsSettings[] = {"tol_scale", "step_cap", "time_limit"};
+
 const std::array kSolvers = {
     // Every solver is a deterministic sequence of floating-point operations: the stored
     // rows were reproduced bit for bit by the Release (-O3), RelWithDebInfo (-O2) and
     // sanitizer (-O0) builds of GCC 12. A baseline tolerance allows for another compiler or
     // libm, where round-off differs. The reference finds event times to an ulp and is exact
     // between them, so round-off stays round-off: 1e-9 (issue 7's figure), thousands of ulps.
-    SolverInfo{"event-driven", "exact between events, Poisson impacts (the reference)", &event_driven::solve,
-               &event_driven::describe, &check_all<&event_driven::check>, &event_driven::variant_list, 1e-9, true},
+    SolverInfo{.name = "event-driven",
+               .summary = "exact between events, Poisson impacts (the reference)",
+               .solve = &event_driven::solve,
+               .describe = &event_driven::describe,
+               .check = &check_all<&event_driven::check>,
+               .variants = &event_driven::variant_list,
+               .baseline_tolerance = 1e-9,
+               .reference = true,
+               .solve_buildings = &buildings::solve,
+               .buildings_settings = kExactBuildingsSettings},
     // A time-stepper's round-off can flip an activation test that sits at its threshold and
     // move Pi1 by a step's worth; 1e-12 lets round-off through and catches any such flip.
     SolverInfo{"moreau-jean", "theta-method time-stepper, Newton impacts on predicted contacts (fixed step)",

@@ -226,13 +226,13 @@ TEST_F(Cli, RunSummarisesABuildingsPointPerFloorAndContact) {
 }
 
 TEST_F(Cli, OtherSolversAndSweepsRefuseTheBuildingsSceneByName) {
-  const Outcome o = run("run --case-file '" + kBuildingsSet + "' --point 0 --solver moreau-jean");
+  const Outcome o = run("run --case-file '" + kBuildingsSet + "' --point 0 --solver external --command true");
   EXPECT_EQ(o.exit_code, 2);
-  EXPECT_NE(o.err.find("solver moreau-jean does not solve the buildings scene (yet)"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find("--solver: external does not solve the buildings scene (these do: event-driven"), std::string::npos) << o.err;
   EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
   const Outcome steps = run("run --case-file '" + kBuildingsSet + "' --point 0 --steps 64");
   EXPECT_EQ(steps.exit_code, 2);
-  EXPECT_NE(steps.err.find("--steps: not used by the buildings scene's reference"), std::string::npos) << steps.err;
+  EXPECT_NE(steps.err.find("--steps: the event-driven solver takes no step"), std::string::npos) << steps.err;
   const Outcome sweep = run("spectrum '" + kBuildingsSet + "' --out rows.csv");
   EXPECT_EQ(sweep.exit_code, 2);
   EXPECT_NE(sweep.err.find("solved by `poundbench run --case-file FILE --point N`"), std::string::npos) << sweep.err;
