@@ -39,21 +39,21 @@ void add_own_setting_flags(CLI::App& command, SolverFlags& flags) {
       const std::string name(own.name);
       command.add_option_function<double>(
           flag_of(own.name),
-          [&flags, name](double x) {
-            const SolverInfo* chosen = find_solver(flags.solver);
-            if (!chosen) return;  // checked_solver names the unknown solver
-            const auto& list = chosen->own_settings;
-            const auto it = std::find_if(list.begin(), list.end(), [&](const OwnSetting& o) { return o.name == name; });
-            if (it == list.end())
-              flags.undeclared = flag_of(name);
-            else
-              flags.settings.own[static_cast<std::size_t>(it - list.begin())] = x;
-          },
+          [&flags, name](double x) { set_own_setting(flags, name, x); },
           std::string(own.help) + " (" + std::string(solver.name) + "'s own)");
     }
 }
 
 }  // namespace
+
+void set_own_setting(SolverFlags& flags, std::string_view name, double x) {
+  const SolverInfo* chosen = find_solver(flags.solver);
+  if (!chosen) return;  // checked_solver names the unknown solver
+  if (const auto i = own_setting_index(chosen->own_settings, name))
+    flags.settings.own[*i] = x;
+  else
+    flags.undeclared = flag_of(name);
+}
 
 void add_solver_flags(CLI::App& command, SolverFlags& flags) {
   Settings& s = flags.settings;

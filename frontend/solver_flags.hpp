@@ -31,6 +31,10 @@ struct SolverFlags {
 
 void add_solver_flags(CLI::App& command, SolverFlags& flags);
 
+// An own setting given (a flag, a Python keyword), once flags.solver is known: into
+// settings.own at its index in that solver's list, or kept as `undeclared`.
+void set_own_setting(SolverFlags& flags, std::string_view name, double x);
+
 // The named solver, after SolverInfo::check accepted the settings and no flag of
 // kit/settings_fields.hpp that `given` ("--theta") says was given is one the solver does
 // not use (pb::unused_setting); throws BadInput.

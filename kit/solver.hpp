@@ -317,6 +317,13 @@ struct SolverInfo {
   std::span<const std::string_view> buildings_settings{};
 };
 
+// The index of the own setting `name` in a solver's list of them, if it declares it.
+inline std::optional<std::size_t> own_setting_index(std::span<const OwnSetting> own, std::string_view name) {
+  for (std::size_t i = 0; i < own.size(); ++i)
+    if (own[i].name == name) return i;
+  return std::nullopt;
+}
+
 // Own setting i of a run, from the solver's list of them: as given, else its fallback.
 inline double own_value(const Settings& settings, std::span<const OwnSetting> own, std::size_t i) {
   return std::isnan(settings.own[i]) ? own[i].fallback : settings.own[i];

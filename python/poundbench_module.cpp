@@ -84,6 +84,8 @@ struct Keywords {
   std::optional<long long> samples, threads;
   double k_contact = 0.0;
   py::object callable;  // solver=f: a Python callable, the external solver in process (callable_solver.hpp)
+  // The solvers' own settings given (SolverInfo::own_settings), set once the solver is known.
+  std::vector<std::pair<std::string, double>> own;
   // What app::checked_solver's answer depends on: every keyword, name then value, but for the
   // case's own fields (kCaseFields), whose names alone count. run() keeps its last answer.
   py::list solver_key;
@@ -181,7 +183,7 @@ int as_int(std::string_view key, long long value) {
 // precedence (a case's field before a setting of the same name).
 enum class Slot : unsigned char {
   unexpected, scene, pulse, directivity, case_field, alias, physical, k_contact, case_file, point,
-  history, samples, threads, monitor, solver, persistent, variant, setting
+  history, samples, threads, monitor, solver, persistent, variant, setting, own
 };
 struct Kind {
   Slot slot = Slot::unexpected;
@@ -211,6 +213,7 @@ Kind classify(bool for_run, std::string_view name) {
   if (name == "persistent") return {Slot::persistent};
   if (name == "variant") return {Slot::variant};
   if (const auto j = setting_field_index(name)) return {Slot::setting, *j};
+  if (is_own_setting(name)) return {Slot::own};
   return {};
 }
 
@@ -236,6 +239,8 @@ const KeywordTable& keyword_table() {
     for (const auto& f : kCaseAliases) names.push_back(f.name);
     for (const auto& f : kPhysicalFields) names.push_back(f.name);
     for (const auto& f : kSettingFields) names.push_back(f.name);
+    for (const SolverInfo& s : solvers())
+      for (const OwnSetting& own : s.own_settings) names.push_back(own.name);
     for (const std::string_view name : names) {
       // Interned, as the names of a call's keywords written in Python source are: found by identity.
       py::str key(name.data(), name.size());
@@ -332,11 +337,13 @@ Keywords read_keywords(const std::string& function, const py::kwargs& kwargs) {
           settings.*f.count = static_cast<long>(whole(function, key, value));
         break;
       }
+      case Slot::own: k.own.emplace_back(key, number(function, key, value)); break;
       case Slot::unexpected:
         throw py::type_error(function + "() got an unexpected keyword argument '" + clip(key) + "'");
     }
     k.given.push_back(known->flag);
   }
+  for (const auto& [name, x] : k.own) app::set_own_setting(k.solver_flags, name, x);
   return k;
 }
 

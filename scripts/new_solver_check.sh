@@ -51,7 +51,7 @@ fi
 echo "new_solver_check: git sees only the folders and their rows; building (a few minutes)"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPOUNDBENCH_BENCH=OFF \
       ${CMAKE_CXX_COMPILER_LAUNCHER:+-DCMAKE_CXX_COMPILER_LAUNCHER=$CMAKE_CXX_COMPILER_LAUNCHER} > build-configure.log
-cmake --build build -j "$(nproc)" --target poundbench_tests poundbench > build.log
+cmake --build build -j "$(nproc)" --target poundbench_tests poundbench poundbench_python > build.log
 echo "new_solver_check: the solver contract on both, and symplectic-euler's own tests (its folder's *_test.cpp)"
 build/tests/poundbench_tests --gtest_filter='*symplectic_euler*:*penalty_verlet*:SymplecticEuler.*'
 echo "new_solver_check: its own setting as a flag (--passes), and refused for another solver"
@@ -62,3 +62,15 @@ if build/poundbench run --solver moreau-jean --passes 3 --scene wall --pulse sin
   exit 1
 fi
 grep -q 'passes: not used by solver moreau-jean' own.err
+echo "new_solver_check: its own setting as a Python keyword"
+PYTHONPATH=build/python python3 -c '
+import poundbench
+case = dict(scene="wall", pulse="sine", pi2=1, pi3=0.5, eps=0.5)
+assert poundbench.run(solver="symplectic-euler", passes=3, **case)["status"] == "ok"
+try:
+    poundbench.run(solver="moreau-jean", passes=3, **case)
+    raise SystemExit("passes accepted for moreau-jean")
+except ValueError as e:
+    assert "passes: not used by solver moreau-jean" in str(e), e
+'
+echo "new_solver_check: passed"

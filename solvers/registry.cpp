@@ -175,6 +175,12 @@ std::string unused_setting(const SolverInfo& solver, const Settings& settings, c
 
 std::span<const SolverInfo> solvers() { return kSolvers; }
 
+bool is_own_setting(std::string_view name) {
+  for (const SolverInfo& s : solvers())
+    if (own_setting_index(s.own_settings, name)) return true;
+  return false;
+}
+
 const SolverInfo& reference_solver() {
   for (const SolverInfo& s : kSolvers)
     if (s.reference) return s;

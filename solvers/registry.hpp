@@ -18,6 +18,9 @@ const SolverInfo* find_solver(std::string_view name);
 // package it needs, e.g. "libsiconos-kernel-dev"; "" for a solver that is built or unknown.
 std::string_view left_out_needs(std::string_view name);
 const SolverInfo& reference_solver();
+// Whether some registered solver declares an own setting (SolverInfo::own_settings) of this
+// name: a flag, a settings-list key and a Python keyword of that name exist.
+bool is_own_setting(std::string_view name);
 // The fields of kit/settings_fields.hpp that a variant of the solver uses: those whose
 // value changes what its describe() says (the settings column of its rows), in the table's
 // order. The limits (step_cap, time_limit) are every solver's and in no describe().

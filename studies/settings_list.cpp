@@ -147,6 +147,13 @@ struct RunTable {
   // The physical forms (studies/physical_settings.hpp): 0, not given.
   std::vector<double> h_s = {0.0}, k_contact = {0.0};
   const toml::node *h_s_node = nullptr, *k_contact_node = nullptr;
+  // The solvers' own settings given (SolverInfo::own_settings): an axis each, beside the variant.
+  struct OwnKey {
+    std::string name;
+    const toml::node* node = nullptr;
+    std::vector<double> values;
+  };
+  std::vector<OwnKey> own;
 
   std::size_t axis_size(std::size_t j) const { return kSettingFields[j].text ? names[j].size() : values[j].size(); }
 };
@@ -208,6 +215,8 @@ void read_run_key(const Reader& r, const std::string& k, const toml::node& v, Ru
     run.monitor = b->get();
   } else if (const auto j = setting_field_index(k)) {
     read_setting(r, k, *j, v, f, run);
+  } else if (is_own_setting(k)) {
+    run.own.push_back({k, &v, r.numbers(v, f)});
   } else {
     r.fail(&v, f, "unknown key");
   }
@@ -262,6 +271,7 @@ std::vector<std::size_t> product_axes() {
 std::size_t count_settings(const Reader& r, const RunTable& run, const std::vector<std::size_t>& axes,
                            std::size_t listed) {
   std::size_t product = run.variants.size() * run.h_s.size() * run.k_contact.size();
+  for (const RunTable::OwnKey& own : run.own) product *= own.values.size();
   for (std::size_t j : axes) {
     product *= run.axis_size(j);
     if (listed + product > kMaxSettings)
@@ -289,39 +299,61 @@ void check_physical_forms(const Reader& r, const SolverInfo& info, const RunTabl
   }
 }
 
+// Every combination of the run's own settings, as Settings::own (NaN: not given); the last
+// key turns fastest. Throws where the solver does not declare a key.
+std::vector<std::array<double, kMaxOwnSettings>> own_combinations(const Reader& r, const SolverInfo& info,
+                                                                  const RunTable& run) {
+  std::vector<std::array<double, kMaxOwnSettings>> out(1, Settings{}.own);
+  for (const RunTable::OwnKey& own : run.own) {
+    const auto i = own_setting_index(info.own_settings, own.name);
+    if (!i) r.fail(own.node, run.field + "." + own.name, "not used by solver " + std::string(info.name) + " (another solver's own setting)");
+    std::vector<std::array<double, kMaxOwnSettings>> next;
+    for (const auto& base : out)
+      for (double x : own.values) {
+        next.push_back(base);
+        next.back()[*i] = x;
+      }
+    out = std::move(next);
+  }
+  return out;
+}
+
 // The run's product into list.runs (and list.physical), each setting checked by its solver.
 void expand_run(const Reader& r, const SolverInfo* info, const RunTable& run, SettingsList& list) {
   const std::vector<std::size_t> axes = product_axes();
   const std::size_t product = count_settings(r, run, axes, list.runs.size());
   std::vector<std::size_t> at(axes.size(), 0);
-  // k_contact beside the variant, h_s innermost: it is the step.
-  const std::size_t numbers = product / (run.variants.size() * run.h_s.size() * run.k_contact.size());
+  // The own settings and k_contact beside the variant, h_s innermost: it is the step.
+  const auto owns = own_combinations(r, *info, run);
+  const std::size_t numbers = product / (run.variants.size() * owns.size() * run.h_s.size() * run.k_contact.size());
   for (const std::string& variant : run.variants)
-    for (double k : run.k_contact)
-      for (std::size_t n = 0; n < numbers; ++n) {
-        SweepRun spec{info, {}};
-        spec.settings.variant = variant;
-        spec.settings.monitor = run.monitor;
-        for (std::size_t a = 0; a < axes.size(); ++a) {
-          const SettingField& sf = kSettingFields[axes[a]];
-          if (sf.text) spec.settings.*sf.text = run.names[axes[a]][at[a]];
-          else sf.set(spec.settings, run.values[axes[a]][at[a]]);
+    for (const auto& own : owns)
+      for (double k : run.k_contact)
+        for (std::size_t n = 0; n < numbers; ++n) {
+          SweepRun spec{info, {}};
+          spec.settings.variant = variant;
+          spec.settings.own = own;
+          spec.settings.monitor = run.monitor;
+          for (std::size_t a = 0; a < axes.size(); ++a) {
+            const SettingField& sf = kSettingFields[axes[a]];
+            if (sf.text) spec.settings.*sf.text = run.names[axes[a]][at[a]];
+            else sf.set(spec.settings, run.values[axes[a]][at[a]]);
+          }
+          for (std::size_t a = axes.size(); a-- > 0;) {  // odometer: the last axis turns fastest
+            if (++at[a] < run.axis_size(axes[a])) break;
+            at[a] = 0;
+          }
+          // The check refuses a key the variant does not use, by its value (pb::unused_setting):
+          // a [[run]]'s key applies to each variant of its list, and at its default it changes
+          // nothing for those that do not use it (theta 1/2 beside d1-minus-linear).
+          if (const std::string bad = info->check(spec.settings); !bad.empty())
+            r.fail(run.node, run.field, clip(bad, kMaxEchoedReason));  // it may echo the file's own values
+          for (double h : run.h_s) {
+            check_physical_forms(r, *info, run, spec.settings, h, k);
+            list.runs.push_back(spec);
+            list.physical.push_back({h, k});
+          }
         }
-        for (std::size_t a = axes.size(); a-- > 0;) {  // odometer: the last axis turns fastest
-          if (++at[a] < run.axis_size(axes[a])) break;
-          at[a] = 0;
-        }
-        // The check refuses a key the variant does not use, by its value (pb::unused_setting):
-        // a [[run]]'s key applies to each variant of its list, and at its default it changes
-        // nothing for those that do not use it (theta 1/2 beside d1-minus-linear).
-        if (const std::string bad = info->check(spec.settings); !bad.empty())
-          r.fail(run.node, run.field, clip(bad, kMaxEchoedReason));  // it may echo the file's own values
-        for (double h : run.h_s) {
-          check_physical_forms(r, *info, run, spec.settings, h, k);
-          list.runs.push_back(spec);
-          list.physical.push_back({h, k});
-        }
-      }
 }
 
 }  // namespace

@@ -4,10 +4,11 @@
 
 #include "kit/testing.hpp"
 #include "solvers/registry.hpp"
+#include "studies/settings_list.hpp"
 #include "solvers/symplectic_euler/symplectic_euler.hpp"
 
 namespace pb {
-namespace {
+namespace symplectic_euler_tests {
 
 Settings with_passes(double passes) {
   Settings s;
@@ -30,6 +31,22 @@ TEST(SymplecticEuler, SaysItsPassesInItsSettingsAndItsRegistryRowDeclaresThem) {
   EXPECT_EQ(solver->own_settings[0].name, "passes");
 }
 
+// A settings list takes it as a key, a list of values being an axis of the run's product,
+// and refuses it for a solver that does not declare it.
+TEST(SymplecticEuler, ASettingsListTakesPassesAsAKeyOfItsOwnSolverAlone) {
+  const SettingsList list = parse_settings_list("[[run]]\nsolver = \"symplectic-euler\"\npasses = [1, 3]\nsteps = [32, 64]\n", "own.toml");
+  ASSERT_EQ(list.runs.size(), 4u);
+  EXPECT_EQ(list.runs[0].settings.own[0], 1.0);
+  EXPECT_EQ(list.runs[1].settings.steps, 64);
+  EXPECT_EQ(list.runs[2].settings.own[0], 3.0);
+  try {
+    parse_settings_list("[[run]]\nsolver = \"moreau-jean\"\npasses = 2\n", "own.toml");
+    ADD_FAILURE() << "passes accepted for moreau-jean";
+  } catch (const SettingsListError& e) {
+    EXPECT_NE(std::string(e.what()).find("run[0].passes: not used by solver moreau-jean"), std::string::npos) << e.what();
+  }
+}
+
 // Where the two contacts of a row of three share body 0, one pass is not the simultaneous
 // impact; more passes change the answer, and every run still ends ok.
 TEST(SymplecticEuler, MorePassesChangeARowOfThreeWhoseContactsShareABody) {
@@ -43,5 +60,5 @@ TEST(SymplecticEuler, MorePassesChangeARowOfThreeWhoseContactsShareABody) {
   EXPECT_NE(four.pi1, one.pi1);
 }
 
-}  // namespace
+}  // namespace symplectic_euler_tests
 }  // namespace pb
