@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/output_files.hpp"
+#include "output/output_files.hpp"
 #include "cases/fields.hpp"
 #include "frontend/errors.hpp"
 #include "programs/protocol.hpp"

@@ -11,9 +11,9 @@
 #include <sstream>
 
 #include "app/check_report.hpp"
-#include "app/output_files.hpp"
+#include "output/output_files.hpp"
 #include "app/study_run.hpp"
-#include "app/sweep_watch.hpp"
+#include "output/sweep_watch.hpp"
 #include "app/version.hpp"
 #include "cases/case_set.hpp"
 #include "frontend/errors.hpp"

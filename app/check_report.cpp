@@ -4,7 +4,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "app/output_files.hpp"
+#include "output/output_files.hpp"
 #include "frontend/errors.hpp"
 
 namespace pb::app {

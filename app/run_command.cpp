@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/output_files.hpp"
+#include "output/output_files.hpp"
 #include "cases/fields.hpp"
 #include "cases/record.hpp"
 #include "cases/text.hpp"

@@ -7,11 +7,11 @@
 #include <stdexcept>
 
 #include "app/check_report.hpp"
-#include "app/output_files.hpp"
-#include "app/partial_output.hpp"
-#include "app/resumable_sweep.hpp"
+#include "output/output_files.hpp"
+#include "output/partial_output.hpp"
+#include "output/resumable_sweep.hpp"
 #include "app/study_run.hpp"
-#include "app/sweep_watch.hpp"
+#include "output/sweep_watch.hpp"
 #include "cases/case_set.hpp"
 #include "frontend/case_flags.hpp"
 #include "frontend/errors.hpp"
@@ -23,7 +23,7 @@ namespace {
 
 // --check: a verdict per family, failing when a point of it did not finish ok; the line
 // names the first few such points, their status and the first one's message. Fed the rows in
-// point order, one at a time (the rows are not held: app/partial_output.hpp).
+// point order, one at a time (the rows are not held: output/partial_output.hpp).
 class FamilyVerdicts {
  public:
   void add(const std::string& family, std::size_t point, std::string_view status, const std::string& message) {
@@ -70,7 +70,7 @@ class FamilyVerdicts {
   std::vector<Family> families_;
 };
 
-// The output, from the partial file's lines in point order (app/partial_output.hpp).
+// The output, from the partial file's lines in point order (output/partial_output.hpp).
 void write_final(const SpectrumFlags& flags, const std::string& partial, std::size_t points,
                  FamilyVerdicts& verdicts) {
   const auto csv = [&](std::ostream& out) {

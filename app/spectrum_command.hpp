@@ -4,7 +4,7 @@
 //
 // Rows are appended, flushed, to a partial file as they complete (completion order), so an
 // interrupt or a crash loses only the points that were running, and a rerun with the same
-// output resumes (app/resumable_sweep.hpp). The final output appears only when every point
+// output resumes (output/resumable_sweep.hpp). The final output appears only when every point
 // is done: --out is written as FILE.tmp and renamed, stdout gets the rows at the end, and
 // the partial file is removed. Under mpirun the points are shared among the ranks.
 

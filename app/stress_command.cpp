@@ -5,8 +5,8 @@
 #include <stdexcept>
 
 #include "app/check_report.hpp"
-#include "app/output_files.hpp"
-#include "app/resumable_sweep.hpp"
+#include "output/output_files.hpp"
+#include "output/resumable_sweep.hpp"
 #include "frontend/errors.hpp"
 #include "studies/stress.hpp"
 

@@ -4,7 +4,7 @@
 // (stability and accuracy) per (family, solver, variant, setting): one summary CSV row
 // each, with pass or fail per check. --points also writes every run's row (the columns of
 // `spectrum` plus pi1_error), the truth first. Finished runs go to a partial file, from
-// which a rerun resumes (app/resumable_sweep.hpp).
+// which a rerun resumes (output/resumable_sweep.hpp).
 
 #include <CLI/CLI.hpp>
 

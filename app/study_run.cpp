@@ -4,9 +4,9 @@
 #include <streambuf>
 
 #include "app/check_report.hpp"
-#include "app/output_files.hpp"
-#include "app/resumable_sweep.hpp"
-#include "app/sweep_watch.hpp"
+#include "output/output_files.hpp"
+#include "output/resumable_sweep.hpp"
+#include "output/sweep_watch.hpp"
 #include "frontend/errors.hpp"
 #include "frontend/solver_flags.hpp"
 #include "studies/workprecision.hpp"

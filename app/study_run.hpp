@@ -1,7 +1,7 @@
 #pragma once
 // What `workprecision` and `stress` share: a case set and a settings list, checked on every
 // process, the output files checked on the leader, and the study (the truth and every
-// setting, studies/workprecision.hpp) run as one resumable sweep (app/resumable_sweep.hpp).
+// setting, studies/workprecision.hpp) run as one resumable sweep (output/resumable_sweep.hpp).
 
 #include <functional>
 #include <optional>
@@ -12,7 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/output_lock.hpp"
+#include "output/output_lock.hpp"
 #include "sweep/processes.hpp"
 #include "cases/case_set.hpp"
 #include "rows/row.hpp"

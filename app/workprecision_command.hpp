@@ -4,7 +4,7 @@
 // (family, solver, variant, setting) with the median, 95th percentile and max relative
 // Pi1 error, the failed runs, and the median and mean CPU time per run. --points also
 // writes every run's row (the columns of `spectrum`), reference first. Finished runs go to
-// a partial file, from which a rerun resumes (app/resumable_sweep.hpp).
+// a partial file, from which a rerun resumes (output/resumable_sweep.hpp).
 //
 // `poundbench workprecision --settings LIST <run's case flags>`: the study of the one case
 // the flags describe (in Pi terms or physical units, as `run` takes it; family "case"), the

@@ -39,13 +39,13 @@
 #include <vector>
 
 #include "kit/benchmarking.hpp"
-#include "app/output_files.hpp"
+#include "output/output_files.hpp"
 #include "rows/row_read.hpp"
 #include "cases/case_set.hpp"
 #include "kit/solver.hpp"
 #include "solvers/registry.hpp"
 #include "sweep/no_contact_cache.hpp"
-#include "sweep/partial_rows.hpp"
+#include "output/partial_rows.hpp"
 #include "sweep/sweep.hpp"
 
 namespace {

@@ -66,7 +66,7 @@ std::optional<std::string> apply_physical(Case& c) {
     if (!physical_value_ok(f, x)) return std::string(f.name) + ": " + physical_rule(f);
   }
   if (auto bad = check_scale(c)) return bad;
-  const double m0 = given(p.m0) ? p.m0 : 1.0;
+  const double m0 = mass_unit(c);
   const double w0 = kTwoPi / p.t0;
   c.pi2 = w0 / c.w_p;
   c.pi3 = p.gap * c.w_p * c.w_p / c.a_p;
@@ -117,16 +117,17 @@ std::string physical_reason(const Case& c, const std::string& field_reason) {
 }
 
 double default_w_p(const Case& c) {
-  if (c.pulse == PulseShape::record && c.samples) return kTwoPi / c.samples->t_m;
+  if (c.pulse == PulseShape::record && c.samples) return c.samples->mean_frequency();
   return std::numeric_limits<double>::quiet_NaN();
 }
 
 double stiffness_pi_term(const Case& c, double k, bool hertz) {
   // make_system's m0 is 1; the user's is the unit the masses were given in.
   const System s = make_system(c);
-  const double m0 = given(c.physical.m0) ? c.physical.m0 : 1.0;
-  const double K = k / (m0 * s.bodies[static_cast<std::size_t>(s.ref)].k);
+  const double K = k / (mass_unit(c) * s.bodies[static_cast<std::size_t>(s.ref)].k);
   return hertz ? K * std::sqrt(s.contact_length_scale()) : K;
 }
+
+double step_pi_term(const System& s, double h) { return kTwoPi * h / s.t_min; }
 
 }  // namespace pb

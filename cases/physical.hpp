@@ -3,8 +3,11 @@
 // "Physical units"): natural periods in s, masses in kg, the gap in m; the pulse by a_p
 // (m/s^2) and w_p (or its period tp, s) as any case; a record in its file's units. This is
 // the one place that turns them into the Pi terms (make_system() then maps those back, so
-// a physical case and the Pi-term case it gives are one Case), and a physical contact
-// stiffness into the Pi term K.
+// a physical case and the Pi-term case it gives are one Case), and the one place of the
+// other conversions between SI and Pi terms that the rooms above call: a contact stiffness
+// (--k-contact, a settings list's k_contact) into K, a step in seconds into w_max h, a
+// velocity into its Pi term, and the units of length and mass that turn a result's Pi terms
+// into metres and newtons (rows/result_fields.cpp).
 //
 // The fields are declared once, as kCaseFields are: their flags (--t0, --gap, ...), case-set
 // keys, JSON keys and row columns derive from kPhysicalFields. A value not given is NaN.
@@ -20,6 +23,8 @@
 #include "cases/fields.hpp"
 
 namespace pb {
+
+struct System;
 
 // One physical field: the Pi term it gives (empty for m0, which only sets the unit of the
 // other masses), and which scenes use it (as CaseField::use).
@@ -94,5 +99,17 @@ double stiffness_pi_term(const Case& c, double k, bool hertz);
 
 // The largest relative approach velocity at an impact (m/s) as a Pi term: over a_p / w_p.
 inline double velocity_pi_term(const Case& c, double v) { return v * c.w_p / c.a_p; }
+
+// A fixed step h (s, the system's time) as its Pi form w_max h = 2 pi h / t_min, the form of
+// Settings::wh (kit/solver.hpp: time_step maps it back).
+double step_pi_term(const System& s, double h);
+
+// The case's unit of length, a_p / w_p^2: a length in metres is its Pi term times it (m when
+// the case was given in physical units, or a pulse's a_p and w_p in SI).
+inline double length_unit(const Case& c) { return c.a_p / (c.w_p * c.w_p); }
+
+// The case's unit of mass: its m0 as given (kg), 1 otherwise (make_system's m0). A force per
+// unit of m0 times it is in N.
+inline double mass_unit(const Case& c) { return std::isnan(c.physical.m0) ? 1.0 : c.physical.m0; }
 
 }  // namespace pb

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cases/physical.hpp"
+
 namespace pb {
 
 namespace {
@@ -54,7 +56,7 @@ System make_system(const Case& c) {
   s.v_start.assign(s.bodies.size(), 0.0);
   if (c.scene == Scene::chain) s.v_start[0] = c.kick * c.a_p / c.w_p;
   // Yield displacements: a Pi_y times the length scale (infinity stays infinity).
-  const double length = c.a_p / (c.w_p * c.w_p);
+  const double length = length_unit(c);
   const auto yield_at = [&](double pi_y) { return std::isinf(pi_y) ? pi_y : pi_y * length; };
   if (c.scene == Scene::chain) {
     for (Body& b : s.bodies) b.u_y = yield_at(c.pi_y);

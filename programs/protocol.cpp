@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cases/load.hpp"
+#include "cases/physical.hpp"
 #include "cases/record.hpp"
 #include "cases/text.hpp"
 #include "rows/result_fields.hpp"
@@ -635,7 +636,7 @@ static CaseRead read_case_document(std::string_view text) {
     set.steps = n->get<int>();
   } else if (const auto h = maybe_number(doc, "step")) {
     if (!(*h > 0.0)) bad("step", "must be > 0, or null");
-    set.wh = *h * 2.0 * std::numbers::pi / s.t_min;
+    set.wh = step_pi_term(s, *h);
   }
   if (const auto cap = doc.find("step_cap"); cap != doc.end()) set.step_cap = whole(*cap, "step_cap");
   if (const auto limit = maybe_number(doc, "time_limit")) {

@@ -1,5 +1,5 @@
 """The folder a report goes to (`poundbench report --out DIR`), under the rule every output
-of poundbench obeys (app/output_files.hpp): no file it writes may be one of its inputs, and
+of poundbench obeys (output/output_files.hpp): no file it writes may be one of its inputs, and
 none is left half-written.
 
 The report is written into a new folder of its own (Staging), then moved into DIR: a DIR that

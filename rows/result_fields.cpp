@@ -10,12 +10,6 @@ namespace pb {
 
 namespace {
 
-// The case's unit of length, a_p / w_p^2: the lengths in metres are Pi terms times it (m when
-// the case was given in physical units, or a pulse's a_p and w_p in SI).
-double length_unit(const Row& row) { return row.input.a_p / (row.input.w_p * row.input.w_p); }
-// The case's unit of mass: its m0 as given, 1 otherwise (make_system's).
-double mass_unit(const Case& c) { return std::isnan(c.physical.m0) ? 1.0 : c.physical.m0; }
-
 // A number written as an empty field where it is infinite (a gap that never closed).
 double finite_or_missing(double x) { return std::isinf(x) ? std::numeric_limits<double>::quiet_NaN() : x; }
 
@@ -96,10 +90,11 @@ constexpr auto kTable = std::to_array<ResultField>({
     // An answer carries these for a yielding case alone (protocol.cpp).
     {.name = "residual", .type = T::number, .place = P::yielding, .answer = "residual", .real = &Result::residual},
     {.name = "hysteretic", .type = T::number, .place = P::yielding, .answer = "hysteretic", .real = &Result::hysteretic},
-    // In the case's units (cases/physical.hpp: s, m, kg, N), beside the Pi terms: Pi terms
-    // times a scale are made again when read; the solver's own times and velocities are read.
+    // In the case's units (s, m, kg, N; cases/physical.hpp has the units of length and mass
+    // that turn Pi terms into them), beside the Pi terms: Pi terms times a unit are made
+    // again when read; the solver's own times and velocities are read.
     {.name = "peak_m", .type = T::number, .place = P::physical,
-     .made = [](const Row& r) { return r.result.pi1 * length_unit(r); }},
+     .made = [](const Row& r) { return r.result.pi1 * length_unit(r.input); }},
     {.name = "h_s", .type = T::number, .place = P::physical, .answer = "step", .real = &Result::step},
     {.name = "first_impact_s", .type = T::number, .place = P::physical, .real = &Result::first_impact},
     {.name = "impact_velocity", .type = T::number, .place = P::physical, .real = &Result::impact_velocity_max},
@@ -110,7 +105,7 @@ constexpr auto kTable = std::to_array<ResultField>({
      .made = [](const Row& r) { return r.result.contact_force_max * mass_unit(r.input); },
      .store = [](Row& r, double x) { r.result.contact_force_max = x / mass_unit(r.input); }},
     {.name = "penetration_m", .type = T::number, .place = P::physical,
-     .made = [](const Row& r) { return penetration(r) * length_unit(r); }},
+     .made = [](const Row& r) { return penetration(r) * length_unit(r.input); }},
     // The external solver's own time for its solve (the answer's, or a Python callable's call),
     // and a persistent program's start, on the one row whose point started it.
     {.name = "solve_seconds", .type = T::number, .place = P::own_time, .answer = "solve_seconds",

@@ -1,7 +1,6 @@
 #include "studies/physical_settings.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <string>
 
 #include "cases/physical.hpp"
@@ -41,7 +40,7 @@ void resolve_physical_settings(SettingsList& list, std::span<const Case> cases, 
                           std::to_string(i) + " (a study runs one setting over its cases: give one case, or steps/" +
                           "stiffness in Pi terms)");
       };
-      if (given.h_s > 0.0) agree("h_s", wh, 2.0 * std::numbers::pi * given.h_s / system.t_min);
+      if (given.h_s > 0.0) agree("h_s", wh, step_pi_term(system, given.h_s));
       if (given.k_contact > 0.0) {
         if (!physical(c))
           fail("k_contact", "point " + std::to_string(i) + " is in Pi terms; a stiffness in N/m needs a case in "

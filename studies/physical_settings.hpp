@@ -2,8 +2,9 @@
 // A settings list's [[run]] in physical units (issue 35): the step `h_s` in seconds and the
 // contact stiffness `k_contact` in N/m (N/m^1.5 for the Hertz family), instead of the Pi
 // forms steps / wh and stiffness, never beside them in one [[run]]. They are mapped to the
-// Pi forms per case, as `run --k-contact` maps its stiffness: w_max h = 2 pi h_s / T_min and
-// K = stiffness_pi_term(case, k_contact) (cases/physical.hpp). A study runs one setting over
+// Pi forms per case, as `run --k-contact` maps its stiffness, by the conversions of
+// cases/physical.hpp: w_max h = step_pi_term(system, h_s) = 2 pi h_s / T_min and
+// K = stiffness_pi_term(case, k_contact). A study runs one setting over
 // every case, so the cases of a study must map them to one value each: one case (a study
 // of the case given by flags), or cases of one set of buildings (the self-similar twins).
 

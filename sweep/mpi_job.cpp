@@ -10,7 +10,7 @@ namespace pb::mpi {
 
 Job::Job(int& argc, char**& argv) {
   // MPI_Init starts OpenMPI's own threads. They must not take SIGINT or SIGTERM, whose
-  // default action would end the rank: the sweep's watcher (app/sweep_watch.hpp) turns
+  // default action would end the rank: the sweep's watcher (output/sweep_watch.hpp) turns
   // them into a clean stop, and it can only do so if every other thread blocks them. A
   // thread inherits the mask of its creator, so the two are blocked while MPI starts.
   sigset_t stop_signals, before;

@@ -17,7 +17,7 @@
 #include <string>
 #include <thread>
 
-#include "sweep/partial_rows.hpp"
+#include "rows/partial_line.hpp"
 #include "rows/row_read.hpp"
 
 namespace pb::mpi {

@@ -12,7 +12,7 @@
 //   - the tasks are handed out in a fixed shuffled order of blocks of 32 consecutive
 //     tasks, so that a chunk holds a fair sample of cheap and expensive points rather
 //     than one costly family, while a thread still solves neighbouring points in a row.
-// Rows travel as their partial-file line (sweep/partial_rows.hpp), which reads back bit
+// Rows travel as their partial-file line (rows/partial_line.hpp), which reads back bit
 // for bit; rank 0 passes each one to SweepOptions::on_finished and on_row as it arrives, so
 // its partial file holds every row that reached it. A rank that dies takes only its queued and
 // running tasks with it (MPI then ends the job); a rerun resumes the rest.

@@ -8,11 +8,11 @@
 #include <exception>
 #include <memory>
 #include <mutex>
-#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <thread>
 
+#include "cases/physical.hpp"
 #include "cases/system.hpp"
 #include "cases/text.hpp"
 #include "programs/process.hpp"
@@ -189,7 +189,7 @@ std::optional<Settings> companion_settings(const SolverInfo& solver, const Syste
   Settings settings = run;
   settings.steps = 0;
   settings.steps_per_sample = 0;
-  settings.wh = 2.0 * 2.0 * std::numbers::pi * r.step / system.t_min;
+  settings.wh = step_pi_term(system, 2.0 * r.step);
   settings.monitor = false;
   settings.history_samples = 0;
   if (!solver.check(settings).empty()) return std::nullopt;
@@ -277,7 +277,7 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
     companion = companion_settings(solver, system, row.result, settings);
   if (estimate.on && companion) add_estimate(row, solver, system, *companion, deadline);
   judge(system, row.result, {estimate.target_error, measured_all(row.result, solver, settings, companion.has_value())});
-  row.wh = 2.0 * std::numbers::pi * row.result.step / system.t_min;
+  row.wh = step_pi_term(system, row.result.step);
   row.penetration_steps = penetration_steps(row.result);
 
   try {

@@ -121,7 +121,7 @@ struct SweepOptions {
   std::function<void(const Row&)> on_row;
   // Called once per finished row before on_row by the worker that finished it, outside the
   // lock that serialises the other callbacks: from several threads at once. Work that needs
-  // no order (the partial file's line of the row: app/partial_writer.hpp) goes here, so that
+  // no order (the partial file's line of the row: output/partial_writer.hpp) goes here, so that
   // the workers do it side by side and not one at a time. An exception thrown here stops
   // the sweep as one from on_row does.
   std::function<void(const Row&)> on_finished;
@@ -137,7 +137,7 @@ struct SweepOptions {
   double point_time_limit = kPointTimeLimit;
   // false: run_sweep keeps no row (it returns none): on_row is where they go. A sweep of a
   // million points held 1.5 KB a point until its end (issue 36); `spectrum` streams its rows
-  // to the partial file and builds its output from there (app/partial_output.hpp).
+  // to the partial file and builds its output from there (output/partial_output.hpp).
   bool keep_rows = true;
   // Where a run is the external solver's persistent mode and the workers are no more than the
   // cores: worker k and its program on core k (sweep/worker_cores.hpp says why). Off for an

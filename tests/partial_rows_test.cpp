@@ -1,5 +1,5 @@
 // Rows read back from CSV (rows/row_read.hpp) and the partial files of resumed sweeps
-// (sweep/partial_rows.hpp): a row read back prints the same line and the same derived
+// (output/partial_rows.hpp): a row read back prints the same line and the same derived
 // values, and a partial file of another sweep is refused.
 
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@
 #include "cases/case_set.hpp"
 #include "kit/solver.hpp"
 #include "solvers/registry.hpp"
-#include "sweep/partial_rows.hpp"
+#include "output/partial_rows.hpp"
 #include "rows/row_read.hpp"
 #include "studies/stats.hpp"
 #include "sweep/sweep.hpp"

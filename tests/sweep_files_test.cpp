@@ -21,7 +21,7 @@
 #include <thread>
 #include <vector>
 
-#include "app/sweep_watch.hpp"
+#include "output/sweep_watch.hpp"
 #include "tests/cli_fixture.hpp"
 
 extern char** environ;
@@ -189,7 +189,7 @@ TEST_F(SweepFiles, TheInterruptedLineHasNoTerminalControlWhenStderrIsAFile) {
   EXPECT_EQ(err.find('\r'), std::string::npos);
 }
 
-// Rows reach the partial file in batches (app/resumable_sweep.cpp), each within 0.6 s of
+// Rows reach the partial file in batches (output/resumable_sweep.cpp), each within 0.6 s of
 // finishing: a finished row is written while the next point runs, however long that one
 // takes, and a kill (which no handler sees) leaves it in the file. Point 0, a wall at
 // n_free = 1, takes milliseconds at 1e5 steps per period (seconds under AddressSanitizer);

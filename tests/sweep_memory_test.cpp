@@ -14,14 +14,14 @@
 #include <string>
 #include <vector>
 
-#include "app/partial_writer.hpp"
+#include "output/partial_writer.hpp"
 #include "cases/buildings_set.hpp"
 #include "cases/case_set.hpp"
 #include "rows/row.hpp"
 #include "rows/row_read.hpp"
 #include "kit/solver.hpp"
 #include "solvers/registry.hpp"
-#include "sweep/partial_rows.hpp"
+#include "output/partial_rows.hpp"
 #include "sweep/sweep.hpp"
 
 namespace pb {

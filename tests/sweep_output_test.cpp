@@ -1,5 +1,5 @@
 // What a sweep command does beside the sweep, in process: the partial file's batched writes
-// (app/output_files.hpp, BatchedFile) and the watcher thread (app/sweep_watch.hpp), which
+// (output/output_files.hpp, BatchedFile) and the watcher thread (output/sweep_watch.hpp), which
 // ends as soon as the sweep does. The command line itself is tested as a separate process
 // (tests/cli_test.cpp, tests/sweep_files_test.cpp).
 
@@ -14,10 +14,10 @@
 #include <string>
 #include <thread>
 
-#include "app/cost_left.hpp"
-#include "app/output_files.hpp"
-#include "app/partial_output.hpp"
-#include "app/sweep_watch.hpp"
+#include "output/cost_left.hpp"
+#include "output/output_files.hpp"
+#include "output/partial_output.hpp"
+#include "output/sweep_watch.hpp"
 #include "tests/cli_fixture.hpp"
 #include "solvers/registry.hpp"
 

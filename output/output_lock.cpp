@@ -1,4 +1,4 @@
-#include "app/output_lock.hpp"
+#include "output/output_lock.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>

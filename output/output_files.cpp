@@ -1,4 +1,4 @@
-#include "app/output_files.hpp"
+#include "output/output_files.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>

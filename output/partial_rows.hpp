@@ -5,7 +5,8 @@
 // Format: CSV with the columns of rows/row.hpp. A sweep of several runs (a work-precision
 // or stress study) puts a `run` column first, the run's index (0 is the truth), since the
 // same point appears once per run; a sweep of one run (spectrum) has exactly the output's
-// columns. The same line, with the run column, carries a row from an MPI rank to rank 0.
+// columns. The same line, with the run column, carries a row from an MPI rank to rank 0
+// (the line's format: rows/partial_line.hpp).
 //
 // A partial file is only resumed by the sweep that wrote it: every row must name a task of
 // the sweep (a run and a point in range) whose case, solver, variant and settings are the
@@ -26,6 +27,7 @@
 
 #include "cases/case.hpp"
 #include "cases/case_list.hpp"
+#include "rows/partial_line.hpp"  // partial_header, partial_line, parse_partial_line
 #include "rows/row.hpp"
 #include "sweep/sweep.hpp"
 
@@ -35,13 +37,6 @@ namespace pb {
 struct PartialRowsError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
-
-// Without a line end. with_run: the `run` column first.
-std::string partial_header(bool with_run);
-std::string partial_line(const Row& row, bool with_run);
-// The row of one partial_line record (the run column read into Row::run); throws
-// RowReadError.
-Row parse_partial_line(std::string_view record, bool with_run);
 
 // The rows of a partial file of the sweep (cases, runs), each checked as above and by
 // row_problem (rows/row.hpp), sorted by task. An empty input has no rows. Throws

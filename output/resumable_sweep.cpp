@@ -1,4 +1,4 @@
-#include "app/resumable_sweep.hpp"
+#include "output/resumable_sweep.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -11,14 +11,14 @@
 #include <string>
 #include <vector>
 
-#include "app/cost_left.hpp"
-#include "app/output_files.hpp"
-#include "app/partial_writer.hpp"
-#include "app/sweep_watch.hpp"
+#include "output/cost_left.hpp"
+#include "output/output_files.hpp"
+#include "output/partial_writer.hpp"
+#include "output/sweep_watch.hpp"
 #include "cases/input_file.hpp"
 #include "frontend/errors.hpp"
 #include "programs/process.hpp"
-#include "sweep/partial_rows.hpp"
+#include "output/partial_rows.hpp"
 
 namespace pb::app {
 
@@ -42,7 +42,7 @@ OutputLock take_output_lock(const std::string& out, std::string_view command, co
 
 namespace {
 
-// The rows of the partial file, checked (sweep/partial_rows.hpp), to `each` in the file's
+// The rows of the partial file, checked (output/partial_rows.hpp), to `each` in the file's
 // order, read as a stream; BadInput when it cannot be read or is another sweep's. Nothing
 // when it does not exist.
 void each_partial_row(const std::string& partial, const CaseList& cases, std::span<const SweepRun> runs,

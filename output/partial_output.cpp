@@ -1,4 +1,4 @@
-#include "app/partial_output.hpp"
+#include "output/partial_output.hpp"
 
 #include <algorithm>
 #include <charconv>

@@ -1,4 +1,4 @@
-#include "app/cost_left.hpp"
+#include "output/cost_left.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -39,7 +39,7 @@ struct NamedFile {
 // Throws BadInput ("<input>: <file>: would be overwritten by --out ...", "--points: <file>:
 // is also --out ...") when a file a command writes is one of its inputs (a case set, a
 // settings list, a record), or when two of them are one: the outputs, each output's
-// temporary, and a sweep's partial file and its lock (app/resumable_sweep.hpp; "" when the
+// temporary, and a sweep's partial file and its lock (output/resumable_sweep.hpp; "" when the
 // command has none). Two paths are one file when fs::equivalent says so, or, where one does
 // not exist yet, when their absolute paths with symlinks resolved are equal.
 void check_outputs_apart(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs,

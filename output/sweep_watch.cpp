@@ -1,4 +1,4 @@
-#include "app/sweep_watch.hpp"
+#include "output/sweep_watch.hpp"
 
 #include <signal.h>
 

@@ -1,5 +1,5 @@
 #pragma once
-// The partial file's writer (app/resumable_sweep.hpp): the finished rows a sweep queues, written
+// The partial file's writer (output/resumable_sweep.hpp): the finished rows a sweep queues, written
 // in batches.
 //
 // Each row used to be formatted and written, flushed, by the worker that finished it, under
@@ -28,14 +28,14 @@
 #include <string>
 #include <vector>
 
-#include "app/output_files.hpp"
+#include "output/output_files.hpp"
 #include "rows/row.hpp"
 
 namespace pb::app {
 
 // How long a finished row may wait in memory before it is written to the partial file. A
 // row reaches the file at most kPartialDelay plus one tick of the watcher (100 ms,
-// app/sweep_watch.cpp) after it reached the leader; an interrupt by signal loses nothing
+// output/sweep_watch.cpp) after it reached the leader; an interrupt by signal loses nothing
 // finished (the rows queued are written as the sweep stops, and before the process ends on
 // a second signal), and a kill or a crash the rows of the last 0.6 s at most.
 inline constexpr auto kPartialDelay = std::chrono::milliseconds(500);
@@ -47,7 +47,7 @@ class PartialWriter {
   static constexpr std::size_t kBatchRows = 4096;
   static constexpr std::size_t kMaxQueued = 2 * kBatchRows;
 
-  // with_run: the partial file's run column (sweep/partial_rows.hpp). lines, when given,
+  // with_run: the partial file's run column (output/partial_rows.hpp). lines, when given,
   // receives each row's line by task (run * cases + point). expected: the rows the sweep will
   // queue, so that the queue takes room for no more than those still to come.
   PartialWriter(const std::string& partial, bool with_run, std::size_t cases, std::vector<std::string>* lines,

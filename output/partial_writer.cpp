@@ -1,9 +1,9 @@
-#include "app/partial_writer.hpp"
+#include "output/partial_writer.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "sweep/partial_rows.hpp"
+#include "rows/partial_line.hpp"
 
 namespace pb::app {
 

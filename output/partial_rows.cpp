@@ -1,8 +1,7 @@
-#include "sweep/partial_rows.hpp"
+#include "output/partial_rows.hpp"
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 
 #include "rows/row_read.hpp"
 
@@ -15,17 +14,6 @@ constexpr std::array kTaskColumns = {"family", "scene", "pulse", "directivity", 
                                      "pi5",    "pi6",   "pi7",   "pi8",         "xi",   "n_free",  "a_p",
                                      "w_p",    "solver", "variant", "settings", "bodies", "kick",
                                      "cycles", "mp_gamma", "mp_nu", "record"};
-
-// The run column taken off the front of a record's fields.
-std::size_t take_run(std::vector<std::string>& fields) {
-  std::size_t run = 0;
-  const std::string& text = fields.front();
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), run);
-  if (text.empty() || error != std::errc{} || end != text.data() + text.size())
-    throw RowReadError("run: not an integer (\"" + text + "\")");
-  fields.erase(fields.begin());
-  return run;
-}
 
 // Checks each record against the task it names, field for field as csv_line writes them.
 class TaskCheck {
@@ -70,20 +58,6 @@ class TaskCheck {
 };
 
 }  // namespace
-
-std::string partial_header(bool with_run) { return (with_run ? "run," : "") + csv_header(); }
-
-std::string partial_line(const Row& row, bool with_run) {
-  return (with_run ? std::to_string(row.run) + "," : "") + csv_line(row);
-}
-
-Row parse_partial_line(std::string_view record, bool with_run) {
-  std::vector<std::string> fields = split_csv(record);
-  const std::size_t run = with_run ? take_run(fields) : 0;
-  Row row = parse_row(fields);
-  row.run = run;
-  return row;
-}
 
 std::vector<Row> read_partial_rows(std::istream& in, std::string_view file, const CaseList& cases,
                                    std::span<const SweepRun> runs) {

@@ -21,7 +21,7 @@
 // 100 ms after its last point. Signals are taken at each wake-up (sigtimedwait with no
 // wait), so a Ctrl-C is acted on within one tick rather than at once; the bar never showed
 // faster than that. `on_tick`, when given, runs on the watcher's thread at every wake-up
-// but the last (a resumed sweep flushes its partial file there: app/resumable_sweep.cpp).
+// but the last (a resumed sweep flushes its partial file there: output/resumable_sweep.cpp).
 
 #include <signal.h>
 
@@ -58,7 +58,7 @@ inline std::string rough_duration(double seconds) {
 
 // The plain progress line, without its "poundbench: " and line end:
 // "spectrum: 1234/23820 points, 12 s, about 3 min left". The time left is `left` when given
-// (app/cost_left.hpp: from the cost of what is left), else extrapolated from the rate of this
+// (output/cost_left.hpp: from the cost of what is left), else extrapolated from the rate of this
 // run (the `resumed` tasks an earlier run did are not in it), and missing until a task is
 // done. Inline: the tests, which do not link the command line, check it.
 inline std::string progress_line(std::string_view command, std::string_view unit, std::size_t done,
@@ -89,7 +89,7 @@ class SweepWatch {
  public:
   // command, unit: for progress_line ("spectrum", "points"). resumed: of the total, the
   // tasks an earlier run finished (not counted in the rate).
-  // left: seconds left after so many elapsed (app/cost_left.hpp), for the progress; none, or
+  // left: seconds left after so many elapsed (output/cost_left.hpp), for the progress; none, or
   // nullopt from it: from the count.
   using Left = std::function<std::optional<double>(double elapsed)>;
   SweepWatch(std::string command, std::string unit, std::size_t total, std::size_t resumed, Progress progress,

@@ -1,12 +1,12 @@
 #pragma once
 // The sweep that `spectrum`, `workprecision` and `stress` share: resumed from its partial
 // file, run on every process of the job (sweep/processes.hpp), each new row appended to the
-// partial file within 0.6 s of reaching the leader (in batches: app/partial_writer.hpp says
+// partial file within 0.6 s of reaching the leader (in batches: output/partial_writer.hpp says
 // why and what an interrupt loses).
 //
 // The partial file is named after the output (partial_file_name). A rerun with the same
 // output reads it (read_earlier_rows), refuses it with a BadInput if its rows are not this
-// sweep's (sweep/partial_rows.hpp), and runs only the tasks it lacks. The file is rewritten
+// sweep's (output/partial_rows.hpp), and runs only the tasks it lacks. The file is rewritten
 // with the rows it had (a torn last line dropped) before new rows are appended. When the
 // sweep is complete the command writes its outputs and then removes the partial file, so
 // there is always one place that holds every finished row.
@@ -18,8 +18,8 @@
 #include <string_view>
 #include <vector>
 
-#include "app/output_lock.hpp"
-#include "sweep/partial_rows.hpp"
+#include "output/output_lock.hpp"
+#include "output/partial_rows.hpp"
 #include "sweep/processes.hpp"
 #include "cases/case.hpp"
 #include "cases/case_list.hpp"
@@ -33,7 +33,7 @@ namespace pb::app {
 std::string partial_file_name(const std::string& out, std::string_view command);
 
 // Leader only, while checking inputs and before read_earlier_rows: the lock of the output
-// `out` ("" for stdout) and its partial file (app/output_lock.hpp); BadInput when another
+// `out` ("" for stdout) and its partial file (output/output_lock.hpp); BadInput when another
 // sweep holds it.
 OutputLock take_output_lock(const std::string& out, std::string_view command, const std::string& partial);
 
@@ -44,7 +44,7 @@ struct EarlierRows {
   std::vector<Row> rows;   // sorted by task; none unless kept
   std::vector<bool> done;  // by task (run * cases + point); empty: none done
   std::size_t count = 0;   // the rows the file holds
-  PartialFileShape file;   // as read (sweep/partial_rows.hpp)
+  PartialFileShape file;   // as read (output/partial_rows.hpp)
 };
 
 // Leader only, while checking inputs: throws BadInput unless the partial file can be
@@ -56,7 +56,7 @@ EarlierRows read_earlier_rows(const std::string& partial, const CaseList& cases,
 // Runs the tasks that `earlier` (the leader's) lacks, on `threads` threads per process
 // (0: Processes::default_threads), with progress and interrupts as SweepWatch has them
 // (`command` names the sweep in the progress lines).
-// `lock` is the leader's lock of the output (app/output_lock.hpp; empty elsewhere),
+// `lock` is the leader's lock of the output (output/output_lock.hpp; empty elsewhere),
 // released before a second signal ends the process at once.
 // On the leader, returns every row (earlier and new, sorted by run then point), or nullopt
 // when interrupted: then one line on stderr says how many tasks are done and where. The
@@ -65,7 +65,7 @@ EarlierRows read_earlier_rows(const std::string& partial, const CaseList& cases,
 // a sweep of one run writes its output from them instead of formatting every row again.
 // keep_rows false: no row is held in memory, on any process (SweepOptions::keep_rows); the
 // leader returns an empty list once every task is done, and its output is built from the
-// partial file (app/partial_output.hpp). `earlier` then holds no rows, and the partial file's
+// partial file (output/partial_output.hpp). `earlier` then holds no rows, and the partial file's
 // are streamed as it is rewritten.
 std::optional<std::vector<Row>> run_resumable(std::string_view command, const Processes& processes,
                                               const CaseList& cases, std::span<const SweepRun> runs,

@@ -1,7 +1,7 @@
 #pragma once
 // A one-run sweep's output (`spectrum`) built from its partial file, so that no process holds
 // the sweep's rows: the partial file has each row's line, exactly the output's, in the order
-// the rows finished (sweep/partial_rows.hpp). One pass reads where each point's line starts
+// the rows finished (output/partial_rows.hpp). One pass reads where each point's line starts
 // (12 bytes a point), a second copies the lines in point order. A million-point sweep held
 // 1.5 KB a point in rows and lines until its end, 1.54 GB at its peak (issue 36).
 
