@@ -155,7 +155,7 @@ int run_buildings_command(const CLI::App& command, const RunFlags& flags, const 
     else
       print_buildings_summary(out, run);
   });
-  return run.result.status == Status::ok ? 0 : 1;
+  return run.point.result.status == Status::ok ? 0 : 1;
 }
 
 }  // namespace

@@ -6,12 +6,14 @@
 #include <optional>
 #include <stdexcept>
 
+#include "app/buildings_spectrum.hpp"
 #include "app/check_report.hpp"
 #include "output/output_files.hpp"
 #include "output/partial_output.hpp"
 #include "output/resumable_sweep.hpp"
 #include "app/study_run.hpp"
 #include "output/sweep_watch.hpp"
+#include "cases/buildings_set.hpp"
 #include "cases/case_set.hpp"
 #include "frontend/case_flags.hpp"
 #include "frontend/errors.hpp"
@@ -110,6 +112,15 @@ CLI::App* add_spectrum_command(CLI::App& app, SpectrumFlags& flags) {
 }
 
 int spectrum_command(const CLI::App& command, const SpectrumFlags& flags, const Processes& processes) {
+  // A buildings set has rows of its own, one per floor (app/buildings_spectrum.hpp), and is
+  // swept by one process.
+  std::optional<BuildingsSet> buildings;
+  processes.agree([&] {
+    buildings = load_buildings_set(flags.case_set);
+    if (buildings && processes.count() > 1)
+      throw BadInput("buildings: a buildings sweep runs in one process (start it without mpiexec)");
+  }, exit_code_of);
+  if (buildings) return buildings_spectrum(command, flags, *buildings);
   // Everything is checked before the first file is created.
   CaseListSet set;  // built on demand: a million points held 320 MB of cases
   std::vector<SweepRun> runs(1);

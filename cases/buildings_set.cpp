@@ -684,7 +684,7 @@ std::optional<BuildingsSet> load_buildings_set(const std::filesystem::path& file
 
 std::string buildings_not_here_reason() {
   return "buildings: a case of the buildings scene is solved by `poundbench run --case-file FILE --point N` "
-         "(and poundbench.run), not yet by sweeps or studies";
+         "(and poundbench.run) and `poundbench spectrum FILE`, not yet by the studies";
 }
 
 }  // namespace pb

@@ -1,26 +1,18 @@
 #include "frontend/buildings_run.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <numbers>
 
 #include "cases/text.hpp"
 #include "frontend/errors.hpp"
 #include "kit/settings_fields.hpp"
 #include "solvers/registry.hpp"
+#include "sweep/buildings_sweep.hpp"
 
 namespace pb::app {
 
 namespace {
-
-// CPU seconds of this thread: the solve runs on it.
-double solve_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 // A number, or null where it is not finite (JSON has no spelling for NaN).
 nlohmann::ordered_json json_number(double x) { return std::isfinite(x) ? nlohmann::ordered_json(x) : nullptr; }
@@ -83,18 +75,14 @@ BuildingsRun run_buildings(const ChosenCase& chosen, const SolverInfo& solver, c
   BuildingsRun run;
   run.chosen = chosen;
   run.solver = &solver;
-  const auto wall = std::chrono::steady_clock::now();
-  const double cpu = solve_cpu_seconds();
-  run.result = solver.solve_buildings(assemble(chosen.building->scene), settings);
-  run.cpu_seconds = solve_cpu_seconds() - cpu;
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count();
+  run.point = solve_buildings_point(chosen.building->scene, solver, settings);
   return run;
 }
 
 nlohmann::ordered_json buildings_json(const BuildingsRun& run) {
   const BuildingCase& c = *run.chosen.building;
-  const buildings::BuildingsResult& r = run.result;
-  const BuildingModel md = assemble(c.scene);  // the scales the Pi terms are relative to
+  const buildings::BuildingsResult& r = run.point.result;
+  const double length = run.point.a_p / (run.point.w_p * run.point.w_p), speed = run.point.a_p / run.point.w_p;
   nlohmann::ordered_json j;
   j["scene"] = std::string(kBuildingsScene);
   j["family"] = c.family;
@@ -106,9 +94,13 @@ nlohmann::ordered_json buildings_json(const BuildingsRun& run) {
   j["message"] = r.message;
   j["floor_peak_m"] = per_floor(r.floor_peak, 1.0);
   j["drift_peak_m"] = per_floor(r.drift_peak, 1.0);
+  j["floor_peak_no_contact_m"] = per_floor(run.point.no_contact.floor_peak, 1.0);
+  j["drift_peak_no_contact_m"] = per_floor(run.point.no_contact.drift_peak, 1.0);
   if (c.pi_terms) {
-    j["floor_peak_pi"] = per_floor(r.floor_peak, 1.0 / md.length_scale());
-    j["drift_peak_pi"] = per_floor(r.drift_peak, 1.0 / md.length_scale());
+    j["floor_peak_pi"] = per_floor(r.floor_peak, 1.0 / length);
+    j["drift_peak_pi"] = per_floor(r.drift_peak, 1.0 / length);
+    j["floor_peak_no_contact_pi"] = per_floor(run.point.no_contact.floor_peak, 1.0 / length);
+    j["drift_peak_no_contact_pi"] = per_floor(run.point.no_contact.drift_peak, 1.0 / length);
   }
   nlohmann::ordered_json contacts = nlohmann::ordered_json::array();
   for (const buildings::ContactResult& k : r.contacts) {
@@ -119,7 +111,7 @@ nlohmann::ordered_json buildings_json(const BuildingsRun& run) {
     o["impacts"] = k.impacts;
     o["contact_phases"] = k.contact_phases;
     o["impact_velocity_max_m_s"] = json_number(k.impact_velocity_max);
-    if (c.pi_terms) o["impact_velocity_max_pi"] = json_number(k.impact_velocity_max / md.speed_scale());
+    if (c.pi_terms) o["impact_velocity_max_pi"] = json_number(k.impact_velocity_max / speed);
     o["first_impact_s"] = json_number(k.first_impact);
     contacts.push_back(std::move(o));
   }
@@ -127,18 +119,17 @@ nlohmann::ordered_json buildings_json(const BuildingsRun& run) {
   j["events"] = r.events;
   j["energy_error"] = json_number(r.energy_error);
   j["t_end_s"] = json_number(r.t_end);
-  j["a_p"] = md.a_p;
-  j["w_p"] = md.w_p;
-  j["seconds"] = run.seconds;
-  j["cpu_seconds"] = run.cpu_seconds;
+  j["a_p"] = run.point.a_p;
+  j["w_p"] = run.point.w_p;
+  j["seconds"] = run.point.seconds;
+  j["cpu_seconds"] = run.point.cpu_seconds;
   return j;
 }
 
 void print_buildings_summary(std::ostream& out, const BuildingsRun& run) {
   const BuildingCase& c = *run.chosen.building;
   const BuildingScene& s = c.scene;
-  const buildings::BuildingsResult& r = run.result;
-  const BuildingModel md = assemble(s);
+  const buildings::BuildingsResult& r = run.point.result;
   out << "buildings " << storey_counts(s) << " storeys, " << (s.damping == BuildingDamping::modal ? "modal" : "rayleigh")
       << " xi " << summary_number(s.xi) << ", gap " << summary_number(s.delta) << " m, eps " << summary_number(s.eps);
   if (c.pi_terms)
@@ -146,17 +137,22 @@ void print_buildings_summary(std::ostream& out, const BuildingsRun& run) {
         << summary_number(c.pi6) << ")";
   out << '\n';
   out << "load     " << name(c.pulse) << ' ' << name(c.directivity) << (c.record.empty() ? "" : " " + c.record)
-      << ", a_p " << summary_number(md.a_p) << " m/s^2, w_p " << summary_number(md.w_p) << " rad/s, t_end " << summary_number(md.t_end) << " s\n";
+      << ", a_p " << summary_number(run.point.a_p) << " m/s^2, w_p " << summary_number(run.point.w_p)
+      << " rad/s, t_end " << summary_number(r.t_end) << " s\n";
   out << "solver   " << run.solver->name;
   if (run.solver->reference) out << " (exact, event-driven)";
   if (std::isfinite(r.step)) out << ", step " << summary_number(r.step) << " s";
   out << '\n';
   out << "status   " << name(r.status) << (r.message.empty() ? "" : ": " + r.message) << '\n';
   for (std::size_t b = 0; b < r.floor_peak.size(); ++b) {
-    out << "building " << b << "  floor: peak |u| m, storey below: peak |drift| m\n";
+    out << "building " << b << "  floor: peak |u| m, storey below: peak |drift| m (without contact in brackets)\n";
+    const buildings::BuildingsResult& free = run.point.no_contact;
+    const auto apart = [&](const std::vector<std::vector<double>>& v, std::size_t i) {
+      return b < v.size() && i < v[b].size() ? " (" + summary_number(v[b][i]) + ")" : std::string();
+    };
     for (std::size_t i = 0; i < r.floor_peak[b].size(); ++i)
-      out << "  floor " << i + 1 << "  " << summary_number(r.floor_peak[b][i]) << "   storey " << i + 1 << "  "
-          << summary_number(r.drift_peak[b][i]) << '\n';
+      out << "  floor " << i + 1 << "  " << summary_number(r.floor_peak[b][i]) << apart(free.floor_peak, i) << "   storey "
+          << i + 1 << "  " << summary_number(r.drift_peak[b][i]) << apart(free.drift_peak, i) << '\n';
   }
   for (const buildings::ContactResult& k : r.contacts) {
     out << "contact  buildings " << k.left << '-' << k.right << " floor " << k.floor << ": " << k.impacts << " impacts";
@@ -168,7 +164,7 @@ void print_buildings_summary(std::ostream& out, const BuildingsRun& run) {
   out << (run.solver->reference ? "events   " : "steps    ") << r.events;
   if (std::isfinite(r.energy_error)) out << ", energy error " << summary_number(r.energy_error);
   out << '\n';
-  out << "time     " << summary_number(run.seconds) << " s\n";
+  out << "time     " << summary_number(run.point.seconds) << " s\n";
 }
 
 }  // namespace pb::app

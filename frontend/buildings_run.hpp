@@ -11,7 +11,7 @@
 #include "cases/buildings_set.hpp"
 #include "frontend/case_flags.hpp"
 #include "frontend/solver_flags.hpp"
-#include "solvers/buildings_reference/reference.hpp"
+#include "rows/buildings_rows.hpp"
 
 namespace pb::app {
 
@@ -23,14 +23,13 @@ const SolverInfo& check_buildings_solver(const SolverFlags& flags, const GivenSo
 struct BuildingsRun {
   ChosenCase chosen;  // its `building` is the point solved
   const SolverInfo* solver = nullptr;
-  buildings::BuildingsResult result;
-  double seconds = 0.0, cpu_seconds = 0.0;  // the solve's wall and CPU time (this thread's)
+  BuildingsPoint point;  // the solver's result, its time, and the reference's no-contact response
 };
 
 BuildingsRun run_buildings(const ChosenCase& chosen, const SolverInfo& solver, const Settings& settings);
 
-// The object of `run --json`: floor_peak_m, drift_peak_m (per building, floor 1 first),
-// contacts, the Pi terms of a case in Pi terms, status, message, events, energy_error,
+// The object of `run --json`: floor_peak_m, drift_peak_m (per building, floor 1 first), the
+// same without contact (floor_peak_no_contact_m, drift_peak_no_contact_m), contacts, the Pi terms of a case in Pi terms, status, message, events, energy_error,
 // seconds, cpu_seconds, and what names the point.
 nlohmann::ordered_json buildings_json(const BuildingsRun& run);
 // The summary `run` prints without --json.

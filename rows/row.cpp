@@ -10,6 +10,7 @@
 #include "cases/fields.hpp"
 #include "cases/text.hpp"
 #include "cases/physical.hpp"
+#include "rows/line_builder.hpp"
 #include "rows/result_fields.hpp"
 
 namespace pb {
@@ -84,25 +85,6 @@ std::string case_key(const Case& c) {
   return key;
 }
 
-namespace {
-
-// text as one CSV field, appended to out: as it is, or quoted with its quotes doubled where
-// it holds a comma, a quote or a line break.
-void append_csv_field(std::string& out, std::string_view text) {
-  if (text.find_first_of(",\"\r\n") == std::string_view::npos) {
-    out += text;
-    return;
-  }
-  out += '"';
-  for (char ch : text) {
-    if (ch == '"') out += '"';
-    out += ch;
-  }
-  out += '"';
-}
-
-}  // namespace
-
 std::string csv_field(std::string_view text) {
   std::string field;
   append_csv_field(field, text);
@@ -122,41 +104,6 @@ Group group_of(const CaseField& f) {
   if (f.yielding) return Group::yielding;
   return f.use == FieldUse::chain ? Group::chain : pulse_use(f.use) ? Group::pulse : Group::body;
 }
-
-// Fields written straight into the line: a sweep formats a row per point (the paper set's
-// 23 820 rows, 45 fields each), and a string per field was an allocation for most numbers.
-// The same text as csv_field, format_number and std::to_string.
-class LineBuilder {
- public:
-  LineBuilder() { line_.reserve(512); }
-  void text(std::string_view s) {
-    separate();
-    append_csv_field(line_, s);
-  }
-  void number(double x) {
-    separate();
-    if (!std::isnan(x)) append(x);
-  }
-  void count(long long n) {
-    separate();
-    append(n);
-  }
-  std::string take() { return std::move(line_); }
-
- private:
-  void separate() {
-    if (!first_) line_ += ',';
-    first_ = false;
-  }
-  template <class T>
-  void append(T x) {
-    std::array<char, 64> buffer{};
-    const auto [end, error] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), x);
-    if (error == std::errc{}) line_.append(buffer.data(), end);
-  }
-  std::string line_;
-  bool first_ = true;
-};
 
 // The names of the case fields of one group: the header of case_numbers' columns.
 void case_names(LineBuilder& line, Group group) {

@@ -225,7 +225,7 @@ TEST_F(Cli, RunSummarisesABuildingsPointPerFloorAndContact) {
     EXPECT_NE(o.out.find(text), std::string::npos) << text << "\n" << o.out;
 }
 
-TEST_F(Cli, OtherSolversAndSweepsRefuseTheBuildingsSceneByName) {
+TEST_F(Cli, OtherSolversAndStudiesRefuseTheBuildingsSceneByName) {
   const Outcome o = run("run --case-file '" + kBuildingsSet + "' --point 0 --solver external --command true");
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_NE(o.err.find("--solver: external does not solve the buildings scene (these do: event-driven"), std::string::npos) << o.err;
@@ -233,14 +233,43 @@ TEST_F(Cli, OtherSolversAndSweepsRefuseTheBuildingsSceneByName) {
   const Outcome steps = run("run --case-file '" + kBuildingsSet + "' --point 0 --steps 64");
   EXPECT_EQ(steps.exit_code, 2);
   EXPECT_NE(steps.err.find("--steps: the event-driven solver takes no step"), std::string::npos) << steps.err;
-  const Outcome sweep = run("spectrum '" + kBuildingsSet + "' --out rows.csv");
-  EXPECT_EQ(sweep.exit_code, 2);
-  EXPECT_NE(sweep.err.find("solved by `poundbench run --case-file FILE --point N`"), std::string::npos) << sweep.err;
+  write("list.toml", "[[run]]\nsolver = \"moreau-jean\"\nsteps = 64\n");
+  const Outcome study = run("workprecision '" + kBuildingsSet + "' --settings list.toml --out wp.csv");
+  EXPECT_EQ(study.exit_code, 2);
+  EXPECT_NE(study.err.find("and `poundbench spectrum FILE`, not yet by the studies"), std::string::npos) << study.err;
+  const Outcome repeated = run("spectrum '" + kBuildingsSet + "' --repetitions 3");
+  EXPECT_EQ(repeated.exit_code, 2);
+  EXPECT_NE(repeated.err.find("--repetitions: not for the buildings scene"), std::string::npos) << repeated.err;
   write("bad.toml", kTwoBuildings + "typo = 1\n");
   const Outcome bad = run("run --case-file bad.toml");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("bad.toml:16: family[0].typo: unknown key"), std::string::npos) << bad.err;
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+}
+
+// spectrum over a buildings set: a row per floor of every point, whose peaks are run's for the
+// same point, beside the peaks without contact.
+TEST_F(Cli, SpectrumOverABuildingsSetWritesARowPerFloorWithRunsPeaks) {
+  const Outcome o = run("spectrum '" + kBuildingsSet + "' --out rows.csv --threads 2");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  const std::optional<BuildingsSet> set = load_buildings_set(kBuildingsSet);
+  ASSERT_TRUE(set);
+  std::size_t floors = 0;
+  for (const BuildingCase& c : set->points)
+    for (const Building& b : c.scene.buildings) floors += static_cast<std::size_t>(b.floors());
+  CsvTable rows(read_text(file("rows.csv")));
+  ASSERT_EQ(rows.rows.size(), floors);
+  const nlohmann::json j = nlohmann::json::parse(run("run --case-file '" + kBuildingsSet + "' --point 3 --json").out);
+  std::size_t matched = 0;
+  for (std::size_t r = 0; r < rows.rows.size(); ++r) {
+    if (rows.at(r, "point") != "3") continue;
+    const std::size_t b = std::stoul(rows.at(r, "building")), i = std::stoul(rows.at(r, "floor")) - 1;
+    EXPECT_EQ(std::stod(rows.at(r, "floor_peak_m")), j["floor_peak_m"][b][i].get<double>());
+    EXPECT_EQ(std::stod(rows.at(r, "drift_peak_no_contact_m")), j["drift_peak_no_contact_m"][b][i].get<double>());
+    EXPECT_EQ(rows.at(r, "status"), "ok");
+    ++matched;
+  }
+  EXPECT_EQ(matched, j["floor_peak_m"][0].size() + j["floor_peak_m"][1].size());
 }
 
 }  // namespace buildings_cli_tests
