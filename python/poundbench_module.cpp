@@ -21,6 +21,7 @@
 // flag, set by a SIGINT handler of the module's, installed on the first call and kept) and raises
 // KeyboardInterrupt.
 
+#include <thread>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
@@ -64,6 +65,7 @@
 #include "studies/workprecision.hpp"
 #include "programs/process.hpp"
 #include "kit/settings_fields.hpp"
+#include "sweep/buildings_sweep.hpp"
 #include "sweep/sweep.hpp"
 #include "solvers/registry.hpp"
 
@@ -733,9 +735,13 @@ py::dict run(const py::kwargs& kwargs) {
   return out;
 }
 
+py::list spectrum_buildings(Keywords& k, const BuildingsSet& set);
+
 py::list spectrum(const py::object& case_set, const py::kwargs& kwargs) {
   const std::string file = text("spectrum", "case_set", case_set);
   Keywords k = checked([&] { return read_keywords("spectrum", kwargs); });
+  if (const auto buildings = checked([&] { return load_buildings_set(file); }))
+    return spectrum_buildings(k, *buildings);
   // A callable solver runs in process on one thread (callable_solver.hpp says why).
   std::optional<std::function<std::string(const std::string&, double&)>> in_process;
   if (k.callable) {
@@ -787,6 +793,35 @@ py::list table_dicts(const std::string& header, const std::vector<std::string>& 
     out.append(d);
   }
   return out;
+}
+
+// A buildings set: the rows `spectrum` writes for it (rows/buildings_rows.hpp), a dict each.
+py::list spectrum_buildings(Keywords& k, const BuildingsSet& set) {
+  const SolverInfo* solver = checked([&] {
+    const SolverInfo* info = &app::check_buildings_solver(k.solver_flags, k.given_flag());
+    if (k.callable) throw app::BadInput("solver: a Python callable does not solve the buildings scene (yet)");
+    if (k.threads && *k.threads <= 0) throw app::BadInput("--threads: must be >= 1");
+    return info;
+  });
+  const int threads = k.threads ? static_cast<int>(std::min<long long>(*k.threads, 4096))
+                                : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::atomic<bool> stop{false};
+  std::optional<std::vector<BuildingsPoint>> points;
+  run_interruptibly(stop, [&] { points = sweep_buildings(set.points, *solver, k.solver_flags.settings, threads, stop, {}); });
+  if (!points) {  // stopped, and the program's handler chose not to raise
+    PyErr_SetNone(PyExc_KeyboardInterrupt);
+    throw py::error_already_set();
+  }
+  const std::string settings = solver->describe(k.solver_flags.settings);
+  std::vector<std::string> lines;
+  for (std::size_t i = 0; i < points->size(); ++i) {
+    std::string text;
+    append_buildings_rows(text, set.points[i], i, solver->name, settings, (*points)[i]);
+    for (std::size_t a = 0, b; (b = text.find('\n', a)) != std::string::npos; a = b + 1) lines.push_back(text.substr(a, b - a));
+  }
+  std::string header = buildings_csv_header();
+  header.pop_back();
+  return table_dicts(header, lines);
 }
 
 // The program a Python callable's [[run]] names while the settings list is parsed (an

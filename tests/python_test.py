@@ -278,6 +278,15 @@ class Buildings(unittest.TestCase):
             self.assertEqual(result["contacts"][0]["left"], 0)
         self.assertIn("floor_peak_pi", result)  # point 10 is in Pi terms
 
+    def test_spectrum_of_a_buildings_set_gives_a_row_per_floor(self):
+        rows = poundbench.spectrum(f"{SOURCE}/cases/sets/buildings.toml", threads=2)
+        point0 = poundbench.run(case_file=f"{SOURCE}/cases/sets/buildings.toml", point=0)
+        first = [r for r in rows if r["point"] == 0]
+        self.assertEqual(len(first), sum(len(b) for b in point0["floor_peak_m"]))
+        for r in first:
+            self.assertEqual(r["floor_peak_m"], point0["floor_peak_m"][r["building"]][r["floor"] - 1])
+            self.assertEqual(r["floor_peak_no_contact_m"], point0["floor_peak_no_contact_m"][r["building"]][r["floor"] - 1])
+
     def test_another_solver_is_refused_by_name(self):
         with self.assertRaisesRegex(ValueError, "external does not solve the buildings scene"):
             poundbench.run(case_file=f"{SOURCE}/cases/sets/buildings.toml", point=0, solver="external", command="true")
