@@ -254,6 +254,9 @@ def report(args):
         runs = records_step.compact(load([args.records_step]))
         records_step.write(os.path.join(args.out, records_step.SUMMARY), runs)
         text += records_step.section(runs)
+    if args.buildings:
+        import buildings
+        text += buildings.section(load(args.buildings), args.out)
     text += paper_set_section(rows, args.out)
     text += ["## Where this ran", "", footer(measured_on), ""]
     out.page.provenance([f"- measured at: {provenance.describe(measured_on)}"])
@@ -291,6 +294,8 @@ def main():
     parser.add_argument("--records-step", help="points CSV of the step rules on real records (`poundbench "
                         "workprecision cases/sets/records-step.toml --settings cases/settings/records-step.toml --points`; "
                         "reduced to reports/records-step.csv)")
+    parser.add_argument("--buildings", nargs="+", help="rows of `poundbench spectrum cases/sets/buildings.toml` "
+                        "through the reference and the other solvers of the scene (one file each)")
     parser.add_argument("--out", default=here, help="folder for README.md, figures/ and the committed result files")
     parser.add_argument("--readme", help="also write the generated blocks of this README (scripts/main.sh: README.md)")
     parser.add_argument("--check", action="store_true", help="write nothing: exit 1, with the diff, when README's "

@@ -12,7 +12,8 @@ namespace pb {
 namespace {
 
 constexpr std::array kBuildingsColumns = {
-    "family",  "point", "solver", "settings", "status", "message", "building", "floor", "floors",
+    "family", "point", "pulse", "directivity", "record", "solver", "settings", "status", "message", "building",
+    "floor", "floors",
     // the solver's peaks and the reference's without contact; in m, then over a_p / w_p^2
     "floor_peak_m", "drift_peak_m", "floor_peak_no_contact_m", "drift_peak_no_contact_m", "floor_peak_pi",
     "drift_peak_pi", "floor_peak_no_contact_pi", "drift_peak_no_contact_pi",
@@ -51,6 +52,9 @@ void append_buildings_rows(std::string& out, const BuildingCase& c, std::size_t 
       LineBuilder line;
       line.text(c.family);
       line.count(static_cast<long long>(point));
+      line.text(name(c.pulse));
+      line.text(name(c.directivity));
+      line.text(c.record);
       line.text(solver);
       line.text(settings);
       line.text(name(r.status));
