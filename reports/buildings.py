@@ -10,7 +10,8 @@ scripts/main.sh: results/buildings-*.csv) and says, from them:
 - a figure of the peaks up the height, with and without contact, and the drift ratios of the
   uniform pairs over Pi2;
 - per solver setting, how far its floor peaks are from the reference's (the largest relative
-  error over a point's floors) and what a point costs.
+  error over a point's floors) and what a point costs;
+- on cases/sets/buildings-stress.toml, per solver setting and family, which points ended ok.
 
 Writes buildings-summary.csv beside the report. Used by make_report.py."""
 
@@ -163,7 +164,33 @@ def plot(by, amp, out_dir):
     return save(fig, out_dir, "buildings")
 
 
-def section(rows, out_dir):
+def stress_lines(rows):
+    """Per solver setting and family of cases/sets/buildings-stress.toml: the points that ended
+    ok, the statuses of the others, and the worst floor-peak error against the reference."""
+    by = points(rows)
+    reference = next((v for (s, _), v in by.items() if s == REFERENCE), {})
+    lines = ["The stress set (`cases/sets/buildings-stress.toml`: eps 0 and 1, buildings touching at rest, three "
+             "buildings in a row, contact at some floors only, pairs of 20 storeys): per solver setting and family, "
+             "the points that ended ok, and the largest relative error of a floor peak against the reference.", "",
+             "| solver | settings | family | ok | not ok | worst error |", "|---|---|---|---:|---|---:|"]
+    for (solver, settings), solved in sorted(by.items()):
+        families = defaultdict(list)
+        for point, floors in sorted(solved.items()):
+            families[next(iter(floors.values()))["family"]].append(point)
+        for family, pts in families.items():
+            statuses = [next(iter(solved[p].values()))["status"] for p in pts]
+            bad = defaultdict(int)
+            for st in statuses:
+                if st != "ok":
+                    bad[st] += 1
+            errors = [e for e, _ in peak_errors(reference, {p: solved[p] for p in pts})] if solver != REFERENCE else []
+            worst = f"{max(errors):.2e}" if errors else "–"
+            not_ok = ", ".join(f"{n} {st}" for st, n in sorted(bad.items())) or "–"
+            lines.append(f"| {solver} | `{settings}` | {family} | {statuses.count('ok')} | {not_ok} | {worst} |")
+    return lines + [""]
+
+
+def section(rows, out_dir, stress_rows=None):
     """The section's lines (markdown), its figure and buildings-summary.csv."""
     by = points(rows)
     reference = next((v for (s, _), v in by.items() if s == REFERENCE), None)
@@ -202,14 +229,17 @@ def section(rows, out_dir):
         for solver, settings, ok, failed, med, worst, cpu in table:
             text.append(f"| {solver} | `{settings}` | {ok} | {failed} | {med:.2e} | {worst:.2e} | {cpu * 1e3:.3g} |")
         text.append("")
+    if stress_rows:
+        text += stress_lines(stress_rows)
     return text
 
 
-if __name__ == "__main__":  # python3 reports/buildings.py OUT_DIR ROWS.csv...: the section alone
+if __name__ == "__main__":  # python3 reports/buildings.py OUT_DIR ROWS.csv... [--stress ROWS.csv...]: the section alone
     import sys
 
     from rows import load, write_page
 
-    out = sys.argv[1]
+    out, args = sys.argv[1], sys.argv[2:]
+    cut = args.index("--stress") if "--stress" in args else len(args)
     os.makedirs(os.path.join(out, "figures"), exist_ok=True)
-    write_page(out, section(load(sys.argv[2:]), out), "buildings.py")
+    write_page(out, section(load(args[:cut]), out, load(args[cut + 1:]) if cut < len(args) else None), "buildings.py")

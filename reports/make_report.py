@@ -256,7 +256,8 @@ def report(args):
         text += records_step.section(runs)
     if args.buildings:
         import buildings
-        text += buildings.section(load(args.buildings), args.out)
+        text += buildings.section(load(args.buildings), args.out,
+                                  load(args.buildings_stress) if args.buildings_stress else None)
     text += paper_set_section(rows, args.out)
     text += ["## Where this ran", "", footer(measured_on), ""]
     out.page.provenance([f"- measured at: {provenance.describe(measured_on)}"])
@@ -296,6 +297,8 @@ def main():
                         "reduced to reports/records-step.csv)")
     parser.add_argument("--buildings", nargs="+", help="rows of `poundbench spectrum cases/sets/buildings.toml` "
                         "through the reference and the other solvers of the scene (one file each)")
+    parser.add_argument("--buildings-stress", nargs="+", help="rows of `poundbench spectrum "
+                        "cases/sets/buildings-stress.toml` through the solvers of the scene (one file each)")
     parser.add_argument("--out", default=here, help="folder for README.md, figures/ and the committed result files")
     parser.add_argument("--readme", help="also write the generated blocks of this README (scripts/main.sh: README.md)")
     parser.add_argument("--check", action="store_true", help="write nothing: exit 1, with the diff, when README's "

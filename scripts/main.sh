@@ -157,7 +157,9 @@ fi
 
 echo "main: the buildings case set (cases/sets/buildings.toml) through the solvers of the scene"
 buildings() {  # the reference, and every other solver of this build that solves the scene
-  $pb spectrum cases/sets/buildings.toml --solver event-driven --out results/buildings-event-driven.csv
+  mkdir -p results/buildings results/buildings-stress
+  $pb spectrum cases/sets/buildings.toml --solver event-driven --out results/buildings/event-driven.csv
+  $pb spectrum cases/sets/buildings-stress.toml --solver event-driven --out results/buildings-stress/event-driven.csv
 }
 timed buildings buildings
 
@@ -186,7 +188,8 @@ timed persistent /usr/bin/python3 scripts/persistent_overhead.py --poundbench $p
   --records results/records-*.csv --yielding results/yielding-*.csv \
   --records-real results/real-records-event-driven.csv --records-wp results/workprecision-records.csv \
   --yielding-wp results/workprecision-yielding.csv \
-  "${records_step[@]}" --buildings results/buildings-*.csv \
+  "${records_step[@]}" --buildings results/buildings/*.csv \
+  --buildings-stress results/buildings-stress/*.csv \
   --out reports --readme README.md
 
 echo "main: the paper report (reports/paper/)"

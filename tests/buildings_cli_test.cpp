@@ -272,5 +272,12 @@ TEST_F(Cli, SpectrumOverABuildingsSetWritesARowPerFloorWithRunsPeaks) {
   EXPECT_EQ(matched, j["floor_peak_m"][0].size() + j["floor_peak_m"][1].size());
 }
 
+// The shipped stress set of the scene: every point ends ok through the reference (--check).
+TEST_F(Cli, EveryPointOfTheBuildingsStressSetEndsOkThroughTheReference) {
+  const Outcome o = run("spectrum '" + kSource + "/cases/sets/buildings-stress.toml' --check --out stress.csv");
+  EXPECT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_EQ(CsvTable(read_text(file("stress.csv"))).rows.size(), (3u + 6) * 4 + (3 + 6 + 4) * 2 + 9 + 40 * 2 + 28 * 2) << o.err;
+}
+
 }  // namespace buildings_cli_tests
 }  // namespace pb
