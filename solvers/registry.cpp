@@ -20,6 +20,7 @@
 #include "solvers/siconos/siconos_solver.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_SUNDIALS
+#include "solvers/compliant/buildings.hpp"
 #include "solvers/compliant/compliant.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_MUJOCO
@@ -95,9 +96,19 @@ const std::array kSolvers = {
 #ifdef POUNDBENCH_HAVE_SUNDIALS
     // CVODE chooses its steps, and round-off can move a step choice and Pi1 with it within
     // its tolerance (1e-8 by default): 1e-7 lets that through.
-    SolverInfo{"compliant", "compliant contact elements (see --variant), integrated by CVODE or Newmark",
-               &compliant::solve, &compliant::describe, &check_all<&compliant::check>, &compliant::variant_list, 1e-7,
-               false, &compliant::model_reference, false, kFixedStepOrder, &compliant::hertz_contact},
+    // On the buildings scene: an element at every floor pair (solvers/compliant/buildings.hpp).
+    SolverInfo{.name = "compliant",
+               .summary = "compliant contact elements (see --variant), integrated by CVODE or Newmark",
+               .solve = &compliant::solve,
+               .describe = &compliant::describe,
+               .check = &check_all<&compliant::check>,
+               .variants = &compliant::variant_list,
+               .baseline_tolerance = 1e-7,
+               .model_reference = &compliant::model_reference,
+               .step_order = kFixedStepOrder,
+               .hertz_contact = &compliant::hertz_contact,
+               .solve_buildings = &compliant::solve_buildings,
+               .buildings_settings = compliant::kBuildingsSettings},
 #endif
 #ifdef POUNDBENCH_HAVE_MUJOCO
     // A fixed-step engine in double precision, as ODE: round-off only, 1e-12.

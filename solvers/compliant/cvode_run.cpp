@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "solvers/compliant/compliant.hpp"
+#include "solvers/compliant/cvode_objects.hpp"
 #include "solvers/compliant/integrators.hpp"
 #include "kit/contact_elements/elements.hpp"
 #include "kit/fixed_step.hpp"
@@ -113,30 +114,6 @@ void keep_message(int, const char* module, const char* function, char* msg, void
   auto& pr = *static_cast<Problem*>(data);
   pr.library_message = std::string(module ? module : "") + "::" + (function ? function : "") + ": " + msg;
 }
-
-std::string flag_name(int flag) {
-  char* text = CVodeGetReturnFlagName(flag);
-  std::string out = text ? text : std::to_string(flag);
-  std::free(text);
-  return out;
-}
-
-// The SUNDIALS objects of one run, released in order whatever happens.
-struct Cvode {
-  SUNContext context = nullptr;
-  N_Vector y = nullptr, dky = nullptr;
-  SUNMatrix band = nullptr;
-  SUNLinearSolver linear = nullptr;
-  void* mem = nullptr;
-  ~Cvode() {
-    if (mem) CVodeFree(&mem);
-    if (linear) SUNLinSolFree(linear);
-    if (band) SUNMatDestroy(band);
-    if (dky) N_VDestroy(dky);
-    if (y) N_VDestroy(y);
-    if (context) SUNContext_Free(&context);
-  }
-};
 
 // One run: its SUNDIALS objects, the yielding modes, and what the steps measured.
 class CvodeRun {
