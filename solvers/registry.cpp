@@ -6,6 +6,7 @@
 #include "solvers/buildings_reference/reference.hpp"
 #include "solvers/event_driven/event_driven.hpp"
 #include "solvers/external/external.hpp"
+#include "solvers/moreau_jean/buildings.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
 #include "kit/settings_fields.hpp"
 #include "kit/solver.hpp"
@@ -57,6 +58,11 @@ constexpr double kFixedStepOrder = 1.0;
 // What the buildings scene's exact reference reads: its tolerances' scale and the limits.
 constexpr std::string_view kExactBuildingsSettings[] = {"tol_scale", "step_cap", "time_limit"};
 
+// What Moreau-Jean's buildings solve reads (solvers/moreau_jean/buildings.hpp); its variants,
+// the load rules, apply to the scene as they are.
+constexpr std::string_view kMoreauJeanBuildingsSettings[] = {"steps", "wh", "steps_per_sample", "theta", "gamma",
+                                                             "step_cap", "time_limit"};
+
 const std::array kSolvers = {
     // Every solver is a deterministic sequence of floating-point operations: the stored
     // rows were reproduced bit for bit by the Release (-O3), RelWithDebInfo (-O2) and
@@ -75,9 +81,16 @@ const std::array kSolvers = {
                .buildings_settings = kExactBuildingsSettings},
     // A time-stepper's round-off can flip an activation test that sits at its threshold and
     // move Pi1 by a step's worth; 1e-12 lets round-off through and catches any such flip.
-    SolverInfo{"moreau-jean", "theta-method time-stepper, Newton impacts on predicted contacts (fixed step)",
-               &moreau_jean::solve, &moreau_jean::describe, &check_all<&moreau_jean::check>, &moreau_jean::variant_list, 1e-12,
-               false, nullptr, false, kFixedStepOrder},
+    SolverInfo{.name = "moreau-jean",
+               .summary = "theta-method time-stepper, Newton impacts on predicted contacts (fixed step)",
+               .solve = &moreau_jean::solve,
+               .describe = &moreau_jean::describe,
+               .check = &check_all<&moreau_jean::check>,
+               .variants = &moreau_jean::variant_list,
+               .baseline_tolerance = 1e-12,
+               .step_order = kFixedStepOrder,
+               .solve_buildings = &moreau_jean::solve_buildings,
+               .buildings_settings = kMoreauJeanBuildingsSettings},
 #ifdef POUNDBENCH_HAVE_ODE
     SolverInfo{"ode", "Open Dynamics Engine: its LCP contact solver with restitution (see --variant)", &ode::solve,
                &ode::describe, &check_all<&ode::check>, &ode::variant_list, 1e-12, false, nullptr, false, kFixedStepOrder},

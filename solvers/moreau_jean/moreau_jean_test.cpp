@@ -24,6 +24,7 @@
 #include "solvers/event_driven/event_driven.hpp"
 #include "kit/lcp/lemke.hpp"
 #include "kit/monitor.hpp"
+#include "solvers/moreau_jean/allocation_counter.hpp"
 #include "solvers/moreau_jean/dynamic.hpp"
 #include "solvers/moreau_jean/fixed_monitor.hpp"
 #include "solvers/moreau_jean/moreau_jean.hpp"
@@ -31,17 +32,19 @@
 #include "solvers/moreau_jean/tridiagonal_lcp.hpp"
 #include "solvers/registry.hpp"
 
-// Allocation counting for this test binary: operator new counts while the calling thread
-// has switched counting on, and otherwise behaves as the default one. Every non-aligned
-// form is replaced, so that each allocation and its release go through the same pair
-// (the sanitizer build checks that). noinline keeps GCC from pairing an inlined free()
-// with operator new (a false -Wmismatched-new-delete).
-namespace {
-thread_local bool g_counting = false;
+// Allocation counting for this test binary (allocation_counter.hpp): operator new counts
+// while the calling thread has switched counting on, and otherwise behaves as the default
+// one. Every non-aligned form is replaced, so that each allocation and its release go
+// through the same pair (the sanitizer build checks that). noinline keeps GCC from pairing
+// an inlined free() with operator new (a false -Wmismatched-new-delete).
+namespace pb::test {
+thread_local bool g_counting_allocations = false;
 thread_local long g_allocations = 0;
+}  // namespace pb::test
 
+namespace {
 [[gnu::noinline]] void* counted_malloc(std::size_t size) noexcept {
-  if (g_counting) ++g_allocations;
+  if (pb::test::g_counting_allocations) ++pb::test::g_allocations;
   return std::malloc(size == 0 ? 1 : size);
 }
 }  // namespace
@@ -70,14 +73,7 @@ namespace {
 
 namespace mj = moreau_jean;
 
-struct AllocationCounter {
-  AllocationCounter() {
-    g_allocations = 0;
-    g_counting = true;
-  }
-  ~AllocationCounter() { g_counting = false; }
-  long count() const { return g_allocations; }
-};
+using test::AllocationCounter;
 
 using test::make_case;
 using test::observed_order;
