@@ -10,7 +10,8 @@ scripts/main.sh: results/buildings-*.csv) and says, from them:
 - a figure of the peaks up the height, with and without contact, and the drift ratios of the
   uniform pairs over Pi2;
 - per solver setting, how far its floor peaks are from the reference's (the largest relative
-  error over a point's floors) and what a point costs;
+  error over a point's floors) and what a point costs, a work-precision figure, and per target
+  the cheapest setting of each solver that meets it by the study's one answer rule;
 - on cases/sets/buildings-stress.toml, per solver setting and family, which points ended ok.
 
 Writes buildings-summary.csv beside the report. Used by make_report.py."""
@@ -19,11 +20,13 @@ import csv
 import os
 from collections import defaultdict
 
-from rows import num
+from robust import robust, step_split
+from rows import num, settings_fields
 from study import percentile
 
 SUMMARY = "buildings-summary.csv"
 REFERENCE = "event-driven"
+TARGETS = (1e-2, 1e-3, 1e-4)  # relative error of the worst floor peak of a point
 
 
 def points(rows):
@@ -78,19 +81,72 @@ def peak_errors(reference, solved):
 
 
 def solver_table(by):
+    """Per solver setting but the reference: (solver, settings, points ok, not ok, median and
+    worst error, robust error, median CPU). The robust error is study.robust's rule (issue 48):
+    the worst error of this setting and of every finer step of the same solver and settings,
+    NaN where any of them failed a point, so that no lucky coarse step is picked."""
     reference = next((v for (s, _), v in by.items() if s == REFERENCE), None)
     if reference is None:
         return []
-    lines = []
-    for (solver, settings), solved in sorted(by.items()):
-        errors = peak_errors(reference, solved)
-        if not errors:
+    lines, items = [], []
+
+    def order(key):
+        rest, fineness = step_split(settings_fields(dict(settings=key[1])))
+        return key[0], rest, fineness or 0
+
+    for (solver, settings), solved in sorted(by.items(), key=lambda kv: order(kv[0])):
+        if solver == REFERENCE:
             continue
+        errors = peak_errors(reference, solved)
         e = [x for x, _ in errors]
-        cpu = [c for _, c in errors]
         failed = len(solved) - len(errors)
-        lines.append((solver, settings, len(errors), failed, percentile(e, 50), max(e), percentile(cpu, 50)))
-    return lines
+        worst = max(e) if e and not failed else float("nan")
+        rest, fineness = step_split(settings_fields(dict(settings=settings)))
+        items.append(((solver, rest), fineness, worst))
+        lines.append((solver, settings, len(errors), failed, percentile(e, 50) if e else float("nan"),
+                      max(e) if e else float("nan"), percentile([c for _, c in errors], 50) if e else float("nan")))
+    return [line[:6] + (r,) + line[6:] for line, r in zip(lines, robust(items))]
+
+
+def answer_lines(table):
+    """Per target, per solver: the cheapest setting (median CPU a point) whose robust error meets it."""
+    out = ["The cheapest setting of each solver that meets a target on every point, by the study's rule (the "
+           "setting and every finer step of it meet the target: `reports/robust.py`), and its median CPU a point:", "",
+           "| target | " + " | ".join(sorted({t[0] for t in table})) + " |",
+           "|---:|" + "---|" * len({t[0] for t in table})]
+    for target in TARGETS:
+        cells = []
+        for solver in sorted({t[0] for t in table}):
+            meets = [t for t in table if t[0] == solver and t[6] <= target]
+            best = min(meets, key=lambda t: t[7], default=None)
+            cells.append(f"`{best[1]}` ({best[7] * 1e3:.3g} ms)" if best else "none")
+        out.append(f"| {target:.0e} | " + " | ".join(cells) + " |")
+    return out + [""]
+
+
+def plot_work_precision(table, reference_cpu, out_dir):
+    from figure import colors, figure_width, legend_below, save, with_legend_below
+
+    # One line per solver and integrator: Moreau-Jean and Newmark over their steps, CVODE over
+    # the element's stiffness (its error is the element's, its tolerance fixed).
+    lines = defaultdict(list)
+    for solver, settings, ok, failed, med, worst, rob, cpu in table:
+        fields = settings_fields(dict(settings=settings))
+        lines[solver + (f" ({fields['integrator']})" if "integrator" in fields else "")].append((cpu, worst))
+    fig, grid = with_legend_below(figure_width(1, 6.0), 3.6, len(lines) + 1, columns=2)
+    ax = fig.subplots(1, 1, gridspec_kw=grid)
+    for (label, pts), color, marker in zip(sorted(lines.items()), colors(len(lines)), "osD^v<>ph*"):
+        pts.sort()
+        ax.plot([p[0] * 1e3 for p in pts], [p[1] for p in pts], color=color, marker=marker, ms=4, label=label)
+    ax.axvline(reference_cpu * 1e3, color="0.3", ls=":", lw=1, label="the exact reference")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("median CPU a point (ms)")
+    ax.set_ylabel("worst relative error of a floor peak")
+    ax.grid(True, which="both", alpha=0.3)
+    legend_below(fig, *ax.get_legend_handles_labels(), columns=2)
+    fig.suptitle("Buildings: work against precision of the solvers of the scene")
+    return save(fig, out_dir, "buildings-work-precision")
 
 
 def write_summary(amp, path):
@@ -221,14 +277,19 @@ def section(rows, out_dir, stress_rows=None):
         text.append(f"| {a['family']} | {a['point']} | {a['load']} | {storeys} | {top} | {drift} | {a['impacts']} |")
     text += ["", f"![buildings]({plot(by, amp, out_dir)})", ""]
     table = solver_table(by)
-    if any(s != REFERENCE for s, *_ in table):
-        text += ["Each solver setting against the reference: the largest relative error of a point's floor peaks "
-                 "(median and worst over the points both solved ok) and the median CPU a point took.", "",
-                 "| solver | settings | points | failed | median error | worst error | median CPU (ms) |",
-                 "|---|---|---:|---:|---:|---:|---:|"]
-        for solver, settings, ok, failed, med, worst, cpu in table:
-            text.append(f"| {solver} | `{settings}` | {ok} | {failed} | {med:.2e} | {worst:.2e} | {cpu * 1e3:.3g} |")
-        text.append("")
+    if table:
+        reference_cpu = percentile([num(next(iter(f.values())), "cpu_seconds") for f in reference.values()], 50)
+        text += ["Each setting of the other solvers against the reference: the largest relative error of a point's "
+                 "floor peaks (median and worst over the points both solved ok; robust: the worst of this setting and "
+                 "every finer step of it, by `reports/robust.py`'s rule) and the median CPU a point took (the "
+                 f"reference's: {reference_cpu * 1e3:.3g} ms).", "",
+                 "| solver | settings | points | not ok | median error | worst error | robust | median CPU (ms) |",
+                 "|---|---|---:|---:|---:|---:|---:|---:|"]
+        for solver, settings, ok, failed, med, worst, rob, cpu in table:
+            text.append(f"| {solver} | `{settings}` | {ok} | {failed} | {med:.2e} | {worst:.2e} | {rob:.2e} | "
+                        f"{cpu * 1e3:.3g} |")
+        text += [""] + answer_lines(table)
+        text += [f"![buildings work-precision]({plot_work_precision(table, reference_cpu, out_dir)})", ""]
     if stress_rows:
         text += stress_lines(stress_rows)
     return text
