@@ -170,20 +170,36 @@ def carry_over(amp):
     return len(hit), sum(x > 1 for x in short), sum(x < 1 for x in tall), short, tall
 
 
+def top_floor_spectra(reference):
+    """{storeys: [(Pi2, [(top floor Pi1, the same without contact) per building])]} of the
+    reference's points in Pi terms that ended ok."""
+    out = defaultdict(list)
+    for point, floors in sorted(reference.items()):
+        first = next(iter(floors.values()))
+        if not first["pi2"] or first["status"] != "ok":
+            continue
+        per = []
+        for b in sorted({b for b, _ in floors}):
+            top = [r for (bb, _), r in sorted(floors.items()) if bb == b][-1]
+            per.append((num(top, "floor_peak_pi"), num(top, "floor_peak_no_contact_pi"), int(top["floors"])))
+        out[tuple(p[2] for p in per)].append((num(first, "pi2"), per))
+    return out
+
+
 def plot(by, amp, out_dir):
+    """Two pounding points' peaks up the height; the uniform pairs' top floor spectra and their
+    largest drift, pounding over none, against Pi2."""
     from figure import colors, figure_width, legend_below, save, with_legend_below
 
     reference = next(v for (s, _), v in by.items() if s == REFERENCE)
     shown = [a for a in amp if a["impacts"] > 0][:2]
-    uniform = defaultdict(list)
-    for a in amp:
-        if a["pi2"]:
-            uniform[tuple(p[0] for p in a["per"])].append((float(a["pi2"]), a["per"]))
-    columns = len(shown) + (1 if uniform else 0)
-    fig, grid = with_legend_below(figure_width(columns, 2.6), 3.4, 4 + 2 * len(uniform), columns=3, wspace=0.4)
-    fig.subplots(1, columns, squeeze=False, gridspec_kw=grid)
+    spectra = top_floor_spectra(reference)
+    rows = 2 if spectra else 1
+    fig, grid = with_legend_below(figure_width(2, 3.6), 3.2 * rows, 4 + 2 * len(spectra), columns=3, wspace=0.3,
+                                  hspace=0.45)
+    axes = fig.subplots(rows, 2, squeeze=False, gridspec_kw=grid)
     palette = colors(2)
-    for ax, a in zip(fig.axes, shown):
+    for ax, a in zip(axes[0], shown):
         floors = reference[a["point"]]
         for b, color in zip(sorted({b for b, _ in floors}), palette):
             mine = [r for (bb, _), r in sorted(floors.items()) if bb == b]
@@ -196,17 +212,30 @@ def plot(by, amp, out_dir):
         ax.set_xlabel("peak |u| (mm)")
         ax.set_ylabel("floor")
         ax.grid(True, alpha=0.3)
-    if uniform:
-        ax = fig.axes[-1]
-        for (storeys, values), dash in zip(sorted(uniform.items()), ("-", "--", ":", "-.")):
-            values.sort()
+    if spectra:
+        first = min(spectra)  # the shorter pair: its two buildings, with and without contact
+        ax = axes[1][0]
+        values = sorted(spectra[first])
+        for b, color in enumerate(palette[:len(first)]):
+            ax.plot([v[0] for v in values], [v[1][b][0] for v in values], color=color, lw=1.8, marker="o", ms=3)
+            ax.plot([v[0] for v in values], [v[1][b][1] for v in values], color=color, lw=1.0, ls="--")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_title(f"uniform {' + '.join(map(str, first))} storeys: top floor", fontsize=9)
+        ax.set_ylabel("Pi1 = u w_p^2 / a_p")
+        ax.set_xlabel("Pi2 = w_1,left / w_p")
+        ax.grid(True, which="both", alpha=0.3)
+        ax = axes[1][1]
+        for (storeys, values), dash in zip(sorted(spectra.items()), ("-", ":", "-.")):
+            drift = {a["pi2"]: a["per"] for a in amp if a["pi2"] and tuple(p[0] for p in a["per"]) == storeys}
+            xs = sorted(float(k) for k in drift)
             for b, color in zip(range(len(storeys)), palette):
-                ax.plot([v[0] for v in values], [v[1][b][2] for v in values], color=color, ls=dash, marker="o", ms=3,
-                        label=f"{storeys[b]} storeys (of {'+'.join(map(str, storeys))})")
+                ax.plot(xs, [drift[next(k for k in drift if float(k) == x)][b][2] for x in xs], color=color, ls=dash,
+                        marker="o", ms=3, label=f"{storeys[b]} storeys (of {'+'.join(map(str, storeys))})")
         ax.axhline(1.0, color="0.5", lw=0.8)
         ax.set_xscale("log")
-        ax.set_title("uniform pairs (Pi terms)", fontsize=9)
-        ax.set_ylabel("largest drift, pounding / none")
+        ax.set_title("uniform pairs: largest storey drift", fontsize=9)
+        ax.set_ylabel("pounding / no contact")
         ax.set_xlabel("Pi2 = w_1,left / w_p")
         ax.grid(True, which="both", alpha=0.3)
     handles, labels = [], []
@@ -263,11 +292,13 @@ def section(rows, out_dir, stress_rows=None):
             f"Per point and building, the top floor's peak and the largest storey drift over their values without "
             f"contact are in `{SUMMARY}`.", ""]
     if n:
-        text += [f"Does the single oscillators' finding carry over (pounding amplifies the stiffer body and shields "
-                 f"the flexible one, the paper's Pi5 trends)? Over the {n} pairs of unequal heights that pounded, "
-                 f"pounding raised the shorter building's largest storey drift in {short_up} (median ratio "
-                 f"{percentile(short, 50):.3g}, {min(short):.3g} to {max(short):.3g}) and lowered the taller one's in "
-                 f"{tall_down} (median ratio {percentile(tall, 50):.3g}, {min(tall):.3g} to {max(tall):.3g}).", ""]
+        text += [f"Does pounding amplify the shorter, stiffer building and shield the taller, flexible one, as it "
+                 f"does a stiff oscillator against a flexible one? Over the {n} pairs of unequal heights that pounded, "
+                 f"the shorter building's largest storey drift rose in {short_up} and fell in {n - short_up} (median "
+                 f"ratio {percentile(short, 50):.3g}, {min(short):.3g} to {max(short):.3g}); the taller one's fell in "
+                 f"{tall_down} and rose in {n - tall_down} (median ratio {percentile(tall, 50):.3g}, {min(tall):.3g} "
+                 f"to {max(tall):.3g}). Which way it goes depends on where the pulse sits against the buildings' modes: "
+                 "the uniform pairs' ratios over Pi2 are in the figure below.", ""]
     text += ["| family | point | load | storeys | top floor, pounding / none | largest drift, pounding / none | impacts |",
              "|---|---:|---|---|---|---|---:|"]
     for a in amp:

@@ -58,7 +58,7 @@ TEST(BuildingsSet, ShippedSetReadsEveryPointFloorByFloorAndInPiTerms) {
   const std::optional<BuildingsSet> set = load_buildings_set(kBuildingsSet);
   ASSERT_TRUE(set.has_value());
   EXPECT_EQ(set->name, "buildings");
-  ASSERT_EQ(set->points.size(), 18u);  // 4 + 2 + 2 + 2 + 2 x 4
+  ASSERT_EQ(set->points.size(), 34u);  // 4 + 2 + 2 + 2 + 2 x 12
   EXPECT_EQ(set->points[0].family, "3-and-6-storeys");
   EXPECT_EQ(set->points[0].scene.buildings[1].floors(), 6);
   EXPECT_FALSE(set->points[0].pi_terms);
@@ -67,7 +67,7 @@ TEST(BuildingsSet, ShippedSetReadsEveryPointFloorByFloorAndInPiTerms) {
   EXPECT_TRUE(pi.pi_terms);
   EXPECT_EQ(pi.storeys_left, 5);
   EXPECT_EQ(pi.storeys_right, 8);
-  EXPECT_DOUBLE_EQ(pi.pi2, 2.0);
+  EXPECT_DOUBLE_EQ(pi.pi2, 4.0);
 }
 
 TEST(BuildingsSet, SingleOscillatorSetsAreNotBuildingsAndSweepsRefuseBuildings) {
