@@ -292,8 +292,8 @@ def section(rows, out_dir, stress_rows=None):
             f"Per point and building, the top floor's peak and the largest storey drift over their values without "
             f"contact are in `{SUMMARY}`.", ""]
     if n:
-        text += [f"Does pounding amplify the shorter, stiffer building and shield the taller, flexible one, as it "
-                 f"does a stiff oscillator against a flexible one? Over the {n} pairs of unequal heights that pounded, "
+        text += [f"Does pounding amplify the shorter, stiffer building and shield the taller, flexible one? "
+                 f"Over the {n} pairs of unequal heights that pounded, "
                  f"the shorter building's largest storey drift rose in {short_up} and fell in {n - short_up} (median "
                  f"ratio {percentile(short, 50):.3g}, {min(short):.3g} to {max(short):.3g}); the taller one's fell in "
                  f"{tall_down} and rose in {n - tall_down} (median ratio {percentile(tall, 50):.3g}, {min(tall):.3g} "
