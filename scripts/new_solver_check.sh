@@ -55,9 +55,9 @@ cmake --build build -j "$(nproc)" --target poundbench_tests poundbench poundbenc
 echo "new_solver_check: the solver contract on both, and symplectic-euler's own tests (its folder's *_test.cpp)"
 build/tests/poundbench_tests --gtest_filter='*symplectic_euler*:*penalty_verlet*:SymplecticEuler.*'
 echo "new_solver_check: its own setting as a flag (--passes), and refused for another solver"
-build/poundbench run --solver symplectic-euler --passes 3 --scene row3 --pulse cosine --pi2 1 --pi3 0.5 \
+build/poundbench run --solver symplectic-euler --passes 3 --scene row3 --pulse cosine --directivity normal --pi2 1 --pi3 0.5 \
     --eps 0.5 --pi5 0.5 --pi6 1 --pi7 0.5 --pi8 1 | grep -q '"passes":3\|passes 3'
-if build/poundbench run --solver moreau-jean --passes 3 --scene wall --pulse sine --pi2 1 --pi3 0.5 --eps 0.5 2> own.err; then
+if build/poundbench run --solver moreau-jean --passes 3 --scene wall --pulse sine --directivity normal --pi2 1 --pi3 0.5 --eps 0.5 2> own.err; then
   echo "new_solver_check: --passes was accepted by moreau-jean" >&2
   exit 1
 fi
@@ -65,7 +65,7 @@ grep -q 'passes: not used by solver moreau-jean' own.err
 echo "new_solver_check: its own setting as a Python keyword"
 PYTHONPATH=build/python python3 -c '
 import poundbench
-case = dict(scene="wall", pulse="sine", pi2=1, pi3=0.5, eps=0.5)
+case = dict(scene="wall", pulse="sine", directivity="normal", pi2=1, pi3=0.5, eps=0.5)
 assert poundbench.run(solver="symplectic-euler", passes=3, **case)["status"] == "ok"
 try:
     poundbench.run(solver="moreau-jean", passes=3, **case)

@@ -86,6 +86,7 @@ class Engine final : public StepEngine {
 
 Result solve(const System& system, const Settings& settings) {
   if (std::string bad = check(settings); !bad.empty()) return failed(bad);
+  if (system.yields()) return yielding_refused("this example integrates linear springs only");
   StepPlan plan;
   if (Result r = plan_steps(system, settings, kDefaultSteps, kDefaultStepCap, plan); r.status != Status::ok) return r;
   Engine engine(system, settings, plan.h);

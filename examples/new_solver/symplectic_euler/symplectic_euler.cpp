@@ -65,12 +65,8 @@ class Engine final : public StepEngine {
 }  // namespace
 
 Result solve(const System& system, const Settings& settings) {
-  if (std::string bad = check(settings); !bad.empty()) {  // solve() may be called unchecked
-    Result r;
-    r.status = Status::failed;
-    r.message = bad;
-    return r;
-  }
+  if (std::string bad = check(settings); !bad.empty()) return failed(bad);  // solve() may be called unchecked
+  if (system.yields()) return yielding_refused("this example integrates linear springs only");
   StepPlan plan;
   if (Result r = plan_steps(system, settings, kDefaultSteps, kDefaultStepCap, plan); r.status != Status::ok) return r;
   Engine engine(system, settings, plan.h);
