@@ -223,20 +223,7 @@ class Run {
   }
 
   // The step cap and the time limit; false (the status set) where one has passed.
-  bool within_limits() {
-    const long steps = total_steps();
-    if (steps > cap_) {
-      res_.status = Status::step_cap;
-      res_.message = "more than " + std::to_string(cap_) + " CVODE steps";
-      return false;
-    }
-    if (dead_->passed(steps)) {
-      res_.status = Status::time_limit;
-      res_.message = dead_->reason() + " at t = " + std::to_string(t_);
-      return false;
-    }
-    return true;
-  }
+  bool within_limits() { return compliant::within_limits(total_steps(), cap_, *dead_, t_, res_); }
 
   long total_steps() const {
     long nst = 0;

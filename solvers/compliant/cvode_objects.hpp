@@ -11,6 +11,9 @@
 #include <cstdlib>
 #include <string>
 
+#include "kit/run_limits.hpp"
+#include "kit/solver.hpp"
+
 namespace pb::compliant {
 
 inline std::string flag_name(int flag) {
@@ -36,5 +39,22 @@ struct Cvode {
     if (context) SUNContext_Free(&context);
   }
 };
+
+// The step cap and the time limit of a run after `steps` CVODE steps: false, with the status
+// and its message set in `res` (a Result or a buildings result), once one has passed.
+template <class R>
+bool within_limits(long steps, long cap, Deadline& deadline, double t, R& res) {
+  if (steps > cap) {
+    res.status = Status::step_cap;
+    res.message = "more than " + std::to_string(cap) + " CVODE steps";
+    return false;
+  }
+  if (deadline.passed(steps)) {
+    res.status = Status::time_limit;
+    res.message = deadline.reason() + " at t = " + std::to_string(t);
+    return false;
+  }
+  return true;
+}
 
 }  // namespace pb::compliant

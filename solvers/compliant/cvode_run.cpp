@@ -270,20 +270,7 @@ class CvodeRun {
   }
 
   // The step cap and the time limit; false (the status set) where one has passed.
-  bool within_limits() {
-    const long steps = total_steps();
-    if (steps > cap_) {
-      res_.status = Status::step_cap;
-      res_.message = "more than " + std::to_string(cap_) + " CVODE steps";
-      return false;
-    }
-    if (deadline_->passed(steps)) {
-      res_.status = Status::time_limit;
-      res_.message = deadline_->reason() + " at t = " + std::to_string(t_);
-      return false;
-    }
-    return true;
-  }
+  bool within_limits() { return compliant::within_limits(total_steps(), cap_, *deadline_, t_, res_); }
 
   Result finish() {
     res_.steps = total_steps();
