@@ -145,10 +145,13 @@ void print_summary(std::ostream& out, const Row& row) {
 // A point of a buildings case set, solved by a solver of the scene (frontend/buildings_run.hpp).
 int run_buildings_command(const CLI::App& command, const RunFlags& flags, const ChosenCase& chosen) {
   const auto given = [&](std::string_view flag) { return command.count(std::string(flag)) > 0; };
-  const SolverInfo& solver = check_buildings_solver(flags.solver_flags, given);
-  for (std::string_view flag : {"--history", "--samples", "--k-contact", "--target-error", "--monitor"})
+  SolverFlags solver_flags = flags.solver_flags;
+  if (given("--k-contact"))
+    apply_buildings_k_contact(chosen.building->scene, solver_flags, flags.k_contact, given("--stiffness"));
+  const SolverInfo& solver = check_buildings_solver(solver_flags, given);
+  for (std::string_view flag : {"--history", "--samples", "--target-error", "--monitor"})
     if (given(flag)) throw BadInput(std::string(flag) + ": not for the buildings scene (yet)");
-  const BuildingsRun run = run_buildings(chosen, solver, flags.solver_flags.settings);
+  const BuildingsRun run = run_buildings(chosen, solver, solver_flags.settings);
   write_to_stdout([&](std::ostream& out) {
     if (flags.json)
       out << buildings_json(run).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';

@@ -227,4 +227,13 @@ BuildingScene uniform_pair(int floors_left, int floors_right, double pi2, double
   return s;
 }
 
+double contact_element_stiffness(const BuildingModel& model, bool hertz, double K) {
+  const int f0 = model.first.front(), floors = model.scene.buildings.front().floors();
+  const double w1 = model.modes.front().w(0);
+  const double linear = K * model.m.segment(f0, floors).sum() * w1 * w1;
+  if (!hertz) return linear;
+  const Pulse& pulse = model.scene.pulse;
+  return linear / std::sqrt(pulse.record ? pulse.record->length_scale() : model.length_scale());
+}
+
 }  // namespace pb

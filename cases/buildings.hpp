@@ -118,6 +118,12 @@ void rayleigh_coefficients(double xi, double w1, double w2, double& a0, double& 
 // The scene assembled (it must validate).
 BuildingModel assemble(const BuildingScene& scene);
 
+// A contact element's stiffness k on the scene for the Pi term K of --stiffness (cases/README.md,
+// "Buildings"): K times the left building's total mass times its first mode squared (N/m),
+// for a Hertz-type element over the square root of the length scale (N/m^1.5; a record's own
+// length scale, as for the single oscillators). K = 1 gives the unit that --k-contact divides by.
+double contact_element_stiffness(const BuildingModel& model, bool hertz, double K = 1.0);
+
 // A uniform building: n floors of mass m, every storey of the stiffness that gives first mode
 // w1, k = m (w1 / (2 sin(pi / (2 (2n + 1)))))^2.
 Building uniform_building(int floors, double mass, double w1);

@@ -8,6 +8,7 @@
 #include "frontend/errors.hpp"
 #include "kit/settings_fields.hpp"
 #include "solvers/registry.hpp"
+#include "studies/physical_settings.hpp"
 #include "sweep/buildings_sweep.hpp"
 
 namespace pb::app {
@@ -69,6 +70,17 @@ const SolverInfo& check_buildings_solver(const SolverFlags& flags, const GivenSo
     }
   }
   return *info;
+}
+
+void apply_buildings_k_contact(const BuildingScene& scene, SolverFlags& flags, double k, bool stiffness_given) {
+  if (stiffness_given) throw BadInput("--k-contact: not with --stiffness (give the stiffness one way)");
+  if (!(std::isfinite(k) && k > 0.0)) throw BadInput("--k-contact: must be finite and > 0");
+  const SolverInfo* info = find_solver(flags.solver);
+  const auto& read = info ? info->buildings_settings : std::span<const std::string_view>{};
+  if (info && info->solve_buildings && std::find(read.begin(), read.end(), "stiffness") == read.end())
+    throw BadInput("--k-contact: not used by " + std::string(info->name) + " on the buildings scene (it has no contact element)");
+  if (!info || !info->solve_buildings) return;  // check_buildings_solver names it
+  flags.settings.stiffness = k / contact_element_stiffness(assemble(scene), hertz_contact(*info, flags.settings));
 }
 
 BuildingsRun run_buildings(const ChosenCase& chosen, const SolverInfo& solver, const Settings& settings) {

@@ -20,6 +20,12 @@ namespace pb::app {
 // that its buildings solve does not read (SolverInfo::buildings_settings).
 const SolverInfo& check_buildings_solver(const SolverFlags& flags, const GivenSolverFlag& given);
 
+// --k-contact K (N/m; N/m^1.5 for a Hertz-type element) on a buildings point: the Pi term
+// --stiffness of the chosen solver's element (cases/buildings.hpp, contact_element_stiffness),
+// into flags.settings. Throws BadInput, one line: with --stiffness, a k not finite and > 0,
+// a solver whose buildings solve has no contact element.
+void apply_buildings_k_contact(const BuildingScene& scene, SolverFlags& flags, double k, bool stiffness_given);
+
 struct BuildingsRun {
   ChosenCase chosen;  // its `building` is the point solved
   const SolverInfo* solver = nullptr;

@@ -661,8 +661,10 @@ py::object json_to_python(const nlohmann::ordered_json& j) {
 // (frontend/buildings_run.hpp).
 py::dict run_buildings(Keywords& k, const app::ChosenCase& chosen) {
   const SolverInfo* solver = checked([&] {
+    if (k.has("--k-contact"))
+      app::apply_buildings_k_contact(chosen.building->scene, k.solver_flags, k.k_contact, k.has("--stiffness"));
     const SolverInfo* info = &app::check_buildings_solver(k.solver_flags, k.given_flag());
-    for (std::string_view flag : {"--k-contact", "--target-error", "--monitor"})
+    for (std::string_view flag : {"--target-error", "--monitor"})
       if (k.has(flag)) throw app::BadInput(std::string(flag) + ": not for the buildings scene (yet)");
     if (k.history || k.samples) throw app::BadInput("history: not for the buildings scene (yet)");
     return info;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -270,6 +271,30 @@ TEST_F(Cli, SpectrumOverABuildingsSetWritesARowPerFloorWithRunsPeaks) {
     ++matched;
   }
   EXPECT_EQ(matched, j["floor_peak_m"][0].size() + j["floor_peak_m"][1].size());
+}
+
+// --k-contact in N/m is --stiffness K times the scene's unit of stiffness (the left building's
+// mass times its first mode squared): the same run; a solver without an element refuses it.
+TEST_F(Cli, KContactInNewtonsPerMetreIsTheStiffnessTermTimesTheScenesUnit) {
+  const std::optional<BuildingsSet> set = load_buildings_set(kBuildingsSet);
+  ASSERT_TRUE(set);
+  const double unit = contact_element_stiffness(assemble(set->points[0].scene), false);
+  char k[64];
+  std::snprintf(k, sizeof k, "%.17g", 1e4 * unit);
+  const std::string point = "run --case-file '" + kBuildingsSet + "' --point 0 --solver compliant --integrator newmark --steps 64 --json";
+  const Outcome pi = run(point + " --stiffness 1e4"), physical = run(point + " --k-contact " + k);
+  ASSERT_EQ(pi.exit_code, 0) << pi.err;
+  ASSERT_EQ(physical.exit_code, 0) << physical.err;
+  const nlohmann::json a = nlohmann::json::parse(pi.out), b = nlohmann::json::parse(physical.out);
+  for (std::size_t i = 0; i < 3; ++i)
+    EXPECT_NEAR(b["floor_peak_m"][0][i].get<double>(), a["floor_peak_m"][0][i].get<double>(),
+                1e-9 * a["floor_peak_m"][0][i].get<double>());
+  const Outcome rigid = run("run --case-file '" + kBuildingsSet + "' --point 0 --solver moreau-jean --k-contact 1e9");
+  EXPECT_EQ(rigid.exit_code, 2);
+  EXPECT_NE(rigid.err.find("--k-contact: not used by moreau-jean on the buildings scene"), std::string::npos) << rigid.err;
+  const Outcome both = run(point + " --stiffness 1e4 --k-contact 1e9");
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_NE(both.err.find("--k-contact: not with --stiffness"), std::string::npos) << both.err;
 }
 
 // The shipped stress set of the scene: every point ends ok through the reference (--check).

@@ -10,12 +10,7 @@
 namespace pb::compliant {
 
 double building_element_stiffness(const BuildingModel& md, Model model, double K) {
-  const int f0 = md.first.front(), floors = md.scene.buildings.front().floors();
-  const double w1 = md.modes.front().w(0);
-  const double linear = K * md.m.segment(f0, floors).sum() * w1 * w1;
-  if (model == Model::kelvin_voigt) return linear;
-  const Pulse& pulse = md.scene.pulse;
-  return linear / std::sqrt(pulse.record ? pulse.record->length_scale() : md.length_scale());
+  return contact_element_stiffness(md, model != Model::kelvin_voigt, K);
 }
 
 Floors::Floors(const BuildingModel& md, Model model, double K)
