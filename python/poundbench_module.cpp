@@ -1044,7 +1044,9 @@ PYBIND11_MODULE(poundbench, m) {
       "spectrum(case_set, **keywords) -> list of dict\n\n"
       "Solves every point of a case-set file (TOML, cases/README.md) with one solver, as `poundbench\n"
       "spectrum`: one dict per point, in point order, with the keys of run()'s result (and case_file,\n"
-      "point); pandas.DataFrame(rows) makes the table. Keywords: solver, variant, threads (default: every\n"
+      "point); pandas.DataFrame(rows) makes the table. A buildings case set gives one dict per floor of\n"
+      "every point, with the columns of `spectrum`'s CSV for it (docs/cli.md, \"The buildings scene\").\n"
+      "Keywords: solver, variant, threads (default: every\n"
       "core), monitor (as run()), persistent (True: the external solver's persistent mode), and\n" +
       python::keyword_lines(kSettingFields) +
       "solver may be a Python callable f(case: dict) -> dict, run in process on one thread: it gets the\n"
