@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "cases/fields.hpp"
 #include "cases/text.hpp"
 #include "frontend/errors.hpp"
 #include "kit/settings_fields.hpp"
@@ -55,17 +56,10 @@ const SolverInfo& check_buildings_solver(const SolverFlags& flags, const GivenSo
   if (!given) return *info;
   const auto& read = info->buildings_settings;
   for (const SettingField& f : kSettingFields) {
-    std::string flag = "--" + std::string(f.name);
-    for (char& c : flag)
-      if (c == '_') c = '-';
+    const std::string flag = flag_of(f.name);
     if (std::find(read.begin(), read.end(), f.name) == read.end() && given(flag)) {
       std::string flags_read;
-      for (std::string_view r : read) {
-        std::string g = "--" + std::string(r);
-        for (char& c : g)
-          if (c == '_') c = '-';
-        flags_read += (flags_read.empty() ? "" : ", ") + g;
-      }
+      for (std::string_view r : read) flags_read += (flags_read.empty() ? "" : ", ") + flag_of(r);
       throw BadInput(flag + ": not used by " + std::string(info->name) + " on the buildings scene (it reads " + flags_read + ")");
     }
   }
