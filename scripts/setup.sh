@@ -19,7 +19,7 @@ while [ $# -gt 0 ]; do
 done
 
 packages=(
-  g++ cmake make ninja-build pkg-config
+  g++ cmake make ninja-build pkg-config lld
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   libode-dev libbullet-dev libsiconos-kernel-dev libsundials-dev
