@@ -18,6 +18,7 @@
 #include "solvers/bullet/bullet_solver.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_SICONOS
+#include "solvers/siconos/buildings.hpp"
 #include "solvers/siconos/siconos_solver.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_SUNDIALS
@@ -103,8 +104,17 @@ const std::array kSolvers = {
 #ifdef POUNDBENCH_HAVE_SICONOS
     // Its LSODAR variant chooses its own steps, and round-off can move a step choice and Pi1
     // with it within its tolerances (1e-10 and below): as the reference.
-    SolverInfo{"siconos", "Siconos: its MoreauJeanOSI, event-driven LSODAR and other nonsmooth integrators (see --variant)",
-               &siconos::solve, &siconos::describe, &check_all<&siconos::check>, &siconos::variant_list, 1e-9, false, nullptr, false, kFixedStepOrder},
+    // On the buildings scene: MoreauJeanOSI with the buildings' M, C, K (solvers/siconos/buildings.hpp).
+    SolverInfo{.name = "siconos",
+               .summary = "Siconos: its MoreauJeanOSI, event-driven LSODAR and other nonsmooth integrators (see --variant)",
+               .solve = &siconos::solve,
+               .describe = &siconos::describe,
+               .check = &check_all<&siconos::check>,
+               .variants = &siconos::variant_list,
+               .baseline_tolerance = 1e-9,
+               .step_order = kFixedStepOrder,
+               .solve_buildings = &siconos::solve_buildings,
+               .buildings_settings = siconos::kBuildingsSettings},
 #endif
 #ifdef POUNDBENCH_HAVE_SUNDIALS
     // CVODE chooses its steps, and round-off can move a step choice and Pi1 with it within

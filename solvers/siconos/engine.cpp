@@ -1,6 +1,7 @@
 // Compiled as C++17 (engine.hpp says why); the only file that includes Siconos' headers.
 
 #include "solvers/siconos/engine.hpp"
+#include "solvers/siconos/buildings_engine.hpp"
 
 #include <D1MinusLinearOSI.hpp>
 
@@ -634,5 +635,121 @@ int NewmarkAlphaRun::changed_body(double& k, double& c) const {
   }
   return -1;
 }
+
+// ---- BuildingsStepper ----
+
+namespace {
+
+// The buildings' load plugin: F_ext = -M 1 a_g(t) of one building, its sampler's address in
+// z[0], z[1] and its floor masses after them.
+void floors_load(double t, unsigned int n, double* f, unsigned int, double* z) {
+  GroundSampler& sampler = *address_in<GroundSampler>(z, 0);
+  const double a = sampler(t);
+  for (unsigned int i = 0; i < n; ++i) f[i] = -z[2 + i] * a;
+}
+
+SP::SimpleMatrix square(int n, const std::vector<double>& rows) {
+  auto m = std::make_shared<SimpleMatrix>(static_cast<unsigned>(n), static_cast<unsigned>(n));
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      (*m)(static_cast<unsigned>(i), static_cast<unsigned>(j)) = rows[static_cast<std::size_t>(i * n + j)];
+  return m;
+}
+
+}  // namespace
+
+struct BuildingsStepper::Impl {
+  std::shared_ptr<GroundSampler> sampler;  // kept as long as the bodies that point to it
+  SP::NonSmoothDynamicalSystem nsds;
+  std::vector<SP::LagrangianLinearTIDS> bodies;
+  std::vector<SP::Interaction> contacts;
+  SP::LCP lcp;
+  SP::TimeStepping sim;
+  int info = 0;
+  ~Impl() { cut_cycles(sim); }
+};
+
+BuildingsStepper::BuildingsStepper(const BuildingsSpec& spec, double h, double theta, double gamma, bool enumeration) {
+  const Guard guard(siconos_lock());
+  try {
+    translated([&] {
+      impl_ = std::make_unique<Impl>();
+      Impl& s = *impl_;
+      s.sampler = spec.sampler;
+      s.nsds = std::make_shared<NonSmoothDynamicalSystem>(0.0, spec.t_end);
+      for (const BuildingSpec& b : spec.buildings) {
+        const auto n = static_cast<unsigned>(b.floors);
+        auto mass = std::make_shared<SimpleMatrix>(n, n);  // zeroed
+        auto z = std::make_shared<SiconosVector>(2 + n);
+        put_address(*z, 0, spec.sampler.get());
+        for (unsigned i = 0; i < n; ++i) {
+          (*mass)(i, i) = b.m[i];
+          (*z)(2 + i) = b.m[i];
+        }
+        auto body = std::make_shared<LagrangianLinearTIDS>(std::make_shared<SiconosVector>(n),
+                                                           std::make_shared<SiconosVector>(n), mass,
+                                                           square(b.floors, b.k), square(b.floors, b.c));
+        body->setzPtr(z);
+        body->setComputeFExtFunction(&floors_load);
+        s.nsds->insertDynamicalSystem(body);
+        s.bodies.push_back(body);
+      }
+      for (const FloorPairSpec& c : spec.contacts) {
+        // y = C (q_left, q_right) + delta: -1 at the left building's floor, +1 at the right's.
+        const int nl = spec.buildings[static_cast<std::size_t>(c.left)].floors;
+        const int nr = spec.buildings[static_cast<std::size_t>(c.right)].floors;
+        auto matrix = std::make_shared<SimpleMatrix>(1, static_cast<unsigned>(nl + nr));  // zeroed
+        (*matrix)(0, static_cast<unsigned>(c.left_floor)) = -1.0;
+        (*matrix)(0, static_cast<unsigned>(nl + c.right_floor)) = 1.0;
+        auto relation = std::make_shared<LagrangianLinearTIR>(matrix, scalar_vector(spec.delta));
+        auto contact = std::make_shared<Interaction>(std::make_shared<NewtonImpactNSL>(spec.eps), relation);
+        s.nsds->link(contact, s.bodies[static_cast<std::size_t>(c.left)], s.bodies[static_cast<std::size_t>(c.right)]);
+        s.contacts.push_back(contact);
+      }
+      s.lcp = make_lcp(enumeration ? SICONOS_LCP_ENUM : SICONOS_LCP_LEMKE);
+      s.sim = std::make_shared<TimeStepping>(s.nsds, std::make_shared<TimeDiscretisation>(0.0, h),
+                                             std::make_shared<MoreauJeanOSI>(theta, gamma), s.lcp);
+      s.sim->setCheckSolverFunction(&keep_lcp_info);
+      s.sim->initialize();
+    });
+  } catch (...) {
+    impl_.reset();  // under the lock, as every Siconos object is unmade
+    throw;
+  }
+}
+
+BuildingsStepper::~BuildingsStepper() {
+  const Guard guard(siconos_lock());
+  impl_.reset();
+}
+
+bool BuildingsStepper::step() {
+  Impl& s = *impl_;
+  if (!s.sim->hasNextEvent()) return false;
+  t_lcp_info = 0;
+  translated([&] {
+    s.sim->computeOneStep();
+    s.sim->nextStep();
+  });
+  s.info = t_lcp_info;
+  return true;
+}
+
+void BuildingsStepper::state(double* u, double* v) const {
+  std::size_t at = 0;
+  for (const auto& body : impl_->bodies) {
+    const SiconosVector &q = *body->q(), &w = *body->velocity();
+    for (unsigned i = 0; i < q.size(); ++i, ++at) {
+      u[at] = q.getValue(i);
+      v[at] = w.getValue(i);
+    }
+  }
+}
+
+bool BuildingsStepper::active(int j) const {
+  return impl_->nsds->topology()->indexSet(1)->is_vertex(impl_->contacts[static_cast<std::size_t>(j)]);
+}
+
+int BuildingsStepper::lcp_info() const { return impl_->info; }
 
 }  // namespace pb::siconos::engine
