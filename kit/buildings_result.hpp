@@ -50,6 +50,17 @@ struct BuildingsResult {
   double step = std::numeric_limits<double>::quiet_NaN();  // a time-stepper's fixed h (s)
 };
 
+// A run that failed before it had an answer, and why (h: the step it would have taken).
+BuildingsResult failed(std::string why, double h = std::numeric_limits<double>::quiet_NaN());
+
+// A time-stepper's steps on the scene, as the single oscillators' (kit/fixed_step.hpp,
+// plan_steps): h = t_min / N (BuildingModel::t_min; N = settings.steps, else default_steps),
+// or w_max h = settings.wh, or a record's step rule (settings.steps_per_sample); n the steps to
+// t_end. Sets r's step and t_end; false, with r's status and message, where the run cannot
+// start: a step not usable for t_end, longer than the pulse period (step_problem's bound), the
+// rule without a record, or more steps than the cap (settings.step_cap, else kDefaultStepCap).
+bool plan_steps(const BuildingModel& model, const Settings& settings, int default_steps, BuildingsResult& r, long& n);
+
 // The peaks of a motion sampled at step ends, for a time-stepper: sample() after every step
 // (no allocation), impact() where the solver's contact law says a contact closed, and into()
 // at the end. Floors are the model's global indices.
@@ -66,6 +77,7 @@ class FloorPeaks {
  private:
   const BuildingModel& model_;
   std::vector<double> floor_, floor_t_, drift_, drift_t_;  // per global floor
+  std::vector<char> ground_below_;                         // per global floor: a building's floor 1
   std::vector<ContactResult> contacts_;
   double min_gap_ = std::numeric_limits<double>::infinity();
 };

@@ -6,9 +6,18 @@
 #include <cstdint>
 #include <limits>
 
+#include "kit/hermite_search.hpp"
+
 namespace pb::buildings {
 
 namespace {
+
+using hermite::Bracket;
+using hermite::Cubic;
+using hermite::edge_range;
+using hermite::next_down;
+using hermite::next_up;
+using hermite::polish;
 
 constexpr double kNoRoot = std::numeric_limits<double>::quiet_NaN();
 
@@ -51,124 +60,9 @@ class Bounds {
   double value_[kMaxOrder + 1] = {};
 };
 
-// The cubic Hermite interpolant on s in [0, 1].
-struct Cubic {
-  double c0, c1, c2, c3;
-  Cubic(const Point& a, const Point& b) {
-    const double h = b.t - a.t;
-    c0 = a.f;
-    c1 = h * a.df;
-    c2 = 3.0 * (b.f - a.f) - h * (2.0 * a.df + b.df);
-    c3 = 2.0 * (a.f - b.f) + h * (a.df + b.df);
-  }
-  double operator()(double s) const { return c0 + s * (c1 + s * (c2 + s * c3)); }
-  void range(double& lo, double& hi) const { range(0.0, 1.0, lo, hi); }
-  // Min and max over [s0, s1]: the ends and the stationary points inside.
-  void range(double s0, double s1, double& lo, double& hi) const {
-    const double v0 = (*this)(s0), v1 = (*this)(s1);
-    lo = std::min(v0, v1);
-    hi = std::max(v0, v1);
-    auto visit = [&](double s) {
-      if (s > s0 && s < s1) {
-        const double v = (*this)(s);
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-      }
-    };
-    const double qa = 3.0 * c3, qb = 2.0 * c2, qc = c1;
-    if (std::abs(qa) < 1e-300) {
-      if (qb != 0.0) visit(-qc / qb);
-      return;
-    }
-    const double disc = qb * qb - 4.0 * qa * qc;
-    if (disc < 0.0) return;
-    const double r = std::sqrt(disc);
-    const double q = -0.5 * (qb + std::copysign(r, qb));
-    if (q != 0.0) {
-      visit(q / qa);
-      visit(qc / q);
-    } else {
-      visit(0.0);
-    }
-  }
-};
-
-// The Hermite error is at most 16 mid s^2 (1 - s)^2 (mid its bound at the window's middle):
-// 16 mid s^2 on the left half, 16 mid (1 - s)^2 on the right, each making H -+ it a cubic.
-void edge_range(const Cubic& h, double mid, double& lo, double& hi) {
-  const double e = 16.0 * mid;
-  double l, u, unused;
-  Cubic c = h;
-  c.c2 = h.c2 + e;
-  c.range(0.0, 0.5, unused, u);
-  hi = u;
-  c.c2 = h.c2 - e;
-  c.range(0.0, 0.5, l, unused);
-  lo = l;
-  c.c0 = h.c0 + e;
-  c.c1 = h.c1 - 2.0 * e;
-  c.c2 = h.c2 + e;
-  c.range(0.5, 1.0, unused, u);
-  hi = std::max(hi, u);
-  c.c0 = h.c0 - e;
-  c.c1 = h.c1 + 2.0 * e;
-  c.c2 = h.c2 - e;
-  c.range(0.5, 1.0, l, unused);
-  lo = std::min(lo, l);
-}
-
 double hermite_error(Bounds& bound, double a, double h) {
   const double h2 = h * h;
   return bound(a, 4) * h2 * h2 / 384.0;
-}
-
-double next_up(double x) {
-  if (x == 0.0) return std::numeric_limits<double>::denorm_min();
-  const auto bits = std::bit_cast<std::uint64_t>(x);
-  return std::bit_cast<double>(x > 0.0 ? bits + 1 : bits - 1);
-}
-double next_down(double x) { return -next_up(-x); }
-
-template <class P>
-struct Bracket {
-  P lo, hi;
-};
-
-// The zero of g on lo < hi with g(lo) > 0 >= g(hi), g monotone there: safeguarded Newton
-// (rtsafe) from the latest point, a one-ulp probe at Newton's fixed point, down to adjacent
-// doubles (event_driven/search.cpp, polish, says why each step is there).
-template <class P, class Eval>
-Bracket<P> polish(Eval&& eval, P lo, P hi) {
-  P p = (std::abs(lo.f) < std::abs(hi.f) || !std::isfinite(hi.df)) ? lo : hi;
-  double step = hi.t - lo.t, step_old = step;
-  int probes = 0;
-  for (int it = 0; it < 300 && next_up(lo.t) < hi.t; ++it) {
-    double next = p.t - p.f / p.df;
-    const double ulp = next_up(std::abs(p.t)) - std::abs(p.t);
-    double taken;
-    const bool fixed = std::abs(next - p.t) <= ulp;
-    if (fixed && probes < 2) {
-      next = p.t == lo.t ? next_up(lo.t) : next_down(hi.t);
-      taken = ulp;
-      ++probes;
-    } else if (fixed || !(next > lo.t && next < hi.t) || std::abs(2.0 * (next - p.t)) > std::abs(step_old)) {
-      probes = 0;
-      taken = 0.5 * (hi.t - lo.t);
-      next = lo.t + taken;
-      if (!(next > lo.t && next < hi.t)) next = next_up(lo.t);
-    } else {
-      taken = next - p.t;
-      probes = 0;
-    }
-    step_old = step;
-    step = taken;
-    p = eval(next);
-    if (p.f > 0.0)
-      lo = p;
-    else
-      hi = p;
-  }
-  return {lo, hi};
 }
 
 double refine_root(const Track& g, const Point& lo, const Point& hi) {

@@ -297,16 +297,6 @@ class Engine {
   BandCholesky jac_;
 };
 
-// The step of a run (h = t_min / N, or w_max h = wh) and why it cannot be taken ("" when it can):
-// as the single oscillators' time-steppers (kit/fixed_step.hpp, plan_steps).
-std::string step_problem_of(const BuildingModel& md, double h) {
-  if (!(h > 0.0) || !std::isfinite(h) || !(md.t_end / h < 1e18))
-    return "step: h = " + std::to_string(h) + " is not a usable step for t_end = " + std::to_string(md.t_end);
-  System pulse_only;  // step_problem reads the pulse's period alone
-  pulse_only.pulse = md.scene.pulse;
-  return step_problem(pulse_only, h);
-}
-
 // The steps to t_end, each sampled for the peaks; the status where one ended the run.
 void step_through(const BuildingModel& md, const Settings& set, Engine& engine, const Floors& fl, long n, double h,
                buildings::FloorPeaks& peaks, buildings::BuildingsResult& res) {
@@ -348,21 +338,9 @@ namespace pb::compliant {
 buildings::BuildingsResult run_buildings_newmark(const BuildingModel& md, const Settings& set, Model element,
                                                  double K) {
   buildings::BuildingsResult res;
-  res.t_end = md.t_end;
-  const double h = set.wh > 0.0 ? set.wh * md.t_min / (2.0 * std::numbers::pi)
-                                : md.t_min / (set.steps > 0 ? set.steps : kDefaultSteps);
-  res.step = h;
-  if (std::string bad = building_newmark::step_problem_of(md, h); !bad.empty()) {
-    res.status = Status::failed;
-    res.message = std::move(bad);
-    return res;
-  }
-  const long n = step_count(md.t_end, h), cap = set.step_cap > 0 ? set.step_cap : kDefaultStepCap;
-  if (n > cap) {
-    res.status = Status::step_cap;
-    res.message = "the run needs " + std::to_string(n) + " steps, more than the cap " + std::to_string(cap);
-    return res;
-  }
+  long n = 0;
+  if (!buildings::plan_steps(md, set, kDefaultSteps, res, n)) return res;
+  const double h = res.step;
   Floors floors(md, element, K);
   buildings::FloorPeaks peaks(md);
   building_newmark::Engine engine(md, floors, peaks, h);

@@ -275,29 +275,6 @@ bool step(const Scheme& sc, State& st, Work& w, FloorPeaks& peaks, double abar) 
   return true;
 }
 
-// The run's step h from the settings, or why there is none ("" in `why` when there is).
-double plan_step(const BuildingModel& md, const Settings& set, std::string& why) {
-  const double two_pi = 2.0 * std::numbers::pi;
-  double h = set.wh > 0.0 ? set.wh * md.t_min / two_pi : md.t_min / (set.steps > 0 ? set.steps : kDefaultSteps);
-  const auto& record = md.scene.pulse.record;
-  if (set.steps_per_sample > 0) {
-    if (!record) {
-      why = "steps_per_sample: the step rule `record` needs a record's samples, and this case's load is a pulse "
-            "(its step is T_min / N: leave it out)";
-      return h;
-    }
-    h = record_step(*record, h, set.steps_per_sample);
-  }
-  const double t_p = two_pi / md.w_p;
-  if (!(h > 0.0) || !std::isfinite(h) || !(md.t_end / h < 1e18))
-    why = "step: h = " + format_number(h) + " is not a usable step for t_end = " + format_number(md.t_end);
-  else if (h > t_p * (1.0 + 1e-12))  // kit's bound (step_problem), on the scene's pulse period
-    why = std::string(kStepBoundMessage) + format_number(h) + " is longer than the pulse period T_p = " +
-          format_number(t_p) + " (w_p h = " + format_number(h * md.w_p) +
-          " > 2 pi): a run takes at least one step per pulse; give a smaller --wh, or --steps";
-  return h;
-}
-
 // Runs the steps to n in chunks, looking at the deadline between them; the status and
 // message of a run that stopped early go into r.
 void run(const Scheme& sc, long n, const Settings& set, BuildingsResult& r, FloorPeaks& peaks) {
@@ -328,41 +305,23 @@ void run(const Scheme& sc, long n, const Settings& set, BuildingsResult& r, Floo
   }
 }
 
-BuildingsResult refused(std::string message, double h = std::numeric_limits<double>::quiet_NaN()) {
-  BuildingsResult r;
-  r.status = Status::failed;
-  r.message = std::move(message);
-  r.step = h;
-  return r;
-}
-
 }  // namespace
 
 }  // namespace floors
 
 buildings::BuildingsResult solve_buildings(const BuildingModel& model, const Settings& settings) {
-  if (std::string why = validate(model.scene); !why.empty()) return floors::refused(why);
-  if (std::string why = check(settings); !why.empty()) return floors::refused(why);
-  std::string why;
-  const double h = floors::plan_step(model, settings, why);
-  if (!why.empty()) return floors::refused(why, h);
+  if (std::string why = validate(model.scene); !why.empty()) return buildings::failed(why);
+  if (std::string why = check(settings); !why.empty()) return buildings::failed(why);
   buildings::BuildingsResult r;
-  r.step = h;
-  r.t_end = model.t_end;
+  long n = 0;
+  if (!buildings::plan_steps(model, settings, kDefaultSteps, r, n)) return r;
   buildings::FloorPeaks peaks(model);
-  const long n = step_count(model.t_end, h);
-  const long cap = settings.step_cap > 0 ? settings.step_cap : kDefaultStepCap;
-  if (n > cap) {
-    r.status = Status::step_cap;
-    r.message = "the run needs " + std::to_string(n) + " steps, more than the cap " + std::to_string(cap);
-  } else {
-    try {
-      const floors::Scheme scheme(model, h, settings);
-      floors::run(scheme, n, settings, r, peaks);
-    } catch (const std::exception& e) {
-      r.status = Status::failed;
-      r.message = e.what();
-    }
+  try {
+    const floors::Scheme scheme(model, r.step, settings);
+    floors::run(scheme, n, settings, r, peaks);
+  } catch (const std::exception& e) {
+    r.status = Status::failed;
+    r.message = e.what();
   }
   peaks.into(r);
   return r;

@@ -35,6 +35,7 @@ namespace buildings_mj_tests {
 
 using buildings::BuildingsResult;
 using test::issue_scene;
+using test::issue_scene_under_a_record;
 
 BuildingsResult run_mj(const BuildingModel& md, int steps) {
   Settings set;
@@ -156,24 +157,7 @@ TEST(BuildingsMoreauJean, ConvergesToTheReferenceOnThreeModallyDampedBuildings) 
 // oscillators take it; the step rule `record` (steps_per_sample) puts its samples on step ends.
 // Measured: floor peaks 4.4e-3 at N = 64, 3.0e-5 at 4096; 2.0e-4 with 8 steps a sample.
 TEST(BuildingsMoreauJean, ConvergesToTheReferenceUnderARecord) {
-  Case c;
-  c.pulse = PulseShape::record;
-  c.a_p = 3.0;
-  c.w_p = 12.566;
-  auto rec = std::make_shared<Record>();
-  rec->source = "synthetic";
-  const double dt = 0.02;
-  for (int i = 0; i <= 60; ++i) {
-    rec->t.push_back(dt * i);
-    rec->a.push_back(i == 0 ? 0.0 : 3.0 * std::sin(0.5 * i) * std::exp(-0.03 * i));
-    rec->peak = std::max(rec->peak, std::abs(rec->a.back()));
-  }
-  c.samples = rec;
-  BuildingScene s = issue_scene();
-  s.pulse = make_pulse(c);
-  s.a_p = c.a_p;
-  s.w_p = c.w_p;
-  s.delta = 0.01;
+  const BuildingScene s = issue_scene_under_a_record();
   const BuildingModel md = assemble(s);
   const BuildingsResult ref = reference(md);
   const PeakErrors coarse = peak_errors(run_mj(md, 64), ref), fine = peak_errors(run_mj(md, 4096), ref);
@@ -184,7 +168,7 @@ TEST(BuildingsMoreauJean, ConvergesToTheReferenceUnderARecord) {
   per_sample.steps_per_sample = 8;
   const BuildingsResult r = moreau_jean::solve_buildings(md, per_sample);
   ASSERT_EQ(r.status, Status::ok) << r.message;
-  EXPECT_DOUBLE_EQ(r.step, record_step(*rec, md.t_min / 1024, 8));
+  EXPECT_DOUBLE_EQ(r.step, record_step(*s.pulse.record, md.t_min / 1024, 8));
   EXPECT_LT(peak_errors(r, ref).floor, 1e-3);
 }
 

@@ -25,14 +25,6 @@ namespace {
 
 using buildings::BuildingsResult;
 
-BuildingsResult refused(std::string message, double h = std::numeric_limits<double>::quiet_NaN()) {
-  BuildingsResult r;
-  r.status = Status::failed;
-  r.message = std::move(message);
-  r.step = h;
-  return r;
-}
-
 // a_g in the pulse's units, sampled at step ends as moreau-jean's end-samples samples it
 // (LoadCursor::sample: Pulse::sample for the paper's pulses, a record's or a model's own).
 class SceneLoad : public engine::GroundSampler {
@@ -72,30 +64,6 @@ engine::BuildingsSpec spec_of(const BuildingModel& md, double h, double t_end) {
   spec.sampler = std::make_shared<SceneLoad>(md, h);
   spec.t_end = t_end / time;
   return spec;
-}
-
-// The run's step h, as moreau-jean's on the scene (solvers/moreau_jean/buildings.cpp), or why
-// there is none ("" in `why` when there is).
-double plan_step(const BuildingModel& md, const Settings& set, std::string& why) {
-  const double two_pi = 2.0 * std::numbers::pi;
-  double h = set.wh > 0.0 ? set.wh * md.t_min / two_pi : md.t_min / (set.steps > 0 ? set.steps : kDefaultSteps);
-  const auto& record = md.scene.pulse.record;
-  if (set.steps_per_sample > 0) {
-    if (!record) {
-      why = "steps_per_sample: the step rule `record` needs a record's samples, and this case's load is a pulse "
-            "(its step is T_min / N: leave it out)";
-      return h;
-    }
-    h = record_step(*record, h, set.steps_per_sample);
-  }
-  const double t_p = two_pi / md.w_p;
-  if (!(h > 0.0) || !std::isfinite(h) || !(md.t_end / h < 1e18))
-    why = "step: h = " + format_number(h) + " is not a usable step for t_end = " + format_number(md.t_end);
-  else if (h > t_p * (1.0 + 1e-12))
-    why = std::string(kStepBoundMessage) + format_number(h) + " is longer than the pulse period T_p = " +
-          format_number(t_p) + " (w_p h = " + format_number(h * md.w_p) +
-          " > 2 pi): a run takes at least one step per pulse; give a smaller --wh, or --steps";
-  return h;
 }
 
 // The n steps of h through Siconos, read at every step end into peaks; the status and message
@@ -174,36 +142,26 @@ void run(const BuildingModel& md, double h, long n, bool enumeration, const Sett
 }  // namespace floors
 
 buildings::BuildingsResult solve_buildings(const BuildingModel& model, const Settings& settings) {
-  if (std::string why = validate(model.scene); !why.empty()) return floors::refused(why);
-  if (std::string why = check(settings); !why.empty()) return floors::refused(why);
+  if (std::string why = validate(model.scene); !why.empty()) return buildings::failed(why);
+  if (std::string why = check(settings); !why.empty()) return buildings::failed(why);
   const std::string variant = settings.variant.empty() ? std::string(kDefaultVariant) : settings.variant;
   const bool enumeration = variant == "moreau-jean-enum";
   if (variant != "moreau-jean-lemke" && !enumeration)
-    return floors::refused("siconos on the buildings scene: variant " + variant +
+    return buildings::failed("siconos on the buildings scene: variant " + variant +
                            " is not run (it takes moreau-jean-lemke and moreau-jean-enum, TimeStepping with MoreauJeanOSI)");
   if (enumeration && model.contacts.size() > static_cast<std::size_t>(kMaxEnumerationContacts))
-    return floors::refused("siconos on the buildings scene: moreau-jean-enum tries up to 2^n active sets, n = " +
+    return buildings::failed("siconos on the buildings scene: moreau-jean-enum tries up to 2^n active sets, n = " +
                            std::to_string(model.contacts.size()) + " contacts here; it takes up to " +
                            std::to_string(kMaxEnumerationContacts) + " (moreau-jean-lemke takes any)");
-  std::string why;
-  const double h = floors::plan_step(model, settings, why);
-  if (!why.empty()) return floors::refused(why, h);
   buildings::BuildingsResult r;
-  r.step = h;
-  r.t_end = model.t_end;
+  long n = 0;
+  if (!buildings::plan_steps(model, settings, kDefaultSteps, r, n)) return r;
   buildings::FloorPeaks peaks(model);
-  const long n = step_count(model.t_end, h);
-  const long cap = settings.step_cap > 0 ? settings.step_cap : kDefaultStepCap;
-  if (n > cap) {
-    r.status = Status::step_cap;
-    r.message = "the run needs " + std::to_string(n) + " steps, more than the cap " + std::to_string(cap);
-  } else {
-    try {
-      floors::run(model, h, n, enumeration, settings, r, peaks);
-    } catch (const std::exception& e) {
-      r.status = Status::failed;
-      r.message = std::string("Siconos: ") + e.what();
-    }
+  try {
+    floors::run(model, r.step, n, enumeration, settings, r, peaks);
+  } catch (const std::exception& e) {
+    r.status = Status::failed;
+    r.message = std::string("Siconos: ") + e.what();
   }
   peaks.into(r);
   return r;

@@ -30,6 +30,7 @@ namespace buildings_siconos_tests {
 
 using buildings::BuildingsResult;
 using test::issue_scene;
+using test::issue_scene_under_a_record;
 
 Settings settings_of(std::string variant, int steps, double theta) {
   Settings set;
@@ -135,23 +136,7 @@ TEST(BuildingsSiconos, MoreauJeanOsiEqualsTheInHouseEndSamplesWhereSeveralFloors
 // LoadCursor: at T_min / 64, and with the step rule `record` (8 steps a sample, the samples on
 // step ends). Measured: the largest relative difference of any peak 5.2e-15.
 TEST(BuildingsSiconos, MoreauJeanOsiEqualsTheInHouseEndSamplesUnderARecord) {
-  Case c;
-  c.pulse = PulseShape::record;
-  c.a_p = 3.0;
-  c.w_p = 12.566;
-  auto rec = std::make_shared<Record>();
-  rec->source = "synthetic";
-  for (int i = 0; i <= 60; ++i) {
-    rec->t.push_back(0.02 * i);
-    rec->a.push_back(i == 0 ? 0.0 : 3.0 * std::sin(0.5 * i) * std::exp(-0.03 * i));
-    rec->peak = std::max(rec->peak, std::abs(rec->a.back()));
-  }
-  c.samples = rec;
-  BuildingScene s = issue_scene();
-  s.pulse = make_pulse(c);
-  s.a_p = c.a_p;
-  s.w_p = c.w_p;
-  s.delta = 0.01;
+  const BuildingScene s = issue_scene_under_a_record();
   const BuildingModel md = assemble(s);
   Settings per_sample = settings_of("moreau-jean-lemke", 1024, 0.5);
   per_sample.steps_per_sample = 8;
