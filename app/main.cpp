@@ -21,6 +21,7 @@
 #include "app/run_command.hpp"
 #include "app/solvers_command.hpp"
 #include "app/spectrum_command.hpp"
+#include "app/separation_command.hpp"
 #include "app/stress_command.hpp"
 #include "app/version.hpp"
 #include "app/workprecision_command.hpp"
@@ -159,6 +160,7 @@ int main(int argc, char** argv) {
   Command spectrum(app, &pb::app::add_spectrum_command);
   Command workprecision(app, &pb::app::add_workprecision_command);
   Command stress(app, &pb::app::add_stress_command);
+  Command separation(app, &pb::app::add_separation_command);
   Command baseline(app, &pb::app::add_baseline_command);
   Command compare(app, &pb::app::add_compare_command);
   Command solvers(app, &pb::app::add_solvers_command);
@@ -194,6 +196,7 @@ int main(int argc, char** argv) {
     if (!leader) return 0;
     if (*run.app) return pb::app::run_command(*run.app, run.flags);
     if (*baseline.app) return pb::app::baseline_command(*baseline.app, baseline.flags);
+    if (*separation.app) return pb::app::separation_command(separation.flags);
     if (*compare.app) return pb::app::compare_command(*compare.app, compare.flags);
     if (*solvers.app) return pb::app::solvers_command(solvers.flags);
     if (*adapter.app) return pb::app::adapter_command(*adapter.app, adapter.flags);

@@ -12,6 +12,7 @@
 
 #include "output/output_files.hpp"
 #include "cases/fields.hpp"
+#include "cases/physical.hpp"
 #include "cases/record.hpp"
 #include "cases/text.hpp"
 #include "frontend/buildings_run.hpp"
@@ -50,6 +51,9 @@ std::string brief(double x) {
   return text;
 }
 
+// The case's gap delta in metres: Pi3 times the unit of length.
+double gap_m(const Row& row) { return row.input.pi3 * length_unit(row.input); }
+
 // The results in the case's units (rows/result_fields.hpp, Place::physical): metres and
 // seconds when the case was given in them, the pulse's a_p and w_p in SI otherwise.
 void print_physical(std::ostream& out, const Row& row) {
@@ -66,6 +70,14 @@ void print_physical(std::ostream& out, const Row& row) {
   if (std::isfinite(number("contact_force_max")))
     out << "contact  largest force " << value("contact_force_max") << " N, deepest penetration "
         << value("penetration_m") << " m\n";
+  // The gap that avoids pounding, from the no-contact motion (cases/separation.hpp).
+  if (std::isfinite(row.separation)) {
+    out << "separat. " << value("separation_m") << " m avoids pounding (" << value("separation_reversed_m")
+        << " m with the load reversed; the gap given: " << brief(gap_m(row)) << " m)\n";
+    out << "rules    ABS " << value("separation_abs_m") << " m, SRSS " << value("separation_srss_m") << " m (EC8 0.7 SRSS "
+        << brief(0.7 * number("separation_srss_m")) << " m where floors coincide), DDC " << value("separation_ddc_m")
+        << " m\n";
+  }
 }
 
 // The error estimate's line (Result::error_estimate), where the run has one.

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <string>
 #include <tuple>
+#include <utility>
 
 #include "cases/record.hpp"
 #include "cases/text.hpp"
@@ -100,6 +101,30 @@ std::string text(double x) {
 //   mp_gamma in (1, 100]: Mavroeidis and Papageorgiou require gamma > 1 (their fits lie in
 //     1.5..3); the pulse lasts gamma T_p.
 //   mp_nu within +-360 degrees: a phase.
+// A record's scaling (cases/record_scale.hpp): a factor in [1e-6, 1e6] (a record's peak must stay
+// within 1e6 of a_p, above), or one target, pga or sa with sa_period, each finite and > 0.
+std::optional<std::string> check_scaling(const Case& c) {
+  const bool rec = c.pulse == PulseShape::record;
+  const auto given = [](double x) { return !std::isnan(x); };
+  if (!rec) {
+    if (c.record_scale != 1.0) return std::string("record_scale: only a record is scaled");
+    for (const auto& [name, x] : {std::pair{"pga", c.pga}, {"sa", c.sa}, {"sa_period", c.sa_period}})
+      if (given(x)) return std::string(name) + ": only a record is scaled";
+    return std::nullopt;
+  }
+  if (!within(c.record_scale, 1e-6, 1e6)) return std::string("record_scale: must be finite and in [1e-6, 1e6]");
+  if (given(c.pga) && !(std::isfinite(c.pga) && c.pga > 0.0)) return std::string("pga: must be finite and > 0 (m/s^2)");
+  if (given(c.sa) && !(std::isfinite(c.sa) && c.sa > 0.0)) return std::string("sa: must be finite and > 0 (m/s^2)");
+  if (given(c.sa_period) && !(std::isfinite(c.sa_period) && c.sa_period > 0.0))
+    return std::string("sa_period: must be finite and > 0 (s)");
+  if (given(c.sa) != given(c.sa_period)) return std::string(given(c.sa) ? "sa_period: required by sa" : "sa: sa_period is its period; give sa too");
+  if (given(c.pga) && given(c.sa)) return std::string("sa: not with pga (scale the record to one target)");
+  if (c.samples && c.samples->scale != c.record_scale)
+    return "record_scale: " + text(c.record_scale) + " but the samples carry " + text(c.samples->scale) +
+           " (scale_record was not applied)";
+  return std::nullopt;
+}
+
 std::optional<std::string> check_load(const Case& c) {
   const bool mc = c.pulse == PulseShape::makris_c, mp = c.pulse == PulseShape::mp;
   const bool rec = c.pulse == PulseShape::record;
@@ -120,6 +145,7 @@ std::optional<std::string> check_load(const Case& c) {
     return "a_p: the record's peak (" + text(c.samples->peak) + ") must be within a factor 1e6 of a_p (a record "
            "1e-320 of a_p hung the reference: its response is below any tolerance)";
   if (!rec && !c.record.empty()) return "record: only the record pulse reads a record";
+  if (auto bad = check_scaling(c)) return bad;
   return std::nullopt;
 }
 

@@ -95,6 +95,14 @@ struct Case {
   double mp_nu = 0.0;
   std::string record{};
   std::shared_ptr<const Record> samples{};
+  // A record scaled (cases/record_scale.hpp): record_scale is the factor on its accelerations,
+  // given or found from the target peak ground acceleration pga (m/s^2) or the target
+  // pseudo-spectral acceleration sa (m/s^2) at period sa_period (s, damping xi); samples hold
+  // the scaled accelerations. NaN: no such target.
+  double record_scale = 1.0;
+  double pga = std::numeric_limits<double>::quiet_NaN();
+  double sa = std::numeric_limits<double>::quiet_NaN();
+  double sa_period = std::numeric_limits<double>::quiet_NaN();
   // Yielding (cases/README.md, "Yielding"): a body's restoring force is bilinear with
   // kinematic hardening, elastic up to its yield displacement u_y = Pi_y a_p / w_p^2, then
   // of stiffness alpha k. pi_y0, pi_y1, pi_y2 are those of bodies 0, 1, 2 (wall, pair,

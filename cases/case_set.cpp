@@ -22,6 +22,7 @@
 #include "cases/nearest_name.hpp"
 #include "cases/physical.hpp"
 #include "cases/record.hpp"
+#include "cases/record_scale.hpp"
 #include "cases/text.hpp"
 #include "cases/toml_input.hpp"
 
@@ -822,6 +823,12 @@ class Reader {
         if (eff[index(key_of(key))].builtin)
           fail(line, prefix + "." + std::string(key),
                "required by a family in physical units (the pulse's a_p in m/s^2, and w_p or tp in s)");
+    // A record's a_p in physical units would be only its Pi terms' unit, and a user who gave
+    // it believing it scaled the record got the record as recorded: the scalings are named.
+    const bool recorded = std::any_of(pulses.begin(), pulses.end(),
+                                      [](int p) { return static_cast<PulseShape>(p) == PulseShape::record; });
+    if (const Entry& a_p = eff[index(key_of("a_p"))]; physical && recorded && a_p.given && !a_p.builtin)
+      fail(a_p.line, a_p.field, record_a_p_reason(false));
   }
 
   // The cartesian product, in Key order (scene outermost, pi2 innermost). Keys a scene
@@ -880,8 +887,9 @@ class Reader {
     if (e.symmetric && uses_body2(e.scene))
       for (Key k = kFirstNumber; k < kSymmetric; ++k)
         if (is_body2(k)) c.*(number_field(k)->number) = c.*(number_field(body1_twin(k))->number);
-    // A record's a_p defaults to its peak (cases/README.md, "Records"),
-    // and its w_p to its mean frequency 2 pi / T_m.
+    // A record scaled (cases/record_scale.hpp) before its defaults: its a_p defaults to its
+    // (scaled) peak (cases/README.md, "Records"), and its w_p to its mean frequency 2 pi / T_m.
+    if (auto bad = scale_record(c)) report_invalid(*bad, eff, e.axes, at, e.symmetric);
     if (c.pulse == PulseShape::record && c.samples && eff[index(key_of("a_p"))].builtin) c.a_p = c.samples->peak;
     if (c.pulse == PulseShape::record && c.samples && eff[index(key_of("w_p"))].builtin) {
       if (!std::isfinite(c.samples->t_m)) report_record(eff, e.axes, at, no_mean_period_reason());

@@ -1,7 +1,10 @@
 #include "cases/fields.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numbers>
+
+#include "cases/record.hpp"
 
 namespace pb {
 
@@ -28,10 +31,14 @@ bool used_by(const CaseField& field, Scene scene, PulseShape pulse) {
 
 bool written(const CaseField& field, const Case& c) {
   if (!used_by(field, c)) return false;
-  return !field.yielding || field.get(c) != field.get(Case{});
+  if (!field.yielding && !field.late) return true;
+  const double x = field.get(c), d = field.get(Case{});
+  return x != d && !(std::isnan(x) && std::isnan(d));  // NaN: a target not given
 }
 
 double period_to_frequency(double tp) { return 2.0 * std::numbers::pi / tp; }
+
+double g_to_si(double a_g) { return a_g * kStandardGravity; }
 
 // Written in place: called some 65 times a poundbench.run call (every case and setting field
 // asked whether its flag was given), "--" + name and a replace cost 230 instructions each there.

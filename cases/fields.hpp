@@ -49,6 +49,9 @@ struct CaseField {
   // an empty column, no JSON key and no part of a row's key, so that an elastic case's row
   // is the row it always was.
   bool yielding = false;
+  // A field added after every other (a record's scaling): its column comes last, and at its
+  // default it is absent as a yielding field is.
+  bool late = false;
 
   // A number's value; NaN for text (which case_key and the rows take as text).
   double get(const Case& c) const {
@@ -56,7 +59,7 @@ struct CaseField {
   }
 };
 
-inline constexpr std::array<CaseField, 22> kCaseFields = {{
+inline constexpr std::array<CaseField, 26> kCaseFields = {{
     {"pi2", &Case::pi2, nullptr, FieldUse::every, true, "Pi2 = w0 / w_p"},
     {"pi3", &Case::pi3, nullptr, FieldUse::every, true, "Pi3 = delta w_p^2 / a_p (gap)"},
     {"eps", &Case::eps, nullptr, FieldUse::every, true, "Coefficient of restitution, in [0, 1]"},
@@ -90,6 +93,15 @@ inline constexpr std::array<CaseField, 22> kCaseFields = {{
     {"alpha", &Case::alpha, nullptr, FieldUse::every, false,
      "Post-yield stiffness over the elastic one, in [0, 1), of every yielding body (0: elastic-perfectly plastic)",
      nullptr, true},
+    {"record_scale", &Case::record_scale, nullptr, FieldUse::record, false,
+     "record: a factor on its accelerations (1: as recorded); or give pga, pga_g or sa", nullptr, false, true},
+    {"pga", &Case::pga, nullptr, FieldUse::record, false,
+     "record: scale it to this peak ground acceleration (m/s^2)", nullptr, false, true},
+    {"sa", &Case::sa, nullptr, FieldUse::record, false,
+     "record: scale it to this pseudo-spectral acceleration w^2 max|u| (m/s^2) at sa_period, damping xi", nullptr,
+     false, true},
+    {"sa_period", &Case::sa_period, nullptr, FieldUse::record, false, "record: the period of sa (s)", nullptr, false,
+     true},
 }};
 
 // A field's value from one case into another (a number, a whole number or text).
@@ -121,8 +133,10 @@ struct CaseAlias {
   std::string_view help;
 };
 double period_to_frequency(double tp);
-inline constexpr std::array<CaseAlias, 1> kCaseAliases = {{
+double g_to_si(double a_g);  // an acceleration in g as m/s^2 (kStandardGravity)
+inline constexpr std::array<CaseAlias, 2> kCaseAliases = {{
     {"tp", "w_p", &period_to_frequency, "Pulse period T_p: sets w_p = 2 pi / tp (a record's identified pulse)"},
+    {"pga_g", "pga", &g_to_si, "record: pga in g (9.80665 m/s^2)"},
 }};
 
 // The command-line flag of a field (of a Case, or of solver Settings): "--n-free" for n_free.

@@ -57,6 +57,8 @@ struct Record {
   double peak = 0.0;         // max |a_i|: the record's peak ground acceleration
   // mean_period(t, a), computed once with the samples (an FFT), shared with them.
   double t_m = std::numeric_limits<double>::quiet_NaN();
+  // The factor its accelerations carry over the file's (cases/record_scale.hpp): 1 as read.
+  double scale = 1.0;
   double length() const { return t.back(); }
   // 2 pi / T_m: the record's mean circular frequency. It is the record's default w_p, the
   // characteristic frequency its Pi terms are measured against when the user gives neither

@@ -12,6 +12,7 @@
 #include "cases/fields.hpp"
 #include "cases/physical.hpp"
 #include "cases/record.hpp"
+#include "cases/record_scale.hpp"
 #include "cases/text.hpp"
 #include "frontend/errors.hpp"
 
@@ -142,6 +143,8 @@ ChosenCase case_from_flags(const GivenFlag& given, const CaseFlags& flags) {
     } catch (const RecordError& e) {
       throw BadInput("--record: " + std::string(e.what()));
     }
+    if (!physical_flag.empty() && given("--a-p")) throw BadInput("--a-p: " + record_a_p_reason(true));
+    if (auto bad = scale_record(c)) throw BadInput(case_flag_message(*bad));
     if (!given("--a-p")) c.a_p = c.samples->peak;
     if (!given("--w-p") && !given("--tp")) {
       if (!std::isfinite(c.samples->t_m))

@@ -17,6 +17,7 @@ void apply_k_contact(const Case& c, std::string_view solver, Settings& settings,
   if (!(std::isfinite(k) && k > 0.0)) throw BadInput("--k-contact: must be finite and > 0");
   const SolverInfo* info = find_solver(solver);  // an unknown one is refused by its check, after
   settings.stiffness = stiffness_pi_term(c, k, info && hertz_contact(*info, settings));
+  settings.k_contact = k;
 }
 
 const SolverInfo& checked_solver_k_contact(const SolverFlags& flags, const GivenSolverFlag& given, bool k_contact) {

@@ -1,7 +1,7 @@
 #pragma once
-// `--k-contact`: a contact element's physical stiffness (N/m for a linear element, N/m^1.5
-// for the Hertz family), turned into the Pi term K that --stiffness gives
-// (cases/physical.hpp, stiffness_pi_term) for the solver and variant chosen.
+// `run`'s settings in physical units: `--k-contact`, a contact element's physical stiffness
+// (N/m for a linear element, N/m^1.5 for the Hertz family), turned into the Pi term K that
+// --stiffness gives (cases/physical.hpp, stiffness_pi_term) for the solver and variant chosen.
 
 #include <string_view>
 

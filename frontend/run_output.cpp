@@ -54,6 +54,11 @@ class JsonSink final : public FieldSink {
   void number(std::string_view key, double x) override { j[std::string(key)] = x; }
   void text(std::string_view key, std::string_view x) override { j[std::string(key)] = x; }
   void object(std::string_view key, std::string_view json) override { j[std::string(key)] = nlohmann::json::parse(json); }
+  void list(std::string_view key, std::span<const double> xs) override {
+    nlohmann::ordered_json a = nlohmann::ordered_json::array();
+    for (double x : xs) a.push_back(std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr));
+    j[std::string(key)] = std::move(a);
+  }
 };
 
 // A history is held in memory, then written as CSV (about 20 bytes a value), so its size
@@ -78,6 +83,7 @@ void row_fields(const Row& row, const ChosenCase& chosen, FieldSink& sink) {
       case ResultType::object: j[f.name] = RowFields::Object{f.text(row)}; break;
       case ResultType::status: j[f.name] = name(row.result.status); break;
       case ResultType::verdict: j[f.name] = row.result.resolved; break;
+      case ResultType::list: j[f.name] = f.list(row); break;
     }
   }
   if (!chosen.case_file.empty()) {

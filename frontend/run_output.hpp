@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -30,6 +31,8 @@ class FieldSink {
   virtual void text(std::string_view key, std::string_view x) = 0;
   // A flat JSON object's text (a row's settings, NamedValues): names to numbers, strings, booleans.
   virtual void object(std::string_view key, std::string_view json) = 0;
+  // Numbers (a value per body), a NaN as null.
+  virtual void list(std::string_view key, std::span<const double> xs) = 0;
 };
 
 // `fields[key] = value` into a FieldSink: a number that is not finite is null (JSON has no
@@ -48,6 +51,7 @@ struct RowFields {
       else if constexpr (std::is_floating_point_v<T>) std::isfinite(x) ? sink.number(key, x) : sink.null(key);
       else if constexpr (std::is_same_v<T, std::optional<bool>>) x ? sink.boolean(key, *x) : sink.null(key);
       else if constexpr (std::is_same_v<T, Object>) sink.object(key, x.json);
+      else if constexpr (std::is_same_v<T, std::vector<double>>) sink.list(key, x);
       else sink.text(key, std::string_view(x));
     }
   };

@@ -21,8 +21,9 @@ namespace {
 
 // The step, and in `why` the reason it cannot be taken ("" when it can).
 double fixed_step(const BuildingModel& model, const Settings& settings, int default_steps, std::string& why) {
-  double h = settings.wh > 0.0 ? settings.wh * model.t_min / (2.0 * std::numbers::pi)
-                               : model.t_min / (settings.steps > 0 ? settings.steps : default_steps);
+  double h = settings.h_s > 0.0  ? settings.h_s
+             : settings.wh > 0.0 ? settings.wh * model.t_min / (2.0 * std::numbers::pi)
+                                 : model.t_min / (settings.steps > 0 ? settings.steps : default_steps);
   const auto& record = model.scene.pulse.record;
   if (settings.steps_per_sample > 0) {
     if (!record) {

@@ -114,7 +114,9 @@ Result plan_steps(const System& sys, const Settings& set, int default_steps, lon
 }
 
 void add_step(NamedValues& out, const Settings& set, int default_steps) {
-  if (set.wh > 0.0)
+  if (set.h_s > 0.0)
+    out.add("h_s", set.h_s);
+  else if (set.wh > 0.0)
     out.add("wh", set.wh);
   else
     out.add("steps", set.steps > 0 ? set.steps : default_steps);

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cases/text.hpp"
+#include "kit/solver.hpp"
 
 namespace pb {
 
@@ -52,6 +53,11 @@ NamedValues& NamedValues::add(std::string_view name, bool value) { return add_ra
 
 NamedValues& NamedValues::add(std::string_view name, std::string_view text) {
   return add_raw(name, json_string(text));
+}
+
+void add_stiffness(NamedValues& out, const Settings& settings, double pi_term) {
+  if (!(settings.k_contact > 0.0 && settings.stiffness == 0.0)) out.add("stiffness", pi_term);
+  if (settings.k_contact > 0.0) out.add("k_contact", settings.k_contact);
 }
 
 }  // namespace pb

@@ -30,4 +30,10 @@ class NamedValues {
   std::string json_ = "{";
 };
 
+struct Settings;
+// A contact element's stiffness in a describe(): its Pi term `pi_term` (the value it runs with)
+// and Settings::k_contact where the user gave one in N/m; the Pi term alone is left out where
+// only k_contact was given (a study's run, whose cases each take their own Pi term from it).
+void add_stiffness(NamedValues& out, const Settings& settings, double pi_term);
+
 }  // namespace pb

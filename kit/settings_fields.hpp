@@ -42,6 +42,8 @@ inline constexpr auto kSettingFields = std::to_array<SettingField>({
      "Time-steppers: steps per shortest period N, h = T_min/N (0: default)"},
     {"wh", &Settings::wh, nullptr, nullptr,
      "Time-steppers: the step as w_max h, w_max = 2 pi / T_min (> 0 replaces --steps; 0: use --steps)"},
+    {"h_s", &Settings::h_s, nullptr, nullptr,
+     "Time-steppers: the step in seconds, the case's time unit (> 0 replaces --steps and --wh)"},
     {"theta", &Settings::theta, nullptr, nullptr, "Moreau-Jean theta"},
     {"gamma", &Settings::gamma, nullptr, nullptr,
      "Faithful time-steppers' activation look-ahead: a contact is in a step when g + gamma h g' <= 0"},

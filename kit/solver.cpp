@@ -41,6 +41,9 @@ std::string check_step(const Settings& settings, int default_steps) {
   if (settings.steps < 0) return "steps: must be >= 1 (0: the default " + std::to_string(default_steps) + ")";
   if (!(settings.wh >= 0.0) || !std::isfinite(settings.wh)) return "wh: must be finite and > 0 (0: use steps)";
   if (settings.wh > 0.0 && settings.steps > 0) return "wh: give steps or wh, not both";
+  if (!(settings.h_s >= 0.0) || !std::isfinite(settings.h_s)) return "h_s: must be finite and > 0 (s; 0: use steps)";
+  if (settings.h_s > 0.0 && (settings.steps > 0 || settings.wh > 0.0))
+    return "h_s: give the step one way (steps, wh or h_s)";
   if (settings.steps_per_sample < 0) return "steps_per_sample: must be >= 1 (0: the step T_min / N alone)";
   return {};
 }

@@ -52,11 +52,19 @@ struct Settings {
   std::string variant;   // solver-specific variant; empty = the solver's default
   int steps = 0;         // time-steppers: steps per shortest period N (h = t_min / N); 0 = default
   double wh = 0;         // time-steppers: the step as w_max h (w_max = 2 pi / t_min); > 0 replaces steps
+  // time-steppers: the step in seconds, the case's time unit (> 0 replaces steps and wh): one
+  // step for every case of a study, each case's N following from it (issue 51)
+  double h_s = 0;
   int steps_per_sample = 0;  // time-steppers on a record: the step rule `record` (record_step); 0 = T_min / N alone
   double theta = 0.5;    // Moreau-Jean theta
   double gamma = 0.5;    // activation look-ahead of the faithful time-steppers (fixed_step.hpp, Activation)
   double tol_scale = 1;  // event-driven: multiplies every internal tolerance
   double stiffness = 0;  // compliant: contact stiffness as the Pi term K (cases/README.md); 0 = default
+  // A contact element's stiffness as the user gave it, in N/m (N/m^1.5 for the Hertz family):
+  // run_point sets each case's Pi term `stiffness` from it (the unit of mass is the case's m0),
+  // so one value holds across the cases of a study. A describe() names it where it is given,
+  // and the Pi term beside it only where that was set too (`run --k-contact`: one case).
+  double k_contact = 0;
   double rtol = 0;       // compliant with cvode: relative tolerance; 0 = default
   std::string integrator;  // compliant: cvode or newmark; empty = the solver's default
   std::string method;      // compliant with cvode: bdf or adams; empty = the solver's default
@@ -202,12 +210,13 @@ inline void note_impact(Result& r, double t, double rate) {
 // change the relative velocity as much as the impact does.
 inline constexpr double kRestitutionFloor = 1e-3;
 
-// The fixed step of a time-stepper: w_max h = settings.wh if given, else t_min / N with
-// N = settings.steps or the solver's default.
+// The fixed step of a time-stepper: settings.h_s if given, else w_max h = settings.wh if given,
+// else t_min / N with N = settings.steps or the solver's default.
 // With Settings::steps_per_sample = k > 0 on a record, that step becomes record_step's.
 inline double time_step(const System& s, const Settings& settings, int default_steps) {
-  const double h = settings.wh > 0.0 ? settings.wh * s.t_min / (2.0 * std::numbers::pi)
-                                     : s.step(settings.steps > 0 ? settings.steps : default_steps);
+  const double h = settings.h_s > 0.0  ? settings.h_s
+                   : settings.wh > 0.0 ? settings.wh * s.t_min / (2.0 * std::numbers::pi)
+                                       : s.step(settings.steps > 0 ? settings.steps : default_steps);
   return settings.steps_per_sample > 0 && s.pulse.record ? record_step(*s.pulse.record, h, settings.steps_per_sample) : h;
 }
 

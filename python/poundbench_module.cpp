@@ -414,6 +414,12 @@ class DictSink final : public app::FieldSink {
     if (!copy) throw py::error_already_set();
     add(key, copy);
   }
+  void list(std::string_view key, std::span<const double> xs) override {
+    py::list l(xs.size());
+    for (std::size_t i = 0; i < xs.size(); ++i)
+      l[i] = std::isfinite(xs[i]) ? py::object(py::float_(xs[i])) : py::object(py::none());
+    add(key, l);
+  }
 
  private:
   struct Key {

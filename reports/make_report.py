@@ -258,6 +258,9 @@ def report(args):
         import buildings
         text += buildings.section(load(args.buildings), args.out,
                                   load(args.buildings_stress) if args.buildings_stress else None)
+    if args.separation:
+        import separation
+        text += separation.section(load([args.separation]), args.out)
     text += paper_set_section(rows, args.out)
     text += ["## Where this ran", "", footer(measured_on), ""]
     out.page.provenance([f"- measured at: {provenance.describe(measured_on)}"])
@@ -299,6 +302,8 @@ def main():
                         "through the reference and the other solvers of the scene (one file each)")
     parser.add_argument("--buildings-stress", nargs="+", help="rows of `poundbench spectrum "
                         "cases/sets/buildings-stress.toml` through the solvers of the scene (one file each)")
+    parser.add_argument("--separation", help="per-case table of `poundbench separation cases/sets/separation.toml "
+                        "--gap-fractions ...` (scripts/main.sh: results/separation.csv)")
     parser.add_argument("--out", default=here, help="folder for README.md, figures/ and the committed result files")
     parser.add_argument("--readme", help="also write the generated blocks of this README (scripts/main.sh: README.md)")
     parser.add_argument("--check", action="store_true", help="write nothing: exit 1, with the diff, when README's "

@@ -100,7 +100,9 @@ def _config_label(solver, variant, settings):
         label += f" {fields['integrator']}"
         if fields["integrator"] == "cvode":
             label += f" {fields.get('method', 'bdf')} rtol={fields.get('rtol', 1e-8):g}"
-    if "stiffness" in fields:  # compliant elements: the stiffness Pi term
+    if "k_contact" in fields:  # compliant elements given in physical units: the stiffness as given
+        label += f" k={fields['k_contact']:g} N/m"
+    elif "stiffness" in fields:  # compliant elements: the stiffness Pi term
         label += f" K={fields['stiffness']:g}"
     if "contact_steps" in fields:  # mujoco's faithful variants: the contact time constant in steps
         label += f" M={fields['contact_steps']}"
@@ -112,7 +114,11 @@ def _config_label(solver, variant, settings):
 
 
 def setting_label(row):
-    """A solver configuration with its step count: one setting of a study."""
+    """A solver configuration with its step: one setting of a study. A step in seconds (h_s: one
+    step for every case of a study in physical units) is labelled as such, not by a N."""
+    fields = settings_fields(row)
+    if "h_s" in fields:
+        return config_label(row) + f", h = {fields['h_s']:g} s"
     n = steps_of(row)
     return config_label(row) + ("" if n is None else f", N = {n}")
 

@@ -128,7 +128,7 @@ def check_value(where, column, text, domain):
 
 # The fields of the `settings` column that the report reads, and what each must be.
 SETTING_FIELDS = {"steps": "count", "theta": "number", "tol_scale": "number", "stiffness": "number",
-                  "rtol": "number", "wh": "number", "projection_tol": "number", "steps_per_sample": "count",
+                  "rtol": "number", "wh": "number", "h_s": "number", "k_contact": "number", "projection_tol": "number", "steps_per_sample": "count",
                   "contact_steps": "count"}
 SETTING_TEXTS = ("contact", "integrator", "method", "lcp")
 

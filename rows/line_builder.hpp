@@ -42,6 +42,17 @@ class LineBuilder {
     separate();
     append(n);
   }
+  // Numbers in one field, separated by ';' (no quoting needed); NaN as an empty item.
+  template <class Range>
+  void numbers(const Range& xs) {
+    separate();
+    bool first = true;
+    for (double x : xs) {
+      if (!first) line_ += ';';
+      first = false;
+      if (!std::isnan(x)) append(x);
+    }
+  }
   std::string take() { return std::move(line_); }
 
  private:

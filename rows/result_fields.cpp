@@ -16,6 +16,21 @@ double finite_or_missing(double x) { return std::isinf(x) ? std::numeric_limits<
 using T = ResultType;
 using P = Place;
 
+std::vector<double> scaled(std::vector<double> x, double unit) {
+  for (double& v : x) v *= unit;
+  return x;
+}
+
+// A length of the no-contact motion, Row::NAME: its Pi term as NAME_pi, and NAME_m in metres
+// (made from it, as peak_m from pi1).
+#define SEPARATION(NAME)                                                                               \
+  ResultField{.name = #NAME "_pi", .type = T::number, .place = P::separation,                          \
+              .made = [](const Row& r) { return r.NAME; }, .store = [](Row& r, double x) { r.NAME = x; }}, \
+      ResultField {                                                                                    \
+    .name = #NAME "_m", .type = T::number, .place = P::separation,                                     \
+    .made = [](const Row& r) { return r.NAME * length_unit(r.input); }                                 \
+  }
+
 constexpr auto kTable = std::to_array<ResultField>({
     {.name = "solver", .type = T::text, .place = P::middle,
      .text = [](const Row& r) { return std::string_view(r.solver); },
@@ -116,7 +131,22 @@ constexpr auto kTable = std::to_array<ResultField>({
     {.name = "error_estimate", .type = T::number, .place = P::estimate, .real = &Result::error_estimate},
     {.name = "error_estimate_velocity", .type = T::number, .place = P::estimate,
      .real = &Result::error_estimate_velocity},
+    // The gap that avoids pounding (cases/separation.hpp), with the load as given and reversed,
+    // and each rule's: Pi terms (over a_p / w_p^2) and metres; then every body's no-contact peak.
+    // Body 0's residual displacement in metres (residual is its Pi term).
+    {.name = "residual_m", .type = T::number, .place = P::separation,
+     .made = [](const Row& r) { return r.result.residual * length_unit(r.input); }},
+    SEPARATION(separation),
+    SEPARATION(separation_reversed),
+    SEPARATION(separation_abs),
+    SEPARATION(separation_srss),
+    SEPARATION(separation_ddc),
+    {.name = "peaks_no_contact_m", .type = T::list, .place = P::separation,
+     .list = [](const Row& r) { return scaled(r.peaks_no_contact, length_unit(r.input)); },
+     .store_list = [](Row& r, std::vector<double> x) { r.peaks_no_contact = scaled(std::move(x), 1.0 / length_unit(r.input)); }},
 });
+
+#undef SEPARATION
 
 }  // namespace
 

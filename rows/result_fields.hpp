@@ -15,6 +15,7 @@
 #include <limits>
 #include <span>
 #include <string_view>
+#include <vector>
 
 #include "rows/row.hpp"
 
@@ -26,7 +27,8 @@ enum class ResultType {
   text,
   object,  // a flat JSON object's text (a row's settings): text in CSV, an object in --json and Python
   status,  // Status by its name
-  verdict  // std::optional<bool>: true, false or empty (null)
+  verdict,  // std::optional<bool>: true, false or empty (null)
+  list      // numbers (a value per body): in CSV one field, separated by ';'; an array in --json and Python
 };
 
 // Where a field's CSV column sits among the case's columns (rows/row.cpp, csv_header): the
@@ -41,7 +43,8 @@ enum class Place {
   physical,     // after the physical values a case was given
   own_time,     // then the external solver's own timings,
   record_step,  // a record's step over its sampling interval,
-  estimate      // and the error estimates, last
+  estimate,     // and the error estimates,
+  separation    // then the no-contact motion's separations and peaks, last
 };
 
 struct ResultField {
@@ -56,6 +59,8 @@ struct ResultField {
   void (*store)(Row&, double) = nullptr;    // a made number read back into a row; null: made again
   std::string_view (*text)(const Row&) = nullptr;  // a text
   void (*store_text)(Row&, std::string_view) = nullptr;
+  std::vector<double> (*list)(const Row&) = nullptr;  // a list, as its column shows it
+  void (*store_list)(Row&, std::vector<double>) = nullptr;
   // The value where a CSV field or an answer's key is empty or absent (min_gap: no contact closed).
   double missing = std::numeric_limits<double>::quiet_NaN();
 

@@ -97,10 +97,11 @@ namespace {
 constexpr std::array kLeadColumns = {"family", "point", "scene", "pulse", "directivity"};
 
 // Where a field's column is: after the directivity (those of every scene's bodies), after
-// the message (the chain's, where they were added), after the tail (the pulses') or at the
-// end (yielding's, added last).
-enum class Group { body, chain, pulse, yielding };
+// the message (the chain's, where they were added), after the tail (the pulses'), after the
+// verdict (yielding's) or last of all (a record's scaling, added after the separations).
+enum class Group { body, chain, pulse, yielding, late };
 Group group_of(const CaseField& f) {
+  if (f.late) return Group::late;
   if (f.yielding) return Group::yielding;
   return f.use == FieldUse::chain ? Group::chain : pulse_use(f.use) ? Group::pulse : Group::body;
 }
@@ -135,6 +136,7 @@ void result_cell(LineBuilder& line, const ResultField& f, const Row& row) {
     case ResultType::object: line.text(f.text(row)); return;
     case ResultType::status: line.text(name(row.result.status)); return;
     case ResultType::verdict: line.text(resolved_text(row.result.resolved)); return;
+    case ResultType::list: line.numbers(f.list(row)); return;
   }
 }
 
@@ -160,7 +162,9 @@ std::string csv_header() {
   case_names(line, Group::yielding);
   results(Place::yielding);
   for (const PhysicalField& f : kPhysicalFields) line.text(f.name);
-  for (Place place : {Place::physical, Place::own_time, Place::record_step, Place::estimate}) results(place);
+  for (Place place : {Place::physical, Place::own_time, Place::record_step, Place::estimate, Place::separation})
+    results(place);
+  case_names(line, Group::late);
   return line.take();
 }
 
@@ -185,7 +189,9 @@ std::string csv_line(const Row& row) {
   case_numbers(line, c, Group::yielding);
   results(Place::yielding);
   for (const PhysicalField& f : kPhysicalFields) line.number(c.physical.*f.member);
-  for (Place place : {Place::physical, Place::own_time, Place::record_step, Place::estimate}) results(place);
+  for (Place place : {Place::physical, Place::own_time, Place::record_step, Place::estimate, Place::separation})
+    results(place);
+  case_numbers(line, c, Group::late);
   return line.take();
 }
 

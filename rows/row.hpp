@@ -33,6 +33,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "cases/case.hpp"
 #include "kit/solver.hpp"
@@ -48,6 +49,15 @@ struct Row {
   std::string settings;    // SolverInfo::describe(settings): a JSON object of named values
   Result result;
   double pi1_no_contact = std::numeric_limits<double>::quiet_NaN();
+  // With every contact removed (cases/separation.hpp), over a_p / w_p^2 as Pi1: the gap that
+  // avoids pounding under the load as given and reversed, each rule's gap, and every body's
+  // peak (body 0 first). NaN and empty where not computed (a chain, or a file from before).
+  double separation = std::numeric_limits<double>::quiet_NaN();
+  double separation_reversed = std::numeric_limits<double>::quiet_NaN();
+  double separation_abs = std::numeric_limits<double>::quiet_NaN();
+  double separation_srss = std::numeric_limits<double>::quiet_NaN();
+  double separation_ddc = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> peaks_no_contact;
   double length_scale = std::numeric_limits<double>::quiet_NaN();  // System::length_scale()
   double wh = std::numeric_limits<double>::quiet_NaN();  // w_max h of a time-stepper's step
   double penetration_steps = std::numeric_limits<double>::quiet_NaN();  // of the result (a column)

@@ -1,11 +1,13 @@
 #include "rows/row_read.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <vector>
 
 #include "cases/fields.hpp"
 #include "cases/physical.hpp"
@@ -37,6 +39,23 @@ class FieldReader {
   template <typename Int>
   Int count(const std::string& column, Int missing = 0) {
     return parsed(column, missing, "not an integer");
+  }
+  // Numbers separated by ';' (LineBuilder::numbers); an empty field is none, an empty item NaN.
+  std::vector<double> numbers(const std::string& column) {
+    const std::string& field = text(column);
+    std::vector<double> out;
+    if (field.empty()) return out;
+    for (std::size_t at = 0;;) {
+      const std::size_t end = std::min(field.find(';', at), field.size());
+      double x = kNaN;
+      if (end > at) {
+        const auto [stop, error] = std::from_chars(field.data() + at, field.data() + end, x);
+        if (error != std::errc{} || stop != field.data() + end) fail(field, "not a list of numbers separated by ';'");
+      }
+      out.push_back(x);
+      if (end == field.size()) return out;
+      at = end + 1;
+    }
   }
   template <typename T>
   T named(const std::string& column, std::optional<T> (*parse)(std::string_view)) {
@@ -219,6 +238,7 @@ Row parse_row(const Columns& columns, const std::vector<std::string>& fields) {
       case ResultType::object: field.store_text(row, f.text(column)); break;
       case ResultType::status: r.status = f.named(column, &parse_status); break;
       case ResultType::verdict: r.resolved = f.named(column, &parse_resolved); break;  // a file from before it: not judged
+      case ResultType::list: field.store_list(row, f.numbers(column)); break;
     }
   }
   if (const std::string bad = row_problem(row); !bad.empty()) throw RowReadError(bad);

@@ -187,6 +187,10 @@ buildings() {  # the reference, and every other solver of this build that solves
 }
 timed buildings buildings
 
+echo "main: the gap that avoids pounding against the rules, over the real records (cases/sets/separation.toml)"
+timed separation $pb separation cases/sets/separation.toml --gap-fractions 0.25,0.5,0.75 \
+  --out results/separation.csv --summary results/separation-rules.csv
+
 echo "main: benchmarks"
 # 3 repetitions of at least 10 ms each: the 280 benchmarks took 139 s at 50 ms, the main
 # job's largest step, and 64 s at 20 ms; the 330 of today 51 s at five repetitions. Below a
@@ -213,7 +217,7 @@ timed persistent /usr/bin/python3 scripts/persistent_overhead.py --poundbench $p
   --records-real results/real-records-event-driven.csv --records-wp results/workprecision-records.csv \
   --yielding-wp results/workprecision-yielding.csv \
   "${records_step[@]}" --buildings results/buildings/*.csv \
-  --buildings-stress results/buildings-stress/*.csv \
+  --buildings-stress results/buildings-stress/*.csv --separation results/separation.csv \
   --out reports --readme README.md
 
 echo "main: the paper report (reports/paper/)"

@@ -1,7 +1,12 @@
 #include <array>
 #include <cmath>
+#include <memory>
+#include <numbers>
 #include <stdexcept>
 
+#include "cases/record.hpp"
+#include "cases/record_scale.hpp"
+#include "cases/system.hpp"
 #include "cases/text.hpp"
 #include "solvers/buildings_reference/reference.hpp"
 #include "solvers/event_driven/event_driven.hpp"
@@ -223,6 +228,27 @@ const SolverInfo& reference_solver() {
 
 double no_contact_pi1(const System& system, const Settings& limits) {
   return event_driven::no_contact_pi1(system, limits);
+}
+
+FreeMotion free_motion(const System& system, const Settings& limits) { return event_driven::free_motion(system, limits); }
+
+// Declared by cases/record_scale.hpp, which sits below the reference: the oscillator as the
+// wall scene's body 0 (its contact unused: free_motion removes it), in the record's own units.
+double pseudo_acceleration(const Record& record, double period, double xi) {
+  Case c;
+  c.scene = Scene::wall;
+  c.pulse = PulseShape::record;
+  c.record = record.source;
+  c.samples = std::shared_ptr<const Record>(std::shared_ptr<const Record>{}, &record);  // not owned: the caller's
+  c.record_scale = record.scale;
+  c.a_p = record.peak;
+  c.w_p = 2.0 * std::numbers::pi / period;
+  c.pi2 = 1.0;
+  c.xi = xi;
+  if (auto bad = validate(c)) throw std::invalid_argument("sa_period: " + *bad);
+  const FreeMotion free = free_motion(make_system(c), Settings{});
+  if (free.status != Status::ok) throw std::runtime_error("sa: the oscillator's solve: " + free.message);
+  return c.w_p * c.w_p * free.peak[0];
 }
 
 std::vector<std::string_view> settings_used(const SolverInfo& solver, std::string_view variant) {

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cases/separation.hpp"
 #include "kit/solver.hpp"
 
 namespace pb {
@@ -40,5 +41,7 @@ std::string unused_setting(const SolverInfo& solver, const Settings& settings, c
 // Pi1 of body 0 with every contact removed, by the reference; only the time limit and stop
 // flag of `limits` are used.
 double no_contact_pi1(const System& system, const Settings& limits);
+// The motion of every body with every contact removed, by the reference (cases/separation.hpp).
+FreeMotion free_motion(const System& system, const Settings& limits);
 
 }  // namespace pb

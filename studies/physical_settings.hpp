@@ -1,12 +1,11 @@
 #pragma once
 // A settings list's [[run]] in physical units (issue 35): the step `h_s` in seconds and the
 // contact stiffness `k_contact` in N/m (N/m^1.5 for the Hertz family), instead of the Pi
-// forms steps / wh and stiffness, never beside them in one [[run]]. They are mapped to the
-// Pi forms per case, as `run --k-contact` maps its stiffness, by the conversions of
-// cases/physical.hpp: w_max h = step_pi_term(system, h_s) = 2 pi h_s / T_min and
-// K = stiffness_pi_term(case, k_contact). A study runs one setting over
-// every case, so the cases of a study must map them to one value each: one case (a study
-// of the case given by flags), or cases of one set of buildings (the self-similar twins).
+// forms steps / wh and stiffness, never beside them in one [[run]]. Both hold across the cases
+// of a study (issue 51: three records of one pair of buildings): the step is the solvers' own
+// (Settings::h_s), each case's N following from it, and each case takes its own Pi term K of
+// the stiffness (Settings::k_contact; sweep/sweep.hpp, run_point; cases/physical.hpp,
+// stiffness_pi_term), its unit of mass the case's m0.
 
 #include <span>
 #include <string_view>
@@ -31,10 +30,9 @@ inline bool hertz_contact(const SolverInfo& solver, const Settings& settings) {
   return solver.hertz_contact && solver.hertz_contact(settings);
 }
 
-// Sets the Pi forms (wh, stiffness) of every list run given in physical units from the
-// cases; throws SettingsListError ("SOURCE: run R (solver settings): h_s: why") when a case
-// is not in physical units (k_contact: its unit of mass is m0's), when the cases map a
-// value to different Pi forms, or when the solver's check refuses what it maps to.
+// Sets Settings::h_s and Settings::k_contact of every list run given in physical units; throws
+// SettingsListError ("SOURCE: run R (solver settings): k_contact: why") when a case is not in
+// physical units (k_contact: its unit of mass is m0's), or when the solver's check refuses them.
 void resolve_physical_settings(SettingsList& list, std::span<const Case> cases, std::string_view source);
 
 }  // namespace pb

@@ -1,8 +1,10 @@
 #include "sweep/no_contact_cache.hpp"
 #include "solvers/registry.hpp"
+#include "cases/record.hpp"
 
 #include <bit>
 #include <cmath>
+#include <utility>
 
 namespace pb {
 
@@ -33,10 +35,68 @@ NoContactKey no_contact_key(const System& s) {
            bits(s.alpha)}};
 }
 
-std::size_t NoContactCache::Hash::operator()(const NoContactKey& k) const {
+namespace {
+
+template <class Words>
+std::size_t hash_words(const Words& words) {
   std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a over the words, then a final mix
-  for (std::uint64_t w : k.bits) h = (h ^ w) * 0x100000001b3ULL;
+  for (std::uint64_t w : words) h = (h ^ w) * 0x100000001b3ULL;
   return static_cast<std::size_t>(h ^ (h >> 29));
+}
+
+// Every value free_motion reads of a system: its bodies, start, load and scales, but not the
+// contacts' gap and restitution (free_motion sets the gap to 0 and closes no contact). Empty
+// for a pulse model, whose waves are not in it (solved per point).
+// A linear system's motion under the load reversed is its mirror (every operation of the
+// reference is odd in the load, so to the bit): one key serves both directivities, the load's
+// sign left out of it, and `flip` says that this system's motion is the mirror of the key's.
+std::vector<std::uint64_t> free_key(const System& s, bool& flip) {
+  flip = !s.yields() && s.pulse.amplitude < 0.0;
+  if (!s.pulse.paper() && !s.pulse.record) return {};
+  const double amplitude = s.yields() ? s.pulse.amplitude : std::abs(s.pulse.amplitude);
+  std::vector<std::uint64_t> k = {static_cast<std::uint64_t>(s.pulse.shape), bits(amplitude), bits(s.pulse.w),
+                                  std::bit_cast<std::uint64_t>(s.pulse.record.get()), bits(s.a_p), bits(s.t_end),
+                                  bits(s.t_min), bits(s.xi), bits(s.alpha), static_cast<std::uint64_t>(s.wall),
+                                  static_cast<std::uint64_t>(s.ref)};
+  // A record by its address, and by what tells two records apart should a later one take a
+  // freed one's address (a cache that outlives its sweep's cases: the Python module's).
+  if (const Record* r = s.pulse.record.get())
+    for (double x : {static_cast<double>(r->a.size()), r->peak, r->t.back(), r->t_m, r->scale}) k.push_back(bits(x));
+  for (const Body& b : s.bodies)
+    for (double x : {b.m, b.w, b.k, b.c, b.u_y}) k.push_back(bits(x));
+  for (const std::vector<double>* start : {&s.u_start, &s.v_start}) {
+    k.push_back(start->size());
+    for (double x : *start) k.push_back(bits(x));
+  }
+  return k;
+}
+
+}  // namespace
+
+std::size_t NoContactCache::Hash::operator()(const NoContactKey& k) const { return hash_words(k.bits); }
+
+std::size_t NoContactCache::WordsHash::operator()(const std::vector<std::uint64_t>& k) const { return hash_words(k); }
+
+FreeMotion NoContactCache::free(const System& system, const Settings& limits) {
+  bool flip = false;
+  std::vector<std::uint64_t> key = free_key(system, flip);
+  if (key.empty()) return free_motion(system, limits);
+  const auto mirrored = [&](FreeMotion m) {
+    if (flip) std::swap(m.closing, m.opening);
+    return m;
+  };
+  Shard& shard = shards_[WordsHash{}(key) % kShards];
+  {
+    const std::lock_guard lock(shard.mutex);
+    if (const auto it = shard.free.find(key); it != shard.free.end()) return mirrored(it->second);
+  }
+  FreeMotion value = free_motion(system, limits);  // outside the lock: a solve
+  if (value.status == Status::ok) {
+    const std::lock_guard lock(shard.mutex);
+    if (shard.free.size() >= kShardValues) shard.free.clear();
+    shard.free.emplace(std::move(key), mirrored(value));
+  }
+  return value;
 }
 
 double NoContactCache::pi1(const System& system, const Settings& limits) {

@@ -21,13 +21,20 @@
 // Only the paper's pulses are cached: a record's samples and a pulse model's waves are not in
 // the key, and their sweeps are short. Only finite values are kept: a solve cut short by its time limit or the sweep's stop (NaN)
 // is solved again by the next point that needs it, as it would have been without a cache.
+//
+// The motion with every contact removed (free_motion: a row's separations, cases/separation.hpp)
+// is kept too, by every value of the whole System but the contacts' (delta, eps), a record by
+// its samples' address (shared by the sweep's cases of one record): a study's settings share
+// their points' free motions, which cost two to three peak searches a point.
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <mutex>
 #include <unordered_map>
+#include <vector>
 
+#include "cases/separation.hpp"
 #include "cases/system.hpp"
 #include "kit/solver.hpp"
 
@@ -47,6 +54,10 @@ class NoContactCache {
   // Throws what no_contact_pi1 throws (nothing is stored then).
   double pi1(const System& system, const Settings& limits);
 
+  // free_motion(system, limits), from the cache when an earlier point had the same system
+  // but for delta and eps. Only an ok motion is kept.
+  FreeMotion free(const System& system, const Settings& limits);
+
   std::size_t solves() const;  // misses so far (no_contact_pi1 calls)
   std::size_t size() const;    // values kept
 
@@ -62,9 +73,13 @@ class NoContactCache {
   // under 11 MB (about 170 bytes a value) on a sweep of a million distinct points, where it
   // grew with the points; the paper set's 8 176 keys fit many times over.
   static constexpr std::size_t kShardValues = 4096;
+  struct WordsHash {
+    std::size_t operator()(const std::vector<std::uint64_t>& k) const;
+  };
   struct alignas(64) Shard {
     mutable std::mutex mutex;
     std::unordered_map<NoContactKey, double, Hash> values;
+    std::unordered_map<std::vector<std::uint64_t>, FreeMotion, WordsHash> free;
     std::size_t solves = 0;
   };
   std::array<Shard, kShards> shards_;

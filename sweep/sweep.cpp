@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "cases/physical.hpp"
+#include "cases/separation.hpp"
 #include "cases/system.hpp"
 #include "cases/text.hpp"
 #include "programs/process.hpp"
@@ -189,6 +190,7 @@ std::optional<Settings> companion_settings(const SolverInfo& solver, const Syste
   Settings settings = run;
   settings.steps = 0;
   settings.steps_per_sample = 0;
+  settings.h_s = 0.0;
   settings.wh = step_pi_term(system, 2.0 * r.step);
   settings.monitor = false;
   settings.history_samples = 0;
@@ -228,24 +230,75 @@ bool measured_all(const Result& r, const SolverInfo& solver, const Settings& set
   return !estimable || !std::isnan(r.error_estimate);
 }
 
+// The no-contact motion's separations and peaks (cases/separation.hpp), over a_p / w_p^2: one
+// free solve; a yielding system's motion under the reversed load is not the mirror of it, and
+// is solved again. Not for a chain (a kicked row of many bodies, not a pair of neighbours).
+void add_separation(Row& row, const Case& c, const System& system, const Settings& limits, NoContactCache* cache) {
+  if (c.scene == Scene::chain) return;
+  const FreeMotion given = cache ? cache->free(system, limits) : free_motion(system, limits);
+  if (given.status != Status::ok) throw std::runtime_error(given.message);
+  std::optional<FreeMotion> reversed;
+  if (system.yields()) {
+    Case flipped = c;
+    flipped.directivity = c.directivity == Directivity::normal ? Directivity::reverse : Directivity::normal;
+    const System other = make_system(flipped);
+    reversed = cache ? cache->free(other, limits) : free_motion(other, limits);
+    if (reversed->status != Status::ok) throw std::runtime_error(reversed->message);
+  }
+  const Separation sep = separation(system, given, reversed ? &*reversed : nullptr);
+  const double unit = system.length_scale();
+  row.separation = sep.required / unit;
+  row.separation_reversed = sep.reversed / unit;
+  row.separation_abs = sep.rules.abs / unit;
+  row.separation_srss = sep.rules.srss / unit;
+  row.separation_ddc = sep.rules.ddc / unit;
+  row.peaks_no_contact.clear();
+  // Body 0 first, then the others left to right (its neighbours 1 and 2 of pair and row3).
+  row.peaks_no_contact.push_back(given.peak[ix(system.ref)] / unit);
+  for (int i = 0; i < system.n_bodies(); ++i)
+    if (i != system.ref) row.peaks_no_contact.push_back(given.peak[ix(i)] / unit);
+}
+
+// The settings a case runs with: a stiffness given in N/m (Settings::k_contact) is the case's own
+// Pi term (its unit of mass is the case's m0, a Hertz element's length its a_p / w_p^2), so that
+// one stiffness holds across the cases of a study. Empty with the reason where it cannot be.
+std::optional<Settings> case_settings(const Case& c, const SolverInfo& solver, const Settings& settings,
+                                      std::string& why) {
+  if (!(settings.k_contact > 0.0)) return settings;
+  if (!physical(c)) {
+    why = "k_contact: a stiffness in N/m needs a case in physical units (its unit of mass is m0's)";
+    return std::nullopt;
+  }
+  Settings mapped = settings;
+  mapped.stiffness = stiffness_pi_term(c, settings.k_contact, solver.hertz_contact && solver.hertz_contact(settings));
+  return mapped;
+}
+
 }  // namespace
 
-Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const Settings& settings,
+Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const Settings& given,
               int repetitions, NoContactCache* no_contact, bool monitor_timed, const ErrorEstimate& estimate,
               const std::string* described) {
   Row row;
   row.input = c;
   row.point = point;
   row.solver = std::string(solver.name);
-  row.variant = settings.variant;
+  row.variant = given.variant;
   row.result.status = Status::failed;
   if (repetitions < 1 || repetitions > kMaxRepetitions) {
     row.result.message = "repetitions: must be from 1 to " + std::to_string(kMaxRepetitions) + " (it is " +
                          std::to_string(repetitions) + ")";
     return row;
   }
+  std::string why;
+  const std::optional<Settings> own = case_settings(c, solver, given, why);
+  if (!own) {
+    row.result.message = why;
+    return row;
+  }
+  const Settings& settings = *own;
   try {
-    row.settings = described ? *described : solver.describe(settings);
+    row.settings = described ? *described : solver.describe(given);
   } catch (...) {
     row.result.message = "describe: " + describe_exception(std::current_exception());
     return row;
@@ -284,6 +337,7 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
     Settings limits = settings;
     if (!deadline.limit(limits)) throw std::runtime_error("not computed: the run's time limit was spent");
     row.pi1_no_contact = no_contact ? no_contact->pi1(system, limits) : no_contact_pi1(system, limits);
+    add_separation(row, c, system, limits, no_contact);
   } catch (...) {
     // The solver's own result stands; only the comparison value is missing.
     if (!row.result.message.empty()) row.result.message += "; ";

@@ -861,7 +861,7 @@ TEST_F(Cli, VersionSaysTheProjectVersionAndTheCommitItWasBuiltFrom) {
 
 TEST_F(Cli, AWordThatIsNoSubcommandIsNamedAndTheSubcommandsListed) {
   const std::string list =
-      "the subcommands are: run, spectrum, workprecision, stress, baseline, compare, solvers, adapter, report "
+      "the subcommands are: run, spectrum, workprecision, stress, separation, baseline, compare, solvers, adapter, report "
       "(`poundbench help` says what each does)\n";
   Outcome o = run("bogus --out x.csv");
   EXPECT_EQ(o.exit_code, 2);
@@ -930,10 +930,10 @@ TEST_F(Cli, SolversListsEveryVariantAndRunAcceptsEachOne) {
     }
   }
   // What each uses, as the settings column of its rows shows it.
-  EXPECT_NE(text.out.find("    settings: --steps --wh --theta --gamma --steps-per-sample\n"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("    settings: --steps --wh --h-s --theta --gamma --steps-per-sample\n"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("    settings: --tol-scale --contact\n"), std::string::npos) << text.out;
   EXPECT_EQ(settings_used(*find_solver("moreau-jean"), "end-samples"),
-            (std::vector<std::string_view>{"steps", "wh", "theta", "gamma", "steps_per_sample"}));
+            (std::vector<std::string_view>{"steps", "wh", "h_s", "theta", "gamma", "steps_per_sample"}));
   EXPECT_EQ(settings_used(reference_solver(), ""), (std::vector<std::string_view>{"tol_scale", "contact"}));
 }
 

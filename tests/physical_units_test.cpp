@@ -86,18 +86,18 @@ TEST_F(PhysicalCli, PhysicalRecordCaseEqualsItsPiTermCase) {
 }
 
 // The same buildings with a physical contact stiffness under two normalisations of one record
-// (its mean period's w_p and peak; --tp 2 and --a-p 1): the model is the same, so the peak in
-// metres is. CVODE integrates the same physical system in both, but its absolute tolerance is
-// on the Pi terms' length unit, which moves 20-fold here: the two runs differ by their
-// integration errors, 3.6e-5 relative on the peak at the default rtol (2e-8 at rtol 1e-11,
-// so not the model): 2e-4. The largest force is sampled at CVODE's accepted steps (3.5e-4): 2e-3.
+// (its mean period's w_p, and --tp 2; a_p is its peak in both, as --a-p is refused beside a
+// record in physical units): the model is the same, so the peak in metres is. CVODE integrates
+// the same physical system in both, but its absolute tolerance is on the Pi terms' length unit,
+// which moves here: the two runs differ by their integration errors (2e-4 allowed on the peak;
+// the largest force is sampled at CVODE's accepted steps: 2e-3).
 TEST_F(PhysicalCli, KContactGivesTheSamePeakUnderTwoNormalisationsOfARecord) {
   for (const char* variant : {"kelvin-voigt", "hunt-crossley"}) {
     const std::string args = kBuildings + " --pulse record --record " + kElCentroFile +
                              " --m0 2e6 --m1 1e6 --solver compliant --variant " + variant +
                              (std::string(variant) == "kelvin-voigt" ? " --k-contact 5e9" : " --k-contact 2e11");
     const nlohmann::json a = run_json(args);
-    const nlohmann::json b = run_json(args + " --tp 2 --a-p 1");
+    const nlohmann::json b = run_json(args + " --tp 2");
     ASSERT_FALSE(a.empty() || b.empty()) << variant;
     EXPECT_NE(num(a, "pi3"), num(b, "pi3")) << variant;  // two units indeed
     EXPECT_NEAR(num(a, "peak_m"), num(b, "peak_m"), 2e-4 * num(a, "peak_m")) << variant;
@@ -486,7 +486,8 @@ TEST(PhysicalSettingsLists, MixedOrInvalidPhysicalEntriesAreRefused) {
 // A settings list in seconds and N/m is its Pi twin: h_s = T_min / 64 is steps = 64 and
 // k_contact = K m0 w0^2 is stiffness = K, so each run's peak must agree to round-off (1e-12
 // relative: the step h_s against T_min / 64 differs in its last bits, and a time-stepper's
-// peak moves by about as much). The mapping needs a case in physical units for k_contact.
+// peak moves by about as much). The list keeps them as given (Settings::h_s, k_contact); each
+// case's run takes its Pi term from them, which needs a case in physical units for k_contact.
 TEST(PhysicalSettingsLists, APhysicalSettingsListEqualsItsPiTwin) {
   const CaseSet set = parse_case_set(R"(name = "one"
 [[family]]
@@ -516,8 +517,10 @@ eps = 0.6
   const SettingsList b = parse_settings_list(twin.str(), "twin.toml");
   resolve_physical_settings(a, set.cases, "physical.toml");
   ASSERT_EQ(a.runs.size(), b.runs.size());
-  EXPECT_DOUBLE_EQ(a.physical.at(0).h_s, h_s);   // stored as given
-  EXPECT_NEAR(a.runs.at(1).settings.stiffness, 30.0, 1e-12 * 30);
+  EXPECT_DOUBLE_EQ(a.physical.at(0).h_s, h_s);  // stored as given
+  EXPECT_DOUBLE_EQ(a.runs.at(0).settings.h_s, h_s);
+  EXPECT_DOUBLE_EQ(a.runs.at(1).settings.k_contact, 30 * k0);
+  EXPECT_NEAR(stiffness_pi_term(c, 30 * k0, false), 30.0, 1e-12 * 30);
   for (std::size_t k = 0; k < a.runs.size(); ++k) {
     const Row pa = run_sweep(set.cases, *a.runs[k].solver, a.runs[k].settings).at(0);
     const Row pb = run_sweep(set.cases, *b.runs[k].solver, b.runs[k].settings).at(0);

@@ -107,9 +107,11 @@ class Sections(unittest.TestCase):
         for h, err in ((0.016, 0.0073), (0.008, 0.0137), (0.004, 0.0108), (0.002, 0.004), (0.001, 0.001)):
             r = row("case", "moreau-jean", {"wh": 12.566 * h, "theta": 0.5}, err, 2e-6 / h)
             search.append(dict(r, h_s=repr(h), k_contact=""))
-        example = dict(commands=["poundbench ..."], search=search,
-                       reference=dict(peak_m=0.008, impacts=9, first_impact_s=5.4, impact_velocity=0.06, a_p=0.67,
-                                      w_p=11.57, pi2=1.086, pi3=2.0, pi5=2.0))
+        reference = dict(record="cases/records/real/B-ELC000.AT2", record_scale="1.5", impacts="9",
+                         impact_velocity="0.06", peak_m="0.008", peaks_no_contact_m="0.007;0.005",
+                         separation_m="0.02", separation_reversed_m="0.021", separation_abs_m="0.012",
+                         separation_srss_m="0.0086", separation_ddc_m="0.0085")
+        example = dict(commands=["poundbench ..."], search=search, rows=[reference])
         lines = readme.physical_lines(example)
         one = next(line for line in lines if line.startswith("| moreau-jean | 1 % |"))
         self.assertEqual(one.split("|")[3].strip(), "0.002", one)

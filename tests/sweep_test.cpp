@@ -599,7 +599,9 @@ TEST(Csv, NumbersReadBackToTheSameDouble) {
 
 TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   const std::vector<std::string> header = split_csv(csv_header());
-  ASSERT_EQ(header.size(), 78u);  // 47, the yielding, the physical, the own timings, h_over_dt, the estimates
+  // 47, the yielding, the physical, the own timings, h_over_dt, the estimates, the separations
+  // (residual_m, five _pi/_m pairs, peaks_no_contact_m), a record's scaling
+  ASSERT_EQ(header.size(), 94u);
   EXPECT_EQ(header.front(), "family");
   EXPECT_EQ(header[28], "message");  // the columns after it were appended later
   EXPECT_EQ(header[37], "penetration_steps");
@@ -610,8 +612,10 @@ TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   EXPECT_EQ(header[55], "t0");     // the physical values and results (issue 35)
   EXPECT_EQ(header[74], "startup_seconds");  // the external solver's own timings (issue 37)
   EXPECT_EQ(header[75], "h_over_dt");        // a record's step over its sampling interval (issue 34)
-  EXPECT_EQ(header[76], "error_estimate");   // the error estimates last (issue 48)
-  EXPECT_EQ(header.back(), "error_estimate_velocity");
+  EXPECT_EQ(header[76], "error_estimate");   // the error estimates (issue 48)
+  EXPECT_EQ(header[78], "residual_m");       // the separations (issue 51)
+  EXPECT_EQ(header[90], "record_scale");     // and a record's scaling, last (issue 51)
+  EXPECT_EQ(header.back(), "sa_period");
 
   Row row;
   row.input.family = "odd, \"name\"";

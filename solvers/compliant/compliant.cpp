@@ -77,7 +77,8 @@ std::optional<ModelReference> model_reference(const Settings& settings) {
   const auto model = parse_model(settings.variant);
   if (!model) return std::nullopt;
   ModelReference ref{"", {}};
-  ref.settings.stiffness = stiffness(settings);
+  ref.settings.stiffness = settings.stiffness;
+  ref.settings.k_contact = settings.k_contact;
   ref.settings.time_limit = settings.time_limit;
   ref.settings.point_time_limit = settings.point_time_limit;
   if (*model == Model::kelvin_voigt) {
@@ -96,7 +97,7 @@ std::string describe(const Settings& settings) {
   NamedValues out;
   const auto model = parse_model(settings.variant);
   out.add("variant", model ? name(*model) : std::string_view(settings.variant));
-  out.add("stiffness", stiffness(settings));
+  add_stiffness(out, settings, stiffness(settings));
   if (is_newmark(settings)) {
     out.add("integrator", "newmark");
     add_step(out, settings, kDefaultSteps);

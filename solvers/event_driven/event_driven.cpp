@@ -134,14 +134,16 @@ class ScratchLease {
 
 class Solver {
  public:
-  Solver(const System& s, const Settings& settings, bool keep_searches = true, bool lazy = true)
+  // free: every contact removed, its gap watched (free_motion).
+  Solver(const System& s, const Settings& settings, bool keep_searches = true, bool lazy = true, bool free = false)
       : s_(s),
         tol_(tolerances(s, settings.tol_scale)),
         cap_(settings.step_cap > 0 ? settings.step_cap : 1000000),
         deadline_(settings),
         floor_(kRestitutionFloor * s.a_p / s.pulse.w),
         lemke_first_(settings.variant == kLemkeVariant),
-        tol_scale_(settings.tol_scale) {
+        tol_scale_(settings.tol_scale),
+        free_(free) {
     work_.lemke_only = lemke_first_;
     const auto n = ix(s.n_bodies()), nc = ix(s.n_contacts());
     st_.t = 0.0;
@@ -172,7 +174,7 @@ class Solver {
     proposal_.resize(nc);
     eval_u_.resize(n);
     eval_v_.resize(n);
-    incremental_ = keep_searches && s.n_contacts() > 2;
+    incremental_ = keep_searches && s.n_contacts() > 2 && !free_;
     fresh_.assign(nc, 1);
     root_.assign(nc, std::numeric_limits<double>::quiet_NaN());
     searched_.assign(nc, 0.0);
@@ -186,6 +188,11 @@ class Solver {
       in_region_.assign(n, 0);
       u_event_.resize(n);
       v_event_.resize(n);
+    }
+    if (free_) {
+      body_peak_.assign(n, Peak{});
+      closing_.assign(nc, Peak{});
+      opening_.assign(nc, Peak{});
     }
     if (settings.history_samples > 0) {
       samples_ = settings.history_samples;
@@ -212,6 +219,20 @@ class Solver {
     return finish();
   }
 
+  // run() of a free Solver: its peaks, and its gaps' extremes (each gap is u_right - u_left
+  // there: free_motion sets delta to 0).
+  FreeMotion free_run() {
+    Result r = run();
+    FreeMotion out;
+    out.status = r.status;
+    out.message = std::move(r.message);
+    if (r.status != Status::ok) return out;
+    for (const Peak& p : body_peak_) out.peak.push_back(p.value);
+    for (const Peak& p : closing_) out.closing.push_back(p.value);
+    for (const Peak& p : opening_) out.opening.push_back(p.value);
+    return out;
+  }
+
  private:
   void events() {
     if (!start()) return;
@@ -224,7 +245,7 @@ class Solver {
                                    : std::min(s_.pulse.next_break(st_.t), s_.t_end);
       double b = seg_end;
       int which = -1;
-      for (int j = 0; j < s_.n_contacts(); ++j) {
+      for (int j = 0; j < (free_ ? 0 : s_.n_contacts()); ++j) {
         const double r = next_root(j, b);
         if (!std::isnan(r) && r <= b) {
           b = r;
@@ -242,7 +263,10 @@ class Solver {
           which = -1;
         }
       }
-      max_abs(fr_.body[ix(s_.ref)], st_.t, b, tol_.floor, peak_, deadline_);
+      if (free_)
+        watch(b);  // body 0's peak among the others'
+      else
+        max_abs(fr_.body[ix(s_.ref)], st_.t, b, tol_.floor, peak_, deadline_);
       record(b);
       if (plastic_.on()) plastic_.integrate(s_, fr_, st_.t, b);
       // A contact's event within the load's piece touches only the bodies it reaches; at a
@@ -264,6 +288,12 @@ class Solver {
       }
       if (deadline_.tick()) throw OutOfTime{};  // one counter with the searches' looks
       if (which < 0 && st_.t >= s_.t_end) break;
+      if (free_) {
+        // No contact: a breakpoint of the load or a yield changes the motion of every body.
+        if (!std::isnan(yield.t)) plastic_.change(s_, st_, yield);
+        build_frame(s_, st_, 0, s_.n_bodies() - 1, fr_);
+        continue;
+      }
       if (lazy_event) {
         if (!(st_.active[ix(which)] ? detach_lazily(which) : impact_lazily(which))) break;
         continue;
@@ -594,6 +624,10 @@ class Solver {
   // t = 0: a closed contact that approaches (a Newton's-cradle kick) is an impact first;
   // otherwise the contact LCP decides the closed contacts at rest relative to each other.
   bool start() {
+    if (free_) {
+      build_frame(s_, st_, 0, s_.n_bodies() - 1, fr_);
+      return true;
+    }
     const double e_before = energy(st_.u.data(), st_.v.data());
     bool approach = false;
     closed_.clear();
@@ -659,9 +693,17 @@ class Solver {
     for (int j = 0; j < s_.n_contacts(); ++j) {
       if (!st_.active[ix(j)]) fr_.contact[ix(j)].eval(t, v, 1, trig);
       st_.g[ix(j)] = st_.active[ix(j)] ? 0.0 : v[0];
-      res_.min_gap = std::min(res_.min_gap, st_.g[ix(j)] < 0.0 ? st_.g[ix(j)] : res_.min_gap);
+      if (!free_) res_.min_gap = std::min(res_.min_gap, st_.g[ix(j)] < 0.0 ? st_.g[ix(j)] : res_.min_gap);
     }
     st_.t = t;
+  }
+
+  // A free run's peaks over [st.t, b]: every body's |u|, every gap's farthest either way.
+  void watch(double b) {
+    for (int i = 0; i < s_.n_bodies(); ++i) max_abs(fr_.body[ix(i)], st_.t, b, tol_.floor, body_peak_[ix(i)], deadline_);
+    for (int j = 0; j < s_.n_contacts(); ++j) {
+      max_both(fr_.contact[ix(j)], st_.t, b, tol_.floor, opening_[ix(j)], closing_[ix(j)], deadline_);
+    }
   }
 
   // Samples of the state at equally spaced times in [state.t, t] (the first from t = 0).
@@ -956,6 +998,8 @@ class Solver {
   Frame& fr_ = scratch_.fr;
   Peak peak_;
   Result res_;
+  bool free_ = false;
+  std::vector<Peak> body_peak_, closing_, opening_;  // a free run's (watch)
   double rate_ = 1.0;
   std::vector<double>& force_scale_ = scratch_.force_scale;  // per contact
   int samples_ = 0, next_sample_ = 0;
@@ -1050,7 +1094,7 @@ std::string describe(const Settings& settings) {
   // Rigid contact, the default, by either name keeps the rows' settings as they were.
   if (!settings.contact.empty() && settings.contact != "rigid") out.add("contact", settings.contact);
   if (kelvin_voigt(settings))
-    out.add("stiffness", settings.stiffness > 0.0 ? settings.stiffness : compliant::kDefaultStiffness);
+    add_stiffness(out, settings, settings.stiffness > 0.0 ? settings.stiffness : compliant::kDefaultStiffness);
   return out.json();
 }
 
@@ -1080,6 +1124,22 @@ std::string check(const Settings& settings) {
   if (kelvin_voigt(settings) && !settings.variant.empty())
     return "variant: the Kelvin-Voigt reference has none (its contacts need no LCP)";
   return {};
+}
+
+FreeMotion free_motion(const System& system, const Settings& limits) {
+  System apart = system;
+  apart.delta = 0.0;  // each gap is then u_right - u_left, what the separation measures
+  Settings settings;
+  settings.time_limit = limits.time_limit;
+  settings.stop = limits.stop;
+  try {
+    return Solver(apart, settings, false, false, true).free_run();
+  } catch (const std::exception& e) {
+    FreeMotion out;
+    out.status = Status::failed;
+    out.message = e.what();
+    return out;
+  }
 }
 
 double no_contact_pi1(const System& system, const Settings& limits) {

@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cases/separation.hpp"
 #include "kit/solver.hpp"
 
 namespace pb::event_driven {
@@ -22,6 +23,10 @@ std::vector<VariantInfo> variant_list();  // the default (no name), then kLemkeV
 // Pi1 of body 0 with every contact removed: a damped oscillator under the pulse, exact.
 // Only the time limit and stop flag of `limits` are used.
 double no_contact_pi1(const System& system, const Settings& limits = {});
+
+// The motion of every body with every contact removed, exact (cases/separation.hpp): the gap
+// that avoids pounding. Only the time limit and stop flag of `limits` are used.
+FreeMotion free_motion(const System& system, const Settings& limits = {});
 
 // Settings::tol_scale multiplies tolerances of 1e-10 (gaps) to 1e-7 (speeds) relative to
 // the pulse's scales: below 1e-5 the gap tolerance would be under double precision's

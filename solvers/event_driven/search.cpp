@@ -242,57 +242,100 @@ Point stationary(const Wave& f, const Point& a, const Point& b) {
   return {best.t, best.value, s * best.f};
 }
 
-void consider(const Point& p, Peak& peak) {
-  if (std::abs(p.f) > peak.value) {
-    peak.value = std::abs(p.f);
-    peak.t = p.t;
-  }
-}
-
-// `quiet` is f's rounding: while every value seen is exactly zero (peak.value 0), a window
+// What a peak search maximises. OneSide: |f| (kAbs), f (kUp) or -f (kDown), into one Peak;
+// BothSides: f and -f at once, into two (how far a relative displacement goes either way: a
+// separation, event_driven.hpp), where a window is skipped only when neither side can hold a
+// larger value, for about the cost of one search rather than two. With kAbs the tests are
+// max_abs's own, so its arithmetic, and every Pi1 it gives, is what it was.
+//
+// `quiet` is f's rounding: while every value seen is exactly zero (a peak's value 0), a window
 // is excluded against it instead, as a value within f's rounding of zero is no peak to
 // locate. Against 0 nothing can be excluded, and a plateau of rounded zeros was halved down
 // to the floor everywhere (32 768 windows on the wave max_abs describes). Where a value is
-// nonzero, peak.value is, from the first window on: the tests are the old ones.
+// nonzero, the peak's value is, from the first window on: the tests are the old ones.
+enum Side { kAbs, kUp, kDown };
+
+template <Side S>
+class OneSide {
+ public:
+  explicit OneSide(Peak& peak) : peak_(peak) {}
+  static double value(double f) { return S == kAbs ? std::abs(f) : S == kUp ? f : -f; }
+  void consider(const Point& p) {
+    if (value(p.f) > peak_.value) {
+      peak_.value = value(p.f);
+      peak_.t = p.t;
+    }
+  }
+  // Whether no value of a window whose values lie in [lo - err, hi + err] can beat the peak.
+  bool excluded(double lo, double hi, double err, double quiet) const {
+    const double top = S == kAbs ? std::max(-lo, hi) : S == kUp ? hi : -lo;
+    return top + err <= (peak_.value > 0.0 ? peak_.value : quiet);
+  }
+  // Whether f, within mean +- swing from here on, can beat the peak no more.
+  bool done(double mean, double swing) const { return value_of_mean(mean) + swing <= peak_.value; }
+  double scale() const { return peak_.value; }
+
+ private:
+  static double value_of_mean(double mean) { return S == kAbs ? std::abs(mean) : value(mean); }
+  Peak& peak_;
+};
+
+class BothSides {
+ public:
+  BothSides(Peak& up, Peak& down) : up_(up), down_(down) {}
+  void consider(const Point& p) {
+    up_.consider(p);
+    down_.consider(p);
+  }
+  bool excluded(double lo, double hi, double err, double quiet) const {
+    return up_.excluded(lo, hi, err, quiet) && down_.excluded(lo, hi, err, quiet);
+  }
+  bool done(double mean, double swing) const { return up_.done(mean, swing) && down_.done(mean, swing); }
+  double scale() const { return std::max(up_.scale(), down_.scale()); }
+
+ private:
+  OneSide<kUp> up_;
+  OneSide<kDown> down_;
+};
+
+template <class Target>
 void peak_search(const Wave& f, Bounds& bound, const Point& a, const Point& b, double floor, double quiet,
-                 Peak& peak, Deadline& dl) {
+                 Target& target, Deadline& dl) {
   tick(dl);
   const double h = b.t - a.t;
   const Cubic cubic(a, b);
   double lo, hi;
   cubic.range(lo, hi);
   const double err = hermite_error(bound, a.t, h);
-  const double best = peak.value > 0.0 ? peak.value : quiet;
-  if (std::max(-lo, hi) + err <= best) return;
+  if (target.excluded(lo, hi, err, quiet)) return;
   if (h <= floor) return;
   edge_range(cubic, err, lo, hi);
-  if (std::max(-lo, hi) <= best) return;
+  if (target.excluded(lo, hi, 0.0, quiet)) return;
   // f monotone: the ends, already considered, hold the max.
   if (one_sign(a.df, b.df, bound(a.t, 2), h)) return;
   // f'' of one sign on the window: exactly one stationary point inside.
   if ((a.df > 0.0) != (b.df > 0.0) && one_sign(a.ddf, b.ddf, bound(a.t, 3), h)) {
-    consider(stationary(f, a, b), peak);
+    target.consider(stationary(f, a, b));
     return;
   }
   const Point m = at3(f, 0.5 * (a.t + b.t));
-  consider(m, peak);
-  peak_search(f, bound, a, m, floor, quiet, peak, dl);
-  peak_search(f, bound, m, b, floor, quiet, peak, dl);
+  target.consider(m);
+  peak_search(f, bound, a, m, floor, quiet, target, dl);
+  peak_search(f, bound, m, b, floor, quiet, target, dl);
 }
 
-}  // namespace
-
-void max_abs(const Wave& f, double a, double b, double floor, Peak& peak, Deadline& dl) {
+template <class Target>
+void max_over(const Wave& f, double a, double b, double floor, Target& target, Deadline& dl) {
   Point p = at3(f, a);
   Bounds bound(f);
   check_finite(bound, p);
-  consider(p, peak);
-  const double mean = std::abs(f.mean());
-  const double quiet = 8.0 * std::numeric_limits<double>::epsilon() * (mean + bound(a, 0));
+  target.consider(p);
+  const double mean = f.mean();
+  const double quiet = 8.0 * std::numeric_limits<double>::epsilon() * (std::abs(mean) + bound(a, 0));
   while (p.t < b) {
     tick(dl);
-    if (mean + bound(p.t, 0) <= peak.value) return;
-    const double ref = std::max(peak.value, std::abs(p.f));
+    if (target.done(mean, bound(p.t, 0))) return;
+    const double ref = std::max(target.scale(), std::abs(p.f));
     // Nothing found yet and f rounding to exactly zero: the window rule has no value to scale
     // with (it gives 0, the floor), so the window doubles the distance from a, as first_root
     // walks off a zero gap. Undamped body 0 at Pi2 = 2^k from rest is such a wave: the free
@@ -304,10 +347,22 @@ void max_abs(const Wave& f, double a, double b, double floor, Peak& peak, Deadli
     const double h = ref > 0.0 ? std::max(window(bound, p.t, ref, b - p.t), std::min(floor, b - p.t))
                                : std::min(std::max(floor, p.t - a), b - p.t);
     const Point q = at3(f, h >= b - p.t ? b : p.t + h);
-    consider(q, peak);
-    peak_search(f, bound, p, q, floor, quiet, peak, dl);
+    target.consider(q);
+    peak_search(f, bound, p, q, floor, quiet, target, dl);
     p = q;
   }
+}
+
+}  // namespace
+
+void max_abs(const Wave& f, double a, double b, double floor, Peak& peak, Deadline& dl) {
+  OneSide<kAbs> target(peak);
+  max_over(f, a, b, floor, target, dl);
+}
+
+void max_both(const Wave& f, double a, double b, double floor, Peak& up, Peak& down, Deadline& dl) {
+  BothSides target(up, down);
+  max_over(f, a, b, floor, target, dl);
 }
 
 namespace detail {

@@ -38,6 +38,9 @@ struct Peak {
 // Raises peak to max |f| on [a, b] if that is larger; interior maxima are located at the
 // zero of f' to within an ulp.
 void max_abs(const Wave& f, double a, double b, double floor, Peak& peak, Deadline& deadline);
+// Raises up to max f and down to max -f on [a, b], in one search: how far a relative
+// displacement goes either way. Each value starts at 0 or above (a motion from rest).
+void max_both(const Wave& f, double a, double b, double floor, Peak& up, Peak& down, Deadline& deadline);
 
 namespace detail {
 // The searches' last stages, for tests: the root of f on lo < hi with f(lo) > 0 >= f(hi)

@@ -126,7 +126,7 @@ Result solve(const System& system, const Settings& settings) {
     return finish(Status::time_limit, "stopped (the sweep was interrupted) before the program started");
   const CaseDocument document = case_document(system, settings);
   if (!document.error.empty()) return finish(Status::failed, document.error);
-  if (settings.steps > 0 || settings.wh > 0.0) {
+  if (settings.steps > 0 || settings.wh > 0.0 || settings.h_s > 0.0) {
     r.step = time_step(system, settings, 1);
     if (std::string bad = step_problem(system, r.step); !bad.empty()) return finish(Status::failed, bad);
   }
@@ -180,7 +180,9 @@ std::string describe(const Settings& settings) {
   NamedValues out;
   if (!settings.name.empty()) out.add("name", settings.name);
   out.add("command", settings.command);
-  if (settings.wh > 0.0)
+  if (settings.h_s > 0.0)
+    out.add("h_s", settings.h_s);
+  else if (settings.wh > 0.0)
     out.add("wh", settings.wh);
   else if (settings.steps > 0)
     out.add("steps", settings.steps);

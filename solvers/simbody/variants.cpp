@@ -23,7 +23,8 @@ void add_config(NamedValues& out, const Config& config, const Settings& settings
       out.add("constraint_tol", kStepperConstraintTol).add("projection", "bilateral").add("contacts", "margin");
       break;
     case Kind::hunt_crossley:
-      out.add("stiffness", stiffness(settings)).add("rtol", accuracy(settings));
+      add_stiffness(out, settings, stiffness(settings));
+      out.add("rtol", accuracy(settings));
       out.add("integrator", "runge-kutta-merson").add("calibration_speed", kCalibrationSpeed);
       out.add("reports", kHuntCrossleyReports);
       break;

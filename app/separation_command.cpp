@@ -1,0 +1,110 @@
+#include "app/separation_command.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cases/buildings_set.hpp"
+#include "cases/case_set.hpp"
+#include "frontend/errors.hpp"
+#include "output/output_files.hpp"
+#include "output/sweep_watch.hpp"
+#include "solvers/registry.hpp"
+#include "studies/separation_study.hpp"
+#include "sweep/sweep.hpp"
+
+namespace pb::app {
+
+namespace {
+
+// The reference over the cases, with progress; nullopt when interrupted.
+std::optional<std::vector<Row>> solve_all(const std::vector<Case>& cases, unsigned threads, std::size_t done_before,
+                                          std::size_t total) {
+  SweepWatch watch("separation", "solves", total, done_before, progress_on_stderr(true),
+                   [] { std::_Exit(kInterrupted); });
+  SweepOptions options;
+  options.threads = threads;
+  options.cancel = &watch.cancel();
+  options.on_progress = [&](std::size_t done, std::size_t) { watch.set_done(done_before + done); };
+  std::vector<Row> rows = run_sweep(cases, reference_solver(), Settings{}, options);
+  watch.finish();
+  if (watch.interrupted() || rows.size() < cases.size()) return std::nullopt;
+  return rows;
+}
+
+}  // namespace
+
+CLI::App* add_separation_command(CLI::App& app, SeparationFlags& flags) {
+  CLI::App* command = app.add_subcommand(
+      "separation", "The gap that avoids pounding against the rules (ABS, SRSS, DDC) over a case set");
+  command->add_option("CASESET", flags.case_set, "Case-set file (neighbours: wall, pair or row3)")->required();
+  command->add_option("--out", flags.out, "Write the per-case table here (CSV; default: stdout)");
+  command->add_option("--summary", flags.summary,
+                      "Write each rule's ratio to the required gap per family (median, 16/84 %, unconservative share)");
+  command->add_option("--gap-fractions", flags.gap_fractions,
+                      "Solve each case again at these fractions of its required gap (e.g. 0.25,0.5,0.75): the "
+                      "amplification of the peak")
+      ->delimiter(',');
+  command->add_option("--threads", flags.threads, "Worker threads (default: every core)");
+  return command;
+}
+
+int separation_command(const SeparationFlags& flags) {
+  for (const double f : flags.gap_fractions)
+    if (!(std::isfinite(f) && f > 0.0 && f < 1.0))
+      throw BadInput("--gap-fractions: each must be in (0, 1) (a fraction of the required gap), got " +
+                     std::to_string(f));
+  if (load_buildings_set(flags.case_set))
+    throw BadInput(flags.case_set + ": a buildings set; `separation` takes the single oscillators (wall, pair, row3)");
+  CaseSet set;
+  try {
+    set = load_case_set(flags.case_set);
+  } catch (const CaseSetError& e) {
+    throw BadInput(e.what());
+  }
+  if (set.cases.empty()) throw BadInput(flags.case_set + ": no cases");
+  for (std::size_t i = 0; i < set.cases.size(); ++i)
+    if (set.cases[i].scene == Scene::chain)
+      throw BadInput(flags.case_set + ": point " + std::to_string(i) +
+                     ": scene chain (a kicked row, not neighbours under a load): `separation` takes wall, pair, row3");
+  std::vector<NamedFile> outputs;
+  if (!flags.out.empty()) {
+    check_sweep_output(flags.out, "--out");
+    outputs.push_back({"--out", flags.out});
+  }
+  if (!flags.summary.empty()) {
+    check_sweep_output(flags.summary, "--summary");
+    outputs.push_back({"--summary", flags.summary});
+  }
+  std::vector<NamedFile> inputs = record_files(set.cases);
+  inputs.push_back({"CASESET", flags.case_set});
+  check_outputs_apart(outputs, inputs);
+  const std::size_t total = set.cases.size() * (1 + flags.gap_fractions.size());
+  const std::optional<std::vector<Row>> given = solve_all(set.cases, flags.threads, 0, total);
+  if (!given) return kInterrupted;
+  std::vector<Row> at_fraction;
+  if (!flags.gap_fractions.empty()) {
+    const std::optional<std::vector<Row>> more =
+        solve_all(fraction_cases(*given, flags.gap_fractions), flags.threads, given->size(), total);
+    if (!more) return kInterrupted;
+    at_fraction = std::move(*more);
+  }
+  const auto table = [&](std::ostream& out) { write_separation_table(out, *given, at_fraction, flags.gap_fractions); };
+  if (!flags.summary.empty()) {
+    const std::vector<RuleSummary> summary = summarise_rules(*given);
+    write_atomically(flags.summary, [&](std::ostream& out) { write_rule_summary(out, summary); });
+    report_written(summary.size(), flags.summary);
+  }
+  if (flags.out.empty()) {
+    write_to_stdout(table);
+  } else {
+    write_atomically(flags.out, table);
+    report_written(given->size(), flags.out);
+  }
+  return 0;
+}
+
+}  // namespace pb::app

@@ -1,0 +1,56 @@
+#pragma once
+// The separation study (`poundbench separation`): over a case set of neighbours (pairs of
+// buildings over period ratios and records), how the rules engineers use for the gap (ABS,
+// SRSS, DDC: cases/separation.hpp) compare with the exact gap that avoids pounding, and how
+// much pounding amplifies the peak where the gap is a fraction of that one.
+//
+// Per case: the required gap (the larger of the load as given and reversed: a building must
+// clear its neighbour whichever way the ground first moves) and each rule's gap over it; per
+// family and rule, that ratio's median, 16th and 84th percentiles and the share of cases where
+// the rule is short of the required gap (unconservative). Where gap fractions are asked, each
+// case is solved again at gaps of those fractions of the required gap under the load as given
+// (where it pounds), and body 0's peak over its no-contact peak is the amplification; a single
+// storey's drift is its displacement, so that is the drift's amplification too.
+
+#include <array>
+#include <cstddef>
+#include <ostream>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rows/row.hpp"
+
+namespace pb {
+
+// The rules, as the study's columns name them.
+inline constexpr std::array<std::string_view, 3> kSeparationRules = {"abs", "srss", "ddc"};
+
+// The gap a case must clear whichever way the load acts (over a_p / w_p^2; NaN if unknown).
+double required_gap(const Row& row);
+// A rule's gap over the required one; `rule` one of kSeparationRules. NaN where no gap is
+// required (identical buildings move as one: no rule's gap has a ratio to zero).
+double rule_ratio(const Row& row, std::string_view rule);
+
+// Each case again with its gap (Pi3) at each fraction of the gap the load as given needs:
+// point p, fraction k is entry p * fractions.size() + k. A case whose required gap is not
+// known keeps its own gap (its row will say why in the first solve).
+std::vector<Case> fraction_cases(std::span<const Row> given, std::span<const double> fractions);
+
+struct RuleSummary {
+  std::string family, rule;
+  std::size_t cases = 0;
+  double median = 0, p16 = 0, p84 = 0;
+  double unconservative = 0;  // share of the cases with ratio < 1
+};
+// Per family (in order of first appearance) and rule, over the rows that finished ok.
+std::vector<RuleSummary> summarise_rules(std::span<const Row> given);
+
+// The per-case table: the case, the required gaps, the rules' gaps and ratios, and per
+// fraction the amplification; `at_fraction` as fraction_cases orders them (empty: none asked).
+void write_separation_table(std::ostream& out, std::span<const Row> given, std::span<const Row> at_fraction,
+                            std::span<const double> fractions);
+void write_rule_summary(std::ostream& out, std::span<const RuleSummary> summary);
+
+}  // namespace pb
