@@ -12,6 +12,7 @@
 #include "kit/solver.hpp"
 #include "solvers/registry.hpp"
 #ifdef POUNDBENCH_HAVE_ODE
+#include "solvers/ode/buildings.hpp"
 #include "solvers/ode/ode_solver.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_BULLET
@@ -93,8 +94,17 @@ const std::array kSolvers = {
                .solve_buildings = &moreau_jean::solve_buildings,
                .buildings_settings = kMoreauJeanBuildingsSettings},
 #ifdef POUNDBENCH_HAVE_ODE
-    SolverInfo{"ode", "Open Dynamics Engine: its LCP contact solver with restitution (see --variant)", &ode::solve,
-               &ode::describe, &check_all<&ode::check>, &ode::variant_list, 1e-12, false, nullptr, false, kFixedStepOrder},
+    // On the buildings scene: a body per floor, the storeys' forces applied (solvers/ode/buildings.hpp).
+    SolverInfo{.name = "ode",
+               .summary = "Open Dynamics Engine: its LCP contact solver with restitution (see --variant)",
+               .solve = &ode::solve,
+               .describe = &ode::describe,
+               .check = &check_all<&ode::check>,
+               .variants = &ode::variant_list,
+               .baseline_tolerance = 1e-12,
+               .step_order = kFixedStepOrder,
+               .solve_buildings = &ode::solve_buildings,
+               .buildings_settings = ode::kBuildingsSettings},
 #endif
 #ifdef POUNDBENCH_HAVE_BULLET
     // Debian's Bullet computes in single precision: the same margin at float round-off.
