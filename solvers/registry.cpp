@@ -16,6 +16,7 @@
 #include "solvers/ode/ode_solver.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_BULLET
+#include "solvers/bullet/buildings.hpp"
 #include "solvers/bullet/bullet_solver.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_SICONOS
@@ -108,8 +109,17 @@ const std::array kSolvers = {
 #endif
 #ifdef POUNDBENCH_HAVE_BULLET
     // Debian's Bullet computes in single precision: the same margin at float round-off.
-    SolverInfo{"bullet", "Bullet Physics (single precision): its constraint solvers with restitution (see --variant)",
-               &bullet::solve, &bullet::describe, &check_all<&bullet::check>, &bullet::variant_list, 1e-6, false, nullptr, false, kFixedStepOrder},
+    // On the buildings scene: a body per floor, the storeys' forces applied (solvers/bullet/buildings.hpp).
+    SolverInfo{.name = "bullet",
+               .summary = "Bullet Physics (single precision): its constraint solvers with restitution (see --variant)",
+               .solve = &bullet::solve,
+               .describe = &bullet::describe,
+               .check = &check_all<&bullet::check>,
+               .variants = &bullet::variant_list,
+               .baseline_tolerance = 1e-6,
+               .step_order = kFixedStepOrder,
+               .solve_buildings = &bullet::solve_buildings,
+               .buildings_settings = bullet::kBuildingsSettings},
 #endif
 #ifdef POUNDBENCH_HAVE_SICONOS
     // Its LSODAR variant chooses its own steps, and round-off can move a step choice and Pi1
