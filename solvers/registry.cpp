@@ -28,6 +28,7 @@
 #include "solvers/compliant/compliant.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_MUJOCO
+#include "solvers/mujoco/buildings.hpp"
 #include "solvers/mujoco/mujoco_solver.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_DART
@@ -155,8 +156,18 @@ const std::array kSolvers = {
 #endif
 #ifdef POUNDBENCH_HAVE_MUJOCO
     // A fixed-step engine in double precision, as ODE: round-off only, 1e-12.
-    SolverInfo{"mujoco", "MuJoCo: soft contacts calibrated to eps, Euler, implicit or RK4 (see --variant)",
-               &mujoco::solve, &mujoco::describe, &check_all<&mujoco::check>, &mujoco::variant_list, 1e-12, false, nullptr, false, kFixedStepOrder},
+    // On the buildings scene: a body per floor on a slide joint, tendons for the storeys
+    // (solvers/mujoco/buildings.hpp).
+    SolverInfo{.name = "mujoco",
+               .summary = "MuJoCo: soft contacts calibrated to eps, Euler, implicit or RK4 (see --variant)",
+               .solve = &mujoco::solve,
+               .describe = &mujoco::describe,
+               .check = &check_all<&mujoco::check>,
+               .variants = &mujoco::variant_list,
+               .baseline_tolerance = 1e-12,
+               .step_order = kFixedStepOrder,
+               .solve_buildings = &mujoco::solve_buildings,
+               .buildings_settings = mujoco::kBuildingsSettings},
 #endif
 #ifdef POUNDBENCH_HAVE_DART
     // A fixed-step engine in double precision, as ODE: round-off only, 1e-12.
