@@ -17,9 +17,11 @@
 #include "kit/solver.hpp"
 #include "solvers/registry.hpp"
 #ifdef POUNDBENCH_HAVE_ODE
+#include "solvers/ode/buildings.hpp"
 #include "solvers/ode/ode_solver.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_BULLET
+#include "solvers/bullet/buildings.hpp"
 #include "solvers/bullet/bullet_solver.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_SICONOS
@@ -31,6 +33,7 @@
 #include "solvers/compliant/compliant.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_MUJOCO
+#include "solvers/mujoco/buildings.hpp"
 #include "solvers/mujoco/mujoco_solver.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_DART
@@ -98,13 +101,31 @@ const std::array kSolvers = {
                .solve_buildings = &moreau_jean::solve_buildings,
                .buildings_settings = kMoreauJeanBuildingsSettings},
 #ifdef POUNDBENCH_HAVE_ODE
-    SolverInfo{"ode", "Open Dynamics Engine: its LCP contact solver with restitution (see --variant)", &ode::solve,
-               &ode::describe, &check_all<&ode::check>, &ode::variant_list, 1e-12, false, nullptr, false, kFixedStepOrder},
+    // On the buildings scene: a body per floor, the storeys' forces applied (solvers/ode/buildings.hpp).
+    SolverInfo{.name = "ode",
+               .summary = "Open Dynamics Engine: its LCP contact solver with restitution (see --variant)",
+               .solve = &ode::solve,
+               .describe = &ode::describe,
+               .check = &check_all<&ode::check>,
+               .variants = &ode::variant_list,
+               .baseline_tolerance = 1e-12,
+               .step_order = kFixedStepOrder,
+               .solve_buildings = &ode::solve_buildings,
+               .buildings_settings = ode::kBuildingsSettings},
 #endif
 #ifdef POUNDBENCH_HAVE_BULLET
     // Debian's Bullet computes in single precision: the same margin at float round-off.
-    SolverInfo{"bullet", "Bullet Physics (single precision): its constraint solvers with restitution (see --variant)",
-               &bullet::solve, &bullet::describe, &check_all<&bullet::check>, &bullet::variant_list, 1e-6, false, nullptr, false, kFixedStepOrder},
+    // On the buildings scene: a body per floor, the storeys' forces applied (solvers/bullet/buildings.hpp).
+    SolverInfo{.name = "bullet",
+               .summary = "Bullet Physics (single precision): its constraint solvers with restitution (see --variant)",
+               .solve = &bullet::solve,
+               .describe = &bullet::describe,
+               .check = &check_all<&bullet::check>,
+               .variants = &bullet::variant_list,
+               .baseline_tolerance = 1e-6,
+               .step_order = kFixedStepOrder,
+               .solve_buildings = &bullet::solve_buildings,
+               .buildings_settings = bullet::kBuildingsSettings},
 #endif
 #ifdef POUNDBENCH_HAVE_SICONOS
     // Its LSODAR variant chooses its own steps, and round-off can move a step choice and Pi1
@@ -140,8 +161,18 @@ const std::array kSolvers = {
 #endif
 #ifdef POUNDBENCH_HAVE_MUJOCO
     // A fixed-step engine in double precision, as ODE: round-off only, 1e-12.
-    SolverInfo{"mujoco", "MuJoCo: soft contacts calibrated to eps, Euler, implicit or RK4 (see --variant)",
-               &mujoco::solve, &mujoco::describe, &check_all<&mujoco::check>, &mujoco::variant_list, 1e-12, false, nullptr, false, kFixedStepOrder},
+    // On the buildings scene: a body per floor on a slide joint, tendons for the storeys
+    // (solvers/mujoco/buildings.hpp).
+    SolverInfo{.name = "mujoco",
+               .summary = "MuJoCo: soft contacts calibrated to eps, Euler, implicit or RK4 (see --variant)",
+               .solve = &mujoco::solve,
+               .describe = &mujoco::describe,
+               .check = &check_all<&mujoco::check>,
+               .variants = &mujoco::variant_list,
+               .baseline_tolerance = 1e-12,
+               .step_order = kFixedStepOrder,
+               .solve_buildings = &mujoco::solve_buildings,
+               .buildings_settings = mujoco::kBuildingsSettings},
 #endif
 #ifdef POUNDBENCH_HAVE_DART
     // A fixed-step engine in double precision, as ODE: round-off only, 1e-12.

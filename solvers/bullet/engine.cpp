@@ -10,17 +10,16 @@
 
 namespace pb::bullet {
 
-namespace {
-
 // Bullet's Dantzig LCP (btDantzigLCP.cpp) keeps its failure flag in a global, s_error, which
 // every solve clears and sets as it pivots: two worlds solving at once on two threads read
 // each other's failures, and a step falls back to Bullet's projected Gauss-Seidel
 // (btMLCPSolver) or not by their timing. Measured: 13 of the stress set's 1232 points on
 // mlcp-dantzig-faithful at w_max h = 2 changed status between two runs of the same 2-thread
 // sweep, none with one thread. So its solves are taken one at a time, process-wide.
-std::mutex dantzig_solves;
-
-}  // namespace
+std::mutex& dantzig_solves() {
+  static std::mutex lock;
+  return lock;
+}
 
 btContactSolverInfo solver_info(const Config& config, double h) {
   btContactSolverInfo info;  // Bullet's defaults (btContactSolverInfo.h)
@@ -39,8 +38,6 @@ btContactSolverInfo solver_info(const Config& config, double h) {
   info.m_solverMode |= SOLVER_USE_WARMSTARTING;
   return info;
 }
-
-namespace {
 
 std::unique_ptr<btRigidBody> make_body(btCollisionShape* shape, double mass, double u0, double v0, double restitution) {
   btRigidBody::btRigidBodyConstructionInfo ci(static_cast<btScalar>(mass), nullptr, shape, btVector3(0, 0, 0));
@@ -67,8 +64,6 @@ std::unique_ptr<btRigidBody> make_body(btCollisionShape* shape, double mass, dou
   }
   return body;
 }
-
-}  // namespace
 
 World::World(const System& system, const Config& config, double h, double gamma, const std::vector<double>& u0,
              const std::vector<double>& v0)
@@ -117,7 +112,7 @@ World::World(const System& system, const Config& config, double h, double gamma,
     case Engine::si: solver_ = std::make_unique<btSequentialImpulseConstraintSolver>(); break;
     case Engine::mlcp_dantzig:
       mlcp_ = std::make_unique<btDantzigSolver>();
-      serial_ = &dantzig_solves;
+      serial_ = &dantzig_solves();
       break;
     case Engine::mlcp_lemke: mlcp_ = std::make_unique<btLemkeSolver>(); break;
   }

@@ -48,6 +48,15 @@ namespace pb::bullet {
 // overrides. The only place where a setting of a variant is chosen.
 btContactSolverInfo solver_info(const Config& config, double h);
 
+// A body on the x axis alone (linear factor (1,0,0), no rotation, gravity, damping or
+// sleep), frictionless, of restitution `restitution`, at x = u0 moving at v0; mass 0: static.
+// The single oscillators' bodies and the buildings' floors (buildings.cpp).
+std::unique_ptr<btRigidBody> make_body(btCollisionShape* shape, double mass, double u0, double v0, double restitution);
+
+// Bullet's Dantzig LCP keeps its failure flag in a global: its solves are taken one at a
+// time, process-wide, under this lock (engine.cpp says what it measured without it).
+std::mutex& dantzig_solves();
+
 class World {
  public:
   // u0, v0: one value per body, left to right.

@@ -11,7 +11,7 @@ namespace pb::mujoco {
 
 namespace {
 
-thread_local Load* t_load = nullptr;
+thread_local Control* t_load = nullptr;
 thread_local Warnings t_warnings;
 
 void on_control(const mjModel* m, mjData* d) {
@@ -187,7 +187,7 @@ bool Load::end_step(const mjData* d) {
   return evaluations_ == stages_;
 }
 
-LoadScope::LoadScope(Load& load) : before_(t_load) { t_load = &load; }
+LoadScope::LoadScope(Control& load) : before_(t_load) { t_load = &load; }
 LoadScope::~LoadScope() { t_load = before_; }
 
 }  // namespace pb::mujoco

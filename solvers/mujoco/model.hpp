@@ -82,10 +82,18 @@ using DataPtr = std::unique_ptr<mjData, DataDeleter>;
 // Null, with MuJoCo's message in `error`, when it does not compile.
 ModelPtr compile(const std::string& xml, std::string& error);
 
+// What mjcb_control calls on this thread while a LoadScope holds it: the single oscillators'
+// Load below, the buildings' own (buildings.cpp).
+class Control {
+ public:
+  virtual ~Control() = default;
+  virtual void evaluate(const mjModel* m, mjData* d) = 0;
+};
+
 // What the control callback needs of the running engine: the load on each body per unit of
 // the pulse's acceleration, and, per contact, which constraint row carried it at the
 // previous evaluation (for the step's mean contact force).
-class Load {
+class Load : public Control {
  public:
   Load(const System& sys, const Units& units, const std::vector<int>& contact_of_geom, int stages);
 
@@ -93,7 +101,7 @@ class Load {
   void begin_step();
   // From mjcb_control: collects the previous evaluation's contact forces, notes this one's
   // rows, and writes the ground load at d->time into qfrc_applied.
-  void evaluate(const mjModel* m, mjData* d);
+  void evaluate(const mjModel* m, mjData* d) override;
   // After a step: collects the last evaluation's forces. False when MuJoCo evaluated the
   // dynamics another number of times than the integrator's stages.
   bool end_step(const mjData* d);
@@ -121,13 +129,13 @@ class Load {
 // Makes `load` the one the callback uses on this thread while it lives.
 class LoadScope {
  public:
-  explicit LoadScope(Load& load);
+  explicit LoadScope(Control& load);
   ~LoadScope();
   LoadScope(const LoadScope&) = delete;
   LoadScope& operator=(const LoadScope&) = delete;
 
  private:
-  Load* before_;
+  Control* before_;
 };
 
 }  // namespace pb::mujoco
