@@ -29,6 +29,7 @@
 #include "solvers/mujoco/mujoco_solver.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_DART
+#include "solvers/dart/buildings.hpp"
 #include "solvers/dart/dart_solver.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_SIMBODY
@@ -140,8 +141,10 @@ const std::array kSolvers = {
 #endif
 #ifdef POUNDBENCH_HAVE_DART
     // A fixed-step engine in double precision, as ODE: round-off only, 1e-12.
+    // On the buildings scene: a body per floor (solvers/dart/buildings.hpp).
     SolverInfo{"dart", "DART: its constraint solver with a gap constraint of its own, or boxes via FCL (see --variant)",
-               &dart::solve, &dart::describe, &check_all<&dart::check>, &dart::variant_list, 1e-12, false, nullptr, false, kFixedStepOrder},
+               &dart::solve, &dart::describe, &check_all<&dart::check>, &dart::variant_list, 1e-12, false, nullptr, false, kFixedStepOrder,
+               nullptr, {}, &dart::solve_buildings, dart::kBuildingsSettings},
 #endif
 #ifdef POUNDBENCH_HAVE_SIMBODY
     // Its time-stepper, in double precision, is deterministic: round-off only, 1e-12. Its
