@@ -33,6 +33,7 @@
 #include "solvers/dart/dart_solver.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_SIMBODY
+#include "solvers/simbody/buildings.hpp"
 #include "solvers/simbody/simbody_solver.hpp"
 #endif
 
@@ -150,9 +151,10 @@ const std::array kSolvers = {
     // Its time-stepper, in double precision, is deterministic: round-off only, 1e-12. Its
     // hunt-crossley variant's Runge-Kutta-Merson chooses its steps, and round-off can move a
     // choice and Pi1 with it within its accuracy (1e-8 by default): 1e-7, as CVODE's.
+    // On the buildings scene: a slider per floor, its time-stepper (solvers/simbody/buildings.hpp).
     SolverInfo{"simbody", "Simbody: its semi-explicit Euler time-stepper with Poisson impacts, or Hunt-Crossley elements (see --variant)",
                &simbody::solve, &simbody::describe, &check_all<&simbody::check>, &simbody::variant_list, 1e-7, false, nullptr, false, kFixedStepOrder,
-               &simbody::hertz_contact},
+               &simbody::hertz_contact, {}, &simbody::solve_buildings, simbody::kBuildingsSettings},
 #endif
     // Another program, run once per point (docs/external.md): what it computes is its own; a
     // deterministic program gives its Pi1 again bit for bit, and 1e-9 lets another build of it
