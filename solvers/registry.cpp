@@ -37,9 +37,11 @@
 #include "solvers/mujoco/mujoco_solver.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_DART
+#include "solvers/dart/buildings.hpp"
 #include "solvers/dart/dart_solver.hpp"
 #endif
 #ifdef POUNDBENCH_HAVE_SIMBODY
+#include "solvers/simbody/buildings.hpp"
 #include "solvers/simbody/simbody_solver.hpp"
 #endif
 
@@ -176,16 +178,19 @@ const std::array kSolvers = {
 #endif
 #ifdef POUNDBENCH_HAVE_DART
     // A fixed-step engine in double precision, as ODE: round-off only, 1e-12.
+    // On the buildings scene: a body per floor (solvers/dart/buildings.hpp).
     SolverInfo{"dart", "DART: its constraint solver with a gap constraint of its own, or boxes via FCL (see --variant)",
-               &dart::solve, &dart::describe, &check_all<&dart::check>, &dart::variant_list, 1e-12, false, nullptr, false, kFixedStepOrder},
+               &dart::solve, &dart::describe, &check_all<&dart::check>, &dart::variant_list, 1e-12, false, nullptr, false, kFixedStepOrder,
+               nullptr, {}, &dart::solve_buildings, dart::kBuildingsSettings},
 #endif
 #ifdef POUNDBENCH_HAVE_SIMBODY
     // Its time-stepper, in double precision, is deterministic: round-off only, 1e-12. Its
     // hunt-crossley variant's Runge-Kutta-Merson chooses its steps, and round-off can move a
     // choice and Pi1 with it within its accuracy (1e-8 by default): 1e-7, as CVODE's.
+    // On the buildings scene: a slider per floor, its time-stepper (solvers/simbody/buildings.hpp).
     SolverInfo{"simbody", "Simbody: its semi-explicit Euler time-stepper with Poisson impacts, or Hunt-Crossley elements (see --variant)",
                &simbody::solve, &simbody::describe, &check_all<&simbody::check>, &simbody::variant_list, 1e-7, false, nullptr, false, kFixedStepOrder,
-               &simbody::hertz_contact},
+               &simbody::hertz_contact, {}, &simbody::solve_buildings, simbody::kBuildingsSettings},
 #endif
     // Another program, run once per point (docs/external.md): what it computes is its own; a
     // deterministic program gives its Pi1 again bit for bit, and 1e-9 lets another build of it

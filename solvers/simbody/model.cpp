@@ -58,6 +58,33 @@ class GroundLoad : public Force::Custom::Implementation {
   std::vector<double>* seen_;
 };
 
+// The length along x between a link's two stations (ModelSpec::Link), in the model's units: a
+// storey's drift moves the length by the drift itself, and the round-off of a length of 1e3 is
+// 1e-13 a_p / w_p^2, far below any peak; a drift would have to reach -1e3 to turn the element.
+constexpr Real kLink = 1e3;
+
+// A damping matrix C on the bodies' coordinates: -(C v) at the velocities of the state it is
+// realized at, as Simbody's dampers (the stepper realizes its forces after its impacts).
+class DampingMatrix : public Force::Custom::Implementation {
+ public:
+  DampingMatrix(const std::vector<MobilizedBody>& bodies, const std::vector<double>& c) : bodies_(bodies), c_(c) {}
+
+  void calcForce(const State& s, Vector_<SpatialVec>&, Vector_<Vec3>&, Vector& mobility) const override {
+    const std::size_t n = bodies_.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      double f = 0.0;
+      for (std::size_t j = 0; j < n; ++j) f -= c_[i * n + j] * bodies_[j].getOneU(s, 0);
+      bodies_[i].applyOneMobilityForce(s, 0, f, mobility);
+    }
+  }
+  Real calcPotentialEnergy(const State&) const override { return 0.0; }
+  bool dependsOnlyOnPositions() const override { return false; }
+
+ private:
+  std::vector<MobilizedBody> bodies_;
+  std::vector<double> c_;
+};
+
 // When a contact takes part in a step: the faithful rule g + gamma h g' <= 0 from the state at
 // the step's start (the stepper asks isProximal there), or the stepper's own, g <= its
 // constraint tolerance. Either way the answer is noted for the step's counts, and the run's
@@ -174,6 +201,13 @@ struct Model::Impl {
       Force::MobilityLinearSpring(forces, slider, MobilizerQIndex(0), s.k[ix(i)], 0.0);
       Force::MobilityLinearDamper(forces, slider, MobilizerUIndex(0), s.c[ix(i)]);
     }
+    for (const ModelSpec::Link& link : s.links) {
+      const MobilizedBody& lower = link.lower < 0 ? matter.Ground() : bodies[ix(link.lower)];
+      const MobilizedBody& upper = bodies[ix(link.upper)];
+      Force::TwoPointLinearSpring(forces, lower, Vec3(-kLink, 0, 0), upper, Vec3(0), link.k, kLink);
+      if (link.c != 0.0) Force::TwoPointLinearDamper(forces, lower, Vec3(-kLink, 0, 0), upper, Vec3(0), link.c);
+    }
+    if (!s.damping_matrix.empty()) Force::Custom(forces, new DampingMatrix(bodies, s.damping_matrix));
     const bool stepper_kind = s.kind != Kind::hunt_crossley;
     Force::Custom(forces, new GroundLoad(bodies, s.m, s.ground_accel, &watch_time, stepper_kind ? &u_seen : nullptr));
     if (stepper_kind)
@@ -286,6 +320,10 @@ struct Model::Impl {
     stepper->stepTo(t1);
     const State& after = stepper->getState();
     read(after);
+    if (!spec.links.empty()) {  // the buildings: which contacts took part, not their impulses
+      for (std::size_t j = 0; j < spec.left.size(); ++j) steps[j] = ContactStep{proximal[j] != 0, 0.0};
+      return;
+    }
     // The impulse each contact gave over the step, from each body's momentum balance:
     // m (u1 - u0) = h f + (impulses), f the spring at q0, the damper at the velocities the
     // stepper's forces saw, the ground load at t0; then contact by contact from the right

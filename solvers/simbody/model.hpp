@@ -34,6 +34,18 @@ struct ModelSpec {
   double hertz = 0.0;
   double dissipation = 0.0;
   double accuracy = 1e-8;
+  // The buildings scene (buildings.cpp; empty for the single oscillators, whose k and c above
+  // are each body's to the ground): a TwoPointLinearSpring of stiffness k and a
+  // TwoPointLinearDamper of c between two bodies (lower -1: the ground), their stations kLink
+  // apart along x so that the elements' line stays the x axis (the force is then k times the
+  // two displacements' difference, exactly); and a damping matrix applied whole, -(C v), by a
+  // Force::Custom (a modal C couples every floor of a building: no two-point element has it).
+  struct Link {
+    int lower = -1, upper = 0;
+    double k = 0.0, c = 0.0;
+  };
+  std::vector<Link> links;
+  std::vector<double> damping_matrix;  // n x n by rows; empty: none
   // The run's time limit: true once it has passed (or the sweep stops). Asked wherever a step
   // runs this project's code: each contact's isProximal, each internal step of hunt-crossley's
   // integrator, and each line of the trace Simbody writes (quiet_stdout.hpp), at every
