@@ -71,7 +71,7 @@ constexpr std::string_view kExactBuildingsSettings[] = {"tol_scale", "step_cap",
 
 // What Moreau-Jean's buildings solve reads (solvers/moreau_jean/buildings.hpp); its variants,
 // the load rules, apply to the scene as they are.
-constexpr std::string_view kMoreauJeanBuildingsSettings[] = {"steps", "wh", "steps_per_sample", "theta", "gamma",
+constexpr std::string_view kMoreauJeanBuildingsSettings[] = {"steps", "wh", "h_s", "steps_per_sample", "theta", "gamma",
                                                              "step_cap", "time_limit"};
 
 const std::array kSolvers = {

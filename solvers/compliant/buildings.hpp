@@ -32,7 +32,7 @@ namespace pb::compliant {
 // The settings the buildings solve reads (SolverInfo::buildings_settings), besides the variant;
 // any other given is refused.
 inline constexpr std::string_view kBuildingsSettings[] = {"stiffness", "rtol",     "integrator", "method",
-                                                          "steps",     "wh",       "step_cap",   "time_limit"};
+                                                          "steps",     "wh", "h_s",       "step_cap",   "time_limit"};
 
 buildings::BuildingsResult solve_buildings(const BuildingModel& model, const Settings& settings);
 

@@ -21,7 +21,7 @@
 namespace pb::siconos {
 
 // The settings the buildings solve reads (SolverInfo::buildings_settings), besides the variant.
-inline constexpr std::string_view kBuildingsSettings[] = {"steps", "wh",         "steps_per_sample", "theta",
+inline constexpr std::string_view kBuildingsSettings[] = {"steps", "wh", "h_s",         "steps_per_sample", "theta",
                                                           "gamma", "step_cap",   "time_limit"};
 
 buildings::BuildingsResult solve_buildings(const BuildingModel& model, const Settings& settings);

@@ -22,7 +22,7 @@
 namespace pb::simbody {
 
 // The settings the buildings solve reads (SolverInfo::buildings_settings), besides the variant.
-inline constexpr std::string_view kBuildingsSettings[] = {"steps", "wh", "steps_per_sample", "gamma", "step_cap",
+inline constexpr std::string_view kBuildingsSettings[] = {"steps", "wh", "h_s", "steps_per_sample", "gamma", "step_cap",
                                                           "time_limit"};
 
 buildings::BuildingsResult solve_buildings(const BuildingModel& model, const Settings& settings);
