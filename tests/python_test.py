@@ -332,6 +332,14 @@ class Buildings(unittest.TestCase):
         self.assertEqual(rows[8]["floor_peak_m"], 5.7e8 / 3e5 / 1e6)
         self.assertEqual(rows[0]["settings"], json.dumps({"command": "python Buildings.test_a_callable_solves_a_buildings_point_from_its_document.<locals>.stiffness_over_mass"}, separators=(",", ":")))
 
+    def test_run_takes_a_callable_on_the_single_oscillators_too(self):
+        seen = []
+        result = poundbench.run(**CASE, solver=lambda case: seen.append(case) or {"status": "ok", "pi1": 1.5})
+        self.assertEqual(result["status"], "ok", result["message"])
+        self.assertEqual(result["pi1"], 1.5)
+        self.assertNotIn("scene", seen[0])  # the oscillators' document
+        self.assertEqual(len(seen[0]["bodies"]), 2)
+
     def test_a_callables_bad_answer_or_exception_is_the_points_failure(self):
         buildings = f"{SOURCE}/cases/sets/buildings.toml"
         result = poundbench.run(case_file=buildings, point=0, solver=lambda case: {"status": "ok", "floor_peak": [[1]]})
