@@ -1,4 +1,5 @@
 #include "programs/protocol.hpp"
+#include "programs/json_reading.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -22,21 +23,15 @@
 
 namespace pb::programs {
 
-namespace {
-
-using Json = nlohmann::json;
-using Ordered = nlohmann::ordered_json;
-using Clock = std::chrono::steady_clock;
+// The reading of a document with its fields named (programs/json_reading.hpp), shared with the
+// buildings scene's answer (programs/buildings_answer.cpp).
+namespace reading {
 
 // How deep a document may nest (parse_object), and how long an answer's message may be: a
 // message is shown in a row, and a program's message of 100 MB was 528 MB resident.
-constexpr int kMaxDepth = 16;
-constexpr std::size_t kMaxMessageBytes = 10'000;
+constexpr int kMaxDepth = 16;  // (kMaxMessageBytes: json_reading.hpp)
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// NaN and infinity have no JSON spelling: null says "no value".
-Ordered number_or_null(double x) { return std::isfinite(x) ? Ordered(x) : Ordered(nullptr); }
 
 // ---------------------------------------------------------------- reading, with field names
 
@@ -169,7 +164,7 @@ class CheckedDom {
 // the run's time limit, not after it). CheckedDom sees every event, so the parse stops at
 // the first key seen twice, the first level too deep, or the first look at the clock past
 // the deadline.
-Json parse_object(std::string_view text, const char* what, Clock::time_point deadline = Clock::time_point::max()) {
+Json parse_object(std::string_view text, const char* what, Clock::time_point deadline) {
   if (text.find_first_not_of(" \t\r\n") == std::string_view::npos)
     bad(what, "empty (one JSON document is expected)");
   Json doc;
@@ -182,6 +177,16 @@ Json parse_object(std::string_view text, const char* what, Clock::time_point dea
   if (!doc.is_object()) bad(what, "must be a JSON object");
   return doc;
 }
+
+}  // namespace reading
+
+namespace {
+
+using namespace reading;
+using Ordered = nlohmann::ordered_json;
+
+// NaN and infinity have no JSON spelling: null says "no value".
+Ordered number_or_null(double x) { return std::isfinite(x) ? Ordered(x) : Ordered(nullptr); }
 
 // ---------------------------------------------------------------- the answer
 

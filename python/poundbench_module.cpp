@@ -315,7 +315,7 @@ Keywords read_keywords(const std::string& function, const py::kwargs& kwargs) {
         settings.monitor = value.cast<bool>();
         break;
       case Slot::solver:
-        if (!for_run && !py::isinstance<py::str>(value) && PyCallable_Check(value.ptr())) {
+        if (!py::isinstance<py::str>(value) && PyCallable_Check(value.ptr())) {
           k.callable = py::reinterpret_borrow<py::object>(value);
           k.solver_flags.solver = "external";
         } else {
@@ -663,9 +663,24 @@ py::object json_to_python(const nlohmann::ordered_json& j) {
   return to_python(j);
 }
 
+// The external solver's Settings::in_process, held for one call.
+using InProcess = std::optional<std::function<std::string(const std::string&, double&)>>;
+
+// solver=f: the Python callable as the external solver in process, held in `holder` for the
+// call (callable_solver.hpp); the rows name it "python QUALNAME". Nothing without a callable.
+void attach_callable(Keywords& k, InProcess& holder) {
+  if (!k.callable) return;
+  if (k.has("--command")) raise_value_error("--command: not with a Python callable as the solver");
+  holder = CallableSolver(k.callable, time_limit_exceeded, &interrupt_sweep);
+  k.solver_flags.settings.in_process = &*holder;
+  k.solver_flags.settings.command = "python " + std::string(py::str(py::getattr(k.callable, "__qualname__", py::repr(k.callable))));
+}
+
 // A point of a buildings case set: the object `run --json` prints for it, as a dict
-// (frontend/buildings_run.hpp).
+// (frontend/buildings_run.hpp). solver=f: the callable gets the scene's case document as a dict.
 py::dict run_buildings(Keywords& k, const app::ChosenCase& chosen) {
+  InProcess in_process;
+  attach_callable(k, in_process);
   const SolverInfo* solver = checked([&] {
     if (k.has("--k-contact"))
       app::apply_buildings_k_contact(chosen.building->scene, k.solver_flags, k.k_contact, k.has("--stiffness"));
@@ -691,6 +706,8 @@ py::dict run(const py::kwargs& kwargs) {
     from_file = checked([&] { return case_of(k); });
     if (from_file->building) return run_buildings(k, *from_file);
   }
+  InProcess in_process;
+  attach_callable(k, in_process);
   const bool history = k.history || k.samples.has_value();
   const int samples = k.samples ? static_cast<int>(std::clamp<long long>(*k.samples, INT_MIN, INT_MAX)) : 2000;
   const auto [chosen, solver] = checked([&] {
@@ -709,11 +726,12 @@ py::dict run(const py::kwargs& kwargs) {
     static py::list* last_key = new py::list();  // never freed: it would outlive the interpreter
     static const SolverInfo* last_solver = nullptr;
     const SolverInfo* info = last_solver;
-    if (k_contact || !info || !same_objects(*last_key, k.solver_key)) {
+    // (Nor with a callable: the static key would keep it alive.)
+    if (k_contact || k.callable || !info || !same_objects(*last_key, k.solver_key)) {
       const app::GivenSolverFlag given = k.given_flag();
       last_solver = nullptr;
       info = &app::checked_solver_k_contact(k.solver_flags, given, k_contact);
-      if (!k_contact) {
+      if (!k_contact && !k.callable) {
         *last_key = k.solver_key;
         last_solver = info;
       }
@@ -751,14 +769,9 @@ py::list spectrum(const py::object& case_set, const py::kwargs& kwargs) {
   if (const auto buildings = checked([&] { return load_buildings_set(file); }))
     return spectrum_buildings(k, *buildings);
   // A callable solver runs in process on one thread (callable_solver.hpp says why).
-  std::optional<std::function<std::string(const std::string&, double&)>> in_process;
-  if (k.callable) {
-    if (k.has("--command")) raise_value_error("--command: not with a Python callable as the solver");
-    in_process = CallableSolver(k.callable, time_limit_exceeded, &interrupt_sweep);
-    k.solver_flags.settings.in_process = &*in_process;
-    k.solver_flags.settings.command = "python " + std::string(py::str(py::getattr(k.callable, "__qualname__", py::repr(k.callable))));
-    k.threads = 1;
-  }
+  InProcess in_process;
+  attach_callable(k, in_process);
+  if (k.callable) k.threads = 1;
   const auto [set, solver] = checked([&] {
     CaseSet s = load_case_set(file);
     app::validate_case_set(s, file);
@@ -805,9 +818,12 @@ py::list table_dicts(const std::string& header, const std::vector<std::string>& 
 
 // A buildings set: the rows `spectrum` writes for it (rows/buildings_rows.hpp), a dict each.
 py::list spectrum_buildings(Keywords& k, const BuildingsSet& set) {
+  // A callable: in process, on one thread (callable_solver.hpp), with the scene's documents.
+  InProcess in_process;
+  attach_callable(k, in_process);
+  if (k.callable) k.threads = 1;
   const SolverInfo* solver = checked([&] {
     const SolverInfo* info = &app::check_buildings_solver(k.solver_flags, k.given_flag());
-    if (k.callable) throw app::BadInput("solver: a Python callable does not solve the buildings scene (yet)");
     if (k.threads && *k.threads <= 0) throw app::BadInput("--threads: must be >= 1");
     return info;
   });
@@ -1044,6 +1060,9 @@ PYBIND11_MODULE(poundbench, m) {
       "      (t, u1, u0, ..., lambda1).\n"
       "    monitor: True for one more, untimed solve with the time-steppers' monitor on (as --monitor);\n"
       "      by default the one solve is monitored, False: not at all.\n"
+      "solver may be a Python callable f(case: dict) -> dict, the external solver in process (as in\n"
+      "spectrum()): a buildings point's case is the scene's document (docs/external.md, \"The buildings\n"
+      "scene\"), its answer floor_peak, drift_peak and contacts; what f raises is the failed result.\n"
       "A bad keyword value raises ValueError with the command line's message.";
   m.def("run", &python::run, run_doc.c_str());
   const std::string spectrum_doc =
@@ -1057,7 +1076,8 @@ PYBIND11_MODULE(poundbench, m) {
       python::keyword_lines(kSettingFields) +
       "solver may be a Python callable f(case: dict) -> dict, run in process on one thread: it gets the\n"
       "external protocol's case document and returns its answer (docs/external.md; 'version' may be left\n"
-      "out). Each row's solve_seconds is the call's CPU time on its thread; what f raises is that point's failed\n"
+      "out; a buildings set's: the scene's document and answer). Each row's solve_seconds is the call's\n"
+      "CPU time on its thread; what f raises is that point's failed\n"
       "row, with the exception's type and message; Ctrl-C stops the sweep. A call still running at the\n"
       "point's time limit is interrupted (TimeLimitExceeded raised in it) and, like any call that took\n"
       "longer than the limit, is that point's time-limit row.\n";

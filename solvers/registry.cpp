@@ -196,9 +196,17 @@ const std::array kSolvers = {
     // deterministic program gives its Pi1 again bit for bit, and 1e-9 lets another build of it
     // round differently, as the reference's.
     // Solved once per point (one_pass): a second, monitored pass would run the user's program twice.
-    SolverInfo{"external", "another program, run per point: the case as JSON on its stdin, its answer on stdout (--command)",
-               &external::solve, &external::describe, &check_all<&external::check>, &external::variant_list, 1e-9,
-               false, nullptr, true},
+    // On the buildings scene: the scene's documents (programs/buildings_protocol.hpp), per point or persistent.
+    SolverInfo{.name = "external",
+               .summary = "another program, run per point: the case as JSON on its stdin, its answer on stdout (--command)",
+               .solve = &external::solve,
+               .describe = &external::describe,
+               .check = &check_all<&external::check>,
+               .variants = &external::variant_list,
+               .baseline_tolerance = 1e-9,
+               .one_pass = true,
+               .solve_buildings = &external::solve_buildings,
+               .buildings_settings = external::kBuildingsSettings},
 };
 
 // The row whose check this is finds its describe() in the table, so that a row added as

@@ -227,9 +227,17 @@ TEST_F(Cli, RunSummarisesABuildingsPointPerFloorAndContact) {
 }
 
 TEST_F(Cli, OtherSolversAndStudiesRefuseTheBuildingsSceneByName) {
-  const Outcome o = run("run --case-file '" + kBuildingsSet + "' --point 0 --solver external --command true");
+  // A registered solver without a buildings solve (the external solver has one since issue 50);
+  // where no such engine is built, an unknown name is refused by the same rule.
+#ifdef POUNDBENCH_HAVE_ODE
+  const std::string other = "ode";
+#else
+  const std::string other = "no-such";
+#endif
+  const Outcome o = run("run --case-file '" + kBuildingsSet + "' --point 0 --solver " + other);
   EXPECT_EQ(o.exit_code, 2);
-  EXPECT_NE(o.err.find("--solver: external does not solve the buildings scene (these do: event-driven"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find("--solver: " + other + " does not solve the buildings scene (these do: event-driven"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find(", external)"), std::string::npos) << o.err;
   EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
   const Outcome steps = run("run --case-file '" + kBuildingsSet + "' --point 0 --steps 64");
   EXPECT_EQ(steps.exit_code, 2);

@@ -73,7 +73,8 @@ def rows(case_set, persistent, reduced=False):
 
 class CaseSchema(unittest.TestCase):
     def test_every_family_of_every_shipped_set_sends_valid_documents(self):
-        # The buildings scene's sets are solved by `run` alone (issue 49): no sweep sends them yet.
+        # The buildings scene's sets: the test below, every point (its documents are the schema's
+        # buildings branch).
         sets = sorted(f for f in glob.glob(os.path.join(SOURCE, "cases/sets/*.toml"))
                       if 'scene = "buildings"' not in open(f, encoding="utf-8").read())
         self.assertGreater(len(sets), 3)
@@ -90,6 +91,22 @@ class CaseSchema(unittest.TestCase):
                 self.assertEqual({r["family"] for r in got} - checked, set(), "families with no document checked")
         # The three kinds of load a shipped set has: a program that validates its input takes them all.
         self.assertEqual(kinds, {"pulse", "sinusoids", "record"})
+
+    def test_every_point_of_the_buildings_sets_sends_a_valid_buildings_document(self):
+        # Every point (not sampled): a document is a few kB, a record's the samples' size. The
+        # stress set adds three buildings in a row, modal damping and contact at some floors.
+        kinds = set()
+        for name, least in (("buildings.toml", 30), ("buildings-stress.toml", 8)):
+            run = subprocess.run([POUNDBENCH, "spectrum", os.path.join(SOURCE, "cases/sets", name), "--solver",
+                                  "external", "--command", CHECKER + " --persistent", "--persistent", "--threads", "2"],
+                                 capture_output=True, text=True)
+            self.assertEqual(run.returncode, 0, run.stderr[-2000:])
+            got = list(csv.DictReader(io.StringIO(run.stdout)))
+            self.assertGreaterEqual(len({r["point"] for r in got}), least, name)
+            for r in got:
+                self.assertRegex(r["message"], "^valid: ", f"{name}: {r['family']} point {r['point']}")
+                kinds.add(r["message"].split()[1])
+        self.assertEqual(kinds, {"pulse", "record"})
 
     def test_one_shot_documents_are_the_persistent_ones(self):
         # A program a point (each a Python start with jsonschema, 0.1 s): every family of the

@@ -29,6 +29,12 @@ except ImportError as e:
 PYTHON = sys.executable
 SCIPY = f"{PYTHON} {SOURCE}/examples/external/scipy_adapter.py"
 WRAPPER = f"sh {SOURCE}/examples/external/poundbench_adapter.sh"
+BUILDINGS = f"{SOURCE}/cases/sets/buildings.toml"
+BUILDINGS_POINTS = (0, 6)
+# Every floor's peak |u| and storey's peak drift of the SciPy program against the buildings'
+# exact reference (relative): measured at most 1.5e-9 on BUILDINGS_POINTS at rtol 1e-10; 1e-7 leaves
+# room for another SciPy's step choices, as SCIPY_TOLERANCE.
+BUILDINGS_TOLERANCE = 1e-7
 
 # Pi1 of the SciPy program against the reference: measured at most 7e-10 (relative) on
 # these cases at its default rtol 1e-10; 1e-7 leaves room for another SciPy's step choices.
@@ -129,6 +135,31 @@ class ExternalExamples(unittest.TestCase):
         kept = sorted(float(r["seconds"]) for r in persistent)[9]
         print(f"scipy_adapter.py per point, medians: one-shot {1e3 * one_shot:.1f} ms, persistent {1e3 * kept:.1f} ms")
 
+    def test_scipy_adapter_solves_buildings_points(self):
+        # Issue 50: the buildings document through the SciPy program (events per contact, Newton's
+        # law over the contacts closing together) against the scene's exact reference, floor by
+        # floor and storey by storey: a 3-storey against a 6-storey building under a sine pulse,
+        # and a stiff 3-storey against a flexible 8-storey one under a cosine (points 0 and 6).
+        worst = 0.0
+        for point in BUILDINGS_POINTS:
+            where = ["--case-file", BUILDINGS, "--point", str(point), "--json"]
+            ref = json.loads(poundbench("run", *where))
+            got = json.loads(poundbench("run", *where, "--solver", "external", "--command", SCIPY))
+            self.assertEqual(got["status"], "ok", got["message"])
+            for key in ("floor_peak_m", "drift_peak_m"):
+                self.assertEqual([len(b) for b in got[key]], [len(b) for b in ref[key]])
+                for b, (mine, theirs) in enumerate(zip(got[key], ref[key])):
+                    for i, (x, y) in enumerate(zip(mine, theirs)):
+                        error = abs(x - y) / y
+                        worst = max(worst, error)
+                        self.assertLess(error, BUILDINGS_TOLERANCE, f"point {point} {key} building {b} floor {i + 1}")
+            # The same contacts pound, first at the same time.
+            for mine, theirs in zip(got["contacts"], ref["contacts"]):
+                self.assertEqual(mine["impacts"] > 0, theirs["impacts"] > 0, f"point {point} floor {mine['floor']}")
+                if theirs["impacts"]:
+                    self.assertAlmostEqual(mine["first_impact_s"], theirs["first_impact_s"], delta=1e-6 * ref["t_end_s"])
+        print(f"worst relative floor or drift peak error of scipy_adapter.py on buildings: {worst:.1e}")
+
     def test_poundbench_adapter_gives_the_wrapped_solvers_rows(self):
         smoke = f"{SOURCE}/cases/sets/smoke.toml"
         os.environ["POUNDBENCH"] = POUNDBENCH  # the binary the wrapper runs
@@ -170,23 +201,39 @@ class ExternalExamples(unittest.TestCase):
                     return f.read()
         text = case_of()
         case = json.loads(text)
-        body = schemas["case"]["properties"]["bodies"]["items"]
-        self.assertEqual(set(case), set(schemas["case"]["required"]))
+        # Each schema is a choice of its scenes' branches ($defs): the oscillators' here.
+        oscillators, answers = schemas["case"]["$defs"]["oscillators"], schemas["answer"]["$defs"]["oscillators"]
+        body = oscillators["properties"]["bodies"]["items"]
+        self.assertEqual(set(case), set(oscillators["required"]))
         self.assertEqual(set(case["bodies"][0]), set(body["required"]))
-        self.assertEqual(set(case["load"]), set(schemas["case"]["properties"]["load"]["oneOf"][0]["required"]))
+        self.assertEqual(set(case["load"]), set(schemas["case"]["$defs"]["load"]["oneOf"][0]["required"]))
         answer = json.loads(poundbench("adapter", "--solver", "moreau-jean", stdin=text))
         self.assertEqual(answer["status"], "ok")
-        self.assertLessEqual(set(answer), set(schemas["answer"]["properties"]))
+        self.assertLessEqual(set(answer), set(answers["properties"]))
         # A yielding case adds the optional keys (bodies[].u_y, alpha): then every key of the
         # schema is there, and the answer carries residual and hysteretic.
         text = case_of("--pi-y0", "0.5", "--alpha", "0.05")
         case = json.loads(text)
-        self.assertEqual(set(case), set(schemas["case"]["properties"]))
+        self.assertEqual(set(case), set(oscillators["properties"]))
         self.assertEqual(set(case["bodies"][0]), set(body["properties"]))
         answer = json.loads(poundbench("adapter", "--solver", "moreau-jean", stdin=text))
         self.assertEqual(answer["status"], "ok")
         self.assertLessEqual({"residual", "hysteretic"}, set(answer))
-        self.assertLessEqual(set(answer), set(schemas["answer"]["properties"]))
+        self.assertLessEqual(set(answer), set(answers["properties"]))
+        # A buildings point: every key of its branch (the rayleigh rule's a0 and a1 too), and the
+        # SciPy program's answer within the keys of the buildings answer.
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "case.json")
+            subprocess.run([POUNDBENCH, "run", "--case-file", BUILDINGS, "--point", "0", "--solver", "external",
+                            "--steps", "16", "--command", f"tee {path}"], capture_output=True, check=False)
+            with open(path) as f:
+                text = f.read()
+        case, branch = json.loads(text), schemas["case"]["$defs"]["buildings"]
+        self.assertEqual(set(case), set(branch["required"]))
+        self.assertEqual(set(case["buildings"][0]), set(branch["properties"]["buildings"]["items"]["properties"]))
+        self.assertEqual(set(case["buildings"][0]["damping"]),
+                         set(branch["properties"]["buildings"]["items"]["properties"]["damping"]["properties"]))
+        self.assertEqual(set(case["contacts"][0]), set(branch["properties"]["contacts"]["items"]["required"]))
 
 
 if __name__ == "__main__":

@@ -288,8 +288,70 @@ class Buildings(unittest.TestCase):
             self.assertEqual(r["floor_peak_no_contact_m"], point0["floor_peak_no_contact_m"][r["building"]][r["floor"] - 1])
 
     def test_another_solver_is_refused_by_name(self):
-        with self.assertRaisesRegex(ValueError, "external does not solve the buildings scene"):
-            poundbench.run(case_file=f"{SOURCE}/cases/sets/buildings.toml", point=0, solver="external", command="true")
+        with self.assertRaisesRegex(ValueError, r"no-such does not solve the buildings scene \(these do: .*external"):
+            poundbench.run(case_file=f"{SOURCE}/cases/sets/buildings.toml", point=0, solver="no-such")
+
+    def test_a_callable_solves_a_buildings_point_from_its_document(self):
+        # Issue 50: solver=f gets the scene's case document as a dict and returns its answer;
+        # run() reports what f said, and spectrum() makes its rows, as for any solver.
+        buildings = f"{SOURCE}/cases/sets/buildings.toml"
+        seen = []
+
+        def stiffness_over_mass(case):
+            seen.append(case)
+            # A made-up "solver": each floor's peak its storey's k / m over 1e6 (m), something f
+            # computes from the document, so that a lost or reordered number shows.
+            peaks = [[k / m / 1e6 for k, m in zip(b["stiffnesses"], b["masses"])] for b in case["buildings"]]
+            return {"status": "ok", "message": "made up", "floor_peak": peaks, "drift_peak": peaks,
+                    "contacts": [{"impacts": c["floor"], "impact_velocity_max": 0.5, "first_impact": 0.25}
+                                 for c in case["contacts"]]}
+
+        result = poundbench.run(case_file=buildings, point=0, solver=stiffness_over_mass)
+        case = seen[0]
+        self.assertEqual(case["scene"], "buildings")
+        self.assertEqual(len(case["buildings"]), 2)
+        self.assertEqual(len(case["buildings"][1]["C"]), 6)  # 6 storeys: C is 6 x 6
+        self.assertEqual(case["buildings"][0]["damping"]["rule"], "rayleigh")
+        self.assertEqual(result["status"], "ok", result["message"])
+        self.assertEqual(result["message"], "made up")
+        self.assertEqual(result["floor_peak_m"], [[6.6e8 / 3e5 / 1e6] * 3, [5.7e8 / 3e5 / 1e6] * 6])
+        self.assertEqual([c["impacts"] for c in result["contacts"]], [1, 2, 3])
+        self.assertEqual(result["contacts"][2]["first_impact_s"], 0.25)
+        self.assertEqual(result["solver"], "external")
+        # spectrum(): a row per floor with the callable's peaks, on one thread.
+        with tempfile.TemporaryDirectory() as tmp:
+            one = os.path.join(tmp, "one.toml")
+            with open(buildings) as f:
+                text = f.read()
+            with open(one, "w") as f:  # the first family alone, one pulse and directivity
+                f.write(text.split("# 5 storeys against 8")[0].replace('pulse = ["sine", "cosine"]', 'pulse = "sine"')
+                        .replace('directivity = ["normal", "reverse"]', 'directivity = "normal"')
+                        .replace("../records/", f"{SOURCE}/cases/records/"))
+            rows = poundbench.spectrum(one, solver=stiffness_over_mass)
+        self.assertEqual(len(rows), 9)
+        self.assertEqual(rows[8]["floor_peak_m"], 5.7e8 / 3e5 / 1e6)
+        self.assertEqual(rows[0]["settings"], json.dumps({"command": "python Buildings.test_a_callable_solves_a_buildings_point_from_its_document.<locals>.stiffness_over_mass"}, separators=(",", ":")))
+
+    def test_run_takes_a_callable_on_the_single_oscillators_too(self):
+        seen = []
+        result = poundbench.run(**CASE, solver=lambda case: seen.append(case) or {"status": "ok", "pi1": 1.5})
+        self.assertEqual(result["status"], "ok", result["message"])
+        self.assertEqual(result["pi1"], 1.5)
+        self.assertNotIn("scene", seen[0])  # the oscillators' document
+        self.assertEqual(len(seen[0]["bodies"]), 2)
+
+    def test_a_callables_bad_answer_or_exception_is_the_points_failure(self):
+        buildings = f"{SOURCE}/cases/sets/buildings.toml"
+        result = poundbench.run(case_file=buildings, point=0, solver=lambda case: {"status": "ok", "floor_peak": [[1]]})
+        self.assertEqual(result["status"], "failed")
+        self.assertTrue(result["message"].startswith("answer: floor_peak: must be an array of 2 arrays"), result["message"])
+        self.assertEqual(result["floor_peak_m"], [])
+
+        def broken(case):
+            raise ZeroDivisionError("division by zero")
+        result = poundbench.run(case_file=buildings, point=0, solver=broken)
+        self.assertEqual(result["status"], "failed")
+        self.assertIn("ZeroDivisionError: division by zero", result["message"])
 
 
 class Spectrum(unittest.TestCase):

@@ -22,12 +22,19 @@ impacts ends in persistent contact; whether a closed contact carries force is de
 the acceleration-level LCP, looking at the load a moment ahead (so that touching bodies at
 rest under a vanishing load, Pi3 = 0, are decided by where the load goes next).
 
+A buildings document ("scene": "buildings", docs/external.md) is solved the same way
+(BuildingsRun): one coordinate per floor, M u'' + C u' + K u = -M 1 a_g(t) + W lambda with C
+as the document gives it, an event per contact, Newton's law over the contacts closing
+together; its answer is every floor's peak |u| and storey's peak drift (their extrema located
+as events) and per contact its impacts.
+
 Pi1 is the largest |u0| at the extrema of u0 (located as events of its velocity), at every
 event and at the ends. Its own settings are its arguments: --rtol (default 1e-10), --method.
 It ignores the step (it is not a time-stepper); it honours step_cap (integrator steps and
 events together), time_limit and history_samples.
 """
 import argparse
+import bisect
 import json
 import math
 import sys
@@ -107,6 +114,10 @@ class Model:
     def accel_ground(self, t):
         return self.amplitude * self.shape(self.w_p * t) if 0.0 <= t <= self.t_p else 0.0
 
+    def next_break(self, t):
+        """Where the load next changes its form (the pulse's end), or t_end: a segment's end."""
+        return self.t_p if t < self.t_p else self.t_end
+
     def gaps(self, u):
         return self.gap0 + self.W.T @ u
 
@@ -163,6 +174,19 @@ class Run:
         self.min_gap = math.inf
         self.force_scale = float(np.max(model.m)) * model.length * model.w_p ** 2  # m a_p
         self.pieces = []  # (t0, t1, dense solution or None) for the history
+        self.now = 0.0  # the time of the impacts being resolved
+
+    def extrema(self):
+        """The quantities whose extrema (zeros of their rates) are events, as functions of y: u0's."""
+        n, ref = self.model.n, self.model.ref
+        return [lambda t, y: y[n + ref]]
+
+    def note_impacts(self, rate, hitting):
+        """Closed contacts approaching at rate[j] < 0, j in hitting, before Newton's law acts."""
+
+    def note_phases(self, entered):
+        """The contacts that entered persistent contact."""
+        self.phases += len(entered)
 
     def watch(self, t, u):
         a = abs(u[self.model.ref])
@@ -184,6 +208,7 @@ class Run:
             if not hitting:
                 return v
             self.impacts += len(hitting)
+            self.note_impacts(rate, hitting)
             target = {j: (-m.eps * rate[j] if -rate[j] > self.plastic_below else 0.0) for j in hitting}
             candidates = sorted(set(hitting) | set(active))
 
@@ -224,12 +249,17 @@ class Run:
 
         kept, force = lcp_at(t, u, v)
         if len(force) and np.min(force) <= 1e-9 * self.force_scale:
-            tau = 1e-6 * m.t_p
-            a = m.rhs(kept)(t, np.concatenate((u, v)))[m.n:]
-            kept, force = lcp_at(t + tau, u + tau * v + 0.5 * tau * tau * a, v + tau * a)
+            kept, force = lcp_at(*self.ahead(t, u, v, kept))
             kept = [j for j, x in zip(kept, force) if x > 0.0]
-        self.phases += len([j for j in kept if j not in active])
+        self.note_phases([j for j in kept if j not in active])
         return sorted(kept), v
+
+    def ahead(self, t, u, v, kept):
+        """The state a moment after t along the motion with the contacts kept held closed."""
+        m = self.model
+        tau = 1e-6 * m.t_p
+        a = m.rhs(kept)(t, np.concatenate((u, v)))[m.n:]
+        return t + tau, u + tau * v + 0.5 * tau * tau * a, v + tau * a
 
     def rebound_flight(self, t, u, v, active):
         """The shortest time until a contact that just rebounded closes again, if its motion goes on
@@ -263,9 +293,8 @@ class Run:
                 events.append(closes)
                 kinds.append(("closes", j))
 
-        def extremum(t, y):
-            return y[n + m.ref]
-        events.append(extremum)
+        extrema = self.extrema()
+        events.extend(extrema)
         scale = np.concatenate((np.full(n, m.length), np.full(n, m.speed)))
         sol = solve_ivp(m.rhs(active), (t0, t1), np.concatenate((u, v)), method=self.args.method,
                         rtol=self.args.rtol, atol=1e-3 * self.args.rtol * scale, events=events,
@@ -273,8 +302,9 @@ class Run:
         if sol.status < 0:
             raise Stop("failed", f"solve_ivp: {sol.message}")
         self.steps += len(sol.t) - 1
-        for ts, ys in zip(sol.t_events[-1], sol.y_events[-1]):
-            self.watch(ts, ys[:n])
+        for times, states in zip(sol.t_events[len(kinds):], sol.y_events[len(kinds):]):
+            for ts, ys in zip(times, states):
+                self.watch(ts, ys[:n])
         for k in range(sol.y.shape[1]):
             self.watch(sol.t[k], sol.y[:n, k])
         self.pieces.append((t0, sol.t[-1], sol.sol))
@@ -294,7 +324,7 @@ class Run:
                 raise Stop("step_cap", f"more than {self.cap} integrator steps and events")
             if self.time_limit and time.monotonic() - START > self.time_limit:
                 raise Stop("time-limit", f"more than {self.time_limit} s of wall time at t = {t}")
-            t_stop = m.t_p if t < m.t_p else m.t_end
+            t_stop = m.next_break(t)
             flight = self.rebound_flight(t, u, v, active)
             if flight < t_stop - t:
                 # To the top of the rebound's arc in steps of an eighth of its flight: from there the
@@ -306,6 +336,7 @@ class Run:
             if stalls > 50:
                 raise Stop("failed", f"events do not advance at t = {t}")
             t = t_new
+            self.now = t
             self.steps += 1
             active = [j for j in active if j not in opened]
             v = self.impact(u, v, active)
@@ -323,6 +354,188 @@ class Run:
         return {"t": times.tolist(), "u0": u0.tolist()}
 
 
+# ---------------------------------------------------------------- the buildings scene
+
+class Load:
+    """a_g(t) of any kind a case carries: a pulse, sinusoids, a record (linear between samples,
+    zero outside them); breaks are the times where its form changes, which segments end at."""
+
+    def __init__(self, load):
+        self.kind = load["kind"]
+        if self.kind == "record":
+            self.t = np.array(load["t"], dtype=float)
+            self.a = np.array(load["a"], dtype=float)
+            self.breaks = list(self.t)
+        elif self.kind in ("pulse", "sinusoids"):
+            self.duration = load["duration"]
+            if self.kind == "pulse":
+                w = load["w"]
+                sin, cos = (load["amplitude"], 0.0) if load["shape"] == "sine" else (0.0, load["amplitude"])
+                self.terms = [(w, sin, cos)]
+            else:
+                self.terms = [(term["w"], term["sin"], term["cos"]) for term in load["terms"]]
+            self.breaks = [self.duration]
+        else:
+            refuse(f"load.kind: {self.kind!r} is not a kind this program knows (it knows 'pulse', 'sinusoids', 'record')")
+
+    def __call__(self, t):
+        if self.kind == "record":
+            return float(np.interp(t, self.t, self.a, left=0.0, right=0.0)) if self.t[0] <= t <= self.t[-1] else 0.0
+        if not 0.0 <= t <= self.duration:
+            return 0.0
+        return sum(s * math.sin(w * t) + c * math.cos(w * t) for w, s, c in self.terms)
+
+
+class BuildingsModel:
+    """The buildings scene as Run's model: every floor of every building one coordinate (building 0's
+    floors first, floor 1 first), M diagonal, K tridiagonal per building, C as the case gives it."""
+
+    def __init__(self, case):
+        buildings = case["buildings"]
+        self.floors = [len(b["masses"]) for b in buildings]
+        self.first = [sum(self.floors[:b]) for b in range(len(buildings))]
+        self.n = n = sum(self.floors)
+        self.m = np.concatenate([np.array(b["masses"], dtype=float) for b in buildings])
+        self.K = np.zeros((n, n))
+        self.C = np.zeros((n, n))
+        for b, building in enumerate(buildings):
+            f = self.first[b]
+            for i, k in enumerate(building["stiffnesses"]):  # storey i + 1: floor i to floor i + 1
+                self.K[f + i, f + i] += k
+                if i > 0:
+                    self.K[f + i - 1, f + i - 1] += k
+                    self.K[f + i, f + i - 1] -= k
+                    self.K[f + i - 1, f + i] -= k
+            self.C[f:f + self.floors[b], f:f + self.floors[b]] = np.array(building["C"], dtype=float)
+        self.u_start = np.zeros(n)
+        self.v_start = np.zeros(n)
+        self.ref = 0
+        self.eps = case["eps"]
+        self.contacts = case["contacts"]
+        self.nc = len(self.contacts)
+        self.W = np.zeros((n, self.nc))  # gap j = gap0 + u[right floor] - u[left floor]
+        self.gap0 = np.zeros(self.nc)
+        for j, c in enumerate(self.contacts):
+            self.W[self.first[c["right"]] + c["floor"] - 1, j] = 1.0
+            self.W[self.first[c["left"]] + c["floor"] - 1, j] = -1.0
+            self.gap0[j] = c["gap"]
+        self.minv = 1.0 / self.m
+        self.load = Load(case["load"])
+        self.w_p = case["w_p"]
+        self.length = case["length_scale"]
+        self.speed = case["a_p"] / case["w_p"]
+        self.t_end = case["t_end"]
+        self.t_p = self.load.breaks[-1]  # the load's end: a time scale of the persistent-contact look-ahead
+
+    def next_break(self, t):
+        i = bisect.bisect_right(self.load.breaks, t * (1.0 + 1e-15))
+        return min(self.load.breaks[i], self.t_end) if i < len(self.load.breaks) else self.t_end
+
+    def gaps(self, u):
+        return self.gap0 + self.W.T @ u
+
+    def rates(self, v):
+        return self.W.T @ v
+
+    def free_force(self, t, u, v):
+        return -self.C @ v - self.K @ u - self.m * self.load(t)
+
+    contact_forces = Model.contact_forces
+    rhs = Model.rhs
+
+
+class BuildingsRun(Run):
+    """Run on the buildings: the peak |u| of every floor and |drift| of every storey (their extrema
+    located as events), and per contact its impacts, fastest approach and first impact."""
+
+    def __init__(self, model, args, case):
+        super().__init__(model, args, case)
+        self.t_min = case["t_min"]
+        n = model.n
+        self.below = np.full(n, -1)  # the floor under each floor (-1: the ground)
+        for f, count in zip(model.first, model.floors):
+            self.below[f + 1:f + count] = np.arange(f, f + count - 1)
+        self.floor_peak, self.floor_time = np.zeros(n), np.zeros(n)
+        self.drift_peak, self.drift_time = np.zeros(n), np.zeros(n)
+        self.hits = [0] * model.nc
+        self.entries = [0] * model.nc
+        self.fastest = [None] * model.nc
+        self.first_hit = [None] * model.nc
+
+    def ahead(self, t, u, v, kept):
+        """Integrated rather than a Taylor step, and longer: buildings touching at rest under a
+        load that starts from zero (a gap of 0) move apart or together only at third order in
+        time (both are carried by the ground alike at first), which a parabola does not see."""
+        m = self.model
+        tau = 1e-4 * self.t_min
+        sol = solve_ivp(m.rhs(kept), (t, t + tau), np.concatenate((u, v)), method=self.args.method,
+                        rtol=self.args.rtol, atol=1e-6 * self.args.rtol * np.concatenate(
+                            (np.full(m.n, m.length), np.full(m.n, m.speed))))
+        return t + tau, sol.y[:m.n, -1], sol.y[m.n:, -1]
+
+    def drifts(self, u):
+        return u - np.where(self.below >= 0, u[np.maximum(self.below, 0)], 0.0)
+
+    def extrema(self):
+        n = self.model.n
+        events = [lambda t, y, i=i: y[n + i] for i in range(n)]  # every floor's velocity
+        events += [lambda t, y, i=i, j=j: y[n + i] - y[n + j] for i, j in enumerate(self.below) if j >= 0]
+        return events
+
+    def watch(self, t, u):
+        a, d = np.abs(u), np.abs(self.drifts(u))
+        up, dp = a > self.floor_peak, d > self.drift_peak
+        self.floor_peak[up], self.floor_time[up] = a[up], t
+        self.drift_peak[dp], self.drift_time[dp] = d[dp], t
+        if self.model.nc:
+            self.min_gap = min(self.min_gap, float(np.min(self.model.gaps(u))))
+
+    def note_impacts(self, rate, hitting):
+        for j in hitting:
+            speed = -rate[j]
+            if speed <= self.plastic_below:
+                continue
+            self.hits[j] += 1
+            self.fastest[j] = max(self.fastest[j] or 0.0, speed)
+            if self.first_hit[j] is None:
+                self.first_hit[j] = self.now
+
+    def note_phases(self, entered):
+        super().note_phases(entered)
+        for j in entered:
+            self.entries[j] += 1
+
+    def per_building(self, values):
+        m = self.model
+        return [[float(x) for x in values[f:f + count]] for f, count in zip(m.first, m.floors)]
+
+    def answer(self):
+        contacts = [{"left": c["left"], "right": c["right"], "floor": c["floor"], "impacts": self.hits[j],
+                     "contact_phases": self.entries[j],
+                     "impact_velocity_max": self.fastest[j], "first_impact": self.first_hit[j]}
+                    for j, c in enumerate(self.model.contacts)]
+        return {"floor_peak": self.per_building(self.floor_peak), "floor_peak_time": self.per_building(self.floor_time),
+                "drift_peak": self.per_building(self.drift_peak), "drift_peak_time": self.per_building(self.drift_time),
+                "contacts": contacts}
+
+
+def solve_buildings(case, args):
+    """Raises Answered with the answer to a buildings document."""
+    model = BuildingsModel(case)
+    if model.eps < 0 or model.eps > 1:
+        refuse("eps: must be in [0, 1]")
+    run = BuildingsRun(model, args, case)
+    try:
+        run.solve()
+    except Stop as stop:
+        answer({"status": stop.status, "message": str(stop), "steps": run.steps})
+    doc = {"status": "ok", **run.answer(), "steps": run.steps,
+           "message": f"scipy {args.method} rtol {args.rtol:g}, events per contact, Newton's law over the contacts closing together"}
+    if math.isfinite(run.min_gap):
+        doc["min_gap"] = run.min_gap
+    answer(doc)
+
+
 def solve_case(text, args):
     """Raises Answered with the answer to one case document."""
     try:
@@ -331,6 +544,10 @@ def solve_case(text, args):
         refuse(f"stdin: not JSON: {e}")
     if case.get("version") != 1:
         refuse(f"version: this program speaks version 1, not {case.get('version')!r}")
+    if case.get("scene") == "buildings":
+        solve_buildings(case, args)
+    if "scene" in case:
+        refuse(f"scene: {case['scene']!r} is not a scene this program knows (it knows 'buildings' and the oscillators')")
     kind = case.get("load", {}).get("kind")
     if kind != "pulse":
         refuse(f"load.kind: {kind!r} is not a kind this program knows (it knows 'pulse')")

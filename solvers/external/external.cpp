@@ -109,6 +109,53 @@ void doubt_reported_time(Result& r, double exchange_cpu) {
 
 }  // namespace
 
+std::string cannot_start(const Settings& settings, CommandWords& command, Status& status) {
+  status = Status::failed;
+  if (!known_variant(settings.variant))
+    return "variant: unknown '" + clip(settings.variant) + "' (known: " + known_variants() + ")";
+  command = settings.in_process ? CommandWords{{"(in process)"}, {}} : split_command(settings.command);
+  if (!command.error.empty()) return command.error;
+  status = Status::time_limit;
+  if (settings.stop && settings.stop->load(std::memory_order_relaxed))
+    return "stopped (the sweep was interrupted) before the program started";
+  return {};
+}
+
+Exchanged exchange_document(const std::string& document, const CommandWords& command, const Settings& settings) {
+  Exchanged out;
+  ProgramLimits limits;
+  limits.kill_after = settings.time_limit > 0.0 ? settings.time_limit + kGraceSeconds : 0.0;
+  // The answer is read within the same limit as the program ran (a run's limit is the whole
+  // run's: a 40 MB answer took 13.7 s to parse after it).
+  const auto start = std::chrono::steady_clock::now();
+  // (1e9 s: a limit beyond it is none, and its time_point would overflow.)
+  out.deadline = limits.kill_after > 0.0 && limits.kill_after < 1e9
+                     ? start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                   std::chrono::duration<double>(limits.kill_after))
+                     : std::chrono::steady_clock::time_point::max();
+  limits.stop = settings.stop;
+  limits.max_output = kMaxAnswerBytes;
+  ProgramRun& run = out.run;
+  if (settings.in_process) {
+    // The answer of a Python callable; what it throws is the point's failed row (the sweep's).
+    run.out = (*settings.in_process)(document, out.call_seconds);
+    run.exited = true;
+    run.exit_code = 0;
+  } else if (settings.variant == kPersistent) {
+    run = exchange(command.words, std::string_view(document).substr(0, document.size() - 1), limits, out.startup);
+  } else {
+    run = run_program(command.words, document, limits);
+  }
+  out.status = outcome(run, settings, out.why);
+  return out;
+}
+
+std::string answer_refused(const Exchanged& x, const std::string& bad, Status& status) {
+  // Past the deadline the answer was cut off by the limit, whatever else it lacked.
+  status = std::chrono::steady_clock::now() > x.deadline ? Status::time_limit : Status::failed;
+  return bad + stderr_note(x.run);
+}
+
 Result solve(const System& system, const Settings& settings) {
   Result r;
   const auto finish = [&](Status status, std::string message) {
@@ -117,60 +164,30 @@ Result solve(const System& system, const Settings& settings) {
     r.pi1 = r.t_max = std::numeric_limits<double>::quiet_NaN();
     return r;
   };
-  if (!known_variant(settings.variant))
-    return finish(Status::failed, "variant: unknown '" + clip(settings.variant) + "' (known: " + known_variants() + ")");
-  const CommandWords command =
-      settings.in_process ? CommandWords{{"(in process)"}, {}} : split_command(settings.command);
-  if (!command.error.empty()) return finish(Status::failed, command.error);
-  if (settings.stop && settings.stop->load(std::memory_order_relaxed))
-    return finish(Status::time_limit, "stopped (the sweep was interrupted) before the program started");
+  CommandWords command;
+  Status status = Status::ok;
+  if (std::string why = cannot_start(settings, command, status); !why.empty()) return finish(status, why);
   const CaseDocument document = case_document(system, settings);
   if (!document.error.empty()) return finish(Status::failed, document.error);
   if (settings.steps > 0 || settings.wh > 0.0 || settings.h_s > 0.0) {
     r.step = time_step(system, settings, 1);
     if (std::string bad = step_problem(system, r.step); !bad.empty()) return finish(Status::failed, bad);
   }
-
-  ProgramLimits limits;
-  limits.kill_after = settings.time_limit > 0.0 ? settings.time_limit + kGraceSeconds : 0.0;
-  // The answer is read within the same limit as the program ran (a run's limit is the whole
-  // run's: a 40 MB answer took 13.7 s to parse after it).
-  const auto start = std::chrono::steady_clock::now();
-  // (1e9 s: a limit beyond it is none, and its time_point would overflow.)
-  const auto deadline = limits.kill_after > 0.0 && limits.kill_after < 1e9
-                            ? start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                              std::chrono::duration<double>(limits.kill_after))
-                                                : std::chrono::steady_clock::time_point::max();
-  limits.stop = settings.stop;
-  limits.max_output = kMaxAnswerBytes;
-  ProgramRun run;
-  double startup = std::numeric_limits<double>::quiet_NaN(), call_seconds = startup;
-  if (settings.in_process) {
-    // The answer of a Python callable; what it throws is the point's failed row (the sweep's).
-    run.out = (*settings.in_process)(document.text, call_seconds);
-    run.exited = true;
-    run.exit_code = 0;
-  } else if (settings.variant == kPersistent) {
-    run = exchange(command.words, std::string_view(document.text).substr(0, document.text.size() - 1), limits,
-                   startup);
-  } else {
-    run = run_program(command.words, document.text, limits);
-  }
-  const double cpu = run.cpu_seconds;
-  std::string why;
-  if (const Status status = outcome(run, settings, why); !why.empty()) {
-    finish(status, why);
-  } else if (std::string bad = read_answer(run.out, system, settings, r, deadline); !bad.empty()) {
-    // Past the deadline the answer was cut off by the limit, whatever else it lacked.
-    finish(std::chrono::steady_clock::now() > deadline ? Status::time_limit : Status::failed, bad + stderr_note(run));
+  const Exchanged x = exchange_document(document.text, command, settings);
+  if (!x.why.empty()) {
+    finish(x.status, x.why);
+  } else if (std::string bad = read_answer(x.run.out, system, settings, r, x.deadline); !bad.empty()) {
+    std::string message = answer_refused(x, bad, status);
+    finish(status, std::move(message));
   }
   // Whatever the program wrote reaches the row as one printable line of UTF-8 (its message,
   // its stderr, a line quoted in an error): a row's reader (report) refuses anything else.
   r.message = printable_line(r.message);
-  r.startup_seconds = startup;
-  if (settings.in_process) r.solve_seconds = call_seconds;  // timed around the call, whatever it says
+  r.startup_seconds = x.startup;
+  if (settings.in_process) r.solve_seconds = x.call_seconds;  // timed around the call, whatever it says
   // The row's cost is poundbench's clock: the program's CPU (a persistent one's in the exchange)
   // on top of this thread's. What a persistent program says of itself is kept beside it.
+  const double cpu = x.run.cpu_seconds;
   r.child_cpu_seconds = std::isfinite(cpu) ? cpu : 0.0;
   if (settings.variant == kPersistent && !settings.in_process) doubt_reported_time(r, cpu);
   return r;

@@ -21,10 +21,14 @@
 // passes the time limit (time-limit: it is ended), the sweep is stopped (time-limit:
 // "stopped", it is ended).
 
+#include <chrono>
+#include <limits>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "programs/command_words.hpp"
 #include "programs/process.hpp"
 #include "kit/solver.hpp"
 
@@ -45,8 +49,35 @@ inline constexpr std::size_t kMaxAnswerBytes = std::size_t{64} << 20;
 inline constexpr int kStderrLines = 5;
 
 Result solve(const System& system, const Settings& settings);
+// The buildings scene (cases/buildings.hpp): the same program, per point or persistent, or the
+// Python callable, with the scene's documents (programs/buildings_protocol.hpp). Its cost clock
+// is the sweep's thread (BuildingsResult has no field for a child's CPU): the program's own
+// CPU is not in a buildings row's cpu_seconds yet, its wall time is in seconds.
+buildings::BuildingsResult solve_buildings(const BuildingModel& model, const Settings& settings);
+// What solve_buildings reads (SolverInfo::buildings_settings), besides the variant.
+inline constexpr std::string_view kBuildingsSettings[] = {"command", "name", "steps", "wh", "step_cap", "time_limit"};
 std::string describe(const Settings& settings);
 std::string check(const Settings& settings);
 std::vector<VariantInfo> variant_list();
+
+// The exchange of one case document, shared by both scenes (external.cpp).
+//
+// "" when a run may start, else why not and its status in `status` (an unknown variant, a
+// command that does not split, a sweep already stopped); `command` the program's words.
+std::string cannot_start(const Settings& settings, programs::CommandWords& command, Status& status);
+struct Exchanged {
+  programs::ProgramRun run;
+  double startup = std::numeric_limits<double>::quiet_NaN();       // a persistent program's start
+  double call_seconds = std::numeric_limits<double>::quiet_NaN();  // a Python callable's call
+  std::chrono::steady_clock::time_point deadline;                  // its answer is read by then
+  Status status = Status::ok;
+  std::string why;  // "": run.out is an answer to read; else why there is none, status says what
+};
+// The document (ending in '\n') to the program, per point or persistent, or to the callable.
+Exchanged exchange_document(const std::string& document, const programs::CommandWords& command,
+                            const Settings& settings);
+// The message of a row whose answer was refused (`bad`, its field and why) with the program's
+// stderr; status failed, or time_limit when the reading passed the deadline.
+std::string answer_refused(const Exchanged& x, const std::string& bad, Status& status);
 
 }  // namespace pb::external
