@@ -120,7 +120,7 @@ CaseDocument case_document(const System& s, const Settings& settings) {
   j.key("a_p").number(s.a_p).key("length_scale").number(s.length_scale());
   j.key("t_end").number(s.t_end).key("t_min").number(s.t_min);
   j.key("step");
-  if (settings.steps > 0 || settings.wh > 0.0) j.number(time_step(s, settings, 1));
+  if (settings.steps > 0 || settings.wh > 0.0 || settings.h_s > 0.0) j.number(time_step(s, settings, 1));
   else j.null();
   j.key("steps_per_period");
   if (settings.steps > 0) j.integer(settings.steps);

@@ -17,6 +17,8 @@ scripts/main.sh: results/buildings-*.csv) and says, from them:
 Writes buildings-summary.csv beside the report. Used by make_report.py."""
 
 import csv
+import json
+import math
 import os
 from collections import defaultdict
 
@@ -106,6 +108,64 @@ def solver_table(by):
         lines.append((solver, settings, len(errors), failed, percentile(e, 50) if e else float("nan"),
                       max(e) if e else float("nan"), percentile([c for _, c in errors], 50) if e else float("nan")))
     return [line[:6] + (r,) + line[6:] for line, r in zip(lines, robust(items))]
+
+
+def floor_step_cost(solved):
+    """The median over points of a solve's CPU over its steps times the point's floors (s); NaN
+    without a fixed step (the reference, CVODE)."""
+    costs = []
+    for floors in solved.values():
+        first = next(iter(floors.values()))
+        if first["status"] != "ok" or not first["step_s"]:
+            continue
+        steps = num(first, "t_end_s") / num(first, "step_s")
+        costs.append(num(first, "cpu_seconds") / (steps * len(floors)))
+    return percentile(costs, 50) if costs else float("nan")
+
+
+def engine_lines(by, stress_by):
+    """Per solver and settings but the step (a variant): its observed order (the slope of the
+    median floor-peak error against the step, from its coarsest to its finest step), its CPU
+    per floor-step, and the stress families where some point did not end ok or was off by more
+    than 10 %."""
+    reference = next((v for (s, _), v in by.items() if s == REFERENCE), None)
+    stress_ref = next((v for (s, _), v in stress_by.items() if s == REFERENCE), {}) if stress_by else {}
+    lines = ["Per solver and variant: the order its median floor-peak error shows from its coarsest step to its "
+             "finest (`error ~ h^p`), its CPU per floor and step, and where it fails on the stress set (a family "
+             "with a point that did not end ok, or off the reference by more than 10 %, at any of its steps).", "",
+             "| solver | variant | steps N | order p | CPU per floor-step (ns) | fails on |",
+             "|---|---|---|---:|---:|---|"]
+    groups = defaultdict(list)
+    for (solver, settings), solved in by.items():
+        if solver == REFERENCE:
+            continue
+        rest, fineness = step_split(settings_fields(dict(settings=settings)))
+        groups[(solver, rest)].append((fineness, solved, settings))
+    for (solver, rest), members in sorted(groups.items()):
+        stepped = sorted((m for m in members if m[0]), key=lambda m: m[0])
+        order = float("nan")
+        if len(stepped) >= 2:
+            coarse, fine = stepped[0], stepped[-1]
+            e0 = [e for e, _ in peak_errors(reference, coarse[1])]
+            e1 = [e for e, _ in peak_errors(reference, fine[1])]
+            if e0 and e1 and percentile(e1, 50) > 0:
+                order = math.log(percentile(e0, 50) / percentile(e1, 50)) / math.log(fine[0] / coarse[0])
+        cost = percentile([c for c in (floor_step_cost(m[1]) for m in members) if c == c] or [float("nan")], 50)
+        fails = set()
+        for (s2, settings2), solved in (stress_by or {}).items():
+            if s2 != solver or step_split(settings_fields(dict(settings=settings2)))[0] != rest:
+                continue
+            for point, floors in solved.items():
+                first = next(iter(floors.values()))
+                errs = [e for e, _ in peak_errors(stress_ref, {point: floors})]
+                if first["status"] != "ok" or (errs and errs[0] > 0.1):
+                    fails.add(first["family"])
+        steps = ", ".join(f"{m[0]:g}" for m in stepped) or "its own"
+        fields = json.loads(rest)
+        variant = fields.get("variant") or fields.get("integrator") or "–"
+        lines.append(f"| {solver} | {variant} | {steps} | {order:.2g} | {cost * 1e9:.3g} | "
+                     f"{', '.join(sorted(fails)) or 'none'} |")
+    return lines + [""]
 
 
 def answer_lines(table):
@@ -319,7 +379,7 @@ def section(rows, out_dir, stress_rows=None):
         for solver, settings, ok, failed, med, worst, rob, cpu in table:
             text.append(f"| {solver} | `{settings}` | {ok} | {failed} | {med:.2e} | {worst:.2e} | {rob:.2e} | "
                         f"{cpu * 1e3:.3g} |")
-        text += [""] + answer_lines(table)
+        text += [""] + engine_lines(by, points(stress_rows) if stress_rows else None) + answer_lines(table)
         text += [f"![buildings work-precision]({plot_work_precision(table, reference_cpu, out_dir)})", ""]
     if stress_rows:
         text += stress_lines(stress_rows)

@@ -94,10 +94,10 @@ def beats_section(study, out):
     return ["## Where another scheme beats the in-house Moreau–Jean", "",
             "Per family and target (the median of the relative Pi1 error, no failed or unresolved run; a step meets "
             "it when every finer step of its configuration does too, as in the answer), the in-house "
-            "`moreau-jean`'s cheapest setting that meets it and its least step count N, against every other "
+            "`moreau-jean`'s cheapest setting that meets it and its coarsest step, against every other "
             "time-stepper configuration of the study: those that meet the target at less CPU per run, and those "
-            "that meet it with fewer steps per shortest period. The step counts compare the schemes apart from "
-            "what their code costs a step.", "", *table, ""]
+            "that meet it with a coarser step given alike (fewer steps per shortest period N, or a longer step in "
+            "seconds). The steps compare the schemes apart from what their code costs a step.", "", *table, ""]
 
 
 def failures_section(study, out):

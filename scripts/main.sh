@@ -171,6 +171,23 @@ buildings() {  # the reference, and every other solver of this build that solves
       $pb spectrum cases/sets/$set.toml --solver siconos --variant moreau-jean-lemke --steps 64 \
         --out results/$set/siconos-N64.csv
     fi
+    # The engines as each would build the buildings (solvers/<engine>/README.md, "Buildings"):
+    # the default variant (faithful: the suite's activation rule, restitution exactly eps) at
+    # two steps for its order and cost, and on the main set the engine's own defaults at one.
+    local engine
+    for engine in ode bullet mujoco dart simbody; do
+      built $engine || continue
+      for n in 64 256; do
+        $pb spectrum cases/sets/$set.toml --solver $engine --steps $n --out results/$set/$engine-N$n.csv
+      done
+    done
+    if [ $set = buildings ]; then
+      for engine in ode:dantzig-default bullet:si-default mujoco:default dart:default simbody:default; do
+        built ${engine%%:*} || continue
+        $pb spectrum cases/sets/$set.toml --solver ${engine%%:*} --variant ${engine##*:} --steps 256 \
+          --out results/$set/${engine%%:*}-${engine##*:}-N256.csv
+      done
+    fi
     if built compliant; then
       for n in 64 256 1024; do
         $pb spectrum cases/sets/$set.toml --solver compliant --integrator newmark --steps $n \

@@ -227,13 +227,9 @@ TEST_F(Cli, RunSummarisesABuildingsPointPerFloorAndContact) {
 }
 
 TEST_F(Cli, OtherSolversAndStudiesRefuseTheBuildingsSceneByName) {
-  // A registered solver without a buildings solve (the external solver has one since issue 50);
-  // where no such engine is built, an unknown name is refused by the same rule.
-#ifdef POUNDBENCH_HAVE_ODE
-  const std::string other = "ode";
-#else
+  // Every registered solver has a buildings solve since issue 50: a name without one (here an
+  // unknown one) is refused by the rule, naming those that solve the scene.
   const std::string other = "no-such";
-#endif
   const Outcome o = run("run --case-file '" + kBuildingsSet + "' --point 0 --solver " + other);
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_NE(o.err.find("--solver: " + other + " does not solve the buildings scene (these do: event-driven"), std::string::npos) << o.err;

@@ -29,7 +29,7 @@ buildings::BuildingsResult solve_buildings(const BuildingModel& model, const Set
   if (std::string why = cannot_start(settings, command, status); !why.empty()) return finish(status, why);
   // The step asked for (--steps, --wh), planned as the scene's time-steppers plan theirs: the
   // program gets the h they would take, and a step they would refuse is refused here.
-  if (settings.steps > 0 || settings.wh > 0.0) {
+  if (settings.steps > 0 || settings.wh > 0.0 || settings.h_s > 0.0) {
     long n = 0;
     if (!buildings::plan_steps(model, settings, 1, r, n)) return r;
   }

@@ -55,7 +55,7 @@ Result solve(const System& system, const Settings& settings);
 // CPU is not in a buildings row's cpu_seconds yet, its wall time is in seconds.
 buildings::BuildingsResult solve_buildings(const BuildingModel& model, const Settings& settings);
 // What solve_buildings reads (SolverInfo::buildings_settings), besides the variant.
-inline constexpr std::string_view kBuildingsSettings[] = {"command", "name", "steps", "wh", "step_cap", "time_limit"};
+inline constexpr std::string_view kBuildingsSettings[] = {"command", "name", "steps", "wh", "h_s", "step_cap", "time_limit"};
 std::string describe(const Settings& settings);
 std::string check(const Settings& settings);
 std::vector<VariantInfo> variant_list();
