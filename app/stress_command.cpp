@@ -1,7 +1,6 @@
 #include "app/stress_command.hpp"
 
 #include <iostream>
-#include <limits>
 #include <stdexcept>
 
 #include "app/check_report.hpp"
@@ -13,18 +12,6 @@
 namespace pb::app {
 
 namespace {
-
-void write_table(std::ostream& out, const Stress& st) {
-  out << stability_csv_header() << '\n';
-  for (const StressRow& row : st.table) out << stability_csv_line(row) << '\n';
-}
-
-void write_points(std::ostream& out, const Stress& st) {
-  out << stress_points_header() << '\n';
-  const double none = std::numeric_limits<double>::quiet_NaN();
-  for (const Row& row : st.runs.reference) out << stress_points_line(row, none) << '\n';
-  for (const Row& row : st.runs.points) out << stress_points_line(row, pi1_error(row, st.truth[row.point].pi1)) << '\n';
-}
 
 // --check: a verdict per row, failing with the checks it failed.
 std::vector<Verdict> verdicts(const Stress& st) {
@@ -55,7 +42,8 @@ int stress_command(const CLI::App& command, const StressFlags& flags, const Proc
     for (const Row& r : *rows) failed_runs += r.result.status != Status::ok ? 1 : 0;
   for (const StressRow& row : st.table) failed_rows += row.ok < row.runs ? 1 : 0;
   write_study(
-      flags, study, [&](std::ostream& out) { write_points(out, st); }, [&](std::ostream& out) { write_table(out, st); },
+      flags, study, [&](std::ostream& out) { write_stress_points(out, st); },
+      [&](std::ostream& out) { write_stress_table(out, st); },
       failed_runs, failed_rows);
   return flags.check ? report_check("stress", verdicts(st), "rows", flags.junit) : 0;
 }

@@ -21,11 +21,6 @@ namespace {
 // Points named in one failing row's line: enough to start looking, short enough to read.
 constexpr std::size_t kListedPoints = 5;
 
-void write_table(std::ostream& out, const WorkPrecision& wp) {
-  out << work_precision_csv_header() << '\n';
-  for (const WorkPrecisionRow& row : wp.table) out << work_precision_csv_line(row) << '\n';
-}
-
 std::string row_key(const std::string& family, const std::string& solver, const std::string& variant,
                     const std::string& settings) {
   return family + '\n' + solver + '\n' + variant + '\n' + settings;
@@ -127,11 +122,8 @@ int workprecision_command(const CLI::App& command, const WorkPrecisionFlags& fla
   for (const WorkPrecisionRow& row : wp.table) failed_rows += row.summary.failed > 0 ? 1 : 0;
   write_study(
       flags, study,
-      [&](std::ostream& out) {
-        write_csv(out, wp.reference);
-        for (const Row& row : wp.points) out << csv_line(row) << '\n';
-      },
-      [&](std::ostream& out) { write_table(out, wp); }, failed_runs, failed_rows);
+      [&](std::ostream& out) { write_work_precision_points(out, wp); },
+      [&](std::ostream& out) { write_work_precision_table(out, wp); }, failed_runs, failed_rows);
   return flags.check ? report_check("workprecision", verdicts(wp, flags), "rows", flags.junit) : 0;
 }
 

@@ -64,6 +64,7 @@
 #include "studies/stress.hpp"
 #include "studies/workprecision.hpp"
 #include "programs/process.hpp"
+#include "output/output_files.hpp"
 #include "kit/settings_fields.hpp"
 #include "sweep/buildings_sweep.hpp"
 #include "sweep/sweep.hpp"
@@ -859,6 +860,7 @@ struct StudyInput {
   SettingsList list;
   std::vector<std::function<std::string(const std::string&, double&)>> in_process;
   std::optional<long long> threads, repetitions;
+  std::string out, points;  // workprecision and stress: where to write the table and every run's row
   bool has_list = false;
 };
 
@@ -880,6 +882,8 @@ std::unique_ptr<StudyInput> read_study(const std::string& function, const py::ob
       callables = value.cast<py::dict>();
     } else if (key == "threads") in->threads = whole(function, key, value);
     else if (key == "repetitions" && function != "baseline") in->repetitions = whole(function, key, value);
+    else if ((key == "out" || key == "points") && function != "baseline")
+      (key == "out" ? in->out : in->points) = text(function, key, value);
     else throw py::type_error(function + "() got an unexpected keyword argument '" + clip(key) + "'");
   }
   for (const auto& [name, f] : callables)
@@ -916,6 +920,10 @@ std::unique_ptr<StudyInput> read_study(const std::string& function, const py::ob
     if (in->threads && *in->threads <= 0) throw app::BadInput("threads: must be >= 1");
     if (in->repetitions && (*in->repetitions < 1 || *in->repetitions > kMaxRepetitions))
       throw app::BadInput("repetitions: must be from 1 to " + std::to_string(kMaxRepetitions));
+    // Checked before the study runs, as the command checks --out and --points: a place that
+    // cannot be written fails at once, not after the study.
+    if (!in->out.empty()) app::check_output_target(in->out, "out");
+    if (!in->points.empty()) app::check_output_target(in->points, "points");
     return 0;
   });
   // The callables' runs: in process, on one thread (callable_solver.hpp says why).
@@ -951,21 +959,48 @@ py::list study_dicts(const StudyInput& in, Run run, const std::string& header, L
   return table_dicts(header, lines);
 }
 
+// A finished study's files where out= and points= ask for them, each whole or not at all (as the
+// command's --out and --points), so that a Python user can report them (`poundbench report`).
+void write_study_files(const StudyInput& in, const std::function<void(std::ostream&)>& table,
+                       const std::function<void(std::ostream&)>& points) {
+  checked([&] {
+    if (!in.out.empty()) app::write_atomically(in.out, table);
+    if (!in.points.empty()) app::write_atomically(in.points, points);
+    return 0;
+  });
+}
+
 py::list workprecision(const py::object& case_set, const py::kwargs& kwargs) {
   const std::unique_ptr<StudyInput> in = read_study("workprecision", case_set, kwargs);
   StudyOptions study{.model_references = true};
   if (in->repetitions) study.repetitions = static_cast<int>(*in->repetitions);
-  return study_dicts(
-      *in, [&](const SweepOptions& options) { return run_work_precision(in->set.cases, in->list, options, study).table; },
+  WorkPrecision wp;
+  py::list table = study_dicts(
+      *in,
+      [&](const SweepOptions& options) {
+        wp = run_work_precision(in->set.cases, in->list, options, study);
+        return wp.table;
+      },
       work_precision_csv_header(), &work_precision_csv_line);
+  write_study_files(*in, [&](std::ostream& out) { write_work_precision_table(out, wp); },
+                    [&](std::ostream& out) { write_work_precision_points(out, wp); });
+  return table;
 }
 
 py::list stress(const py::object& case_set, const py::kwargs& kwargs) {
   const std::unique_ptr<StudyInput> in = read_study("stress", case_set, kwargs);
   const int repetitions = in->repetitions ? static_cast<int>(*in->repetitions) : kStudyRepetitions;
-  return study_dicts(
-      *in, [&](const SweepOptions& options) { return run_stress(in->set.cases, in->list, options, repetitions).table; },
+  Stress st;
+  py::list table = study_dicts(
+      *in,
+      [&](const SweepOptions& options) {
+        st = run_stress(in->set.cases, in->list, options, repetitions);
+        return st.table;
+      },
       stability_csv_header(), &stability_csv_line);
+  write_study_files(*in, [&](std::ostream& out) { write_stress_table(out, st); },
+                    [&](std::ostream& out) { write_stress_points(out, st); });
+  return table;
 }
 
 // The rows a baseline file holds, as `poundbench baseline --out` writes them (a dict per row).
@@ -1083,16 +1118,20 @@ PYBIND11_MODULE(poundbench, m) {
       "longer than the limit, is that point's time-limit row.\n";
   m.def("spectrum", &python::spectrum, py::arg("case_set"), spectrum_doc.c_str());
   m.def("workprecision", &python::workprecision, py::arg("case_set"),
-        "workprecision(case_set, settings=[...], solvers={}, threads=None, repetitions=None) -> list of dict\n\n"
+        "workprecision(case_set, settings=[...], solvers={}, threads=None, repetitions=None, out=None,\n"
+        "              points=None) -> list of dict\n\n"
         "A work-precision study, as `poundbench workprecision`: the table it writes (its CSV), one dict per\n"
         "line. settings: a settings-list file, or a list of dicts, one per [[run]] (studies/settings_list.hpp:\n"
         "{'solver': 'moreau-jean', 'steps': [64, 256]}). solvers: names of Python callables, each usable as\n"
         "a run's solver ({'solver': 'mine', 'steps': [64, 256]}), run in process as spectrum's solver=f;\n"
-        "their rows' cost (cpu_median_s) is the thread's CPU time for each call and its dicts' conversions.");
+        "their rows' cost (cpu_median_s) is the thread's CPU time for each call and its dicts' conversions.\n"
+        "out, points: also write the table and every run's row as the command's --out and --points (whole or\n"
+        "not at all), for `poundbench report OUT --points POINTS`.");
   m.def("stress", &python::stress, py::arg("case_set"),
-        "stress(case_set, settings=[...], solvers={}, threads=None, repetitions=None) -> list of dict\n\n"
-        "The stress study, as `poundbench stress`: its table (the stability CSV), one dict per line; settings\n"
-        "and solvers as workprecision's.");
+        "stress(case_set, settings=[...], solvers={}, threads=None, repetitions=None, out=None, points=None)\n"
+        "    -> list of dict\n\n"
+        "The stress study, as `poundbench stress`: its table (the stability CSV), one dict per line; settings,\n"
+        "solvers, out and points as workprecision's.");
   m.def("baseline", &python::baseline, py::arg("case_set"),
         "baseline(case_set, settings=None, solvers={}, threads=None) -> list of dict\n\n"
         "The rows `poundbench baseline CASESET --settings LIST --out FILE` stores, one dict per row (its CSV's\n"

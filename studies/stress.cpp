@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <ostream>
 #include <sstream>
 
 #include "cases/text.hpp"
@@ -181,6 +183,18 @@ std::string stress_points_header() { return csv_header() + ",pi1_error"; }
 
 std::string stress_points_line(const Row& row, double pi1_error) {
   return csv_line(row) + "," + format_number(pi1_error);
+}
+
+void write_stress_table(std::ostream& out, const Stress& st) {
+  out << stability_csv_header() << '\n';
+  for (const StressRow& row : st.table) out << stability_csv_line(row) << '\n';
+}
+
+void write_stress_points(std::ostream& out, const Stress& st) {
+  out << stress_points_header() << '\n';
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  for (const Row& row : st.runs.reference) out << stress_points_line(row, none) << '\n';
+  for (const Row& row : st.runs.points) out << stress_points_line(row, pi1_error(row, st.truth[row.point].pi1)) << '\n';
 }
 
 }  // namespace pb

@@ -33,6 +33,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <ostream>
 #include <span>
 #include <string>
 #include <string_view>
@@ -150,5 +151,9 @@ std::string stability_csv_line(const StressRow& row);
 // A run's row: the columns of rows/row.hpp, then pi1_error (empty where not compared).
 std::string stress_points_header();
 std::string stress_points_line(const Row& row, double pi1_error);
+// The summary table (`stress --out`) and every run's row with its pi1_error, the truth first
+// (`--points`): what the command and the Python module write.
+void write_stress_table(std::ostream& out, const Stress& st);
+void write_stress_points(std::ostream& out, const Stress& st);
 
 }  // namespace pb

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ostream>
 #include <sstream>
 #include <tuple>
 
@@ -166,6 +167,16 @@ std::string work_precision_problem(const WorkPrecisionRow& row, double max_error
                  (std::isnan(value) ? "empty (no run finished)" : format_number(value)) + " above " +
                  format_number(bound);
   return problem;
+}
+
+void write_work_precision_table(std::ostream& out, const WorkPrecision& wp) {
+  out << work_precision_csv_header() << '\n';
+  for (const WorkPrecisionRow& row : wp.table) out << work_precision_csv_line(row) << '\n';
+}
+
+void write_work_precision_points(std::ostream& out, const WorkPrecision& wp) {
+  write_csv(out, wp.reference);
+  for (const Row& row : wp.points) out << csv_line(row) << '\n';
 }
 
 }  // namespace pb

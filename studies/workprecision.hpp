@@ -9,6 +9,7 @@
 
 #include <limits>
 #include <span>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -83,6 +84,10 @@ WorkPrecision run_work_precision(std::span<const Case> cases, const SettingsList
 
 std::string work_precision_csv_header();
 std::string work_precision_csv_line(const WorkPrecisionRow& row);
+// The study's summary table (`workprecision --out`), and every run's row, the truth first
+// (`--points`): what the command and the Python module write.
+void write_work_precision_table(std::ostream& out, const WorkPrecision& wp);
+void write_work_precision_points(std::ostream& out, const WorkPrecision& wp);
 
 // What `workprecision --check` fails a row for, "" when nothing: a run that did not finish
 // ok (a failed count), one that did not resolve what it solved (an unresolved count), or,

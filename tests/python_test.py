@@ -505,6 +505,27 @@ class Callable(unittest.TestCase):
         self.assertEqual(sum(r["points"] for r in mine), 40)
         self.assertEqual(sum(r["failed"] for r in mine), 1)
 
+    def test_a_study_writes_its_table_and_points_for_the_report(self):
+        # out= and points= write what the command's --out and --points do, so that a Python user
+        # reports the study with `poundbench report`; a place that cannot be written fails first.
+        with tempfile.TemporaryDirectory() as folder:
+            out, points = os.path.join(folder, "wp.csv"), os.path.join(folder, "points.csv")
+            table = poundbench.workprecision(self.SMOKE, settings=[{"solver": "moreau-jean", "steps": [16, 32]}],
+                                             repetitions=1, out=out, points=points)
+            with open(out, newline="") as f:
+                written = list(csv.DictReader(f))
+            self.assertEqual(len(written), len(table))
+            self.assertEqual([r["settings"] for r in written], [r["settings"] for r in table])
+            with open(points, newline="") as f:
+                runs = list(csv.DictReader(f))
+            self.assertEqual(len(runs), 40 * 3)  # the truth and the two settings, every point
+            report = subprocess.run([POUNDBENCH, "report", out, "--points", points, "--out",
+                                     os.path.join(folder, "report")], capture_output=True, text=True)
+            self.assertEqual(report.returncode, 0, report.stderr)
+            with self.assertRaisesRegex(ValueError, "out: "):
+                poundbench.workprecision(self.SMOKE, settings=[{"solver": "moreau-jean", "steps": [16]}],
+                                         out=os.path.join(folder, "no-such-folder", "wp.csv"))
+
     def test_ctrl_c_stops_a_sweep_over_a_function_and_writes_nothing(self):
         # A child process sweeps the smoke set (40 points) through a function that takes
         # 0.5 s a call, 20 s in all; SIGINT after its first call must end it with
