@@ -1,6 +1,7 @@
 #pragma once
 // What the buildings' tests share (tests/buildings_model_test.cpp, the reference's own in
-// solvers/buildings_reference/): a building from its floors, and the issue's pair.
+// solvers/buildings_reference/, each engine's): a building from its floors, the issue's pair,
+// a shipped set's point, and a result's distance from the reference's.
 
 #include <algorithm>
 #include <cmath>
@@ -8,10 +9,15 @@
 #include <utility>
 #include <vector>
 
+#include <string>
+
 #include "cases/buildings.hpp"
+#include "cases/buildings_set.hpp"
 #include "cases/case.hpp"
 #include "cases/load.hpp"
 #include "cases/record.hpp"
+#include "kit/buildings_result.hpp"
+#include "kit/testing.hpp"
 
 namespace pb::test {
 
@@ -51,6 +57,36 @@ inline BuildingScene issue_scene_under_a_record() {
   s.w_p = c.w_p;
   s.delta = 0.01;
   return s;
+}
+
+#ifdef POUNDBENCH_SOURCE_DIR
+// Point p of a shipped buildings set (cases/sets/NAME), assembled.
+inline BuildingModel shipped_point(const char* set, std::size_t p) {
+  const auto s = load_buildings_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/" + set);
+  EXPECT_TRUE(s.has_value());
+  EXPECT_LT(p, s->points.size());
+  return assemble(s->points.at(p).scene);
+}
+#endif
+
+// The largest relative error of any floor's peak |u| against the reference's; with `drifts`,
+// of any storey's peak |drift| too.
+inline double floor_error(const buildings::BuildingsResult& r, const buildings::BuildingsResult& ref,
+                          bool drifts = false) {
+  double e = 0.0;
+  for (std::size_t b = 0; b < ref.floor_peak.size(); ++b)
+    for (std::size_t i = 0; i < ref.floor_peak[b].size(); ++i) {
+      e = std::max(e, rel(r.floor_peak[b][i], ref.floor_peak[b][i]));
+      if (drifts) e = std::max(e, rel(r.drift_peak[b][i], ref.drift_peak[b][i]));
+    }
+  return e;
+}
+
+// How many floor contacts took an impact.
+inline int floors_hit(const buildings::BuildingsResult& r) {
+  int n = 0;
+  for (const auto& c : r.contacts) n += c.impacts > 0 ? 1 : 0;
+  return n;
 }
 
 }  // namespace pb::test

@@ -19,6 +19,7 @@
 #include <Eigen/SparseCore>
 
 #include "cases/text.hpp"
+#include "kit/buildings_step_end.hpp"
 #include "kit/fixed_step.hpp"
 #include "kit/run_limits.hpp"
 #include "solvers/bullet/bullet_solver.hpp"
@@ -168,7 +169,6 @@ class Floors {
 void run(const BuildingModel& md, const Config& config, double h, long n, const Settings& set, BuildingsResult& r,
          buildings::FloorPeaks& peaks) {
   Floors world(md, config, h, set.gamma);
-  const double bound = 1e6 * md.length_scale();
   peaks.sample(0.0, world.u_data());
   Deadline deadline(set);
   long k = 0;
@@ -181,27 +181,8 @@ void run(const BuildingModel& md, const Config& config, double h, long n, const 
       stop(Status::nan, "non-finite force");
       break;
     }
-    bool finite = true;
-    double largest = 0.0;
-    for (int i = 0; i < md.n_floors; ++i) {
-      finite = finite && std::isfinite(world.u(i)) && std::isfinite(world.v(i));
-      largest = std::max(largest, std::abs(world.u(i)));
-    }
-    if (!finite) {
+    if (!buildings::end_step(md, k, n, h, world.u_data(), world.u_data() + md.n_floors, peaks, &deadline, r)) {
       ++k;
-      stop(Status::nan, "non-finite state");
-      break;
-    }
-    if (!(largest <= bound)) {
-      ++k;
-      stop(Status::diverged, "|u| above 1e6 a_p/w_p^2");
-      break;
-    }
-    peaks.sample(static_cast<double>(k + 1) * h, world.u_data());
-    if (k + 1 < n && deadline.passed(k + 1)) {
-      ++k;
-      r.status = Status::time_limit;
-      r.message = deadline.reason() + " at t = " + format_number(static_cast<double>(k) * h);
       break;
     }
   }

@@ -32,34 +32,14 @@ namespace pb {
 namespace buildings_bullet_tests {
 
 using buildings::BuildingsResult;
-
-BuildingModel point(const char* set, std::size_t p) {
-  const auto s = load_buildings_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/" + set);
-  EXPECT_TRUE(s.has_value());
-  EXPECT_LT(p, s->points.size());
-  return assemble(s->points.at(p).scene);
-}
+using test::floor_error;
+using test::floors_hit;
 
 BuildingsResult run(const BuildingModel& md, const std::string& variant, int steps) {
   Settings set;
   set.variant = variant;
   set.steps = steps;
   return bullet::solve_buildings(md, set);
-}
-
-// The largest relative error of any floor's peak |u|.
-double floor_error(const BuildingsResult& r, const BuildingsResult& ref) {
-  double e = 0.0;
-  for (std::size_t b = 0; b < ref.floor_peak.size(); ++b)
-    for (std::size_t i = 0; i < ref.floor_peak[b].size(); ++i)
-      e = std::max(e, test::rel(r.floor_peak[b][i], ref.floor_peak[b][i]));
-  return e;
-}
-
-int floors_hit(const BuildingsResult& r) {
-  int n = 0;
-  for (const auto& c : r.contacts) n += c.impacts > 0 ? 1 : 0;
-  return n;
 }
 
 // The errors of a variant at N = 64, 512, 4096.
@@ -87,7 +67,7 @@ struct Point {
 // 2.3e-4; 4.0e-4, 8.1e-5, 1.2e-5; 4.4e-3, 3.5e-4, 1.0e-4.
 TEST(BuildingsBullet, FaithfulVariantsConvergeToTheReference) {
   for (const Point pt : {Point{"buildings.toml", 0}, Point{"buildings-stress.toml", 0}, Point{"buildings-stress.toml", 4}}) {
-    const BuildingModel md = point(pt.set, pt.p);
+    const BuildingModel md = test::shipped_point(pt.set, pt.p);
     const BuildingsResult ref = buildings::solve(md);
     ASSERT_EQ(ref.status, Status::ok) << ref.message;
     EXPECT_GE(floors_hit(ref), 2) << pt.set << " point " << pt.p << ": impacts at several floors";
@@ -108,7 +88,7 @@ TEST(BuildingsBullet, FaithfulVariantsConvergeToTheReference) {
 // and give finite peaks, but do not converge to the reference, whose model they do not solve:
 // 7.4e-2, 5.3e-2, 6.8e-2, 9.2e-2 at the same N.
 TEST(BuildingsBullet, DefaultVariantsRunAndGiveFinitePeaks) {
-  const BuildingModel md = point("buildings.toml", 0);
+  const BuildingModel md = test::shipped_point("buildings.toml", 0);
   const BuildingsResult ref = buildings::solve(md);
   for (const char* v : {"si-overlap", "si-default", "mlcp-dantzig-default", "mlcp-lemke-default"}) {
     const BuildingsResult r = run(md, v, 256);

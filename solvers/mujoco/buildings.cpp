@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "cases/text.hpp"
+#include "kit/buildings_step_end.hpp"
 #include "kit/fixed_step.hpp"
 #include "kit/run_limits.hpp"
 #include "solvers/mujoco/model.hpp"
@@ -143,7 +144,7 @@ void run(const BuildingModel& md, const Scales& s, double h, double h_model, lon
   FloorLoad load(md, s);
   std::vector<double> u(static_cast<std::size_t>(nf), 0.0), v(u);
   std::vector<char> touched(nc, 0), now(nc, 0);
-  const double plastic = kRestitutionFloor * md.speed_scale(), bound = 1e6 * md.length_scale();
+  const double plastic = kRestitutionFloor * md.speed_scale();
   const double speed = s.length / s.time;
   peaks.sample(0.0, u.data());
   Deadline deadline(set);
@@ -179,30 +180,12 @@ void run(const BuildingModel& md, const Scales& s, double h, double h_model, lon
       if (now[j] && !touched[j] && -rate > plastic) peaks.impact(j, static_cast<double>(k + 1) * h, -rate);
       touched[j] = now[j];
     }
-    bool finite = true;
-    double largest = 0.0;
     for (int i = 0; i < nf; ++i) {
-      const auto ii = static_cast<std::size_t>(i);
-      u[ii] = d->qpos[i] * s.length;
-      v[ii] = d->qvel[i] * speed;
-      finite = finite && std::isfinite(u[ii]) && std::isfinite(v[ii]);
-      largest = std::max(largest, std::abs(u[ii]));
+      u[static_cast<std::size_t>(i)] = d->qpos[i] * s.length;
+      v[static_cast<std::size_t>(i)] = d->qvel[i] * speed;
     }
-    if (!finite) {
+    if (!buildings::end_step(md, k, n, h, u.data(), v.data(), peaks, &deadline, r)) {
       ++k;
-      stop(Status::nan, "non-finite state");
-      break;
-    }
-    if (!(largest <= bound)) {
-      ++k;
-      stop(Status::diverged, "|u| above 1e6 a_p/w_p^2");
-      break;
-    }
-    peaks.sample(static_cast<double>(k + 1) * h, u.data());
-    if (k + 1 < n && deadline.passed(k + 1)) {
-      ++k;
-      r.status = Status::time_limit;
-      r.message = deadline.reason() + " at t = " + format_number(static_cast<double>(k) * h);
       break;
     }
   }

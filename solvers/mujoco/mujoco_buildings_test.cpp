@@ -35,34 +35,14 @@ namespace pb {
 namespace buildings_mujoco_tests {
 
 using buildings::BuildingsResult;
-
-BuildingModel point(const char* set, std::size_t p) {
-  const auto s = load_buildings_set(std::string(POUNDBENCH_SOURCE_DIR) + "/cases/sets/" + set);
-  EXPECT_TRUE(s.has_value());
-  EXPECT_LT(p, s->points.size());
-  return assemble(s->points.at(p).scene);
-}
+using test::floor_error;
+using test::floors_hit;
 
 BuildingsResult run(const BuildingModel& md, const std::string& variant, int steps) {
   Settings set;
   set.variant = variant;
   set.steps = steps;
   return mujoco::solve_buildings(md, set);
-}
-
-// The largest relative error of any floor's peak |u|.
-double floor_error(const BuildingsResult& r, const BuildingsResult& ref) {
-  double e = 0.0;
-  for (std::size_t b = 0; b < ref.floor_peak.size(); ++b)
-    for (std::size_t i = 0; i < ref.floor_peak[b].size(); ++i)
-      e = std::max(e, test::rel(r.floor_peak[b][i], ref.floor_peak[b][i]));
-  return e;
-}
-
-int floors_hit(const BuildingsResult& r) {
-  int n = 0;
-  for (const auto& c : r.contacts) n += c.impacts > 0 ? 1 : 0;
-  return n;
 }
 
 // The errors of a variant at the steps ns.
@@ -116,7 +96,7 @@ struct Point {
 // N = 64, 256, 1024, 4096 (README, "Buildings").
 TEST(BuildingsMujoco, FaithfulVariantsApproachTheReference) {
   for (const Point pt : {Point{"buildings-stress.toml", 0}, Point{"buildings-stress.toml", 4}}) {
-    const BuildingModel md = point(pt.set, pt.p);
+    const BuildingModel md = test::shipped_point(pt.set, pt.p);
     const BuildingsResult ref = buildings::solve(md);
     ASSERT_EQ(ref.status, Status::ok) << ref.message;
     EXPECT_GE(floors_hit(ref), 2) << pt.set << " point " << pt.p << ": impacts at several floors";
@@ -130,7 +110,7 @@ TEST(BuildingsMujoco, FaithfulVariantsApproachTheReference) {
       RecordProperty(std::string(v) + "_" + std::to_string(pt.p), what);
     }
   }
-  const BuildingModel md = point("buildings.toml", 0);
+  const BuildingModel md = test::shipped_point("buildings.toml", 0);
   const BuildingsResult r = run(md, "euler-faithful", 4096);
   ASSERT_EQ(r.status, Status::ok) << r.message;
   EXPECT_LT(floor_error(r, buildings::solve(md)), 2e-2);
@@ -141,7 +121,7 @@ TEST(BuildingsMujoco, FaithfulVariantsApproachTheReference) {
 // measured on buildings.toml point 0, the largest floor-peak error 4.8e-2, 4.9e-2, 5.0e-2,
 // 5.0e-2 at N = 64, 256, 1024, 4096.
 TEST(BuildingsMujoco, DefaultVariantRunsAndGivesFinitePeaks) {
-  const BuildingModel md = point("buildings.toml", 0);
+  const BuildingModel md = test::shipped_point("buildings.toml", 0);
   const BuildingsResult ref = buildings::solve(md);
   const BuildingsResult r = run(md, "default", 256);
   ASSERT_EQ(r.status, Status::ok) << r.message;

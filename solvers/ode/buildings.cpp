@@ -11,6 +11,7 @@
 #include <Eigen/SparseCore>
 
 #include "cases/text.hpp"
+#include "kit/buildings_step_end.hpp"
 #include "kit/fixed_step.hpp"
 #include "kit/run_limits.hpp"
 #include "solvers/ode/ode_solver.hpp"
@@ -181,7 +182,6 @@ void run(const BuildingModel& md, const Config& config, double h, long n, const 
     r.message = "ODE could not create a world";
     return;
   }
-  const double bound = 1e6 * md.length_scale();
   peaks.sample(0.0, ode.u_data());
   Deadline deadline(set);
   long k = 0;
@@ -205,27 +205,8 @@ void run(const BuildingModel& md, const Config& config, double h, long n, const 
       stop(Status::failed, "ODE's Dantzig LCP gave up (a tie it cannot pivot through)");
       break;
     }
-    bool finite = true;
-    double largest = 0.0;
-    for (int i = 0; i < md.n_floors; ++i) {
-      finite = finite && std::isfinite(ode.u(i)) && std::isfinite(ode.v(i));
-      largest = std::max(largest, std::abs(ode.u(i)));
-    }
-    if (!finite) {
+    if (!buildings::end_step(md, k, n, h, ode.u_data(), ode.u_data() + md.n_floors, peaks, &deadline, r)) {
       ++k;
-      stop(Status::nan, "non-finite state");
-      break;
-    }
-    if (!(largest <= bound)) {
-      ++k;
-      stop(Status::diverged, "|u| above 1e6 a_p/w_p^2");
-      break;
-    }
-    peaks.sample(static_cast<double>(k + 1) * h, ode.u_data());
-    if (k + 1 < n && deadline.passed(k + 1)) {
-      ++k;
-      r.status = Status::time_limit;
-      r.message = deadline.reason() + " at t = " + format_number(static_cast<double>(k) * h);
       break;
     }
   }

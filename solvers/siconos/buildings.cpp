@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cases/text.hpp"
+#include "kit/buildings_step_end.hpp"
 #include "kit/fixed_step.hpp"
 #include "kit/run_limits.hpp"
 #include "solvers/siconos/buildings_engine.hpp"
@@ -77,7 +78,7 @@ void run(const BuildingModel& md, double h, long n, bool enumeration, const Sett
   const auto nf = static_cast<std::size_t>(md.n_floors), nc = md.contacts.size();
   std::vector<double> u(nf, 0.0), v(nf, 0.0);
   std::vector<char> was_active(nc, 0);
-  const double plastic = kRestitutionFloor * md.speed_scale(), bound = 1e6 * length;
+  const double plastic = kRestitutionFloor * md.speed_scale();
   peaks.sample(0.0, u.data());
   Deadline deadline(set);
   long k = 0;
@@ -108,29 +109,8 @@ void run(const BuildingModel& md, double h, long n, bool enumeration, const Sett
       r.message = "Siconos' LCP solver returned info " + std::to_string(stepper.lcp_info()) + where();
       break;
     }
-    bool finite = true;
-    double largest = 0.0;
-    for (std::size_t i = 0; i < nf; ++i) {
-      finite = finite && std::isfinite(u[i]) && std::isfinite(v[i]);
-      largest = std::max(largest, std::abs(u[i]));
-    }
-    if (!finite) {
+    if (!buildings::end_step(md, k, n, h, u.data(), v.data(), peaks, &deadline, r)) {
       ++k;
-      r.status = Status::nan;
-      r.message = "non-finite state" + where();
-      break;
-    }
-    if (!(largest <= bound)) {
-      ++k;
-      r.status = Status::diverged;
-      r.message = "|u| above 1e6 a_p/w_p^2" + where();
-      break;
-    }
-    peaks.sample(static_cast<double>(k + 1) * h, u.data());
-    if (k + 1 < n && deadline.passed(k + 1)) {
-      ++k;
-      r.status = Status::time_limit;
-      r.message = deadline.reason() + " at t = " + format_number(static_cast<double>(k) * h);
       break;
     }
   }

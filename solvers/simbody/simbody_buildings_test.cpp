@@ -29,6 +29,7 @@ namespace pb {
 namespace buildings_simbody_tests {
 
 using buildings::BuildingsResult;
+using test::floors_hit;
 using test::issue_scene;
 
 BuildingsResult run_simbody(const BuildingModel& md, const char* variant, int steps) {
@@ -38,25 +39,9 @@ BuildingsResult run_simbody(const BuildingModel& md, const char* variant, int st
   return simbody::solve_buildings(md, set);
 }
 
-// The largest relative error over every floor's peak |u| and every storey's peak |drift|.
-double peak_error(const BuildingsResult& r, const BuildingsResult& ref) {
-  double e = 0.0;
-  for (std::size_t b = 0; b < ref.floor_peak.size(); ++b)
-    for (std::size_t i = 0; i < ref.floor_peak[b].size(); ++i)
-      e = std::max({e, test::rel(r.floor_peak[b][i], ref.floor_peak[b][i]),
-                    test::rel(r.drift_peak[b][i], ref.drift_peak[b][i])});
-  return e;
-}
-
 long impacts(const BuildingsResult& r) {
   long n = 0;
   for (const auto& c : r.contacts) n += c.impacts;
-  return n;
-}
-
-int floors_hit(const BuildingsResult& r) {
-  int n = 0;
-  for (const auto& c : r.contacts) n += c.impacts > 0 ? 1 : 0;
   return n;
 }
 
@@ -68,7 +53,7 @@ std::vector<double> errors(const BuildingModel& md, const char* variant, const s
   for (int n : {64, 256, 1024}) {
     const BuildingsResult r = run_simbody(md, variant, n);
     EXPECT_EQ(r.status, Status::ok) << what << " " << variant << " N=" << n << ": " << r.message;
-    e.push_back(peak_error(r, ref));
+    e.push_back(test::floor_error(r, ref, true));
   }
   ::testing::Test::RecordProperty(what + "_" + variant,
                                   test::sci(e[0]) + " " + test::sci(e[1]) + " " + test::sci(e[2]));
@@ -135,7 +120,7 @@ TEST(BuildingsSimbody, DefaultRunsAndGivesFinitePeaks) {
         EXPECT_GT(x, 0.0);
       }
     RecordProperty(s.damping == BuildingDamping::modal ? "default_modal_error" : "default_rayleigh_error",
-                   test::sci(peak_error(r, buildings::solve(md))));
+                   test::sci(test::floor_error(r, buildings::solve(md), true)));
   }
 }
 
