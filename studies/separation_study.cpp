@@ -10,7 +10,8 @@
 
 namespace pb {
 
-namespace {
+// Named, not anonymous: a unity build puts this file beside others with helpers of these names.
+namespace separation_study {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -24,7 +25,11 @@ std::string fraction_label(double f) {
   return b.take();
 }
 
-}  // namespace
+}  // namespace separation_study
+
+using separation_study::fraction_label;
+using separation_study::kNaN;
+using separation_study::rule_gap;
 
 double required_gap(const Row& row) {
   if (row.result.status != Status::ok) return kNaN;
