@@ -50,18 +50,17 @@ std::vector<Case> fraction_cases(std::span<const Row> given, std::span<const dou
   return out;
 }
 
-std::vector<RuleSummary> summarise_rules(std::span<const Row> given) {
+std::vector<RuleSummary> summarise_rules(std::span<const RuleRatios> cases) {
   std::vector<std::string> families;
-  for (const Row& row : given)
-    if (std::find(families.begin(), families.end(), row.input.family) == families.end())
-      families.push_back(row.input.family);
+  for (const RuleRatios& c : cases)
+    if (std::find(families.begin(), families.end(), c.family) == families.end()) families.push_back(c.family);
   std::vector<RuleSummary> out;
   for (const std::string& family : families)
-    for (const std::string_view rule : kSeparationRules) {
+    for (std::size_t k = 0; k < kSeparationRules.size(); ++k) {
       std::vector<double> ratios;
-      for (const Row& row : given)
-        if (row.input.family == family && std::isfinite(rule_ratio(row, rule))) ratios.push_back(rule_ratio(row, rule));
-      RuleSummary s{family, std::string(rule)};
+      for (const RuleRatios& c : cases)
+        if (c.family == family && std::isfinite(c.ratio[k])) ratios.push_back(c.ratio[k]);
+      RuleSummary s{family, std::string(kSeparationRules[k])};
       s.cases = ratios.size();
       s.median = percentile(ratios, 50);
       s.p16 = percentile(ratios, 16);
@@ -73,6 +72,17 @@ std::vector<RuleSummary> summarise_rules(std::span<const Row> given) {
       out.push_back(std::move(s));
     }
   return out;
+}
+
+std::vector<RuleSummary> summarise_rules(std::span<const Row> given) {
+  std::vector<RuleRatios> cases;
+  cases.reserve(given.size());
+  for (const Row& row : given) {
+    RuleRatios c{row.input.family, {}};
+    for (std::size_t k = 0; k < kSeparationRules.size(); ++k) c.ratio[k] = rule_ratio(row, kSeparationRules[k]);
+    cases.push_back(std::move(c));
+  }
+  return summarise_rules(std::span<const RuleRatios>(cases));
 }
 
 void write_separation_table(std::ostream& out, std::span<const Row> given, std::span<const Row> at_fraction,
@@ -127,6 +137,70 @@ void write_rule_summary(std::ostream& out, std::span<const RuleSummary> summary)
     line.count(static_cast<long long>(s.cases));
     for (const double x : {s.median, s.p16, s.p84, s.unconservative}) line.number(x);
     out << line.take() << '\n';
+  }
+}
+
+double required_gap(const FloorSeparation& s) { return std::max(s.required, s.reversed); }
+
+double rule_ratio(const FloorSeparation& s, std::string_view rule) {
+  const double required = required_gap(s);
+  const double gap = rule == "abs" ? s.rules.abs : rule == "srss" ? s.rules.srss : s.rules.ddc;
+  return required > 0.0 ? gap / required : kNaN;
+}
+
+BuildingsSeparation buildings_separation(const BuildingScene& scene, const buildings::BuildingsResult& free) {
+  BuildingsSeparation out;
+  out.status = free.status;
+  out.message = free.message;
+  if (validate(scene).empty()) out.floors = floor_separations(assemble(scene), free);
+  return out;
+}
+
+std::vector<RuleRatios> buildings_rule_ratios(std::span<const BuildingCase> points,
+                                              std::span<const BuildingsSeparation> found) {
+  std::vector<RuleRatios> out;
+  for (std::size_t p = 0; p < points.size() && p < found.size(); ++p) {
+    if (found[p].status != Status::ok) continue;
+    for (const FloorSeparation& s : found[p].floors) {
+      RuleRatios c{points[p].family, {}};
+      for (std::size_t k = 0; k < kSeparationRules.size(); ++k) c.ratio[k] = rule_ratio(s, kSeparationRules[k]);
+      out.push_back(std::move(c));
+    }
+  }
+  return out;
+}
+
+void write_buildings_separation_table(std::ostream& out, std::span<const BuildingCase> points,
+                                      std::span<const BuildingsSeparation> found) {
+  LineBuilder head;
+  for (const char* c : {"family", "point", "pulse", "record", "directivity", "left", "right", "floor", "period_ratio",
+                        "status", "required_m", "separation_m", "separation_reversed_m"})
+    head.text(c);
+  for (const std::string_view rule : kSeparationRules) head.text(rule);
+  for (const std::string_view rule : kSeparationRules) head.text(std::string(rule) + "_m");
+  out << head.take() << '\n';
+  for (std::size_t p = 0; p < points.size() && p < found.size(); ++p) {
+    const BuildingCase& c = points[p];
+    const bool ok = found[p].status == Status::ok;
+    for (const FloorSeparation& s : found[p].floors) {
+      LineBuilder line;
+      line.text(c.family);
+      line.count(static_cast<long long>(p));
+      line.text(name(c.pulse));
+      line.text(c.record);
+      line.text(name(c.directivity));
+      line.count(s.left);
+      line.count(s.right);
+      line.count(s.floor);
+      line.number(s.period_ratio);
+      line.text(name(found[p].status));
+      line.number(ok ? required_gap(s) : kNaN);
+      line.number(ok ? s.required : kNaN);
+      line.number(ok ? s.reversed : kNaN);
+      for (const std::string_view rule : kSeparationRules) line.number(ok ? rule_ratio(s, rule) : kNaN);
+      for (const double x : {s.rules.abs, s.rules.srss, s.rules.ddc}) line.number(ok ? x : kNaN);
+      out << line.take() << '\n';
+    }
   }
 }
 

@@ -20,6 +20,9 @@
 #include <string_view>
 #include <vector>
 
+#include "cases/buildings_set.hpp"
+#include "cases/separation.hpp"
+#include "kit/buildings_result.hpp"
 #include "rows/row.hpp"
 
 namespace pb {
@@ -44,7 +47,16 @@ struct RuleSummary {
   double median = 0, p16 = 0, p84 = 0;
   double unconservative = 0;  // share of the cases with ratio < 1
 };
-// Per family (in order of first appearance) and rule, over the rows that finished ok.
+// What the summary reads of one case (a single oscillators' row, or one floor level of a
+// buildings point): its family and each rule's ratio to the required gap, in the order of
+// kSeparationRules (NaN where unknown: the case is left out of that rule's summary).
+struct RuleRatios {
+  std::string family;
+  std::array<double, 3> ratio{};
+};
+// Per family (in order of first appearance) and rule, over the cases with a finite ratio.
+std::vector<RuleSummary> summarise_rules(std::span<const RuleRatios> cases);
+// The rows' ratios (those that finished ok).
 std::vector<RuleSummary> summarise_rules(std::span<const Row> given);
 
 // The per-case table: the case, the required gaps, the rules' gaps and ratios, and per
@@ -52,5 +64,28 @@ std::vector<RuleSummary> summarise_rules(std::span<const Row> given);
 void write_separation_table(std::ostream& out, std::span<const Row> given, std::span<const Row> at_fraction,
                             std::span<const double> fractions);
 void write_rule_summary(std::ostream& out, std::span<const RuleSummary> summary);
+
+// The buildings scene, per floor level (a contact of the scene): the gap it must clear whichever
+// way the load acts, max(required, reversed), and a rule's gap over it (NaN where unknown or 0).
+double required_gap(const FloorSeparation& s);
+double rule_ratio(const FloorSeparation& s, std::string_view rule);
+
+// One point of a buildings set through the free watch: the reference's status and each
+// contact's separation (floor_separations of buildings::free_motion).
+struct BuildingsSeparation {
+  Status status = Status::ok;
+  std::string message;
+  std::vector<FloorSeparation> floors;
+};
+BuildingsSeparation buildings_separation(const BuildingScene& scene, const buildings::BuildingsResult& free);
+
+// A case per floor level, for the summary (the levels of points that finished ok).
+std::vector<RuleRatios> buildings_rule_ratios(std::span<const BuildingCase> points,
+                                              std::span<const BuildingsSeparation> found);
+// The per-contact table: the point (family, index, pulse, record, directivity), the contact
+// (left and right building, floor), T_1,right / T_1,left, status, the required gap, the load
+// as given and reversed, each rule's ratio and gap.
+void write_buildings_separation_table(std::ostream& out, std::span<const BuildingCase> points,
+                                      std::span<const BuildingsSeparation> found);
 
 }  // namespace pb
