@@ -1,10 +1,11 @@
 #include "app/separation_command.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <optional>
-#include <algorithm>
+#include <span>
 #include <string>
 #include <thread>
 #include <vector>
@@ -54,21 +55,30 @@ std::vector<NamedFile> separation_outputs(const SeparationFlags& flags, std::vec
   return outputs;
 }
 
+// The reference over the points (a pass of sweep_reference), with progress; nullopt when
+// interrupted.
+std::optional<std::vector<buildings::BuildingsResult>> solve_points(std::span<const BuildingCase> points,
+                                                                    ReferencePass pass, unsigned threads,
+                                                                    std::size_t done_before, std::size_t total) {
+  SweepWatch watch("separation", "solves", total, done_before, progress_on_stderr(true),
+                   [] { std::_Exit(kInterrupted); });
+  auto out = sweep_reference(points, pass, static_cast<int>(threads), watch.cancel(),
+                             [&](std::size_t done) { watch.set_done(done_before + done); });
+  watch.finish();
+  return out;
+}
+
 // A buildings set: a row per contact (floor level) of every point, from the reference's free
-// watch (sweep_free_motions).
+// watch; with --gap-fractions every point again with contacts at those fractions of its gap.
 int buildings_separation_command(const SeparationFlags& flags, const BuildingsSet& set) {
-  if (!flags.gap_fractions.empty()) throw BadInput("--gap-fractions: not yet for buildings");
   if (set.points.empty()) throw BadInput(flags.case_set + ": no cases");
   std::vector<NamedFile> inputs;
   for (const BuildingCase& c : set.points)
     if (!c.record.empty()) inputs.push_back({"record", c.record});
   separation_outputs(flags, inputs);
   const unsigned threads = flags.threads ? flags.threads : std::max(1u, std::thread::hardware_concurrency());
-  SweepWatch watch("separation", "solves", set.points.size(), 0, progress_on_stderr(true),
-                   [] { std::_Exit(kInterrupted); });
-  const auto free = sweep_free_motions(set.points, static_cast<int>(threads), watch.cancel(),
-                                       [&](std::size_t done) { watch.set_done(done); });
-  watch.finish();
+  const std::size_t total = set.points.size() * (1 + flags.gap_fractions.size());
+  const auto free = solve_points(set.points, ReferencePass::free_motion, threads, 0, total);
   if (!free) return kInterrupted;
   std::vector<BuildingsSeparation> found;
   found.reserve(free->size());
@@ -77,7 +87,16 @@ int buildings_separation_command(const SeparationFlags& flags, const BuildingsSe
     found.push_back(buildings_separation(set.points[i].scene, (*free)[i]));
     rows += found.back().floors.size();
   }
-  const auto table = [&](std::ostream& out) { write_buildings_separation_table(out, set.points, found); };
+  std::vector<buildings::BuildingsResult> at_fraction;
+  if (!flags.gap_fractions.empty()) {
+    const std::vector<BuildingCase> again = buildings_fraction_points(set.points, found, flags.gap_fractions);
+    auto more = solve_points(again, ReferencePass::with_contacts, threads, set.points.size(), total);
+    if (!more) return kInterrupted;
+    at_fraction = std::move(*more);
+  }
+  const auto table = [&](std::ostream& out) {
+    write_buildings_separation_table(out, set.points, found, at_fraction, flags.gap_fractions);
+  };
   if (!flags.summary.empty()) {
     const std::vector<RuleRatios> ratios = buildings_rule_ratios(set.points, found);
     const std::vector<RuleSummary> summary = summarise_rules(std::span<const RuleRatios>(ratios));

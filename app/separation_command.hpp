@@ -4,7 +4,7 @@
 // with --gap-fractions, every case again at those fractions of its required gap; the per-case
 // table to --out (stdout without it), the per-family summary of each rule to --summary. A
 // buildings set: a row per floor level (contact) of every point, from the reference's free
-// watch (no --gap-fractions yet).
+// watch, and with --gap-fractions each point again through the reference with contacts.
 
 #include <string>
 #include <vector>

@@ -170,14 +170,36 @@ std::vector<RuleRatios> buildings_rule_ratios(std::span<const BuildingCase> poin
   return out;
 }
 
+std::vector<BuildingCase> buildings_fraction_points(std::span<const BuildingCase> points,
+                                                    std::span<const BuildingsSeparation> found,
+                                                    std::span<const double> fractions) {
+  std::vector<BuildingCase> out;
+  out.reserve(points.size() * fractions.size());
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    double gap = 0.0;
+    if (p < found.size() && found[p].status == Status::ok)
+      for (const FloorSeparation& s : found[p].floors) gap = std::max(gap, s.required);
+    for (const double f : fractions) {
+      BuildingCase c = points[p];
+      if (std::isfinite(gap) && gap > 0.0) c.scene.delta = f * gap;  // the scene solved; c.pi3 says what the set gave
+      out.push_back(std::move(c));
+    }
+  }
+  return out;
+}
+
 void write_buildings_separation_table(std::ostream& out, std::span<const BuildingCase> points,
-                                      std::span<const BuildingsSeparation> found) {
+                                      std::span<const BuildingsSeparation> found,
+                                      std::span<const buildings::BuildingsResult> at_fraction,
+                                      std::span<const double> fractions) {
   LineBuilder head;
   for (const char* c : {"family", "point", "pulse", "record", "directivity", "left", "right", "floor", "period_ratio",
                         "status", "required_m", "separation_m", "separation_reversed_m"})
     head.text(c);
   for (const std::string_view rule : kSeparationRules) head.text(rule);
   for (const std::string_view rule : kSeparationRules) head.text(std::string(rule) + "_m");
+  for (const double f : fractions)
+    for (const char* side : {"left", "right"}) head.text(std::string("amplification_") + side + "_" + fraction_label(f));
   out << head.take() << '\n';
   for (std::size_t p = 0; p < points.size() && p < found.size(); ++p) {
     const BuildingCase& c = points[p];
@@ -199,6 +221,18 @@ void write_buildings_separation_table(std::ostream& out, std::span<const Buildin
       line.number(ok ? s.reversed : kNaN);
       for (const std::string_view rule : kSeparationRules) line.number(ok ? rule_ratio(s, rule) : kNaN);
       for (const double x : {s.rules.abs, s.rules.srss, s.rules.ddc}) line.number(ok ? x : kNaN);
+      for (std::size_t k = 0; k < fractions.size(); ++k) {
+        const std::size_t i = p * fractions.size() + k;
+        const buildings::BuildingsResult* r = i < at_fraction.size() ? &at_fraction[i] : nullptr;
+        const auto amplification = [&](int building, double free_peak) {
+          const auto b = static_cast<std::size_t>(building), f = static_cast<std::size_t>(s.floor - 1);
+          if (!ok || !r || r->status != Status::ok || b >= r->floor_peak.size() || f >= r->floor_peak[b].size())
+            return kNaN;
+          return r->floor_peak[b][f] / free_peak;
+        };
+        line.number(amplification(s.left, s.peak_left));
+        line.number(amplification(s.right, s.peak_right));
+      }
       out << line.take() << '\n';
     }
   }

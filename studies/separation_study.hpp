@@ -11,6 +11,10 @@
 // case is solved again at gaps of those fractions of the required gap under the load as given
 // (where it pounds), and body 0's peak over its no-contact peak is the amplification; a single
 // storey's drift is its displacement, so that is the drift's amplification too.
+//
+// Buildings are taken per floor level (a contact of the scene is one case): its gap from the
+// reference's free watch, the rules from the two floors' own no-contact peaks (DDC with the
+// buildings' first modes), and at gap fractions the amplification of both floors' peaks.
 
 #include <array>
 #include <cstddef>
@@ -82,10 +86,21 @@ BuildingsSeparation buildings_separation(const BuildingScene& scene, const build
 // A case per floor level, for the summary (the levels of points that finished ok).
 std::vector<RuleRatios> buildings_rule_ratios(std::span<const BuildingCase> points,
                                               std::span<const BuildingsSeparation> found);
+// Each point again with its gap at each fraction of the gap the load as given needs there (the
+// largest over its levels, which share the one gap): point p, fraction k is entry
+// p * fractions.size() + k. A point whose gap is not known keeps its own.
+std::vector<BuildingCase> buildings_fraction_points(std::span<const BuildingCase> points,
+                                                    std::span<const BuildingsSeparation> found,
+                                                    std::span<const double> fractions);
+
 // The per-contact table: the point (family, index, pulse, record, directivity), the contact
 // (left and right building, floor), T_1,right / T_1,left, status, the required gap, the load
-// as given and reversed, each rule's ratio and gap.
+// as given and reversed, each rule's ratio and gap; per fraction the amplification of the two
+// floors' peaks at that level (with pounding over without), from `at_fraction` (the
+// reference's solves of buildings_fraction_points, in its order; empty: none asked).
 void write_buildings_separation_table(std::ostream& out, std::span<const BuildingCase> points,
-                                      std::span<const BuildingsSeparation> found);
+                                      std::span<const BuildingsSeparation> found,
+                                      std::span<const buildings::BuildingsResult> at_fraction = {},
+                                      std::span<const double> fractions = {});
 
 }  // namespace pb

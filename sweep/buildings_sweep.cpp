@@ -69,14 +69,16 @@ std::optional<std::vector<BuildingsPoint>> sweep_buildings(std::span<const Build
   return out;
 }
 
-std::optional<std::vector<buildings::BuildingsResult>> sweep_free_motions(std::span<const BuildingCase> points,
-                                                                          int threads, const std::atomic<bool>& cancel,
-                                                                          const std::function<void(std::size_t done)>& done) {
+std::optional<std::vector<buildings::BuildingsResult>> sweep_reference(std::span<const BuildingCase> points,
+                                                                       ReferencePass pass, int threads,
+                                                                       const std::atomic<bool>& cancel,
+                                                                       const std::function<void(std::size_t done)>& done) {
   std::vector<buildings::BuildingsResult> out(points.size());
   Settings limits;
   limits.stop = &cancel;
   const bool finished = buildings_sweep_detail::each_point(points.size(), threads, cancel, done, [&](std::size_t i) {
-    out[i] = buildings::free_motion(points[i].scene, limits);
+    out[i] = pass == ReferencePass::free_motion ? buildings::free_motion(points[i].scene, limits)
+                                                : buildings::solve(points[i].scene, limits);
   });
   if (!finished) return std::nullopt;
   return out;

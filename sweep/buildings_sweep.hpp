@@ -32,11 +32,15 @@ std::optional<std::vector<BuildingsPoint>> sweep_buildings(std::span<const Build
                                                            int threads, const std::atomic<bool>& cancel,
                                                            const std::function<void(std::size_t done)>& done);
 
-// Every point's motion with every contact removed and its free watch (buildings::free_motion,
-// the gap that avoids pounding at each contact: `poundbench separation` over a buildings set),
+// How sweep_reference solves each point: with every contact removed and the free watch
+// (buildings::free_motion: the gap that avoids pounding at each contact), or as it is
+// (buildings::solve).
+enum class ReferencePass { free_motion, with_contacts };
+// Every point through the exact reference alone (`poundbench separation` over a buildings set),
 // points handed out as sweep_buildings does; nullopt once `cancel` is set.
-std::optional<std::vector<buildings::BuildingsResult>> sweep_free_motions(std::span<const BuildingCase> points,
-                                                                          int threads, const std::atomic<bool>& cancel,
-                                                                          const std::function<void(std::size_t done)>& done);
+std::optional<std::vector<buildings::BuildingsResult>> sweep_reference(std::span<const BuildingCase> points,
+                                                                       ReferencePass pass, int threads,
+                                                                       const std::atomic<bool>& cancel,
+                                                                       const std::function<void(std::size_t done)>& done);
 
 }  // namespace pb

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -349,9 +350,34 @@ TEST_F(Cli, SeparationOverABuildingsSetWritesARowPerFloorLevel) {
   EXPECT_EQ(summary.at(3, "family"), "u");
   EXPECT_EQ(summary.at(5, "rule"), "ddc");
   EXPECT_EQ(summary.at(5, "cases"), "6");
-  const Outcome fractions = run("separation t.toml --gap-fractions 0.5");
-  EXPECT_EQ(fractions.exit_code, 2);
-  EXPECT_NE(fractions.err.find("--gap-fractions: not yet for buildings"), std::string::npos) << fractions.err;
+}
+
+// --gap-fractions on a buildings set: each point again through the reference with contacts at
+// that fraction of its gap (the largest over its levels), each level's two floor peaks over
+// their no-contact peaks: run's on the same scene at that gap.
+TEST_F(Cli, SeparationGapFractionsOnBuildingsAmplifyBothFloorsAsRunDoes) {
+  write("t.toml", kTwoBuildings);
+  const Outcome o = run("separation t.toml --gap-fractions 0.5 --out sep.csv");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  CsvTable rows(read_text(file("sep.csv")));
+  ASSERT_EQ(rows.rows.size(), 3u);
+  double gap = 0.0;
+  for (std::size_t r = 0; r < 3; ++r) gap = std::max(gap, std::stod(rows.at(r, "separation_m")));
+  std::string text = kTwoBuildings;
+  char given[40];
+  std::snprintf(given, sizeof given, "gap = %.17g", 0.5 * gap);
+  text.replace(text.find("gap = 0.03"), std::string("gap = 0.03").size(), given);
+  write("half.toml", text);
+  const nlohmann::json j = nlohmann::json::parse(run("run --case-file half.toml --point 0 --json").out);
+  long impacts = 0;
+  for (const auto& k : j["contacts"]) impacts += k["impacts"].get<long>();
+  EXPECT_GT(impacts, 0);  // at half the gap the pair pounds
+  for (std::size_t r = 0; r < 3; ++r)
+    for (const auto& [side, b] : {std::pair{"left", 0}, std::pair{"right", 1}}) {
+      const double with = j["floor_peak_m"][b][r], without = j["floor_peak_no_contact_m"][b][r];
+      EXPECT_NEAR(std::stod(rows.at(r, std::string("amplification_") + side + "_0.5")), with / without, 1e-14)
+          << side << " floor " << r + 1;
+    }
 }
 
 // --k-contact in N/m is --stiffness K times the scene's unit of stiffness (the left building's
