@@ -2,7 +2,9 @@
 // `poundbench separation CASESET`: the separation study of studies/separation_study.hpp. Every
 // case through the exact reference (its rows carry the required gap and the rules' gaps), then,
 // with --gap-fractions, every case again at those fractions of its required gap; the per-case
-// table to --out (stdout without it), the per-family summary of each rule to --summary.
+// table to --out (stdout without it), the per-family summary of each rule to --summary. A
+// buildings set: a row per floor level (contact) of every point, from the reference's free
+// watch, and with --gap-fractions each point again through the reference with contacts.
 
 #include <string>
 #include <vector>

@@ -39,4 +39,31 @@ Separation separation(const System& s, const FreeMotion& given, const FreeMotion
   return out;
 }
 
+std::vector<FloorSeparation> floor_separations(const BuildingModel& model, const buildings::BuildingsResult& free) {
+  std::vector<FloorSeparation> out;
+  out.reserve(free.contacts.size());
+  for (const buildings::ContactResult& c : free.contacts) {
+    FloorSeparation s;
+    s.left = c.left;
+    s.right = c.right;
+    s.floor = c.floor;
+    s.required = c.closing;
+    s.reversed = c.opening;
+    const auto l = static_cast<std::size_t>(c.left), r = static_cast<std::size_t>(c.right);
+    const auto i = static_cast<std::size_t>(c.floor - 1);
+    const auto peak = [&](std::size_t b) {
+      return b < free.floor_peak.size() && i < free.floor_peak[b].size() ? free.floor_peak[b][i] : std::nan("");
+    };
+    s.peak_left = peak(l);
+    s.peak_right = peak(r);
+    const BuildingModes& a = model.modes[l];
+    const BuildingModes& b = model.modes[r];
+    s.period_ratio = a.w(0) / b.w(0);
+    s.rho = cqc_rho(a.xi(0), b.xi(0), b.w(0) / a.w(0));
+    s.rules = separation_rules(s.peak_left, s.peak_right, s.rho);
+    out.push_back(s);
+  }
+  return out;
+}
+
 }  // namespace pb

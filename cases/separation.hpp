@@ -7,7 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "cases/buildings.hpp"
 #include "cases/system.hpp"
+#include "kit/buildings_result.hpp"
 #include "kit/solver.hpp"
 
 namespace pb {
@@ -45,5 +47,21 @@ struct Separation {
   SeparationRules rules;
 };
 Separation separation(const System& s, const FreeMotion& given, const FreeMotion* reversed);
+
+// The separation of one floor level of a buildings scene (a contact of the scene; cases/README.md,
+// "Separation"): the gap that avoids pounding there, required = max(u_left - u_right), and that
+// under the load reversed, max(u_right - u_left) (linear buildings: the motion under -a_g is -u);
+// the rules from the two floors' own no-contact peaks, DDC with rho of the two buildings' first
+// modes (r = w_1,right / w_1,left, each mode's own damping ratio). Lengths in m.
+struct FloorSeparation {
+  int left = 0, right = 0, floor = 1;  // as FloorContact
+  double required = 0.0, reversed = 0.0;
+  double peak_left = 0.0, peak_right = 0.0;  // the floors' no-contact peaks
+  double period_ratio = 0.0;                 // T_1,right / T_1,left
+  double rho = 0.0;
+  SeparationRules rules;
+};
+// Per contact of `free` (buildings::free_motion of the model's scene, status ok), in its order.
+std::vector<FloorSeparation> floor_separations(const BuildingModel& model, const buildings::BuildingsResult& free);
 
 }  // namespace pb

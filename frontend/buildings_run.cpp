@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <utility>
 #include <numbers>
 
 #include "cases/fields.hpp"
@@ -34,6 +36,26 @@ std::string summary_number(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%.6g", x);
   return text;
+}
+
+// The separation of the contact between building `left` and its right neighbour at `floor`.
+const FloorSeparation* separation_of(const BuildingsPoint& p, int left, int floor) {
+  for (const FloorSeparation& s : p.separation)
+    if (s.left == left && s.floor == floor) return &s;
+  return nullptr;
+}
+
+// The separation keys of one contact (cases/separation.hpp): in m, and over a_p / w_p^2 for a
+// case in Pi terms; null where the no-contact solve did not finish.
+void separation_json(nlohmann::ordered_json& o, const FloorSeparation* s, bool pi_terms, double length) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::pair<const char*, double> values[] = {
+      {"separation", s ? s->required : nan},       {"separation_reversed", s ? s->reversed : nan},
+      {"separation_abs", s ? s->rules.abs : nan},  {"separation_srss", s ? s->rules.srss : nan},
+      {"separation_ddc", s ? s->rules.ddc : nan}};
+  for (const auto& [key, x] : values) o[std::string(key) + "_m"] = json_number(x);
+  if (pi_terms)
+    for (const auto& [key, x] : values) o[std::string(key) + "_pi"] = json_number(x / length);
 }
 
 std::string storey_counts(const BuildingScene& s) {
@@ -119,6 +141,7 @@ nlohmann::ordered_json buildings_json(const BuildingsRun& run) {
     o["impact_velocity_max_m_s"] = json_number(k.impact_velocity_max);
     if (c.pi_terms) o["impact_velocity_max_pi"] = json_number(k.impact_velocity_max / speed);
     o["first_impact_s"] = json_number(k.first_impact);
+    separation_json(o, separation_of(run.point, k.left, k.floor), c.pi_terms, length);
     contacts.push_back(std::move(o));
   }
   j["contacts"] = std::move(contacts);
@@ -166,6 +189,11 @@ void print_buildings_summary(std::ostream& out, const BuildingsRun& run) {
       out << ", first at " << summary_number(k.first_impact) << " s, fastest approach " << summary_number(k.impact_velocity_max) << " m/s";
     if (k.contact_phases > 0) out << ", " << k.contact_phases << " contact phases";
     out << '\n';
+    if (const FloorSeparation* sep = separation_of(run.point, k.left, k.floor))
+      out << "         gap that avoids pounding " << summary_number(sep->required) << " m (load reversed "
+          << summary_number(sep->reversed) << " m); rules ABS " << summary_number(sep->rules.abs) << ", SRSS "
+          << summary_number(sep->rules.srss) << " (EC8 0.7 SRSS " << summary_number(0.7 * sep->rules.srss) << "), DDC "
+          << summary_number(sep->rules.ddc) << " m\n";
   }
   out << (run.solver->reference ? "events   " : "steps    ") << r.events;
   if (std::isfinite(r.energy_error)) out << ", energy error " << summary_number(r.energy_error);

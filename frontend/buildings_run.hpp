@@ -35,8 +35,10 @@ struct BuildingsRun {
 BuildingsRun run_buildings(const ChosenCase& chosen, const SolverInfo& solver, const Settings& settings);
 
 // The object of `run --json`: floor_peak_m, drift_peak_m (per building, floor 1 first), the
-// same without contact (floor_peak_no_contact_m, drift_peak_no_contact_m), contacts, the Pi terms of a case in Pi terms, status, message, events, energy_error,
-// seconds, cpu_seconds, and what names the point.
+// same without contact (floor_peak_no_contact_m, drift_peak_no_contact_m), contacts (each with
+// its impacts and the gap that avoids pounding at its floor level with the rules' gaps,
+// separation_m ... separation_ddc_m), the Pi terms of a case in Pi terms, status, message,
+// events, energy_error, seconds, cpu_seconds, and what names the point.
 nlohmann::ordered_json buildings_json(const BuildingsRun& run);
 // The summary `run` prints without --json.
 void print_buildings_summary(std::ostream& out, const BuildingsRun& run);

@@ -22,6 +22,12 @@ struct ContactResult {
   // where there is none.
   double impact_velocity_max = std::numeric_limits<double>::quiet_NaN();
   double first_impact = std::numeric_limits<double>::quiet_NaN();
+  // The free watch (the reference's free_motion, every contact removed): how far the two
+  // floors come towards each other, max(u_left - u_right), and how far apart,
+  // max(u_right - u_left), over [0, t_end] (m). The first is the gap that avoids pounding at
+  // this level; the second, for linear buildings, that under the load reversed. NaN elsewhere.
+  double closing = std::numeric_limits<double>::quiet_NaN();
+  double opening = std::numeric_limits<double>::quiet_NaN();
 };
 
 // The energy terms at t_end (J): the ground load's work equals what the floors hold plus what

@@ -20,7 +20,11 @@ constexpr std::array kBuildingsColumns = {
     // the contact of this floor with the right neighbour's
     "impacts_right", "impact_velocity_max_right_m_s", "first_impact_right_s",
     // the point: its scales and, for a case in Pi terms, its terms
-    "gap_m", "eps", "a_p", "w_p", "pi2", "pi3", "pi5", "pi6", "t_end_s", "step_s", "seconds", "cpu_seconds"};
+    "gap_m", "eps", "a_p", "w_p", "pi2", "pi3", "pi5", "pi6", "t_end_s", "step_s", "seconds", "cpu_seconds",
+    // the gap that avoids pounding at the contact with the right neighbour (the load as given and
+    // reversed) and the rules' gaps, from the no-contact response (cases/separation.hpp)
+    "separation_right_m", "separation_reversed_right_m", "separation_abs_right_m", "separation_srss_right_m",
+    "separation_ddc_right_m"};
 
 double floor_value(const std::vector<std::vector<double>>& v, std::size_t b, std::size_t i) {
   return b < v.size() && i < v[b].size() ? v[b][i] : std::numeric_limits<double>::quiet_NaN();
@@ -29,6 +33,12 @@ double floor_value(const std::vector<std::vector<double>>& v, std::size_t b, std
 const buildings::ContactResult* contact_to_the_right(const buildings::BuildingsResult& r, std::size_t b, int floor) {
   for (const buildings::ContactResult& c : r.contacts)
     if (static_cast<std::size_t>(c.left) == b && c.floor == floor) return &c;
+  return nullptr;
+}
+
+const FloorSeparation* separation_to_the_right(const BuildingsPoint& p, std::size_t b, int floor) {
+  for (const FloorSeparation& s : p.separation)
+    if (static_cast<std::size_t>(s.left) == b && s.floor == floor) return &s;
   return nullptr;
 }
 
@@ -76,6 +86,11 @@ void append_buildings_rows(std::string& out, const BuildingCase& c, std::size_t 
       }
       for (double x : {s.delta, s.eps, a_p, w_p, c.pi2, c.pi3, c.pi5, c.pi6, r.t_end, r.step, p.seconds, p.cpu_seconds})
         line.number(x);
+      if (const FloorSeparation* sep = separation_to_the_right(p, b, floor)) {
+        for (double x : {sep->required, sep->reversed, sep->rules.abs, sep->rules.srss, sep->rules.ddc}) line.number(x);
+      } else {
+        for (int n = 0; n < 5; ++n) line.number(std::numeric_limits<double>::quiet_NaN());
+      }
       out += line.take();
       out += '\n';
     }

@@ -3,14 +3,16 @@
 // per floor of every building of every point, floor 1 first, so that a spectrum of any floor's
 // peak or any storey's drift is a selection of rows. Beside the solver's peaks, each row holds
 // the exact reference's no-contact peaks of the same floor (the response without pounding) and
-// the impacts of the contact between this floor and the right neighbour's (empty for the
-// rightmost building, or a floor that touches nothing). docs/cli.md lists the columns.
+// the impacts of the contact between this floor and the right neighbour's, and the gap that
+// avoids pounding there with the rules' gaps (empty for the rightmost building, or a floor that
+// touches nothing). docs/cli.md lists the columns.
 
 #include <ostream>
 #include <string>
 #include <vector>
 
 #include "cases/buildings_set.hpp"
+#include "cases/separation.hpp"
 #include "kit/buildings_result.hpp"
 
 namespace pb {
@@ -18,7 +20,10 @@ namespace pb {
 // What a sweep found for one point.
 struct BuildingsPoint {
   buildings::BuildingsResult result;      // the solver's
-  buildings::BuildingsResult no_contact;  // the exact reference's, every contact removed
+  buildings::BuildingsResult no_contact;  // the exact reference's, every contact removed (free_motion)
+  // Per contact of the scene (as BuildingModel::contacts): the gap that avoids pounding and the
+  // rules, from no_contact; empty where that did not finish ok.
+  std::vector<FloorSeparation> separation;
   double seconds = 0.0, cpu_seconds = 0.0;  // the solver's solve (sweep/stopwatch.hpp)
   double a_p = 1.0, w_p = 1.0;  // the point's scales (BuildingModel's)
 };

@@ -55,18 +55,17 @@ std::vector<Case> fraction_cases(std::span<const Row> given, std::span<const dou
   return out;
 }
 
-std::vector<RuleSummary> summarise_rules(std::span<const Row> given) {
+std::vector<RuleSummary> summarise_rules(std::span<const RuleRatios> cases) {
   std::vector<std::string> families;
-  for (const Row& row : given)
-    if (std::find(families.begin(), families.end(), row.input.family) == families.end())
-      families.push_back(row.input.family);
+  for (const RuleRatios& c : cases)
+    if (std::find(families.begin(), families.end(), c.family) == families.end()) families.push_back(c.family);
   std::vector<RuleSummary> out;
   for (const std::string& family : families)
-    for (const std::string_view rule : kSeparationRules) {
+    for (std::size_t k = 0; k < kSeparationRules.size(); ++k) {
       std::vector<double> ratios;
-      for (const Row& row : given)
-        if (row.input.family == family && std::isfinite(rule_ratio(row, rule))) ratios.push_back(rule_ratio(row, rule));
-      RuleSummary s{family, std::string(rule)};
+      for (const RuleRatios& c : cases)
+        if (c.family == family && std::isfinite(c.ratio[k])) ratios.push_back(c.ratio[k]);
+      RuleSummary s{family, std::string(kSeparationRules[k])};
       s.cases = ratios.size();
       s.median = percentile(ratios, 50);
       s.p16 = percentile(ratios, 16);
@@ -78,6 +77,17 @@ std::vector<RuleSummary> summarise_rules(std::span<const Row> given) {
       out.push_back(std::move(s));
     }
   return out;
+}
+
+std::vector<RuleSummary> summarise_rules(std::span<const Row> given) {
+  std::vector<RuleRatios> cases;
+  cases.reserve(given.size());
+  for (const Row& row : given) {
+    RuleRatios c{row.input.family, {}};
+    for (std::size_t k = 0; k < kSeparationRules.size(); ++k) c.ratio[k] = rule_ratio(row, kSeparationRules[k]);
+    cases.push_back(std::move(c));
+  }
+  return summarise_rules(std::span<const RuleRatios>(cases));
 }
 
 void write_separation_table(std::ostream& out, std::span<const Row> given, std::span<const Row> at_fraction,
@@ -132,6 +142,104 @@ void write_rule_summary(std::ostream& out, std::span<const RuleSummary> summary)
     line.count(static_cast<long long>(s.cases));
     for (const double x : {s.median, s.p16, s.p84, s.unconservative}) line.number(x);
     out << line.take() << '\n';
+  }
+}
+
+double required_gap(const FloorSeparation& s) { return std::max(s.required, s.reversed); }
+
+double rule_ratio(const FloorSeparation& s, std::string_view rule) {
+  const double required = required_gap(s);
+  const double gap = rule == "abs" ? s.rules.abs : rule == "srss" ? s.rules.srss : s.rules.ddc;
+  return required > 0.0 ? gap / required : kNaN;
+}
+
+BuildingsSeparation buildings_separation(const BuildingScene& scene, const buildings::BuildingsResult& free) {
+  BuildingsSeparation out;
+  out.status = free.status;
+  out.message = free.message;
+  if (validate(scene).empty()) out.floors = floor_separations(assemble(scene), free);
+  return out;
+}
+
+std::vector<RuleRatios> buildings_rule_ratios(std::span<const BuildingCase> points,
+                                              std::span<const BuildingsSeparation> found) {
+  std::vector<RuleRatios> out;
+  for (std::size_t p = 0; p < points.size() && p < found.size(); ++p) {
+    if (found[p].status != Status::ok) continue;
+    for (const FloorSeparation& s : found[p].floors) {
+      RuleRatios c{points[p].family, {}};
+      for (std::size_t k = 0; k < kSeparationRules.size(); ++k) c.ratio[k] = rule_ratio(s, kSeparationRules[k]);
+      out.push_back(std::move(c));
+    }
+  }
+  return out;
+}
+
+std::vector<BuildingCase> buildings_fraction_points(std::span<const BuildingCase> points,
+                                                    std::span<const BuildingsSeparation> found,
+                                                    std::span<const double> fractions) {
+  std::vector<BuildingCase> out;
+  out.reserve(points.size() * fractions.size());
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    double gap = 0.0;
+    if (p < found.size() && found[p].status == Status::ok)
+      for (const FloorSeparation& s : found[p].floors) gap = std::max(gap, s.required);
+    for (const double f : fractions) {
+      BuildingCase c = points[p];
+      if (std::isfinite(gap) && gap > 0.0) c.scene.delta = f * gap;  // the scene solved; c.pi3 says what the set gave
+      out.push_back(std::move(c));
+    }
+  }
+  return out;
+}
+
+void write_buildings_separation_table(std::ostream& out, std::span<const BuildingCase> points,
+                                      std::span<const BuildingsSeparation> found,
+                                      std::span<const buildings::BuildingsResult> at_fraction,
+                                      std::span<const double> fractions) {
+  LineBuilder head;
+  for (const char* c : {"family", "point", "pulse", "record", "directivity", "left", "right", "floor", "period_ratio",
+                        "status", "required_m", "separation_m", "separation_reversed_m"})
+    head.text(c);
+  for (const std::string_view rule : kSeparationRules) head.text(rule);
+  for (const std::string_view rule : kSeparationRules) head.text(std::string(rule) + "_m");
+  for (const double f : fractions)
+    for (const char* side : {"left", "right"}) head.text(std::string("amplification_") + side + "_" + fraction_label(f));
+  out << head.take() << '\n';
+  for (std::size_t p = 0; p < points.size() && p < found.size(); ++p) {
+    const BuildingCase& c = points[p];
+    const bool ok = found[p].status == Status::ok;
+    for (const FloorSeparation& s : found[p].floors) {
+      LineBuilder line;
+      line.text(c.family);
+      line.count(static_cast<long long>(p));
+      line.text(name(c.pulse));
+      line.text(c.record);
+      line.text(name(c.directivity));
+      line.count(s.left);
+      line.count(s.right);
+      line.count(s.floor);
+      line.number(s.period_ratio);
+      line.text(name(found[p].status));
+      line.number(ok ? required_gap(s) : kNaN);
+      line.number(ok ? s.required : kNaN);
+      line.number(ok ? s.reversed : kNaN);
+      for (const std::string_view rule : kSeparationRules) line.number(ok ? rule_ratio(s, rule) : kNaN);
+      for (const double x : {s.rules.abs, s.rules.srss, s.rules.ddc}) line.number(ok ? x : kNaN);
+      for (std::size_t k = 0; k < fractions.size(); ++k) {
+        const std::size_t i = p * fractions.size() + k;
+        const buildings::BuildingsResult* r = i < at_fraction.size() ? &at_fraction[i] : nullptr;
+        const auto amplification = [&](int building, double free_peak) {
+          const auto b = static_cast<std::size_t>(building), f = static_cast<std::size_t>(s.floor - 1);
+          if (!ok || !r || r->status != Status::ok || b >= r->floor_peak.size() || f >= r->floor_peak[b].size())
+            return kNaN;
+          return r->floor_peak[b][f] / free_peak;
+        };
+        line.number(amplification(s.left, s.peak_left));
+        line.number(amplification(s.right, s.peak_right));
+      }
+      out << line.take() << '\n';
+    }
   }
 }
 

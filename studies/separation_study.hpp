@@ -11,6 +11,10 @@
 // case is solved again at gaps of those fractions of the required gap under the load as given
 // (where it pounds), and body 0's peak over its no-contact peak is the amplification; a single
 // storey's drift is its displacement, so that is the drift's amplification too.
+//
+// Buildings are taken per floor level (a contact of the scene is one case): its gap from the
+// reference's free watch, the rules from the two floors' own no-contact peaks (DDC with the
+// buildings' first modes), and at gap fractions the amplification of both floors' peaks.
 
 #include <array>
 #include <cstddef>
@@ -20,6 +24,9 @@
 #include <string_view>
 #include <vector>
 
+#include "cases/buildings_set.hpp"
+#include "cases/separation.hpp"
+#include "kit/buildings_result.hpp"
 #include "rows/row.hpp"
 
 namespace pb {
@@ -44,7 +51,16 @@ struct RuleSummary {
   double median = 0, p16 = 0, p84 = 0;
   double unconservative = 0;  // share of the cases with ratio < 1
 };
-// Per family (in order of first appearance) and rule, over the rows that finished ok.
+// What the summary reads of one case (a single oscillators' row, or one floor level of a
+// buildings point): its family and each rule's ratio to the required gap, in the order of
+// kSeparationRules (NaN where unknown: the case is left out of that rule's summary).
+struct RuleRatios {
+  std::string family;
+  std::array<double, 3> ratio{};
+};
+// Per family (in order of first appearance) and rule, over the cases with a finite ratio.
+std::vector<RuleSummary> summarise_rules(std::span<const RuleRatios> cases);
+// The rows' ratios (those that finished ok).
 std::vector<RuleSummary> summarise_rules(std::span<const Row> given);
 
 // The per-case table: the case, the required gaps, the rules' gaps and ratios, and per
@@ -52,5 +68,39 @@ std::vector<RuleSummary> summarise_rules(std::span<const Row> given);
 void write_separation_table(std::ostream& out, std::span<const Row> given, std::span<const Row> at_fraction,
                             std::span<const double> fractions);
 void write_rule_summary(std::ostream& out, std::span<const RuleSummary> summary);
+
+// The buildings scene, per floor level (a contact of the scene): the gap it must clear whichever
+// way the load acts, max(required, reversed), and a rule's gap over it (NaN where unknown or 0).
+double required_gap(const FloorSeparation& s);
+double rule_ratio(const FloorSeparation& s, std::string_view rule);
+
+// One point of a buildings set through the free watch: the reference's status and each
+// contact's separation (floor_separations of buildings::free_motion).
+struct BuildingsSeparation {
+  Status status = Status::ok;
+  std::string message;
+  std::vector<FloorSeparation> floors;
+};
+BuildingsSeparation buildings_separation(const BuildingScene& scene, const buildings::BuildingsResult& free);
+
+// A case per floor level, for the summary (the levels of points that finished ok).
+std::vector<RuleRatios> buildings_rule_ratios(std::span<const BuildingCase> points,
+                                              std::span<const BuildingsSeparation> found);
+// Each point again with its gap at each fraction of the gap the load as given needs there (the
+// largest over its levels, which share the one gap): point p, fraction k is entry
+// p * fractions.size() + k. A point whose gap is not known keeps its own.
+std::vector<BuildingCase> buildings_fraction_points(std::span<const BuildingCase> points,
+                                                    std::span<const BuildingsSeparation> found,
+                                                    std::span<const double> fractions);
+
+// The per-contact table: the point (family, index, pulse, record, directivity), the contact
+// (left and right building, floor), T_1,right / T_1,left, status, the required gap, the load
+// as given and reversed, each rule's ratio and gap; per fraction the amplification of the two
+// floors' peaks at that level (with pounding over without), from `at_fraction` (the
+// reference's solves of buildings_fraction_points, in its order; empty: none asked).
+void write_buildings_separation_table(std::ostream& out, std::span<const BuildingCase> points,
+                                      std::span<const BuildingsSeparation> found,
+                                      std::span<const buildings::BuildingsResult> at_fraction = {},
+                                      std::span<const double> fractions = {});
 
 }  // namespace pb

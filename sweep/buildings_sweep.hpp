@@ -18,8 +18,9 @@
 
 namespace pb {
 
-// One point: the solver's solve, timed, and the reference's no-contact solve, untimed, which
-// only the limits of `settings` (time_limit, stop) reach.
+// One point: the solver's solve, timed, and the reference's no-contact solve with its free
+// watch (buildings::free_motion: the gap that avoids pounding at each contact, and from it
+// the point's separation), untimed, which only the limits of `settings` (time_limit, stop) reach.
 BuildingsPoint solve_buildings_point(const BuildingScene& scene, const SolverInfo& solver, const Settings& settings);
 
 // Every point, in point order; points are handed out one at a time (a tall pair costs orders of
@@ -30,5 +31,16 @@ std::optional<std::vector<BuildingsPoint>> sweep_buildings(std::span<const Build
                                                            const SolverInfo& solver, const Settings& settings,
                                                            int threads, const std::atomic<bool>& cancel,
                                                            const std::function<void(std::size_t done)>& done);
+
+// How sweep_reference solves each point: with every contact removed and the free watch
+// (buildings::free_motion: the gap that avoids pounding at each contact), or as it is
+// (buildings::solve).
+enum class ReferencePass { free_motion, with_contacts };
+// Every point through the exact reference alone (`poundbench separation` over a buildings set),
+// points handed out as sweep_buildings does; nullopt once `cancel` is set.
+std::optional<std::vector<buildings::BuildingsResult>> sweep_reference(std::span<const BuildingCase> points,
+                                                                       ReferencePass pass, int threads,
+                                                                       const std::atomic<bool>& cancel,
+                                                                       const std::function<void(std::size_t done)>& done);
 
 }  // namespace pb

@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -209,6 +211,20 @@ TEST_F(Cli, RunJsonOnABuildingsPointHasEveryKeyInItsShape) {
     }
   }
   EXPECT_GT(impacts, 0);  // the shipped pair pounds
+  // Per contact, the gap that avoids pounding (the free watch) and the rules: the pair pounds at
+  // its gap of 0.02 m, so some level needs more; ABS >= SRSS >= DDC (rho >= 0).
+  double required = 0.0;
+  for (const auto& k : j["contacts"]) {
+    for (const char* key : {"separation_m", "separation_reversed_m", "separation_abs_m", "separation_srss_m",
+                            "separation_ddc_m"})
+      ASSERT_TRUE(k.contains(key) && k[key].is_number()) << key;
+    EXPECT_FALSE(k.contains("separation_pi"));
+    required = std::max(required, k["separation_m"].get<double>());
+    EXPECT_GE(k["separation_abs_m"].get<double>(), k["separation_srss_m"].get<double>());
+    EXPECT_GE(k["separation_srss_m"].get<double>(), k["separation_ddc_m"].get<double>());
+    EXPECT_GT(k["separation_ddc_m"].get<double>(), 0.0);
+  }
+  EXPECT_GT(required, 0.02);
 
   // A point in Pi terms carries its Pi terms too, in the same shapes.
   const nlohmann::json pi = nlohmann::json::parse(run("run --case-file '" + kBuildingsSet + "' --point 10 --json").out);
@@ -216,13 +232,19 @@ TEST_F(Cli, RunJsonOnABuildingsPointHasEveryKeyInItsShape) {
   EXPECT_EQ(pi["floor_peak_pi"][1].size(), 6u);
   EXPECT_EQ(pi["drift_peak_pi"][0].size(), 3u);
   EXPECT_TRUE(pi["contacts"][0].contains("impact_velocity_max_pi"));
+  const double length = pi["a_p"].get<double>() / std::pow(pi["w_p"].get<double>(), 2);
+  for (const char* key : {"separation", "separation_reversed", "separation_abs", "separation_srss", "separation_ddc"}) {
+    const double m = pi["contacts"][0][std::string(key) + "_m"], term = pi["contacts"][0][std::string(key) + "_pi"];
+    EXPECT_NEAR(term * length, m, 1e-15 * m) << key;
+  }
 }
 
 TEST_F(Cli, RunSummarisesABuildingsPointPerFloorAndContact) {
   const Outcome o = run("run --case-file '" + kBuildingsSet + "' --point 0");
   ASSERT_EQ(o.exit_code, 0) << o.err;
   for (const char* text : {"buildings 3 + 6 storeys", "building 1", "floor 6", "storey 6",
-                           "contact  buildings 0-1 floor 3", "status   ok"})
+                           "contact  buildings 0-1 floor 3", "status   ok", "gap that avoids pounding 0.0399194 m",
+                           "(EC8 0.7 SRSS "})
     EXPECT_NE(o.out.find(text), std::string::npos) << text << "\n" << o.out;
 }
 
@@ -272,9 +294,86 @@ TEST_F(Cli, SpectrumOverABuildingsSetWritesARowPerFloorWithRunsPeaks) {
     EXPECT_EQ(std::stod(rows.at(r, "floor_peak_m")), j["floor_peak_m"][b][i].get<double>());
     EXPECT_EQ(std::stod(rows.at(r, "drift_peak_no_contact_m")), j["drift_peak_no_contact_m"][b][i].get<double>());
     EXPECT_EQ(rows.at(r, "status"), "ok");
+    // The gap that avoids pounding with the right neighbour, run's per contact; none for the right building.
+    if (b == 0) {
+      const nlohmann::json& k = j["contacts"][i];
+      ASSERT_EQ(k["floor"], i + 1);
+      EXPECT_EQ(std::stod(rows.at(r, "separation_right_m")), k["separation_m"].get<double>());
+      EXPECT_EQ(std::stod(rows.at(r, "separation_reversed_right_m")), k["separation_reversed_m"].get<double>());
+      EXPECT_EQ(std::stod(rows.at(r, "separation_abs_right_m")), k["separation_abs_m"].get<double>());
+      EXPECT_EQ(std::stod(rows.at(r, "separation_srss_right_m")), k["separation_srss_m"].get<double>());
+      EXPECT_EQ(std::stod(rows.at(r, "separation_ddc_right_m")), k["separation_ddc_m"].get<double>());
+    } else {
+      EXPECT_EQ(rows.at(r, "separation_right_m"), "");
+      EXPECT_EQ(rows.at(r, "separation_ddc_right_m"), "");
+    }
     ++matched;
   }
   EXPECT_EQ(matched, j["floor_peak_m"][0].size() + j["floor_peak_m"][1].size());
+}
+
+// `separation` over a buildings set: a row per floor level of every point, its gaps run's, the
+// ratios the gaps over the larger of both load signs; the summary per family and rule.
+TEST_F(Cli, SeparationOverABuildingsSetWritesARowPerFloorLevel) {
+  write("t.toml", kTwoBuildings + "\n" + pi_family(1.0, 1.0).substr(pi_family(1.0, 1.0).find("[[family]]")));
+  const Outcome o = run("separation t.toml --out sep.csv --summary sum.csv --threads 2");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  CsvTable rows(read_text(file("sep.csv")));
+  ASSERT_EQ(rows.rows.size(), 3u + 2u * 3u);  // 3 levels of the pair, 3 of each uniform pair (3 and 5 storeys)
+  for (const char* key : {"family", "point", "record", "directivity", "left", "right", "floor", "period_ratio",
+                          "required_m", "separation_m", "separation_reversed_m", "abs", "srss", "ddc", "abs_m",
+                          "srss_m", "ddc_m"})
+    EXPECT_NO_THROW(rows.column(key)) << key;
+  for (std::size_t r = 0; r < rows.rows.size(); ++r) {
+    EXPECT_EQ(rows.at(r, "status"), "ok");
+    const double required = std::stod(rows.at(r, "required_m"));
+    EXPECT_EQ(required, std::max(std::stod(rows.at(r, "separation_m")), std::stod(rows.at(r, "separation_reversed_m"))));
+    for (const char* rule : {"abs", "srss", "ddc"})
+      EXPECT_NEAR(std::stod(rows.at(r, rule)), std::stod(rows.at(r, std::string(rule) + "_m")) / required, 1e-15);
+  }
+  // The uniform pairs: T_1,right / T_1,left = pi5.
+  EXPECT_NEAR(std::stod(rows.at(3, "period_ratio")), 1.5, 1e-12);
+  const nlohmann::json j = nlohmann::json::parse(run("run --case-file t.toml --point 0 --json").out);
+  for (std::size_t c = 0; c < 3; ++c) {
+    EXPECT_EQ(rows.at(c, "floor"), std::to_string(c + 1));
+    EXPECT_EQ(std::stod(rows.at(c, "separation_m")), j["contacts"][c]["separation_m"].get<double>());
+    EXPECT_EQ(std::stod(rows.at(c, "ddc_m")), j["contacts"][c]["separation_ddc_m"].get<double>());
+  }
+  CsvTable summary(read_text(file("sum.csv")));
+  ASSERT_EQ(summary.rows.size(), 2u * 3u);  // two families, three rules
+  EXPECT_EQ(summary.at(0, "family"), "two-buildings");
+  EXPECT_EQ(summary.at(0, "cases"), "3");
+  EXPECT_EQ(summary.at(3, "family"), "u");
+  EXPECT_EQ(summary.at(5, "rule"), "ddc");
+  EXPECT_EQ(summary.at(5, "cases"), "6");
+}
+
+// --gap-fractions on a buildings set: each point again through the reference with contacts at
+// that fraction of its gap (the largest over its levels), each level's two floor peaks over
+// their no-contact peaks: run's on the same scene at that gap.
+TEST_F(Cli, SeparationGapFractionsOnBuildingsAmplifyBothFloorsAsRunDoes) {
+  write("t.toml", kTwoBuildings);
+  const Outcome o = run("separation t.toml --gap-fractions 0.5 --out sep.csv");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  CsvTable rows(read_text(file("sep.csv")));
+  ASSERT_EQ(rows.rows.size(), 3u);
+  double gap = 0.0;
+  for (std::size_t r = 0; r < 3; ++r) gap = std::max(gap, std::stod(rows.at(r, "separation_m")));
+  std::string text = kTwoBuildings;
+  char given[40];
+  std::snprintf(given, sizeof given, "gap = %.17g", 0.5 * gap);
+  text.replace(text.find("gap = 0.03"), std::string("gap = 0.03").size(), given);
+  write("half.toml", text);
+  const nlohmann::json j = nlohmann::json::parse(run("run --case-file half.toml --point 0 --json").out);
+  long impacts = 0;
+  for (const auto& k : j["contacts"]) impacts += k["impacts"].get<long>();
+  EXPECT_GT(impacts, 0);  // at half the gap the pair pounds
+  for (std::size_t r = 0; r < 3; ++r)
+    for (const auto& [side, b] : {std::pair{"left", 0}, std::pair{"right", 1}}) {
+      const double with = j["floor_peak_m"][b][r], without = j["floor_peak_no_contact_m"][b][r];
+      EXPECT_NEAR(std::stod(rows.at(r, std::string("amplification_") + side + "_0.5")), with / without, 1e-14)
+          << side << " floor " << r + 1;
+    }
 }
 
 // --k-contact in N/m is --stiffness K times the scene's unit of stiffness (the left building's

@@ -82,8 +82,11 @@ struct Entry {
 
 class Solver {
  public:
-  Solver(const BuildingModel& md, const Settings& settings)
+  // free: the model's contacts are not contacts but floor pairs watched (free_motion): no
+  // closure is an event, and each pair's relative displacement is searched both ways.
+  Solver(const BuildingModel& md, const Settings& settings, bool free = false)
       : md_(md),
+        free_(free),
         nf_(md.n_floors),
         nc_(static_cast<int>(md.contacts.size())),
         deadline_(settings),
@@ -141,6 +144,8 @@ class Solver {
       quantity_[static_cast<std::size_t>(nf_ + i)] = motion_.drift(i);
     }
     peak_search_.reserve(2 * nf_);
+    closing_.assign(c, Peak{});
+    opening_.assign(c, Peak{});
     res_.contacts.resize(c);
     for (std::size_t j = 0; j < c; ++j) {
       res_.contacts[j].left = md.contacts[j].left;
@@ -166,7 +171,7 @@ class Solver {
 
  private:
   void events() {
-    if (!start()) return;
+    if (!free_ && !start()) return;
     const Pulse& pulse = md_.scene.pulse;
     while (t_ < md_.t_end) {
       const LoadPiece piece = pulse.piece(t_);
@@ -183,15 +188,18 @@ class Solver {
       // The contacts in the order of the earliest time their quadratic lower bound lets them
       // reach zero: the earliest event is then usually found first, and the others' searches
       // stop at it. (Ties keep the contacts' order: the event is the lowest-numbered one's.)
-      order_contacts(b);
-      for (int j : order_) {
-        const double r = root(j, b);
-        if (!std::isnan(r) && (r < b || (r == b && (which < 0 || j < which)))) {
-          b = r;
-          which = j;
+      if (!free_) {
+        order_contacts(b);
+        for (int j : order_) {
+          const double r = root(j, b);
+          if (!std::isnan(r) && (r < b || (r == b && (which < 0 || j < which)))) {
+            b = r;
+            which = j;
+          }
         }
       }
       peaks(b);
+      if (free_) watch(b);
       integrate(piece, b);
       advance(b);
       if (++res_.events > cap_) {
@@ -281,6 +289,14 @@ class Solver {
   // Motion, floors then drifts, as peaks_ holds them.
   void peaks(double b) { peak_search_.run(motion_, quantity_.data(), peaks_.data(), 2 * nf_, t_, b, tol_.floor, deadline_); }
 
+  // The free watch on [t_, b]: each pair's gap quantity (delta 0: u_right - u_left) both ways.
+  void watch(double b) {
+    for (int j = 0; j < nc_; ++j) {
+      const auto k = static_cast<std::size_t>(j);
+      max_both(Track{&motion_, motion_.contact(j), 0.0}, t_, b, tol_.floor, opening_[k], closing_[k], deadline_);
+    }
+  }
+
   // The ground's work and the dampers' on [t_, b], by Gauss-Legendre on panels short enough
   // for its error to be below 1e-14 of a panel's scale (gauss_rule): the integrands are
   // products of the motion's terms, of rates up to twice the fastest. The nodes' exponentials are the panel's times the node's offset, the panel's stepped by
@@ -335,7 +351,7 @@ class Solver {
       }
       motion_.eval(motion_.contact(j), b, out, 1);
       g_[k] = out[0];
-      if (out[0] < 0.0) res_.min_gap = std::min(res_.min_gap, out[0]);
+      if (out[0] < 0.0 && !free_) res_.min_gap = std::min(res_.min_gap, out[0]);
     }
     t_ = b;
   }
@@ -595,6 +611,11 @@ class Solver {
     double kinetic = 0.0;
     for (int i = 0; i < nf_; ++i) kinetic += 0.5 * md_.m(i) * v_[static_cast<std::size_t>(i)] * v_[static_cast<std::size_t>(i)];
     res_.energies = {input_, kinetic, e - kinetic, damped_, losses_};
+    if (free_ && res_.status == Status::ok)
+      for (std::size_t j = 0; j < res_.contacts.size(); ++j) {
+        res_.contacts[j].closing = closing_[j].value;
+        res_.contacts[j].opening = opening_[j].value;
+      }
     const std::size_t nb = md_.scene.buildings.size();
     res_.floor_peak.resize(nb);
     res_.floor_peak_time.resize(nb);
@@ -628,6 +649,7 @@ class Solver {
   }
 
   const BuildingModel& md_;
+  bool free_;
   int nf_, nc_;
   Deadline deadline_;
   long cap_;
@@ -648,6 +670,7 @@ class Solver {
   std::vector<Peak> peaks_;  // floors, then drifts
   std::vector<int> quantity_;
   PeakSearch peak_search_;
+  std::vector<Peak> closing_, opening_;  // the free watch, per contact
   double input_ = 0.0, damped_ = 0.0, losses_ = 0.0, made_ = 0.0, error_ = 0.0;
   BuildingsResult res_;
 };
@@ -666,6 +689,20 @@ BuildingsResult solve(const BuildingScene& scene, const Settings& settings) {
     return r;
   }
   return solve(assemble(scene), settings);
+}
+
+BuildingsResult free_motion(const BuildingScene& scene, const Settings& settings) {
+  if (std::string why = validate(scene); !why.empty()) {
+    BuildingsResult r;
+    r.status = Status::failed;
+    r.message = why;
+    return r;
+  }
+  // The contacts' floor pairs, at gap 0: each pair's tracked gap is u_right - u_left itself.
+  BuildingScene watched = scene;
+  watched.no_contact = false;
+  watched.delta = 0.0;
+  return Solver(assemble(watched), settings, true).run();
 }
 
 }  // namespace pb::buildings

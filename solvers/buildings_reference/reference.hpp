@@ -28,4 +28,12 @@ inline constexpr double kEnergyCheck = 1e-9;
 BuildingsResult solve(const BuildingScene& scene, const Settings& settings = {});
 BuildingsResult solve(const BuildingModel& model, const Settings& settings = {});
 
+// The motion with every contact removed, watched at the floor pairs the scene's contacts join
+// (every floor both neighbours have, or the floors named; whatever scene.no_contact says): the
+// no-contact response solve() gives (its peaks, events and energy balance), with its contacts
+// listed, none impacting, each with the free watch (ContactResult::closing, opening): the
+// largest u_left - u_right and u_right - u_left over [0, t_end], by the certified search of
+// their closed forms (max_both), not from samples.
+BuildingsResult free_motion(const BuildingScene& scene, const Settings& settings = {});
+
 }  // namespace pb::buildings

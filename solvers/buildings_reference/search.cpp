@@ -188,27 +188,88 @@ void consider(const Point& p, Peak& peak) {
   }
 }
 
+// What a peak search raises: the largest |f| (max_abs, the peaks of floors and storeys), or
+// the largest f and the largest -f at once (max_both, how far a relative displacement goes
+// either way). The |f| target's tests are max_abs's own, so its arithmetic is unchanged.
+class AbsTarget {
+ public:
+  explicit AbsTarget(Peak& peak) : peak_(peak) {}
+  void consider(const Point& p) { buildings::consider(p, peak_); }
+  // Whether no value of a window whose values lie in [lo - err, hi + err] can beat the peak
+  // (`quiet`: f's rounding, the peak while every value seen rounds to zero).
+  bool excluded(double lo, double hi, double err, double quiet) const {
+    return std::max(-lo, hi) + err <= (peak_.value > 0.0 ? peak_.value : quiet);
+  }
+  // Whether f, within mean +- swing from here on, can beat the peak no more.
+  bool done(double mean, double swing) const { return std::abs(mean) + swing <= peak_.value; }
+  double scale() const { return peak_.value; }
+
+ private:
+  Peak& peak_;
+};
+
+class BothTarget {
+ public:
+  BothTarget(Peak& up, Peak& down) : up_(up), down_(down) {}
+  void consider(const Point& p) {
+    if (p.f > up_.value) up_ = {p.f, p.t};
+    if (-p.f > down_.value) down_ = {-p.f, p.t};
+  }
+  bool excluded(double lo, double hi, double err, double quiet) const {
+    return hi + err <= (up_.value > 0.0 ? up_.value : quiet) && -lo + err <= (down_.value > 0.0 ? down_.value : quiet);
+  }
+  bool done(double mean, double swing) const { return mean + swing <= up_.value && -mean + swing <= down_.value; }
+  double scale() const { return std::max(up_.value, down_.value); }
+
+ private:
+  Peak& up_;
+  Peak& down_;
+};
+
+// The target by value: it holds references to the peaks it raises.
+template <class Target>
 void peak_search(const Track& f, Bounds& bound, const Point& a, const Point& b, double floor, double quiet,
-                 Peak& peak, Deadline& dl) {
+                 Target target, Deadline& dl) {
   tick(dl);
   const double h = b.t - a.t;
   const Cubic cubic(a, b);
   double lo, hi;
   cubic.range(lo, hi);
-  const double best = peak.value > 0.0 ? peak.value : quiet;
-  if (std::max(-lo, hi) + f.hermite_error(a.t, h) <= best) return;
+  if (target.excluded(lo, hi, f.hermite_error(a.t, h), quiet)) return;
   if (h <= floor) return;
   edge_range(cubic, hermite_error(bound, a.t, h), lo, hi);
-  if (std::max(-lo, hi) <= best) return;
+  if (target.excluded(lo, hi, 0.0, quiet)) return;
   if (one_sign(a.df, b.df, bound(a.t, 2), h)) return;  // monotone: the ends hold the max
   if ((a.df > 0.0) != (b.df > 0.0) && one_sign(a.ddf, b.ddf, bound(a.t, 3), h)) {
-    consider(stationary(f, a, b), peak);
+    target.consider(stationary(f, a, b));
     return;
   }
   const Point m = at3(f, 0.5 * (a.t + b.t));
-  consider(m, peak);
-  peak_search(f, bound, a, m, floor, quiet, peak, dl);
-  peak_search(f, bound, m, b, floor, quiet, peak, dl);
+  target.consider(m);
+  peak_search(f, bound, a, m, floor, quiet, target, dl);
+  peak_search(f, bound, m, b, floor, quiet, target, dl);
+}
+
+template <class Target>
+void max_over(const Track& f, double a, double b, double floor, Target& target, Deadline& dl) {
+  Point p = at3(f, a);
+  Bounds bound(f);
+  check_finite(bound, p);
+  target.consider(p);
+  const double mean = f.mean();
+  const double quiet = 8.0 * std::numeric_limits<double>::epsilon() * (std::abs(mean) + bound(a, 0));
+  while (p.t < b) {
+    tick(dl);
+    if (target.done(mean, bound(p.t, 0))) return;
+    const double ref = std::max(target.scale(), std::abs(p.f));
+    // While everything seen rounds to zero the window doubles its distance from a.
+    const double h = ref > 0.0 ? std::max(window(f, bound, p.t, ref, b - p.t), std::min(floor, b - p.t))
+                               : std::min(std::max(floor, p.t - a), b - p.t);
+    const Point q = at3(f, h >= b - p.t ? b : p.t + h);
+    target.consider(q);
+    peak_search(f, bound, p, q, floor, quiet, target, dl);
+    p = q;
+  }
 }
 
 }  // namespace
@@ -235,24 +296,13 @@ double first_root(const Track& f, double a, double b, double floor, double settl
 }
 
 void max_abs(const Track& f, double a, double b, double floor, Peak& peak, Deadline& dl) {
-  Point p = at3(f, a);
-  Bounds bound(f);
-  check_finite(bound, p);
-  consider(p, peak);
-  const double mean = std::abs(f.mean());
-  const double quiet = 8.0 * std::numeric_limits<double>::epsilon() * (mean + bound(a, 0));
-  while (p.t < b) {
-    tick(dl);
-    if (mean + bound(p.t, 0) <= peak.value) return;
-    const double ref = std::max(peak.value, std::abs(p.f));
-    // While everything seen rounds to zero the window doubles its distance from a.
-    const double h = ref > 0.0 ? std::max(window(f, bound, p.t, ref, b - p.t), std::min(floor, b - p.t))
-                               : std::min(std::max(floor, p.t - a), b - p.t);
-    const Point q = at3(f, h >= b - p.t ? b : p.t + h);
-    consider(q, peak);
-    peak_search(f, bound, p, q, floor, quiet, peak, dl);
-    p = q;
-  }
+  AbsTarget target(peak);
+  max_over(f, a, b, floor, target, dl);
+}
+
+void max_both(const Track& f, double a, double b, double floor, Peak& up, Peak& down, Deadline& dl) {
+  BothTarget target(up, down);
+  max_over(f, a, b, floor, target, dl);
 }
 
 void PeakSearch::reserve(int quantities) {
@@ -349,7 +399,7 @@ void PeakSearch::run(Motion& m, const int* qs, Peak* peaks, int n, double a, dou
         const double* p1 = &values_[3 * ((w + 1) * count + i)];
         Bounds bound(f, grid_[w], &bounds_[(kMaxOrder + 1) * (w * count + i)]);
         peak_search(f, bound, Point{grid_[w], p0[0], p0[1], p0[2]}, Point{grid_[w + 1], p1[0], p1[1], p1[2]}, floor,
-                    quiet_[i], peaks[i], dl);
+                    quiet_[i], AbsTarget(peaks[i]), dl);
       }
     }
     // The chunk's last point starts the next; a quantity whose bound over the rest of the

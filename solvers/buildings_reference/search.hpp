@@ -50,6 +50,10 @@ struct Peak {
 
 // Raises peak to max |f| on [a, b] if that is larger; interior maxima at the zero of f'.
 void max_abs(const Track& f, double a, double b, double floor, Peak& peak, Deadline& deadline);
+// Raises up to max f and down to max -f on [a, b] in one search, by max_abs's tests on each
+// side: how far a relative displacement goes either way (the free watch of the reference's
+// free_motion). Each starts at 0 or above (a motion from rest).
+void max_both(const Track& f, double a, double b, double floor, Peak& up, Peak& down, Deadline& deadline);
 
 // max_abs of many quantities of one Motion at once, on one grid: each grid point's window is
 // the shortest any quantity still searched asks for, and every quantity is evaluated there from
