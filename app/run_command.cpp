@@ -70,7 +70,7 @@ void print_physical(std::ostream& out, const Row& row) {
   if (std::isfinite(number("contact_force_max")))
     out << "contact  largest force " << value("contact_force_max") << " N, deepest penetration "
         << value("penetration_m") << " m\n";
-  // The gap that avoids pounding, from the no-contact motion (cases/separation.hpp).
+  // The gap that avoids pounding, from the no-contact motion (kit/separation.hpp).
   if (std::isfinite(row.separation)) {
     out << "separat. " << value("separation_m") << " m avoids pounding (" << value("separation_reversed_m")
         << " m with the load reversed; the gap given: " << brief(gap_m(row)) << " m)\n";

@@ -45,7 +45,7 @@ const FloorSeparation* separation_of(const BuildingsPoint& p, int left, int floo
   return nullptr;
 }
 
-// The separation keys of one contact (cases/separation.hpp): in m, and over a_p / w_p^2 for a
+// The separation keys of one contact (kit/separation.hpp): in m, and over a_p / w_p^2 for a
 // case in Pi terms; null where the no-contact solve did not finish.
 void separation_json(nlohmann::ordered_json& o, const FloorSeparation* s, bool pi_terms, double length) {
   const double nan = std::numeric_limits<double>::quiet_NaN();

@@ -22,7 +22,7 @@ constexpr std::array kBuildingsColumns = {
     // the point: its scales and, for a case in Pi terms, its terms
     "gap_m", "eps", "a_p", "w_p", "pi2", "pi3", "pi5", "pi6", "t_end_s", "step_s", "seconds", "cpu_seconds",
     // the gap that avoids pounding at the contact with the right neighbour (the load as given and
-    // reversed) and the rules' gaps, from the no-contact response (cases/separation.hpp)
+    // reversed) and the rules' gaps, from the no-contact response (kit/separation.hpp)
     "separation_right_m", "separation_reversed_right_m", "separation_abs_right_m", "separation_srss_right_m",
     "separation_ddc_right_m"};
 

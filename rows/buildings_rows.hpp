@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "cases/buildings_set.hpp"
-#include "cases/separation.hpp"
+#include "kit/separation.hpp"
 #include "kit/buildings_result.hpp"
 
 namespace pb {

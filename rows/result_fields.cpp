@@ -131,7 +131,7 @@ constexpr auto kTable = std::to_array<ResultField>({
     {.name = "error_estimate", .type = T::number, .place = P::estimate, .real = &Result::error_estimate},
     {.name = "error_estimate_velocity", .type = T::number, .place = P::estimate,
      .real = &Result::error_estimate_velocity},
-    // The gap that avoids pounding (cases/separation.hpp), with the load as given and reversed,
+    // The gap that avoids pounding (kit/separation.hpp), with the load as given and reversed,
     // and each rule's: Pi terms (over a_p / w_p^2) and metres; then every body's no-contact peak.
     // Body 0's residual displacement in metres (residual is its Pi term).
     {.name = "residual_m", .type = T::number, .place = P::separation,

@@ -49,7 +49,7 @@ struct Row {
   std::string settings;    // SolverInfo::describe(settings): a JSON object of named values
   Result result;
   double pi1_no_contact = std::numeric_limits<double>::quiet_NaN();
-  // With every contact removed (cases/separation.hpp), over a_p / w_p^2 as Pi1: the gap that
+  // With every contact removed (kit/separation.hpp), over a_p / w_p^2 as Pi1: the gap that
   // avoids pounding under the load as given and reversed, each rule's gap, and every body's
   // peak (body 0 first). NaN and empty where not computed (a chain, or a file from before).
   double separation = std::numeric_limits<double>::quiet_NaN();

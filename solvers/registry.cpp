@@ -276,6 +276,10 @@ double no_contact_pi1(const System& system, const Settings& limits) {
 
 FreeMotion free_motion(const System& system, const Settings& limits) { return event_driven::free_motion(system, limits); }
 
+buildings::BuildingsResult buildings_free_motion(const BuildingScene& scene, const Settings& limits) {
+  return buildings::free_motion(scene, limits);
+}
+
 // Declared by cases/record_scale.hpp, which sits below the reference: the oscillator as the
 // wall scene's body 0 (its contact unused: free_motion removes it), in the record's own units.
 double pseudo_acceleration(const Record& record, double period, double xi) {

@@ -8,7 +8,8 @@
 #include <string_view>
 #include <vector>
 
-#include "cases/separation.hpp"
+#include "kit/buildings_result.hpp"
+#include "kit/separation.hpp"
 #include "kit/solver.hpp"
 
 namespace pb {
@@ -41,7 +42,10 @@ std::string unused_setting(const SolverInfo& solver, const Settings& settings, c
 // Pi1 of body 0 with every contact removed, by the reference; only the time limit and stop
 // flag of `limits` are used.
 double no_contact_pi1(const System& system, const Settings& limits);
-// The motion of every body with every contact removed, by the reference (cases/separation.hpp).
+// The motion of every body with every contact removed, by the reference (kit/separation.hpp).
 FreeMotion free_motion(const System& system, const Settings& limits);
+// The buildings scene's the same, by its reference (solvers/buildings_reference/reference.hpp):
+// the floors' and storeys' peaks, and per contact how far its floors come together and apart.
+buildings::BuildingsResult buildings_free_motion(const BuildingScene& scene, const Settings& limits);
 
 }  // namespace pb

@@ -13,7 +13,7 @@ namespace pb {
 // Named, not anonymous: a unity build puts this file beside others with helpers of these names.
 namespace separation_study {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
 
 double rule_gap(const Row& row, std::string_view rule) {
   return rule == "abs" ? row.separation_abs : rule == "srss" ? row.separation_srss : row.separation_ddc;
@@ -28,17 +28,16 @@ std::string fraction_label(double f) {
 }  // namespace separation_study
 
 using separation_study::fraction_label;
-using separation_study::kNaN;
 using separation_study::rule_gap;
 
 double required_gap(const Row& row) {
-  if (row.result.status != Status::ok) return kNaN;
+  if (row.result.status != Status::ok) return separation_study::kNone;
   return std::max(row.separation, row.separation_reversed);
 }
 
 double rule_ratio(const Row& row, std::string_view rule) {
   const double required = required_gap(row);
-  return required > 0.0 ? rule_gap(row, rule) / required : kNaN;
+  return required > 0.0 ? rule_gap(row, rule) / required : separation_study::kNone;
 }
 
 std::vector<Case> fraction_cases(std::span<const Row> given, std::span<const double> fractions) {
@@ -70,7 +69,7 @@ std::vector<RuleSummary> summarise_rules(std::span<const RuleRatios> cases) {
       s.median = percentile(ratios, 50);
       s.p16 = percentile(ratios, 16);
       s.p84 = percentile(ratios, 84);
-      s.unconservative = ratios.empty() ? kNaN
+      s.unconservative = ratios.empty() ? separation_study::kNone
                                         : static_cast<double>(std::count_if(ratios.begin(), ratios.end(),
                                                                             [](double r) { return r < 1.0; })) /
                                               static_cast<double>(ratios.size());
@@ -112,11 +111,11 @@ void write_separation_table(std::ostream& out, std::span<const Row> given, std::
     line.text(c.record);
     line.text(name(c.directivity));
     line.number(c.pi2);
-    line.number(c.scene == Scene::wall ? kNaN : c.pi5);
-    line.number(c.scene == Scene::wall ? kNaN : c.pi6);
+    line.number(c.scene == Scene::wall ? separation_study::kNone : c.pi5);
+    line.number(c.scene == Scene::wall ? separation_study::kNone : c.pi6);
     line.number(c.xi);
     // T_1 / T_0 = w0 / w1 = Pi5: the neighbour's period over body 0's.
-    line.number(c.scene == Scene::wall ? kNaN : c.pi5);
+    line.number(c.scene == Scene::wall ? separation_study::kNone : c.pi5);
     line.text(name(row.result.status));
     line.number(required_gap(row) * unit);
     line.number(required_gap(row));
@@ -127,7 +126,7 @@ void write_separation_table(std::ostream& out, std::span<const Row> given, std::
     for (std::size_t k = 0; k < fractions.size(); ++k) {
       const std::size_t i = p * fractions.size() + k;
       const Row* r = i < at_fraction.size() ? &at_fraction[i] : nullptr;
-      line.number(r && r->result.status == Status::ok ? r->result.pi1 / r->pi1_no_contact : kNaN);
+      line.number(r && r->result.status == Status::ok ? r->result.pi1 / r->pi1_no_contact : separation_study::kNone);
     }
     out << line.take() << '\n';
   }
@@ -150,7 +149,7 @@ double required_gap(const FloorSeparation& s) { return std::max(s.required, s.re
 double rule_ratio(const FloorSeparation& s, std::string_view rule) {
   const double required = required_gap(s);
   const double gap = rule == "abs" ? s.rules.abs : rule == "srss" ? s.rules.srss : s.rules.ddc;
-  return required > 0.0 ? gap / required : kNaN;
+  return required > 0.0 ? gap / required : separation_study::kNone;
 }
 
 BuildingsSeparation buildings_separation(const BuildingScene& scene, const buildings::BuildingsResult& free) {
@@ -221,18 +220,18 @@ void write_buildings_separation_table(std::ostream& out, std::span<const Buildin
       line.count(s.floor);
       line.number(s.period_ratio);
       line.text(name(found[p].status));
-      line.number(ok ? required_gap(s) : kNaN);
-      line.number(ok ? s.required : kNaN);
-      line.number(ok ? s.reversed : kNaN);
-      for (const std::string_view rule : kSeparationRules) line.number(ok ? rule_ratio(s, rule) : kNaN);
-      for (const double x : {s.rules.abs, s.rules.srss, s.rules.ddc}) line.number(ok ? x : kNaN);
+      line.number(ok ? required_gap(s) : separation_study::kNone);
+      line.number(ok ? s.required : separation_study::kNone);
+      line.number(ok ? s.reversed : separation_study::kNone);
+      for (const std::string_view rule : kSeparationRules) line.number(ok ? rule_ratio(s, rule) : separation_study::kNone);
+      for (const double x : {s.rules.abs, s.rules.srss, s.rules.ddc}) line.number(ok ? x : separation_study::kNone);
       for (std::size_t k = 0; k < fractions.size(); ++k) {
         const std::size_t i = p * fractions.size() + k;
         const buildings::BuildingsResult* r = i < at_fraction.size() ? &at_fraction[i] : nullptr;
         const auto amplification = [&](int building, double free_peak) {
           const auto b = static_cast<std::size_t>(building), f = static_cast<std::size_t>(s.floor - 1);
           if (!ok || !r || r->status != Status::ok || b >= r->floor_peak.size() || f >= r->floor_peak[b].size())
-            return kNaN;
+            return separation_study::kNone;
           return r->floor_peak[b][f] / free_peak;
         };
         line.number(amplification(s.left, s.peak_left));

@@ -1,7 +1,7 @@
 #pragma once
 // The separation study (`poundbench separation`): over a case set of neighbours (pairs of
 // buildings over period ratios and records), how the rules engineers use for the gap (ABS,
-// SRSS, DDC: cases/separation.hpp) compare with the exact gap that avoids pounding, and how
+// SRSS, DDC: kit/separation.hpp) compare with the exact gap that avoids pounding, and how
 // much pounding amplifies the peak where the gap is a fraction of that one.
 //
 // Per case: the required gap (the larger of the load as given and reversed: a building must
@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "cases/buildings_set.hpp"
-#include "cases/separation.hpp"
+#include "kit/separation.hpp"
 #include "kit/buildings_result.hpp"
 #include "rows/row.hpp"
 

@@ -4,7 +4,7 @@
 #include <mutex>
 #include <thread>
 
-#include "solvers/buildings_reference/reference.hpp"
+#include "solvers/registry.hpp"
 #include "sweep/stopwatch.hpp"
 
 namespace pb {
@@ -24,7 +24,7 @@ BuildingsPoint solve_buildings_point(const BuildingScene& scene, const SolverInf
   Settings limits;
   limits.time_limit = settings.time_limit;
   limits.stop = settings.stop;
-  p.no_contact = buildings::free_motion(apart, limits);
+  p.no_contact = buildings_free_motion(apart, limits);
   if (p.no_contact.status == Status::ok) p.separation = floor_separations(model, p.no_contact);
   return p;
 }
@@ -77,8 +77,8 @@ std::optional<std::vector<buildings::BuildingsResult>> sweep_reference(std::span
   Settings limits;
   limits.stop = &cancel;
   const bool finished = buildings_sweep_detail::each_point(points.size(), threads, cancel, done, [&](std::size_t i) {
-    out[i] = pass == ReferencePass::free_motion ? buildings::free_motion(points[i].scene, limits)
-                                                : buildings::solve(points[i].scene, limits);
+    out[i] = pass == ReferencePass::free_motion ? buildings_free_motion(points[i].scene, limits)
+                                                : reference_solver().solve_buildings(assemble(points[i].scene), limits);
   });
   if (!finished) return std::nullopt;
   return out;

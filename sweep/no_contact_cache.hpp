@@ -22,7 +22,7 @@
 // the key, and their sweeps are short. Only finite values are kept: a solve cut short by its time limit or the sweep's stop (NaN)
 // is solved again by the next point that needs it, as it would have been without a cache.
 //
-// The motion with every contact removed (free_motion: a row's separations, cases/separation.hpp)
+// The motion with every contact removed (free_motion: a row's separations, kit/separation.hpp)
 // is kept too, by every value of the whole System but the contacts' (delta, eps), a record by
 // its samples' address (shared by the sweep's cases of one record): a study's settings share
 // their points' free motions, which cost two to three peak searches a point.
@@ -34,7 +34,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "cases/separation.hpp"
+#include "kit/separation.hpp"
 #include "cases/system.hpp"
 #include "kit/solver.hpp"
 

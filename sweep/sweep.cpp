@@ -13,7 +13,7 @@
 #include <thread>
 
 #include "cases/physical.hpp"
-#include "cases/separation.hpp"
+#include "kit/separation.hpp"
 #include "cases/system.hpp"
 #include "cases/text.hpp"
 #include "programs/process.hpp"
@@ -230,7 +230,7 @@ bool measured_all(const Result& r, const SolverInfo& solver, const Settings& set
   return !estimable || !std::isnan(r.error_estimate);
 }
 
-// The no-contact motion's separations and peaks (cases/separation.hpp), over a_p / w_p^2: one
+// The no-contact motion's separations and peaks (kit/separation.hpp), over a_p / w_p^2: one
 // free solve; a yielding system's motion under the reversed load is not the mirror of it, and
 // is solved again. Not for a chain (a kicked row of many bodies, not a pair of neighbours).
 void add_separation(Row& row, const Case& c, const System& system, const Settings& limits, NoContactCache* cache) {

@@ -15,7 +15,7 @@
 #include <Eigen/Dense>
 
 #include "cases/buildings_set.hpp"
-#include "cases/separation.hpp"
+#include "kit/separation.hpp"
 #include "solvers/buildings_reference/reference.hpp"
 
 namespace pb {

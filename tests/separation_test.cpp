@@ -1,4 +1,4 @@
-// The gap that avoids pounding and the code rules (cases/separation.hpp), and scaled records
+// The gap that avoids pounding and the code rules (kit/separation.hpp), and scaled records
 // (cases/record_scale.hpp): the reference's free motion against an independent integration,
 // its symmetries, the rules' formula, and the scalings' targets met to round-off.
 
@@ -14,7 +14,7 @@
 #include "cases/case.hpp"
 #include "cases/record.hpp"
 #include "cases/record_scale.hpp"
-#include "cases/separation.hpp"
+#include "kit/separation.hpp"
 #include "cases/system.hpp"
 #include "rows/row.hpp"
 #include "rows/row_read.hpp"

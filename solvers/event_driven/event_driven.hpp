@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "cases/separation.hpp"
+#include "kit/separation.hpp"
 #include "kit/solver.hpp"
 
 namespace pb::event_driven {
@@ -24,7 +24,7 @@ std::vector<VariantInfo> variant_list();  // the default (no name), then kLemkeV
 // Only the time limit and stop flag of `limits` are used.
 double no_contact_pi1(const System& system, const Settings& limits = {});
 
-// The motion of every body with every contact removed, exact (cases/separation.hpp): the gap
+// The motion of every body with every contact removed, exact (kit/separation.hpp): the gap
 // that avoids pounding. Only the time limit and stop flag of `limits` are used.
 FreeMotion free_motion(const System& system, const Settings& limits = {});
 

@@ -1,4 +1,4 @@
-#include "cases/separation.hpp"
+#include "kit/separation.hpp"
 
 #include <algorithm>
 #include <cmath>
