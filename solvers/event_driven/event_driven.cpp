@@ -356,17 +356,16 @@ class Solver {
     of.assign(ix(s_.n_bodies()), -1);
     for (int i = 0; i < s_.n_bodies(); ++i) {
       const Body& b = s_.bodies[ix(i)];
-      const Recurrence r(b.m, b.c, b.k);
-      if (!r.valid()) {
-        recurrence_ = false;
-        return;
-      }
       int at = -1;  // bodies of one c / m and k / m share their transitions
       for (std::size_t q = 0; q < recs.size() && at < 0; ++q)
-        if (recs[q].two_sigma() == r.two_sigma() && recs[q].w2() == r.w2()) at = static_cast<int>(q);
+        if (recs[q].two_sigma() == b.c / b.m && recs[q].w2() == b.k / b.m) at = static_cast<int>(q);
       if (at < 0) {
         at = static_cast<int>(recs.size());
-        recs.push_back(r);
+        recs.emplace_back(b.m, b.c, b.k);
+        if (!recs.back().valid()) {
+          recurrence_ = false;
+          return;
+        }
       }
       of[ix(i)] = at;
     }
