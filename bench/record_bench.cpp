@@ -1,12 +1,16 @@
 // Cost of one run on a recorded ground motion (issue 21): the shipped 40 s record at 0.005 s
 // (cases/records/mp-noise-40s.csv, 8001 samples), its Pi terms on its 1 s pulse, on a pair
 // with impacts (Pi2 = 1, Pi3 = 0.5, Pi5 = 0.5, eps = 0.5). The reference takes each sample as
-// an event; each time-stepper reads the record through its LoadCursor at its default N = 64
-// (5504 steps of h = T_min / 64 = 0.0078 s, T_min the 0.5 s period of body 1, over t_end =
-// 43 s): Moreau-Jean the exact step mean, the engines a_g at their steps. Measured (CPU per
-// run, RelWithDebInfo, a shared 2-core machine): the reference 4.4 ms (8004 events, 0.55 us
-// each); moreau-jean 0.064 ms (12 ns a step, the cursor's lookup included), end-samples 0.12;
-// ode 2.1; bullet 1.1; siconos 19; mujoco 4.3. A solver not built here is skipped.
+// an event: one with no event inside by its exact recurrence (solvers/event_driven/
+// DERIVATION.md §11: 7997 of the 8004 here), the others by its full event loop; each
+// time-stepper reads the record through its LoadCursor at its default N = 64 (5504 steps of
+// h = T_min / 64 = 0.0078 s, T_min the 0.5 s period of body 1, over t_end = 43 s): Moreau-Jean
+// the exact step mean, the engines a_g at their steps. Measured (CPU per run, medians of 9,
+// the Test build's -O2, a shared 2-core machine, in one run): the reference 0.228 ms (8004
+// events, 28.5 ns each; BM_RecordSolveFullEventLoop, every sample through the full loop as
+// before the recurrence: 3.33 ms, 416 ns each); moreau-jean 0.070 ms (12.7 ns a step, the
+// cursor's lookup included). Earlier (RelWithDebInfo): end-samples 0.12; ode 2.1; bullet 1.1;
+// siconos 19; mujoco 4.3. A solver not built here is skipped.
 
 #include <benchmark/benchmark.h>
 
@@ -16,6 +20,7 @@
 #include "cases/record.hpp"
 #include "cases/system.hpp"
 #include "kit/solver.hpp"
+#include "solvers/event_driven/event_driven.hpp"
 #include "solvers/registry.hpp"
 
 namespace {
@@ -55,6 +60,22 @@ void BM_RecordSolve(benchmark::State& state, const char* solver, const char* var
   state.counters["steps_or_events"] = static_cast<double>(steps);
 }
 BENCHMARK_CAPTURE(BM_RecordSolve, event_driven, "event-driven", "")->Unit(benchmark::kMillisecond);
+
+// The reference with every sample through its full event loop (frame rebuilt, every search
+// run): what the recurrence saves, in the same run.
+void BM_RecordSolveFullEventLoop(benchmark::State& state) {
+  const pb::System s = record_system();
+  pb::Settings settings;
+  settings.monitor = false;
+  long steps = 0;
+  for (auto _ : state) {
+    const pb::Result r = pb::event_driven::detail::solve_searching_every_sample(s, settings);
+    steps = r.steps;
+    benchmark::DoNotOptimize(r.pi1);
+  }
+  state.counters["steps_or_events"] = static_cast<double>(steps);
+}
+BENCHMARK(BM_RecordSolveFullEventLoop)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RecordSolve, moreau_jean, "moreau-jean", "")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RecordSolve, moreau_jean_end_samples, "moreau-jean", "end-samples")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RecordSolve, ode, "ode", "")->Unit(benchmark::kMillisecond);

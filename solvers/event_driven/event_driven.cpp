@@ -22,6 +22,7 @@
 #include "solvers/event_driven/impact.hpp"
 #include "solvers/event_driven/kelvin_voigt.hpp"
 #include "solvers/event_driven/plastic.hpp"
+#include "solvers/event_driven/recurrence.hpp"
 #include "solvers/event_driven/search.hpp"
 #include "kit/lcp/lemke.hpp"
 #include "kit/named_values.hpp"
@@ -106,6 +107,14 @@ struct Scratch {
   lcp::LemkeWorkspace lemke;
   Eigen::MatrixXd delassus, lex_q, lex_z;
   Plasticity plastic;
+  // The recurrence (Solver::recur): per body, its oscillator's index in `recurrences` (bodies
+  // of one c / m and k / m share one), and its increments and acceleration bound over the
+  // sample interval at hand.
+  std::vector<Recurrence> recurrences;
+  std::vector<int> body_recurrence;
+  std::vector<double> du, dv, acc;
+  Lengths lengths;
+  Wave peak_wave;  // body 0's, for a peak the bounds cannot place
   bool busy = false;
 };
 
@@ -134,8 +143,10 @@ class ScratchLease {
 
 class Solver {
  public:
-  // free: every contact removed, its gap watched (free_motion).
-  Solver(const System& s, const Settings& settings, bool keep_searches = true, bool lazy = true, bool free = false)
+  // free: every contact removed, its gap watched (free_motion). recurrence: a record's sample
+  // intervals without an event taken by the recurrence (recur, DERIVATION.md §11).
+  Solver(const System& s, const Settings& settings, bool keep_searches = true, bool lazy = true, bool free = false,
+         bool recurrence = true)
       : s_(s),
         tol_(tolerances(s, settings.tol_scale)),
         cap_(settings.step_cap > 0 ? settings.step_cap : 1000000),
@@ -194,6 +205,7 @@ class Solver {
       closing_.assign(nc, Peak{});
       opening_.assign(nc, Peak{});
     }
+    start_recurrence(recurrence);
     if (settings.history_samples > 0) {
       samples_ = settings.history_samples;
       res_.history.n_bodies = s.n_bodies();
@@ -239,6 +251,11 @@ class Solver {
     const double t_p = s_.pulse.duration();
     const bool paper = s_.pulse.paper();
     while (st_.t < s_.t_end) {
+      if (recurrence_) {
+        const int taken = recur();
+        if (taken > 0) continue;
+        if (taken < 0) break;
+      }
       // The segment ends where the load's closed form does: the paper's pulse at T_p, any
       // other load at its next breakpoint (a record's next sample), each an event.
       const double seg_end = paper ? (st_.t < t_p ? std::min(t_p, s_.t_end) : s_.t_end)
@@ -321,6 +338,180 @@ class Solver {
         mark_changed(which);
       if (lazy_) note_all_gaps();
     }
+  }
+
+  // The recurrence (DERIVATION.md §11): on a record, between samples, every body that no
+  // persistent contact holds is a damped oscillator under a linear load, whose state at the
+  // sample's end is a few products from its state at the start. recur() takes a sample
+  // interval so where bounds prove that the full event loop would find nothing in it: no gap
+  // closes, no |u| reaches the peak so far (in a free run: no body's |u| and no gap's either
+  // way). Yielding bodies keep the full path (their branch changes the motion), and so do the
+  // paper's pulses and the pulse models (a sinusoidal load: no sample intervals).
+  void start_recurrence(bool wanted) {
+    recurrence_ = wanted && s_.pulse.record && !s_.pulse.paper() && !plastic_.on() && s_.pulse.record->t.size() >= 2;
+    if (!recurrence_) return;
+    auto& recs = scratch_.recurrences;
+    auto& of = scratch_.body_recurrence;
+    recs.clear();
+    of.assign(ix(s_.n_bodies()), -1);
+    for (int i = 0; i < s_.n_bodies(); ++i) {
+      const Body& b = s_.bodies[ix(i)];
+      int at = -1;  // bodies of one c / m and k / m share their transitions
+      for (std::size_t q = 0; q < recs.size() && at < 0; ++q)
+        if (recs[q].two_sigma() == b.c / b.m && recs[q].w2() == b.k / b.m) at = static_cast<int>(q);
+      if (at < 0) {
+        at = static_cast<int>(recs.size());
+        recs.emplace_back(b.m, b.c, b.k);
+        if (!recs.back().valid()) {
+          recurrence_ = false;
+          return;
+        }
+      }
+      of[ix(i)] = at;
+    }
+    scratch_.du.resize(ix(s_.n_bodies()));
+    scratch_.dv.resize(ix(s_.n_bodies()));
+    scratch_.acc.resize(ix(s_.n_bodies()));
+    scratch_.lengths.clear();
+    sample_ = 0;
+    stale_ = false;
+  }
+
+  // 1: the sample interval from st_.t was taken by the recurrence; 0: the event loop takes
+  // it (the frame is then current); -1: the run ends (the event cap).
+  int recur() {
+    const Record& rec = *s_.pulse.record;
+    const std::vector<double>& ts = rec.t;
+    std::size_t i = sample_;
+    while (i + 1 < ts.size() && ts[i + 1] <= st_.t) ++i;
+    sample_ = i;
+    // From a sample to the next, both within the run, no history sample on the way.
+    if (!(i + 1 < ts.size() && ts[i] == st_.t && ts[i + 1] <= s_.t_end)) return by_events();
+    const double b = ts[i + 1];
+    if (samples_ > 0 && next_sample_ < samples_ && history_time(next_sample_) <= b) return by_events();
+    const double h = b - st_.t;
+    const int slot = scratch_.lengths.slot(h);
+    if (slot < 0) {  // an unevenly sampled record: a transition per interval would cost more
+      recurrence_ = false;
+      return by_events();
+    }
+    // The piece's load as Pulse::piece_at writes it, per unit mass: q = -a_g.
+    const std::vector<double>& as = rec.a;
+    const double amplitude = s_.pulse.amplitude;
+    const double q0 = -(amplitude * as[i]), q1 = -(amplitude * ((as[i + 1] - as[i]) / (ts[i + 1] - ts[i])));
+    const std::size_t n = ix(s_.n_bodies());
+    Recurrence* recs = scratch_.recurrences.data();
+    const int* of = scratch_.body_recurrence.data();
+    double *du = scratch_.du.data(), *dv = scratch_.dv.data(), *acc = scratch_.acc.data();
+    const double *u = st_.u.data(), *v = st_.v.data();
+    for (std::size_t k = 0; k < n; ++k) {
+      Recurrence& r = recs[of[k]];
+      const Recurrence::Step step = r.step(r.over(slot, h), u[k], v[k], q0, q1);
+      du[k] = step.dx;
+      dv[k] = step.dv;
+      acc[k] = step.acc;
+    }
+    const auto jerk = [&](std::size_t k) { return recs[of[k]].w() * acc[k]; };
+    // Each contact: no gap may close (come within twice the closure tolerance) before b.
+    for (int j = 0; j < s_.n_contacts(); ++j) {
+      const auto k = ix(j);
+      if (st_.active[k]) return by_events();
+      const auto r = ix(s_.right(j));
+      const bool wall = s_.left(j) == kWall;
+      const auto l = wall ? r : ix(s_.left(j));
+      const double ga = st_.g[k], gb = ga + (wall ? du[r] : du[r] - du[l]);
+      if (free_) {
+        const Ends g{ga,
+                     gb,
+                     v[r] - (wall ? 0.0 : v[l]),
+                     v[r] + dv[r] - (wall ? 0.0 : v[l] + dv[l]),
+                     acc[r] + (wall ? 0.0 : acc[l]),
+                     jerk(r) + (wall ? 0.0 : jerk(l))};
+        if (!watch_ends(g, b, opening_[k]) || !watch_ends(g.flip(), b, closing_[k])) return by_events();
+      } else if (!(std::min(ga, gb) - (acc[r] + (wall ? 0.0 : acc[l])) * reach(h) > 2.0 * tol_.gap)) {
+        return by_events();
+      }
+    }
+    // The peaks: body 0's |u| (every body's in a free run).
+    const auto ends = [&](std::size_t k) { return Ends{u[k], u[k] + du[k], v[k], v[k] + dv[k], acc[k], jerk(k)}; };
+    if (free_) {
+      for (std::size_t k = 0; k < n; ++k)
+        if (!watch_abs(ends(k), b, body_peak_[k])) return by_events();
+    } else if (!watch_abs(ends(ix(s_.ref)), b, peak_)) {
+      // A new peak inside the interval: the full search on that body's wave alone, from the
+      // state at st_.t as build_frame would make it (body_motion).
+      Wave& wave = scratch_.peak_wave;
+      body_motion(s_, st_, s_.ref, s_.ref, s_.ref, wave);
+      max_abs(wave, st_.t, b, tol_.floor, peak_, deadline_);
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      st_.u[k] += du[k];
+      st_.v[k] += dv[k];
+    }
+    for (int j = 0; j < s_.n_contacts(); ++j) {
+      const auto r = ix(s_.right(j));
+      st_.g[ix(j)] += s_.left(j) == kWall ? du[r] : du[r] - du[ix(s_.left(j))];
+    }
+    st_.t = b;
+    stale_ = true;
+    if (++res_.steps > cap_) {  // an event each, as the event loop counts them
+      res_.status = Status::step_cap;
+      res_.message = "more than " + std::to_string(cap_) + " events";
+      return -1;
+    }
+    if (deadline_.tick()) throw OutOfTime{};
+    return 1;
+  }
+
+  // A watched function over the sample interval [st_.t, b]: its values and rates at both
+  // ends, and bounds of its second and third derivatives' sizes over it.
+  struct Ends {
+    double fa, fb, ra, rb, bend, twist;
+    Ends flip() const { return {-fa, -fb, -ra, -rb, bend, twist}; }
+  };
+  // A second derivative within M of zero on [0, h] keeps f within M s (h - s) / 2 <= M h^2 / 8
+  // of its chord.
+  static double reach(double h) { return 0.125 * h * h; }
+
+  // What max_both does for the largest value of f over [st_.t, b] with `peak` (its `up`),
+  // without a search where it can: f stays below the peak (1e-12 below it: the round-off of
+  // the recurrence's state against the waves' a search would build), or f is monotone there
+  // (its rate, within twist h^2 / 8 of the chord of its end rates, keeps one sign), its
+  // largest value at an end. False: a search is needed.
+  bool watch_ends(const Ends& f, double b, Peak& peak) const {
+    const double h = b - st_.t;
+    if (std::max(f.fa, f.fb) + f.bend * reach(h) < peak.value * (1.0 - 1e-12)) return true;
+    if (!monotone(f, h)) return false;
+    raise(peak, f.fa, st_.t);
+    raise(peak, f.fb, b);
+    return true;
+  }
+  // The same for |f| (max_abs).
+  bool watch_abs(const Ends& f, double b, Peak& peak) const {
+    const double h = b - st_.t;
+    if (std::max(std::abs(f.fa), std::abs(f.fb)) + f.bend * reach(h) < peak.value * (1.0 - 1e-12)) return true;
+    if (!monotone(f, h)) return false;
+    raise(peak, std::abs(f.fa), st_.t);
+    raise(peak, std::abs(f.fb), b);
+    return true;
+  }
+  static bool monotone(const Ends& f, double h) {
+    const double slack = f.twist * reach(h);
+    return std::min(f.ra, f.rb) > slack || std::max(f.ra, f.rb) < -slack;
+  }
+  static void raise(Peak& peak, double value, double t) {
+    if (value > peak.value) peak = {value, t};
+  }
+
+  // The event loop takes the interval from st_.t: the frame as a breakpoint leaves it, rebuilt
+  // from the state the recurrence left (if it took the last interval).
+  int by_events() {
+    if (!stale_) return 0;
+    stale_ = false;
+    build_frame(s_, st_, 0, s_.n_bodies() - 1, fr_);
+    std::fill(fresh_.begin(), fresh_.end(), 1);
+    if (lazy_) note_all_gaps();
+    return 0;
   }
 
   // Lazy events (DERIVATION.md §9): a body's state at the event is taken from its wave only
@@ -706,13 +897,18 @@ class Solver {
     }
   }
 
+  // The time of history sample n: equally spaced from 0 to t_end.
+  double history_time(int n) const {
+    const double dt = samples_ > 1 ? s_.t_end / (samples_ - 1) : 0.0;
+    return n == samples_ - 1 ? s_.t_end : dt * n;
+  }
+
   // Samples of the state at equally spaced times in [state.t, t] (the first from t = 0).
   void record(double t) {
     if (samples_ <= 0) return;
-    const double dt = samples_ > 1 ? s_.t_end / (samples_ - 1) : 0.0;
     auto& data = res_.history.data;
     while (next_sample_ < samples_) {
-      const double ts = next_sample_ == samples_ - 1 ? s_.t_end : dt * next_sample_;
+      const double ts = history_time(next_sample_);
       if (ts > t) break;
       double v[2];
       TrigCache trig;
@@ -1001,6 +1197,11 @@ class Solver {
   bool free_ = false;
   std::vector<Peak> body_peak_, closing_, opening_;  // a free run's (watch)
   double rate_ = 1.0;
+  // The recurrence (recur): on; the record's sample at or before st_.t; whether the frame
+  // is older than the state (the recurrence took the last interval).
+  bool recurrence_ = false;
+  std::size_t sample_ = 0;
+  bool stale_ = false;
   std::vector<double>& force_scale_ = scratch_.force_scale;  // per contact
   int samples_ = 0, next_sample_ = 0;
   // Energy balance and restitution (Result).
@@ -1041,7 +1242,8 @@ class Solver {
 
 namespace {
 
-Result solve_rigid(const System& system, const Settings& settings, bool keep_searches, bool lazy) {
+Result solve_rigid(const System& system, const Settings& settings, bool keep_searches, bool lazy,
+                   bool recurrence = true) {
   // A variant it does not have fails the run, as every solver's does (the contract).
   if (!known_variant(settings.variant)) return failed("variant: unknown '" + clip(settings.variant) + "'");
   if (kelvin_voigt(settings)) {
@@ -1050,7 +1252,7 @@ Result solve_rigid(const System& system, const Settings& settings, bool keep_sea
                             "yielding is solved with rigid contact");
   }
   try {
-    return Solver(system, settings, keep_searches, lazy).run();
+    return Solver(system, settings, keep_searches, lazy, false, recurrence).run();
   } catch (const std::exception& e) {
     return failed(e.what());
   }
@@ -1066,6 +1268,10 @@ Result detail::solve_searching_every_contact(const System& system, const Setting
 
 Result detail::solve_rebuilding_every_body(const System& system, const Settings& settings) {
   return solve_rigid(system, settings, true, false);
+}
+
+Result detail::solve_searching_every_sample(const System& system, const Settings& settings) {
+  return solve_rigid(system, settings, true, true, false);
 }
 
 void check_result(const System& s, double tol_scale, Result& r) {
@@ -1126,20 +1332,30 @@ std::string check(const Settings& settings) {
   return {};
 }
 
-FreeMotion free_motion(const System& system, const Settings& limits) {
+namespace {
+
+FreeMotion free_motion(const System& system, const Settings& limits, bool recurrence) {
   System apart = system;
   apart.delta = 0.0;  // each gap is then u_right - u_left, what the separation measures
   Settings settings;
   settings.time_limit = limits.time_limit;
   settings.stop = limits.stop;
   try {
-    return Solver(apart, settings, false, false, true).free_run();
+    return Solver(apart, settings, false, false, true, recurrence).free_run();
   } catch (const std::exception& e) {
     FreeMotion out;
     out.status = Status::failed;
     out.message = e.what();
     return out;
   }
+}
+
+}  // namespace
+
+FreeMotion free_motion(const System& system, const Settings& limits) { return free_motion(system, limits, true); }
+
+FreeMotion detail::free_motion_searching_every_sample(const System& system, const Settings& limits) {
+  return free_motion(system, limits, false);
 }
 
 double no_contact_pi1(const System& system, const Settings& limits) {

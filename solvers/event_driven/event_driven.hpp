@@ -51,6 +51,10 @@ Result solve_searching_every_contact(const System& system, const Settings& setti
 // solve() with every body advanced, and the whole frame rebuilt, at every event, as before
 // an event rebuilt only the clusters it changed (DERIVATION.md §9).
 Result solve_rebuilding_every_body(const System& system, const Settings& settings);
+// solve() and free_motion() with every sample of a record taken as an event, searched in
+// full, as before the recurrence (DERIVATION.md §11) took the intervals it proves empty.
+Result solve_searching_every_sample(const System& system, const Settings& settings);
+FreeMotion free_motion_searching_every_sample(const System& system, const Settings& limits = {});
 }  // namespace detail
 
 }  // namespace pb::event_driven
