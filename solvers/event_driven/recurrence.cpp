@@ -25,14 +25,14 @@ Mat2 product(const Mat2& a, const Mat2& b) {
            {a[1][0] * b[0][0] + a[1][1] * b[1][0], a[1][0] * b[0][1] + a[1][1] * b[1][1]}}};
 }
 
-Vec2 apply(const Mat2& a, const Vec2& x) { return {a[0][0] * x[0] + a[0][1] * x[1], a[1][0] * x[0] + a[1][1] * x[1]}; }
+Vec2 mat_vec(const Mat2& a, const Vec2& x) { return {a[0][0] * x[0] + a[0][1] * x[1], a[1][0] * x[0] + a[1][1] * x[1]}; }
 
 }  // namespace recurrence_series
 
 Transition transition(double two_sigma, double w2, double h) {
   using recurrence_series::Mat2;
   using recurrence_series::Vec2;
-  using recurrence_series::apply;
+  using recurrence_series::mat_vec;
   using recurrence_series::product;
   // In the balanced state z = (w x, v), z' = K z + e2 q with K = [[0, w], [-w, -2 sigma]]: every
   // entry of K is w or 2 sigma, so the series and squarings below see no scale between the
@@ -68,7 +68,7 @@ Transition transition(double two_sigma, double w2, double h) {
     Mat2 twice = e;  // 2 I + E
     twice[0][0] += 2.0L;
     twice[1][1] += 2.0L;
-    const Vec2 g1_twice = apply(twice, g1), g2_twice = apply(twice, g2);
+    const Vec2 g1_twice = mat_vec(twice, g1), g2_twice = mat_vec(twice, g2);
     g2 = {g2_twice[0] + s * g1[0], g2_twice[1] + s * g1[1]};
     g1 = g1_twice;
     const Mat2 sq = product(e, e);
