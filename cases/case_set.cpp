@@ -426,6 +426,9 @@ class Reader {
         if (number_field(*k) && number_field(*k)->integer) require_whole_numbers(s);
         if (const CaseAlias* alias = alias_of(*k)) convert_alias(*alias, s);
         if (const PhysicalField* physical = physical_of(*k)) refuse_nan(*physical, s);
+        // A scaling target's default is NaN, "not given": a NaN value would scale nothing.
+        if (const CaseField* f = number_field(*k); f && f->number && std::isnan(f->get(Case{})))
+          refuse_nan_target(s);
       }
       else if (*k == kSymmetric) {
         const auto* b = node.as_boolean();
@@ -469,6 +472,13 @@ class Reader {
 
   // NaN is a physical field's "not given" (cases/physical.hpp): `uy0 = nan` ran elastic and
   // `m0 = nan` as 1 kg, as if the key were not there. Refused at its value.
+  void refuse_nan_target(const Entry& s) const {
+    for (std::size_t i = 0; i < s.values.size(); ++i)
+      if (std::isnan(s.values[i]))
+        fail(s.value_lines[i], s.field + (s.shape == Entry::Shape::list ? "[" + std::to_string(i) + "]" : ""),
+             "must be finite and > 0 (got nan)");
+  }
+
   void refuse_nan(const PhysicalField& physical, const Entry& s) const {
     for (std::size_t i = 0; i < s.values.size(); ++i) {
       if (!std::isnan(s.values[i])) continue;

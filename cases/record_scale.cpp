@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <numbers>
 #include <tuple>
 #include <utility>
 
@@ -53,8 +54,30 @@ std::shared_ptr<const Record> scaled_record(const std::shared_ptr<const Record>&
   return out;
 }
 
+// Named, not anonymous: a unity build puts this file beside others with helpers of that name.
+namespace scaling {
+
+// The targets as given, before anything is computed from them: each finite and > 0, and a
+// period whose oscillator the reference can solve (w = 2 pi / T within [kMinWp, kMaxWp]).
+std::optional<std::string> check_targets(const Case& c) {
+  if (!std::isnan(c.pga) && !(std::isfinite(c.pga) && c.pga > 0.0)) return "pga: must be finite and > 0 (m/s^2)";
+  if (!std::isnan(c.sa) && !(std::isfinite(c.sa) && c.sa > 0.0)) return "sa: must be finite and > 0 (m/s^2)";
+  if (!std::isnan(c.sa_period)) {
+    const double w = 2.0 * std::numbers::pi / c.sa_period;
+    if (!(std::isfinite(c.sa_period) && c.sa_period > 0.0 && w >= kMinWp && w <= kMaxWp))
+      return "sa_period: must be finite and in [" + format_number(2.0 * std::numbers::pi / kMaxWp) + ", " +
+             format_number(2.0 * std::numbers::pi / kMinWp) + "] s";
+  }
+  if (std::isnan(c.sa) != std::isnan(c.sa_period))
+    return std::isnan(c.sa) ? "sa: sa_period is its period; give sa too" : "sa_period: required by sa";
+  return std::nullopt;
+}
+
+}  // namespace scaling
+
 std::optional<std::string> scale_record(Case& c) {
   if (c.pulse != PulseShape::record || !c.samples) return std::nullopt;
+  if (auto bad = scaling::check_targets(c)) return bad;
   const bool pga = !std::isnan(c.pga), sa = !std::isnan(c.sa) && !std::isnan(c.sa_period);
   if ((pga || sa) && c.record_scale != 1.0 && c.samples->scale != c.record_scale)
     return std::string("record_scale: not with ") + (pga ? "pga" : "sa") + " (scale the record one way)";

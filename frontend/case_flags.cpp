@@ -122,6 +122,9 @@ ChosenCase case_from_flags(const GivenFlag& given, const CaseFlags& flags) {
     if (used && field.required && !given(flag))
       throw BadInput(flag + (field.use == FieldUse::every ? ": required (or give --case-file)" : ": required by " + user()));
     if (!used && given(flag)) throw BadInput(flag + ": not used by " + user());
+    // NaN is a scaling target's "not given": --pga nan would scale nothing without a word.
+    if (used && given(flag) && field.number && std::isnan(flags.numbers.*field.number))
+      throw BadInput(flag + ": must be finite and > 0 (got nan)");
     if (used) copy_field(field, flags.numbers, c);
   }
   // An alias gives its field (--tp gives --w-p), never beside it.

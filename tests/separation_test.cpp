@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -268,6 +269,18 @@ TEST_F(SeparationCli, PhysicalRunScalesTheRecordAndReportsTheGaps) {
   EXPECT_NE(refused.exit_code, 0);
   EXPECT_NE(refused.err.find("--a-p:"), std::string::npos) << refused.err;
   EXPECT_NE(refused.err.find("--pga"), std::string::npos) << refused.err;
+  // A bad target is refused in one line naming its flag, before anything is computed from it
+  // (NaN too: it is a target's "not given", and would scale nothing without a word).
+  for (const auto& [flags, says] : {std::pair{" --pga nan", "--pga: must be finite and > 0"},
+                                    {" --pga -1", "--pga: must be finite and > 0"},
+                                    {" --sa 5", "--sa-period: required by sa"},
+                                    {" --sa 5 --sa-period 1e-9", "--sa-period: must be finite and in"},
+                                    {" --pga 3 --record-scale 2", "--record-scale: not with pga"}}) {
+    const Outcome bad = run(base + flags);
+    EXPECT_EQ(bad.exit_code, 2) << flags;
+    EXPECT_EQ(bad.err.rfind(std::string("poundbench: ") + says, 0), 0u) << flags << ": " << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  }
 }
 
 }  // namespace separation_tests
