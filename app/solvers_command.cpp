@@ -23,6 +23,7 @@ struct Listed {
   std::string label;
   std::string summary;
   std::vector<std::string_view> settings;
+  std::vector<SettingsWhen> when;  // the settings it uses only under another choice of a name
 };
 
 std::vector<Listed> listed_variants(const SolverInfo& solver) {
@@ -30,7 +31,7 @@ std::vector<Listed> listed_variants(const SolverInfo& solver) {
   for (const VariantInfo& v : solver.variants()) {
     std::string label = v.name.empty() ? "(default)" : std::string(v.name);
     if (out.empty() && !v.name.empty()) label += " (default)";
-    out.push_back({v.name, label, v.summary, settings_used(solver, v.name)});
+    out.push_back({v.name, label, v.summary, settings_used(solver, v.name), settings_used_when(solver, v.name)});
   }
   return out;
 }
@@ -71,6 +72,21 @@ void print_text() {
     for (const Listed& v : variants)
       std::cout << "      " << v.label << std::string(variant_width + 2 - v.label.size(), ' ') << v.summary << '\n';
     std::cout << "    " << settings_line(variants) << '\n';
+    // Each choice once, with the settings some variant uses under it.
+    std::vector<SettingsWhen> when;
+    for (const Listed& v : variants)
+      for (const SettingsWhen& w : v.when) {
+        const auto same = std::find_if(when.begin(), when.end(),
+                                       [&](const SettingsWhen& o) { return o.field == w.field && o.choice == w.choice; });
+        if (same == when.end())
+          when.push_back(w);
+        else
+          for (std::string_view f : w.settings)
+            if (std::find(same->settings.begin(), same->settings.end(), f) == same->settings.end())
+              same->settings.push_back(f);
+      }
+    for (const SettingsWhen& w : when)
+      std::cout << "    with " << flag_of(w.field) << ' ' << w.choice << ": " << flags_of(w.settings) << '\n';
   }
   std::cout << "Every solver also takes the limits of a run, --step-cap and --time-limit.\n";
 }
@@ -79,9 +95,12 @@ void print_json() {
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (const SolverInfo& s : solvers()) {
     nlohmann::ordered_json variants = nlohmann::ordered_json::array();
-    for (const Listed& v : listed_variants(s))
+    for (const Listed& v : listed_variants(s)) {
+      nlohmann::ordered_json when = nlohmann::ordered_json::array();
+      for (const SettingsWhen& w : v.when) when.push_back({{"field", w.field}, {"value", w.choice}, {"settings", w.settings}});
       variants.push_back({{"name", v.name}, {"default", variants.empty()}, {"summary", v.summary},
-                          {"settings", v.settings}});
+                          {"settings", v.settings}, {"settings_when", when}});
+    }
     list.push_back({{"name", s.name}, {"summary", s.summary}, {"reference", s.reference}, {"variants", variants}});
   }
   std::cout << nlohmann::ordered_json{{"solvers", list}}.dump() << '\n';

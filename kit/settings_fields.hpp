@@ -10,6 +10,7 @@
 
 #include <array>
 #include <optional>
+#include <span>
 #include <string_view>
 
 #include "kit/solver.hpp"
@@ -23,6 +24,9 @@ struct SettingField {
   long Settings::* count;
   std::string_view help;
   std::string Settings::* text = nullptr;
+  // A name's values where they are a fixed few (the default first): `poundbench solvers` lists
+  // the settings a solver uses under each (compliant's --steps under --integrator newmark).
+  std::span<const std::string_view> choices{};
 
   // A number's value (not for a name).
   double get(const Settings& s) const {
@@ -35,6 +39,11 @@ struct SettingField {
     else s.*count = static_cast<long>(value);
   }
 };
+
+inline constexpr std::string_view kIntegratorChoices[] = {"cvode", "newmark"};
+inline constexpr std::string_view kMethodChoices[] = {"bdf", "adams"};
+inline constexpr std::string_view kContactChoices[] = {"rigid", "kelvin-voigt"};
+inline constexpr std::string_view kLcpChoices[] = {"lemke", "enum"};
 
 // Sized by its rows (std::to_array): a new setting is a row, nothing to count.
 inline constexpr auto kSettingFields = std::to_array<SettingField>({
@@ -54,12 +63,14 @@ inline constexpr auto kSettingFields = std::to_array<SettingField>({
     {"stiffness", &Settings::stiffness, nullptr, nullptr,
      "Compliant: contact stiffness as the Pi term K, k = K m0 w0^2 (Hertz family: over sqrt(a_p/w_p^2)); 0: default"},
     {"rtol", &Settings::rtol, nullptr, nullptr, "Compliant with cvode: relative tolerance (0: default)"},
-    {"integrator", nullptr, nullptr, nullptr, "Compliant: cvode or newmark (default: cvode)", &Settings::integrator},
-    {"method", nullptr, nullptr, nullptr, "Compliant with cvode: bdf or adams (default: bdf)", &Settings::method},
+    {"integrator", nullptr, nullptr, nullptr, "Compliant: cvode or newmark (default: cvode)", &Settings::integrator,
+     kIntegratorChoices},
+    {"method", nullptr, nullptr, nullptr, "Compliant with cvode: bdf or adams (default: bdf)", &Settings::method,
+     kMethodChoices},
     {"contact", nullptr, nullptr, nullptr,
      "Event-driven: rigid (default) or kelvin-voigt, the compliant solver's Kelvin-Voigt model solved exactly "
      "(with --stiffness)",
-     &Settings::contact},
+     &Settings::contact, kContactChoices},
     {"contact_steps", &Settings::contact_steps, nullptr, nullptr,
      "MuJoCo faithful: the contact time constant 1/w_c in steps, w_c h = 1/M (0: default 2)"},
     {"command", nullptr, nullptr, nullptr,
@@ -68,7 +79,8 @@ inline constexpr auto kSettingFields = std::to_array<SettingField>({
     {"name", nullptr, nullptr, nullptr,
      "External: the name its rows' settings and the report give the program (default: its command)", &Settings::name},
     {"lcp", nullptr, nullptr, nullptr,
-     "Siconos, a scheme whose variant does not name its LCP solver: lemke or enum (default: lemke)", &Settings::lcp},
+     "Siconos, a scheme whose variant does not name its LCP solver: lemke or enum (default: lemke)", &Settings::lcp,
+     kLcpChoices},
     {"projection_tol", &Settings::projection_tol, nullptr, nullptr,
      "Siconos projections: tolerance on a violated gap, over a_p/w_p^2 (0: default 1e-10)"},
     {"steps_per_sample", nullptr, &Settings::steps_per_sample, nullptr,

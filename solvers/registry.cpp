@@ -309,6 +309,28 @@ std::vector<std::string_view> settings_used(const SolverInfo& solver, std::strin
   return used;
 }
 
+std::vector<SettingsWhen> settings_used_when(const SolverInfo& solver, std::string_view variant) {
+  const std::vector<std::string_view> used = settings_used(solver, variant);
+  const auto uses = [&](std::string_view name) { return std::find(used.begin(), used.end(), name) != used.end(); };
+  std::vector<SettingsWhen> out;
+  for (const SettingField& field : kSettingFields) {
+    if (!field.text || !uses(field.name)) continue;
+    for (const std::string_view choice : field.choices.subspan(field.choices.empty() ? 0 : 1)) {
+      Settings base;
+      base.variant = variant;
+      base.*field.text = choice;
+      if (!solver.check(base).empty()) continue;
+      const std::string described = solver.describe(base);
+      SettingsWhen when{field.name, choice, {}};
+      for (const SettingField& other : kSettingFields)
+        if (!uses(other.name) && solver.describe(with_field(base, other, true)) != described)
+          when.settings.push_back(other.name);
+      if (!when.settings.empty()) out.push_back(std::move(when));
+    }
+  }
+  return out;
+}
+
 const SolverInfo* find_solver(std::string_view solver_name) {
   for (const SolverInfo& s : kSolvers)
     if (s.name == solver_name) return &s;

@@ -27,6 +27,14 @@ bool is_own_setting(std::string_view name);
 // value changes what its describe() says (the settings column of its rows), in the table's
 // order. The limits (step_cap, time_limit) are every solver's and in no describe().
 std::vector<std::string_view> settings_used(const SolverInfo& solver, std::string_view variant);
+// The settings a variant uses only where one of the names it uses takes another of its choices
+// (SettingField::choices; the solver's check accepting it): compliant's steps, wh, h_s under
+// integrator newmark. Per such choice, the fields it adds to settings_used's.
+struct SettingsWhen {
+  std::string_view field, choice;
+  std::vector<std::string_view> settings;
+};
+std::vector<SettingsWhen> settings_used_when(const SolverInfo& solver, std::string_view variant);
 // One rule for every solver (issue 12): a setting given but not used is refused, so that no
 // flag or key is accepted and silently ignored (`mujoco --stiffness 1e4`, `compliant --theta
 // nan`). A field of kit/settings_fields.hpp is used by these settings when its value

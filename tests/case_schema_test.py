@@ -29,7 +29,7 @@ SCHEMA = os.path.join(SOURCE, "docs/external/case.schema.json")
 CHECKER = f"{sys.executable} {SOURCE}/tests/external/schema_checker.py {SCHEMA}"
 # The sets sampled (schema_checker.py --sample: 0.44 ms a pulse's document, 50 ms a real
 # record's), and how.
-SAMPLED = {"records.toml", "records-real.toml", "records-step.toml", "workprecision-records.toml"}
+SAMPLED = {"records.toml", "records-real.toml", "records-step.toml", "workprecision-records.toml", "separation.toml"}
 ONE_IN = 20
 # A spectrum's Pi2 and directivities change no document's shape, only its numbers, whose range
 # the smaller sets span (stress.toml's extremes, workprecision-full.toml's 64 Pi2 a family): the

@@ -934,6 +934,14 @@ TEST_F(Cli, SolversListsEveryVariantAndRunAcceptsEachOne) {
   EXPECT_NE(text.out.find("    settings: --tol-scale --contact\n"), std::string::npos) << text.out;
   EXPECT_EQ(settings_used(*find_solver("moreau-jean"), "end-samples"),
             (std::vector<std::string_view>{"steps", "wh", "h_s", "theta", "gamma", "steps_per_sample"}));
+  // A setting used only under another value of a name (compliant's step under Newmark) is listed
+  // on its own line, and the run it names accepts it.
+  if (find_solver("compliant")) {
+    EXPECT_NE(text.out.find("    with --integrator newmark: --steps --wh --h-s --steps-per-sample\n"), std::string::npos)
+        << text.out;
+    const Outcome newmark = run(std::string("run ") + kPairCase + " --solver compliant --integrator newmark --steps 64");
+    EXPECT_EQ(newmark.exit_code, 0) << newmark.err;
+  }
   EXPECT_EQ(settings_used(reference_solver(), ""), (std::vector<std::string_view>{"tol_scale", "contact"}));
 }
 
