@@ -151,10 +151,11 @@ def engine_lines(by, stress_by):
             if e0 and e1 and percentile(e1, 50) > 0:
                 order = math.log(percentile(e0, 50) / percentile(e1, 50)) / math.log(fine[0] / coarse[0])
         cost = percentile([c for c in (floor_step_cost(m[1]) for m in members) if c == c] or [float("nan")], 50)
-        fails = set()
+        fails, stressed = set(), False
         for (s2, settings2), solved in (stress_by or {}).items():
             if s2 != solver or step_split(settings_fields(dict(settings=settings2)))[0] != rest:
                 continue
+            stressed = True
             for point, floors in solved.items():
                 first = next(iter(floors.values()))
                 errs = [e for e, _ in peak_errors(stress_ref, {point: floors})]
@@ -163,8 +164,10 @@ def engine_lines(by, stress_by):
         steps = ", ".join(f"{m[0]:g}" for m in stepped) or "its own"
         fields = json.loads(rest)
         variant = fields.get("variant") or fields.get("integrator") or "–"
+        if "stiffness" in fields:  # the compliant elements: a line per stiffness
+            variant += f" {fields.get('integrator', 'cvode')} K={float(fields['stiffness']):g}"
         lines.append(f"| {solver} | {variant} | {steps} | {order:.2g} | {cost * 1e9:.3g} | "
-                     f"{', '.join(sorted(fails)) or 'none'} |")
+                     f"{(', '.join(sorted(fails)) or 'none') if stressed else 'not run there'} |")
     return lines + [""]
 
 
