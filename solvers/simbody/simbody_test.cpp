@@ -202,7 +202,9 @@ TEST(Simbody, AQuietScopesWatchSeesEachWriteItDrops) {
 // inside PLUS's impulse solve of 999 contacts. The limit is now asked inside the step (each
 // contact's isProximal, each line of the solvers' trace, hunt-crossley's internal steps), and
 // a PLUS step whose silent stretches would outlast the limit's margin is not started: it says
-// so. 15 s is a hang bound, not a timing: a machine 10 times slower passes.
+// so. The bound is a hang check, not a timing: the four runs took a few seconds on a quiet
+// machine and up to 20 s at a load of 11 on 2 cores (building the 1000-body model is not
+// limited), so 120 s lets a machine ten times slower, or as loaded, pass.
 TEST(Simbody, EveryVariantEndsNearItsTimeLimitOnAThousandBodyChain) {
   Case c = make_case(Scene::chain, PulseShape::sine, 1.0, 1.0, 0.5);
   c.pi3 = 0.0;
@@ -217,7 +219,7 @@ TEST(Simbody, EveryVariantEndsNearItsTimeLimitOnAThousandBodyChain) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     RecordProperty(std::string(variant) + "_seconds", sci(seconds));
     EXPECT_EQ(r.status, Status::time_limit) << variant << ": " << r.message;
-    EXPECT_LT(seconds, 15.0) << variant << ": " << r.message;
+    EXPECT_LT(seconds, 120.0) << variant << ": " << r.message;
     EXPECT_TRUE(std::isnan(r.pi1)) << variant;
     const bool plus = variant == "plus-faithful" || variant == "default";
     if (plus) {
