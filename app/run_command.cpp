@@ -60,6 +60,9 @@ void print_physical(std::ostream& out, const Row& row) {
   const auto number = [&](std::string_view field) { return find_result_field(field)->number(row); };
   const auto value = [&](std::string_view field) { return brief(number(field)); };
   out << "peak     " << value("peak_m") << " m (body 0)";
+  // The other bodies' (Row::peaks: body 1, then body 2 of row3).
+  for (std::size_t i = 1; i < row.peaks.size(); ++i)
+    out << ", " << brief(row.peaks[i] * length_unit(row.input)) << " m (body " << i << ")";
   if (std::isfinite(number("h_s"))) out << ", step h = " << value("h_s") << " s";
   out << '\n';
   if (std::isfinite(number("first_impact_s")))
@@ -220,7 +223,8 @@ int run_command(const CLI::App& command, RunFlags flags) {
   const bool second_pass = flags.solver_flags.settings.monitor;
   Settings settings = flags.solver_flags.settings;
   settings.monitor = true;
-  const Row row = run_point(chosen.input, chosen.point, solver, settings, 1, nullptr, !second_pass, flags.estimate);
+  Row row = run_point(chosen.input, chosen.point, solver, settings, 1, nullptr, !second_pass, flags.estimate);
+  add_body_peaks(row, solver, settings);
   if (history)
     write_atomically(flags.history, [&](std::ostream& out) { write_history(out, row.result.history, row.input); });
 

@@ -756,6 +756,7 @@ py::dict run(const py::kwargs& kwargs) {
   static NoContactCache no_contact;
   run_interruptibly(stop, [&] {
     row = run_point(chosen.input, chosen.point, *solver, settings, 1, &no_contact, !second_pass, ErrorEstimate{.on = true});
+    add_body_peaks(row, *solver, settings);
   });
   py::dict out = row_dict(row, chosen);
   if (history) out["history"] = history_arrays(row);

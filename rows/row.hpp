@@ -58,6 +58,9 @@ struct Row {
   double separation_srss = std::numeric_limits<double>::quiet_NaN();
   double separation_ddc = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> peaks_no_contact;
+  // Every body's peak |u| with contact, over a_p / w_p^2, body 0 first (its Pi1), then the others
+  // left to right; `run` alone measures it (add_body_peaks, sweep/sweep.hpp): empty in a sweep.
+  std::vector<double> peaks;
   double length_scale = std::numeric_limits<double>::quiet_NaN();  // System::length_scale()
   double wh = std::numeric_limits<double>::quiet_NaN();  // w_max h of a time-stepper's step
   double penetration_steps = std::numeric_limits<double>::quiet_NaN();  // of the result (a column)

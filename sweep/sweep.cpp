@@ -8,6 +8,7 @@
 #include <exception>
 #include <memory>
 #include <mutex>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <thread>
@@ -275,6 +276,28 @@ std::optional<Settings> case_settings(const Case& c, const SolverInfo& solver, c
 }
 
 }  // namespace
+
+void add_body_peaks(Row& row, const SolverInfo& solver, const Settings& given) {
+  const Case& c = row.input;
+  if (row.result.status != Status::ok || c.scene == Scene::chain || c.scene == Scene::wall) return;
+  // A program run once a point (the external solver) is not run again; nor is a solve under a
+  // time limit, which is the whole run's (run_point's) and would be passed.
+  if (solver.one_pass || given.time_limit > 0.0) return;
+  std::string why;
+  std::optional<Settings> settings = case_settings(c, solver, given, why);
+  if (!settings) return;
+  settings->monitor = false;
+  settings->history_samples = 0;
+  System system = make_system(c);
+  const int ref = system.ref;
+  row.peaks = {row.result.pi1};
+  for (int i = 0; i < system.n_bodies(); ++i) {
+    if (i == ref) continue;
+    system.ref = i;
+    const Result r = solver.solve(system, *settings);
+    row.peaks.push_back(r.status == Status::ok ? r.pi1 : std::numeric_limits<double>::quiet_NaN());
+  }
+}
 
 Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const Settings& given,
               int repetitions, NoContactCache* no_contact, bool monitor_timed, const ErrorEstimate& estimate,

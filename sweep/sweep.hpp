@@ -88,6 +88,14 @@ Row run_point(const Case& c, std::size_t point, const SolverInfo& solver, const 
               int repetitions = 1, NoContactCache* no_contact = nullptr, bool monitor_timed = false,
               const ErrorEstimate& estimate = {}, const std::string* described = nullptr);
 
+// Every body's peak with contact (Row::peaks), by the same solver and settings: each other body
+// as the reported one (System::ref) in one more solve, the motion being the same; body 0's is
+// the row's Pi1. For `run` (and poundbench.run) alone: a sweep would pay a solve per body. Not for
+// a chain or the wall (one body), a row that did not end ok, a solver run once a point
+// (SolverInfo::one_pass: the external solver), nor under a time limit (it is the whole run's); a
+// solve that does not end ok leaves that body's peak NaN.
+void add_body_peaks(Row& row, const SolverInfo& solver, const Settings& settings);
+
 // One solver with its settings, run over every case of a sweep. settings.monitor: the rows
 // carry the monitor's measurements, from one untimed pass more (run_point), or, with
 // monitor_timed, from the timed solves themselves (their cost then includes the monitor's).

@@ -600,8 +600,8 @@ TEST(Csv, NumbersReadBackToTheSameDouble) {
 TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   const std::vector<std::string> header = split_csv(csv_header());
   // 47, the yielding, the physical, the own timings, h_over_dt, the estimates, the separations
-  // (residual_m, five _pi/_m pairs, peaks_no_contact_m), a record's scaling
-  ASSERT_EQ(header.size(), 94u);
+  // (residual_m, five _pi/_m pairs, peaks_m, peaks_no_contact_m), a record's scaling
+  ASSERT_EQ(header.size(), 95u);
   EXPECT_EQ(header.front(), "family");
   EXPECT_EQ(header[28], "message");  // the columns after it were appended later
   EXPECT_EQ(header[37], "penetration_steps");
@@ -614,7 +614,7 @@ TEST(Csv, LineHasOneFieldPerHeaderColumnAndReadsBack) {
   EXPECT_EQ(header[75], "h_over_dt");        // a record's step over its sampling interval (issue 34)
   EXPECT_EQ(header[76], "error_estimate");   // the error estimates (issue 48)
   EXPECT_EQ(header[78], "residual_m");       // the separations (issue 51)
-  EXPECT_EQ(header[90], "record_scale");     // and a record's scaling, last (issue 51)
+  EXPECT_EQ(header[91], "record_scale");     // and a record's scaling, last (issue 51)
   EXPECT_EQ(header.back(), "sa_period");
 
   Row row;
