@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <iostream>
 #include <optional>
 #include <span>
@@ -57,6 +58,23 @@ std::vector<NamedFile> separation_outputs(const SeparationFlags& flags, std::vec
 
 // The reference over the points (a pass of sweep_reference), with progress; nullopt when
 // interrupted.
+// The study's files, each whole or not at all: the summary where --summary asks (made only
+// then), and the table of `rows` rows to --out or stdout.
+void write_outputs(const SeparationFlags& flags, const std::function<void(std::ostream&)>& table, std::size_t rows,
+                   const std::function<std::vector<RuleSummary>()>& summarise) {
+  if (!flags.summary.empty()) {
+    const std::vector<RuleSummary> summary = summarise();
+    write_atomically(flags.summary, [&](std::ostream& out) { write_rule_summary(out, summary); });
+    report_written(summary.size(), flags.summary);
+  }
+  if (flags.out.empty()) {
+    write_to_stdout(table);
+  } else {
+    write_atomically(flags.out, table);
+    report_written(rows, flags.out);
+  }
+}
+
 std::optional<std::vector<buildings::BuildingsResult>> solve_points(std::span<const BuildingCase> points,
                                                                     ReferencePass pass, unsigned threads,
                                                                     std::size_t done_before, std::size_t total) {
@@ -97,18 +115,10 @@ int buildings_separation_command(const SeparationFlags& flags, const BuildingsSe
   const auto table = [&](std::ostream& out) {
     write_buildings_separation_table(out, set.points, found, at_fraction, flags.gap_fractions);
   };
-  if (!flags.summary.empty()) {
+  write_outputs(flags, table, rows, [&] {
     const std::vector<RuleRatios> ratios = buildings_rule_ratios(set.points, found);
-    const std::vector<RuleSummary> summary = summarise_rules(std::span<const RuleRatios>(ratios));
-    write_atomically(flags.summary, [&](std::ostream& out) { write_rule_summary(out, summary); });
-    report_written(summary.size(), flags.summary);
-  }
-  if (flags.out.empty()) {
-    write_to_stdout(table);
-  } else {
-    write_atomically(flags.out, table);
-    report_written(rows, flags.out);
-  }
+    return summarise_rules(std::span<const RuleRatios>(ratios));
+  });
   return 0;
 }
 
@@ -166,17 +176,7 @@ int separation_command(const SeparationFlags& flags) {
     at_fraction = std::move(*more);
   }
   const auto table = [&](std::ostream& out) { write_separation_table(out, *given, at_fraction, flags.gap_fractions); };
-  if (!flags.summary.empty()) {
-    const std::vector<RuleSummary> summary = summarise_rules(*given);
-    write_atomically(flags.summary, [&](std::ostream& out) { write_rule_summary(out, summary); });
-    report_written(summary.size(), flags.summary);
-  }
-  if (flags.out.empty()) {
-    write_to_stdout(table);
-  } else {
-    write_atomically(flags.out, table);
-    report_written(given->size(), flags.out);
-  }
+  write_outputs(flags, table, given->size(), [&] { return summarise_rules(*given); });
   return 0;
 }
 

@@ -4,6 +4,8 @@
 // a shipped set's point, and a result's distance from the reference's.
 
 #include <algorithm>
+#include <string_view>
+#include <atomic>
 #include <cmath>
 #include <memory>
 #include <utility>
@@ -17,6 +19,7 @@
 #include "cases/load.hpp"
 #include "cases/record.hpp"
 #include "kit/buildings_result.hpp"
+#include "kit/fixed_step.hpp"
 #include "kit/testing.hpp"
 
 namespace pb::test {
@@ -87,6 +90,51 @@ inline int floors_hit(const buildings::BuildingsResult& r) {
   int n = 0;
   for (const auto& c : r.contacts) n += c.impacts > 0 ? 1 : 0;
   return n;
+}
+
+// What every engine's buildings solve does with a run that cannot finish, on the issue's pair: a
+// step past the explicit storeys' limit (w_max h = 3, above ~1.9) diverges; one longer than the
+// pulse period is refused before the run; the time limit and the stop flag end it early; an
+// unknown variant is refused in one line naming the engine's default.
+inline void expect_buildings_statuses(buildings::BuildingsResult (*solve)(const BuildingModel&, const Settings&),
+                                      std::string_view default_variant) {
+  const BuildingModel md = assemble(issue_scene());
+  Settings unstable;
+  unstable.wh = 3.0;
+  const buildings::BuildingsResult d = solve(md, unstable);
+  EXPECT_EQ(d.status, Status::diverged) << d.message;
+  EXPECT_NE(d.message.find("at step"), std::string::npos) << d.message;
+  EXPECT_GT(d.events, 0);
+
+  Settings far;
+  far.wh = 100.0;
+  const buildings::BuildingsResult f = solve(md, far);
+  EXPECT_EQ(f.status, Status::failed);
+  EXPECT_TRUE(f.message.starts_with(kStepBoundMessage)) << f.message;
+  EXPECT_EQ(f.events, 0);
+
+  Settings limited;
+  limited.steps = 4096;
+  limited.time_limit = 1e-9;
+  const buildings::BuildingsResult late = solve(md, limited);
+  EXPECT_EQ(late.status, Status::time_limit) << late.message;
+  EXPECT_GT(late.events, 0);
+  EXPECT_LT(late.events, step_count(md.t_end, late.step));
+
+  const std::atomic<bool> stop{true};
+  Settings stopped;
+  stopped.stop = &stop;
+  const buildings::BuildingsResult halted = solve(md, stopped);
+  EXPECT_EQ(halted.status, Status::time_limit) << halted.message;
+  EXPECT_NE(halted.message.find("stopped"), std::string::npos) << halted.message;
+
+  Settings unknown;
+  unknown.variant = "pgs";
+  const buildings::BuildingsResult u = solve(md, unknown);
+  EXPECT_EQ(u.status, Status::failed);
+  EXPECT_NE(u.message.find("pgs"), std::string::npos) << u.message;
+  EXPECT_NE(u.message.find(default_variant), std::string::npos) << u.message;
+  EXPECT_EQ(u.message.find('\n'), std::string::npos) << u.message;
 }
 
 }  // namespace pb::test

@@ -56,17 +56,7 @@ class Faithful : public FloorsEngine {
     world_ = ::dart::simulation::World::create("buildings");
     world_->setGravity(Eigen::Vector3d::Zero());
     world_->setTimeStep(h);
-    if (config.lcp == Lcp::pgs) {
-      lcp_.pgs = std::make_shared<CountingPgs>();
-      lcp_.pgs->limit = &limit;
-      lcp_.pgs->setOption(::dart::constraint::PgsBoxedLcpSolver::Option(kFaithfulPgsSweeps, 0.0, 0.0));
-      world_->setConstraintSolver(std::make_unique<::dart::constraint::BoxedLcpConstraintSolver>(lcp_.pgs, nullptr));
-    } else {
-      lcp_.dantzig = std::make_shared<CountingDantzig>();
-      lcp_.dantzig->limit = &limit;
-      world_->setConstraintSolver(
-          std::make_unique<::dart::constraint::BoxedLcpConstraintSolver>(lcp_.dantzig, nullptr));
-    }
+    lcp_ = set_faithful_solver(*world_, config.lcp == Lcp::pgs, kFaithfulPgsSweeps, limit);
     for (int i = 0; i < n; ++i) add_floor(i);
     for (const FloorContact& fc : md.contacts) {
       auto gap = std::make_shared<GapConstraint>(bodies_[static_cast<std::size_t>(fc.i_left)],

@@ -39,18 +39,7 @@ class Faithful : public StepEngine {
     world_ = ::dart::simulation::World::create("pounding");
     world_->setGravity(Eigen::Vector3d::Zero());
     world_->setTimeStep(h);
-    if (config.lcp == Lcp::pgs) {
-      lcp_.pgs = std::make_shared<CountingPgs>();
-      lcp_.pgs->limit = &limit;
-      // Tolerances 0: stop only when a sweep changes nothing (variants.hpp).
-      lcp_.pgs->setOption(::dart::constraint::PgsBoxedLcpSolver::Option(kFaithfulPgsSweeps, 0.0, 0.0));
-      world_->setConstraintSolver(std::make_unique<::dart::constraint::BoxedLcpConstraintSolver>(lcp_.pgs, nullptr));
-    } else {
-      lcp_.dantzig = std::make_shared<CountingDantzig>();
-      lcp_.dantzig->limit = &limit;
-      world_->setConstraintSolver(
-          std::make_unique<::dart::constraint::BoxedLcpConstraintSolver>(lcp_.dantzig, nullptr));
-    }
+    lcp_ = set_faithful_solver(*world_, config.lcp == Lcp::pgs, kFaithfulPgsSweeps, limit);
     add_bodies();
     for (int j = 0; j < sys.n_contacts(); ++j) {
       const int left = sys.left(j);

@@ -42,4 +42,19 @@ bool CountingPgs::solve(int n, double* A, double* x, double* b, int nub, double*
   return ok;
 }
 
+LcpSolvers set_faithful_solver(::dart::simulation::World& world, bool pgs, int sweeps, RunLimit& limit) {
+  LcpSolvers lcp;
+  if (pgs) {
+    lcp.pgs = std::make_shared<CountingPgs>();
+    lcp.pgs->limit = &limit;
+    lcp.pgs->setOption(::dart::constraint::PgsBoxedLcpSolver::Option(sweeps, 0.0, 0.0));
+    world.setConstraintSolver(std::make_unique<::dart::constraint::BoxedLcpConstraintSolver>(lcp.pgs, nullptr));
+  } else {
+    lcp.dantzig = std::make_shared<CountingDantzig>();
+    lcp.dantzig->limit = &limit;
+    world.setConstraintSolver(std::make_unique<::dart::constraint::BoxedLcpConstraintSolver>(lcp.dantzig, nullptr));
+  }
+  return lcp;
+}
+
 }  // namespace pb::dart

@@ -21,6 +21,7 @@
 #include <dart/constraint/BoxedLcpConstraintSolver.hpp>
 #include <dart/constraint/DantzigBoxedLcpSolver.hpp>
 #include <dart/constraint/PgsBoxedLcpSolver.hpp>
+#include <dart/simulation/World.hpp>
 
 #include "solvers/dart/run_limit.hpp"
 
@@ -56,5 +57,10 @@ struct LcpSolvers {
   std::shared_ptr<CountingDantzig> dantzig;  // null where unused
   std::shared_ptr<CountingPgs> pgs;          // null where unused
 };
+
+// The faithful variants' constraint solver, set on `world`: Dantzig's, or PGS (`pgs`) with
+// `sweeps` sweeps and tolerances 0 (it stops only when a sweep changes nothing: variants.hpp),
+// each counting and ticking `limit` before its solves.
+LcpSolvers set_faithful_solver(::dart::simulation::World& world, bool pgs, int sweeps, RunLimit& limit);
 
 }  // namespace pb::dart

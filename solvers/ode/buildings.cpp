@@ -51,17 +51,7 @@ class Run {
   bool start() {
     if (!world_.ok()) return false;
     const dWorldID w = world_.id();
-    dWorldSetGravity(w, 0.0, 0.0, 0.0);
-    dWorldSetERP(w, config_.erp);
-    dWorldSetCFM(w, config_.cfm);
-    dWorldSetContactMaxCorrectingVel(w, config_.max_vel);
-    dWorldSetContactSurfaceLayer(w, config_.surface_layer);
-    dWorldSetAutoDisableFlag(w, 0);
-    dWorldSetDamping(w, 0.0, 0.0);
-    if (config_.stepper == Stepper::quickstep) {
-      dWorldSetQuickStepNumIterations(w, config_.iterations);
-      dWorldSetQuickStepW(w, config_.sor);
-    }
+    configure_world(w, config_);
     // The floors right to left, as the single oscillators' bodies: ODE walks its bodies newest
     // first, so the contact rows reach its Dantzig solver left to right (README, degenerate LCPs).
     for (int i = n_; i-- > 0;) {

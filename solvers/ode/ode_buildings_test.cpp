@@ -97,47 +97,10 @@ TEST(BuildingsOde, DefaultVariantsRunAndGiveFinitePeaks) {
   }
 }
 
-// A step too long for the explicit storeys (w_max h = 3, above ODE's limit of ~1.9) diverges;
-// one longer than the pulse period is refused before the run; the time limit and the stop flag
-// end a run early; an unknown variant is refused in one line naming the variants.
+// A step too long, one past the pulse, the time limit, the stop flag, an unknown variant
+// (kit/testing_buildings.hpp).
 TEST(BuildingsOde, StatusesOfARunThatCannotFinish) {
-  const BuildingModel md = assemble(test::issue_scene());
-  Settings unstable;
-  unstable.wh = 3.0;
-  const BuildingsResult d = ode::solve_buildings(md, unstable);
-  EXPECT_EQ(d.status, Status::diverged) << d.message;
-  EXPECT_NE(d.message.find("at step"), std::string::npos) << d.message;
-  EXPECT_GT(d.events, 0);
-
-  Settings far;
-  far.wh = 100.0;
-  const BuildingsResult f = ode::solve_buildings(md, far);
-  EXPECT_EQ(f.status, Status::failed);
-  EXPECT_TRUE(f.message.starts_with(kStepBoundMessage)) << f.message;
-  EXPECT_EQ(f.events, 0);
-
-  Settings limited;
-  limited.steps = 4096;
-  limited.time_limit = 1e-9;
-  const BuildingsResult late = ode::solve_buildings(md, limited);
-  EXPECT_EQ(late.status, Status::time_limit) << late.message;
-  EXPECT_GT(late.events, 0);
-  EXPECT_LT(late.events, step_count(md.t_end, late.step));
-
-  const std::atomic<bool> stop{true};
-  Settings stopped;
-  stopped.stop = &stop;
-  const BuildingsResult halted = ode::solve_buildings(md, stopped);
-  EXPECT_EQ(halted.status, Status::time_limit) << halted.message;
-  EXPECT_NE(halted.message.find("stopped"), std::string::npos) << halted.message;
-
-  Settings unknown;
-  unknown.variant = "pgs";
-  const BuildingsResult u = ode::solve_buildings(md, unknown);
-  EXPECT_EQ(u.status, Status::failed);
-  EXPECT_NE(u.message.find("pgs"), std::string::npos) << u.message;
-  EXPECT_NE(u.message.find("dantzig-faithful"), std::string::npos) << u.message;
-  EXPECT_EQ(u.message.find('\n'), std::string::npos) << u.message;
+  test::expect_buildings_statuses(&ode::solve_buildings, "dantzig-faithful");
 }
 
 // The registry's ode row solves the scene and lists what its solve reads.

@@ -82,17 +82,7 @@ class Engine : public StepEngine {
  private:
   void set_up_world() {
     const dWorldID w = world_.id();
-    dWorldSetGravity(w, 0.0, 0.0, 0.0);
-    dWorldSetERP(w, config_.erp);
-    dWorldSetCFM(w, config_.cfm);
-    dWorldSetContactMaxCorrectingVel(w, config_.max_vel);
-    dWorldSetContactSurfaceLayer(w, config_.surface_layer);
-    dWorldSetAutoDisableFlag(w, 0);
-    dWorldSetDamping(w, 0.0, 0.0);
-    if (config_.stepper == Stepper::quickstep) {
-      dWorldSetQuickStepNumIterations(w, config_.iterations);
-      dWorldSetQuickStepW(w, config_.sor);
-    }
+    configure_world(w, config_);
   }
 
   // Bodies are created right to left. ODE keeps its bodies newest first and orders the

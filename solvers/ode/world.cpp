@@ -69,4 +69,18 @@ World::~World() {
   if (threading_ != nullptr) dThreadingFreeImplementation(threading_);
 }
 
+void configure_world(dWorldID w, const Config& config) {
+  dWorldSetGravity(w, 0.0, 0.0, 0.0);
+  dWorldSetERP(w, config.erp);
+  dWorldSetCFM(w, config.cfm);
+  dWorldSetContactMaxCorrectingVel(w, config.max_vel);
+  dWorldSetContactSurfaceLayer(w, config.surface_layer);
+  dWorldSetAutoDisableFlag(w, 0);
+  dWorldSetDamping(w, 0.0, 0.0);
+  if (config.stepper == Stepper::quickstep) {
+    dWorldSetQuickStepNumIterations(w, config.iterations);
+    dWorldSetQuickStepW(w, config.sor);
+  }
+}
+
 }  // namespace pb::ode

@@ -23,6 +23,8 @@
 
 #include <string>
 
+#include "solvers/ode/variants.hpp"
+
 namespace pb::ode {
 
 // Initialises ODE for the process (once) and the calling thread (once per thread).
@@ -60,5 +62,9 @@ class World {
   dWorldID world_ = nullptr;
   dJointGroupID contacts_ = nullptr;
 };
+
+// A world as a variant runs it (variants.hpp): no gravity, the variant's ERP, CFM, push-out cap
+// and surface layer, no sleeping, no world damping, and quickstep's sweeps and SOR.
+void configure_world(dWorldID world, const Config& config);
 
 }  // namespace pb::ode
